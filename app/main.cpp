@@ -1,0 +1,90 @@
+// vegstream — fly over real terrain covered with procedurally grown vegetation.
+// The command line: one subcommand per job (DESIGN.md, "Command line").
+
+#include <iostream>
+#include <regex>
+
+#include <CLI/CLI.hpp>
+
+#include "app/exit_codes.h"
+#include "app/fly_command.h"
+#include "core/log.h"
+#include "render/context.h"
+
+#ifndef VEGSTREAM_DEFAULT_DATASET
+#define VEGSTREAM_DEFAULT_DATASET "../shared/datasets/zion"
+#endif
+
+namespace {
+
+// "WxH" → width, height; both 1 … 16384.
+bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
+  static const std::regex re(R"((\d{1,6})[xX](\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) return false;
+  w = static_cast<uint32_t>(std::stoul(m[1]));
+  h = static_cast<uint32_t>(std::stoul(m[2]));
+  return w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
+}
+
+int listDevicesCommand(const vegstream::Logger& log) {
+  auto devices = vegstream::render::listDevices();
+  if (!devices) return vegstream::app::reportError(log, devices.error());
+  for (const auto& d : *devices)
+    std::cout << d.index << ": " << d.name << " (" << d.type << ", " << d.driver << ", Vulkan " << d.apiVersion
+              << ", MSAA " << d.msaaList() << ")\n";
+  return vegstream::app::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace vegstream;
+  CLI::App cli{"vegstream: fly over real terrain covered with procedurally grown vegetation"};
+  cli.require_subcommand(1);
+  bool verbose = false;
+  cli.add_flag("-v,--verbose", verbose, "More log output");
+
+  app::FlyOptions fly;
+  fly.dataset = VEGSTREAM_DEFAULT_DATASET;
+  std::string size = "640x360";
+  auto* flyCmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
+  flyCmd->add_option("dataset", fly.dataset, "DEM GeoTIFF, or a directory holding srtm.tif")
+      ->capture_default_str();
+  flyCmd->add_option("--out", fly.out, "Directory for headless frames and run.json")->capture_default_str();
+  flyCmd->add_option("--frames", fly.frames, "Number of headless frames")->capture_default_str()->check(CLI::Range(1, 100000));
+  flyCmd->add_option("--size", size, "Frame size WxH")->capture_default_str();
+  flyCmd->add_option("--msaa", fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")->capture_default_str();
+  flyCmd->add_option("--device", fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
+  flyCmd->add_option("--duration", fly.durationS, "Seconds of flight the frames cover")->capture_default_str()
+      ->check(CLI::Range(0.1, 3600.0));
+  flyCmd->add_option("--mesh-step", fly.meshStep, "Use every N-th DEM sample")->capture_default_str()->check(CLI::Range(1, 64));
+  flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
+  flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
+
+  auto* devicesCmd = cli.add_subcommand("devices", "List the Vulkan devices vegstream can draw with");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints usage errors; its own code for --help is 0. Every other parse error is a
+    // user mistake: exit 2.
+    const int code = cli.exit(e);
+    return code == 0 ? 0 : app::kExitUserError;
+  }
+  const Logger log = makeConsoleLogger("vegstream", verbose ? spdlog::level::debug : spdlog::level::info);
+
+  if (*devicesCmd) return listDevicesCommand(log);
+  if (*flyCmd) {
+    if (!parseSize(size, fly.width, fly.height)) {
+      log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", size);
+      return app::kExitUserError;
+    }
+    if (fly.msaa != 1 && fly.msaa != 2 && fly.msaa != 4 && fly.msaa != 8 && fly.msaa != 16) {
+      log->error("--msaa {}: samples per pixel must be 1, 2, 4, 8 or 16", fly.msaa);
+      return app::kExitUserError;
+    }
+    return app::runFly(fly, log);
+  }
+  return app::kExitUserError;
+}

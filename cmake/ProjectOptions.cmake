@@ -1,0 +1,28 @@
+# Compile options shared by every project target: warnings as errors, optional sanitizers.
+add_library(vegstream_options INTERFACE)
+# -Wno-missing-field-initializers: Vulkan's C structs are filled with the idiom
+# `VkXxxCreateInfo ci{VK_STRUCTURE_TYPE_...};` whose other members are zero by the language rules.
+target_compile_options(vegstream_options INTERFACE
+  -Wall -Wextra -Wshadow -Wconversion -Werror -Wno-missing-field-initializers)
+target_compile_definitions(vegstream_options INTERFACE
+  GLM_FORCE_DEPTH_ZERO_TO_ONE GLM_FORCE_RADIANS)
+if(VEGSTREAM_SANITIZE)
+  target_compile_options(vegstream_options INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(vegstream_options INTERFACE -fsanitize=address,undefined)
+endif()
+
+# vegstream_add_library(NAME SOURCES... DEPS ...): one library per folder, with the folder's
+# parent as include root so code writes #include "core/result.h".
+function(vegstream_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  if(ARG_SOURCES)
+    add_library(${name} STATIC ${ARG_SOURCES})
+    target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE vegstream_options ${ARG_PRIVATE_DEPS})
+  else()
+    add_library(${name} INTERFACE)
+    target_include_directories(${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${name} INTERFACE ${ARG_PUBLIC_DEPS})
+  endif()
+endfunction()

@@ -1,0 +1,23 @@
+#pragma once
+// What the program tells the user (and records) about the GPU it draws with. Plain data, so
+// callers outside render/ never see a Vulkan type.
+
+#include <string>
+#include <vector>
+
+namespace vegstream::render {
+
+struct DeviceInfo {
+  int index = -1;               // position in the driver's enumeration
+  std::string name;             // VkPhysicalDeviceProperties::deviceName
+  std::string type;             // "discrete", "integrated", "virtual", "cpu", "other"
+  std::string driver;           // driver name and info, e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string apiVersion;       // "1.3.230"
+  std::vector<int> msaaCounts;  // sample counts usable for colour+depth targets, e.g. {1, 4}
+  bool software = false;        // a CPU rasteriser (lavapipe): per-pass GPU times mean nothing
+
+  bool supportsMsaa(int samples) const;
+  std::string msaaList() const;  // "1, 4"
+};
+
+}  // namespace vegstream::render

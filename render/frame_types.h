@@ -1,0 +1,71 @@
+#pragma once
+// What callers hand the renderer each frame and what they get back: plain data only, so
+// folders above render/ never see a Vulkan type.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "render/gpu_timing.h"
+
+namespace vegstream::render {
+
+// A camera in the local ENU frame, in double precision.
+struct Camera {
+  glm::dvec3 position{0.0};
+  glm::dvec3 forward{0.0, 1.0, 0.0};  // unit view direction
+  glm::dvec3 up{0.0, 0.0, 1.0};       // approximate up; re-orthogonalised
+  double verticalFovDeg = 55.0;
+  double nearM = 1.0;
+  double farM = 150'000.0;
+};
+
+// Rotation-only view matrix: the camera at the origin looking along forward (right-handed,
+// looking down −z in view space).
+glm::dmat4 viewRotation(const Camera& camera);
+// Reverse-Z perspective for Vulkan clip space (y down, depth 1 at near, 0 at far).
+glm::dmat4 projection(const Camera& camera, double aspect);
+// Reverse-Z depth of a point at view distance d (along the view axis): n(f − d) / ((f − n) d).
+double reverseZDepth(const Camera& camera, double viewDistance);
+
+struct Lighting {
+  glm::dvec3 sunDirection{-0.55, -0.45, 0.55};  // towards the sun (afternoon, south-west), local ENU; normalised on use
+  glm::vec3 sunColor{1.05f, 0.98f, 0.88f};
+  glm::vec3 skyZenith{0.16f, 0.32f, 0.68f};
+  glm::vec3 skyHorizon{0.62f, 0.72f, 0.85f};
+  float fogDensity = 1.2e-5f;   // extinction per metre at sea level
+  float fogFalloff = 1.0e-4f;   // per metre of height (scale height 10 km)
+};
+
+struct FrameRequest {
+  Camera camera;
+  Lighting lighting;
+  double cameraHeightMsl = 0.0;  // for the height fog
+  bool readbackColor = false;
+  bool readbackDepth = false;
+  bool present = false;          // to the window, when the renderer has one
+};
+
+struct ColorImage {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba;  // sRGB, row-major from the top
+};
+
+struct DepthImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> depth;  // reverse-Z: 1 at the near plane, 0 at the far plane / sky
+};
+
+struct FrameResult {
+  uint64_t frameIndex = 0;
+  double cpuRecordMs = 0.0;
+  GpuTimings gpu;
+  uint64_t terrainTriangles = 0;  // triangles submitted by the terrain pass
+  std::optional<ColorImage> color;
+  std::optional<DepthImage> depth;
+};
+
+}  // namespace vegstream::render

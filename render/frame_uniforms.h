@@ -1,0 +1,33 @@
+#pragma once
+// C++ mirror of shaders/common/frame_uniforms.glsl (std140). Only vec4/mat4 members, so the
+// std140 layout equals the C++ layout; the static_asserts keep the two in step.
+
+#include <cstddef>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+namespace vegstream::render {
+
+struct FrameUniforms {
+  glm::mat4 viewProj;
+  glm::mat4 invViewProj;
+  glm::vec4 sunDirection;
+  glm::vec4 sunColor;
+  glm::vec4 skyZenith;
+  glm::vec4 skyHorizon;
+  glm::vec4 fog;
+  glm::vec4 viewport;
+};
+
+static_assert(offsetof(FrameUniforms, viewProj) == 0);
+static_assert(offsetof(FrameUniforms, invViewProj) == 64);
+static_assert(offsetof(FrameUniforms, sunDirection) == 128);
+static_assert(offsetof(FrameUniforms, sunColor) == 144);
+static_assert(offsetof(FrameUniforms, skyZenith) == 160);
+static_assert(offsetof(FrameUniforms, skyHorizon) == 176);
+static_assert(offsetof(FrameUniforms, fog) == 192);
+static_assert(offsetof(FrameUniforms, viewport) == 208);
+static_assert(sizeof(FrameUniforms) == 224);
+
+}  // namespace vegstream::render

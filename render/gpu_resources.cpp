@@ -1,0 +1,120 @@
+#include "render/gpu_resources.h"
+
+#include <cstring>
+
+#include "render/vk_check.h"
+
+namespace vegstream::render {
+
+GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+                       const std::string& name) {
+  VkDevice device = ctx.device();
+  VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bci.size = size;
+  bci.usage = usage;
+  bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer raw;
+  vkCheck(vkCreateBuffer(device, &bci, nullptr, &raw), "vkCreateBuffer");
+  GpuBuffer out;
+  out.buffer = Buffer(device, raw);
+  out.size = size;
+  ctx.setName(VK_OBJECT_TYPE_BUFFER, raw, name);
+
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device, raw, &req);
+  VkMemoryPropertyFlags flags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  if (use == MemoryUse::HostUpload) flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  if (use == MemoryUse::HostReadback)
+    flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, flags);
+  VkDeviceMemory mem;
+  vkCheck(vkAllocateMemory(device, &mai, nullptr, &mem), "vkAllocateMemory");
+  out.memory = DeviceMemory(device, mem);
+  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
+  vkCheck(vkBindBufferMemory(device, raw, mem, 0), "vkBindBufferMemory");
+  if (use != MemoryUse::DeviceLocal) vkCheck(vkMapMemory(device, mem, 0, VK_WHOLE_SIZE, 0, &out.mapped), "vkMapMemory");
+  return out;
+}
+
+GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage,
+                               const std::string& name) {
+  GpuBuffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, name + " staging");
+  std::memcpy(staging.mapped, bytes, static_cast<size_t>(size));
+  GpuBuffer out = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::DeviceLocal, name);
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, size};
+    vkCmdCopyBuffer(cmd, staging.get(), out.get(), 1, &region);
+  });
+  return out;
+}
+
+GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                       VkSampleCountFlagBits samples, const std::string& name) {
+  VkDevice device = ctx.device();
+  GpuImage out;
+  out.format = format;
+  out.extent = extent;
+  out.samples = samples;
+  out.aspect = (format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM) ? VK_IMAGE_ASPECT_DEPTH_BIT
+                                                                                 : VK_IMAGE_ASPECT_COLOR_BIT;
+  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ici.imageType = VK_IMAGE_TYPE_2D;
+  ici.format = format;
+  ici.extent = {extent.width, extent.height, 1};
+  ici.mipLevels = 1;
+  ici.arrayLayers = 1;
+  ici.samples = samples;
+  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ici.usage = usage;
+  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImage raw;
+  vkCheck(vkCreateImage(device, &ici, nullptr, &raw), "vkCreateImage");
+  out.image = Image(device, raw);
+  ctx.setName(VK_OBJECT_TYPE_IMAGE, raw, name);
+
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device, raw, &req);
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory mem;
+  vkCheck(vkAllocateMemory(device, &mai, nullptr, &mem), "vkAllocateMemory");
+  out.memory = DeviceMemory(device, mem);
+  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
+  vkCheck(vkBindImageMemory(device, raw, mem, 0), "vkBindImageMemory");
+
+  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vci.image = raw;
+  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vci.format = format;
+  vci.subresourceRange = {out.aspect, 0, 1, 0, 1};
+  VkImageView view;
+  vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
+  out.view = ImageView(device, view);
+  ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view");
+  return out;
+}
+
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                     VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                     VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  b.srcStageMask = srcStage;
+  b.srcAccessMask = srcAccess;
+  b.dstStageMask = dstStage;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace vegstream::render

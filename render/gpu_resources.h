@@ -1,0 +1,51 @@
+#pragma once
+// Buffers and images with their own memory (one allocation each: vegstream holds tens of GPU
+// objects, not thousands, so a sub-allocator would be complexity without benefit yet).
+
+#include <cstddef>
+#include <string>
+
+#include "render/context.h"
+#include "render/handle.h"
+
+namespace vegstream::render {
+
+struct GpuBuffer {
+  Buffer buffer;
+  DeviceMemory memory;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // persistently mapped when host-visible
+
+  VkBuffer get() const { return buffer.get(); }
+};
+
+enum class MemoryUse { DeviceLocal, HostUpload, HostReadback };
+
+GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+                       const std::string& name);
+
+// A device-local buffer filled with `bytes` through a staging copy (waits for the copy).
+GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSize size,
+                               VkBufferUsageFlags usage, const std::string& name);
+
+struct GpuImage {
+  Image image;
+  DeviceMemory memory;
+  ImageView view;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+
+  VkImage get() const { return image.get(); }
+};
+
+GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                       VkSampleCountFlagBits samples, const std::string& name);
+
+// One pipeline barrier for one whole image (synchronization2).
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                     VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                     VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+}  // namespace vegstream::render

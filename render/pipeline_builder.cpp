@@ -1,0 +1,98 @@
+#include "render/pipeline_builder.h"
+
+#include "render/vk_check.h"
+
+namespace vegstream::render {
+
+ShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = spirv.size_bytes();
+  ci.pCode = spirv.data();
+  VkShaderModule module;
+  vkCheck(vkCreateShaderModule(ctx.device(), &ci, nullptr, &module), "vkCreateShaderModule");
+  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, module, name);
+  return ShaderModule(ctx.device(), module);
+}
+
+PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
+                                    std::span<const VkPushConstantRange> pushConstants, const std::string& name) {
+  VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  ci.setLayoutCount = static_cast<uint32_t>(sets.size());
+  ci.pSetLayouts = sets.data();
+  ci.pushConstantRangeCount = static_cast<uint32_t>(pushConstants.size());
+  ci.pPushConstantRanges = pushConstants.data();
+  VkPipelineLayout layout;
+  vkCheck(vkCreatePipelineLayout(ctx.device(), &ci, nullptr, &layout), "vkCreatePipelineLayout");
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, layout, name);
+  return PipelineLayout(ctx.device(), layout);
+}
+
+Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc) {
+  std::vector<ShaderModule> modules;
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  for (const auto& s : desc.stages) {
+    modules.push_back(createShaderModule(ctx, s.spirv, desc.name + " shader"));
+    VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    si.stage = s.stage;
+    si.module = modules.back().get();
+    si.pName = "main";
+    stages.push_back(si);
+  }
+  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vi.vertexBindingDescriptionCount = static_cast<uint32_t>(desc.bindings.size());
+  vi.pVertexBindingDescriptions = desc.bindings.data();
+  vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.attributes.size());
+  vi.pVertexAttributeDescriptions = desc.attributes.data();
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = desc.topology;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = desc.cullMode;
+  // The projection flips y for Vulkan's y-down framebuffer, so a triangle that is
+  // counter-clockwise seen from its front stays counter-clockwise in Vulkan's terms.
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = desc.samples;
+  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  ds.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
+  ds.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
+  ds.depthCompareOp = desc.depthCompare;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                         VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = 1;
+  cb.pAttachments = &blend;
+  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dyn.dynamicStateCount = 2;
+  dyn.pDynamicStates = dynamicStates;
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &desc.colorFormat;
+  rendering.depthAttachmentFormat = desc.depthFormat;
+
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+  ci.stageCount = static_cast<uint32_t>(stages.size());
+  ci.pStages = stages.data();
+  ci.pVertexInputState = &vi;
+  ci.pInputAssemblyState = &ia;
+  ci.pViewportState = &vp;
+  ci.pRasterizationState = &rs;
+  ci.pMultisampleState = &ms;
+  ci.pDepthStencilState = &ds;
+  ci.pColorBlendState = &cb;
+  ci.pDynamicState = &dyn;
+  ci.layout = desc.layout;
+  VkPipeline pipeline;
+  vkCheck(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
+          ("vkCreateGraphicsPipelines(" + desc.name + ")").c_str());
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, desc.name);
+  return Pipeline(ctx.device(), pipeline);
+}
+
+}  // namespace vegstream::render

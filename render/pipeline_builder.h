@@ -1,0 +1,43 @@
+#pragma once
+// Graphics pipelines for dynamic rendering into RenderTargets: one description struct, one
+// function, so every pass states only what differs (shaders, vertex layout, depth, blending).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "render/context.h"
+#include "render/handle.h"
+
+namespace vegstream::render {
+
+ShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
+
+struct ShaderStage {
+  VkShaderStageFlagBits stage;
+  std::span<const uint32_t> spirv;
+};
+
+struct GraphicsPipelineDesc {
+  std::string name;
+  std::vector<ShaderStage> stages;
+  std::vector<VkVertexInputBindingDescription> bindings;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+  bool depthTest = true;
+  bool depthWrite = true;
+  VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
+Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
+
+PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
+                                    std::span<const VkPushConstantRange> pushConstants, const std::string& name);
+
+}  // namespace vegstream::render

@@ -1,0 +1,435 @@
+#include "render/renderer.h"
+
+#include <array>
+#include <cstring>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "core/stopwatch.h"
+#include "render/deletion_queue.h"
+#include "render/frame_uniforms.h"
+#include "render/gpu_timer.h"
+#include "render/render_targets.h"
+#include "render/sky_pass.h"
+#include "render/swapchain.h"
+#include "render/terrain_pass.h"
+#include "render/vk_check.h"
+
+namespace vegstream::render {
+
+namespace {
+constexpr int kFramesInFlight = 2;
+constexpr int kMaxPasses = 8;
+
+// Everything one frame in flight owns.
+struct FrameSlot {
+  CommandPool pool;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  Fence fence;
+  Semaphore imageAcquired;
+  GpuBuffer uniforms;
+  VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
+  std::unique_ptr<GpuTimer> timer;
+  GpuBuffer colorReadback, depthReadback;
+  // What was submitted last in this slot.
+  uint64_t frameIndex = 0;
+  bool submitted = false;
+  bool readColor = false, readDepth = false;
+  double cpuRecordMs = 0.0;
+  uint64_t terrainTriangles = 0;
+};
+
+VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
+}  // namespace
+
+struct Renderer::Impl {
+  std::unique_ptr<Context> ctx;
+  std::shared_ptr<ValidationLog> validationLog;
+  std::unique_ptr<RenderTargets> targets;
+  std::unique_ptr<Swapchain> swapchain;
+  DescriptorSetLayout frameLayout;
+  DescriptorPool descriptorPool;
+  std::unique_ptr<SkyPass> sky;
+  std::unique_ptr<TerrainPass> terrainPass;
+  std::array<FrameSlot, kFramesInFlight> slots;
+  DeletionQueue deletions;
+  uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
+  uint64_t completedFrame = 0;  // highest frame known finished on the GPU
+  int msaa = 1;
+
+  ~Impl() {
+    if (ctx) vkDeviceWaitIdle(ctx->device());
+    deletions.collectAll();
+  }
+
+  void init(const RendererOptions& options);
+  void waitSlot(FrameSlot& slot);
+  uint64_t submit(const FrameRequest& request);
+  void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
+  void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
+  FrameResult collect(FrameSlot& slot);
+};
+
+void Renderer::Impl::init(const RendererOptions& options) {
+  const VkExtent2D extent{options.width, options.height};
+  targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa));
+  if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
+
+  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                             VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &binding;
+  VkDescriptorSetLayout layout;
+  vkCheck(vkCreateDescriptorSetLayout(ctx->device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
+  frameLayout = DescriptorSetLayout(ctx->device(), layout);
+  ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, "frame uniforms layout");
+
+  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = kFramesInFlight;
+  pci.poolSizeCount = 1;
+  pci.pPoolSizes = &poolSize;
+  VkDescriptorPool pool;
+  vkCheck(vkCreateDescriptorPool(ctx->device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
+  descriptorPool = DescriptorPool(ctx->device(), pool);
+  ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "frame descriptor pool");
+
+  const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
+  for (int i = 0; i < kFramesInFlight; ++i) {
+    FrameSlot& s = slots[static_cast<size_t>(i)];
+    const std::string tag = " (slot " + std::to_string(i) + ")";
+    VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    cpci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    cpci.queueFamilyIndex = ctx->queueFamily();
+    VkCommandPool cp;
+    vkCheck(vkCreateCommandPool(ctx->device(), &cpci, nullptr, &cp), "vkCreateCommandPool");
+    s.pool = CommandPool(ctx->device(), cp);
+    ctx->setName(VK_OBJECT_TYPE_COMMAND_POOL, cp, "frame command pool" + tag);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = cp;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    vkCheck(vkAllocateCommandBuffers(ctx->device(), &ai, &s.cmd), "vkAllocateCommandBuffers");
+    ctx->setName(VK_OBJECT_TYPE_COMMAND_BUFFER, s.cmd, "frame commands" + tag);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    vkCheck(vkCreateFence(ctx->device(), &fci, nullptr, &fence), "vkCreateFence");
+    s.fence = Fence(ctx->device(), fence);
+    ctx->setName(VK_OBJECT_TYPE_FENCE, fence, "frame fence" + tag);
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore sem;
+    vkCheck(vkCreateSemaphore(ctx->device(), &sci, nullptr, &sem), "vkCreateSemaphore");
+    s.imageAcquired = Semaphore(ctx->device(), sem);
+    ctx->setName(VK_OBJECT_TYPE_SEMAPHORE, sem, "image acquired" + tag);
+    s.uniforms = createBuffer(*ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
+                              "frame uniforms" + tag);
+    s.timer = std::make_unique<GpuTimer>(*ctx, kMaxPasses, "frame" + tag);
+    s.colorReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+                                   "colour read-back" + tag);
+    s.depthReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+                                   "depth read-back" + tag);
+
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = pool;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &layout;
+    vkCheck(vkAllocateDescriptorSets(ctx->device(), &dai, &s.descriptorSet), "vkAllocateDescriptorSets");
+    ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, s.descriptorSet, "frame uniforms set" + tag);
+    const VkDescriptorBufferInfo bi{s.uniforms.get(), 0, sizeof(FrameUniforms)};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = s.descriptorSet;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.pBufferInfo = &bi;
+    vkUpdateDescriptorSets(ctx->device(), 1, &w, 0, nullptr);
+  }
+  sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
+  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa));
+}
+
+void Renderer::Impl::waitSlot(FrameSlot& slot) {
+  if (!slot.submitted) return;
+  VkFence fence = slot.fence.get();
+  vkCheck(vkWaitForFences(ctx->device(), 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  completedFrame = std::max(completedFrame, slot.frameIndex);
+  deletions.collect(completedFrame);
+}
+
+uint64_t Renderer::Impl::submit(const FrameRequest& request) {
+  Stopwatch watch;
+  const uint64_t index = nextFrame++;
+  FrameSlot& slot = slots[index % kFramesInFlight];
+  waitSlot(slot);
+  VkFence fence = slot.fence.get();
+  vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
+
+  // Uniforms: everything relative to the camera, rotation-only view.
+  const VkExtent2D extent = targets->extent();
+  const double aspect = static_cast<double>(extent.width) / static_cast<double>(extent.height);
+  const glm::dmat4 viewProj = projection(request.camera, aspect) * viewRotation(request.camera);
+  FrameUniforms u{};
+  u.viewProj = glm::mat4(viewProj);
+  u.invViewProj = glm::mat4(glm::inverse(viewProj));
+  u.sunDirection = glm::vec4(glm::vec3(glm::normalize(request.lighting.sunDirection)), 0.0f);
+  u.sunColor = glm::vec4(request.lighting.sunColor, 0.0f);
+  u.skyZenith = glm::vec4(request.lighting.skyZenith, 0.0f);
+  u.skyHorizon = glm::vec4(request.lighting.skyHorizon, 0.0f);
+  u.fog = glm::vec4(request.lighting.fogDensity, request.lighting.fogFalloff,
+                    static_cast<float>(request.cameraHeightMsl), 0.0f);
+  u.viewport = glm::vec4(static_cast<float>(extent.width), static_cast<float>(extent.height),
+                         1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height));
+  std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
+
+  std::optional<uint32_t> imageIndex;
+  if (request.present && swapchain) imageIndex = swapchain->acquire(slot.imageAcquired.get());
+
+  vkCheck(vkResetCommandPool(ctx->device(), slot.pool.get(), 0), "vkResetCommandPool");
+  VkCommandBuffer cmd = slot.cmd;
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  slot.timer->begin(cmd);
+
+  // Attachments start undefined each frame: everything is cleared.
+  const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  const auto depthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  std::vector<const GpuImage*> colorImages{&targets->color()}, depthImages{&targets->depth()};
+  if (targets->multisampled()) {
+    colorImages.push_back(&targets->colorAttachment());
+    depthImages.push_back(&targets->depthAttachment());
+  }
+  for (const GpuImage* img : colorImages)
+    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  for (const GpuImage* img : depthImages)
+    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage, depthAccess);
+
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = targets->colorAttachment().view.get();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = targets->depthAttachment().view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
+  if (targets->multisampled()) {
+    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    color.resolveImageView = targets->color().view.get();
+    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // required of every device
+    depth.resolveImageView = targets->depth().view.get();
+    depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  }
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  // Flip nothing here: the projection matrix already flips y for Vulkan.
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  slot.timer->beginPass(cmd, "sky");
+  sky->record(cmd, slot.descriptorSet);
+  slot.timer->endPass(cmd);
+  slot.timer->beginPass(cmd, "terrain");
+  slot.terrainTriangles = terrainPass->record(cmd, slot.descriptorSet, request.camera.position);
+  slot.timer->endPass(cmd);
+  vkCmdEndRendering(cmd);
+
+  recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
+  if (imageIndex) recordPresent(cmd, *imageIndex);
+  slot.timer->end(cmd);
+  vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  if (imageIndex) {
+    waitInfo.semaphore = slot.imageAcquired.get();
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
+    signalInfo.semaphore = swapchain->renderDone(*imageIndex);
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.waitSemaphoreInfoCount = 1;
+    si.pWaitSemaphoreInfos = &waitInfo;
+    si.signalSemaphoreInfoCount = 1;
+    si.pSignalSemaphoreInfos = &signalInfo;
+  }
+  vkCheck(vkQueueSubmit2(ctx->queue(), 1, &si, fence), "vkQueueSubmit2");
+  if (imageIndex) swapchain->present(*imageIndex, swapchain->renderDone(*imageIndex));
+
+  slot.frameIndex = index;
+  slot.submitted = true;
+  slot.readColor = request.readbackColor;
+  slot.readDepth = request.readbackDepth;
+  slot.cpuRecordMs = watch.elapsedMs();
+  return index;
+}
+
+void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool readColor, bool readDepth) const {
+  const VkExtent2D extent = targets->extent();
+  auto copy = [&](const GpuImage& img, VkImageLayout layout, VkPipelineStageFlags2 stage, VkAccessFlags2 access,
+                  const GpuBuffer& dst) {
+    transitionImage(cmd, img.get(), img.aspect, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, stage, access,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {img.aspect, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.get(), 1, &region);
+    // Make the copy visible to the host once the fence signals.
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    // Back to the layout the present blit expects.
+    transitionImage(cmd, img.get(), img.aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, stage, access);
+  };
+  if (readColor)
+    copy(targets->color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.colorReadback);
+  if (readDepth)
+    copy(targets->depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+         VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.depthReadback);
+}
+
+void Renderer::Impl::recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const {
+  const GpuImage& src = targets->color();
+  const VkImage dst = swapchain->image(imageIndex);
+  transitionImage(cmd, src.get(), src.aspect, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  transitionImage(cmd, dst, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  const VkExtent2D s = targets->extent(), d = swapchain->extent();
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {static_cast<int32_t>(s.width), static_cast<int32_t>(s.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {static_cast<int32_t>(d.width), static_cast<int32_t>(d.height), 1};
+  vkCmdBlitImage(cmd, src.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                 &blit, VK_FILTER_LINEAR);
+  transitionImage(cmd, dst, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+}
+
+FrameResult Renderer::Impl::collect(FrameSlot& slot) {
+  waitSlot(slot);
+  FrameResult r;
+  r.frameIndex = slot.frameIndex;
+  r.cpuRecordMs = slot.cpuRecordMs;
+  r.terrainTriangles = slot.terrainTriangles;
+  r.gpu = slot.timer->read();
+  const VkExtent2D e = targets->extent();
+  const size_t pixels = size_t{e.width} * e.height;
+  if (slot.readColor) {
+    ColorImage img{e.width, e.height, std::vector<uint8_t>(pixels * 4)};
+    std::memcpy(img.rgba.data(), slot.colorReadback.mapped, pixels * 4);
+    r.color = std::move(img);
+  }
+  if (slot.readDepth) {
+    DepthImage img{e.width, e.height, std::vector<float>(pixels)};
+    std::memcpy(img.depth.data(), slot.depthReadback.mapped, pixels * 4);
+    r.depth = std::move(img);
+  }
+  return r;
+}
+
+// --- public API ---------------------------------------------------------------------------
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& options) {
+  ContextOptions co = options.context;
+  if (options.window) {
+    uint32_t n = 0;
+    const char** names = glfwGetRequiredInstanceExtensions(&n);
+    if (!names) return makeError(ErrorKind::Unsupported, "the window system offers no Vulkan surface (GLFW)");
+    for (uint32_t i = 0; i < n; ++i) co.instanceExtensions.emplace_back(names[i]);
+    co.wantSwapchain = true;
+  }
+  auto ctx = Context::create(co);
+  if (!ctx) return ctx.error();
+  auto impl = std::make_unique<Impl>();
+  impl->ctx = std::move(*ctx);
+  impl->validationLog = co.validationLog;
+
+  const auto& info = impl->ctx->info();
+  const uint32_t maxDim = impl->ctx->properties().limits.maxImageDimension2D;
+  if (options.width == 0 || options.height == 0 || options.width > maxDim || options.height > maxDim)
+    return makeError(ErrorKind::InvalidInput, "--size " + std::to_string(options.width) + "x" +
+                                                  std::to_string(options.height) + " is impossible on " + info.name +
+                                                  ": each side must be 1 … " + std::to_string(maxDim) + " pixels");
+  if (!info.supportsMsaa(options.msaa))
+    return makeError(ErrorKind::InvalidInput, "--msaa " + std::to_string(options.msaa) + " is not offered by " +
+                                                  info.name + "; choose one of " + info.msaaList());
+  impl->msaa = options.msaa;
+  try {
+    impl->init(options);
+  } catch (const VulkanError& e) {
+    return makeError(ErrorKind::Gpu, e.what());
+  }
+  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+const DeviceInfo& Renderer::device() const { return impl_->ctx->info(); }
+uint32_t Renderer::width() const { return impl_->targets->extent().width; }
+uint32_t Renderer::height() const { return impl_->targets->extent().height; }
+int Renderer::msaa() const { return impl_->msaa; }
+bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
+const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
+
+Status Renderer::setTerrain(const terrain::TerrainMesh& mesh) {
+  return guardGpu([&]() -> Status {
+    const uint64_t lastUse = impl_->nextFrame - 1;  // every frame submitted so far may use the old mesh
+    impl_->terrainPass->setMesh(mesh, [&](GpuBuffer&& old) { impl_->deletions.defer(lastUse, std::move(old)); });
+    return {};
+  });
+}
+
+Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
+  return guardGpu([&]() -> Result<uint64_t> { return impl_->submit(request); });
+}
+
+Result<FrameResult> Renderer::waitFrame(uint64_t index) {
+  FrameSlot& slot = impl_->slots[index % kFramesInFlight];
+  if (!slot.submitted || slot.frameIndex != index)
+    return makeError(ErrorKind::Internal, "frame " + std::to_string(index) + " is not one of the last two submitted");
+  return guardGpu([&]() -> Result<FrameResult> { return impl_->collect(slot); });
+}
+
+Result<FrameResult> Renderer::renderFrame(const FrameRequest& request) {
+  auto index = submitFrame(request);
+  if (!index) return index.error();
+  return waitFrame(*index);
+}
+
+}  // namespace vegstream::render

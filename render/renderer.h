@@ -1,0 +1,60 @@
+#pragma once
+// The renderer: the one object callers above render/ use. It owns the Vulkan context, the
+// offscreen targets, the passes and two frame slots (frames in flight), each with its command
+// buffer, fence, uniform buffer, GPU timer, read-back buffers and deletion queue.
+//
+// Contract: create() validates the size and MSAA against the device and returns an Error
+// naming the option; every GPU failure after that comes back as ErrorKind::Gpu.
+
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "render/context.h"
+#include "render/frame_types.h"
+#include "terrain/terrain_mesh.h"
+
+struct GLFWwindow;
+
+namespace vegstream::render {
+
+struct RendererOptions {
+  ContextOptions context;
+  uint32_t width = 640;
+  uint32_t height = 360;
+  int msaa = 4;
+  GLFWwindow* window = nullptr;  // present to this window's surface when set
+};
+
+class Renderer {
+ public:
+  static Result<std::unique_ptr<Renderer>> create(const RendererOptions& options);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const DeviceInfo& device() const;
+  uint32_t width() const;
+  uint32_t height() const;
+  int msaa() const;
+  bool hasWindow() const;
+  const ValidationLog* validationLog() const;
+
+  Status setTerrain(const terrain::TerrainMesh& mesh);
+
+  // Records and submits one frame; returns its index. Does not wait for the GPU.
+  Result<uint64_t> submitFrame(const FrameRequest& request);
+  // Waits for frame `index` (one of the last two submitted) and returns its figures and the
+  // read-backs it asked for.
+  Result<FrameResult> waitFrame(uint64_t index);
+  // submitFrame + waitFrame.
+  Result<FrameResult> renderFrame(const FrameRequest& request);
+
+  struct Impl;
+
+ private:
+  explicit Renderer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vegstream::render

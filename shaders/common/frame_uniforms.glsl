@@ -1,0 +1,13 @@
+// Per-frame uniforms shared by every pass. Mirrors render/frame_uniforms.h (std140; the C++
+// side checks offsets with static_assert). Positions are in the local ENU frame, relative to
+// the camera: the camera sits at the origin, so view matrices hold rotation only.
+layout(set = 0, binding = 0, std140) uniform FrameUniforms {
+  mat4 viewProj;      // projection * rotation-only view (reverse-Z: near → 1, far → 0)
+  mat4 invViewProj;   // its inverse, for sky rays
+  vec4 sunDirection;  // xyz: unit vector towards the sun; w: unused
+  vec4 sunColor;      // rgb: sun irradiance colour (linear)
+  vec4 skyZenith;     // rgb: sky colour straight up (linear)
+  vec4 skyHorizon;    // rgb: sky colour at the horizon (linear)
+  vec4 fog;           // x: extinction per metre at sea level, y: height falloff per metre, z: camera height (m MSL)
+  vec4 viewport;      // xy: size in pixels, zw: 1 / size
+} frame;

@@ -1,0 +1,19 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "frame_uniforms.glsl"
+#include "atmosphere.glsl"
+#include "terrain_palette.glsl"
+layout(location = 0) in vec3 inOffset;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in float inHeightMsl;
+layout(location = 0) out vec4 outColor;
+void main() {
+  vec3 n = normalize(inNormal);
+  float slope = 1.0 - clamp(n.z, 0.0, 1.0);  // 0 flat … 1 vertical
+  vec3 albedo = terrainAlbedo(inHeightMsl, slope);
+  float sun = max(dot(n, frame.sunDirection.xyz), 0.0);
+  // Hemispherical sky light: full from above, half from the horizon.
+  vec3 ambient = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * (0.5 + 0.5 * n.z) * 0.35;
+  vec3 lit = albedo * (frame.sunColor.rgb * sun + ambient);
+  outColor = vec4(applyAerialPerspective(lit, inOffset), 1.0);
+}

@@ -1,0 +1,238 @@
+// readGeoTiff on files the tests make themselves: bad input must give a clear Error naming the
+// file, and the georeference variants (PixelIsPoint, model transformation) must map pixels
+// where the GeoTIFF spec says.
+
+#include <fstream>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "datasets/geotiff_reader.h"
+#include "tests/datasets/tiny_tiff.h"
+
+namespace vegstream::datasets {
+namespace {
+namespace fs = std::filesystem;
+using test::TinyImage;
+
+fs::path tmpFile(const std::string& name) {
+  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / "datasets";
+  fs::create_directories(dir);
+  fs::remove(dir / name);
+  return dir / name;
+}
+
+// Asserts failure of `kind` whose message names the file and contains `what`.
+void expectError(const Result<Raster>& r, ErrorKind kind, const fs::path& path,
+                 const std::string& what) {
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().kind, kind) << r.error().message;
+  EXPECT_NE(r.error().message.find(path.string()), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find(what), std::string::npos) << r.error().message;
+}
+
+// A 2x2 UInt16 raster, 10° pixels from (100, 50), with WGS 84 keys unless told otherwise.
+TinyImage geoImage(uint16_t rasterType = 1) {
+  TinyImage img;
+  img.pixels = test::pixelBytes(std::vector<uint16_t>{1, 2, 3, 4});
+  img.extra = {test::doubles(33550, {10, 10, 0}),
+               test::doubles(33922, {0, 0, 0, 100, 50, 0}),
+               test::shorts(34735, {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, rasterType, 2048, 0, 1,
+                                    4326})};
+  return img;
+}
+
+TEST(GeoTiffBadInput, MissingFileIsNotFound) {
+  const fs::path p = tmpFile("does_not_exist.tif");
+  expectError(readGeoTiff(p), ErrorKind::NotFound, p, "does not exist");
+}
+
+TEST(GeoTiffBadInput, TextFileNamedTifIsInvalid) {
+  const fs::path p = tmpFile("notes.tif");
+  std::ofstream(p) << "this is not an image\n";
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "is not a TIFF file");
+}
+
+TEST(GeoTiffBadInput, TruncatedSrtmIsInvalid) {
+  const fs::path src = fs::path(VEGSTREAM_DATASETS_DIR) / "zion/srtm.tif";
+  const fs::path p = tmpFile("srtm_truncated.tif");
+  std::ifstream in(src, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1000u);
+  const auto half = static_cast<std::streamsize>(bytes.size() / 2);
+  std::ofstream(p, std::ios::binary).write(bytes.data(), half);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "truncated");
+}
+
+TEST(GeoTiffBadInput, PlainTiffHasNoGeoreference) {
+  const fs::path p = tmpFile("plain.tif");
+  OIIO::ImageSpec spec(4, 3, 1, OIIO::TypeDesc::UINT16);
+  std::vector<uint16_t> pixels(12, 7);
+  auto out = OIIO::ImageOutput::create(p.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(p.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
+  ASSERT_TRUE(out->close());
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "has no georeference");
+}
+
+TEST(GeoTiffBadInput, HugeClaimedSizeIsRefusedBeforeAllocating) {
+  // A 2x2 image whose header claims 10^12 pixels: 4 TB of float, had it got to allocating.
+  const fs::path p = tmpFile("huge.tif");
+  TinyImage img = geoImage();
+  img.claimedWidth = 1000000;
+  img.claimedHeight = 1000000;
+  test::writeTinyTiff(p, img);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p,
+              "1000000 x 1000000 = 1000000000000 pixels, more than the limit of 400000000");
+}
+
+TEST(GeoTiffBadInput, ClaimedSizeBelowOiioLimitIsStillRefused) {
+  // 30000 x 30000 UInt16 is 1.8 GB, under OIIO's own 32 GB guard: only maxPixels stops it.
+  const fs::path p = tmpFile("large.tif");
+  TinyImage img = geoImage();
+  img.claimedWidth = 30000;
+  img.claimedHeight = 30000;
+  test::writeTinyTiff(p, img);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "30000 x 30000");
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "limit of 400000000");
+}
+
+TEST(GeoTiffBadInput, MaxPixelsOptionIsHonoured) {
+  const fs::path p = fs::path(VEGSTREAM_DATASETS_DIR) / "zion/srtm.tif";
+  ReadOptions opt;
+  opt.maxPixels = 465 * 457 - 1;
+  expectError(readGeoTiff(p, opt), ErrorKind::InvalidInput, p, "more than the limit of 212504");
+  opt.maxPixels = 465 * 457;
+  EXPECT_TRUE(readGeoTiff(p, opt).ok());
+}
+
+TEST(GeoTiffBadInput, MissingGeoKeysNeedTheUserCrs) {
+  const fs::path p = tmpFile("no_keys.tif");
+  TinyImage img = geoImage();
+  img.extra.pop_back();  // drop the key directory, keep tie point + scale
+  test::writeTinyTiff(p, img);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "--dem-crs EPSG:4326");
+  ReadOptions opt;
+  opt.assumeEpsg = 4326;
+  auto r = readGeoTiff(p, opt);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->georef.epsg, 4326);
+}
+
+TEST(GeoTiffBadInput, TagPointingPastTheEndIsInvalid) {
+  const fs::path p = tmpFile("bad_offset.tif");
+  TinyImage img = geoImage();
+  test::writeTinyTiff(p, img);
+  // Point the ModelTiepoint value (48 bytes, out of line) far past the end of the file.
+  std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const uint16_t entries = static_cast<uint16_t>(static_cast<uint8_t>(bytes[8]) |
+                                                 static_cast<uint8_t>(bytes[9]) << 8);
+  bool patched = false;
+  for (uint16_t i = 0; i < entries; ++i) {
+    const size_t e = 10 + 12u * i;
+    if (static_cast<uint8_t>(bytes[e]) == (33922 & 0xff) &&
+        static_cast<uint8_t>(bytes[e + 1]) == (33922 >> 8)) {
+      const uint32_t far = 0x7fffff00;
+      f.seekp(static_cast<std::streamoff>(e + 8));
+      f.write(reinterpret_cast<const char*>(&far), 4);
+      patched = true;
+    }
+  }
+  f.close();
+  ASSERT_TRUE(patched);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "past the end of the file");
+}
+
+TEST(GeoTiffBadInput, GroundControlPointsOnlyAreUnsupported) {
+  const fs::path p = tmpFile("gcps.tif");
+  TinyImage img = geoImage();
+  img.extra = {test::doubles(33922, {0, 0, 0, 100, 50, 0, 1, 1, 0, 110, 40, 0}), img.extra[2]};
+  test::writeTinyTiff(p, img);
+  expectError(readGeoTiff(p), ErrorKind::Unsupported, p, "ground control points");
+}
+
+TEST(GeoTiffBadInput, NodataThatIsNotANumberIsInvalid) {
+  const fs::path p = tmpFile("bad_nodata.tif");
+  TinyImage img = geoImage();
+  img.extra.push_back(test::ascii(42113, "none"));
+  test::writeTinyTiff(p, img);
+  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "GDAL_NODATA");
+}
+
+TEST(GeoTiffGeoref, PixelIsPointShiftsHalfAPixel) {
+  const fs::path p = tmpFile("point.tif");
+  test::writeTinyTiff(p, geoImage(2));
+  auto r = readGeoTiff(p);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->georef.rasterType, RasterType::PixelIsPoint);
+  // The tie point (100, 50) is the first pixel's centre; the corner is half a pixel out.
+  EXPECT_DOUBLE_EQ(r->georef.transform[0], 95.0);
+  EXPECT_DOUBLE_EQ(r->georef.transform[3], 55.0);
+  const auto c = r->georef.pixelCentre(0, 0);
+  EXPECT_DOUBLE_EQ(c[0], 100.0);
+  EXPECT_DOUBLE_EQ(c[1], 50.0);
+}
+
+TEST(GeoTiffGeoref, PixelIsAreaTiePointIsTheCorner) {
+  const fs::path p = tmpFile("area.tif");
+  test::writeTinyTiff(p, geoImage(1));
+  auto r = readGeoTiff(p);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const auto c = r->georef.pixelCentre(1, 1);
+  EXPECT_DOUBLE_EQ(c[0], 115.0);
+  EXPECT_DOUBLE_EQ(c[1], 35.0);
+  EXPECT_EQ(r->at(1, 1), 4.0f);
+}
+
+TEST(GeoTiffGeoref, ModelTransformationWithRotation) {
+  const fs::path p = tmpFile("matrix.tif");
+  TinyImage img = geoImage();
+  // x = 500000 + 2·col + 1·row,  y = 4000000 + 0.5·col − 3·row  (UTM 33N keys).
+  img.extra = {test::doubles(34264, {2, 1, 0, 500000, 0.5, -3, 0, 4000000, 0, 0, 1, 0, 0, 0, 0, 1}),
+               test::shorts(34735, {1, 1, 0, 2, 1024, 0, 1, 1, 3072, 0, 1, 32633})};
+  test::writeTinyTiff(p, img);
+  auto r = readGeoTiff(p);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->georef.epsg, 32633);
+  const std::array<double, 6> want{500000, 2, 1, 4000000, 0.5, -3};
+  EXPECT_EQ(r->georef.transform, want);
+}
+
+TEST(GeoTiffSamplesTypes, Int16KeepsSignAndFloatIsExact) {
+  const fs::path p16 = tmpFile("int16.tif");
+  TinyImage img = geoImage();
+  img.sampleFormat = 2;
+  img.pixels = test::pixelBytes(std::vector<int16_t>{-32768, -1, 0, 32767});
+  test::writeTinyTiff(p16, img);
+  auto r = readGeoTiff(p16);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->samples, (std::vector<float>{-32768, -1, 0, 32767}));
+
+  const fs::path p32 = tmpFile("float32.tif");
+  img.sampleFormat = 3;
+  img.bits = 32;
+  img.pixels = test::pixelBytes(std::vector<float>{-9999.0f, 2.5f, 20.75f, 1e6f});
+  img.extra.push_back(test::ascii(42113, "-9999"));
+  test::writeTinyTiff(p32, img);
+  r = readGeoTiff(p32);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->samples, (std::vector<float>{-9999.0f, 2.5f, 20.75f, 1e6f}));
+  EXPECT_TRUE(r->isNodata(r->at(0, 0)));
+  EXPECT_FALSE(r->isNodata(r->at(1, 0)));
+}
+
+TEST(GeoTiffSamplesTypes, UInt8IsNotNormalised) {
+  const fs::path p = tmpFile("uint8.tif");
+  TinyImage img = geoImage();
+  img.bits = 8;
+  img.pixels = {0, 1, 200, 255};
+  test::writeTinyTiff(p, img);
+  auto r = readGeoTiff(p);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->samples, (std::vector<float>{0, 1, 200, 255}));
+}
+
+}  // namespace
+}  // namespace vegstream::datasets
