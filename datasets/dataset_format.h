@@ -1,0 +1,68 @@
+#pragma once
+// The dataset directory (DESIGN.md, "Dataset directory"): what every importer writes and the
+// renderer and streamer read.
+//
+//   DIR/dataset.json                      DatasetMeta below, as JSON
+//   DIR/elevation/{z}/{x}/{y}.png         RGBA PNG, height in RGB (terrarium or terrain-RGB),
+//                                         alpha 0 = nodata (a mask, never a zero height)
+//   DIR/imagery/{z}/{x}/{y}.jpg|png       RGB JPEG or RGBA PNG (alpha 0 = no data)
+//
+// XYZ Web Mercator scheme, rows counted from the north, 256-pixel tiles, pixel (i, j) of a tile
+// sampled at its centre, so any static server can serve a dataset and QGIS/MapLibre read it.
+// Tiles are written only where the source has data; a missing tile is "no data there".
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "geo/bounds.h"
+#include "geo/xyz_tiles.h"
+
+namespace vegstream::datasets {
+
+constexpr int kDatasetFormatVersion = 1;
+constexpr int kTileSize = 256;
+
+enum class ElevationEncoding { Terrarium, TerrainRgb };
+enum class ImageryFormat { Jpeg, Png };
+
+const char* toString(ElevationEncoding e);  // "terrarium", "terrain-rgb"
+const char* toString(ImageryFormat f);      // "jpeg", "png"
+Result<ElevationEncoding> parseElevationEncoding(const std::string& text);  // error names the text
+
+struct SourceInfo {
+  std::string role;         // "elevation", "imagery"
+  std::string path;         // as given by the user, or the tile template
+  std::string crs;          // Crs::name(), e.g. "WGS 84 (EPSG:4326)"
+  std::string description;  // size, pixel size, …
+};
+
+struct DatasetMeta {
+  int formatVersion = kDatasetFormatVersion;
+  std::string name;
+  geo::GeoBounds bounds;               // extent of the data, degrees
+  int minZoom = 0;
+  int maxZoom = 0;
+  double minHeightM = 0.0;             // over all valid heights at maxZoom
+  double maxHeightM = 0.0;
+  ElevationEncoding elevationEncoding = ElevationEncoding::Terrarium;
+  std::optional<ImageryFormat> imagery;  // nullopt: no imagery tiles
+  int tileSize = kTileSize;
+  std::string attribution;
+  std::vector<SourceInfo> sources;
+  uint64_t elevationTiles = 0;
+  uint64_t imageryTiles = 0;
+  uint64_t bytes = 0;                  // all tile files together
+};
+
+// dataset.json ↔ DatasetMeta. Reading checks every field and names the file and the field.
+Result<DatasetMeta> readDatasetMeta(const std::filesystem::path& datasetDir);
+Status writeDatasetMeta(const std::filesystem::path& datasetDir, const DatasetMeta& meta);
+
+std::filesystem::path elevationTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
+std::filesystem::path imageryTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id, ImageryFormat f);
+
+}  // namespace vegstream::datasets

@@ -1,0 +1,45 @@
+#pragma once
+// In-memory tiles and their encodings on disk (see dataset_format.h for the layout).
+//
+// Elevation encodings (metres):
+//   terrarium:   h = R·256 + G + B/256 − 32768            (step 1/256 m ≈ 3.9 mm)
+//   terrain-RGB: h = −10000 + (R·65536 + G·256 + B)·0.1   (step 0.1 m)
+// encodeHeight rounds to the nearest step; decodeHeight(encodeHeight(h)) is within half a step.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "core/result.h"
+#include "datasets/dataset_format.h"
+
+namespace vegstream::datasets {
+
+struct HeightTile {
+  geo::TileId id;
+  int size = kTileSize;
+  std::vector<float> heights;  // size × size, row-major from the north, NaN = nodata
+  float at(int x, int y) const { return heights[static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)]; }
+};
+
+struct ColorTile {
+  geo::TileId id;
+  int size = kTileSize;
+  std::vector<uint8_t> rgba;  // size × size × 4, sRGB, alpha 0 = no data
+};
+
+std::array<uint8_t, 3> encodeHeight(double heightM, ElevationEncoding encoding);
+double decodeHeight(uint8_t r, uint8_t g, uint8_t b, ElevationEncoding encoding);
+double encodingStepM(ElevationEncoding encoding);  // 1/256 or 0.1
+
+// Written atomically (temporary file + rename). Errors name the path.
+Status writeHeightTile(const std::filesystem::path& path, const HeightTile& tile, ElevationEncoding encoding);
+Status writeColorTile(const std::filesystem::path& path, const ColorTile& tile, ImageryFormat format, int jpegQuality = 90);
+
+// Decoding checks size and channels; a corrupt or truncated file is an InvalidInput error that
+// names the path. Paletted and greyscale PNGs are expanded to RGB(A).
+Result<HeightTile> readHeightTile(const std::filesystem::path& path, const geo::TileId& id, ElevationEncoding encoding);
+Result<ColorTile> readColorTile(const std::filesystem::path& path, const geo::TileId& id);
+
+}  // namespace vegstream::datasets
