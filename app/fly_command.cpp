@@ -1,5 +1,7 @@
 #include "app/fly_command.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -55,11 +57,6 @@ struct Window {
 int runFly(const FlyOptions& options, const Logger& log) {
   auto grid = loadDemGrid(options.dataset);
   if (!grid) return reportError(log, grid.error());
-  const geo::LocalFrame frame({grid->centreLat(), grid->centreLon(), 0.0});
-  Stopwatch meshWatch;
-  const terrain::TerrainMesh mesh = terrain::buildGridMesh(*grid, frame, {options.meshStep});
-  log->info("terrain: {}x{} DEM samples, {} triangles ({:.0f} ms)", grid->width, grid->height, mesh.triangleCount(),
-            meshWatch.elapsedMs());
 
   const bool windowed = !options.headless && displayAvailable() && glfwInit() == GLFW_TRUE;
   Window window;
@@ -85,6 +82,14 @@ int runFly(const FlyOptions& options, const Logger& log) {
   render::Renderer& r = **renderer;
   const auto& dev = r.device();
   log->info("device: {} ({}, {}, Vulkan {}, MSAA {})", dev.name, dev.type, dev.driver, dev.apiVersion, r.msaa());
+
+  // The mesh is built only once every option has been checked, so a user mistake costs
+  // nothing and prints nothing but its one message.
+  const geo::LocalFrame frame({grid->centreLat(), grid->centreLon(), 0.0});
+  Stopwatch meshWatch;
+  const terrain::TerrainMesh mesh = terrain::buildGridMesh(*grid, frame, {options.meshStep});
+  log->info("terrain: {}x{} DEM samples, {} triangles ({:.0f} ms)", grid->width, grid->height, mesh.triangleCount(),
+            meshWatch.elapsedMs());
   if (auto s = r.setTerrain(mesh); !s) return reportError(log, s.error());
 
   const flight::StraightFlight path = demoFlight(*grid, options.durationS);
@@ -102,11 +107,15 @@ int runFly(const FlyOptions& options, const Logger& log) {
   if (r.hasWindow()) {
     log->info("window open: the demo path loops; Esc or closing the window ends it");
     Stopwatch clock;
-    while (!glfwWindowShouldClose(window.handle) && glfwGetKey(window.handle, GLFW_KEY_ESCAPE) != GLFW_PRESS) {
+    int shown = 0;
+    while (!glfwWindowShouldClose(window.handle) && glfwGetKey(window.handle, GLFW_KEY_ESCAPE) != GLFW_PRESS &&
+           !(options.framesGiven && shown >= options.frames)) {
       glfwPollEvents();
       const double t = std::fmod(clock.elapsedMs() / 1000.0, options.durationS);
       if (auto f = r.renderFrame(request(t, false, true)); !f) return reportError(log, f.error());
+      ++shown;
     }
+    log->info("window closed after {} frames ({:.1f} frames/s)", shown, shown / std::max(clock.elapsedMs() / 1000.0, 1e-3));
     return kExitOk;
   }
 

@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
       log->error("--msaa {}: samples per pixel must be 1, 2, 4, 8 or 16", fly.msaa);
       return app::kExitUserError;
     }
+    fly.framesGiven = flyCmd->count("--frames") > 0;
     return app::runFly(fly, log);
   }
   return app::kExitUserError;

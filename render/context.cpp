@@ -260,7 +260,7 @@ void Context::init(const ContextOptions& options) {
   vkCheck(vkCreateCommandPool(device_, &pci, nullptr, &pool), "vkCreateCommandPool");
   uploadPool_ = CommandPool(device_, pool);
   setName(VK_OBJECT_TYPE_COMMAND_POOL, pool, "one-off command pool");
-  logger_->info("GPU: {} ({}, {}, Vulkan {})", info_.name, info_.type, info_.driver, info_.apiVersion);
+  logger_->debug("GPU: {} ({}, {}, Vulkan {})", info_.name, info_.type, info_.driver, info_.apiVersion);
 }
 
 Context::~Context() {

@@ -1,0 +1,238 @@
+// dataset.json ↔ DatasetMeta, and the tile paths of a dataset directory (dataset_format.h).
+// The JSON is what other tools and people read, so field names are plain snake_case and every
+// field is checked on the way in: a bad one is named in the error together with the file.
+//
+//   { "format_version": 1, "name": "zion",
+//     "bounds": { "west": …, "south": …, "east": …, "north": … },      degrees
+//     "min_zoom": 9, "max_zoom": 12, "tile_size": 256,
+//     "min_height_m": 1024.0, "max_height_m": 2892.0,
+//     "elevation": { "encoding": "terrarium", "tiles": "elevation/{z}/{x}/{y}.png", "tile_count": N },
+//     "imagery":   { "format": "jpeg", "tiles": "imagery/{z}/{x}/{y}.jpg", "tile_count": N }  (or null)
+//     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
+
+#include "datasets/dataset_format.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "datasets/message.h"
+
+namespace vegstream::datasets {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kMetaFile = "dataset.json";
+
+const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
+
+// Field access that names the file and the field ("imagery.format") in every error.
+class FieldReader {
+ public:
+  explicit FieldReader(fs::path file) : file_(std::move(file)) {}
+
+  Error bad(const std::string& field, const std::string& problem) const {
+    return makeError(ErrorKind::InvalidInput, concat(file_, ": field '", field, "' ", problem));
+  }
+
+  Result<const json*> get(const json& obj, const std::string& key, const std::string& field) const {
+    auto it = obj.find(key);
+    if (it == obj.end()) return bad(field, "is missing");
+    return &*it;
+  }
+  Result<double> number(const json& obj, const std::string& key, const std::string& field, double lo, double hi) const {
+    auto v = get(obj, key, field);
+    if (!v) return v.error();
+    if (!(*v)->is_number()) return bad(field, "must be a number");
+    const double d = (*v)->get<double>();
+    if (!(d >= lo && d <= hi)) return bad(field, concat("is ", d, "; expected ", lo, " … ", hi));
+    return d;
+  }
+  Result<int64_t> integer(const json& obj, const std::string& key, const std::string& field, int64_t lo, int64_t hi) const {
+    auto v = get(obj, key, field);
+    if (!v) return v.error();
+    if (!(*v)->is_number_integer()) return bad(field, "must be an integer");
+    const int64_t i = (*v)->is_number_unsigned() ? static_cast<int64_t>((*v)->get<uint64_t>()) : (*v)->get<int64_t>();
+    if (i < lo || i > hi) return bad(field, concat("is ", i, "; expected ", lo, " … ", hi));
+    return i;
+  }
+  Result<std::string> text(const json& obj, const std::string& key, const std::string& field) const {
+    auto v = get(obj, key, field);
+    if (!v) return v.error();
+    if (!(*v)->is_string()) return bad(field, "must be a string");
+    return (*v)->get<std::string>();
+  }
+
+ private:
+  fs::path file_;
+};
+
+#define VEG_TRY_ASSIGN(target, expr) \
+  do {                               \
+    auto r_ = (expr);                \
+    if (!r_) return r_.error();      \
+    target = std::move(*r_);         \
+  } while (0)
+
+Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
+  if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
+  DatasetMeta m;
+  int64_t version = 0;
+  VEG_TRY_ASSIGN(version, f.integer(j, "format_version", "format_version", 1, 1'000'000));
+  if (version != kDatasetFormatVersion)
+    return makeError(ErrorKind::Unsupported,
+                     f.bad("format_version", concat("is ", version, "; this vegstream reads version ",
+                                                    kDatasetFormatVersion)).message);
+  m.formatVersion = static_cast<int>(version);
+  VEG_TRY_ASSIGN(m.name, f.text(j, "name", "name"));
+
+  const json* b = nullptr;
+  VEG_TRY_ASSIGN(b, f.get(j, "bounds", "bounds"));
+  if (!b->is_object()) return f.bad("bounds", "must be an object with west, south, east, north");
+  VEG_TRY_ASSIGN(m.bounds.westDeg, f.number(*b, "west", "bounds.west", -180.0, 180.0));
+  VEG_TRY_ASSIGN(m.bounds.southDeg, f.number(*b, "south", "bounds.south", -90.0, 90.0));
+  VEG_TRY_ASSIGN(m.bounds.eastDeg, f.number(*b, "east", "bounds.east", -180.0, 180.0));
+  VEG_TRY_ASSIGN(m.bounds.northDeg, f.number(*b, "north", "bounds.north", -90.0, 90.0));
+  if (m.bounds.southDeg > m.bounds.northDeg) return f.bad("bounds", "has south greater than north");
+
+  int64_t z = 0;
+  VEG_TRY_ASSIGN(z, f.integer(j, "min_zoom", "min_zoom", 0, geo::kMaxTileZoom));
+  m.minZoom = static_cast<int>(z);
+  VEG_TRY_ASSIGN(z, f.integer(j, "max_zoom", "max_zoom", 0, geo::kMaxTileZoom));
+  m.maxZoom = static_cast<int>(z);
+  if (m.minZoom > m.maxZoom) return f.bad("min_zoom", "is greater than max_zoom");
+  VEG_TRY_ASSIGN(z, f.integer(j, "tile_size", "tile_size", 1, 4096));
+  m.tileSize = static_cast<int>(z);
+  VEG_TRY_ASSIGN(m.minHeightM, f.number(j, "min_height_m", "min_height_m", -11000.0, 9000.0));
+  VEG_TRY_ASSIGN(m.maxHeightM, f.number(j, "max_height_m", "max_height_m", -11000.0, 9000.0));
+  if (m.minHeightM > m.maxHeightM) return f.bad("min_height_m", "is greater than max_height_m");
+
+  const json* e = nullptr;
+  VEG_TRY_ASSIGN(e, f.get(j, "elevation", "elevation"));
+  if (!e->is_object()) return f.bad("elevation", "must be an object");
+  std::string enc;
+  VEG_TRY_ASSIGN(enc, f.text(*e, "encoding", "elevation.encoding"));
+  auto parsed = parseElevationEncoding(enc);
+  if (!parsed) return f.bad("elevation.encoding", concat("is '", enc, "'; expected terrarium or terrain-rgb"));
+  m.elevationEncoding = *parsed;
+  int64_t count = 0;
+  VEG_TRY_ASSIGN(count, f.integer(*e, "tile_count", "elevation.tile_count", 0, INT64_MAX));
+  m.elevationTiles = static_cast<uint64_t>(count);
+
+  const json* im = nullptr;
+  VEG_TRY_ASSIGN(im, f.get(j, "imagery", "imagery"));
+  if (!im->is_null()) {
+    if (!im->is_object()) return f.bad("imagery", "must be an object or null");
+    std::string fmt;
+    VEG_TRY_ASSIGN(fmt, f.text(*im, "format", "imagery.format"));
+    if (fmt == "jpeg") m.imagery = ImageryFormat::Jpeg;
+    else if (fmt == "png") m.imagery = ImageryFormat::Png;
+    else return f.bad("imagery.format", concat("is '", fmt, "'; expected jpeg or png"));
+    VEG_TRY_ASSIGN(count, f.integer(*im, "tile_count", "imagery.tile_count", 0, INT64_MAX));
+    m.imageryTiles = static_cast<uint64_t>(count);
+  }
+
+  VEG_TRY_ASSIGN(m.attribution, f.text(j, "attribution", "attribution"));
+  const json* src = nullptr;
+  VEG_TRY_ASSIGN(src, f.get(j, "sources", "sources"));
+  if (!src->is_array()) return f.bad("sources", "must be an array");
+  for (size_t i = 0; i < src->size(); ++i) {
+    const json& s = (*src)[i];
+    const std::string at = concat("sources[", i, "]");
+    if (!s.is_object()) return f.bad(at, "must be an object");
+    SourceInfo info;
+    VEG_TRY_ASSIGN(info.role, f.text(s, "role", at + ".role"));
+    VEG_TRY_ASSIGN(info.path, f.text(s, "path", at + ".path"));
+    VEG_TRY_ASSIGN(info.crs, f.text(s, "crs", at + ".crs"));
+    VEG_TRY_ASSIGN(info.description, f.text(s, "description", at + ".description"));
+    m.sources.push_back(std::move(info));
+  }
+  VEG_TRY_ASSIGN(count, f.integer(j, "bytes", "bytes", 0, INT64_MAX));
+  m.bytes = static_cast<uint64_t>(count);
+  return m;
+}
+
+#undef VEG_TRY_ASSIGN
+
+json toJson(const DatasetMeta& m) {
+  json sources = json::array();
+  for (const auto& s : m.sources)
+    sources.push_back({{"role", s.role}, {"path", s.path}, {"crs", s.crs}, {"description", s.description}});
+  json imagery = nullptr;
+  if (m.imagery) {
+    imagery = {{"format", toString(*m.imagery)},
+               {"tiles", concat("imagery/{z}/{x}/{y}.", imageryExtension(*m.imagery))},
+               {"tile_count", m.imageryTiles}};
+  }
+  return json{{"format_version", m.formatVersion},
+              {"name", m.name},
+              {"bounds", {{"west", m.bounds.westDeg}, {"south", m.bounds.southDeg},
+                          {"east", m.bounds.eastDeg}, {"north", m.bounds.northDeg}}},
+              {"min_zoom", m.minZoom},
+              {"max_zoom", m.maxZoom},
+              {"tile_size", m.tileSize},
+              {"min_height_m", m.minHeightM},
+              {"max_height_m", m.maxHeightM},
+              {"elevation", {{"encoding", toString(m.elevationEncoding)},
+                             {"tiles", "elevation/{z}/{x}/{y}.png"},
+                             {"tile_count", m.elevationTiles}}},
+              {"imagery", imagery},
+              {"attribution", m.attribution},
+              {"sources", sources},
+              {"bytes", m.bytes}};
+}
+
+}  // namespace
+
+const char* toString(ElevationEncoding e) { return e == ElevationEncoding::Terrarium ? "terrarium" : "terrain-rgb"; }
+const char* toString(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpeg" : "png"; }
+
+Result<ElevationEncoding> parseElevationEncoding(const std::string& text) {
+  if (text == "terrarium") return ElevationEncoding::Terrarium;
+  if (text == "terrain-rgb" || text == "terrainrgb" || text == "mapbox") return ElevationEncoding::TerrainRgb;
+  return makeError(ErrorKind::InvalidInput,
+                   concat("elevation encoding '", text, "' is not known; expected terrarium or terrain-rgb"));
+}
+
+Result<DatasetMeta> readDatasetMeta(const fs::path& datasetDir) {
+  const fs::path file = datasetDir / kMetaFile;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    if (!fs::exists(datasetDir, ec))
+      return makeError(ErrorKind::NotFound, concat(datasetDir, " does not exist"));
+    return makeError(ErrorKind::NotFound, concat(datasetDir, " is not a vegstream dataset: it has no dataset.json"));
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (!in && !in.eof()) return makeError(ErrorKind::Io, concat("cannot read ", file));
+  json j = json::parse(ss.str(), nullptr, false);
+  if (j.is_discarded()) return makeError(ErrorKind::InvalidInput, concat(file, " is not valid JSON"));
+  return parseMeta(j, FieldReader(file));
+}
+
+Status writeDatasetMeta(const fs::path& datasetDir, const DatasetMeta& meta) {
+  const fs::path file = datasetDir / kMetaFile;
+  const std::string text = toJson(meta).dump(2) + "\n";
+  return writeFileAtomically(file, [&](const fs::path& tmp) -> Status {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) return makeError(ErrorKind::Io, concat("cannot write ", file));
+    return {};
+  });
+}
+
+fs::path elevationTilePath(const fs::path& datasetDir, const geo::TileId& id) {
+  return datasetDir / "elevation" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".png");
+}
+
+fs::path imageryTilePath(const fs::path& datasetDir, const geo::TileId& id, ImageryFormat f) {
+  return datasetDir / "imagery" / std::to_string(id.z) / std::to_string(id.x) /
+         concat(id.y, ".", imageryExtension(f));
+}
+
+}  // namespace vegstream::datasets

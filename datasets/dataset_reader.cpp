@@ -1,0 +1,197 @@
+// Point queries on a dataset directory: bilinear between pixel centres, across tile borders,
+// over an LRU of decoded tiles (see dataset_reader.h).
+
+#include "datasets/dataset_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <system_error>
+
+#include <spdlog/fmt/fmt.h>
+
+namespace vegstream::datasets {
+namespace fs = std::filesystem;
+
+namespace {
+
+int floorDiv(int64_t a, int b) { return static_cast<int>(a >= 0 ? a / b : -((-a + b - 1) / b)); }
+
+// The four pixels around a point at zoom z and their bilinear weights, in global pixel
+// coordinates (tile x · size + pixel i).
+struct Footprint {
+  int64_t x0 = 0, y0 = 0;
+  double fx = 0.0, fy = 0.0;
+};
+
+Footprint footprint(double latDeg, double lonDeg, int z, int tileSize) {
+  const glm::dvec2 t = geo::lonLatToTileXY({lonDeg, latDeg}, z);
+  const double gx = t.x * tileSize - 0.5, gy = t.y * tileSize - 0.5;
+  Footprint f;
+  const double x0 = std::floor(gx), y0 = std::floor(gy);
+  f.x0 = static_cast<int64_t>(x0);
+  f.y0 = static_cast<int64_t>(y0);
+  f.fx = gx - x0;
+  f.fy = gy - y0;
+  return f;
+}
+
+struct PixelRef {
+  geo::TileId tile;
+  int i = 0, j = 0;
+  bool valid = false;
+};
+
+PixelRef pixelRef(int64_t gx, int64_t gy, int z, int tileSize) {
+  PixelRef p;
+  const int tx = floorDiv(gx, tileSize), ty = floorDiv(gy, tileSize);
+  const int64_t side = int64_t{1} << z;
+  if (tx < 0 || ty < 0 || tx >= side || ty >= side) return p;
+  p.tile = {z, tx, ty};
+  p.i = static_cast<int>(gx - int64_t{tx} * tileSize);
+  p.j = static_cast<int>(gy - int64_t{ty} * tileSize);
+  p.valid = true;
+  return p;
+}
+
+}  // namespace
+
+Result<DatasetReader> DatasetReader::open(const fs::path& datasetDir, size_t cachedTiles) {
+  assert(cachedTiles >= 4);
+  std::error_code ec;
+  if (!fs::is_directory(datasetDir, ec))
+    return makeError(ErrorKind::NotFound, fmt::format("{}: no such dataset directory", datasetDir.string()));
+  auto meta = readDatasetMeta(datasetDir);
+  if (!meta) return meta.error();
+  return DatasetReader(datasetDir, std::move(*meta), cachedTiles);
+}
+
+bool DatasetReader::contains(double latDeg, double lonDeg) const {
+  const geo::GeoBounds& b = meta_.bounds;
+  if (!(latDeg >= b.southDeg && latDeg <= b.northDeg)) return false;
+  if (b.crossesAntimeridian()) return lonDeg >= b.westDeg || lonDeg <= b.eastDeg;
+  return lonDeg >= b.westDeg && lonDeg <= b.eastDeg;
+}
+
+const DatasetReader::Entry* DatasetReader::cached(const Key& key) {
+  auto it = index_.find(key);
+  if (it == index_.end()) return nullptr;
+  lru_.splice(lru_.begin(), lru_, it->second);
+  return &lru_.front();
+}
+
+void DatasetReader::insert(Entry entry) {
+  const Key key = entry.key;
+  lru_.push_front(std::move(entry));
+  index_[key] = lru_.begin();
+  while (lru_.size() > capacity_) {
+    index_.erase(lru_.back().key);
+    lru_.pop_back();
+  }
+}
+
+Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::TileId& id) {
+  const Key key{id, false};
+  if (const Entry* e = cached(key)) return e->height;
+  Entry entry{key, nullptr, nullptr};
+  const fs::path path = elevationTilePath(dir_, id);
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    auto tile = readHeightTile(path, id, meta_.elevationEncoding);
+    if (!tile) return tile.error();
+    if (tile->size != meta_.tileSize)
+      return makeError(ErrorKind::InvalidInput, fmt::format("{}: tile is {} pixels wide, dataset.json says {}",
+                                                            path.string(), tile->size, meta_.tileSize));
+    entry.height = std::make_shared<const HeightTile>(std::move(*tile));
+    ++decoded_;
+  }
+  insert(entry);
+  return entry.height;
+}
+
+Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::TileId& id) {
+  const Key key{id, true};
+  if (const Entry* e = cached(key)) return e->color;
+  Entry entry{key, nullptr, nullptr};
+  if (meta_.imagery) {
+    const fs::path path = imageryTilePath(dir_, id, *meta_.imagery);
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      auto tile = readColorTile(path, id);
+      if (!tile) return tile.error();
+      if (tile->size != meta_.tileSize)
+        return makeError(ErrorKind::InvalidInput, fmt::format("{}: tile is {} pixels wide, dataset.json says {}",
+                                                              path.string(), tile->size, meta_.tileSize));
+      entry.color = std::make_shared<const ColorTile>(std::move(*tile));
+      ++decoded_;
+    }
+  }
+  insert(entry);
+  return entry.color;
+}
+
+Result<double> DatasetReader::heightAtZoom(double latDeg, double lonDeg, int z) {
+  const int size = meta_.tileSize;
+  const Footprint f = footprint(latDeg, lonDeg, z, size);
+  double sum = 0.0, weight = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int dx = k & 1, dy = k >> 1;
+    const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
+    const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
+    if (!p.valid || w <= 0.0) continue;
+    auto tile = heightTile(p.tile);
+    if (!tile) return tile.error();
+    if (!*tile) continue;
+    const float h = (*tile)->at(p.i, p.j);
+    if (std::isnan(h)) continue;
+    sum += w * h;
+    weight += w;
+  }
+  return weight > 0.0 ? sum / weight : std::nan("");
+}
+
+Result<double> DatasetReader::heightAt(double latDeg, double lonDeg) {
+  if (!contains(latDeg, lonDeg)) {
+    const geo::GeoBounds& b = meta_.bounds;
+    return makeError(ErrorKind::InvalidInput,
+                     fmt::format("lat {:.6f}, lon {:.6f} is outside the dataset {} (lat {:.6f} … {:.6f}, "
+                                 "lon {:.6f} … {:.6f})",
+                                 latDeg, lonDeg, dir_.string(), b.southDeg, b.northDeg, b.westDeg, b.eastDeg));
+  }
+  for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
+    auto h = heightAtZoom(latDeg, lonDeg, z);
+    if (!h || !std::isnan(*h)) return h;
+  }
+  return std::nan("");
+}
+
+Result<std::optional<Rgb8>> DatasetReader::colorAt(double latDeg, double lonDeg) {
+  if (!meta_.imagery || !contains(latDeg, lonDeg)) return std::optional<Rgb8>{};
+  const int size = meta_.tileSize;
+  for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
+    const Footprint f = footprint(latDeg, lonDeg, z, size);
+    double sum[3] = {0.0, 0.0, 0.0}, weight = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const int dx = k & 1, dy = k >> 1;
+      const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
+      const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
+      if (!p.valid || w <= 0.0) continue;
+      auto tile = colorTile(p.tile);
+      if (!tile) return tile.error();
+      if (!*tile) continue;
+      const size_t o = (static_cast<size_t>(p.j) * static_cast<size_t>(size) + static_cast<size_t>(p.i)) * 4;
+      const auto& px = (*tile)->rgba;
+      if (px[o + 3] == 0) continue;
+      for (int c = 0; c < 3; ++c) sum[c] += w * px[o + static_cast<size_t>(c)];
+      weight += w;
+    }
+    if (weight > 0.0) {
+      Rgb8 rgb;
+      for (int c = 0; c < 3; ++c)
+        rgb[static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(std::clamp(sum[c] / weight, 0.0, 255.0)));
+      return std::optional<Rgb8>(rgb);
+    }
+  }
+  return std::optional<Rgb8>{};
+}
+
+}  // namespace vegstream::datasets

@@ -1,0 +1,218 @@
+// Lower zooms of a dataset from its finest zoom (pyramid_builder.h). Works from the files on
+// disk, one zoom at a time (a zoom needs all of the next finer one), the tiles of one zoom in
+// parallel: each parent reads its ≤ 4 children, halves them 2×2 and writes itself.
+
+#include "datasets/pyramid_builder.h"
+
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "datasets/message.h"
+#include "datasets/parallel.h"
+#include "datasets/tile_codec.h"
+
+namespace vegstream::datasets {
+namespace {
+namespace fs = std::filesystem;
+
+// Parses a decimal component ("1608", "1608.png" with its extension stripped by the caller).
+std::optional<int> parseIndex(const std::string& s) {
+  if (s.empty() || s.size() > 9) return std::nullopt;
+  int v = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return std::nullopt;
+    v = v * 10 + (c - '0');
+  }
+  return v;
+}
+
+// The tiles present at zoom z under root/{z}/{x}/{y}.ext.
+std::set<geo::TileId> listTiles(const fs::path& root, int z, const std::string& ext) {
+  std::set<geo::TileId> tiles;
+  std::error_code ec;
+  const fs::path zdir = root / std::to_string(z);
+  if (!fs::is_directory(zdir, ec)) return tiles;
+  for (const auto& xe : fs::directory_iterator(zdir, ec)) {
+    if (!xe.is_directory()) continue;
+    const auto x = parseIndex(xe.path().filename().string());
+    if (!x) continue;
+    for (const auto& ye : fs::directory_iterator(xe.path(), ec)) {
+      if (!ye.is_regular_file() || ye.path().extension() != ext) continue;
+      const auto y = parseIndex(ye.path().stem().string());
+      const geo::TileId id{z, *x, y.value_or(-1)};
+      if (y && geo::isValid(id)) tiles.insert(id);
+    }
+  }
+  return tiles;
+}
+
+uint64_t fileBytes(const fs::path& p) {
+  std::error_code ec;
+  const auto n = fs::file_size(p, ec);
+  return ec ? 0 : static_cast<uint64_t>(n);
+}
+
+// Child pixel block (2·px, 2·py) … +1 of quadrant q for parent pixel (i, j).
+struct Quadrant {
+  int child;  // index into children(): NW, NE, SW, SE
+  int cx, cy; // top-left child pixel of the 2×2 block
+};
+Quadrant quadrantOf(int i, int j, int size) {
+  const int half = size / 2;
+  const int qx = i >= half ? 1 : 0, qy = j >= half ? 1 : 0;
+  return {qy * 2 + qx, 2 * (i - qx * half), 2 * (j - qy * half)};
+}
+
+Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const geo::TileId& parentId,
+                                                    const std::set<geo::TileId>& present, const DatasetMeta& meta) {
+  std::array<std::optional<HeightTile>, 4> kids;
+  bool any = false;
+  const auto ids = geo::children(parentId);
+  for (int k = 0; k < 4; ++k) {
+    if (!present.count(ids[static_cast<size_t>(k)])) continue;
+    const fs::path p = elevationTilePath(dir, ids[static_cast<size_t>(k)]);
+    auto t = readHeightTile(p, ids[static_cast<size_t>(k)], meta.elevationEncoding);
+    if (!t) return t.error();
+    if (t->size != meta.tileSize)
+      return makeError(ErrorKind::InvalidInput, concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ",
+                                                      meta.tileSize));
+    kids[static_cast<size_t>(k)] = std::move(*t);
+    any = true;
+  }
+  if (!any) return std::optional<HeightTile>{};
+  const int size = meta.tileSize;
+  HeightTile out;
+  out.id = parentId;
+  out.size = size;
+  out.heights.assign(static_cast<size_t>(size) * static_cast<size_t>(size), NAN);
+  bool valid = false;
+  for (int j = 0; j < size; ++j) {
+    for (int i = 0; i < size; ++i) {
+      const Quadrant q = quadrantOf(i, j, size);
+      const auto& kid = kids[static_cast<size_t>(q.child)];
+      if (!kid) continue;
+      double sum = 0.0;
+      int n = 0;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const float h = kid->at(q.cx + dx, q.cy + dy);
+          if (std::isfinite(h)) { sum += h; ++n; }
+        }
+      if (n) {
+        out.heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] = static_cast<float>(sum / n);
+        valid = true;
+      }
+    }
+  }
+  if (!valid) return std::optional<HeightTile>{};
+  return std::optional<HeightTile>(std::move(out));
+}
+
+Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo::TileId& parentId,
+                                                  const std::set<geo::TileId>& present, const DatasetMeta& meta) {
+  std::array<std::optional<ColorTile>, 4> kids;
+  bool any = false;
+  const auto ids = geo::children(parentId);
+  for (int k = 0; k < 4; ++k) {
+    if (!present.count(ids[static_cast<size_t>(k)])) continue;
+    const fs::path p = imageryTilePath(dir, ids[static_cast<size_t>(k)], *meta.imagery);
+    auto t = readColorTile(p, ids[static_cast<size_t>(k)]);
+    if (!t) return t.error();
+    if (t->size != meta.tileSize)
+      return makeError(ErrorKind::InvalidInput, concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ",
+                                                      meta.tileSize));
+    kids[static_cast<size_t>(k)] = std::move(*t);
+    any = true;
+  }
+  if (!any) return std::optional<ColorTile>{};
+  const int size = meta.tileSize;
+  ColorTile out;
+  out.id = parentId;
+  out.size = size;
+  out.rgba.assign(static_cast<size_t>(size) * static_cast<size_t>(size) * 4, 0);
+  for (int j = 0; j < size; ++j) {
+    for (int i = 0; i < size; ++i) {
+      const Quadrant q = quadrantOf(i, j, size);
+      const auto& kid = kids[static_cast<size_t>(q.child)];
+      if (!kid) continue;
+      int sum[3] = {0, 0, 0}, n = 0;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const uint8_t* px = &kid->rgba[(static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) +
+                                          static_cast<size_t>(q.cx + dx)) * 4];
+          if (px[3] == 0) continue;
+          for (int c = 0; c < 3; ++c) sum[c] += px[c];
+          ++n;
+        }
+      if (!n) continue;
+      uint8_t* d = &out.rgba[(static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)) * 4];
+      for (int c = 0; c < 3; ++c) d[c] = static_cast<uint8_t>((sum[c] + n / 2) / n);
+      d[3] = 255;
+    }
+  }
+  return std::optional<ColorTile>(std::move(out));
+}
+
+}  // namespace
+
+Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& progress, const PyramidOptions& options) {
+  assert(meta.minZoom >= 0 && meta.minZoom <= meta.maxZoom && meta.tileSize % 2 == 0);
+  const std::string imageryExt = meta.imagery == ImageryFormat::Jpeg ? ".jpg" : ".png";
+  std::set<geo::TileId> elevation = listTiles(dir / "elevation", meta.maxZoom, ".png");
+  std::set<geo::TileId> imagery;
+  if (meta.imagery) imagery = listTiles(dir / "imagery", meta.maxZoom, imageryExt);
+
+  for (int z = meta.maxZoom - 1; z >= meta.minZoom; --z) {
+    std::set<geo::TileId> parentSet;
+    for (const auto& t : elevation) parentSet.insert(geo::parent(t));
+    for (const auto& t : imagery) parentSet.insert(geo::parent(t));
+    const std::vector<geo::TileId> parents(parentSet.begin(), parentSet.end());
+    progress.stage(concat("zoom ", z));
+    progress.addTotal(parents.size());
+
+    std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0);
+    std::vector<uint64_t> bytes(parents.size(), 0);
+    Status s = parallelFor(parents.size(), options.threads, [&](size_t i) -> Status {
+      const geo::TileId& id = parents[i];
+      uint64_t written = 0;
+      auto h = downsampleHeights(dir, id, elevation, meta);
+      if (!h) return h.error();
+      if (*h) {
+        const fs::path p = elevationTilePath(dir, id);
+        if (auto w = writeHeightTile(p, **h, meta.elevationEncoding); !w) return w;
+        written += fileBytes(p);
+        wroteElevation[i] = 1;
+      }
+      if (meta.imagery) {
+        auto c = downsampleColour(dir, id, imagery, meta);
+        if (!c) return c.error();
+        if (*c) {
+          const fs::path p = imageryTilePath(dir, id, *meta.imagery);
+          if (auto w = writeColorTile(p, **c, *meta.imagery, options.jpegQuality); !w) return w;
+          written += fileBytes(p);
+          wroteImagery[i] = 1;
+        }
+      }
+      bytes[i] = written;
+      progress.tileDone(written);
+      return {};
+    });
+    if (!s) return s;
+
+    elevation.clear();
+    imagery.clear();
+    for (size_t i = 0; i < parents.size(); ++i) {
+      if (wroteElevation[i]) { elevation.insert(parents[i]); ++meta.elevationTiles; }
+      if (wroteImagery[i]) { imagery.insert(parents[i]); ++meta.imageryTiles; }
+      meta.bytes += bytes[i];
+    }
+  }
+  return {};
+}
+
+}  // namespace vegstream::datasets

@@ -1,0 +1,142 @@
+// Tile codec: height encodings round-trip within half a step, nodata stays a mask, and tile
+// files written through OpenImageIO decode to the same heights / colours.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "datasets/tile_codec.h"
+
+namespace vegstream::datasets {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path tmpDir(const std::string& name) {
+  const fs::path d = fs::path(VEGSTREAM_TEST_TMP) / "codec" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+class EncodingRoundTrip : public ::testing::TestWithParam<ElevationEncoding> {};
+
+TEST_P(EncodingRoundTrip, WithinHalfAStepFromTrenchToSummit) {
+  const ElevationEncoding enc = GetParam();
+  const double step = encodingStepM(enc);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> h(-11000.0, 9000.0);
+  double worst = 0.0;
+  for (int i = 0; i < 100000; ++i) {
+    const double v = h(rng);
+    const auto c = encodeHeight(v, enc);
+    worst = std::max(worst, std::abs(decodeHeight(c[0], c[1], c[2], enc) - v));
+  }
+  EXPECT_LE(worst, 0.5 * step + 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(Both, EncodingRoundTrip,
+                         ::testing::Values(ElevationEncoding::Terrarium, ElevationEncoding::TerrainRgb));
+
+TEST(TileCodec, KnownCodes) {
+  // terrarium: 0 m = 128,0,0; terrain-RGB: 0 m = 100000 × 0.1 → 1,134,160.
+  EXPECT_EQ(encodeHeight(0.0, ElevationEncoding::Terrarium), (std::array<uint8_t, 3>{128, 0, 0}));
+  EXPECT_EQ(encodeHeight(0.0, ElevationEncoding::TerrainRgb), (std::array<uint8_t, 3>{1, 134, 160}));
+  EXPECT_DOUBLE_EQ(decodeHeight(128, 0, 0, ElevationEncoding::Terrarium), 0.0);
+  EXPECT_NEAR(decodeHeight(1, 134, 160, ElevationEncoding::TerrainRgb), 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(encodingStepM(ElevationEncoding::Terrarium), 1.0 / 256.0);
+  EXPECT_DOUBLE_EQ(encodingStepM(ElevationEncoding::TerrainRgb), 0.1);
+}
+
+TEST_P(EncodingRoundTrip, TileFileKeepsHeightsAndNodataMask) {
+  const ElevationEncoding enc = GetParam();
+  HeightTile t;
+  t.id = {12, 758, 1608};
+  t.heights.resize(256 * 256);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> h(-500.f, 4000.f);
+  int nodata = 0;
+  for (size_t i = 0; i < t.heights.size(); ++i) {
+    t.heights[i] = (i % 17 == 0) ? NAN : h(rng);
+    nodata += std::isnan(t.heights[i]);
+  }
+  const fs::path p = tmpDir("heights") / "t.png";
+  ASSERT_TRUE(writeHeightTile(p, t, enc));
+  auto back = readHeightTile(p, t.id, enc);
+  ASSERT_TRUE(back) << back.error().message;
+  ASSERT_EQ(back->size, 256);
+  int backNodata = 0;
+  double worst = 0.0;
+  for (size_t i = 0; i < t.heights.size(); ++i) {
+    if (std::isnan(back->heights[i])) { ++backNodata; EXPECT_TRUE(std::isnan(t.heights[i])); continue; }
+    worst = std::max(worst, std::abs(double(back->heights[i]) - double(t.heights[i])));
+  }
+  EXPECT_EQ(backNodata, nodata);
+  // + float rounding of a 4 km height (2.4e-4 m).
+  EXPECT_LE(worst, 0.5 * encodingStepM(enc) + 5e-4);
+}
+
+TEST(TileCodec, ColourPngIsLosslessAndJpegClose) {
+  ColorTile t;
+  t.rgba.resize(256 * 256 * 4);
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) {
+      uint8_t* p = &t.rgba[(size_t(y) * 256 + size_t(x)) * 4];
+      p[0] = uint8_t(x); p[1] = uint8_t(y); p[2] = 90; p[3] = 255;
+    }
+  const fs::path d = tmpDir("colour");
+  ASSERT_TRUE(writeColorTile(d / "a.png", t, ImageryFormat::Png));
+  auto png = readColorTile(d / "a.png", t.id);
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->rgba, t.rgba);
+  ASSERT_TRUE(writeColorTile(d / "a.jpg", t, ImageryFormat::Jpeg, 90));
+  auto jpg = readColorTile(d / "a.jpg", t.id);
+  ASSERT_TRUE(jpg);
+  double sum = 0.0;
+  for (size_t i = 0; i < t.rgba.size(); ++i) sum += std::abs(int(jpg->rgba[i]) - int(t.rgba[i]));
+  EXPECT_LT(sum / double(t.rgba.size()), 2.0);  // a smooth gradient at quality 90
+}
+
+TEST(TileCodec, CorruptAndMissingTilesNameTheFile) {
+  const fs::path d = tmpDir("corrupt");
+  HeightTile t;
+  t.heights.assign(256 * 256, 100.f);
+  ASSERT_TRUE(writeHeightTile(d / "good.png", t, ElevationEncoding::Terrarium));
+  const auto size = fs::file_size(d / "good.png");
+  fs::copy_file(d / "good.png", d / "cut.png");
+  fs::resize_file(d / "cut.png", size / 2);
+  auto cut = readHeightTile(d / "cut.png", {}, ElevationEncoding::Terrarium);
+  ASSERT_FALSE(cut);
+  EXPECT_EQ(cut.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(cut.error().message.find("cut.png"), std::string::npos) << cut.error().message;
+  std::ofstream(d / "text.png") << "not a png";
+  auto text = readHeightTile(d / "text.png", {}, ElevationEncoding::Terrarium);
+  ASSERT_FALSE(text);
+  EXPECT_NE(text.error().message.find("text.png"), std::string::npos);
+  auto missing = readColorTile(d / "none.png", {});
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().kind, ErrorKind::NotFound);
+}
+
+TEST(TileCodec, GrandCanyonTerrariumAndTerrainRgbAgree) {
+  const fs::path root = VEGSTREAM_DATASETS_DIR "/grandcanyon-xyz";
+  auto a = readHeightTile(root / "terrarium/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::Terrarium);
+  auto b = readHeightTile(root / "terrain-rgb/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::TerrainRgb);
+  ASSERT_TRUE(a) << a.error().message;
+  ASSERT_TRUE(b) << b.error().message;
+  ASSERT_EQ(a->size, b->size);
+  double worst = 0.0, lo = 1e9, hi = -1e9;
+  for (size_t i = 0; i < a->heights.size(); ++i) {
+    worst = std::max(worst, std::abs(double(a->heights[i]) - double(b->heights[i])));
+    lo = std::min(lo, double(b->heights[i]));
+    hi = std::max(hi, double(b->heights[i]));
+  }
+  EXPECT_LE(worst, 0.2);
+  EXPECT_GE(lo, 439.0 - 0.1);
+  EXPECT_LE(hi, 2184.0 + 0.1);
+}
+
+}  // namespace
+}  // namespace vegstream::datasets
