@@ -11,7 +11,7 @@ namespace vegstream::app {
 struct FlyOptions {
   std::string dataset;          // DEM GeoTIFF or a directory with srtm.tif
   std::string out = "out/fly";  // headless output directory
-  int frames = 48;
+  int frames = 96;
   bool framesGiven = false;     // --frames on the command line: a window closes after that many
   uint32_t width = 640, height = 360;
   int msaa = 4;

@@ -32,7 +32,7 @@ glm::dmat4 projection(const Camera& camera, double aspect);
 double reverseZDepth(const Camera& camera, double viewDistance);
 
 struct Lighting {
-  glm::dvec3 sunDirection{-0.55, -0.45, 0.55};  // towards the sun (afternoon, south-west), local ENU; normalised on use
+  glm::dvec3 sunDirection{-0.85, -0.15, 0.5};  // towards the sun (late afternoon, west), local ENU; normalised on use
   glm::vec3 sunColor{1.05f, 0.98f, 0.88f};
   glm::vec3 skyZenith{0.16f, 0.32f, 0.68f};
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.85f};
