@@ -5,6 +5,19 @@
 #include "render/vk_check.h"
 
 namespace vegstream::render {
+namespace {
+// One dedicated, named allocation for a buffer or image's requirements.
+DeviceMemory allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
+                      const std::string& name) {
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, flags);
+  VkDeviceMemory mem;
+  vkCheck(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem), "vkAllocateMemory");
+  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
+  return DeviceMemory(ctx.device(), mem);
+}
+}  // namespace
 
 GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                        const std::string& name) {
@@ -22,19 +35,13 @@ GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags
 
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device, raw, &req);
-  VkMemoryPropertyFlags flags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  if (use == MemoryUse::HostUpload) flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  if (use == MemoryUse::HostReadback)
-    flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, flags);
-  VkDeviceMemory mem;
-  vkCheck(vkAllocateMemory(device, &mai, nullptr, &mem), "vkAllocateMemory");
-  out.memory = DeviceMemory(device, mem);
-  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
-  vkCheck(vkBindBufferMemory(device, raw, mem, 0), "vkBindBufferMemory");
-  if (use != MemoryUse::DeviceLocal) vkCheck(vkMapMemory(device, mem, 0, VK_WHOLE_SIZE, 0, &out.mapped), "vkMapMemory");
+  const VkMemoryPropertyFlags flags = use == MemoryUse::DeviceLocal
+                                          ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
+                                          : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  out.memory = allocate(ctx, req, flags, name);
+  vkCheck(vkBindBufferMemory(device, raw, out.memory.get(), 0), "vkBindBufferMemory");
+  if (use != MemoryUse::DeviceLocal)
+    vkCheck(vkMapMemory(device, out.memory.get(), 0, VK_WHOLE_SIZE, 0, &out.mapped), "vkMapMemory");
   return out;
 }
 
@@ -76,14 +83,8 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device, raw, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory mem;
-  vkCheck(vkAllocateMemory(device, &mai, nullptr, &mem), "vkAllocateMemory");
-  out.memory = DeviceMemory(device, mem);
-  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
-  vkCheck(vkBindImageMemory(device, raw, mem, 0), "vkBindImageMemory");
+  out.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, name);
+  vkCheck(vkBindImageMemory(device, raw, out.memory.get(), 0), "vkBindImageMemory");
 
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = raw;
