@@ -8,6 +8,10 @@
 
 #include "app/exit_codes.h"
 #include "app/fly_command.h"
+#include "app/generate_command.h"
+#include "app/import_command.h"
+#include "app/info_command.h"
+#include "app/query_command.h"
 #include "core/log.h"
 #include "render/context.h"
 
@@ -62,7 +66,33 @@ int main(int argc, char** argv) {
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
 
+  app::ImportOptions importOptions;
+  auto* importCmd = app::addImportCommand(cli, importOptions);
+
   auto* devicesCmd = cli.add_subcommand("devices", "List the Vulkan devices vegstream can draw with");
+
+  app::InfoOptions info;
+  auto* infoCmd = cli.add_subcommand("info", "Describe a dataset directory as JSON (bounds, zooms, heights, tiles)");
+  infoCmd->add_option("dataset", info.dataset, "Dataset directory")->required();
+
+  app::QueryOptions query;
+  auto* queryCmd = cli.add_subcommand("query", "Height and base colour of a dataset at one point, as JSON");
+  queryCmd->add_option("dataset", query.dataset, "Dataset directory")->required();
+  queryCmd->add_option("--lat", query.latDeg, "Latitude, degrees (WGS 84)")->required();
+  queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required();
+
+  datasets::SyntheticOptions gen;
+  std::string genOut, genEncoding = "terrarium";
+  auto* generateCmd = cli.add_subcommand("generate", "Write a synthetic dataset: fractal relief, biome colours");
+  generateCmd->add_option("--out", genOut, "Dataset directory to create")->required();
+  generateCmd->add_option("--lat", gen.centreLatDeg, "Latitude of the centre")->capture_default_str();
+  generateCmd->add_option("--lon", gen.centreLonDeg, "Longitude of the centre")->capture_default_str();
+  generateCmd->add_option("--size-km", gen.sizeKm, "Side of the square area, km")->capture_default_str();
+  generateCmd->add_option("--seed", gen.seed, "Seed: the same seed gives identical files")->capture_default_str();
+  generateCmd->add_option("--name", gen.name, "Dataset name (default: the --out directory's name)");
+  generateCmd->add_option("--max-zoom", gen.maxZoom, "Finest zoom (default: pixels of at most 10 m)");
+  generateCmd->add_option("--min-zoom", gen.minZoom, "Coarsest zoom (default: the area in one tile)");
+  generateCmd->add_option("--encoding", genEncoding, "Elevation encoding: terrarium or terrain-rgb")->capture_default_str();
 
   try {
     cli.parse(argc, argv);
@@ -75,6 +105,16 @@ int main(int argc, char** argv) {
   const Logger log = makeConsoleLogger("vegstream", verbose ? spdlog::level::debug : spdlog::level::info);
 
   if (*devicesCmd) return listDevicesCommand(log);
+  if (*importCmd) return app::runImport(importOptions, log);
+  if (*infoCmd) return app::runInfo(info, log);
+  if (*queryCmd) return app::runQuery(query, log);
+  if (*generateCmd) {
+    auto encoding = datasets::parseElevationEncoding(genEncoding);
+    if (!encoding) return app::reportError(log, encoding.error());
+    gen.encoding = *encoding;
+    gen.out = genOut;
+    return app::runGenerate(gen, log);
+  }
   if (*flyCmd) {
     if (!parseSize(size, fly.width, fly.height)) {
       log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", size);

@@ -97,6 +97,7 @@ void ProgressReporter::draw(bool force) {
 }
 
 std::string ProgressReporter::finish() {
+  if (interactive_ && drewBar_) draw(true);  // the bar's last state: done/total
   std::lock_guard lock(drawMutex_);
   const double s = seconds();
   const uint64_t done = done_.load();

@@ -172,8 +172,8 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
     for (const auto& t : elevation) parentSet.insert(geo::parent(t));
     for (const auto& t : imagery) parentSet.insert(geo::parent(t));
     const std::vector<geo::TileId> parents(parentSet.begin(), parentSet.end());
-    progress.stage(concat("zoom ", z));
     progress.addTotal(parents.size());
+    progress.stage(concat("zoom ", z));
 
     std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0);
     std::vector<uint64_t> bytes(parents.size(), 0);

@@ -33,10 +33,12 @@ double gradientNoise(double x, double y, uint32_t seed) {
   const double fx = std::floor(x), fy = std::floor(y);
   const auto ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
   const double dx = x - fx, dy = y - fy;
+  // 16 gradient directions, evenly spread (cos, sin of k·22.5°).
+  static constexpr double kGx[16] = {1.0, 0.92388, 0.70711, 0.38268, 0.0, -0.38268, -0.70711, -0.92388,
+                                     -1.0, -0.92388, -0.70711, -0.38268, 0.0, 0.38268, 0.70711, 0.92388};
   auto corner = [&](int64_t cx, int64_t cy, double ox, double oy) {
-    // 16 gradient directions, evenly spread.
-    const double a = static_cast<double>(hashCell(ix + cx, iy + cy, seed) & 15U) * (2.0 * M_PI / 16.0);
-    return std::cos(a) * ox + std::sin(a) * oy;
+    const uint32_t k = hashCell(ix + cx, iy + cy, seed) & 15U;
+    return kGx[k] * ox + kGx[(k + 12U) & 15U] * oy;
   };
   const double n00 = corner(0, 0, dx, dy), n10 = corner(1, 0, dx - 1.0, dy);
   const double n01 = corner(0, 1, dx, dy - 1.0), n11 = corner(1, 1, dx - 1.0, dy - 1.0);
@@ -105,10 +107,10 @@ SyntheticTerrain::SyntheticTerrain(uint64_t seed) {
 double SyntheticTerrain::heightM(double eastM, double northM) const {
   const double px = eastM / kReliefWavelengthM, py = northM / kReliefWavelengthM;
   // Domain warp: bends ridges and valleys so they do not follow the noise lattice.
-  const double wx = px + 0.45 * fbm(px + 5.2, py + 1.3, 4, seed_[0]);
-  const double wy = py + 0.45 * fbm(px + 1.7, py + 9.2, 4, seed_[1]);
+  const double wx = px + 0.25 * fbm(px + 5.2, py + 1.3, 3, seed_[0]);
+  const double wy = py + 0.25 * fbm(px + 1.7, py + 9.2, 3, seed_[1]);
   const double region = fbm(0.6 * wx, 0.6 * wy, 3, seed_[2]);            // −1 … 1: valley … massif
-  const double mountains = smoothstep(-0.35, 0.45, region);
+  const double mountains = smoothstep(-0.45, 0.35, region);
   const double ridges = ridged(1.3 * wx, 1.3 * wy, 7, seed_[3]);           // 0 … 1
   const double hills = fbm(3.0 * wx, 3.0 * wy, 5, seed_[2] ^ 0xabcdefU);   // rolling valley floor
   return kValleyFloorM + 250.0 * (region + 1.0) + 60.0 * hills + 2600.0 * mountains * std::pow(ridges, 1.6);

@@ -3,8 +3,7 @@
 // height above the terrain under the camera, looking ahead and slightly down. Scripted
 // keyframed paths (Catmull-Rom, colliders) replace it in the flights issue.
 
-#include <functional>
-
+#include "flight/ground_height.h"
 #include "geo/local_frame.h"
 #include "render/frame_types.h"
 
@@ -17,9 +16,6 @@ struct StraightFlight {
   double durationS = 10.0;
   double pitchDeg = -12.0;  // negative looks down
 };
-
-// Height of the ground (m MSL) at a lat/lon, NaN where unknown.
-using GroundHeight = std::function<double(double latDeg, double lonDeg)>;
 
 struct FlightPose {
   geo::Geodetic position;  // camera position, height MSL

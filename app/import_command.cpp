@@ -1,0 +1,207 @@
+// `vegstream import` (import_command.h): parses the options into the importers' option structs,
+// runs the GeoTIFF or the XYZ importer with a progress bar, and prints the summary line.
+
+#include "app/import_command.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/exit_codes.h"
+#include "datasets/geotiff_import.h"
+#include "datasets/progress.h"
+#include "datasets/xyz_import.h"
+#include "geo/crs.h"
+
+namespace vegstream::app {
+namespace {
+namespace fs = std::filesystem;
+using datasets::DatasetMeta;
+
+// Set by SIGINT / SIGTERM; the importer polls it between tiles and then removes its temporary
+// directory. A signal handler can only reach a static.
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+Error userError(const std::string& message) { return makeError(ErrorKind::InvalidInput, message); }
+
+Result<int> epsgOption(const std::string& flag, const std::string& text) {
+  auto crs = geo::parseCrs(text);
+  if (!crs) {
+    std::string m = flag;
+    m += ": ";
+    m += crs.error().message;
+    return makeError(crs.error().kind, m);
+  }
+  return crs->epsg;
+}
+
+std::vector<fs::path> splitList(const std::string& text) {
+  std::vector<fs::path> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.emplace_back(item);
+  return out;
+}
+
+Result<datasets::ImageryFormat> imageryFormatOption(const std::string& text, datasets::ImageryFormat fallback) {
+  if (text.empty()) return fallback;
+  if (text == "jpeg" || text == "jpg") return datasets::ImageryFormat::Jpeg;
+  if (text == "png") return datasets::ImageryFormat::Png;
+  std::string m = "--imagery-format '";
+  m += text;
+  m += "': expected jpeg or png";
+  return userError(m);
+}
+
+Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
+  datasets::GeoTiffImportOptions g;
+  g.dem = o.dem;
+  if (!o.demCrs.empty()) {
+    auto e = epsgOption("--dem-crs", o.demCrs);
+    if (!e) return e.error();
+    g.demEpsg = *e;
+  }
+  if (o.demNodataOpt && o.demNodataOpt->count()) g.demNodata = o.demNodata;
+  if (!o.imagery.empty() && !o.imageryBands.empty())
+    return userError("--imagery and --imagery-bands exclude each other: give one RGB file or three band files");
+  if (!o.imagery.empty()) g.imagery.file = fs::path(o.imagery);
+  if (!o.imageryBands.empty()) {
+    g.imagery.bands = splitList(o.imageryBands);
+    if (g.imagery.bands.size() != 3)
+      {
+      std::string m = "--imagery-bands '";
+      m += o.imageryBands;
+      m += "': expected three files R,G,B separated by commas";
+      return userError(m);
+    }
+  }
+  if (!o.imageryCrs.empty()) {
+    auto e = epsgOption("--imagery-crs", o.imageryCrs);
+    if (!e) return e.error();
+    g.imagery.assumeEpsg = *e;
+  }
+  if (!o.stretch.empty()) {
+    auto s = datasets::parseStretch(o.stretch);
+    if (!s) return s.error();
+    g.imagery.stretch = *s;
+  }
+  g.imagery.maxPixels = o.maxPixels;
+  auto enc = datasets::parseElevationEncoding(o.encoding);
+  if (!enc) return enc.error();
+  g.encoding = *enc;
+  auto fmt = imageryFormatOption(o.imageryFormat, datasets::ImageryFormat::Jpeg);
+  if (!fmt) return fmt.error();
+  g.imageryFormat = *fmt;
+  g.out = o.out;
+  g.name = o.name;
+  g.attribution = o.attribution;
+  g.jpegQuality = o.jpegQuality;
+  if (o.maxZoom >= 0) g.maxZoom = o.maxZoom;
+  if (o.minZoom >= 0) g.minZoom = o.minZoom;
+  if (g.minZoom && g.maxZoom && *g.minZoom > *g.maxZoom) return userError("--min-zoom is greater than --max-zoom");
+  if (o.heightResampling == "cubic") g.heightResampling = datasets::HeightResampling::Cubic;
+  else if (o.heightResampling != "bilinear") {
+    std::string m = "--height-resampling '";
+    m += o.heightResampling;
+    m += "': expected bilinear or cubic";
+    return userError(m);
+  }
+  g.maxPixels = o.maxPixels;
+  g.threads = o.threads;
+  g.cancel = &gInterrupted;
+  return g;
+}
+
+Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::ProgressSink& progress) {
+  datasets::XyzImportOptions x;
+  x.elevationTemplate = o.xyzElevation;
+  if (!o.xyzImagery.empty()) x.imageryTemplate = o.xyzImagery;
+  auto enc = datasets::parseElevationEncoding(o.encoding);
+  if (!enc) return enc.error();
+  if (!o.encodingOpt || !o.encodingOpt->count())
+    return userError("--xyz-elevation needs --encoding terrain-rgb or --encoding terrarium (the tiles' encoding)");
+  x.encoding = *enc;
+  x.out = o.out;
+  x.name = o.name;
+  x.attribution = o.attribution;
+  auto fmt = imageryFormatOption(o.imageryFormat, datasets::ImageryFormat::Png);
+  if (!fmt) return fmt.error();
+  x.imageryFormat = *fmt;
+  x.jpegQuality = o.jpegQuality;
+  if (o.minZoom >= 0) x.minZoom = o.minZoom;
+  x.threads = o.threads;
+  return datasets::importXyzTiles(x, log, progress);
+}
+
+}  // namespace
+
+CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
+  auto* cmd = cli.add_subcommand("import", "GeoTIFF DEM (+ imagery) or XYZ tiles → a dataset directory");
+  cmd->add_option("--dem", o.dem, "DEM GeoTIFF (heights in metres)");
+  cmd->add_option("--imagery", o.imagery, "Imagery GeoTIFF: RGB(A) or grey, any supported CRS");
+  cmd->add_option("--imagery-bands", o.imageryBands, "Imagery as three single-band GeoTIFFs R.tif,G.tif,B.tif");
+  cmd->add_option("--stretch", o.stretch, "Colour stretch to 0…255: percentiles p1,p99 or values LO,HI");
+  cmd->add_option("--height-resampling", o.heightResampling,
+                  "bilinear, or cubic (Catmull-Rom: keeps the DEM's values at its pixel centres without kinks)")
+      ->capture_default_str();
+  o.demNodataOpt = cmd->add_option("--dem-nodata", o.demNodata, "DEM nodata value (overrides the file's)");
+  cmd->add_option("--dem-crs", o.demCrs, "The DEM's CRS (EPSG:N) when its GeoKeys are missing or wrong");
+  cmd->add_option("--imagery-crs", o.imageryCrs, "The imagery's CRS (EPSG:N) when its GeoKeys are missing or wrong");
+  cmd->add_option("--xyz-elevation", o.xyzElevation, "Elevation tiles 'DIR/{z}/{x}/{y}.png' (instead of --dem)");
+  cmd->add_option("--xyz-imagery", o.xyzImagery, "Imagery tiles 'DIR/{z}/{x}/{y}.png' (with --xyz-elevation)");
+  o.encodingOpt = cmd->add_option("--encoding", o.encoding,
+                                  "terrarium or terrain-rgb: the output's (--dem) or the tiles' (--xyz-elevation)")
+                      ->capture_default_str();
+  cmd->add_option("--imagery-format", o.imageryFormat, "jpeg or png (default: jpeg for --dem, png for XYZ)");
+  cmd->add_option("--out", o.out, "Dataset directory to create (must not exist or be empty)")->required();
+  cmd->add_option("--name", o.name, "Dataset name (default: the --out directory's name)");
+  cmd->add_option("--attribution", o.attribution, "Source attribution, stored in dataset.json");
+  cmd->add_option("--max-zoom", o.maxZoom, "Finest zoom (default: from the source resolution)")->check(CLI::Range(0, 22));
+  cmd->add_option("--min-zoom", o.minZoom, "Coarsest zoom (default: the data in one tile)")->check(CLI::Range(0, 22));
+  cmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality of imagery tiles")->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--max-pixels", o.maxPixels, "Refuse source rasters with more pixels than this")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 1024));
+  return cmd;
+}
+
+int runImport(const ImportOptions& o, const Logger& log) {
+  if (o.dem.empty() == o.xyzElevation.empty())
+    return reportError(log, userError("import needs exactly one of --dem FILE or --xyz-elevation 'DIR/{z}/{x}/{y}.png'"));
+  gInterrupted = false;
+  auto previousInt = std::signal(SIGINT, onInterrupt);
+  auto previousTerm = std::signal(SIGTERM, onInterrupt);
+  datasets::ProgressReporter progress("import");
+  Result<DatasetMeta> meta = makeError(ErrorKind::Internal, "no import ran");
+  if (!o.dem.empty()) {
+    auto g = geoTiffOptions(o);
+    meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
+  } else {
+    if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty())
+      meta = userError("--imagery, --imagery-bands and --stretch go with --dem; use --xyz-imagery with --xyz-elevation");
+    else
+      meta = runXyz(o, log, progress);
+  }
+  progress.finish();
+  std::signal(SIGINT, previousInt);
+  std::signal(SIGTERM, previousTerm);
+  if (gInterrupted) {
+    log->error("import interrupted: nothing was written to {}", o.out);
+    return 130;
+  }
+  if (!meta) return reportError(log, meta.error());
+  const uint64_t tiles = meta->elevationTiles + meta->imageryTiles;
+  const double s = progress.seconds();
+  log->info("imported {}: {} tiles ({} elevation, {} imagery), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
+            "{:.2f} s ({:.0f} tiles/s) → {}",
+            meta->name, tiles, meta->elevationTiles, meta->imageryTiles, meta->minZoom, meta->maxZoom, meta->minHeightM,
+            meta->maxHeightM, static_cast<double>(meta->bytes) / 1048576.0, s, s > 0 ? static_cast<double>(tiles) / s : 0.0,
+            o.out);
+  return kExitOk;
+}
+
+}  // namespace vegstream::app

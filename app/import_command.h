@@ -1,0 +1,43 @@
+#pragma once
+// `vegstream import`: a GeoTIFF DEM (+ imagery) or existing XYZ tiles → a dataset directory
+// (DESIGN.md "Dataset directory"). The options are registered here, so main.cpp only adds the
+// subcommand and dispatches to runImport.
+
+#include <cstdint>
+#include <string>
+
+#include "core/log.h"
+
+namespace CLI { class App; class Option; }
+
+namespace vegstream::app {
+
+struct ImportOptions {
+  // GeoTIFF form.
+  std::string dem, imagery, imageryBands, stretch, demCrs, imageryCrs;
+  double demNodata = 0.0;
+  std::string heightResampling = "bilinear";
+  // XYZ form.
+  std::string xyzElevation, xyzImagery;
+  // Both.
+  std::string out, name, attribution;
+  std::string encoding = "terrarium";   // output encoding (GeoTIFF) / source encoding (XYZ)
+  std::string imageryFormat;            // jpeg (GeoTIFF default) or png (XYZ default)
+  int maxZoom = -1, minZoom = -1;       // -1: chosen from the data
+  int jpegQuality = 90;
+  uint64_t maxPixels = 400'000'000;
+  int threads = 0;
+
+  // Which options the user gave (set by addImportCommand).
+  CLI::Option* demNodataOpt = nullptr;
+  CLI::Option* encodingOpt = nullptr;
+};
+
+// Registers `import` and its options on `cli`; the options fill `options`.
+CLI::App* addImportCommand(CLI::App& cli, ImportOptions& options);
+
+// Exit code: 0 done, 2 a user mistake (one message naming the file and the problem, nothing
+// left at --out), 1 a system failure, 130 interrupted (nothing left at --out).
+int runImport(const ImportOptions& options, const Logger& log);
+
+}  // namespace vegstream::app

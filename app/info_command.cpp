@@ -1,0 +1,95 @@
+// `vegstream info` (info_command.h). Counts come from dataset.json and, per zoom, from the
+// files actually present, so a dataset damaged after its import shows the difference.
+
+#include "app/info_command.h"
+
+#include <iostream>
+#include <map>
+#include <set>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "app/exit_codes.h"
+#include "datasets/dataset_reader.h"
+#include "geo/crs.h"
+
+namespace vegstream::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ZoomCounts {
+  uint64_t elevation = 0, imagery = 0, bytes = 0;
+};
+
+// Tiles on disk under DIR/{elevation,imagery}/{z}/{x}/{y}.ext, per zoom.
+std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
+  std::map<int, ZoomCounts> zooms;
+  for (const char* kind : {"elevation", "imagery"}) {
+    std::error_code ec;
+    const fs::path root = dir / kind;
+    if (!fs::is_directory(root, ec)) continue;
+    for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (it.depth() != 2 || !it->is_regular_file(ec)) continue;
+      const std::string zText = it->path().parent_path().parent_path().filename().string();
+      if (zText.empty() || zText.find_first_not_of("0123456789") != std::string::npos || zText.size() > 2) continue;
+      ZoomCounts& c = zooms[std::stoi(zText)];
+      (kind[0] == 'e' ? c.elevation : c.imagery) += 1;
+      const auto size = it->file_size(ec);
+      if (!ec) c.bytes += size;
+    }
+  }
+  return zooms;
+}
+
+}  // namespace
+
+int runInfo(const InfoOptions& options, const Logger& log) {
+  auto reader = datasets::DatasetReader::open(options.dataset);
+  if (!reader) return reportError(log, reader.error());
+  const datasets::DatasetMeta& m = reader->meta();
+
+  nlohmann::json sources = nlohmann::json::array();
+  std::set<std::string> crsNames;
+  for (const auto& s : m.sources) {
+    sources.push_back({{"role", s.role}, {"path", s.path}, {"crs", s.crs}, {"description", s.description}});
+    crsNames.insert(s.crs);
+  }
+  nlohmann::json perZoom = nlohmann::json::array();
+  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, bytesOnDisk = 0;
+  for (const auto& [z, c] : countTiles(reader->dir())) {
+    perZoom.push_back({{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}});
+    elevationOnDisk += c.elevation;
+    imageryOnDisk += c.imagery;
+    bytesOnDisk += c.bytes;
+  }
+  if (elevationOnDisk != m.elevationTiles || imageryOnDisk != m.imageryTiles)
+    log->warn("{}: dataset.json counts {} elevation and {} imagery tiles, the directory holds {} and {}",
+              options.dataset, m.elevationTiles, m.imageryTiles, elevationOnDisk, imageryOnDisk);
+
+  const nlohmann::json out = {
+      {"name", m.name},
+      {"path", fs::absolute(reader->dir()).lexically_normal().string()},
+      {"format_version", m.formatVersion},
+      {"crs", {{"sources", std::vector<std::string>(crsNames.begin(), crsNames.end())},
+               {"tiles", geo::webMercatorCrs().name()}}},
+      {"sources", sources},
+      {"bounds", {{"west", m.bounds.westDeg}, {"south", m.bounds.southDeg}, {"east", m.bounds.eastDeg},
+                  {"north", m.bounds.northDeg}}},
+      {"zoom", {{"min", m.minZoom}, {"max", m.maxZoom}}},
+      {"height_m", {{"min", m.minHeightM}, {"max", m.maxHeightM}}},
+      {"tile_size", m.tileSize},
+      {"elevation_encoding", datasets::toString(m.elevationEncoding)},
+      {"imagery_format", m.imagery ? nlohmann::json(datasets::toString(*m.imagery)) : nlohmann::json(nullptr)},
+      {"tiles", {{"elevation", m.elevationTiles}, {"imagery", m.imageryTiles}, {"per_zoom", perZoom},
+                 {"on_disk", {{"elevation", elevationOnDisk}, {"imagery", imageryOnDisk}}}}},
+      {"bytes", m.bytes},
+      {"bytes_on_disk", bytesOnDisk},
+      {"attribution", m.attribution}};
+  std::cout << out.dump(2) << "\n";
+  return kExitOk;
+}
+
+}  // namespace vegstream::app

@@ -1,0 +1,261 @@
+// `vegstream import --dem …` (geotiff_import.h): read and check the sources, pick the zooms,
+// reproject the max zoom's tiles in parallel, then the shared finish (pyramid, dataset.json),
+// all inside a temporary directory renamed into place at the end.
+
+#include "datasets/geotiff_import.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "datasets/dataset_finish.h"
+#include "datasets/message.h"
+#include "datasets/parallel.h"
+#include "datasets/source_grid.h"
+#include "datasets/tile_codec.h"
+#include "geo/projection.h"
+
+namespace vegstream::datasets {
+namespace {
+namespace fs = std::filesystem;
+
+// A source's CRS from its GeoReference, with the file named in every message.
+Result<geo::Crs> sourceCrs(const Raster& r, const char* flag, const Logger& log) {
+  if (r.georef.epsg == 0) {
+    std::string what = r.georef.crsDescription.empty() ? std::string("no EPSG code")
+                                                       : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
+    return makeError(ErrorKind::Unsupported,
+                     concat(r.path, " names ", what, "; state its CRS with ", flag, " EPSG:N if you know it"));
+  }
+  auto crs = geo::crsFromEpsg(r.georef.epsg, [&](const std::string& w) { log->warn("{}: {}", r.path.string(), w); });
+  if (!crs) return makeError(crs.error().kind, concat(r.path, ": ", crs.error().message));
+  return crs;
+}
+
+bool overlaps(const geo::GeoBounds& a, const geo::GeoBounds& b) {
+  return a.westDeg < b.eastDeg && b.westDeg < a.eastDeg && a.southDeg < b.northDeg && b.southDeg < a.northDeg;
+}
+
+std::string boundsText(const geo::GeoBounds& b) {
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), "lon %.4f … %.4f, lat %.4f … %.4f", b.westDeg, b.eastDeg, b.southDeg, b.northDeg);
+  return buf;
+}
+
+// What one max-zoom tile produced.
+struct TileOutcome {
+  bool elevation = false, imagery = false;
+  float minH = std::numeric_limits<float>::infinity(), maxH = -std::numeric_limits<float>::infinity();
+  uint64_t bytes = 0;
+};
+
+struct Sources {
+  const SourceGrid& dem;
+  const SourceGrid* imagery;
+};
+
+Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& src, const GeoTiffImportOptions& o,
+                   TileOutcome& out) {
+  const int size = kTileSize;
+  const auto demPx = src.dem.tilePixelsToSource(id, size);
+  HeightTile h;
+  h.id = id;
+  h.size = size;
+  h.heights.resize(demPx.size());
+  for (size_t i = 0; i < demPx.size(); ++i) {
+    const float v = o.heightResampling == HeightResampling::Cubic ? sampleHeightCubic(src.dem.raster(), demPx[i])
+                                                                  : sampleHeight(src.dem.raster(), demPx[i]);
+    h.heights[i] = v;
+    if (std::isfinite(v)) {
+      out.minH = std::min(out.minH, v);
+      out.maxH = std::max(out.maxH, v);
+      out.elevation = true;
+    }
+  }
+  if (out.elevation) {
+    const fs::path p = elevationTilePath(dir, id);
+    if (auto s = writeHeightTile(p, h, o.encoding); !s) return s;
+    out.bytes += fileBytes(p);
+  }
+  if (!src.imagery) return {};
+  const auto imgPx = src.imagery->tilePixelsToSource(id, size);
+  ColorTile c;
+  c.id = id;
+  c.size = size;
+  c.rgba.assign(imgPx.size() * 4, 0);
+  std::array<float, 3> rgb{};
+  for (size_t i = 0; i < imgPx.size(); ++i) {
+    if (!sampleColour(src.imagery->raster(), imgPx[i], rgb)) continue;
+    for (size_t ch = 0; ch < 3; ++ch) c.rgba[i * 4 + ch] = static_cast<uint8_t>(std::lround(std::clamp(rgb[ch], 0.f, 255.f)));
+    c.rgba[i * 4 + 3] = 255;
+    out.imagery = true;
+  }
+  if (out.imagery) {
+    const fs::path p = imageryTilePath(dir, id, o.imageryFormat);
+    if (auto s = writeColorTile(p, c, o.imageryFormat, o.jpegQuality); !s) return s;
+    out.bytes += fileBytes(p);
+  }
+  return {};
+}
+
+std::string describe(const SourceGrid& g) {
+  char buf[96];
+  std::snprintf(buf, sizeof(buf), "%dx%d px, %.2f m pixels", g.raster().width, g.raster().height, g.pixelSizeM());
+  return buf;
+}
+
+}  // namespace
+
+int naturalZoom(double metresPerPixel, double latDeg) {
+  const double z = geo::zoomForResolution(metresPerPixel, latDeg, kTileSize);
+  return std::clamp(static_cast<int>(std::ceil(z - 0.1)), 0, kMaxAutoZoom);
+}
+
+Status checkOutputDirectory(const fs::path& out) {
+  std::error_code ec;
+  if (fs::exists(out, ec)) {
+    if (!fs::is_directory(out, ec) || !fs::is_empty(out, ec))
+      return makeError(ErrorKind::InvalidInput,
+                       concat("--out ", out, " already exists and is not an empty directory; choose another output directory"));
+  }
+  fs::path p = fs::absolute(out, ec).parent_path();
+  while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path()) p = p.parent_path();
+  if (!fs::is_directory(p, ec))
+    return makeError(ErrorKind::InvalidInput, concat("--out ", out, " cannot be created: ", p, " is not a directory"));
+  if (::access(p.c_str(), W_OK | X_OK) != 0)
+    return makeError(ErrorKind::InvalidInput, concat("--out ", out, " cannot be created: ", p, " is not writable"));
+  return {};
+}
+
+Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& log, ProgressSink& progress) {
+  if (auto s = checkOutputDirectory(o.out); !s) return s.error();
+
+  // DEM.
+  ReadOptions ro;
+  ro.assumeEpsg = o.demEpsg;
+  ro.nodataOverride = o.demNodata;
+  ro.maxPixels = o.maxPixels;
+  auto demRead = readGeoTiff(o.dem, ro);
+  if (!demRead) return demRead.error();
+  Raster& dem = *demRead;
+  if (dem.channels != 1)
+    return makeError(ErrorKind::InvalidInput, concat(o.dem, " has ", dem.channels, " channels; a DEM has one (heights)"));
+  auto demCrs = sourceCrs(dem, "--dem-crs", log);
+  if (!demCrs) return demCrs.error();
+  uint64_t implausible = 0, validHeights = 0;
+  for (float& v : dem.samples) {
+    if (dem.isNodata(v)) continue;
+    if (v < kMinPlausibleHeightM || v > kMaxPlausibleHeightM) {
+      v = NAN;
+      ++implausible;
+    } else {
+      ++validHeights;
+    }
+  }
+  if (implausible)
+    log->warn("{}: {} heights outside {} … {} m treated as nodata", o.dem.string(), implausible, kMinPlausibleHeightM,
+              kMaxPlausibleHeightM);
+  if (validHeights == 0) return makeError(ErrorKind::InvalidInput, concat(o.dem, " has no valid height (all nodata)"));
+  auto demGrid = SourceGrid::make(dem, *demCrs);
+  if (!demGrid) return demGrid.error();
+
+  // Imagery.
+  const bool withImagery = o.imagery.file || !o.imagery.bands.empty();
+  std::optional<PreparedImagery> imagery;
+  std::optional<SourceGrid> imageryGrid;
+  if (withImagery) {
+    auto prepared = prepareImagery(o.imagery, log);
+    if (!prepared) return prepared.error();
+    imagery = std::move(*prepared);
+    auto crs = sourceCrs(imagery->raster, "--imagery-crs", log);
+    if (!crs) return crs.error();
+    auto grid = SourceGrid::make(imagery->raster, *crs);
+    if (!grid) return grid.error();
+    imageryGrid = std::move(*grid);
+    if (!overlaps(demGrid->extent(), imageryGrid->extent()))
+      return makeError(ErrorKind::InvalidInput,
+                       concat("the DEM ", o.dem, " (", boundsText(demGrid->extent()), ") and the imagery ",
+                              imagery->raster.path, " (", boundsText(imageryGrid->extent()), ") do not overlap"));
+  }
+
+  // Zooms and tiles.
+  const geo::GeoBounds bounds = demGrid->extent();
+  const double lat = bounds.centre().y;
+  int maxZoom = naturalZoom(demGrid->pixelSizeM(), lat);
+  if (imageryGrid) maxZoom = std::max(maxZoom, std::min(naturalZoom(imageryGrid->pixelSizeM(), lat), maxZoom + 3));
+  if (o.maxZoom) maxZoom = *o.maxZoom;
+  uint64_t tileCount = 0;
+  for (const auto& r : geo::tileRangesCovering(bounds, maxZoom)) tileCount += static_cast<uint64_t>(r.count());
+  if (tileCount > o.maxTiles)
+    return makeError(ErrorKind::InvalidInput,
+                     concat(o.dem, " at zoom ", maxZoom, " needs ", tileCount, " tiles, more than the limit of ", o.maxTiles,
+                            "; choose a lower --max-zoom"));
+  const std::vector<geo::TileId> tiles = geo::tilesCovering(bounds, maxZoom);
+  log->info("{}: {} ({:.1f} m pixels) → zoom {} ({:.1f} m pixels), {} tiles", o.dem.string(), demCrs->name(),
+            demGrid->pixelSizeM(), maxZoom, geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
+  if (imageryGrid)
+    log->info("{}: {} ({:.1f} m pixels{})", imagery->raster.path.string(), imageryGrid->crs().name(),
+              imageryGrid->pixelSizeM(), imagery->stretched ? ", stretched" : "");
+
+  DatasetMeta meta;
+  meta.name = o.name.empty() ? defaultDatasetName(o.out) : o.name;
+  meta.bounds = bounds;
+  meta.maxZoom = maxZoom;
+  meta.elevationEncoding = o.encoding;
+  if (imageryGrid) meta.imagery = o.imageryFormat;
+  meta.attribution = o.attribution;
+  meta.sources.push_back({"elevation", o.dem.string(), demCrs->name(), describe(*demGrid)});
+  if (imageryGrid) {
+    std::string paths;
+    for (const auto& b : o.imagery.bands) {
+      if (!paths.empty()) paths += ',';
+      paths += b.string();
+    }
+    if (o.imagery.file) paths = o.imagery.file->string();
+    meta.sources.push_back({"imagery", paths, imageryGrid->crs().name(),
+                            concat(describe(*imageryGrid), ", ", imagery->description)});
+  }
+
+  Result<DatasetMeta> result = makeError(ErrorKind::Internal, "import did not run");
+  Status written = writeDirectoryAtomically(o.out, [&](const fs::path& tmp) -> Status {
+    progress.addTotal(tiles.size());
+    progress.stage(concat("zoom ", maxZoom));
+    std::vector<TileOutcome> outcomes(tiles.size());
+    const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr};
+    Status s = parallelFor(tiles.size(), o.threads, [&](size_t i) -> Status {
+      if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+      if (auto t = produceTile(tmp, tiles[i], src, o, outcomes[i]); !t) return t;
+      progress.tileDone(outcomes[i].bytes);
+      return {};
+    });
+    if (!s) return s;
+    std::vector<geo::TileId> withHeights;
+    meta.minHeightM = std::numeric_limits<double>::infinity();
+    meta.maxHeightM = -std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < tiles.size(); ++i) {
+      const TileOutcome& t = outcomes[i];
+      meta.bytes += t.bytes;
+      if (t.imagery) ++meta.imageryTiles;
+      if (!t.elevation) continue;
+      ++meta.elevationTiles;
+      withHeights.push_back(tiles[i]);
+      meta.minHeightM = std::min(meta.minHeightM, static_cast<double>(t.minH));
+      meta.maxHeightM = std::max(meta.maxHeightM, static_cast<double>(t.maxH));
+    }
+    if (withHeights.empty())
+      return makeError(ErrorKind::InvalidInput, concat(o.dem, " gave no valid height at zoom ", maxZoom));
+    meta.minZoom = std::min(o.minZoom.value_or(singleTileZoom(withHeights)), maxZoom);
+    result = finishDataset(tmp, meta, progress, o.threads, o.jpegQuality);
+    if (!result) return result.error();
+    if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+    return {};
+  });
+  if (!written) return written.error();
+  return result;
+}
+
+}  // namespace vegstream::datasets

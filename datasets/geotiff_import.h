@@ -1,0 +1,76 @@
+#pragma once
+// Import of a GeoTIFF DEM (+ imagery GeoTIFFs, possibly in another CRS, possibly as separate
+// bands) into a dataset directory (dataset_format.h): `vegstream import --dem …`.
+//
+// Every output pixel centre of every XYZ tile (Web Mercator) is taken to longitude/latitude,
+// into the source's CRS (geo/projection.h), through the inverse of the source's affine to a
+// source pixel position, and sampled bilinearly (heights: nodata if any neighbour is nodata;
+// colour: renormalised over valid neighbours). Tiles of the max zoom are produced in parallel;
+// the lower zooms come from the pyramid builder. Everything is written into a temporary
+// directory beside `out` that is renamed into place only when complete.
+//
+// Zoom range. Max zoom, unless given: the first zoom whose ground resolution at the DEM's
+// centre latitude is at least as fine as the DEM's pixel (7 % slack, so 30.4 m tiles count as
+// 30 m), or — when the imagery is finer — as fine as the imagery's pixel, but at most 3 zooms
+// beyond the DEM's; one max zoom serves both (heights are oversampled rather than colour
+// thrown away, since plants are chosen from the colour). Min zoom, unless given: the highest
+// zoom at which all tiles share one ancestor tile.
+
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/log.h"
+#include "core/result.h"
+#include "datasets/dataset_format.h"
+#include "datasets/imagery_source.h"
+#include "datasets/progress.h"
+
+namespace vegstream::datasets {
+
+// Heights outside this range are not on earth: they become nodata, with a warning that counts them.
+inline constexpr double kMinPlausibleHeightM = -11000.0;
+inline constexpr double kMaxPlausibleHeightM = 9000.0;
+// Highest zoom picked automatically (≈ 0.3 m pixels at the equator).
+inline constexpr int kMaxAutoZoom = 19;
+
+enum class HeightResampling { Bilinear, Cubic };
+
+struct GeoTiffImportOptions {
+  std::filesystem::path dem;
+  std::optional<int> demEpsg;      // --dem-crs: stated CRS (corrupt GeoKeys), overrides the file
+  std::optional<double> demNodata; // --dem-nodata
+  ImageryInput imagery;            // neither file nor bands: no imagery
+  HeightResampling heightResampling = HeightResampling::Bilinear;
+
+  std::filesystem::path out;
+  std::string name;                // empty: the last component of `out`
+  std::string attribution;
+  ElevationEncoding encoding = ElevationEncoding::Terrarium;
+  ImageryFormat imageryFormat = ImageryFormat::Jpeg;
+  int jpegQuality = 90;
+  std::optional<int> maxZoom;
+  std::optional<int> minZoom;
+
+  uint64_t maxPixels = 400'000'000;   // per source raster, refused before allocating
+  uint64_t maxTiles = 1'000'000;      // tiles at the max zoom; more is refused (pick --max-zoom)
+  int threads = 0;                    // 0: all cores
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop, leave nothing
+};
+
+// Errors name the file and the problem: as readGeoTiff, an unsupported CRS (naming the EPSG
+// code), DEM and imagery that do not overlap, a DEM without one valid height, `out` that
+// exists and is not empty or cannot be created (all InvalidInput / NotFound / Unsupported);
+// a failed tile write is Io.
+Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& options, const Logger& log, ProgressSink& progress);
+
+// The first zoom whose ground resolution at latDeg is at least as fine as metresPerPixel
+// (7 % slack), clamped to 0 … kMaxAutoZoom.
+int naturalZoom(double metresPerPixel, double latDeg);
+
+// Checks that `out` can become a new dataset directory: it does not exist or is an empty
+// directory, and its nearest existing ancestor is a writable directory. InvalidInput otherwise.
+Status checkOutputDirectory(const std::filesystem::path& out);
+
+}  // namespace vegstream::datasets

@@ -1,0 +1,69 @@
+#pragma once
+// A source raster placed on the earth: its CRS, the inverse of its GeoReference affine, its
+// extent in longitude/latitude and its ground pixel size; plus the bilinear samplers the
+// importer uses to reproject it onto XYZ tiles. All projection goes through geo/.
+//
+// Pixel coordinates here are continuous and corner-based as in GeoReference: the centre of
+// pixel (i, j) is (i + 0.5, j + 0.5).
+
+#include <array>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "core/result.h"
+#include "datasets/geotiff_reader.h"
+#include "geo/bounds.h"
+#include "geo/crs.h"
+#include "geo/xyz_tiles.h"
+
+namespace vegstream::datasets {
+
+class SourceGrid {
+ public:
+  // Errors: a degenerate (non-invertible) transform, a raster whose corners do not map to
+  // valid latitudes. Messages name the raster's file.
+  static Result<SourceGrid> make(const Raster& raster, const geo::Crs& crs);
+
+  const Raster& raster() const { return *raster_; }
+  const geo::Crs& crs() const { return crs_; }
+  // CRS coordinates → continuous pixel coordinates (corner-based).
+  glm::dvec2 toPixel(glm::dvec2 xy) const;
+  // Longitude/latitude box of the raster's area (its boundary densified, so a UTM raster's
+  // curved edges are enclosed), latitudes clamped to the Web Mercator range.
+  const geo::GeoBounds& extent() const { return extent_; }
+  // Ground size of one pixel at the raster's centre, metres: the finer of east-west and
+  // north-south (measured in a local ENU frame).
+  double pixelSizeM() const { return pixelSizeM_; }
+
+  // Source pixel coordinates of the centres of every pixel of an XYZ tile (row-major from the
+  // north, size × size). Geographic and Web Mercator sources are separable and computed
+  // exactly; other CRSs are projected exactly on a grid every 8 pixels and interpolated
+  // bilinearly in between (as GDAL's approximate transformer does: far below 0.01 pixel for
+  // UTM at any zoom a raster needs). Pixels whose position cannot be projected are NaN.
+  std::vector<glm::dvec2> tilePixelsToSource(const geo::TileId& tile, int size) const;
+
+ private:
+  const Raster* raster_ = nullptr;
+  geo::Crs crs_;
+  std::array<double, 6> inverse_{};
+  geo::GeoBounds extent_;
+  double pixelSizeM_ = 0.0;
+};
+
+// Bilinear height at continuous pixel coordinates: NaN when outside the raster or when any of
+// the four neighbours is nodata (a mask never becomes a fake height). Within half a pixel of
+// the raster's edge the edge row/column is used, so the raster's whole area is covered.
+float sampleHeight(const Raster& raster, glm::dvec2 pixel);
+
+// Catmull-Rom bicubic height (interpolates the samples like bilinear, but C1: no kinks at the
+// source pixel centres), clamped to the range of the four nearest samples so it never
+// overshoots a summit or a valley floor. NaN when any of the 16 samples is nodata or outside.
+// Within half a pixel of the raster's edge: bilinear.
+float sampleHeightCubic(const Raster& raster, glm::dvec2 pixel);
+
+// Bilinear colour of a 3-channel raster holding 0 … 255 with NaN for nodata: the weights of the
+// valid neighbours are renormalised; false (no colour) when less than half the weight is valid.
+bool sampleColour(const Raster& raster, glm::dvec2 pixel, std::array<float, 3>& rgb);
+
+}  // namespace vegstream::datasets

@@ -1,0 +1,82 @@
+#pragma once
+// A scripted flight path: camera keyframes (time, geodetic position, altitude above the
+// terrain or above sea level, heading, pitch) and optional scripted colliders (moving spheres
+// and capsules with their own keyframes) that the interaction issue pushes plants with.
+// The data model and its checks live here; JSON reading/writing is in flight_path_json.h,
+// interpolation in path_sampler.h (DESIGN.md "Flight paths").
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "geo/bounds.h"
+
+namespace vegstream::flight {
+
+// What a keyframe's altitude is measured from.
+enum class AltRef {
+  Terrain,  // metres above the ground under the keyframe (the default in JSON)
+  Msl,      // metres above mean sea level (the dataset's height datum)
+};
+
+struct Keyframe {
+  double t = 0.0;          // seconds of flight time
+  double lat = 0.0;        // degrees, WGS 84
+  double lon = 0.0;        // degrees, WGS 84
+  double altM = 0.0;       // metres, measured from altRef
+  AltRef altRef = AltRef::Terrain;
+  double headingDeg = 0.0; // 0 = north, clockwise (90 = east)
+  double pitchDeg = 0.0;   // 0 = level, negative looks down, in [-90, 90]
+};
+
+struct ColliderKeyframe {
+  double t = 0.0;
+  double lat = 0.0;
+  double lon = 0.0;
+  double altM = 0.0;  // of the collider's centre (a capsule's middle)
+  AltRef altRef = AltRef::Terrain;
+};
+
+struct Collider {
+  enum class Shape { Sphere, Capsule };
+  std::string name;
+  Shape shape = Shape::Sphere;
+  double radiusM = 1.0;
+  double lengthM = 0.0;  // capsule only: distance between the two end-cap centres (vertical)
+  std::vector<ColliderKeyframe> keyframes;  // at least one; one keyframe = a static collider
+};
+
+struct FlightPath {
+  std::string name;
+  std::string description;  // free text, optional
+  std::vector<Keyframe> keyframes;  // at least two, t strictly increasing, first t = 0
+  std::vector<Collider> colliders;
+
+  // Seconds: the last keyframe's t (the first is at 0).
+  double duration() const;
+  // The lon/lat box of the camera keyframes (not of the curve between them; not across the
+  // antimeridian).
+  geo::GeoBounds bounds() const;
+};
+
+// One problem found in a path: which field (e.g. "keyframes[3].lat", "colliders[0]") and what
+// is wrong with it. The JSON reader adds the file name and line; others use validateFlightPath.
+struct PathProblem {
+  std::string field;
+  std::string problem;
+};
+
+// The first violation of the rules above (counts, time order, finite numbers, lat/lon range,
+// pitch range, non-negative terrain-relative altitudes, positive collider sizes), if any.
+std::optional<PathProblem> findProblem(const FlightPath& path);
+
+// findProblem as a Status: "SOURCE: FIELD: PROBLEM", ErrorKind::InvalidInput.
+Status validateFlightPath(const FlightPath& path, const std::string& sourceName);
+
+// Whether the camera stays over the dataset: every keyframe and the interpolated curve between
+// them (sampled) must lie inside datasetBounds. Error (InvalidInput): "path leaves the dataset
+// at keyframes[i] (lat, lon) — dataset covers lat S … N, lon W … E".
+Status checkInside(const FlightPath& path, const geo::GeoBounds& datasetBounds);
+
+}  // namespace vegstream::flight

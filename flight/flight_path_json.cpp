@@ -1,0 +1,300 @@
+#include "flight/flight_path_json.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "flight/json_positions.h"
+
+namespace vegstream::flight {
+namespace {
+
+using nlohmann::json;
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+const char* typeName(const json& v) {
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_null()) return "null";
+  if (v.is_array()) return "an array";
+  return "an object";
+}
+
+// Reads fields of the parsed document, turning each problem into "file:line:col: field: what".
+struct Reader {
+  const std::string& source;
+  const JsonPositions& positions;
+
+  Error fail(const std::string& field, const std::string& problem, const std::string& lineOf) const {
+    std::string where = source;
+    if (auto lc = positions.find(lineOf)) where += ":" + std::to_string(lc->line) + ":" + std::to_string(lc->column);
+    return makeError(ErrorKind::InvalidInput, where + ": " + (field.empty() ? "" : field + ": ") + problem);
+  }
+
+  static std::string child(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  std::optional<Error> onlyKnownKeys(const json& obj, const std::string& path,
+                                     const std::vector<std::string>& known) const {
+    for (const auto& [key, value] : obj.items()) {
+      if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+      std::string list, hint;
+      for (const std::string& k : known) {
+        list += (list.empty() ? "" : ", ") + k;
+        if (hint.empty() && editDistance(key, k) <= 2) hint = " (did you mean \"" + k + "\"?)";
+      }
+      return fail(child(path, key), "unknown key \"" + key + "\"" + hint + "; known keys: " + list, child(path, key));
+    }
+    return std::nullopt;
+  }
+
+  std::optional<Error> expectObject(const json& v, const std::string& path) const {
+    if (v.is_object()) return std::nullopt;
+    return fail(path.empty() ? "document" : path, std::string("must be an object, found ") + typeName(v), path);
+  }
+
+  // A required (fallback empty) or optional number.
+  Result<double> number(const json& obj, const std::string& path, const std::string& key,
+                        std::optional<double> fallback = std::nullopt) const {
+    const std::string f = child(path, key);
+    const auto it = obj.find(key);
+    if (it == obj.end()) {
+      if (fallback) return *fallback;
+      return fail(f, "missing required number", path);
+    }
+    if (!it->is_number()) return fail(f, std::string("must be a number, found ") + typeName(*it), f);
+    const double v = it->get<double>();
+    if (!std::isfinite(v)) return fail(f, "is not a finite number", f);
+    return v;
+  }
+
+  Result<std::string> string(const json& obj, const std::string& path, const std::string& key,
+                             std::optional<std::string> fallback = std::nullopt) const {
+    const std::string f = child(path, key);
+    const auto it = obj.find(key);
+    if (it == obj.end()) {
+      if (fallback) return *fallback;
+      return fail(f, "missing required string", path);
+    }
+    if (!it->is_string()) return fail(f, std::string("must be a string, found ") + typeName(*it), f);
+    return it->get<std::string>();
+  }
+
+  Result<AltRef> altRef(const json& obj, const std::string& path) const {
+    auto s = string(obj, path, "alt_ref", "terrain");
+    if (!s) return s.error();
+    if (*s == "terrain") return AltRef::Terrain;
+    if (*s == "msl") return AltRef::Msl;
+    return fail(child(path, "alt_ref"), "\"" + *s + "\" is not one of \"terrain\", \"msl\"", child(path, "alt_ref"));
+  }
+
+  // The array at obj[key] (required unless optional), its elements objects.
+  Result<const json*> array(const json& obj, const std::string& path, const std::string& key, bool optional) const {
+    static const json kEmpty = json::array();
+    const std::string f = child(path, key);
+    const auto it = obj.find(key);
+    if (it == obj.end()) {
+      if (optional) return &kEmpty;
+      return fail(f, "missing required array", path);
+    }
+    if (!it->is_array()) return fail(f, std::string("must be an array, found ") + typeName(*it), f);
+    for (std::size_t i = 0; i < it->size(); ++i)
+      if (auto e = expectObject((*it)[i], f + "[" + std::to_string(i) + "]")) return *e;
+    return &*it;
+  }
+};
+
+#define VEG_TRY_ASSIGN(lhs, expr)     \
+  do {                                \
+    auto r_ = (expr);                 \
+    if (!r_) return r_.error();       \
+    lhs = std::move(r_).value();      \
+  } while (false)
+
+template <typename K>
+Result<K> readPositionKey(const Reader& r, const json& obj, const std::string& f) {
+  K k;
+  VEG_TRY_ASSIGN(k.t, r.number(obj, f, "t"));
+  VEG_TRY_ASSIGN(k.lat, r.number(obj, f, "lat"));
+  VEG_TRY_ASSIGN(k.lon, r.number(obj, f, "lon"));
+  VEG_TRY_ASSIGN(k.altM, r.number(obj, f, "alt_m"));
+  VEG_TRY_ASSIGN(k.altRef, r.altRef(obj, f));
+  return k;
+}
+
+Result<Collider> readCollider(const Reader& r, const json& obj, const std::string& f) {
+  if (auto e = r.onlyKnownKeys(obj, f, {"name", "shape", "radius_m", "length_m", "keyframes"})) return *e;
+  Collider c;
+  VEG_TRY_ASSIGN(c.name, r.string(obj, f, "name"));
+  std::string shape;
+  VEG_TRY_ASSIGN(shape, r.string(obj, f, "shape"));
+  if (shape == "sphere") c.shape = Collider::Shape::Sphere;
+  else if (shape == "capsule") c.shape = Collider::Shape::Capsule;
+  else return r.fail(f + ".shape", "\"" + shape + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
+  VEG_TRY_ASSIGN(c.radiusM, r.number(obj, f, "radius_m"));
+  if (c.shape == Collider::Shape::Capsule) {
+    VEG_TRY_ASSIGN(c.lengthM, r.number(obj, f, "length_m"));
+  } else if (obj.contains("length_m")) {
+    return r.fail(f + ".length_m", "only a capsule has a length", f + ".length_m");
+  }
+  const json* keys = nullptr;
+  VEG_TRY_ASSIGN(keys, r.array(obj, f, "keyframes", false));
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    const std::string kf = f + ".keyframes[" + std::to_string(i) + "]";
+    if (auto e = r.onlyKnownKeys((*keys)[i], kf, {"t", "lat", "lon", "alt_m", "alt_ref"})) return *e;
+    ColliderKeyframe k;
+    VEG_TRY_ASSIGN(k, readPositionKey<ColliderKeyframe>(r, (*keys)[i], kf));
+    c.keyframes.push_back(k);
+  }
+  return c;
+}
+
+std::string stemOf(const std::string& source) { return std::filesystem::path(source).stem().string(); }
+
+// Where a problem found on the model is reported: the field itself, else its parent object.
+std::string lineFieldFor(const JsonPositions& positions, std::string field) {
+  while (!field.empty() && !positions.find(field)) {
+    const auto cut = field.find_last_of(".[");
+    field = cut == std::string::npos ? "" : field.substr(0, cut);
+  }
+  return field;
+}
+
+std::string fmt(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+}  // namespace
+
+Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sourceName) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    // e.byte is 1-based: the position of the character that broke the parse.
+    const LineCol lc = lineColAt(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = e.what();
+    const auto colon = what.find(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    return makeError(ErrorKind::InvalidInput, sourceName + ":" + std::to_string(lc.line) + ":" +
+                                                  std::to_string(lc.column) + ": malformed JSON: " + what);
+  } catch (const json::exception& e) {
+    // Number overflow ("1e999") carries no position: find the number it quotes.
+    std::string what = e.what(), where = sourceName;
+    const auto colon = what.find("] ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    const auto open = what.find('\''), close = what.rfind('\'');
+    if (open != std::string::npos && close > open) {
+      const auto at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string_view::npos) {
+        const LineCol lc = lineColAt(text, at);
+        where += ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
+      }
+    }
+    return makeError(ErrorKind::InvalidInput, where + ": malformed JSON: " + what);
+  }
+  const JsonPositions positions(text);
+  const Reader r{sourceName, positions};
+  if (const auto& dup = positions.firstDuplicate()) return r.fail(*dup, "key given twice", *dup);
+  if (auto e = r.expectObject(doc, "")) return *e;
+  if (auto e = r.onlyKnownKeys(doc, "", {"name", "description", "keyframes", "colliders"})) return *e;
+
+  FlightPath path;
+  VEG_TRY_ASSIGN(path.name, r.string(doc, "", "name", stemOf(sourceName)));
+  VEG_TRY_ASSIGN(path.description, r.string(doc, "", "description", std::string()));
+  const json* keys = nullptr;
+  VEG_TRY_ASSIGN(keys, r.array(doc, "", "keyframes", false));
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    const json& obj = (*keys)[i];
+    const std::string f = "keyframes[" + std::to_string(i) + "]";
+    if (auto e = r.onlyKnownKeys(obj, f, {"t", "lat", "lon", "alt_m", "alt_ref", "heading", "pitch"})) return *e;
+    Keyframe k;
+    ColliderKeyframe pos;
+    VEG_TRY_ASSIGN(pos, readPositionKey<ColliderKeyframe>(r, obj, f));
+    k.t = pos.t, k.lat = pos.lat, k.lon = pos.lon, k.altM = pos.altM, k.altRef = pos.altRef;
+    VEG_TRY_ASSIGN(k.headingDeg, r.number(obj, f, "heading"));
+    VEG_TRY_ASSIGN(k.pitchDeg, r.number(obj, f, "pitch"));
+    path.keyframes.push_back(k);
+  }
+  const json* colliders = nullptr;
+  VEG_TRY_ASSIGN(colliders, r.array(doc, "", "colliders", true));
+  for (std::size_t i = 0; i < colliders->size(); ++i) {
+    Collider c;
+    VEG_TRY_ASSIGN(c, readCollider(r, (*colliders)[i], "colliders[" + std::to_string(i) + "]"));
+    path.colliders.push_back(std::move(c));
+  }
+  if (auto p = findProblem(path)) return r.fail(p->field, p->problem, lineFieldFor(positions, p->field));
+  return path;
+}
+
+Result<FlightPath> loadFlightPath(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    return makeError(ErrorKind::NotFound, file.string() + ": no such flight path file");
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) return makeError(ErrorKind::Io, file.string() + ": could not read the file");
+  return parseFlightPath(text.str(), file.string());
+}
+
+std::string flightPathToJson(const FlightPath& path) {
+  auto str = [](const std::string& s) { return json(s).dump(); };
+  auto ref = [](AltRef a) { return a == AltRef::Terrain ? "\"terrain\"" : "\"msl\""; };
+  auto position = [&](double t, double lat, double lon, double alt, AltRef a) {
+    return "\"t\": " + fmt(t, 3) + ", \"lat\": " + fmt(lat, 7) + ", \"lon\": " + fmt(lon, 7) + ", \"alt_m\": " +
+           fmt(alt, 3) + ", \"alt_ref\": " + ref(a);
+  };
+  std::string out = "{\n  \"name\": " + str(path.name) + ",\n";
+  if (!path.description.empty()) out += "  \"description\": " + str(path.description) + ",\n";
+  out += "  \"keyframes\": [\n";
+  for (std::size_t i = 0; i < path.keyframes.size(); ++i) {
+    const Keyframe& k = path.keyframes[i];
+    out += "    {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + ", \"heading\": " + fmt(k.headingDeg, 3) +
+           ", \"pitch\": " + fmt(k.pitchDeg, 3) + "}" + (i + 1 < path.keyframes.size() ? ",\n" : "\n");
+  }
+  out += "  ]";
+  if (!path.colliders.empty()) {
+    out += ",\n  \"colliders\": [\n";
+    for (std::size_t c = 0; c < path.colliders.size(); ++c) {
+      const Collider& col = path.colliders[c];
+      const bool capsule = col.shape == Collider::Shape::Capsule;
+      out += "    {\"name\": " + str(col.name) + ", \"shape\": " + (capsule ? "\"capsule\"" : "\"sphere\"") +
+             ", \"radius_m\": " + fmt(col.radiusM, 3) + (capsule ? ", \"length_m\": " + fmt(col.lengthM, 3) : "") +
+             ",\n     \"keyframes\": [\n";
+      for (std::size_t i = 0; i < col.keyframes.size(); ++i) {
+        const ColliderKeyframe& k = col.keyframes[i];
+        out += "       {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + "}" +
+               (i + 1 < col.keyframes.size() ? ",\n" : "\n");
+      }
+      out += std::string("     ]}") + (c + 1 < path.colliders.size() ? ",\n" : "\n");
+    }
+    out += "  ]";
+  }
+  return out + "\n}\n";
+}
+
+}  // namespace vegstream::flight

@@ -1,0 +1,100 @@
+#include "flight/path_sampler.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace vegstream::flight {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kVelocityStepS = 1e-3;
+
+std::vector<TrackPoint> cameraPoints(const FlightPath& path) {
+  std::vector<TrackPoint> out;
+  for (const Keyframe& k : path.keyframes) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
+  return out;
+}
+
+std::vector<TrackPoint> colliderPoints(const Collider& c) {
+  std::vector<TrackPoint> out;
+  for (const ColliderKeyframe& k : c.keyframes) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
+  return out;
+}
+
+std::vector<double> times(const FlightPath& path) {
+  std::vector<double> out;
+  for (const Keyframe& k : path.keyframes) out.push_back(k.t);
+  return out;
+}
+
+std::vector<double> unwrappedHeadings(const FlightPath& path) {
+  std::vector<double> out;
+  for (const Keyframe& k : path.keyframes)
+    out.push_back(out.empty() ? k.headingDeg : out.back() + headingDelta(out.back(), k.headingDeg));
+  return out;
+}
+
+std::vector<double> pitches(const FlightPath& path) {
+  std::vector<double> out;
+  for (const Keyframe& k : path.keyframes) out.push_back(k.pitchDeg);
+  return out;
+}
+
+}  // namespace
+
+double headingDelta(double aDeg, double bDeg) {
+  double d = std::fmod(bDeg - aDeg, 360.0);  // (−360, 360)
+  if (d > 180.0) d -= 360.0;
+  if (d <= -180.0) d += 360.0;
+  return d;
+}
+
+glm::dvec3 forwardVector(double headingDeg, double pitchDeg) {
+  const double h = headingDeg * kDegToRad, p = pitchDeg * kDegToRad;
+  return {std::cos(p) * std::sin(h), std::cos(p) * std::cos(h), std::sin(p)};
+}
+
+PathSampler::PathSampler(const FlightPath& path)
+    : camera_(cameraPoints(path)),
+      heading_(times(path), unwrappedHeadings(path)),
+      pitch_(times(path), pitches(path)),
+      colliderShapes_(path.colliders) {
+  assert(path.keyframes.size() >= 2);
+  for (const Collider& c : path.colliders) colliders_.emplace_back(colliderPoints(c));
+}
+
+FlightSample PathSampler::sample(double t, const GroundHeight& ground) const {
+  t = std::clamp(t, 0.0, duration());
+  FlightSample s;
+  s.position = camera_.position(t, ground, kMinGroundClearanceM);
+  s.heightAboveGroundM = s.position.heightM - groundOrZero(ground, s.position.latDeg, s.position.lonDeg);
+  double heading = std::fmod(heading_.value(t), 360.0);
+  if (heading < 0.0) heading += 360.0;
+  s.headingDeg = heading;
+  s.pitchDeg = pitch_.value(t);
+
+  const double t0 = std::max(0.0, t - kVelocityStepS), t1 = std::min(duration(), t + kVelocityStepS);
+  if (t1 > t0) {
+    const glm::dvec3 a = camera_.frame().toLocal(camera_.position(t0, ground, kMinGroundClearanceM));
+    const glm::dvec3 b = camera_.frame().toLocal(camera_.position(t1, ground, kMinGroundClearanceM));
+    s.velocity = (b - a) / (t1 - t0);
+  }
+  return s;
+}
+
+ColliderSample PathSampler::collider(std::size_t i, double t, const GroundHeight& ground) const {
+  assert(i < colliders_.size());
+  const Collider& c = colliderShapes_[i];
+  ColliderSample s;
+  s.centre = colliders_[i].position(t, ground, -INFINITY);
+  s.radiusM = c.radiusM;
+  s.lengthM = c.shape == Collider::Shape::Capsule ? c.lengthM : 0.0;
+  return s;
+}
+
+FlightSample sampleAt(const FlightPath& path, double t, const GroundHeight& ground) {
+  return PathSampler(path).sample(t, ground);
+}
+
+}  // namespace vegstream::flight

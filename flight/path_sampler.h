@@ -1,0 +1,72 @@
+#pragma once
+// The camera pose (and collider positions) of a FlightPath at any flight time: geodetic
+// position, heading and pitch, independent of the renderer's camera type. Position follows
+// position_track.h (centripetal Catmull-Rom, C¹ in time, altitude in its own reference, never
+// below the ground). Heading is unwrapped (each step taken the short way, in (−180, 180]) and
+// interpolated, like pitch, with a monotone cubic (monotone_cubic.h): C¹, no overshoot, so a
+// turn from 170° to −170° passes through 180°, not 0°.
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "flight/flight_path.h"
+#include "flight/ground_height.h"
+#include "flight/monotone_cubic.h"
+#include "flight/position_track.h"
+#include "geo/geodetic.h"
+
+namespace vegstream::flight {
+
+// The camera never comes closer than this to the ground under it (MSL keyframes included).
+inline constexpr double kMinGroundClearanceM = 2.0;
+
+struct FlightSample {
+  geo::Geodetic position;      // height MSL
+  double headingDeg = 0.0;     // [0, 360), 0 = north, clockwise
+  double pitchDeg = 0.0;       // negative looks down
+  glm::dvec3 velocity{0.0};    // m/s in the ENU frame at the path's first keyframe (central difference)
+  double heightAboveGroundM = 0.0;
+};
+
+struct ColliderSample {
+  geo::Geodetic centre;  // height MSL (a capsule's middle; its axis is vertical)
+  double radiusM = 0.0;
+  double lengthM = 0.0;
+};
+
+// Built once per path (precomputes the splines); sampling is then cheap and const.
+class PathSampler {
+ public:
+  // The path must be valid (findProblem(path) empty; asserted on counts and time order).
+  explicit PathSampler(const FlightPath& path);
+
+  double duration() const { return camera_.endT(); }
+  // t is clamped to [0, duration()]. Calls ground 3 times (position and velocity).
+  FlightSample sample(double t, const GroundHeight& ground) const;
+  // lat/lon only, no ground needed (bounds checks).
+  geo::Geodetic horizontal(double t) const { return camera_.horizontal(t); }
+  // Collider i at time t (clamped to its keyframes); no clearance: colliders touch the ground.
+  ColliderSample collider(std::size_t i, double t, const GroundHeight& ground) const;
+  std::size_t colliderCount() const { return colliders_.size(); }
+  // The ENU frame that FlightSample::velocity is expressed in.
+  const geo::LocalFrame& frame() const { return camera_.frame(); }
+
+ private:
+  PositionTrack camera_;
+  MonotoneCubic heading_;  // unwrapped degrees
+  MonotoneCubic pitch_;
+  std::vector<PositionTrack> colliders_;
+  std::vector<Collider> colliderShapes_;
+};
+
+// One-off convenience: builds a PathSampler and samples it once.
+FlightSample sampleAt(const FlightPath& path, double t, const GroundHeight& ground);
+
+// Unit view direction in ENU (x = east, y = north, z = up) for a heading and pitch in degrees.
+glm::dvec3 forwardVector(double headingDeg, double pitchDeg);
+
+// Heading difference b − a wrapped to (−180, 180].
+double headingDelta(double aDeg, double bDeg);
+
+}  // namespace vegstream::flight

@@ -1,0 +1,141 @@
+// Bad input to `vegstream import`, each through the real executable: exit code 2, exactly one
+// line on stderr naming the file (or option) and the problem, and nothing left behind — no
+// --out, no temporary directory beside it.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "import_test_util.h"
+#include "tests/datasets/tiny_tiff.h"
+
+namespace vegstream::datasets {
+namespace {
+using namespace vegstream::datasets::test;
+using vegstream::testing::CommandResult;
+using vegstream::testing::countLines;
+using vegstream::testing::runVegstream;
+
+const std::string kSrtm = samples() + "/zion/srtm.tif";
+
+// A 2×2 UInt16 GeoTIFF with 10° pixels from (100°E, 50°N) and the given GeoKey directory.
+fs::path tinyGeoTiff(const fs::path& path, std::vector<uint16_t> keys, uint32_t claimed = 0) {
+  TinyImage img;
+  img.pixels = pixelBytes(std::vector<uint16_t>{100, 200, 300, 400});
+  img.extra = {doubles(33550, {10, 10, 0}), doubles(33922, {0, 0, 0, 100, 50, 0})};
+  if (!keys.empty()) img.extra.push_back(shorts(34735, keys));
+  img.claimedWidth = claimed;
+  img.claimedHeight = claimed;
+  writeTinyTiff(path, img);
+  return path;
+}
+const std::vector<uint16_t> kWgs84Keys = {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326};
+
+struct Case {
+  fs::path parent;  // holds --out and nothing else
+  fs::path out;
+  CommandResult result;
+};
+
+// Runs `import ARGS --out PARENT/out` in a fresh PARENT (with `before` entries made by setup).
+Case runImport(const std::string& name, const std::string& args, const std::string& outName = "out") {
+  Case c;
+  c.parent = importTmp("bad_" + name);
+  c.out = c.parent / outName;
+  c.result = runVegstream("import " + args + " --out " + c.out.string());
+  return c;
+}
+
+// The contract of every case: exit 2, one line naming `names`, nothing left at or beside --out.
+void expectRefused(const Case& c, const std::string& names, const std::string& what, int entriesBefore = 0) {
+  EXPECT_EQ(c.result.exitCode, 2) << c.result.err;
+  EXPECT_EQ(countLines(c.result.err), 1) << c.result.err;
+  EXPECT_NE(c.result.err.find(names), std::string::npos) << c.result.err;
+  EXPECT_NE(c.result.err.find(what), std::string::npos) << c.result.err;
+  EXPECT_EQ(entriesIn(c.parent), entriesBefore) << "left behind in " << c.parent;
+  EXPECT_TRUE(c.result.out.empty()) << c.result.out;
+}
+
+TEST(ImportBadInput, MissingFile) {
+  const auto c = runImport("missing", "--dem /no/such/dem.tif");
+  expectRefused(c, "/no/such/dem.tif", "does not exist");
+}
+
+TEST(ImportBadInput, NotATiff) {
+  const fs::path p = importTmp("bad_text_src") / "dem.tif";
+  std::ofstream(p) << "this is a text file, not a TIFF\n";
+  expectRefused(runImport("text", "--dem " + p.string()), p.string(), "TIFF");
+}
+
+TEST(ImportBadInput, TruncatedTiff) {
+  const fs::path p = importTmp("bad_cut_src") / "srtm_cut.tif";
+  fs::copy_file(kSrtm, p);
+  fs::resize_file(p, fs::file_size(p) / 2);
+  expectRefused(runImport("cut", "--dem " + p.string()), p.string(), "truncated");
+}
+
+TEST(ImportBadInput, TiffWithoutGeoreference) {
+  const fs::path p = importTmp("bad_plain_src") / "plain.tif";
+  TinyImage img;
+  img.pixels = pixelBytes(std::vector<uint16_t>{1, 2, 3, 4});
+  writeTinyTiff(p, img);
+  expectRefused(runImport("plain", "--dem " + p.string()), p.string(), "no georeference");
+}
+
+TEST(ImportBadInput, UnsupportedCrsNamesTheCode) {
+  // ProjectedCSType 2193 (NZGD2000 / New Zealand Transverse Mercator).
+  const fs::path p = tinyGeoTiff(importTmp("bad_crs_src") / "nztm.tif",
+                                 {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 2193});
+  expectRefused(runImport("crs", "--dem " + p.string()), p.string(), "2193");
+}
+
+TEST(ImportBadInput, DemAndImageryDoNotOverlap) {
+  const auto c = runImport("overlap", "--dem " + kSrtm + " --imagery " + samples() + "/goleta/sba_rgb_wgs84_512x512.tif");
+  expectRefused(c, "srtm.tif", "do not overlap");
+  EXPECT_NE(c.result.err.find("sba_rgb_wgs84_512x512.tif"), std::string::npos);
+}
+
+TEST(ImportBadInput, HugeHeaderRefusedBeforeAllocating) {
+  const fs::path p = tinyGeoTiff(importTmp("bad_huge_src") / "huge.tif", kWgs84Keys, 1000000);
+  expectRefused(runImport("huge", "--dem " + p.string()), p.string(), "1000000 x 1000000");
+}
+
+TEST(ImportBadInput, PixelLimitIsConfigurable) {
+  const auto c = runImport("limit", "--dem " + kSrtm + " --max-pixels 200000");
+  expectRefused(c, "srtm.tif", "more than the limit of 200000");
+}
+
+TEST(ImportBadInput, OutUnderARegularFile) {
+  const fs::path parent = importTmp("bad_outfile");
+  std::ofstream(parent / "file") << "a regular file";
+  Case c;
+  c.parent = parent;
+  c.result = runVegstream("import --dem " + kSrtm + " --out " + (parent / "file" / "x").string());
+  expectRefused(c, (parent / "file" / "x").string(), "is not a directory", 1);
+}
+
+TEST(ImportBadInput, OutExistsAndIsNotEmpty) {
+  const fs::path parent = importTmp("bad_nonempty");
+  fs::create_directories(parent / "out");
+  std::ofstream(parent / "out" / "keep.txt") << "mine";
+  Case c;
+  c.parent = parent;
+  c.result = runVegstream("import --dem " + kSrtm + " --out " + (parent / "out").string());
+  expectRefused(c, (parent / "out").string(), "not an empty directory", 1);
+  EXPECT_EQ(entriesIn(parent / "out"), 1);  // the user's file untouched
+}
+
+TEST(ImportBadInput, UnknownStretchAndCrsOptions) {
+  expectRefused(runImport("stretch", "--dem " + kSrtm + " --stretch p99,p1"), "--stretch", "p1,p99");
+  expectRefused(runImport("demcrs", "--dem " + kSrtm + " --dem-crs EPSG:2193"), "--dem-crs", "2193");
+}
+
+TEST(ImportBadInput, ImageryBandsOnDifferentGrids) {
+  const std::string z = samples() + "/zion/";
+  const auto c = runImport("bands", "--dem " + kSrtm + " --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," +
+                                        samples() + "/rmnp/rmnp-dem.tif");
+  expectRefused(c, "rmnp-dem.tif", "same grid");
+}
+
+}  // namespace
+}  // namespace vegstream::datasets

@@ -1,0 +1,91 @@
+// `vegstream generate`: deterministic from the seed, plausible heights and colours, readable by
+// info / query, and bad options refused.
+
+#include <fstream>
+#include <map>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "datasets/synthetic_generator.h"
+#include "tests/datasets/query/query_fixture.h"
+
+namespace vegstream::testing {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// relative path → bytes of every file under dir.
+std::map<std::string, std::string> allFiles(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = readWhole(e.path());
+  return files;
+}
+
+std::string generate(const fs::path& out, int seed) {
+  return "generate --out '" + out.string() + "' --name synth --size-km 3 --max-zoom 13 --seed " + std::to_string(seed);
+}
+
+TEST(Generate, SameSeedSameBytesOtherSeedDiffers) {
+  const fs::path a = testTmp("gen_a"), b = testTmp("gen_b"), c = testTmp("gen_c");
+  for (const auto& [dir, seed] : {std::pair{a, 11}, std::pair{b, 11}, std::pair{c, 12}}) {
+    const auto r = runVegstream(generate(dir, seed));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  const auto fa = allFiles(a), fb = allFiles(b), fc = allFiles(c);
+  EXPECT_GT(fa.size(), 10u);
+  EXPECT_EQ(fa, fb);  // identical names and bytes
+  size_t differing = 0;
+  for (const auto& [name, bytes] : fa)
+    if (name.rfind("elevation/13/", 0) == 0) differing += !fc.count(name) || fc.at(name) != bytes;
+  EXPECT_GT(differing, 0u);
+  for (const auto& d : {a, b, c}) fs::remove_all(d);
+}
+
+TEST(Generate, PlausibleTerrainThatInfoAndQueryRead) {
+  const fs::path dir = testTmp("gen_info");
+  ASSERT_EQ(runVegstream(generate(dir, 3) + " --lat 40.0 --lon -105.6").exitCode, 0);
+  const auto info = runVegstream("info '" + dir.string() + "'");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const json j = json::parse(info.out);
+  const double lo = j["height_m"]["min"], hi = j["height_m"]["max"];
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LT(hi, 5000.0);
+  EXPECT_GT(hi - lo, 100.0);  // relief, not a plane
+  EXPECT_EQ(j["zoom"]["max"], 13);
+  EXPECT_NEAR(j["bounds"]["north"].get<double>() - j["bounds"]["south"].get<double>(), 3.0 / 111.0, 0.001);
+  EXPECT_GT(j["tiles"]["elevation"].get<int>(), 4);
+  EXPECT_EQ(j["tiles"]["elevation"], j["tiles"]["imagery"]);
+
+  const auto query = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6");
+  ASSERT_EQ(query.exitCode, 0) << query.err;
+  const json qj = json::parse(query.out);
+  EXPECT_GE(qj["height_m"].get<double>(), lo - 0.01);
+  EXPECT_LE(qj["height_m"].get<double>(), hi + 0.01);
+  ASSERT_TRUE(qj["color"].is_object());
+  fs::remove_all(dir);
+}
+
+TEST(Generate, ColoursFollowHeightAndSlope) {
+  const datasets::SyntheticTerrain t(1);
+  const auto valley = t.color(0, 0, 800.0, 0.05), cliff = t.color(0, 0, 1500.0, 1.2), peak = t.color(0, 0, 3400.0, 0.2);
+  EXPECT_GT(valley[1], valley[0]);  // green
+  EXPECT_GT(valley[1], valley[2]);
+  EXPECT_NEAR(cliff[0], cliff[1], 20);  // grey rock
+  EXPECT_GT(peak[2], 220);              // snow
+  EXPECT_GT(peak[0], 220);
+}
+
+TEST(Generate, BadOptionsAreUserErrors) {
+  const fs::path dir = testTmp("gen_bad");
+  for (const char* extra : {" --size-km 0", " --lat 89", " --encoding png"}) {
+    const auto r = runVegstream("generate --out '" + dir.string() + "'" + extra);
+    EXPECT_EQ(r.exitCode, 2) << extra;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir));
+  }
+}
+
+}  // namespace
+}  // namespace vegstream::testing
