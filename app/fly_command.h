@@ -1,6 +1,6 @@
 #pragma once
-// `vegstream fly`: fly the demo path over a DEM — in a window when a display exists, else
-// headless, writing PNG frames and run.json to --out.
+// `vegstream fly`: fly over a dataset — in a window when a display exists, else headless along
+// a flight path, writing PNG frames and run.json to --out.
 
 #include <string>
 
@@ -9,7 +9,9 @@
 namespace vegstream::app {
 
 struct FlyOptions {
-  std::string dataset;          // DEM GeoTIFF or a directory with srtm.tif
+  std::string dataset;          // a dataset directory; empty: the Zion sample
+  std::string samplesDir;       // where the shared sample data lives (for the default)
+  std::string path;             // flight path JSON; empty: the benchmark-30s template
   std::string out = "out/fly";  // headless output directory
   int frames = 96;
   bool framesGiven = false;     // --frames on the command line: a window closes after that many
@@ -18,8 +20,6 @@ struct FlyOptions {
   std::string device;           // --device NAME (substring)
   bool validate = false;
   bool headless = false;        // never open a window, even with a display
-  double durationS = 12.0;      // flight time covered by the frames
-  int meshStep = 1;             // use every N-th DEM sample
 };
 
 // Returns the process exit code: 0 success, 2 user mistake, 1 anything else.

@@ -9,14 +9,18 @@
 #include "app/exit_codes.h"
 #include "app/fly_command.h"
 #include "app/generate_command.h"
+#include "app/compare_command.h"
 #include "app/import_command.h"
 #include "app/info_command.h"
+#include "app/path_command.h"
+#include "app/record_command.h"
+#include "app/report_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
 #include "render/context.h"
 
-#ifndef VEGSTREAM_DEFAULT_DATASET
-#define VEGSTREAM_DEFAULT_DATASET "../shared/datasets/zion"
+#ifndef VEGSTREAM_SAMPLES_DIR
+#define VEGSTREAM_SAMPLES_DIR "../shared/datasets"
 #endif
 
 namespace {
@@ -50,24 +54,32 @@ int main(int argc, char** argv) {
   cli.add_flag("-v,--verbose", verbose, "More log output");
 
   app::FlyOptions fly;
-  fly.dataset = VEGSTREAM_DEFAULT_DATASET;
+  fly.samplesDir = VEGSTREAM_SAMPLES_DIR;
   std::string size = "640x360";
   auto* flyCmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
-  flyCmd->add_option("dataset", fly.dataset, "DEM GeoTIFF, or a directory holding srtm.tif")
-      ->capture_default_str();
+  flyCmd->add_option("dataset", fly.dataset,
+                     "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion");
+  flyCmd->add_option("--path", fly.path, "Flight path JSON; default: the benchmark-30s template over the dataset");
   flyCmd->add_option("--out", fly.out, "Directory for headless frames and run.json")->capture_default_str();
   flyCmd->add_option("--frames", fly.frames, "Number of headless frames")->capture_default_str()->check(CLI::Range(1, 100000));
   flyCmd->add_option("--size", size, "Frame size WxH")->capture_default_str();
   flyCmd->add_option("--msaa", fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")->capture_default_str();
   flyCmd->add_option("--device", fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
-  flyCmd->add_option("--duration", fly.durationS, "Seconds of flight the frames cover")->capture_default_str()
-      ->check(CLI::Range(0.1, 3600.0));
-  flyCmd->add_option("--mesh-step", fly.meshStep, "Use every N-th DEM sample")->capture_default_str()->check(CLI::Range(1, 64));
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
 
   app::ImportOptions importOptions;
   auto* importCmd = app::addImportCommand(cli, importOptions);
+
+  app::RecordOptions recordOptions;
+  recordOptions.samplesDir = VEGSTREAM_SAMPLES_DIR;
+  auto* recordCmd = app::addRecordCommand(cli, recordOptions);
+  app::ReportOptions reportOptions;
+  auto* reportCmd = app::addReportCommand(cli, reportOptions);
+  app::CompareOptions compareOptions;
+  auto* compareCmd = app::addCompareCommand(cli, compareOptions);
+  app::PathOptions pathOptions;
+  auto* pathCmd = app::addPathCommand(cli, pathOptions);
 
   auto* devicesCmd = cli.add_subcommand("devices", "List the Vulkan devices vegstream can draw with");
 
@@ -105,6 +117,10 @@ int main(int argc, char** argv) {
   const Logger log = makeConsoleLogger("vegstream", verbose ? spdlog::level::debug : spdlog::level::info);
 
   if (*devicesCmd) return listDevicesCommand(log);
+  if (*recordCmd) return app::runRecord(recordOptions, log);
+  if (*reportCmd) return app::runReport(reportOptions, log);
+  if (*compareCmd) return app::runCompare(compareOptions, log);
+  if (*pathCmd) return app::runPath(pathOptions, log);
   if (*importCmd) return app::runImport(importOptions, log);
   if (*infoCmd) return app::runInfo(info, log);
   if (*queryCmd) return app::runQuery(query, log);

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/gpu_timing.h"
+#include "render/overlay_types.h"
 
 namespace vegstream::render {
 
@@ -47,6 +48,9 @@ struct FrameRequest {
   bool readbackColor = false;
   bool readbackDepth = false;
   bool present = false;          // to the window, when the renderer has one
+  // Drawn over the resolved frame (after the scene, before read-back and present) as the GPU
+  // pass "hud"; must stay alive until submitFrame returns. Null: no overlay.
+  const OverlayDrawData* overlay = nullptr;
 };
 
 struct ColorImage {

@@ -12,6 +12,7 @@
 #include "render/deletion_queue.h"
 #include "render/frame_uniforms.h"
 #include "render/gpu_timer.h"
+#include "render/hud_pass.h"
 #include "render/render_targets.h"
 #include "render/sky_pass.h"
 #include "render/swapchain.h"
@@ -22,6 +23,7 @@ namespace vegstream::render {
 
 namespace {
 constexpr int kFramesInFlight = 2;
+static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 constexpr int kMaxPasses = 8;
 
 // Everything one frame in flight owns.
@@ -54,6 +56,7 @@ struct Renderer::Impl {
   DescriptorPool descriptorPool;
   std::unique_ptr<SkyPass> sky;
   std::unique_ptr<TerrainPass> terrainPass;
+  std::unique_ptr<HudPass> hudPass;
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
@@ -150,6 +153,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa));
+  hudPass = std::make_unique<HudPass>(*ctx);
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -252,6 +256,13 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   slot.terrainTriangles = terrainPass->record(cmd, slot.descriptorSet, request.camera.position);
   slot.timer->endPass(cmd);
   vkCmdEndRendering(cmd);
+  if (request.overlay) {  // over the resolved image, so read-back and present include it
+    slot.timer->beginPass(cmd, "hud");
+    hudPass->record(cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->color(),
+                    [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); },
+                    [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
+    slot.timer->endPass(cmd);
+  }
 
   recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
   if (imageIndex) recordPresent(cmd, *imageIndex);
@@ -407,13 +418,18 @@ int Renderer::msaa() const { return impl_->msaa; }
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 
-Status Renderer::setTerrain(const terrain::TerrainMesh& mesh) {
+Status Renderer::setTerrain(const terrain::TerrainMesh& mesh, const ColorImage* imagery) {
   return guardGpu([&]() -> Status {
     const uint64_t lastUse = impl_->nextFrame - 1;  // every frame submitted so far may use the old mesh
-    impl_->terrainPass->setMesh(mesh, [&](GpuBuffer&& old) { impl_->deletions.defer(lastUse, std::move(old)); });
+    impl_->terrainPass->setMesh(mesh, imagery, [&](GpuBuffer&& buffer, GpuImage&& image) {
+      if (buffer.buffer) impl_->deletions.defer(lastUse, std::move(buffer));
+      if (image.image) impl_->deletions.defer(lastUse, std::move(image));
+    });
     return {};
   });
 }
+
+uint64_t Renderer::gpuBytes() const { return impl_->terrainPass->gpuBytes(); }
 
 Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
   return guardGpu([&]() -> Result<uint64_t> { return impl_->submit(request); });

@@ -40,7 +40,11 @@ class Renderer {
   bool hasWindow() const;
   const ValidationLog* validationLog() const;
 
-  Status setTerrain(const terrain::TerrainMesh& mesh);
+  // A new terrain mesh and its imagery (sRGB RGBA, texture coordinates in the mesh; null or
+  // empty: coloured by height and slope). Waits for frames in flight before switching.
+  Status setTerrain(const terrain::TerrainMesh& mesh, const ColorImage* imagery = nullptr);
+  // Bytes of the scene's GPU buffers and textures (targets excluded).
+  uint64_t gpuBytes() const;
 
   // Records and submits one frame; returns its index. Does not wait for the GPU.
   Result<uint64_t> submitFrame(const FrameRequest& request);

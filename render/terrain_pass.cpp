@@ -1,26 +1,70 @@
 #include "render/terrain_pass.h"
 
 #include <cstddef>
+#include <cstring>
 
 #include <glm/vec4.hpp>
 
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
+#include "render/vk_check.h"
 #include "shaders/terrain.frag.h"
 #include "shaders/terrain.vert.h"
 
 namespace vegstream::render {
 namespace {
-struct TerrainPush {
+struct TerrainPush {  // shaders/common/terrain_push.glsl
   glm::vec4 originFromCamera;
+  glm::vec4 flags;
 };
-static_assert(sizeof(terrain::TerrainVertex) == 28, "must match the attributes of shaders/terrain.vert");
+static_assert(sizeof(TerrainPush) == 32);
+static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes of shaders/terrain.vert");
+constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 }  // namespace
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
     : ctx_(&ctx) {
-  const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(TerrainPush)};
-  layout_ = createPipelineLayout(ctx, {&frameLayout, 1}, {&push, 1}, "terrain pipeline layout");
+  VkDevice device = ctx.device();
+  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &binding;
+  VkDescriptorSetLayout setLayout;
+  vkCheck(vkCreateDescriptorSetLayout(device, &lci, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+  imageryLayout_ = DescriptorSetLayout(device, setLayout);
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, setLayout, "terrain imagery layout");
+
+  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = 1;
+  pci.poolSizeCount = 1;
+  pci.pPoolSizes = &poolSize;
+  VkDescriptorPool pool;
+  vkCheck(vkCreateDescriptorPool(device, &pci, nullptr, &pool), "vkCreateDescriptorPool");
+  imageryPool_ = DescriptorPool(device, pool);
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "terrain imagery pool");
+  VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  dai.descriptorPool = pool;
+  dai.descriptorSetCount = 1;
+  dai.pSetLayouts = &setLayout;
+  vkCheck(vkAllocateDescriptorSets(device, &dai, &imagerySet_), "vkAllocateDescriptorSets");
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, imagerySet_, "terrain imagery set");
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = 0.0f;
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(device, &sci, nullptr, &sampler), "vkCreateSampler");
+  sampler_ = Sampler(device, sampler);
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "terrain imagery sampler");
+
+  const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
+  const VkDescriptorSetLayout sets[] = {frameLayout, setLayout};
+  layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain pipeline layout");
   GraphicsPipelineDesc desc;
   desc.name = "terrain pipeline";
   desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_terrain_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_frag}};
@@ -29,36 +73,85 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
       {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(terrain::TerrainVertex, position)},
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(terrain::TerrainVertex, normal)},
       {2, 0, VK_FORMAT_R32_SFLOAT, offsetof(terrain::TerrainVertex, heightMsl)},
+      {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(terrain::TerrainVertex, uv)},
   };
   desc.samples = samples;
   desc.colorFormat = kColorFormat;
   desc.depthFormat = kDepthFormat;
   desc.layout = layout_.get();
   pipeline_ = createGraphicsPipeline(ctx, desc);
+
+  // A 1 × 1 transparent texture until imagery arrives, so the set is always valid.
+  uploadImagery(ColorImage{1, 1, {0, 0, 0, 0}});
+  hasImagery_ = false;
 }
 
-void TerrainPass::setMesh(const terrain::TerrainMesh& mesh, const std::function<void(GpuBuffer&&)>& retire) {
-  if (vertices_.buffer) retire(std::move(vertices_));
-  if (indices_.buffer) retire(std::move(indices_));
+void TerrainPass::uploadImagery(const ColorImage& image) {
+  imagery_ = createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_SRGB,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
+                           "terrain imagery");
+  GpuBuffer staging = createBuffer(*ctx_, image.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                   "terrain imagery staging");
+  std::memcpy(staging.mapped, image.rgba.data(), image.rgba.size());
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImage(cmd, imagery_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {image.width, image.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging.get(), imagery_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    transitionImage(cmd, imagery_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  });
+  hasImagery_ = true;
+  writeImageryDescriptor();
+}
+
+void TerrainPass::writeImageryDescriptor() {
+  const VkDescriptorImageInfo ii{sampler_.get(), imagery_.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = imagerySet_;
+  w.dstBinding = 0;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = &ii;
+  vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+}
+
+void TerrainPass::setMesh(const terrain::TerrainMesh& mesh, const ColorImage* imagery, const Retire& retire) {
+  // The descriptor set is rewritten below while earlier frames may still read it: wait for them
+  // (meshes change when a flight opens, not every frame).
+  vkCheck(vkDeviceWaitIdle(ctx_->device()), "vkDeviceWaitIdle");
+  retire(std::move(vertices_), GpuImage{});
+  retire(std::move(indices_), std::move(imagery_));
   vertices_ = {};
   indices_ = {};
   indexCount_ = 0;
   origin_ = mesh.origin;
+  uploadImagery(imagery && imagery->width > 0 ? *imagery : ColorImage{1, 1, {0, 0, 0, 0}});
+  hasImagery_ = imagery && imagery->width > 0;
+  gpuBytes_ = hasImagery_ ? imagery->rgba.size() : 0;
   if (mesh.indices.empty()) return;
   vertices_ = createBufferWithData(*ctx_, mesh.vertices.data(), mesh.vertices.size() * sizeof(terrain::TerrainVertex),
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "terrain vertices");
   indices_ = createBufferWithData(*ctx_, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "terrain indices");
   indexCount_ = static_cast<uint32_t>(mesh.indices.size());
+  gpuBytes_ += vertices_.size + indices_.size;
 }
 
 uint64_t TerrainPass::record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition) const {
   if (indexCount_ == 0) return 0;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &frameSet, 0, nullptr);
+  const VkDescriptorSet sets[] = {frameSet, imagerySet_};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 2, sets, 0, nullptr);
   // The subtraction happens in double; only the small camera-relative offset becomes float.
-  const TerrainPush push{glm::vec4(glm::vec3(origin_ - cameraPosition), 0.0f)};
-  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+  const TerrainPush push{glm::vec4(glm::vec3(origin_ - cameraPosition), 0.0f),
+                         glm::vec4(hasImagery_ ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f)};
+  vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
   const VkBuffer vb = vertices_.get();
   const VkDeviceSize offset = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

@@ -27,7 +27,9 @@ TerrainMesh buildGridMesh(const HeightGrid& grid, const geo::LocalFrame& frame, 
       const size_t i = index(c, r);
       valid[i] = !std::isnan(h);
       const double hm = valid[i] ? static_cast<double>(h) : 0.0;
-      positions[i] = frame.toLocal({grid.latAt(r * step), grid.lonAt(c * step), hm});
+      const glm::dvec2 lonLat = grid.lonLatAt(c * step, r * step);
+      positions[i] = frame.toLocal({lonLat.y, lonLat.x, hm});
+      mesh.vertices[i].uv = options.uv ? options.uv(lonLat.x, lonLat.y) : glm::vec2(0.0f);
       mesh.vertices[i].position = glm::vec3(positions[i] - mesh.origin);
       mesh.vertices[i].heightMsl = static_cast<float>(hm);
     }

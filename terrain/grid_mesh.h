@@ -3,6 +3,10 @@
 // (every `step`-th), placed in a local ENU frame with earth curvature. Replaced by ROAM in
 // the terrain issue; kept as the reference mesh for tests.
 
+#include <functional>
+
+#include <glm/vec2.hpp>
+
 #include "geo/local_frame.h"
 #include "terrain/height_grid.h"
 #include "terrain/terrain_mesh.h"
@@ -11,6 +15,8 @@ namespace vegstream::terrain {
 
 struct GridMeshOptions {
   int step = 1;  // use every step-th sample in both directions (≥ 1)
+  // Texture coordinates of the imagery at a longitude/latitude (degrees); none: (0, 0).
+  std::function<glm::vec2(double lonDeg, double latDeg)> uv;
 };
 
 // Vertices at the grid's sample centres. Triangles touching a nodata sample are left out, so

@@ -1,9 +1,22 @@
 #include "terrain/height_grid.h"
 
+#include "geo/projection.h"
+
 #include <algorithm>
 #include <limits>
 
 namespace vegstream::terrain {
+
+glm::dvec2 HeightGrid::lonLatAt(double col, double row) const {
+  const glm::dvec2 xy{lonFirst + lonStep * col, latFirst + latStep * row};
+  return crs == GridCrs::Geographic ? xy : geo::webMercatorToLonLat(xy);
+}
+
+glm::dvec2 HeightGrid::gridAt(double lonDeg, double latDeg) const {
+  const glm::dvec2 xy = crs == GridCrs::Geographic ? glm::dvec2{lonDeg, latDeg}
+                                                   : geo::lonLatToWebMercator({lonDeg, latDeg});
+  return {(xy.x - lonFirst) / lonStep, (xy.y - latFirst) / latStep};
+}
 
 double HeightGrid::sample(double col, double row) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();

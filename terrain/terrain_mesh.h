@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace vegstream::terrain {
@@ -14,6 +15,7 @@ struct TerrainVertex {
   glm::vec3 position;  // metres from TerrainMesh::origin, local ENU
   glm::vec3 normal;    // unit, local ENU
   float heightMsl;     // metres above mean sea level, for colouring
+  glm::vec2 uv;        // imagery texture coordinates
 };
 
 struct TerrainMesh {

@@ -2,6 +2,7 @@
 // validation layers silent; user mistakes end with one message, exit code 2, nothing written.
 
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -18,7 +19,19 @@ fs::path freshDir(const std::string& name) {
   return dir;
 }
 
-const std::string kZion = std::string(VEGSTREAM_DATASETS_DIR) + "/zion";
+// The Zion sample imported once (heights + Landsat colour) into the test's scratch space.
+std::string zionDataset() {
+  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / "zion-dataset";
+  if (!fs::exists(dir / "dataset.json")) {
+    fs::remove_all(dir);
+    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
+    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
+                                "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+  }
+  return dir.string();
+}
+const std::string kZion = zionDataset();
 
 TEST(FlyCommand, HeadlessDemoWritesFramesAndRunJsonWithValidationSilent) {
   const fs::path out = freshDir("fly_ok");
@@ -32,8 +45,12 @@ TEST(FlyCommand, HeadlessDemoWritesFramesAndRunJsonWithValidationSilent) {
   EXPECT_EQ(run["validation"]["errors"], 0);
   EXPECT_EQ(run["validation"]["warnings"], 0);
   EXPECT_EQ(run["size"][0], 160);
-  // The Zion DEM is 465 × 457 samples with no nodata: 2 · 464 · 456 triangles.
-  EXPECT_EQ(run["terrain_triangles"], 2 * 464 * 456);
+  // Zion's mesh: the finest zoom within the default triangle limit, no nodata inside its bounds.
+  EXPECT_GT(run["terrain_triangles"].get<int>(), 150'000);
+  EXPECT_LE(run["terrain_triangles"].get<int>(), 800'000);
+  for (const auto& f : run["per_frame"]) EXPECT_EQ(f["terrain_triangles"], run["terrain_triangles"]);
+  EXPECT_EQ(run["path"], "benchmark-30s");
+  EXPECT_GE(run["dataset"]["imagery_zoom"].get<int>(), run["dataset"]["height_zoom"].get<int>());
   EXPECT_FALSE(run["device"]["name"].get<std::string>().empty());
   EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("device:"), std::string::npos) << "the chosen device is printed";
@@ -62,7 +79,8 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, FlyBadInput,
     ::testing::Values(
         BadInput{"missing_dataset", "/no/such/dataset", "/no/such/dataset"},
-        BadInput{"not_a_dem", "'" + std::string(VEGSTREAM_DATASETS_DIR) + "/README.md'", "README.md"},
+        BadInput{"not_a_dataset", "'" + std::string(VEGSTREAM_DATASETS_DIR) + "/zion'", "dataset.json"},
+        BadInput{"missing_path", "'" + kZion + "' --path /no/such/path.json", "/no/such/path.json"},
         BadInput{"unknown_device", "'" + kZion + "' --device no-such-gpu", "no-such-gpu"},
         BadInput{"size_zero", "'" + kZion + "' --size 0x90", "--size"},
         BadInput{"size_garbage", "'" + kZion + "' --size big", "--size"},
@@ -80,6 +98,44 @@ TEST(FlyCommand, WindowModeUnderAVirtualDisplay) {
   EXPECT_NE(r.err.find("window open"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("window closed after 4 frames"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace vegstream::testing
+
+namespace vegstream::testing {
+namespace {
+
+TEST(FlyCommand, APathOutsideTheDatasetIsRefusedWithOneLine) {
+  const fs::path dir = freshDir("fly_outside");
+  fs::create_directories(dir);
+  const fs::path path = dir / "elsewhere.json";
+  std::ofstream(path) << R"({"name": "elsewhere", "keyframes": [
+    {"t": 0, "lat": 46.5, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10},
+    {"t": 10, "lat": 46.6, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10}]})";
+  const fs::path out = dir / "out";
+  const auto r = runVegstream("fly '" + kZion + "' --headless --path '" + path.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_EQ(countLines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("keyframes[0]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(FlyCommand, PlaysAGivenPathHeadless) {
+  const fs::path dir = freshDir("fly_path");
+  fs::create_directories(dir);
+  const fs::path path = dir / "short.json";
+  std::ofstream(path) << R"({"name": "short", "keyframes": [
+    {"t": 0, "lat": 37.25, "lon": -113.05, "alt_m": 400, "heading": 90, "pitch": -15},
+    {"t": 4, "lat": 37.25, "lon": -113.00, "alt_m": 400, "heading": 90, "pitch": -15}]})";
+  const fs::path out = dir / "out";
+  const auto r = runVegstream("fly '" + kZion + "' --headless --validate --frames 2 --size 96x54 --msaa 1 --path '" +
+                              path.string() + "' --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto run = nlohmann::json::parse(readWhole(out / "run.json"));
+  EXPECT_EQ(run["path"], "short");
+  EXPECT_EQ(run["validation"]["errors"], 0);
+  EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
 }
 
 }  // namespace

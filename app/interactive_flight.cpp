@@ -1,0 +1,254 @@
+#include "app/interactive_flight.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <deque>
+#include <string>
+
+#include <GLFW/glfw3.h>
+
+#include "app/exit_codes.h"
+#include "app/fly_camera.h"
+#include "app/hud.h"
+#include "app/imgui_overlay.h"
+#include "app/path_recorder.h"
+#include "app/window_input.h"
+#include "core/stopwatch.h"
+#include "flight/flight_path.h"
+#include "render/png_writer.h"
+
+namespace vegstream::app {
+namespace fs = std::filesystem;
+
+namespace {
+constexpr size_t kGraphFrames = 120;
+constexpr double kMessageSeconds = 4.0;
+
+// Over the dataset, south of its centre, looking north and a little down.
+flight::FlightSample defaultStart(const flight::Scene& scene) {
+  const geo::GeoBounds& b = scene.info().bounds;
+  flight::FlightSample s;
+  s.position.latDeg = b.southDeg + 0.3 * b.heightDeg();
+  s.position.lonDeg = b.westDeg + 0.5 * b.widthDeg();
+  double ground = scene.groundHeight(s.position.latDeg, s.position.lonDeg);
+  if (!std::isfinite(ground)) ground = 0.0;
+  s.position.heightM = ground + 400.0;
+  s.headingDeg = 0.0;
+  s.pitchDeg = -15.0;
+  return s;
+}
+
+// "20250102-130405": local time, for file names that sort by time.
+std::string timestamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof(buf), "%Y%m%d-%H%M%S", &tm);
+  return buf;
+}
+
+class Session {
+ public:
+  Session(flight::Scene& scene, GLFWwindow* window, const InteractiveOptions& options, const Logger& log)
+      : scene_(scene),
+        window_(window),
+        options_(options),
+        log_(log),
+        start_(options.start ? *options.start : defaultStart(scene)),
+        camera_(scene.frame(), scene.groundFunction(), scene.frame().toLocal(start_.position), start_.headingDeg,
+                start_.pitchDeg),
+        input_(window),
+        showHud_(options.hud) {}
+
+  int run();
+
+ private:
+  void handleActions(const WindowActions& a, double now);
+  void toggleRecording(double now);
+  Status collect(uint64_t index, bool screenshot);
+  void say(const std::string& text, double now, bool warn = false);
+  fs::path outputPath(const std::string& name) const;
+  HudState hudState(double now) const;
+
+  flight::Scene& scene_;
+  GLFWwindow* window_;
+  InteractiveOptions options_;
+  Logger log_;
+  flight::FlightSample start_;
+  FlyCamera camera_;
+  WindowInput input_;
+  ImGuiOverlay overlay_;
+  PathRecorder recorder_;
+  bool showHud_ = true;
+  bool showHelp_ = false;
+  bool screenshotWanted_ = false;
+  int screenshots_ = 0;
+  std::deque<float> frameTimes_;
+  std::optional<render::FrameResult> last_;
+  std::string message_;
+  double messageUntil_ = 0.0;
+  double nowS_ = 0.0;
+};
+
+void Session::say(const std::string& text, double now, bool warn) {
+  if (warn) log_->warn("{}", text); else log_->info("{}", text);
+  message_ = text;
+  messageUntil_ = now + kMessageSeconds;
+}
+
+fs::path Session::outputPath(const std::string& name) const {
+  const fs::path dir = options_.outDir.empty() ? fs::current_path() : options_.outDir;
+  std::error_code ec;
+  fs::create_directories(dir, ec);  // a failure shows up when the file is written
+  return dir / name;
+}
+
+void Session::toggleRecording(double now) {
+  if (!recorder_.recording()) {
+    recorder_.start(now, camera_.sample());
+    say("recording the flight path (R stops)", now);
+    return;
+  }
+  const std::string name = "flight-" + timestamp();
+  auto path = recorder_.stop(now, camera_.sample(), name);
+  if (!path) return say("path not saved: " + path.error().message, now, true);
+  const fs::path file = outputPath(name + ".json");
+  if (Status s = saveFlightPath(*path, file); !s) return say("path not saved: " + s.error().message, now, true);
+  say("flight path saved: " + file.string() + " (" + std::to_string(path->keyframes.size()) + " keyframes)", now);
+  if (Status inside = flight::checkInside(*path, scene_.info().bounds); !inside)
+    log_->warn("`vegstream record` will refuse it: {}", inside.error().message);
+}
+
+void Session::handleActions(const WindowActions& a, double now) {
+  if (a.toggleFollow) {
+    camera_.setFollowTerrain(!camera_.followTerrain());
+    say(camera_.followTerrain() ? "follow terrain on" : "follow terrain off", now);
+  }
+  if (a.toggleHelp) showHelp_ = !showHelp_;
+  if (a.toggleHud) showHud_ = !showHud_;
+  if (a.screenshot) screenshotWanted_ = true;
+  if (a.toggleRecord) toggleRecording(now);
+}
+
+Status Session::collect(uint64_t index, bool screenshot) {
+  auto result = scene_.renderer().waitFrame(index);
+  if (!result) return result.error();
+  if (screenshot && result->color) {
+    char counter[16];
+    std::snprintf(counter, sizeof(counter), "-%03d", ++screenshots_);
+    const fs::path file = outputPath("vegstream-" + timestamp() + counter + ".png");
+    if (Status s = render::writePng(file, *result->color); !s) say("screenshot failed: " + s.error().message, nowS_, true);
+    else say("screenshot saved: " + file.string(), nowS_);
+  }
+  result->color.reset();
+  last_ = std::move(*result);
+  return {};
+}
+
+HudState Session::hudState(double now) const {
+  const flight::SceneInfo& info = scene_.info();
+  HudState s;
+  s.datasetName = info.datasetName;
+  s.deviceName = scene_.renderer().device().name;
+  s.frameTimesMs.assign(frameTimes_.begin(), frameTimes_.end());
+  double sum = 0.0;
+  for (float ms : frameTimes_) sum += ms;
+  s.fps = sum > 0.0 ? 1000.0 * static_cast<double>(frameTimes_.size()) / sum : 0.0;
+  if (last_) {
+    s.gpu = last_->gpu;
+    s.terrainTriangles = last_->terrainTriangles;
+  }
+  s.streaming = "whole dataset resident: heights at zoom " + std::to_string(info.heightZoom) +
+                (info.imageryZoom >= 0 ? ", imagery at zoom " + std::to_string(info.imageryZoom) : ", no imagery");
+  s.cpuBytes = info.cpuBytes;
+  s.gpuBytes = info.gpuBytes;
+  const flight::FlightSample pose = camera_.sample();
+  s.latDeg = pose.position.latDeg;
+  s.lonDeg = pose.position.lonDeg;
+  s.altMslM = pose.position.heightM;
+  s.aglM = pose.heightAboveGroundM;
+  s.headingDeg = pose.headingDeg;
+  s.pitchDeg = pose.pitchDeg;
+  s.speedMps = camera_.speedMps();
+  s.followTerrain = camera_.followTerrain();
+  s.recording = recorder_.recording();
+  s.recordingS = recorder_.elapsedS(now);
+  s.recordedKeyframes = recorder_.keyframeCount();
+  if (now < messageUntil_) s.message = message_;
+  s.showHelp = showHelp_;
+  return s;
+}
+
+int Session::run() {
+  render::Renderer& renderer = scene_.renderer();
+  log_->info("window open: right mouse button looks, WASD/QE fly, wheel sets speed, F1 help; Esc or closing ends it");
+  Stopwatch clock;
+  double lastS = 0.0;
+  int shown = 0;
+  std::optional<std::pair<uint64_t, bool>> inFlight;  // the frame submitted last: index, screenshot
+  while (!glfwWindowShouldClose(window_) && !(options_.frames > 0 && shown >= options_.frames)) {
+    glfwPollEvents();
+    WindowActions actions;
+    const FlyInput in = input_.poll(actions);
+    if (actions.quit) break;
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(window_, &fbw, &fbh);
+    if (fbw == 0 || fbh == 0) {  // minimised: nothing to present to
+      glfwWaitEventsTimeout(0.1);
+      continue;
+    }
+    nowS_ = clock.elapsedMs() / 1000.0;
+    const double dt = nowS_ - lastS;
+    lastS = nowS_;
+    if (shown > 0) {
+      frameTimes_.push_back(static_cast<float>(dt * 1000.0));
+      if (frameTimes_.size() > kGraphFrames) frameTimes_.pop_front();
+    }
+    camera_.update(in, shown > 0 ? dt : 0.0);
+    handleActions(actions, nowS_);
+    if (recorder_.recording()) recorder_.add(nowS_, camera_.sample());
+    if (options_.screenshotAtFrame == shown + 1) screenshotWanted_ = true;
+
+    render::FrameRequest req = scene_.frameRequest(camera_.sample());
+    req.present = true;
+    req.readbackColor = screenshotWanted_;
+    if (showHud_) {
+      overlay_.begin(static_cast<float>(renderer.width()), static_cast<float>(renderer.height()), dt);
+      drawHud(hudState(nowS_));
+      req.overlay = &overlay_.end();
+    }
+    auto index = renderer.submitFrame(req);
+    if (!index) return reportError(log_, index.error());
+    // Collect the previous frame while this one renders: one frame of CPU/GPU overlap.
+    if (inFlight)
+      if (Status s = collect(inFlight->first, inFlight->second); !s) return reportError(log_, s.error());
+    inFlight = {*index, screenshotWanted_};
+    screenshotWanted_ = false;
+    ++shown;
+  }
+  if (inFlight)
+    if (Status s = collect(inFlight->first, inFlight->second); !s) return reportError(log_, s.error());
+  if (recorder_.recording()) toggleRecording(clock.elapsedMs() / 1000.0);  // never lose a recording
+  log_->info("window closed after {} frames ({:.1f} frames/s)", shown,
+             shown / std::max(clock.elapsedMs() / 1000.0, 1e-3));
+  return kExitOk;
+}
+}  // namespace
+
+InteractiveOptions withEnvironment(InteractiveOptions options) {
+  if (const char* n = std::getenv("VEGSTREAM_FLY_SCREENSHOT_FRAME"); n && *n)
+    options.screenshotAtFrame = std::max(0, std::atoi(n));
+  if (const char* h = std::getenv("VEGSTREAM_FLY_NO_HUD"); h && *h && std::string(h) != "0") options.hud = false;
+  return options;
+}
+
+int runInteractiveFlight(flight::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
+                         const Logger& log) {
+  Session session(scene, window, options, log);
+  return session.run();
+}
+
+}  // namespace vegstream::app

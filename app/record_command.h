@@ -1,0 +1,40 @@
+#pragma once
+// `vegstream record [DATASET] --path P --out DIR …`: a deterministic fixed-step flight along a
+// path, written as a recording directory (frames.csv, recording.json, summary.json, plots,
+// optional frames/*.png; README.md "Recordings"). Every option, the path and the dataset are
+// checked before anything is rendered; the directory appears only when complete.
+
+#include <cstdint>
+#include <string>
+
+#include "core/log.h"
+
+namespace CLI { class App; }
+
+namespace vegstream::app {
+
+struct RecordOptions {
+  std::string dataset;      // dataset directory; empty: the Zion sample (imported once)
+  std::string samplesDir;   // where the shared sample data lives (for the default)
+  std::string path;         // flight path JSON (required)
+  std::string out;          // recording directory to create (required; must not exist or be empty)
+  std::string size = "640x360";
+  int msaa = 4;
+  double fps = 60.0;
+  int framesEvery = 0;      // 0: no PNG frames
+  double warmupS = 0.0;
+  std::string device;
+  bool validate = false;
+  bool noPlots = false;     // skip the plots (frames.csv and the JSON files only)
+};
+
+CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& options);
+
+// Exit code: 0 done; 2 a user mistake (one message, nothing written); 1 a GPU/system failure,
+// or the recording was written but its plots could not be made (python3/matplotlib missing).
+int runRecord(const RecordOptions& options, const Logger& log);
+
+// "WxH" → width, height, each 1 … 16384.
+bool parseFrameSize(const std::string& text, uint32_t& width, uint32_t& height);
+
+}  // namespace vegstream::app

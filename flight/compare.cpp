@@ -1,0 +1,114 @@
+// Side-by-side summaries (compare.h).
+
+#include "flight/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "flight/summary.h"
+
+namespace vegstream::flight {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Flattens the comparable numbers into (key, value) in a stable order.
+std::vector<std::pair<std::string, double>> flatten(const json& s) {
+  std::vector<std::pair<std::string, double>> out;
+  auto num = [](const json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+  auto add = [&](const std::string& key, const json& v) { out.emplace_back(key, num(v)); };
+  add("frames", s.value("frames", json()));
+  add("flight_time_s", s.value("flight_time_s", json()));
+  if (s.contains("times_ms") && s["times_ms"].is_object())
+    for (const auto& [col, st] : s["times_ms"].items())
+      for (const char* q : {"p50", "p95", "p99", "max"})
+        add("times_ms." + col + "." + q, st.is_object() ? st.value(q, json()) : json());
+  if (s.contains("counts") && s["counts"].is_object())
+    for (const auto& [col, st] : s["counts"].items()) add("counts." + col + ".mean", st.is_object() ? st.value("mean", json()) : json());
+  for (const char* group : {"hitches", "peak_memory", "resident_bytes", "totals", "recorder_overhead"}) {
+    if (!s.contains(group) || !s[group].is_object()) continue;
+    for (const auto& [k, v] : s[group].items())
+      if (v.is_number()) add(std::string(group) + "." + k, v);
+  }
+  return out;
+}
+
+Result<json> parseSummary(const std::string& text, const std::string& source) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("summary_version"))
+    return makeError(ErrorKind::InvalidInput, source + ": not a vegstream summary.json (run `vegstream report` on its directory)");
+  return j;
+}
+
+Result<std::string> readText(const fs::path& file) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) return makeError(ErrorKind::NotFound, file.string() + ": cannot open (not a recording directory?)");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string cell(double v) {
+  if (std::isnan(v)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", v);
+  return buf;
+}
+
+}  // namespace
+
+Result<std::vector<CompareRow>> compareSummaries(const std::string& summaryA, const std::string& sourceA,
+                                                 const std::string& summaryB, const std::string& sourceB) {
+  auto a = parseSummary(summaryA, sourceA);
+  if (!a) return a.error();
+  auto b = parseSummary(summaryB, sourceB);
+  if (!b) return b.error();
+  const auto fa = flatten(*a), fb = flatten(*b);
+  std::vector<CompareRow> rows;
+  for (const auto& [k, v] : fa) rows.push_back({k, v, std::nan("")});
+  for (const auto& [k, v] : fb) {
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const CompareRow& r) { return r.key == k; });
+    if (it != rows.end()) it->b = v;
+    else rows.push_back({k, std::nan(""), v});
+  }
+  return rows;
+}
+
+Result<std::vector<CompareRow>> compareRecordings(const fs::path& dirA, const fs::path& dirB) {
+  auto a = readText(dirA / kSummaryJson);
+  if (!a) return a.error();
+  auto b = readText(dirB / kSummaryJson);
+  if (!b) return b.error();
+  return compareSummaries(*a, (dirA / kSummaryJson).string(), *b, (dirB / kSummaryJson).string());
+}
+
+double ratio(const CompareRow& row) {
+  if (std::isnan(row.a) || std::isnan(row.b) || row.a == 0.0) return std::nan("");
+  return row.b / row.a;
+}
+
+std::string formatCompareTable(const std::vector<CompareRow>& rows, const std::string& nameA, const std::string& nameB) {
+  std::size_t width = 3;
+  for (const auto& r : rows) width = std::max(width, r.key.size());
+  std::string out = "A: " + nameA + "\nB: " + nameB + "\n";
+  char line[256];
+  std::snprintf(line, sizeof(line), "%-*s %14s %14s %9s\n", static_cast<int>(width), "key", "A", "B", "B/A");
+  out += line;
+  for (const auto& r : rows) {
+    const double q = ratio(r);
+    char rq[32] = "-";
+    if (!std::isnan(q)) std::snprintf(rq, sizeof(rq), "%.3f", q);
+    std::snprintf(line, sizeof(line), "%-*s %14s %14s %9s\n", static_cast<int>(width), r.key.c_str(), cell(r.a).c_str(),
+                  cell(r.b).c_str(), rq);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace vegstream::flight

@@ -1,0 +1,198 @@
+// The fixed-step recorder (recorder.h). Per frame it times each CPU stage with a steady clock,
+// renders and waits for the frame, and stores the figures in a preallocated plain row; the
+// table of named columns is built once at the end, so the per-frame bookkeeping (recorder_ms)
+// stays a few hundred nanoseconds.
+
+#include "flight/recorder.h"
+
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "core/stopwatch.h"
+#include "flight/path_sampler.h"
+#include "render/png_writer.h"
+
+namespace vegstream::flight {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kMaxPasses = 16;
+
+// One frame's figures, as measured; NaN = the figure does not exist.
+struct FrameRow {
+  double t = 0.0;
+  FlightSample sample;
+  double flightMs = 0.0, terrainMs = 0.0, recordSubmitMs = 0.0;
+  double gpuFrameMs = 0.0;
+  std::array<double, kMaxPasses> passMs{};
+  double wallMs = 0.0, recorderMs = 0.0, pngMs = kNoValue;
+  double terrainTriangles = 0.0;
+  double inputPrimitives = kNoValue, clippingPrimitives = kNoValue, fragmentInvocations = kNoValue;
+};
+
+double count(uint64_t v) { return static_cast<double>(v); }
+
+void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Recording& rec, const SceneInfo& info) {
+  [[maybe_unused]] const std::size_t passColumn0 = *table.find("gpu_frame_ms") + 1;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const FrameRow& f = rows[i];
+    auto& r = table.addRow();
+    std::size_t c = 0;
+    r[c++] = static_cast<double>(i);
+    r[c++] = f.t;
+    r[c++] = f.sample.position.latDeg;
+    r[c++] = f.sample.position.lonDeg;
+    r[c++] = f.sample.position.heightM;
+    r[c++] = f.sample.heightAboveGroundM;
+    r[c++] = f.sample.headingDeg;
+    r[c++] = f.sample.pitchDeg;
+    r[c++] = f.flightMs;
+    r[c++] = kNoValue;  // cpu_streaming_ms: no streaming yet (issue 5)
+    r[c++] = f.terrainMs;
+    r[c++] = kNoValue;  // cpu_seeding_ms: no vegetation seeding yet
+    r[c++] = kNoValue;  // cpu_simulation_ms: no simulation yet
+    r[c++] = f.recordSubmitMs;
+    r[c++] = f.flightMs + f.terrainMs + f.recordSubmitMs;  // cpu_frame_ms: the stages that exist
+    r[c++] = f.gpuFrameMs;
+    assert(c == passColumn0);
+    for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p) r[c++] = rec.perPassMeaningful ? f.passMs[p] : kNoValue;
+    r[c++] = f.wallMs;
+    r[c++] = f.recorderMs;
+    r[c++] = f.pngMs;
+    r[c++] = f.terrainTriangles;
+    r[c++] = f.inputPrimitives;
+    r[c++] = f.clippingPrimitives;
+    r[c++] = f.fragmentInvocations;
+    r[c++] = count(info.cpuBytes);
+    r[c++] = count(info.gpuBytes);
+    assert(c == r.size());
+  }
+}
+
+}  // namespace
+
+std::size_t frameCount(double durationS, double fps) {
+  assert(fps > 0.0 && durationS >= 0.0);
+  return static_cast<std::size_t>(std::floor(durationS * fps + 1e-9)) + 1;
+}
+
+std::string gpuPassColumn(const std::string& pass) {
+  std::string out = "gpu_";
+  for (char ch : pass) {
+    const char c = (ch >= 'A' && ch <= 'Z') ? static_cast<char>(ch - 'A' + 'a') : ch;
+    out += ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) ? c : '_';
+  }
+  return out + "_ms";
+}
+
+std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses) {
+  std::vector<RecordColumn> c = {
+      {"frame", 0},          {"t_s", 6},        {"lat", 9},        {"lon", 9},
+      {"alt_msl_m", 3},      {"height_above_ground_m", 3},         {"heading_deg", 4},
+      {"pitch_deg", 4},      {"cpu_flight_ms", 6},                 {"cpu_streaming_ms", 6},
+      {"cpu_terrain_ms", 6}, {"cpu_seeding_ms", 6},                {"cpu_simulation_ms", 6},
+      {"cpu_record_submit_ms", 6},              {"cpu_frame_ms", 6}, {"gpu_frame_ms", 4}};
+  for (const auto& p : gpuPasses) c.push_back({gpuPassColumn(p), 4});
+  c.push_back({"wall_ms", 4});
+  c.push_back({"recorder_ms", 6});  // sub-microsecond: nanosecond digits
+  c.push_back({"png_ms", 4});
+  for (const char* n : {"terrain_triangles", "stat_input_primitives", "stat_clipping_primitives",
+                        "stat_fragment_invocations", "cpu_bytes", "gpu_bytes"})
+    c.push_back({n, 0});
+  return c;
+}
+
+uint64_t peakResidentBytes() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line)) {
+    unsigned long long kb = 0;
+    if (std::sscanf(line.c_str(), "VmHWM: %llu kB", &kb) == 1) return static_cast<uint64_t>(kb) * 1024u;
+  }
+  return 0;
+}
+
+Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const RecorderOptions& options) {
+  assert(options.fps > 0.0 && options.warmupS >= 0.0 && options.framesEvery >= 0);
+  render::Renderer& renderer = scene.renderer();
+  const PathSampler sampler(path);
+  const GroundHeight ground = scene.groundFunction();
+  const std::size_t n = frameCount(sampler.duration(), options.fps);
+
+  Recording rec;
+  rec.warmupFrames = static_cast<std::size_t>(std::llround(options.warmupS * options.fps));
+  Stopwatch total;
+  if (rec.warmupFrames > 0) {
+    const render::FrameRequest warm = scene.frameRequest(sampler.sample(0.0, ground));
+    for (std::size_t i = 0; i < rec.warmupFrames; ++i)
+      if (auto f = renderer.renderFrame(warm); !f) return f.error();
+  }
+
+  std::vector<FrameRow> rows;
+  rows.reserve(n);
+  bool first = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    Stopwatch frameWatch;
+    const double t = std::min(static_cast<double>(i) / options.fps, sampler.duration());
+    const bool savePng = options.framesEvery > 0 && i % static_cast<std::size_t>(options.framesEvery) == 0;
+
+    Stopwatch stage;
+    const FlightSample sample = sampler.sample(t, ground);
+    const double flightMs = stage.elapsedMs();
+    stage.restart();
+    render::FrameRequest request = scene.frameRequest(sample);
+    const double terrainMs = stage.elapsedMs();
+    request.readbackColor = savePng;
+    auto result = renderer.renderFrame(request);
+    if (!result) return result.error();
+
+    Stopwatch bookkeeping;
+    const render::GpuTimings& gpu = result->gpu;
+    if (first) {
+      first = false;
+      rec.perPassMeaningful = gpu.perPassMeaningful;
+      rec.pipelineStatistics = gpu.statistics.available;
+      for (std::size_t p = 0; p < gpu.passes.size() && p < kMaxPasses; ++p) rec.gpuPasses.push_back(gpu.passes[p].pass);
+    }
+    FrameRow& row = rows.emplace_back();
+    row.t = t;
+    row.sample = sample;
+    row.flightMs = flightMs;
+    row.terrainMs = terrainMs;
+    row.recordSubmitMs = result->cpuRecordMs;
+    row.gpuFrameMs = gpu.frameMs;
+    for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p)
+      row.passMs[p] = p < gpu.passes.size() && gpu.passes[p].pass == rec.gpuPasses[p] ? gpu.passes[p].ms : kNoValue;
+    row.terrainTriangles = count(result->terrainTriangles);
+    if (gpu.statistics.available) {
+      row.inputPrimitives = count(gpu.statistics.inputPrimitives);
+      row.clippingPrimitives = count(gpu.statistics.clippingPrimitives);
+      row.fragmentInvocations = count(gpu.statistics.fragmentInvocations);
+    }
+    row.recorderMs = bookkeeping.elapsedMs();
+    row.wallMs = frameWatch.elapsedMs();
+
+    if (savePng) {
+      Stopwatch png;
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%05zu.png", i);
+      assert(result->color && "the renderer returns the colour read-back it was asked for");
+      if (Status s = render::writePng(options.framesDir / name, *result->color); !s) return s.error();
+      row.pngMs = png.elapsedMs();
+      ++rec.pngFrames;
+    }
+    if (options.progress) options.progress(i + 1, n);
+  }
+
+  rec.table = RecordTable(frameColumns(rec.gpuPasses));
+  fillTable(rec.table, rows, rec, scene.info());
+  rec.wallS = total.elapsedMs() / 1000.0;
+  rec.peakRssBytes = peakResidentBytes();
+  return rec;
+}
+
+}  // namespace vegstream::flight

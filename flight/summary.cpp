@@ -1,0 +1,182 @@
+// recording.json and summary.json (summary.h).
+
+#include "flight/summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+
+namespace vegstream::flight {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string recordingMetaJson(const RecordingMeta& m) {
+  const json j = {
+      {"device",
+       {{"name", m.device.name}, {"type", m.device.type}, {"driver", m.device.driver},
+        {"api_version", m.device.apiVersion}, {"software", m.device.software}}},
+      {"size", {m.width, m.height}},
+      {"msaa", m.msaa},
+      {"fps", m.fps},
+      {"warmup_s", m.warmupS},
+      {"warmup_frames", m.warmupFrames},
+      {"frames_every", m.framesEvery},
+      {"path", {{"name", m.pathName}, {"file", m.pathFile}, {"duration_s", m.pathDurationS}}},
+      {"dataset",
+       {{"name", m.datasetName}, {"dir", m.datasetDir}, {"height_zoom", m.heightZoom},
+        {"imagery_zoom", m.imageryZoom}, {"mesh_triangles", m.meshTriangles}, {"load_ms", m.sceneLoadMs}}},
+      {"validation", {{"enabled", m.validate}, {"errors", m.validationErrors}, {"warnings", m.validationWarnings}}},
+      {"per_pass_gpu_times_meaningful", m.perPassMeaningful},
+      {"pipeline_statistics", m.pipelineStatistics},
+      {"gpu_passes", m.gpuPasses},
+      {"wall_s", m.wallS},
+      {"peak_rss_bytes", m.peakRssBytes}};
+  return j.dump(2) + "\n";
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const double pos = std::clamp(q, 0.0, 100.0) / 100.0 * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (v[hi] - v[lo]) * (pos - static_cast<double>(lo));
+}
+
+std::vector<std::size_t> findHitches(const std::vector<double>& frameMs) {
+  std::vector<std::size_t> out;
+  std::vector<double> window;
+  for (std::size_t i = 1; i < frameMs.size(); ++i) {
+    const std::size_t from = i > kHitchWindow ? i - kHitchWindow : 0;
+    window.assign(frameMs.begin() + static_cast<std::ptrdiff_t>(from), frameMs.begin() + static_cast<std::ptrdiff_t>(i));
+    if (frameMs[i] > kHitchFactor * percentile(window, 50.0)) out.push_back(i);
+  }
+  return out;
+}
+
+namespace {
+
+bool isTimeColumn(const std::string& name) { return name.size() > 3 && name.ends_with("_ms"); }
+bool isCountColumn(const std::string& name) { return name == "terrain_triangles" || name.starts_with("stat_"); }
+
+double sum(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+double maxOf(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
+
+// Each frame's cpu_frame_ms + gpu_frame_ms (a missing part counts 0).
+std::vector<double> frameTimes(const RecordTable& t) {
+  const auto cpu = t.find("cpu_frame_ms"), gpu = t.find("gpu_frame_ms");
+  std::vector<double> out(t.rowCount(), 0.0);
+  for (std::size_t i = 0; i < t.rowCount(); ++i) {
+    if (cpu && !std::isnan(t.at(i, *cpu))) out[i] += t.at(i, *cpu);
+    if (gpu && !std::isnan(t.at(i, *gpu))) out[i] += t.at(i, *gpu);
+  }
+  return out;
+}
+
+Result<std::string> readText(const fs::path& file) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) return makeError(ErrorKind::NotFound, file.string() + ": cannot open (not a recording directory?)");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+Result<std::string> makeSummaryJson(const std::string& recordingJson, const std::string& recordingSource,
+                                    const RecordTable& frames) {
+  json rec = json::parse(recordingJson, nullptr, false);
+  if (rec.is_discarded() || !rec.is_object())
+    return makeError(ErrorKind::InvalidInput, recordingSource + ": not a JSON object");
+  for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
+    if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
+
+  json times = json::object(), counts = json::object();
+  for (std::size_t c = 0; c < frames.columns().size(); ++c) {
+    const std::string& name = frames.columns()[c].name;
+    const std::vector<double> v = frames.values(c);
+    if (isTimeColumn(name)) {
+      times[name] = v.empty() ? json(nullptr)
+                              : json{{"p50", percentile(v, 50)}, {"p95", percentile(v, 95)}, {"p99", percentile(v, 99)},
+                                     {"max", maxOf(v)}, {"mean", sum(v) / static_cast<double>(v.size())}};
+    } else if (isCountColumn(name)) {
+      counts[name] = v.empty() ? json(nullptr)
+                               : json{{"min", *std::min_element(v.begin(), v.end())}, {"max", maxOf(v)},
+                                      {"mean", sum(v) / static_cast<double>(v.size())}, {"total", sum(v)}};
+    }
+  }
+
+  const std::vector<std::size_t> hitches = findHitches(frameTimes(frames));
+  const auto column = [&](const char* name) { return frames.values(*frames.find(name)); };
+  const auto optionalColumn = [&](const char* name) {
+    const auto c = frames.find(name);
+    return c ? frames.values(*c) : std::vector<double>{};
+  };
+  const std::vector<double> cpuFrame = column("cpu_frame_ms"), recorder = column("recorder_ms");
+  const std::vector<double> tS = column("t_s");
+  const double gpuBytesMax = maxOf(optionalColumn("gpu_bytes"));
+  const double rss = rec.value("peak_rss_bytes", 0.0);
+  const double meanCpu = cpuFrame.empty() ? 0.0 : sum(cpuFrame) / static_cast<double>(cpuFrame.size());
+  const double meanRecorder = recorder.empty() ? 0.0 : sum(recorder) / static_cast<double>(recorder.size());
+  double maxShare = 0.0;
+  {
+    const auto cc = *frames.find("cpu_frame_ms"), rc = *frames.find("recorder_ms");
+    for (std::size_t i = 0; i < frames.rowCount(); ++i)
+      if (frames.at(i, cc) > 0.0 && !std::isnan(frames.at(i, rc)))
+        maxShare = std::max(maxShare, frames.at(i, rc) / frames.at(i, cc));
+  }
+
+  const json summary = {
+      {"summary_version", 1},
+      {"recording", rec},
+      {"frames", frames.rowCount()},
+      {"flight_time_s", maxOf(tS)},
+      {"times_ms", times},
+      {"counts", counts},
+      {"hitches",
+       {{"count", hitches.size()},
+        {"frames", hitches},
+        {"factor", kHitchFactor},
+        {"window_frames", kHitchWindow},
+        {"rule", "cpu_frame_ms + gpu_frame_ms > factor x median of the previous window_frames frames"}}},
+      {"peak_memory",
+       {{"rss_hwm_bytes", rss}, {"gpu_bytes", gpuBytesMax}, {"total_bytes", rss + gpuBytesMax}}},
+      {"resident_bytes", {{"cpu_max", maxOf(optionalColumn("cpu_bytes"))}, {"gpu_max", gpuBytesMax}}},
+      {"totals",
+       {{"wall_s", sum(column("wall_ms")) / 1000.0},
+        {"cpu_frame_ms", sum(cpuFrame)},
+        {"gpu_frame_ms", sum(column("gpu_frame_ms"))},
+        {"terrain_triangles", sum(optionalColumn("terrain_triangles"))},
+        {"png_frames", optionalColumn("png_ms").size()}}},
+      {"recorder_overhead",
+       {{"mean_ms", meanRecorder},
+        {"max_ms", maxOf(recorder)},
+        {"mean_share_of_cpu_frame", meanCpu > 0.0 ? meanRecorder / meanCpu : 0.0},
+        {"max_share_of_cpu_frame", maxShare}}}};
+  return summary.dump(2) + "\n";
+}
+
+Status writeSummary(const fs::path& dir) {
+  auto recText = readText(dir / kRecordingJson);
+  if (!recText) return recText.error();
+  auto frames = RecordTable::loadCsv(dir / kFramesCsv);
+  if (!frames) return frames.error();
+  auto text = makeSummaryJson(*recText, (dir / kRecordingJson).string(), *frames);
+  if (!text) return text.error();
+  return writeFileAtomically(dir / kSummaryJson, [&](const fs::path& tmp) -> Status {
+    std::ofstream f(tmp, std::ios::binary);
+    f << *text;
+    return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
+  });
+}
+
+}  // namespace vegstream::flight

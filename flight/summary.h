@@ -1,0 +1,71 @@
+#pragma once
+// A recording's directory and its two JSON files. recording.json holds what frames.csv cannot
+// say (device, size, MSAA, fps, path, dataset, validation, peak RSS); summary.json is derived
+// from recording.json + frames.csv — percentiles of every time column, hitches, peak memory,
+// totals — so `vegstream report` can remake it at any time. README.md "Recordings" documents
+// every key; other tools read them, so they stay stable.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "flight/record_table.h"
+#include "render/device_info.h"
+
+namespace vegstream::flight {
+
+inline constexpr const char* kFramesCsv = "frames.csv";
+inline constexpr const char* kRecordingJson = "recording.json";
+inline constexpr const char* kSummaryJson = "summary.json";
+inline constexpr const char* kFramesDir = "frames";
+
+// Hitch rule: cpu_frame_ms + gpu_frame_ms over kHitchFactor × the median of the previous
+// kHitchWindow frames (fewer at the start; frame 0 is never a hitch).
+inline constexpr double kHitchFactor = 2.0;
+inline constexpr std::size_t kHitchWindow = 60;
+
+struct RecordingMeta {
+  render::DeviceInfo device;
+  uint32_t width = 0, height = 0;
+  int msaa = 1;
+  double fps = 60.0;
+  double warmupS = 0.0;
+  std::size_t warmupFrames = 0;
+  int framesEvery = 0;
+  std::string pathName, pathFile;
+  double pathDurationS = 0.0;
+  std::string datasetName, datasetDir;
+  int heightZoom = 0, imageryZoom = -1;
+  uint64_t meshTriangles = 0;
+  double sceneLoadMs = 0.0;
+  bool validate = false;
+  uint64_t validationErrors = 0, validationWarnings = 0;
+  bool perPassMeaningful = false;
+  bool pipelineStatistics = false;
+  std::vector<std::string> gpuPasses;
+  double wallS = 0.0;
+  uint64_t peakRssBytes = 0;
+};
+
+// recording.json's text.
+std::string recordingMetaJson(const RecordingMeta& meta);
+
+// Linear-interpolated percentile (q in [0, 100]) of unsorted values, as numpy's default; NaN
+// for none.
+double percentile(std::vector<double> values, double q);
+
+// Indices of the hitch frames (rule above) given each frame's time in ms.
+std::vector<std::size_t> findHitches(const std::vector<double>& frameMs);
+
+// summary.json's text from recording.json's text and the frames.
+Result<std::string> makeSummaryJson(const std::string& recordingJson, const std::string& recordingSource,
+                                    const RecordTable& frames);
+
+// Reads DIR/recording.json and DIR/frames.csv and (re)writes DIR/summary.json atomically.
+// NotFound / InvalidInput name the file.
+Status writeSummary(const std::filesystem::path& dir);
+
+}  // namespace vegstream::flight

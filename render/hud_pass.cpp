@@ -1,0 +1,217 @@
+#include "render/hud_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "render/pipeline_builder.h"
+#include "render/render_targets.h"
+#include "render/vk_check.h"
+#include "shaders/hud.frag.h"
+#include "shaders/hud.vert.h"
+
+namespace vegstream::render {
+namespace {
+struct HudPush {
+  float scale[2];
+  float translate[2];
+};
+
+VkDeviceSize grownSize(VkDeviceSize needed) {
+  VkDeviceSize size = 64 * 1024;
+  while (size < needed) size *= 2;
+  return size;
+}
+}  // namespace
+
+HudPass::HudPass(const Context& ctx) : ctx_(&ctx) {
+  VkDevice device = ctx.device();
+  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &binding;
+  VkDescriptorSetLayout setLayout;
+  vkCheck(vkCreateDescriptorSetLayout(device, &lci, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+  setLayout_ = DescriptorSetLayout(device, setLayout);
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, setLayout, "hud atlas layout");
+
+  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = kSlots;
+  pci.poolSizeCount = 1;
+  pci.pPoolSizes = &poolSize;
+  VkDescriptorPool pool;
+  vkCheck(vkCreateDescriptorPool(device, &pci, nullptr, &pool), "vkCreateDescriptorPool");
+  pool_ = DescriptorPool(device, pool);
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "hud descriptor pool");
+  for (int i = 0; i < kSlots; ++i) {
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = pool;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &setLayout;
+    VkDescriptorSet& set = sets_[static_cast<size_t>(i)];
+    vkCheck(vkAllocateDescriptorSets(device, &dai, &set), "vkAllocateDescriptorSets");
+    ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, set, "hud atlas set (slot " + std::to_string(i) + ")");
+  }
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = 0.0f;
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(device, &sci, nullptr, &sampler), "vkCreateSampler");
+  sampler_ = Sampler(device, sampler);
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "hud atlas sampler");
+
+  const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(HudPush)};
+  layout_ = createPipelineLayout(ctx, {&setLayout, 1}, {&push, 1}, "hud pipeline layout");
+  GraphicsPipelineDesc desc;
+  desc.name = "hud pipeline";
+  desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_hud_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_hud_frag}};
+  desc.bindings = {{0, sizeof(OverlayVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  desc.attributes = {
+      {0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
+      {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
+      {2, 0, VK_FORMAT_R8G8B8A8_UNORM, offsetof(OverlayVertex, rgba)},
+  };
+  desc.cullMode = VK_CULL_MODE_NONE;  // ImGui emits both windings
+  desc.depthTest = false;
+  desc.depthWrite = false;
+  desc.alphaBlend = true;
+  desc.samples = VK_SAMPLE_COUNT_1_BIT;
+  desc.colorFormat = kColorFormat;
+  desc.depthFormat = VK_FORMAT_UNDEFINED;
+  desc.layout = layout_.get();
+  pipeline_ = createGraphicsPipeline(ctx, desc);
+}
+
+void HudPass::uploadTexture(VkCommandBuffer cmd, const OverlayImage& image,
+                            const std::function<void(GpuBuffer&&)>& retireBuffer,
+                            const std::function<void(GpuImage&&)>& retireImage) {
+  const VkDeviceSize bytes = VkDeviceSize{image.width} * image.height * 4;
+  GpuBuffer staging = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                   "hud atlas staging");
+  std::memcpy(staging.mapped, image.rgba.data(), static_cast<size_t>(bytes));
+  if (texture_.image) retireImage(std::move(texture_));
+  texture_ = createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_UNORM,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
+                           "hud atlas");
+  transitionImage(cmd, texture_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.width, image.height, 1};
+  vkCmdCopyBufferToImage(cmd, staging.get(), texture_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  transitionImage(cmd, texture_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  retireBuffer(std::move(staging));  // the copy runs with this frame
+  textureId_ = image.id;
+}
+
+void HudPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what,
+                             int slot, const std::function<void(GpuBuffer&&)>& retire) {
+  if (buffer.buffer && buffer.size >= bytes) return;
+  if (buffer.buffer) retire(std::move(buffer));
+  buffer = createBuffer(*ctx_, grownSize(bytes), usage, MemoryUse::HostUpload,
+                        std::string("hud ") + what + " (slot " + std::to_string(slot) + ")");
+}
+
+uint64_t HudPass::record(VkCommandBuffer cmd, int slot, const OverlayDrawData& data, const GpuImage& target,
+                         const std::function<void(GpuBuffer&&)>& retireBuffer,
+                         const std::function<void(GpuImage&&)>& retireImage) {
+  if (data.commands.empty() || data.vertices.empty() || data.indices.empty() || !data.texture) return 0;
+  if (data.width <= 0.0f || data.height <= 0.0f) return 0;
+  const OverlayImage& image = *data.texture;
+  if (image.width == 0 || image.height == 0 || image.rgba.size() != size_t{image.width} * image.height * 4) return 0;
+  // Uploads are recorded outside rendering, into this frame's commands.
+  if (image.id != textureId_) uploadTexture(cmd, image, retireBuffer, retireImage);
+  const auto s = static_cast<size_t>(slot);
+  if (setTextureId_[s] != textureId_) {
+    // Only this slot's frames use this set, and the slot's previous frame has completed.
+    const VkDescriptorImageInfo ii{sampler_.get(), texture_.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = sets_[s];
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = &ii;
+    vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+    setTextureId_[s] = textureId_;
+  }
+  const VkDeviceSize vbytes = data.vertices.size() * sizeof(OverlayVertex);
+  const VkDeviceSize ibytes = data.indices.size() * sizeof(uint32_t);
+  ensureCapacity(vertices_[s], vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices", slot, retireBuffer);
+  ensureCapacity(indices_[s], ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", slot, retireBuffer);
+  std::memcpy(vertices_[s].mapped, data.vertices.data(), static_cast<size_t>(vbytes));
+  std::memcpy(indices_[s].mapped, data.indices.data(), static_cast<size_t>(ibytes));
+
+  // The scene's rendering (and its MSAA resolve) wrote the target; the overlay reads and
+  // blends over it.
+  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  mb.srcAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  mb.dstAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cmd, &dep);
+
+  const VkExtent2D extent = target.extent;
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = target.view.get();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  vkCmdBeginRendering(cmd, &ri);
+
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &sets_[s], 0, nullptr);
+  const HudPush push{{2.0f / data.width, 2.0f / data.height}, {-1.0f, -1.0f}};
+  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+  const VkBuffer vb = vertices_[s].get();
+  const VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_[s].get(), 0, VK_INDEX_TYPE_UINT32);
+
+  // Clip rectangles are in layout pixels; scale them to the target.
+  const float sx = static_cast<float>(extent.width) / data.width;
+  const float sy = static_cast<float>(extent.height) / data.height;
+  const auto clampTo = [](float v, uint32_t limit) {
+    return static_cast<int32_t>(std::clamp(v, 0.0f, static_cast<float>(limit)));
+  };
+  uint64_t triangles = 0;
+  const auto indexCount = static_cast<uint32_t>(data.indices.size());
+  const auto vertexCount = static_cast<int64_t>(data.vertices.size());
+  for (const OverlayCommand& c : data.commands) {
+    if (c.indexCount == 0 || c.firstIndex > indexCount || c.indexCount > indexCount - c.firstIndex) continue;
+    if (c.vertexOffset < 0 || c.vertexOffset >= vertexCount) continue;
+    const int32_t x0 = clampTo(std::floor(c.clipX0 * sx), extent.width);
+    const int32_t y0 = clampTo(std::floor(c.clipY0 * sy), extent.height);
+    const int32_t x1 = clampTo(std::ceil(c.clipX1 * sx), extent.width);
+    const int32_t y1 = clampTo(std::ceil(c.clipY1 * sy), extent.height);
+    if (x1 <= x0 || y1 <= y0) continue;
+    const VkRect2D scissor{{x0, y0}, {static_cast<uint32_t>(x1 - x0), static_cast<uint32_t>(y1 - y0)}};
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdDrawIndexed(cmd, c.indexCount, 1, c.firstIndex, c.vertexOffset, 0);
+    triangles += c.indexCount / 3;
+  }
+  vkCmdEndRendering(cmd);
+  return triangles;
+}
+
+}  // namespace vegstream::render

@@ -1,0 +1,130 @@
+#include "streaming/dataset_snapshot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "datasets/tile_codec.h"
+#include "geo/projection.h"
+#include "geo/xyz_tiles.h"
+
+namespace vegstream::streaming {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The mosaic grid of zoom z cropped to `bounds`: pixel centres inside the bounds.
+MercatorRaster gridFor(const geo::GeoBounds& bounds, int z) {
+  const double pixelM = geo::mercatorResolution(z, datasets::kTileSize);
+  const glm::dvec2 nw = geo::lonLatToWebMercator({bounds.westDeg, bounds.northDeg});
+  const glm::dvec2 se = geo::lonLatToWebMercator({bounds.eastDeg, bounds.southDeg});
+  // Global pixel indices (from the west / north edge of the world) of the first and last
+  // pixel whose centre lies inside the bounds.
+  const double half = geo::kWebMercatorHalfWorldM;
+  const auto col0 = static_cast<int64_t>(std::ceil((nw.x + half) / pixelM - 0.5));
+  const auto col1 = static_cast<int64_t>(std::floor((se.x + half) / pixelM - 0.5));
+  const auto row0 = static_cast<int64_t>(std::ceil((half - nw.y) / pixelM - 0.5));
+  const auto row1 = static_cast<int64_t>(std::floor((half - se.y) / pixelM - 0.5));
+  MercatorRaster g;
+  g.zoom = z;
+  g.width = static_cast<int>(std::max<int64_t>(0, col1 - col0 + 1));
+  g.height = static_cast<int>(std::max<int64_t>(0, row1 - row0 + 1));
+  g.pixelM = pixelM;
+  g.x0 = -half + (static_cast<double>(col0) + 0.5) * pixelM;
+  g.y0 = half - (static_cast<double>(row0) + 0.5) * pixelM;
+  return g;
+}
+
+uint64_t pixels(const MercatorRaster& g) { return static_cast<uint64_t>(g.width) * static_cast<uint64_t>(g.height); }
+
+int finestZoomWithin(const datasets::DatasetMeta& meta, uint64_t maxPixels, int maxSide) {
+  int z = meta.minZoom;
+  for (int candidate = meta.minZoom; candidate <= meta.maxZoom; ++candidate) {
+    const MercatorRaster g = gridFor(meta.bounds, candidate);
+    if (pixels(g) <= maxPixels && g.width <= maxSide && g.height <= maxSide) z = candidate;
+  }
+  return z;
+}
+
+// Calls visit(tile, colInTile, rowInTile, mosaicIndex) for every mosaic pixel, tile by tile, so
+// each tile is decoded once.
+template <typename LoadTile, typename Visit>
+Status forEachTilePixel(const MercatorRaster& g, LoadTile&& load, Visit&& visit) {
+  const double half = geo::kWebMercatorHalfWorldM;
+  const auto gcol0 = static_cast<int64_t>(std::llround((g.x0 + half) / g.pixelM - 0.5));
+  const auto grow0 = static_cast<int64_t>(std::llround((half - g.y0) / g.pixelM - 0.5));
+  const int n = datasets::kTileSize;
+  for (int64_t ty = grow0 / n; ty <= (grow0 + g.height - 1) / n; ++ty) {
+    for (int64_t tx = gcol0 / n; tx <= (gcol0 + g.width - 1) / n; ++tx) {
+      const geo::TileId id{g.zoom, static_cast<int>(tx), static_cast<int>(ty)};
+      auto loaded = load(id);
+      if (!loaded) return loaded.error();
+      if (!*loaded) continue;  // no tile: no data there
+      for (int py = 0; py < n; ++py) {
+        const int64_t row = ty * n + py - grow0;
+        if (row < 0 || row >= g.height) continue;
+        for (int px = 0; px < n; ++px) {
+          const int64_t col = tx * n + px - gcol0;
+          if (col < 0 || col >= g.width) continue;
+          visit(**loaded, px, py, static_cast<size_t>(row) * static_cast<size_t>(g.width) + static_cast<size_t>(col));
+        }
+      }
+    }
+  }
+  return {};
+}
+
+uint64_t fileBytes(const fs::path& p) {
+  std::error_code ec;
+  const auto size = fs::file_size(p, ec);
+  return ec ? 0 : static_cast<uint64_t>(size);
+}
+
+}  // namespace
+
+Result<DatasetSnapshot> loadDatasetSnapshot(const fs::path& dir, const SnapshotLimits& limits) {
+  auto meta = datasets::readDatasetMeta(dir);
+  if (!meta) return meta.error();
+  DatasetSnapshot snap;
+  snap.meta = std::move(*meta);
+
+  const int hz = finestZoomWithin(snap.meta, limits.maxHeightPixels, limits.maxSide);
+  static_cast<MercatorRaster&>(snap.heights) = gridFor(snap.meta.bounds, hz);
+  snap.heights.heights.assign(pixels(snap.heights), std::numeric_limits<float>::quiet_NaN());
+  auto loadHeight = [&](const geo::TileId& id) -> Result<std::optional<datasets::HeightTile>> {
+    const fs::path p = datasets::elevationTilePath(dir, id);
+    if (!fs::exists(p)) return std::optional<datasets::HeightTile>{};
+    auto t = datasets::readHeightTile(p, id, snap.meta.elevationEncoding);
+    if (!t) return t.error();
+    ++snap.tilesRead;
+    snap.bytesRead += fileBytes(p);
+    return std::optional<datasets::HeightTile>(std::move(*t));
+  };
+  Status s = forEachTilePixel(snap.heights, loadHeight, [&](const datasets::HeightTile& t, int px, int py, size_t i) {
+    snap.heights.heights[i] = t.at(px, py);
+  });
+  if (!s) return s.error();
+
+  if (snap.meta.imagery) {
+    const int iz = finestZoomWithin(snap.meta, limits.maxImageryPixels, limits.maxSide);
+    static_cast<MercatorRaster&>(snap.imagery) = gridFor(snap.meta.bounds, iz);
+    snap.imagery.rgba.assign(pixels(snap.imagery) * 4, 0);
+    auto loadColor = [&](const geo::TileId& id) -> Result<std::optional<datasets::ColorTile>> {
+      const fs::path p = datasets::imageryTilePath(dir, id, *snap.meta.imagery);
+      if (!fs::exists(p)) return std::optional<datasets::ColorTile>{};
+      auto t = datasets::readColorTile(p, id);
+      if (!t) return t.error();
+      ++snap.tilesRead;
+      snap.bytesRead += fileBytes(p);
+      return std::optional<datasets::ColorTile>(std::move(*t));
+    };
+    s = forEachTilePixel(snap.imagery, loadColor, [&](const datasets::ColorTile& t, int px, int py, size_t i) {
+      const size_t src = (static_cast<size_t>(py) * static_cast<size_t>(t.size) + static_cast<size_t>(px)) * 4;
+      std::copy_n(&t.rgba[src], 4, &snap.imagery.rgba[i * 4]);
+    });
+    if (!s) return s.error();
+  }
+  return snap;
+}
+
+}  // namespace vegstream::streaming

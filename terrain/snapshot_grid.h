@@ -1,0 +1,19 @@
+#pragma once
+// Bridges a loaded dataset snapshot (streaming/) to the terrain's plain grid and mesh: heights
+// as a Web Mercator HeightGrid, and imagery texture coordinates for the mesh's vertices.
+
+#include <functional>
+
+#include <glm/vec2.hpp>
+
+#include "streaming/dataset_snapshot.h"
+#include "terrain/height_grid.h"
+
+namespace vegstream::terrain {
+
+HeightGrid heightGridFrom(const streaming::HeightMosaic& mosaic);
+
+// Texture coordinates (0…1 across the mosaic's outer pixel edges) of a longitude/latitude.
+std::function<glm::vec2(double lonDeg, double latDeg)> imageryUv(const streaming::MercatorRaster& imagery);
+
+}  // namespace vegstream::terrain

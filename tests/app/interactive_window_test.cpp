@@ -1,0 +1,92 @@
+// `vegstream fly` in a window under a virtual display (xvfb-run): N frames with the validation
+// layers silent, the HUD drawn into the presented image (a screenshot of the same frame with
+// and without the HUD differs in the HUD's corner and not far from it), and the screenshot a
+// PNG named by time and counter.
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/run_command.h"
+
+namespace vegstream::testing {
+namespace {
+namespace fs = std::filesystem;
+
+class InteractiveWindow : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return;
+    dataset_ = fs::path(VEGSTREAM_TEST_TMP) / "interactive_dataset";
+    if (!fs::exists(dataset_ / "dataset.json")) {
+      fs::remove_all(dataset_);
+      const auto r = runVegstream("generate --out '" + dataset_.string() + "' --size-km 3 --seed 2");
+      ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+  }
+  void SetUp() override {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run missing";
+  }
+
+  // Runs 3 window frames at 320×180 with a screenshot of frame 3; returns the PNG's pixels.
+  static std::vector<uint8_t> screenshot(const std::string& name, bool hud, std::string* err) {
+    const fs::path out = fs::path(VEGSTREAM_TEST_TMP) / name;
+    fs::remove_all(out);
+    fs::create_directories(out);
+    const std::string env = std::string("VEGSTREAM_FLY_SCREENSHOT_FRAME=3 ") + (hud ? "" : "VEGSTREAM_FLY_NO_HUD=1 ");
+    const auto r = runCommand("cd '" + out.string() + "' && " + env + "xvfb-run -a -s '-screen 0 640x480x24' '" +
+                              VEGSTREAM_EXE + "' fly '" + dataset_.string() +
+                              "' --validate --frames 3 --size 320x180 --msaa 1");
+    *err = r.err;
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("window closed after 3 frames"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("screenshot saved: "), std::string::npos) << r.err;
+    std::vector<fs::path> pngs;
+    for (const auto& e : fs::directory_iterator(out))
+      if (e.path().extension() == ".png") pngs.push_back(e.path());
+    EXPECT_EQ(pngs.size(), 1u);
+    if (pngs.empty()) return {};
+    EXPECT_EQ(pngs[0].filename().string().rfind("vegstream-", 0), 0u) << pngs[0];
+    auto in = OIIO::ImageInput::open(pngs[0].string());
+    EXPECT_TRUE(in);
+    if (!in) return {};
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.width, 320);
+    EXPECT_EQ(spec.height, 180);
+    std::vector<uint8_t> px(size_t(spec.width) * spec.height * 4);
+    in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data());
+    return px;
+  }
+
+  static inline fs::path dataset_;
+};
+
+TEST_F(InteractiveWindow, HudIsDrawnAndValidationSilent) {
+  std::string errHud, errPlain;
+  const auto withHud = screenshot("interactive_hud", true, &errHud);
+  const auto without = screenshot("interactive_nohud", false, &errPlain);
+  ASSERT_EQ(withHud.size(), 320u * 180u * 4u);
+  ASSERT_EQ(without.size(), withHud.size());
+  // The HUD panel starts 6 px from the top-left corner (at 320×180 it reaches the other
+  // edges): most of its pixels change; the margin left of it stays the same frame.
+  auto changedShare = [&](int x0, int y0, int x1, int y1) {
+    int changed = 0, total = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const size_t i = (size_t(y) * 320 + size_t(x)) * 4;
+        int d = 0;
+        for (int c = 0; c < 3; ++c) d += std::abs(int(withHud[i + size_t(c)]) - int(without[i + size_t(c)]));
+        changed += d > 12;
+        ++total;
+      }
+    return double(changed) / total;
+  };
+  EXPECT_GT(changedShare(8, 8, 120, 60), 0.5) << "the HUD darkens and writes over its panel";
+  EXPECT_LT(changedShare(0, 0, 4, 180), 0.05) << "beside the panel the frame is the same";
+}
+
+}  // namespace
+}  // namespace vegstream::testing
