@@ -25,16 +25,6 @@
 
 namespace {
 
-// "WxH" → width, height; both 1 … 16384.
-bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
-  static const std::regex re(R"((\d{1,6})[xX](\d{1,6}))");
-  std::smatch m;
-  if (!std::regex_match(text, m, re)) return false;
-  w = static_cast<uint32_t>(std::stoul(m[1]));
-  h = static_cast<uint32_t>(std::stoul(m[2]));
-  return w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
-}
-
 int listDevicesCommand(const vegstream::Logger& log) {
   auto devices = vegstream::render::listDevices();
   if (!devices) return vegstream::app::reportError(log, devices.error());
@@ -132,7 +122,7 @@ int main(int argc, char** argv) {
     return app::runGenerate(gen, log);
   }
   if (*flyCmd) {
-    if (!parseSize(size, fly.width, fly.height)) {
+    if (!vegstream::app::parseFrameSize(size, fly.width, fly.height)) {
       log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", size);
       return app::kExitUserError;
     }

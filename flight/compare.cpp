@@ -1,5 +1,6 @@
 // Side-by-side summaries (compare.h).
 
+#include "core/text_file.h"
 #include "flight/compare.h"
 
 #include <algorithm>
@@ -46,14 +47,6 @@ Result<json> parseSummary(const std::string& text, const std::string& source) {
   return j;
 }
 
-Result<std::string> readText(const fs::path& file) {
-  std::ifstream f(file, std::ios::binary);
-  if (!f) return makeError(ErrorKind::NotFound, file.string() + ": cannot open (not a recording directory?)");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 std::string cell(double v) {
   if (std::isnan(v)) return "-";
   char buf[32];
@@ -81,9 +74,9 @@ Result<std::vector<CompareRow>> compareSummaries(const std::string& summaryA, co
 }
 
 Result<std::vector<CompareRow>> compareRecordings(const fs::path& dirA, const fs::path& dirB) {
-  auto a = readText(dirA / kSummaryJson);
+  auto a = readTextFile(dirA / kSummaryJson, "cannot open (not a recording directory?)");
   if (!a) return a.error();
-  auto b = readText(dirB / kSummaryJson);
+  auto b = readTextFile(dirB / kSummaryJson, "cannot open (not a recording directory?)");
   if (!b) return b.error();
   return compareSummaries(*a, (dirA / kSummaryJson).string(), *b, (dirB / kSummaryJson).string());
 }

@@ -1,5 +1,6 @@
 #include "flight/flight_path_json.h"
 
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "core/text_file.h"
 
 #include "flight/json_positions.h"
 
@@ -254,11 +257,9 @@ Result<FlightPath> loadFlightPath(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec))
     return makeError(ErrorKind::NotFound, file.string() + ": no such flight path file");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) return makeError(ErrorKind::Io, file.string() + ": could not read the file");
-  return parseFlightPath(text.str(), file.string());
+  auto text = readTextFile(file);
+  if (!text) return text.error();
+  return parseFlightPath(*text, file.string());
 }
 
 std::string flightPathToJson(const FlightPath& path) {

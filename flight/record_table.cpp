@@ -2,10 +2,13 @@
 
 #include "flight/record_table.h"
 
+
 #include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include "core/text_file.h"
 
 namespace vegstream::flight {
 
@@ -99,11 +102,9 @@ Result<RecordTable> RecordTable::parseCsv(const std::string& text, const std::st
 }
 
 Result<RecordTable> RecordTable::loadCsv(const std::filesystem::path& file) {
-  std::ifstream f(file, std::ios::binary);
-  if (!f) return makeError(ErrorKind::NotFound, file.string() + ": cannot open (no such file?)");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parseCsv(ss.str(), file.string());
+  auto text = readTextFile(file);
+  if (!text) return text.error();
+  return parseCsv(*text, file.string());
 }
 
 }  // namespace vegstream::flight

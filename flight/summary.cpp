@@ -1,5 +1,6 @@
 // recording.json and summary.json (summary.h).
 
+#include "core/text_file.h"
 #include "flight/summary.h"
 
 #include <algorithm>
@@ -82,14 +83,6 @@ std::vector<double> frameTimes(const RecordTable& t) {
   return out;
 }
 
-Result<std::string> readText(const fs::path& file) {
-  std::ifstream f(file, std::ios::binary);
-  if (!f) return makeError(ErrorKind::NotFound, file.string() + ": cannot open (not a recording directory?)");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 Result<std::string> makeSummaryJson(const std::string& recordingJson, const std::string& recordingSource,
@@ -166,7 +159,7 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
 }
 
 Status writeSummary(const fs::path& dir) {
-  auto recText = readText(dir / kRecordingJson);
+  auto recText = readTextFile(dir / kRecordingJson, "cannot open (not a recording directory?)");
   if (!recText) return recText.error();
   auto frames = RecordTable::loadCsv(dir / kFramesCsv);
   if (!frames) return frames.error();

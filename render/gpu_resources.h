@@ -48,4 +48,9 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
                      VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// Records the copy of a tightly packed staging buffer into all of `image` (mip 0, layer 0),
+// leaving it in SHADER_READ_ONLY_OPTIMAL for fragment shaders. The image's old contents are
+// discarded; the staging buffer must live until the commands complete.
+void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image);
+
 }  // namespace vegstream::render

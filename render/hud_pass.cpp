@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
 #include "render/vk_check.h"
@@ -26,46 +27,15 @@ VkDeviceSize grownSize(VkDeviceSize needed) {
 }  // namespace
 
 HudPass::HudPass(const Context& ctx) : ctx_(&ctx) {
-  VkDevice device = ctx.device();
-  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 1;
-  lci.pBindings = &binding;
-  VkDescriptorSetLayout setLayout;
-  vkCheck(vkCreateDescriptorSetLayout(device, &lci, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-  setLayout_ = DescriptorSetLayout(device, setLayout);
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, setLayout, "hud atlas layout");
-
-  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots};
-  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pci.maxSets = kSlots;
-  pci.poolSizeCount = 1;
-  pci.pPoolSizes = &poolSize;
-  VkDescriptorPool pool;
-  vkCheck(vkCreateDescriptorPool(device, &pci, nullptr, &pool), "vkCreateDescriptorPool");
-  pool_ = DescriptorPool(device, pool);
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "hud descriptor pool");
+  setLayout_ = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                         "hud atlas layout");
+  pool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots, "hud descriptor pool");
   for (int i = 0; i < kSlots; ++i) {
-    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    dai.descriptorPool = pool;
-    dai.descriptorSetCount = 1;
-    dai.pSetLayouts = &setLayout;
-    VkDescriptorSet& set = sets_[static_cast<size_t>(i)];
-    vkCheck(vkAllocateDescriptorSets(device, &dai, &set), "vkAllocateDescriptorSets");
-    ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, set, "hud atlas set (slot " + std::to_string(i) + ")");
+    sets_[static_cast<size_t>(i)] =
+        allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "hud atlas set (slot " + std::to_string(i) + ")");
   }
-
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.maxLod = 0.0f;
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(device, &sci, nullptr, &sampler), "vkCreateSampler");
-  sampler_ = Sampler(device, sampler);
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "hud atlas sampler");
+  sampler_ = createLinearClampSampler(ctx, "hud atlas sampler");
+  const VkDescriptorSetLayout setLayout = setLayout_.get();
 
   const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(HudPush)};
   layout_ = createPipelineLayout(ctx, {&setLayout, 1}, {&push, 1}, "hud pipeline layout");
@@ -100,17 +70,7 @@ void HudPass::uploadTexture(VkCommandBuffer cmd, const OverlayImage& image,
   texture_ = createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_UNORM,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
                            "hud atlas");
-  transitionImage(cmd, texture_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {image.width, image.height, 1};
-  vkCmdCopyBufferToImage(cmd, staging.get(), texture_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-  transitionImage(cmd, texture_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  recordImageUpload(cmd, staging, texture_);
   retireBuffer(std::move(staging));  // the copy runs with this frame
   textureId_ = image.id;
 }
@@ -135,14 +95,7 @@ uint64_t HudPass::record(VkCommandBuffer cmd, int slot, const OverlayDrawData& d
   const auto s = static_cast<size_t>(slot);
   if (setTextureId_[s] != textureId_) {
     // Only this slot's frames use this set, and the slot's previous frame has completed.
-    const VkDescriptorImageInfo ii{sampler_.get(), texture_.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = sets_[s];
-    w.dstBinding = 0;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    w.pImageInfo = &ii;
-    vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+    writeSampledImage(*ctx_, sets_[s], sampler_.get(), texture_.view.get());
     setTextureId_[s] = textureId_;
   }
   const VkDeviceSize vbytes = data.vertices.size() * sizeof(OverlayVertex);

@@ -10,6 +10,7 @@
 
 #include "core/stopwatch.h"
 #include "render/deletion_queue.h"
+#include "render/descriptors.h"
 #include "render/frame_uniforms.h"
 #include "render/gpu_timer.h"
 #include "render/hud_pass.h"
@@ -81,25 +82,12 @@ void Renderer::Impl::init(const RendererOptions& options) {
   targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa));
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
 
-  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                                             VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 1;
-  lci.pBindings = &binding;
-  VkDescriptorSetLayout layout;
-  vkCheck(vkCreateDescriptorSetLayout(ctx->device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
-  frameLayout = DescriptorSetLayout(ctx->device(), layout);
-  ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, "frame uniforms layout");
-
-  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
-  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pci.maxSets = kFramesInFlight;
-  pci.poolSizeCount = 1;
-  pci.pPoolSizes = &poolSize;
-  VkDescriptorPool pool;
-  vkCheck(vkCreateDescriptorPool(ctx->device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
-  descriptorPool = DescriptorPool(ctx->device(), pool);
-  ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "frame descriptor pool");
+  frameLayout = createSingleBindingLayout(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                          VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT,
+                                          "frame uniforms layout");
+  descriptorPool = createSingleBindingPool(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight,
+                                           "frame descriptor pool");
+  const VkDescriptorSetLayout layout = frameLayout.get();
 
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
   for (int i = 0; i < kFramesInFlight; ++i) {
@@ -136,20 +124,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
     s.depthReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                    "depth read-back" + tag);
 
-    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    dai.descriptorPool = pool;
-    dai.descriptorSetCount = 1;
-    dai.pSetLayouts = &layout;
-    vkCheck(vkAllocateDescriptorSets(ctx->device(), &dai, &s.descriptorSet), "vkAllocateDescriptorSets");
-    ctx->setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, s.descriptorSet, "frame uniforms set" + tag);
-    const VkDescriptorBufferInfo bi{s.uniforms.get(), 0, sizeof(FrameUniforms)};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = s.descriptorSet;
-    w.dstBinding = 0;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    w.pBufferInfo = &bi;
-    vkUpdateDescriptorSets(ctx->device(), 1, &w, 0, nullptr);
+    s.descriptorSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "frame uniforms set" + tag);
+    writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa));

@@ -5,6 +5,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
 #include "render/vk_check.h"
@@ -24,43 +25,12 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
     : ctx_(&ctx) {
-  VkDevice device = ctx.device();
-  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 1;
-  lci.pBindings = &binding;
-  VkDescriptorSetLayout setLayout;
-  vkCheck(vkCreateDescriptorSetLayout(device, &lci, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-  imageryLayout_ = DescriptorSetLayout(device, setLayout);
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, setLayout, "terrain imagery layout");
-
-  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
-  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pci.maxSets = 1;
-  pci.poolSizeCount = 1;
-  pci.pPoolSizes = &poolSize;
-  VkDescriptorPool pool;
-  vkCheck(vkCreateDescriptorPool(device, &pci, nullptr, &pool), "vkCreateDescriptorPool");
-  imageryPool_ = DescriptorPool(device, pool);
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "terrain imagery pool");
-  VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  dai.descriptorPool = pool;
-  dai.descriptorSetCount = 1;
-  dai.pSetLayouts = &setLayout;
-  vkCheck(vkAllocateDescriptorSets(device, &dai, &imagerySet_), "vkAllocateDescriptorSets");
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, imagerySet_, "terrain imagery set");
-
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.maxLod = 0.0f;
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(device, &sci, nullptr, &sampler), "vkCreateSampler");
-  sampler_ = Sampler(device, sampler);
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "terrain imagery sampler");
+  imageryLayout_ = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                             VK_SHADER_STAGE_FRAGMENT_BIT, "terrain imagery layout");
+  imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
+  imagerySet_ = allocateDescriptorSet(ctx, imageryPool_.get(), imageryLayout_.get(), "terrain imagery set");
+  sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
+  const VkDescriptorSetLayout setLayout = imageryLayout_.get();
 
   const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout};
@@ -93,32 +63,13 @@ void TerrainPass::uploadImagery(const ColorImage& image) {
   GpuBuffer staging = createBuffer(*ctx_, image.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
                                    "terrain imagery staging");
   std::memcpy(staging.mapped, image.rgba.data(), image.rgba.size());
-  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    transitionImage(cmd, imagery_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {image.width, image.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.get(), imagery_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    transitionImage(cmd, imagery_.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-  });
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) { recordImageUpload(cmd, staging, imagery_); });
   hasImagery_ = true;
   writeImageryDescriptor();
 }
 
 void TerrainPass::writeImageryDescriptor() {
-  const VkDescriptorImageInfo ii{sampler_.get(), imagery_.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = imagerySet_;
-  w.dstBinding = 0;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+  writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
 }
 
 void TerrainPass::setMesh(const terrain::TerrainMesh& mesh, const ColorImage* imagery, const Retire& retire) {

@@ -1,0 +1,79 @@
+#include "render/descriptors.h"
+
+#include "render/vk_check.h"
+
+namespace vegstream::render {
+
+DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
+                                              const std::string& name) {
+  const VkDescriptorSetLayoutBinding binding{0, type, 1, stages, nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &binding;
+  VkDescriptorSetLayout layout;
+  vkCheck(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, name);
+  return DescriptorSetLayout(ctx.device(), layout);
+}
+
+DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
+                                       const std::string& name) {
+  const VkDescriptorPoolSize poolSize{type, maxSets};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = maxSets;
+  pci.poolSizeCount = 1;
+  pci.pPoolSizes = &poolSize;
+  VkDescriptorPool pool;
+  vkCheck(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name);
+  return DescriptorPool(ctx.device(), pool);
+}
+
+VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                                      const std::string& name) {
+  VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  dai.descriptorPool = pool;
+  dai.descriptorSetCount = 1;
+  dai.pSetLayouts = &layout;
+  VkDescriptorSet set;
+  vkCheck(vkAllocateDescriptorSets(ctx.device(), &dai, &set), "vkAllocateDescriptorSets");
+  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET, set, name);
+  return set;
+}
+
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view) {
+  const VkDescriptorImageInfo ii{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = 0;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = &ii;
+  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+}
+
+void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range) {
+  const VkDescriptorBufferInfo bi{buffer, 0, range};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = 0;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+}
+
+Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = 0.0f;
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
+  return Sampler(ctx.device(), sampler);
+}
+
+}  // namespace vegstream::render

@@ -1,0 +1,35 @@
+#pragma once
+// Descriptor plumbing shared by the passes. Every set vegstream uses has exactly one binding
+// (binding 0): a uniform buffer for the frame, a combined image sampler for a texture. These
+// helpers create, name and write such sets so each pass states only what differs.
+
+#include <string>
+
+#include "render/context.h"
+#include "render/handle.h"
+
+namespace vegstream::render {
+
+// A layout with one descriptor of `type` at binding 0, visible to `stages`.
+DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
+                                              const std::string& name);
+
+// A pool for `maxSets` sets of the single-binding layout above.
+DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
+                                       const std::string& name);
+
+// One set from `pool`; freed with the pool.
+VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                                      const std::string& name);
+
+// Binding 0 := the image view, sampled in SHADER_READ_ONLY_OPTIMAL. The caller guarantees no
+// pending GPU work reads the set (Vulkan forbids updating a set in use).
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view);
+
+// Binding 0 := the first `range` bytes of a uniform buffer.
+void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range);
+
+// Bilinear, clamped, no mip levels: what the terrain imagery and the HUD atlas both want.
+Sampler createLinearClampSampler(const Context& ctx, const std::string& name);
+
+}  // namespace vegstream::render
