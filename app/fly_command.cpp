@@ -61,7 +61,9 @@ int runHeadless(const FlyOptions& o, flight::Scene& scene, const flight::FlightP
   for (int i = 0; i < n; ++i) {
     Stopwatch wall;
     const double t = n > 1 ? sampler.duration() * i / (n - 1) : 0.0;
-    render::FrameRequest req = scene.frameRequest(sampler.sample(t, ground));
+    render::FrameRequest req =
+        scene.prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
+    const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
     req.readbackColor = true;
     auto result = r.renderFrame(req);
     if (!result) return reportError(log, result.error());
@@ -71,7 +73,9 @@ int runHeadless(const FlyOptions& o, flight::Scene& scene, const flight::FlightP
     if (auto s = render::writePng(fs::path(o.out) / name, *result->color); !s) return reportError(log, s.error());
     frames.push_back({{"index", i}, {"t_s", t}, {"cpu_record_ms", result->cpuRecordMs},
                       {"gpu_frame_ms", result->gpu.frameMs}, {"render_wall_ms", wallMs},
-                      {"terrain_triangles", result->terrainTriangles}});
+                      {"terrain_triangles", result->terrainTriangles}, {"terrain_pieces", fig.terrain.pieces},
+                      {"fallback_pieces", fig.terrain.fallbackPieces}, {"streaming_wait_ms", fig.settleWaitMs},
+                      {"cpu_bytes", fig.cpuBytes}, {"gpu_bytes", fig.gpuBytes}});
     sumGpu += result->gpu.frameMs;
     sumWall += wallMs;
     triangles = result->terrainTriangles;
@@ -80,7 +84,8 @@ int runHeadless(const FlyOptions& o, flight::Scene& scene, const flight::FlightP
   const auto& info = scene.info();
   const json run = {
       {"device", {{"name", dev.name}, {"type", dev.type}, {"driver", dev.driver}, {"api_version", dev.apiVersion}}},
-      {"dataset", {{"name", info.datasetName}, {"height_zoom", info.heightZoom}, {"imagery_zoom", info.imageryZoom}}},
+      {"dataset", {{"name", info.datasetName}, {"source", info.source}, {"min_zoom", info.minZoom},
+                   {"max_zoom", info.maxZoom}, {"imagery", info.hasImagery}}},
       {"path", path.name},
       {"size", {o.width, o.height}},
       {"msaa", r.msaa()},
@@ -117,11 +122,16 @@ int runWindow(const FlyOptions& o, flight::Scene& scene, const flight::FlightPat
 }  // namespace
 
 int runFly(const FlyOptions& o, const Logger& log) {
-  fs::path dataset = o.dataset;
+  flight::SceneOptions so;
+  const bool windowWanted = !o.headless && displayAvailable();
+  if (Status s = applyStreamingOptions(o.streaming, windowWanted ? flight::StreamingMode::Realtime
+                                                                 : flight::StreamingMode::Settled, so); !s)
+    return reportError(log, s.error());
+  std::string dataset = o.dataset;
   if (dataset.empty()) {
     auto sample = ensureZionSample(o.samplesDir, "out/datasets/zion", log);
     if (!sample) return reportError(log, sample.error());
-    dataset = *sample;
+    dataset = sample->string();
   }
 
   std::optional<flight::FlightPath> given;
@@ -132,7 +142,6 @@ int runFly(const FlyOptions& o, const Logger& log) {
   }
 
   Window window;
-  flight::SceneOptions so;
   so.dataset = dataset;
   so.logger = log;
   so.renderer.width = o.width;
@@ -146,7 +155,7 @@ int runFly(const FlyOptions& o, const Logger& log) {
     if (isError) log->error("validation: {}", m); else log->warn("validation: {}", m);
   });
   so.renderer.context.validationLog = validation;
-  if (!o.headless && displayAvailable() && glfwInit() == GLFW_TRUE) {
+  if (windowWanted && glfwInit() == GLFW_TRUE) {
     window.initialised = true;
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window.handle = glfwCreateWindow(static_cast<int>(o.width), static_cast<int>(o.height), "vegstream", nullptr, nullptr);
@@ -157,8 +166,8 @@ int runFly(const FlyOptions& o, const Logger& log) {
   auto path = choosePath(given, **scene);
   if (!path) return reportError(log, path.error());
   const flight::SceneInfo& info = (*scene)->info();
-  log->info("dataset {}: heights at zoom {}, imagery at zoom {}, {} terrain triangles (loaded in {:.0f} ms)",
-            info.datasetName, info.heightZoom, info.imageryZoom, info.meshTriangles, info.loadMs);
+  log->info("dataset {} from {}: zooms {}…{}{}, {} streaming (opened in {:.0f} ms)", info.datasetName, info.source,
+            info.minZoom, info.maxZoom, info.hasImagery ? " with imagery" : "", toString(so.mode), info.loadMs);
   const auto& dev = (*scene)->renderer().device();
   log->info("device: {} ({}, {}, Vulkan {}, MSAA {})", dev.name, dev.type, dev.driver, dev.apiVersion,
             (*scene)->renderer().msaa());

@@ -4,12 +4,13 @@
 
 #include <string>
 
+#include "app/streaming_cli.h"
 #include "core/log.h"
 
 namespace vegstream::app {
 
 struct FlyOptions {
-  std::string dataset;          // a dataset directory; empty: the Zion sample
+  std::string dataset;          // a dataset directory or http(s) URL; empty: the Zion sample
   std::string samplesDir;       // where the shared sample data lives (for the default)
   std::string path;             // flight path JSON; empty: the benchmark-30s template
   std::string out = "out/fly";  // headless output directory
@@ -20,6 +21,7 @@ struct FlyOptions {
   std::string device;           // --device NAME (substring)
   bool validate = false;
   bool headless = false;        // never open a window, even with a display
+  StreamingCli streaming;       // --streaming default: settled headless (frames to look at), realtime in a window
 };
 
 // Returns the process exit code: 0 success, 2 user mistake, 1 anything else.

@@ -73,6 +73,8 @@ class Session {
   fs::path outputPath(const std::string& name) const;
   HudState hudState(double now) const;
 
+  render::FrameRequest prepareFrame();
+
   flight::Scene& scene_;
   GLFWwindow* window_;
   InteractiveOptions options_;
@@ -88,6 +90,8 @@ class Session {
   int screenshots_ = 0;
   std::deque<float> frameTimes_;
   std::optional<render::FrameResult> last_;
+  std::optional<flight::FlightSample> previousPose_;  // for velocity extrapolation (look-ahead)
+  double previousPoseS_ = 0.0;
   std::string message_;
   double messageUntil_ = 0.0;
   double nowS_ = 0.0;
@@ -161,10 +165,19 @@ HudState Session::hudState(double now) const {
     s.gpu = last_->gpu;
     s.terrainTriangles = last_->terrainTriangles;
   }
-  s.streaming = "whole dataset resident: heights at zoom " + std::to_string(info.heightZoom) +
-                (info.imageryZoom >= 0 ? ", imagery at zoom " + std::to_string(info.imageryZoom) : ", no imagery");
-  s.cpuBytes = info.cpuBytes;
-  s.gpuBytes = info.gpuBytes;
+  const flight::SceneFrameFigures& fig = scene_.lastFrameFigures();
+  const streaming::StreamingFrameStats& st = fig.streaming;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "tiles %llu CPU / %llu GPU, %llu in flight, wanted %llu/%llu; %llu fallback pieces (%d lv), "
+                "error %.1f px (x%.2f)",
+                static_cast<unsigned long long>(st.tilesResidentCpu), static_cast<unsigned long long>(st.tilesResidentGpu),
+                static_cast<unsigned long long>(st.requestsInFlight), static_cast<unsigned long long>(st.wantedResident),
+                static_cast<unsigned long long>(st.wanted), static_cast<unsigned long long>(fig.terrain.fallbackPieces),
+                fig.terrain.maxLevelsCoarser, fig.terrain.errorBoundPx, fig.terrain.relaxation);
+  s.streaming = line;
+  s.cpuBytes = fig.cpuBytes;
+  s.gpuBytes = fig.gpuBytes;
   const flight::FlightSample pose = camera_.sample();
   s.latDeg = pose.position.latDeg;
   s.lonDeg = pose.position.lonDeg;
@@ -180,6 +193,29 @@ HudState Session::hudState(double now) const {
   if (now < messageUntil_) s.message = message_;
   s.showHelp = showHelp_;
   return s;
+}
+
+// Interactive flight cannot know where the user goes next: the look-ahead extrapolates the
+// camera's velocity over the next seconds.
+render::FrameRequest Session::prepareFrame() {
+  const flight::FlightSample now = camera_.sample();
+  std::vector<flight::FlightSample> ahead;
+  if (previousPose_ && nowS_ > previousPoseS_) {
+    const double dt = nowS_ - previousPoseS_;
+    const double dLat = (now.position.latDeg - previousPose_->position.latDeg) / dt;
+    const double dLon = (now.position.lonDeg - previousPose_->position.lonDeg) / dt;
+    const double dH = (now.position.heightM - previousPose_->position.heightM) / dt;
+    for (double k : {0.5, 1.0, 2.0, 3.0}) {
+      flight::FlightSample s = now;
+      s.position.latDeg += dLat * k;
+      s.position.lonDeg += dLon * k;
+      s.position.heightM += dH * k;
+      ahead.push_back(s);
+    }
+  }
+  previousPose_ = now;
+  previousPoseS_ = nowS_;
+  return scene_.prepareFrame(now, nowS_, ahead);
 }
 
 int Session::run() {
@@ -212,7 +248,7 @@ int Session::run() {
     if (recorder_.recording()) recorder_.add(nowS_, camera_.sample());
     if (options_.screenshotAtFrame == shown + 1) screenshotWanted_ = true;
 
-    render::FrameRequest req = scene_.frameRequest(camera_.sample());
+    render::FrameRequest req = prepareFrame();
     req.present = true;
     req.readbackColor = screenshotWanted_;
     if (showHud_) {

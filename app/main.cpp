@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   flyCmd->add_option("--device", fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
+  app::addStreamingOptions(*flyCmd, fly.streaming, true);
 
   app::ImportOptions importOptions;
   auto* importCmd = app::addImportCommand(cli, importOptions);

@@ -18,6 +18,7 @@
 #include "flight/report.h"
 #include "flight/scene.h"
 #include "flight/summary.h"
+#include "streaming/open_tile_source.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
@@ -33,7 +34,8 @@ bool parseFrameSize(const std::string& text, uint32_t& w, uint32_t& h) {
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   auto* cmd = cli.add_subcommand("record", "Fly a path at a fixed time step and record per-frame figures, summary and plots");
-  cmd->add_option("dataset", o.dataset, "Dataset directory (vegstream import); default: the Zion sample");
+  cmd->add_option("dataset", o.dataset,
+                  "Dataset directory (vegstream import) or http(s):// URL of one; default: the Zion sample");
   cmd->add_option("--path", o.path, "Flight path JSON (vegstream path makes one for any dataset)")->required();
   cmd->add_option("--out", o.out, "Recording directory to create (must not exist or be empty)")->required();
   cmd->add_option("--size", o.size, "Frame size WxH")->capture_default_str();
@@ -47,6 +49,7 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   cmd->add_flag("--no-plots", o.noPlots, "Write frames.csv and the JSON files only (no python3/matplotlib needed)");
+  addStreamingOptions(*cmd, o.streaming, true);
   return cmd;
 }
 
@@ -74,20 +77,24 @@ int runRecord(const RecordOptions& o, const Logger& log) {
   auto path = flight::loadFlightPath(o.path);
   if (!path) return reportError(log, path.error());
 
-  fs::path datasetDir = o.dataset;
-  if (datasetDir.empty()) {
+  flight::SceneOptions so;
+  if (Status s = applyStreamingOptions(o.streaming, flight::StreamingMode::Settled, so); !s)
+    return reportError(log, s.error());
+  std::string dataset = o.dataset;
+  if (dataset.empty()) {
     auto sample = ensureZionSample(o.samplesDir, "out/datasets/zion", log);
     if (!sample) return reportError(log, sample.error());
-    datasetDir = *sample;
+    dataset = sample->string();
   }
-  // The path is checked against the dataset's extent before the GPU is touched.
-  auto meta = datasets::readDatasetMeta(datasetDir);
-  if (!meta) return reportError(log, meta.error());
-  if (Status s = flight::checkInside(*path, meta->bounds); !s)
-    return userError(o.path + ": " + s.error().message);
+  const bool remote = streaming::isHttpLocation(dataset);
+  if (!remote) {  // a local dataset is checked against the path before the GPU is touched
+    auto meta = datasets::readDatasetMeta(dataset);
+    if (!meta) return reportError(log, meta.error());
+    if (Status s = flight::checkInside(*path, meta->bounds); !s)
+      return userError(o.path + ": " + s.error().message);
+  }
 
-  flight::SceneOptions so;
-  so.dataset = datasetDir;
+  so.dataset = dataset;
   so.renderer.width = width;
   so.renderer.height = height;
   so.renderer.msaa = o.msaa;
@@ -103,8 +110,10 @@ int runRecord(const RecordOptions& o, const Logger& log) {
   const render::DeviceInfo& dev = (*scene)->renderer().device();
   log->info("device: {} ({}, {}, Vulkan {}, MSAA {})", dev.name, dev.type, dev.driver, dev.apiVersion, o.msaa);
   const flight::SceneInfo& info = (*scene)->info();
-  log->info("dataset {}: heights at zoom {}, {} triangles ({:.0f} ms)", info.datasetName, info.heightZoom,
-            info.meshTriangles, info.loadMs);
+  log->info("dataset {} from {}: zooms {}…{}, {} streaming{}, budgets CPU {:.0f} MiB, GPU {:.0f} MiB ({:.0f} ms)",
+            info.datasetName, info.source, info.minZoom, info.maxZoom, toString(so.mode),
+            so.lookAhead ? " with look-ahead" : " without look-ahead", o.streaming.cpuBudgetMb,
+            o.streaming.gpuBudgetMb, info.loadMs);
   const std::size_t total = flight::frameCount(path->duration(), o.fps);
   log->info("recording {} ({:.1f} s) at {} fps: {} frames of {}x{}", path->name, path->duration(), o.fps, total, width,
             height);
@@ -140,11 +149,21 @@ int runRecord(const RecordOptions& o, const Logger& log) {
     m.pathFile = fs::absolute(o.path).lexically_normal().string();
     m.pathDurationS = path->duration();
     m.datasetName = info.datasetName;
-    m.datasetDir = fs::absolute(datasetDir).lexically_normal().string();
-    m.heightZoom = info.heightZoom;
-    m.imageryZoom = info.imageryZoom;
-    m.meshTriangles = info.meshTriangles;
+    m.datasetDir = remote ? dataset : fs::absolute(dataset).lexically_normal().string();
+    m.datasetSource = info.source;
+    m.heightZoom = info.maxZoom;
+    m.imageryZoom = info.hasImagery ? info.maxZoom : -1;
+    m.groundZoom = info.groundZoom;
     m.sceneLoadMs = info.loadMs;
+    m.streaming.mode = toString(so.mode);
+    m.streaming.lookAhead = so.lookAhead;
+    m.streaming.cpuBudgetBytes = so.streaming.cpuBudgetBytes;
+    m.streaming.gpuBudgetBytes = so.streaming.gpuBudgetBytes;
+    m.streaming.uploadBytesPerFrame = so.streaming.uploadBytesPerFrame;
+    m.streaming.maxRequestsInFlight = so.streaming.maxRequestsInFlight;
+    m.streaming.imageryLayers = info.imageryLayers;
+    m.streaming.terrainErrorPx = so.terrain.maxErrorPx;
+    m.streaming.terrainMaxNodes = so.terrain.maxNodes;
     m.validate = o.validate;
     m.validationErrors = so.renderer.context.validationLog->errors();
     m.validationWarnings = so.renderer.context.validationLog->warnings();

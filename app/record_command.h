@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "app/streaming_cli.h"
 #include "core/log.h"
 
 namespace CLI { class App; }
@@ -14,7 +15,7 @@ namespace CLI { class App; }
 namespace vegstream::app {
 
 struct RecordOptions {
-  std::string dataset;      // dataset directory; empty: the Zion sample (imported once)
+  std::string dataset;      // dataset directory or http(s) URL; empty: the Zion sample (imported once)
   std::string samplesDir;   // where the shared sample data lives (for the default)
   std::string path;         // flight path JSON (required)
   std::string out;          // recording directory to create (required; must not exist or be empty)
@@ -26,6 +27,7 @@ struct RecordOptions {
   std::string device;
   bool validate = false;
   bool noPlots = false;     // skip the plots (frames.csv and the JSON files only)
+  StreamingCli streaming;   // budgets, --streaming settled|realtime (default settled), look-ahead
 };
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& options);

@@ -1,11 +1,19 @@
 // Grid-mesh construction over a synthetic DEM the size of the Zion sample (465 × 457): the
-// CPU cost of turning heights into a drawable mesh in the local ENU frame.
+// CPU cost of turning heights into a drawable mesh in the local ENU frame. Chunked-LOD tile
+// selection over the Zion sample's bounds (tiles of zoom 8 … 14, nodes to 17) for a low 1920 × 1080 camera, and the
+// mesh of one selected node from its own tile or an ancestor.
 
 #include <cmath>
 
 #include <benchmark/benchmark.h>
 
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
 #include "terrain/grid_mesh.h"
+#include "terrain/tile_node_mesh.h"
+#include "terrain/tile_selection.h"
 
 namespace {
 
@@ -38,5 +46,63 @@ void BM_BuildGridMesh(benchmark::State& state) {
   state.counters["tris/s"] = benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_BuildGridMesh)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// The Zion import's dataset.json (tests/datasets/import/import_zion_test.cpp, --max-zoom 14),
+// nodes down to one quad per data pixel.
+vegstream::terrain::SelectionDataset zionDataset() {
+  return {{-113.23958, 37.13208, -112.85208, 37.51292}, 8, 14 + vegstream::terrain::kLevelsBeyondData, 1024.3, 2892.0};
+}
+
+// 150 m above the highest point near the south-west corner, looking north-east 10° down, or a
+// top-down view of the whole dataset from 80 km (range(0) = 0 / 1).
+void BM_SelectTiles(benchmark::State& state) {
+  using namespace vegstream;
+  const terrain::SelectionDataset d = zionDataset();
+  const geo::LocalFrame frame = geo::frameAtCentre(d.bounds, 0.5 * (d.minHeightM + d.maxHeightM));
+  const double fov = 60.0 * 3.14159265358979 / 180.0;
+  const bool low = state.range(0) == 0;
+  const glm::dvec3 eye = low ? frame.toLocal({d.bounds.southDeg + 0.05, d.bounds.westDeg + 0.05, d.maxHeightM + 150.0})
+                             : frame.toLocal({d.bounds.centre().y, d.bounds.centre().x, 80'000.0});
+  const glm::dvec3 dir = low ? glm::normalize(glm::dvec3(1.0, 1.0, -0.25)) : glm::dvec3(0, 0, -1);
+  const glm::dmat4 vp = glm::perspective(fov, 1920.0 / 1080.0, 1.0, 1e6) *
+                        glm::lookAt(eye, eye + dir, low ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0));
+  const terrain::SelectionView view{eye, vp, 1080.0, fov};
+  const terrain::SelectionOptions options{2.0, static_cast<int>(state.range(1))};
+  terrain::Selection s;
+  for (auto _ : state) {
+    s = terrain::selectTiles(view, d, frame, options);
+    benchmark::DoNotOptimize(s.nodes.data());
+  }
+  state.counters["nodes"] = static_cast<double>(s.nodes.size());
+  state.counters["errorPx"] = s.achievedErrorPx;
+  state.counters["limited"] = s.budgetLimited ? 1.0 : 0.0;
+}
+BENCHMARK(BM_SelectTiles)->Args({0, 512})->Args({0, 100'000})->Args({1, 512})->Unit(benchmark::kMicrosecond);
+
+// One node's mesh (33² grid + skirts) from a synthetic zoom-14 tile over Zion: the node itself
+// (range(0) = 0) or a zoom-17 node from it as ancestor (3), with a coarse source for morphing.
+void BM_BuildNodeMesh(benchmark::State& state) {
+  using namespace vegstream;
+  const terrain::SelectionDataset d = zionDataset();
+  const geo::LocalFrame frame = geo::frameAtCentre(d.bounds, 0.5 * (d.minHeightM + d.maxHeightM));
+  datasets::HeightTile tile;
+  tile.id = geo::tileContaining(d.bounds.centre(), 14);
+  tile.heights.resize(static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size));
+  for (int y = 0; y < tile.size; ++y)
+    for (int x = 0; x < tile.size; ++x)
+      tile.heights[static_cast<size_t>(y * tile.size + x)] = static_cast<float>(1500.0 + 400.0 * std::sin(x * 0.05) * std::cos(y * 0.04));
+  const int levels = static_cast<int>(state.range(0));
+  const geo::TileId node{14 + levels, tile.id.x << levels, tile.id.y << levels};
+  terrain::NodeMeshOptions options;
+  options.coarse = terrain::HeightSource{&tile};
+  size_t triangles = 0;
+  for (auto _ : state) {
+    auto m = terrain::buildNodeMesh(node, {&tile}, frame, options);
+    triangles = m.mesh.triangleCount();
+    benchmark::DoNotOptimize(m.mesh.vertices.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_BuildNodeMesh)->Arg(0)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -29,13 +29,14 @@ constexpr const char* kMetaFile = "dataset.json";
 
 const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
 
-// Field access that names the file and the field ("imagery.format") in every error.
+// Field access that names the source (a file or a URL) and the field ("imagery.format") in
+// every error.
 class FieldReader {
  public:
-  explicit FieldReader(fs::path file) : file_(std::move(file)) {}
+  explicit FieldReader(std::string sourceName) : source_(std::move(sourceName)) {}
 
   Error bad(const std::string& field, const std::string& problem) const {
-    return makeError(ErrorKind::InvalidInput, concat(file_, ": field '", field, "' ", problem));
+    return makeError(ErrorKind::InvalidInput, concat("'", source_, "': field '", field, "' ", problem));
   }
 
   Result<const json*> get(const json& obj, const std::string& key, const std::string& field) const {
@@ -67,7 +68,7 @@ class FieldReader {
   }
 
  private:
-  fs::path file_;
+  std::string source_;
 };
 
 #define VEG_TRY_ASSIGN(target, expr) \
@@ -209,9 +210,13 @@ Result<DatasetMeta> readDatasetMeta(const fs::path& datasetDir) {
   std::stringstream ss;
   ss << in.rdbuf();
   if (!in && !in.eof()) return makeError(ErrorKind::Io, concat("cannot read ", file));
-  json j = json::parse(ss.str(), nullptr, false);
-  if (j.is_discarded()) return makeError(ErrorKind::InvalidInput, concat(file, " is not valid JSON"));
-  return parseMeta(j, FieldReader(file));
+  return parseDatasetMeta(ss.str(), file.string());
+}
+
+Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::string& sourceName) {
+  json j = json::parse(jsonText, nullptr, false);
+  if (j.is_discarded()) return makeError(ErrorKind::InvalidInput, concat("'", sourceName, "' is not valid JSON"));
+  return parseMeta(j, FieldReader(sourceName));
 }
 
 Status writeDatasetMeta(const fs::path& datasetDir, const DatasetMeta& meta) {

@@ -60,6 +60,9 @@ struct DatasetMeta {
 
 // dataset.json ↔ DatasetMeta. Reading checks every field and names the file and the field.
 Result<DatasetMeta> readDatasetMeta(const std::filesystem::path& datasetDir);
+// The same check of dataset.json's text from anywhere (an HTTP source): errors name
+// `sourceName` (a path or URL) and the field.
+Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::string& sourceName);
 Status writeDatasetMeta(const std::filesystem::path& datasetDir, const DatasetMeta& meta);
 
 std::filesystem::path elevationTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);

@@ -10,8 +10,10 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <span>
 #include <string>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <zlib.h>
 
@@ -50,10 +52,10 @@ Error ioError(const fs::path& path, const std::string& what) {
   return makeError(ErrorKind::Io, m);
 }
 
-Error invalidTile(const fs::path& path, const std::string& what) {
-  std::string m = "tile ";
-  m += quoted(path);
-  m += " ";
+Error invalidTile(const std::string& name, const std::string& what) {
+  std::string m = "tile '";
+  m += name;
+  m += "' ";
   m += what;
   return makeError(ErrorKind::InvalidInput, m);
 }
@@ -88,52 +90,58 @@ struct Rgba8 {
 
 // libpng prints its own "libpng error: …" line to stderr before OIIO reports failure, which
 // would break the command line's one-line errors: so a PNG's chunk structure and CRCs are
-// checked here first, and only a sound file reaches libpng. Non-PNG files pass through.
-Status checkPngChunks(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  static const unsigned char kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSig, 8) != 0) return {};
-  size_t at = 8;
+// checked here first, and only a sound file reaches libpng.
+Status checkPngChunks(std::span<const uint8_t> bytes, const std::string& name) {
+  size_t at = 8;  // after the signature (the caller checked it)
   while (at + 12 <= bytes.size()) {
     const uint32_t len = (uint32_t{bytes[at]} << 24) | (uint32_t{bytes[at + 1]} << 16) | (uint32_t{bytes[at + 2]} << 8) |
                          uint32_t{bytes[at + 3]};
-    if (len > bytes.size() - at - 12) return invalidTile(path, "is truncated (a PNG chunk runs past the end of the file)");
+    if (len > bytes.size() - at - 12) return invalidTile(name, "is truncated (a PNG chunk runs past the end of the file)");
     const unsigned char* type = &bytes[at + 4];
     const unsigned char* crcAt = type + 4 + len;
     const uint32_t stored = (uint32_t{crcAt[0]} << 24) | (uint32_t{crcAt[1]} << 16) | (uint32_t{crcAt[2]} << 8) | uint32_t{crcAt[3]};
     if (static_cast<uint32_t>(crc32(crc32(0L, Z_NULL, 0), type, len + 4)) != stored)
-      return invalidTile(path, "is corrupt (a PNG chunk fails its CRC check)");
+      return invalidTile(name, "is corrupt (a PNG chunk fails its CRC check)");
     if (std::memcmp(type, "IEND", 4) == 0) return {};
     at += 12 + len;
   }
-  return invalidTile(path, "is truncated (the PNG ends before its IEND chunk)");
+  return invalidTile(name, "is truncated (the PNG ends before its IEND chunk)");
 }
 
-Result<Rgba8> readRgba8(const fs::path& path, bool requireEightBit) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    std::string m = "tile ";
-    m += quoted(path);
-    m += " does not exist";
-    return makeError(ErrorKind::NotFound, m);
+// OIIO picks its reader from the file name's extension; bytes in memory have none, so the
+// magic number names the format (and a PNG's chunks are checked before libpng sees them).
+Result<const char*> sniffFormat(std::span<const uint8_t> bytes, const std::string& name) {
+  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0) {
+    if (auto s = checkPngChunks(bytes, name); !s) return s.error();
+    return "tile.png";
   }
-  if (auto s = checkPngChunks(path); !s) return s.error();
-  auto in = ImageInput::open(path.string());
-  if (!in) return invalidTile(path, concat("is not a readable PNG/JPEG: ", firstLine(OIIO::geterror())));
+  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return "tile.jpg";
+  if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+    return "tile.webp";
+  return invalidTile(name, concat("is not a PNG or JPEG image (", bytes.size(), " bytes of something else)"));
+}
+
+Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+  auto format = sniffFormat(bytes, name);
+  if (!format) return format.error();
+  // The proxy only reads the caller's bytes; it must outlive the ImageInput (declared first).
+  OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+  auto in = ImageInput::open(*format, nullptr, &proxy);
+  if (!in) return invalidTile(name, concat("is not a readable PNG/JPEG: ", firstLine(OIIO::geterror())));
   const ImageSpec spec = in->spec();
   if (spec.width != spec.height || spec.width <= 0 || spec.width > kMaxTileSide || spec.depth != 1)
-    return invalidTile(path, concat("is ", spec.width, "x", spec.height,
+    return invalidTile(name, concat("is ", spec.width, "x", spec.height,
                                     " pixels; a tile must be square and at most 4096 pixels a side"));
   if (spec.nchannels < 1 || spec.nchannels > 4)
-    return invalidTile(path, concat("has ", spec.nchannels, " channels; expected 1 to 4"));
+    return invalidTile(name, concat("has ", spec.nchannels, " channels; expected 1 to 4"));
   if (requireEightBit && spec.format != TypeDesc::UINT8)
-    return invalidTile(path, concat("has ", spec.format.c_str(), " samples; encoded heights need 8-bit RGB(A)"));
+    return invalidTile(name, concat("has ", spec.format.c_str(), " samples; encoded heights need 8-bit RGB(A)"));
   const int n = spec.nchannels;
   const size_t pixels = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height);
   std::vector<uint8_t> raw(pixels * static_cast<size_t>(n));
   if (!in->read_image(0, 0, 0, n, TypeDesc::UINT8, raw.data()))
-    return invalidTile(path, concat("is corrupt or truncated: ", firstLine(in->geterror())));
+    return invalidTile(name, concat("is corrupt or truncated: ", firstLine(in->geterror())));
   in->close();
   Rgba8 t;
   t.size = spec.width;
@@ -153,6 +161,25 @@ Result<Rgba8> readRgba8(const fs::path& path, bool requireEightBit) {
     }
   }
   return t;
+}
+
+// The whole file; NotFound when it does not exist, Io when it cannot be read.
+Result<std::vector<uint8_t>> readFileBytes(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    std::string m = "tile ";
+    m += quoted(path);
+    m += " does not exist";
+    return makeError(ErrorKind::NotFound, m);
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad() || !in.is_open()) {
+    std::string m = "cannot read ";
+    m += quoted(path);
+    return makeError(ErrorKind::Io, m);
+  }
+  return bytes;
 }
 
 }  // namespace
@@ -212,8 +239,9 @@ Status writeColorTile(const fs::path& path, const ColorTile& tile, ImageryFormat
   });
 }
 
-Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, ElevationEncoding encoding) {
-  auto px = readRgba8(path, true);
+Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
+                                    const std::string& nameForErrors) {
+  auto px = decodeRgba8(bytes, nameForErrors, true);
   if (!px) return px.error();
   HeightTile t;
   t.id = id;
@@ -227,14 +255,26 @@ Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, E
   return t;
 }
 
-Result<ColorTile> readColorTile(const fs::path& path, const geo::TileId& id) {
-  auto px = readRgba8(path, false);
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, const std::string& nameForErrors) {
+  auto px = decodeRgba8(bytes, nameForErrors, false);
   if (!px) return px.error();
   ColorTile t;
   t.id = id;
   t.size = px->size;
   t.rgba = std::move(px->rgba);
   return t;
+}
+
+Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, ElevationEncoding encoding) {
+  auto bytes = readFileBytes(path);
+  if (!bytes) return bytes.error();
+  return decodeHeightTile(*bytes, id, encoding, path.string());
+}
+
+Result<ColorTile> readColorTile(const fs::path& path, const geo::TileId& id) {
+  auto bytes = readFileBytes(path);
+  if (!bytes) return bytes.error();
+  return decodeColorTile(*bytes, id, path.string());
 }
 
 }  // namespace vegstream::datasets

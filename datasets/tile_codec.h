@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "core/result.h"
@@ -41,5 +43,13 @@ Status writeColorTile(const std::filesystem::path& path, const ColorTile& tile, 
 // names the path. Paletted and greyscale PNGs are expanded to RGB(A).
 Result<HeightTile> readHeightTile(const std::filesystem::path& path, const geo::TileId& id, ElevationEncoding encoding);
 Result<ColorTile> readColorTile(const std::filesystem::path& path, const geo::TileId& id);
+
+// The same decoders on a file's bytes already in memory (the streamer's decode workers; the
+// read* functions above read the file and call these). The format comes from the bytes' magic
+// number (PNG, JPEG, WebP); errors are InvalidInput and name `nameForErrors` (the tile's path or
+// URL). Thread-safe: any number of threads may decode at once.
+Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
+                                    const std::string& nameForErrors);
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, const std::string& nameForErrors);
 
 }  // namespace vegstream::datasets

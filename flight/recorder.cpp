@@ -26,7 +26,8 @@ constexpr std::size_t kMaxPasses = 16;
 struct FrameRow {
   double t = 0.0;
   FlightSample sample;
-  double flightMs = 0.0, terrainMs = 0.0, recordSubmitMs = 0.0;
+  double flightMs = 0.0, streamingMs = 0.0, waitMs = 0.0, terrainMs = 0.0, recordSubmitMs = 0.0;
+  SceneFrameFigures scene;
   double gpuFrameMs = 0.0;
   std::array<double, kMaxPasses> passMs{};
   double wallMs = 0.0, recorderMs = 0.0, pngMs = kNoValue;
@@ -36,7 +37,7 @@ struct FrameRow {
 
 double count(uint64_t v) { return static_cast<double>(v); }
 
-void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Recording& rec, const SceneInfo& info) {
+void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Recording& rec) {
   [[maybe_unused]] const std::size_t passColumn0 = *table.find("gpu_frame_ms") + 1;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const FrameRow& f = rows[i];
@@ -51,12 +52,12 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
     r[c++] = f.sample.headingDeg;
     r[c++] = f.sample.pitchDeg;
     r[c++] = f.flightMs;
-    r[c++] = kNoValue;  // cpu_streaming_ms: no streaming yet (issue 5)
+    r[c++] = f.streamingMs;
     r[c++] = f.terrainMs;
     r[c++] = kNoValue;  // cpu_seeding_ms: no vegetation seeding yet
     r[c++] = kNoValue;  // cpu_simulation_ms: no simulation yet
     r[c++] = f.recordSubmitMs;
-    r[c++] = f.flightMs + f.terrainMs + f.recordSubmitMs;  // cpu_frame_ms: the stages that exist
+    r[c++] = f.flightMs + f.streamingMs + f.terrainMs + f.recordSubmitMs;  // cpu_frame_ms: the stages that exist
     r[c++] = f.gpuFrameMs;
     assert(c == passColumn0);
     for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p) r[c++] = rec.perPassMeaningful ? f.passMs[p] : kNoValue;
@@ -67,8 +68,20 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
     r[c++] = f.inputPrimitives;
     r[c++] = f.clippingPrimitives;
     r[c++] = f.fragmentInvocations;
-    r[c++] = count(info.cpuBytes);
-    r[c++] = count(info.gpuBytes);
+    r[c++] = count(f.scene.cpuBytes);
+    r[c++] = count(f.scene.gpuBytes);
+    const streaming::StreamingFrameStats& st = f.scene.streaming;
+    const terrain::TerrainFrameFigures& tf = f.scene.terrain;
+    r[c++] = f.waitMs;
+    r[c++] = st.longestWaitS * 1000.0;
+    for (uint64_t v : {st.requestsIssued, st.requestsCompleted, st.requestsCancelled, st.requestsFailed,
+                       st.requestsMissing, st.retries, st.bytesRead, f.scene.uploads, st.uploadBytes, st.evictionsCpu,
+                       st.evictionsGpu, st.tilesResidentCpu, st.tilesResidentGpu, st.bytesResidentCpu,
+                       st.bytesResidentGpu, st.requestsInFlight, st.wanted, st.wantedResident, tf.lookAheadWants,
+                       tf.pieces, tf.fallbackPieces, static_cast<uint64_t>(tf.maxLevelsCoarser), tf.meshesBuilt})
+      r[c++] = count(v);
+    r[c++] = tf.errorBoundPx;
+    r[c++] = tf.relaxation;
     assert(c == r.size());
   }
 }
@@ -103,6 +116,18 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   for (const char* n : {"terrain_triangles", "stat_input_primitives", "stat_clipping_primitives",
                         "stat_fragment_invocations", "cpu_bytes", "gpu_bytes"})
     c.push_back({n, 0});
+  c.push_back({"streaming_wait_ms", 4});       // settled mode's wait, left out of the frame time
+  c.push_back({"stream_longest_wait_ms", 1});  // oldest wanted tile not resident yet
+  for (const char* n : {"stream_requests_issued", "stream_requests_completed", "stream_requests_cancelled",
+                        "stream_requests_failed", "stream_requests_missing", "stream_retries", "stream_bytes_read",
+                        "stream_uploads", "stream_upload_bytes", "stream_evictions_cpu", "stream_evictions_gpu",
+                        "stream_tiles_resident_cpu", "stream_tiles_resident_gpu", "stream_bytes_resident_cpu",
+                        "stream_bytes_resident_gpu", "stream_requests_in_flight", "stream_wanted",
+                        "stream_wanted_resident", "stream_lookahead_wants", "terrain_pieces",
+                        "terrain_fallback_pieces", "terrain_max_levels_coarser", "terrain_meshes_built"})
+    c.push_back({n, 0});
+  c.push_back({"terrain_error_bound_px", 3});
+  c.push_back({"terrain_error_relaxation", 3});
   return c;
 }
 
@@ -127,9 +152,10 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
   rec.warmupFrames = static_cast<std::size_t>(std::llround(options.warmupS * options.fps));
   Stopwatch total;
   if (rec.warmupFrames > 0) {
-    const render::FrameRequest warm = scene.frameRequest(sampler.sample(0.0, ground));
+    const FlightSample start = sampler.sample(0.0, ground);
+    const std::vector<FlightSample> ahead = lookAheadSamples(sampler, ground, 0.0);
     for (std::size_t i = 0; i < rec.warmupFrames; ++i)
-      if (auto f = renderer.renderFrame(warm); !f) return f.error();
+      if (auto f = renderer.renderFrame(scene.prepareFrame(start, 0.0, ahead)); !f) return f.error();
   }
 
   std::vector<FrameRow> rows;
@@ -143,9 +169,10 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
     Stopwatch stage;
     const FlightSample sample = sampler.sample(t, ground);
     const double flightMs = stage.elapsedMs();
-    stage.restart();
-    render::FrameRequest request = scene.frameRequest(sample);
-    const double terrainMs = stage.elapsedMs();
+    const std::vector<FlightSample> ahead = lookAheadSamples(sampler, ground, t);
+    const double flightAheadMs = stage.elapsedMs() - flightMs;
+    render::FrameRequest request = scene.prepareFrame(sample, t, ahead);
+    const SceneFrameFigures& figures = scene.lastFrameFigures();
     request.readbackColor = savePng;
     auto result = renderer.renderFrame(request);
     if (!result) return result.error();
@@ -161,8 +188,11 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
     FrameRow& row = rows.emplace_back();
     row.t = t;
     row.sample = sample;
-    row.flightMs = flightMs;
-    row.terrainMs = terrainMs;
+    row.flightMs = flightMs + flightAheadMs;
+    row.streamingMs = figures.streamingMs;
+    row.waitMs = figures.settleWaitMs;
+    row.terrainMs = figures.terrainMs;
+    row.scene = figures;
     row.recordSubmitMs = result->cpuRecordMs;
     row.gpuFrameMs = gpu.frameMs;
     for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p)
@@ -174,7 +204,7 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
       row.fragmentInvocations = count(gpu.statistics.fragmentInvocations);
     }
     row.recorderMs = bookkeeping.elapsedMs();
-    row.wallMs = frameWatch.elapsedMs();
+    row.wallMs = frameWatch.elapsedMs() - figures.settleWaitMs;
 
     if (savePng) {
       Stopwatch png;
@@ -189,7 +219,7 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
   }
 
   rec.table = RecordTable(frameColumns(rec.gpuPasses));
-  fillTable(rec.table, rows, rec, scene.info());
+  fillTable(rec.table, rows, rec);
   rec.wallS = total.elapsedMs() / 1000.0;
   rec.peakRssBytes = peakResidentBytes();
   return rec;

@@ -4,20 +4,41 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/stopwatch.h"
 #include "streaming/dataset_snapshot.h"
-#include "terrain/grid_mesh.h"
+#include "streaming/open_tile_source.h"
 #include "terrain/snapshot_grid.h"
 
 namespace vegstream::flight {
 
 struct Scene::Impl {
   std::unique_ptr<render::Renderer> renderer;
+  SceneOptions options;
   SceneInfo info;
-  terrain::HeightGrid grid;
+  terrain::HeightGrid ground;
   geo::LocalFrame frame{geo::Geodetic{}};
   render::Lighting lighting;
+  std::shared_ptr<streaming::TileSource> source;
+  std::unique_ptr<streaming::TileStreamer> streamer;
+  std::unique_ptr<terrain::StreamedTerrain> terrain;
+  // Storage behind the last request's spans.
+  std::vector<render::TerrainDraw> draws;
+  std::vector<render::ImageryUpload> uploads;
+  std::vector<streaming::Upload> planned;
+  SceneFrameFigures figures;
+
+  terrain::SelectionView selectionView(const render::FrameRequest& req) const {
+    const double aspect = static_cast<double>(renderer->width()) / static_cast<double>(renderer->height());
+    terrain::SelectionView v;
+    v.cameraEnu = req.camera.position;
+    v.viewProjection = render::projection(req.camera, aspect) * render::viewRotation(req.camera) *
+                       glm::translate(glm::dmat4(1.0), -req.camera.position);
+    v.viewportHeightPx = static_cast<double>(renderer->height());
+    v.verticalFovRad = glm::radians(req.camera.verticalFovDeg);
+    return v;
+  }
 };
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -26,63 +47,67 @@ Scene::~Scene() = default;
 Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   const Logger log = options.logger ? options.logger : makeNullLogger();
   Stopwatch watch;
-  // The dataset first, then the renderer with its options: both fail before anything is printed.
-  std::error_code ec;
-  if (!std::filesystem::is_directory(options.dataset, ec))
-    return makeError(ErrorKind::NotFound, options.dataset.string() + ": no such dataset directory");
-  streaming::SnapshotLimits limits;
-  limits.maxHeightPixels = std::max<uint64_t>(4, options.maxMeshTriangles / 2);
-  limits.maxImageryPixels = options.maxImageryPixels;
-  auto snapshot = streaming::loadDatasetSnapshot(options.dataset, limits);
-  if (!snapshot) return snapshot.error();
+  // The dataset first, then the renderer with its options: both fail before tiles are read.
+  streaming::OpenSourceOptions so;
+  so.http.cacheDir = options.httpCacheDir;
+  so.log = log;
+  auto source = streaming::openTileSource(options.dataset, so);
+  if (!source) return source.error();
+  auto meta = streaming::readMetaFrom(**source);
+  if (!meta) return meta.error();
   auto renderer = render::Renderer::create(options.renderer);
   if (!renderer) return renderer.error();
 
   auto impl = std::make_unique<Impl>();
+  impl->options = options;
   impl->renderer = std::move(*renderer);
-  impl->grid = terrain::heightGridFrom(snapshot->heights);
-  const geo::GeoBounds& b = snapshot->meta.bounds;
+  impl->source = *source;
+  streaming::SnapshotLimits limits;
+  limits.maxHeightPixels = options.groundMaxPixels;
+  auto ground = streaming::loadGroundHeights(*impl->source, *meta, limits);
+  if (!ground) return ground.error();
+  impl->ground = terrain::heightGridFrom(*ground);
+  const geo::GeoBounds& b = meta->bounds;
   impl->frame = geo::LocalFrame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
 
-  const bool hasImagery = snapshot->imagery.width > 0;
-  terrain::GridMeshOptions meshOptions;
-  if (hasImagery) meshOptions.uv = terrain::imageryUv(snapshot->imagery);
-  const terrain::TerrainMesh mesh = terrain::buildGridMesh(impl->grid, impl->frame, meshOptions);
-  render::ColorImage imagery;
-  if (hasImagery) {
-    imagery.width = static_cast<uint32_t>(snapshot->imagery.width);
-    imagery.height = static_cast<uint32_t>(snapshot->imagery.height);
-    imagery.rgba = std::move(snapshot->imagery.rgba);
-  }
-  if (Status s = impl->renderer->setTerrain(mesh, hasImagery ? &imagery : nullptr); !s) return s.error();
-
+  streaming::StreamingOptions streamingOptions = options.streaming;
+  streamingOptions.maxGpuSlots = std::min(streamingOptions.maxGpuSlots, impl->renderer->maxImageryLayers());
   SceneInfo& info = impl->info;
-  info.datasetName = snapshot->meta.name;
+  info.datasetName = meta->name;
+  info.source = impl->source->describe();
   info.bounds = b;
-  info.heightZoom = snapshot->heights.zoom;
-  info.imageryZoom = hasImagery ? snapshot->imagery.zoom : -1;
-  info.meshTriangles = mesh.triangleCount();
-  info.cpuBytes = impl->grid.heights.size() * sizeof(float);  // the heights kept for ground queries
-  info.gpuBytes = impl->renderer->gpuBytes();
+  info.minZoom = meta->minZoom;
+  info.maxZoom = meta->maxZoom;
+  info.groundZoom = ground->zoom;
+  info.hasImagery = meta->imagery.has_value();
+  info.groundBytes = impl->ground.heights.size() * sizeof(float);
+  impl->streamer = std::make_unique<streaming::TileStreamer>(impl->source, *meta, streamingOptions, log);
+  info.imageryLayers = info.hasImagery ? impl->streamer->gpuSlotCount() : 0;
+  if (info.hasImagery) {
+    if (info.imageryLayers == 0)
+      return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
+    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers); !s) return s.error();
+  }
+  impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, options.terrain);
   info.loadMs = watch.elapsedMs();
-  log->debug("dataset {}: heights at zoom {} ({}x{}), imagery at zoom {}, {} triangles, {} tiles read ({:.0f} ms)",
-            info.datasetName, info.heightZoom, impl->grid.width, impl->grid.height, info.imageryZoom,
-            info.meshTriangles, snapshot->tilesRead, info.loadMs);
+  log->debug("dataset {} from {}: zooms {}…{}, ground at zoom {}, {} imagery layers ({:.0f} ms)", info.datasetName,
+             info.source, info.minZoom, info.maxZoom, info.groundZoom, info.imageryLayers, info.loadMs);
   return std::unique_ptr<Scene>(new Scene(std::move(impl)));
 }
 
 render::Renderer& Scene::renderer() { return *impl_->renderer; }
 const SceneInfo& Scene::info() const { return impl_->info; }
 const geo::LocalFrame& Scene::frame() const { return impl_->frame; }
+const SceneFrameFigures& Scene::lastFrameFigures() const { return impl_->figures; }
 
-double Scene::groundHeight(double latDeg, double lonDeg) const { return impl_->grid.sampleLonLat(lonDeg, latDeg); }
+double Scene::groundHeight(double latDeg, double lonDeg) const { return impl_->ground.sampleLonLat(lonDeg, latDeg); }
 
 GroundHeight Scene::groundFunction() const {
   const Impl* impl = impl_.get();
-  return [impl](double lat, double lon) { return impl->grid.sampleLonLat(lon, lat); };
+  return [impl](double lat, double lon) { return impl->ground.sampleLonLat(lon, lat); };
 }
 
-render::FrameRequest Scene::frameRequest(const FlightSample& sample) const {
+render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
   render::FrameRequest req;
   const geo::LocalFrame& frame = impl_->frame;
   const glm::dvec3 position = frame.toLocal(sample.position);
@@ -101,6 +126,76 @@ render::FrameRequest Scene::frameRequest(const FlightSample& sample) const {
   req.cameraHeightMsl = sample.position.heightM;
   req.lighting = impl_->lighting;
   return req;
+}
+
+render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) {
+  Impl& m = *impl_;
+  SceneFrameFigures& fig = m.figures;
+  fig = {};
+  render::FrameRequest req = cameraRequest(now);
+
+  Stopwatch stage;
+  std::vector<terrain::SelectionView> aheadViews;
+  if (m.options.lookAhead)
+    for (const FlightSample& s : ahead) aheadViews.push_back(m.selectionView(cameraRequest(s)));
+  std::vector<streaming::TileWant> wants = m.terrain->wants(m.selectionView(req), aheadViews);
+  double terrainMs = stage.elapsedMs();
+
+  stage.restart();
+  double waitMs = 0.0;
+  if (m.options.mode == StreamingMode::Settled) {
+    Stopwatch wait;
+    // A wanted tile that turns out missing is replaced by its parent: settle until the wants stop
+    // changing (each round can only move wants up the pyramid, so this ends).
+    for (int round = 0; round < 32; ++round) {
+      m.streamer->settle(wants, timeS);
+      std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
+      const bool same = again.size() == wants.size() &&
+                        std::equal(again.begin(), again.end(), wants.begin(),
+                                   [](const auto& a, const auto& b) { return a.key == b.key; });
+      wants = std::move(again);
+      if (same) break;
+    }
+    waitMs = wait.elapsedMs();
+  } else {
+    m.streamer->update(wants, timeS);
+  }
+  // Settled frames draw everything they waited for; realtime frames keep the per-frame budget.
+  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled
+                                          ? std::optional<uint64_t>(UINT64_MAX) : std::nullopt);
+  m.uploads.clear();
+  for (const streaming::Upload& u : m.planned)
+    if (u.tile && u.tile->colors) m.uploads.push_back({u.slot, u.tile->colors->rgba.data()});
+  m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
+  fig.streamingMs = stage.elapsedMs() - waitMs;
+  fig.settleWaitMs = waitMs;
+
+  stage.restart();
+  const std::span<const terrain::TerrainPiece> pieces = m.terrain->pieces(timeS);
+  m.draws.clear();
+  for (const terrain::TerrainPiece& p : pieces)
+    m.draws.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend, p.morph});
+  fig.terrainMs = terrainMs + stage.elapsedMs();
+
+  fig.streaming = m.streamer->frameStats();
+  fig.terrain = m.terrain->figures();
+  fig.uploads = m.uploads.size();
+  fig.cpuBytes = fig.streaming.bytesResidentCpu + m.info.groundBytes;
+  fig.gpuBytes = m.renderer->gpuBytes();
+  req.terrain = m.draws;
+  req.imageryUploads = m.uploads;
+  return req;
+}
+
+std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
+                                           double horizonS, double stepS) {
+  std::vector<FlightSample> out;
+  for (double dt = stepS; dt <= horizonS + 1e-9; dt += stepS) {
+    const double t = std::min(timeS + dt, sampler.duration());
+    out.push_back(sampler.sample(t, ground));
+    if (t >= sampler.duration()) break;
+  }
+  return out;
 }
 
 }  // namespace vegstream::flight

@@ -1,16 +1,25 @@
 #pragma once
-// A dataset opened for flying: its heights and imagery loaded into a terrain mesh coloured by
-// the imagery, the renderer that draws it, and the conversion from flight samples to render
-// frames. Until streaming (issue 5) and ROAM (issue 6) arrive, the whole dataset is loaded at
-// one zoom at open(): the finest whose mesh fits SceneOptions::maxMeshTriangles for heights,
-// the finest whose mosaic fits SceneOptions::maxImageryPixels for colour.
+// A dataset opened for flying: its tiles streamed from a directory or an HTTP server under
+// memory budgets (streaming/), the terrain drawn from whatever is resident (terrain/
+// streamed_terrain.h), the renderer, and the conversion from flight samples to render frames.
 //
-// Contract: open() checks the dataset and every renderer option before loading anything, and
+// Per frame: prepareFrame(sample, t, ahead) — the terrain says which tiles it wants for this
+// camera and (look-ahead) for the poses expected next; the streamer updates (realtime: never
+// waits; settled: waits until the wanted tiles are resident, the wait measured apart); imagery
+// uploads are planned; the terrain becomes draws. The returned request is valid until the next
+// prepareFrame.
+//
+// The ground under scripted paths (terrain-relative altitudes) comes from a fixed height
+// mosaic read at open(), so the same path gives the same poses whatever is streamed.
+//
+// Contract: open() checks the dataset and every renderer option before loading tiles, and
 // returns user mistakes as errors whose message names the dataset or option.
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "core/log.h"
@@ -20,26 +29,50 @@
 #include "geo/bounds.h"
 #include "geo/local_frame.h"
 #include "render/renderer.h"
+#include "streaming/tile_streamer.h"
+#include "terrain/streamed_terrain.h"
 
 namespace vegstream::flight {
 
+enum class StreamingMode {
+  Realtime,  // I/O races the frames, as in interactive flight: fallbacks are drawn and counted
+  Settled,   // each frame waits until the tiles it wants are resident (the wait is reported apart)
+};
+
 struct SceneOptions {
-  std::filesystem::path dataset;          // a dataset directory (dataset.json, DESIGN.md)
+  std::string dataset;                     // a dataset directory or an http(s):// URL of one
   render::RendererOptions renderer;
-  uint64_t maxMeshTriangles = 800'000;    // picks the height zoom (Zion: zoom 11, 61 m pixels)
-  uint64_t maxImageryPixels = 16'000'000; // picks the imagery zoom
-  Logger logger;                          // may be null
+  streaming::StreamingOptions streaming;
+  terrain::StreamedTerrainOptions terrain;
+  StreamingMode mode = StreamingMode::Realtime;
+  bool lookAhead = true;                   // prefetch the tiles of the poses expected next
+  std::optional<std::filesystem::path> httpCacheDir;
+  uint64_t groundMaxPixels = 1'000'000;    // the ground mosaic for path altitudes
+  Logger logger;                           // may be null
 };
 
 struct SceneInfo {
   std::string datasetName;
+  std::string source;          // "dir …" or the URL
   geo::GeoBounds bounds;
-  int heightZoom = 0;
-  int imageryZoom = -1;        // −1: the dataset has no imagery (terrain coloured by height)
-  uint64_t meshTriangles = 0;
-  uint64_t cpuBytes = 0;       // heights + imagery + mesh held on the CPU
-  uint64_t gpuBytes = 0;       // vertex, index and imagery memory on the GPU
+  int minZoom = 0, maxZoom = 0;
+  int groundZoom = 0;          // zoom of the ground mosaic
+  bool hasImagery = false;
+  uint32_t imageryLayers = 0;  // GPU imagery slots (from the GPU budget)
+  uint64_t groundBytes = 0;    // the ground mosaic on the CPU
   double loadMs = 0.0;
+};
+
+// What one frame cost and did, for the recorder and the HUD.
+struct SceneFrameFigures {
+  double streamingMs = 0.0;    // update + upload planning, CPU (settle wait excluded)
+  double settleWaitMs = 0.0;   // settled mode: waiting for wanted tiles (left out of frame time)
+  double terrainMs = 0.0;      // selection, wants, pieces (mesh builds included)
+  streaming::StreamingFrameStats streaming;
+  terrain::TerrainFrameFigures terrain;
+  uint64_t uploads = 0;        // imagery tiles uploaded this frame
+  uint64_t cpuBytes = 0;       // resident tiles + ground mosaic
+  uint64_t gpuBytes = 0;       // imagery array + terrain buffers
 };
 
 class Scene {
@@ -53,13 +86,18 @@ class Scene {
   const SceneInfo& info() const;
   const geo::LocalFrame& frame() const;  // ENU at the dataset's centre, height 0
 
-  // Ground height (m MSL) under a point, bilinear over the loaded heights; NaN outside the data.
+  // Ground height (m MSL) under a point, bilinear over the ground mosaic; NaN outside the data.
   double groundHeight(double latDeg, double lonDeg) const;
   GroundHeight groundFunction() const;  // the same, for PathSampler
 
-  // The render request for a camera at a flight sample (camera in the scene's frame, the
-  // scene's lighting); read-backs and presenting are the caller's to set.
-  render::FrameRequest frameRequest(const FlightSample& sample) const;
+  // The frame for a camera at `now` (flight time timeS) with the poses expected next (look-ahead;
+  // ignored when SceneOptions::lookAhead is off). Read-backs, presenting and the overlay are the
+  // caller's to set on the returned request.
+  render::FrameRequest prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {});
+  const SceneFrameFigures& lastFrameFigures() const;
+
+  // Camera and lighting for a sample, without streaming or terrain (for tests of the pose).
+  render::FrameRequest cameraRequest(const FlightSample& sample) const;
 
   struct Impl;
 
@@ -67,5 +105,9 @@ class Scene {
   explicit Scene(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
+
+// Look-ahead poses of a scripted path: the samples at t + 0.5, 1, …, horizonS (clamped to the end).
+std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
+                                           double horizonS = 3.0, double stepS = 0.5);
 
 }  // namespace vegstream::flight

@@ -29,8 +29,14 @@ std::string recordingMetaJson(const RecordingMeta& m) {
       {"frames_every", m.framesEvery},
       {"path", {{"name", m.pathName}, {"file", m.pathFile}, {"duration_s", m.pathDurationS}}},
       {"dataset",
-       {{"name", m.datasetName}, {"dir", m.datasetDir}, {"height_zoom", m.heightZoom},
-        {"imagery_zoom", m.imageryZoom}, {"mesh_triangles", m.meshTriangles}, {"load_ms", m.sceneLoadMs}}},
+       {{"name", m.datasetName}, {"dir", m.datasetDir}, {"source", m.datasetSource}, {"height_zoom", m.heightZoom},
+        {"imagery_zoom", m.imageryZoom}, {"ground_zoom", m.groundZoom}, {"load_ms", m.sceneLoadMs}}},
+      {"streaming",
+       {{"mode", m.streaming.mode}, {"look_ahead", m.streaming.lookAhead},
+        {"cpu_budget_bytes", m.streaming.cpuBudgetBytes}, {"gpu_budget_bytes", m.streaming.gpuBudgetBytes},
+        {"upload_bytes_per_frame", m.streaming.uploadBytesPerFrame},
+        {"max_requests_in_flight", m.streaming.maxRequestsInFlight}, {"imagery_layers", m.streaming.imageryLayers},
+        {"terrain_error_px", m.streaming.terrainErrorPx}, {"terrain_max_nodes", m.streaming.terrainMaxNodes}}},
       {"validation", {{"enabled", m.validate}, {"errors", m.validationErrors}, {"warnings", m.validationWarnings}}},
       {"per_pass_gpu_times_meaningful", m.perPassMeaningful},
       {"pipeline_statistics", m.pipelineStatistics},
@@ -63,7 +69,9 @@ std::vector<std::size_t> findHitches(const std::vector<double>& frameMs) {
 namespace {
 
 bool isTimeColumn(const std::string& name) { return name.size() > 3 && name.ends_with("_ms"); }
-bool isCountColumn(const std::string& name) { return name == "terrain_triangles" || name.starts_with("stat_"); }
+bool isCountColumn(const std::string& name) {
+  return name.starts_with("terrain_") || name.starts_with("stat_") || (name.starts_with("stream_") && !isTimeColumn(name));
+}
 
 double sum(const std::vector<double>& v) {
   double s = 0.0;
@@ -128,6 +136,31 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
         maxShare = std::max(maxShare, frames.at(i, rc) / frames.at(i, cc));
   }
 
+  // What streaming did over the flight (all zero/empty before issue 5's columns existed).
+  json streamingTotals = json::object();
+  {
+    const std::vector<double> coarser = optionalColumn("terrain_max_levels_coarser");
+    const std::vector<double> fallback = optionalColumn("terrain_fallback_pieces");
+    std::size_t fallbackFrames = 0, coarseAfter1s = 0;
+    for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1 : 0;
+    for (std::size_t i = 0; i < coarser.size() && i < tS.size(); ++i)
+      coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1 : 0;
+    json requests = json::object();
+    for (const char* k : {"issued", "completed", "cancelled", "failed", "missing"})
+      requests[k] = sum(optionalColumn(("stream_requests_" + std::string(k)).c_str()));
+    requests["retries"] = sum(optionalColumn("stream_retries"));
+    streamingTotals = {{"requests", requests},
+                       {"bytes_read", sum(optionalColumn("stream_bytes_read"))},
+                       {"uploads", sum(optionalColumn("stream_uploads"))},
+                       {"fallback_frames", fallbackFrames},
+                       {"frames_more_than_one_level_coarser_after_1s", coarseAfter1s},
+                       {"max_levels_coarser", maxOf(coarser)},
+                       {"wait_ms_total", sum(optionalColumn("streaming_wait_ms"))},
+                       {"max_bytes_resident_cpu", maxOf(optionalColumn("stream_bytes_resident_cpu"))},
+                       {"max_bytes_resident_gpu", maxOf(optionalColumn("stream_bytes_resident_gpu"))},
+                       {"max_error_relaxation", maxOf(optionalColumn("terrain_error_relaxation"))}};
+  }
+
   const json summary = {
       {"summary_version", 1},
       {"recording", rec},
@@ -150,6 +183,7 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
         {"gpu_frame_ms", sum(column("gpu_frame_ms"))},
         {"terrain_triangles", sum(optionalColumn("terrain_triangles"))},
         {"png_frames", optionalColumn("png_ms").size()}}},
+      {"streaming", streamingTotals},
       {"recorder_overhead",
        {{"mean_ms", meanRecorder},
         {"max_ms", maxOf(recorder)},

@@ -38,9 +38,18 @@ struct RecordingMeta {
   std::string pathName, pathFile;
   double pathDurationS = 0.0;
   std::string datasetName, datasetDir;
-  int heightZoom = 0, imageryZoom = -1;
-  uint64_t meshTriangles = 0;
+  std::string datasetSource;   // "dir …" or the URL tiles were streamed from
+  int heightZoom = 0, imageryZoom = -1, groundZoom = 0;  // finest zooms streamed; the ground mosaic's
   double sceneLoadMs = 0.0;
+  struct Streaming {
+    std::string mode;            // "settled" or "realtime"
+    bool lookAhead = true;
+    uint64_t cpuBudgetBytes = 0, gpuBudgetBytes = 0, uploadBytesPerFrame = 0;
+    int maxRequestsInFlight = 0;
+    uint32_t imageryLayers = 0;
+    double terrainErrorPx = 0.0;
+    int terrainMaxNodes = 0;
+  } streaming;
   bool validate = false;
   uint64_t validationErrors = 0, validationWarnings = 0;
   bool perPassMeaningful = false;

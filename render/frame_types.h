@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -11,6 +12,7 @@
 
 #include "render/gpu_timing.h"
 #include "render/overlay_types.h"
+#include "terrain/terrain_mesh.h"
 
 namespace vegstream::render {
 
@@ -41,6 +43,30 @@ struct Lighting {
   float fogFalloff = 1.0e-4f;   // per metre of height (scale height 10 km)
 };
 
+// Imagery tiles live in one GPU texture array, one 256 × 256 sRGB layer per tile; the streamer
+// (streaming/) decides which tile has which layer.
+inline constexpr uint32_t kImageryTileSize = 256;
+
+// One piece of terrain to draw this frame: a mesh (float vertices relative to its double
+// origin) coloured by an imagery layer, possibly fading in over a coarser one.
+struct TerrainDraw {
+  const terrain::TerrainMesh* mesh = nullptr;
+  int32_t imageryLayer = -1;            // −1: coloured by height and slope
+  glm::vec4 imageryUv{1.0f, 1.0f, 0.0f, 0.0f};   // layer uv = vertex uv · xy + zw
+  int32_t previousLayer = -1;           // the layer it fades from (−1: none)
+  glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
+  float imageryBlend = 1.0f;            // 0: only previousLayer … 1: only imageryLayer
+  float morph = 0.0f;                   // 0: the mesh's heights … 1: heights + morphDelta (coarse)
+};
+
+// Copies a tile into an imagery layer before the frame draws. `rgba` (256 × 256 × 4 bytes)
+// must stay alive until submitFrame returns. The layer must not be drawn by a frame still in
+// flight (the streamer delays slot reuse for that).
+struct ImageryUpload {
+  uint32_t layer = 0;
+  const uint8_t* rgba = nullptr;
+};
+
 struct FrameRequest {
   Camera camera;
   Lighting lighting;
@@ -51,6 +77,10 @@ struct FrameRequest {
   // Drawn over the resolved frame (after the scene, before read-back and present) as the GPU
   // pass "hud"; must stay alive until submitFrame returns. Null: no overlay.
   const OverlayDrawData* overlay = nullptr;
+  // Terrain to draw and imagery to upload first; both spans (and the meshes) must stay alive
+  // until submitFrame returns.
+  std::span<const TerrainDraw> terrain;
+  std::span<const ImageryUpload> imageryUploads;
 };
 
 struct ColorImage {

@@ -57,12 +57,14 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
   return out;
 }
 
-GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                       VkSampleCountFlagBits samples, const std::string& name) {
+namespace {
+GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                     VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name) {
   VkDevice device = ctx.device();
   GpuImage out;
   out.format = format;
   out.extent = extent;
+  out.layers = layers;
   out.samples = samples;
   out.aspect = (format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM) ? VK_IMAGE_ASPECT_DEPTH_BIT
                                                                                  : VK_IMAGE_ASPECT_COLOR_BIT;
@@ -71,7 +73,7 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
   ici.format = format;
   ici.extent = {extent.width, extent.height, 1};
   ici.mipLevels = 1;
-  ici.arrayLayers = 1;
+  ici.arrayLayers = layers;
   ici.samples = samples;
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
@@ -84,23 +86,35 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device, raw, &req);
   out.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, name);
+  out.bytes = req.size;
   vkCheck(vkBindImageMemory(device, raw, out.memory.get(), 0), "vkBindImageMemory");
 
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = raw;
-  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vci.viewType = viewType;
   vci.format = format;
-  vci.subresourceRange = {out.aspect, 0, 1, 0, 1};
+  vci.subresourceRange = {out.aspect, 0, 1, 0, layers};
   VkImageView view;
   vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
   out.view = ImageView(device, view);
   ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view");
   return out;
 }
+}  // namespace
 
-void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
-                     VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                     VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                       VkSampleCountFlagBits samples, const std::string& name) {
+  return createImage(ctx, extent, 1, format, usage, samples, VK_IMAGE_VIEW_TYPE_2D, name);
+}
+
+GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
+                          VkImageUsageFlags usage, const std::string& name) {
+  return createImage(ctx, extent, layers, format, usage, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, name);
+}
+
+void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
+                          VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                          VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   b.srcStageMask = srcStage;
   b.srcAccessMask = srcAccess;
@@ -111,24 +125,33 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
   b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  b.subresourceRange = range;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;
   vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image) {
-  transitionImage(cmd, image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                     VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                     VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  transitionImageRange(cmd, image, {aspect, 0, 1, 0, 1}, from, to, srcStage, srcAccess, dstStage, dstAccess);
+}
+
+void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer,
+                       VkDeviceSize stagingOffset) {
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+  transitionImageRange(cmd, image.get(), range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.bufferOffset = stagingOffset;
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};
   region.imageExtent = {image.extent.width, image.extent.height, 1};
   vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-  transitionImage(cmd, image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  transitionImageRange(cmd, image.get(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
 }  // namespace vegstream::render

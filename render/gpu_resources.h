@@ -36,6 +36,8 @@ struct GpuImage {
   VkExtent2D extent{};
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+  uint32_t layers = 1;
+  VkDeviceSize bytes = 0;  // device memory it holds
 
   VkImage get() const { return image.get(); }
 };
@@ -43,14 +45,25 @@ struct GpuImage {
 GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                        VkSampleCountFlagBits samples, const std::string& name);
 
-// One pipeline barrier for one whole image (synchronization2).
+// A single-sampled colour image of `layers` array layers with a 2D-array view.
+GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
+                          VkImageUsageFlags usage, const std::string& name);
+
+// One pipeline barrier for a subresource range of an image (synchronization2).
+void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
+                          VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                          VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+// One pipeline barrier for one whole single-layer image (synchronization2).
 void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                      VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
-// Records the copy of a tightly packed staging buffer into all of `image` (mip 0, layer 0),
+// Records the copy of a tightly packed staging buffer (from stagingOffset) into one layer of
+// `image` (mip 0),
 // leaving it in SHADER_READ_ONLY_OPTIMAL for fragment shaders. The image's old contents are
 // discarded; the staging buffer must live until the commands complete.
-void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image);
+void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer = 0,
+                       VkDeviceSize stagingOffset = 0);
 
 }  // namespace vegstream::render

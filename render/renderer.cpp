@@ -174,6 +174,8 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
+  const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
+  terrainPass->recordUploads(cmd, static_cast<int>(index % kFramesInFlight), request.imageryUploads, retireBuffer);
 
   // Attachments start undefined each frame: everything is cleared.
   const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -229,7 +231,8 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   sky->record(cmd, slot.descriptorSet);
   slot.timer->endPass(cmd);
   slot.timer->beginPass(cmd, "terrain");
-  slot.terrainTriangles = terrainPass->record(cmd, slot.descriptorSet, request.camera.position);
+  slot.terrainTriangles = terrainPass->record(cmd, static_cast<int>(index % kFramesInFlight), slot.descriptorSet,
+                                              request.camera.position, request.terrain, retireBuffer);
   slot.timer->endPass(cmd);
   vkCmdEndRendering(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
@@ -394,16 +397,21 @@ int Renderer::msaa() const { return impl_->msaa; }
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 
-Status Renderer::setTerrain(const terrain::TerrainMesh& mesh, const ColorImage* imagery) {
+Status Renderer::setImageryLayers(uint32_t layers) {
+  if (layers < 1 || layers > maxImageryLayers())
+    return makeError(ErrorKind::InvalidInput, "imagery layers: " + std::to_string(layers) + " is outside 1 … " +
+                                                  std::to_string(maxImageryLayers()) + " for " + device().name);
   return guardGpu([&]() -> Status {
-    const uint64_t lastUse = impl_->nextFrame - 1;  // every frame submitted so far may use the old mesh
-    impl_->terrainPass->setMesh(mesh, imagery, [&](GpuBuffer&& buffer, GpuImage&& image) {
-      if (buffer.buffer) impl_->deletions.defer(lastUse, std::move(buffer));
-      if (image.image) impl_->deletions.defer(lastUse, std::move(image));
-    });
+    // The imagery descriptor is rewritten: no frame in flight may still read it.
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    impl_->terrainPass->setImageryLayers(layers, [&](GpuImage&& old) { impl_->deletions.defer(impl_->nextFrame - 1, std::move(old)); });
     return {};
   });
 }
+
+uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLayers(); }
+
+uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
 uint64_t Renderer::gpuBytes() const { return impl_->terrainPass->gpuBytes(); }
 

@@ -40,9 +40,11 @@ class Renderer {
   bool hasWindow() const;
   const ValidationLog* validationLog() const;
 
-  // A new terrain mesh and its imagery (sRGB RGBA, texture coordinates in the mesh; null or
-  // empty: coloured by height and slope). Waits for frames in flight before switching.
-  Status setTerrain(const terrain::TerrainMesh& mesh, const ColorImage* imagery = nullptr);
+  // The imagery texture array gets `layers` 256 × 256 layers (FrameRequest::imageryUploads fill
+  // them); waits for frames in flight. 1 … maxImageryLayers(), else an InvalidInput error.
+  Status setImageryLayers(uint32_t layers);
+  uint32_t imageryLayers() const;
+  uint32_t maxImageryLayers() const;  // the device's maxImageArrayLayers
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
 

@@ -1,7 +1,9 @@
 #include "render/terrain_pass.h"
 
+#include <cassert>
 #include <cstddef>
 #include <cstring>
+#include <string>
 
 #include <glm/vec4.hpp>
 
@@ -16,11 +18,20 @@ namespace vegstream::render {
 namespace {
 struct TerrainPush {  // shaders/common/terrain_push.glsl
   glm::vec4 originFromCamera;
-  glm::vec4 flags;
+  glm::vec4 imageryUv;
+  glm::vec4 previousUv;
+  glm::vec4 layers;
 };
-static_assert(sizeof(TerrainPush) == 32);
-static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes of shaders/terrain.vert");
+static_assert(sizeof(TerrainPush) == 64 && sizeof(TerrainPush) <= 128, "Vulkan guarantees 128 bytes of push constants");
+static_assert(sizeof(terrain::TerrainVertex) == 40, "must match the attributes of shaders/terrain.vert");
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
+
+VkDeviceSize grownSize(VkDeviceSize needed) {
+  VkDeviceSize size = 256 * 1024;
+  while (size < needed) size *= 2;
+  return size;
+}
 }  // namespace
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
@@ -30,10 +41,9 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
   imagerySet_ = allocateDescriptorSet(ctx, imageryPool_.get(), imageryLayout_.get(), "terrain imagery set");
   sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
-  const VkDescriptorSetLayout setLayout = imageryLayout_.get();
 
   const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
-  const VkDescriptorSetLayout sets[] = {frameLayout, setLayout};
+  const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain pipeline layout");
   GraphicsPipelineDesc desc;
   desc.name = "terrain pipeline";
@@ -44,6 +54,7 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(terrain::TerrainVertex, normal)},
       {2, 0, VK_FORMAT_R32_SFLOAT, offsetof(terrain::TerrainVertex, heightMsl)},
       {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(terrain::TerrainVertex, uv)},
+      {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(terrain::TerrainVertex, morphDelta)},
   };
   desc.samples = samples;
   desc.colorFormat = kColorFormat;
@@ -51,64 +62,103 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   desc.layout = layout_.get();
   pipeline_ = createGraphicsPipeline(ctx, desc);
 
-  // A 1 × 1 transparent texture until imagery arrives, so the set is always valid.
-  uploadImagery(ColorImage{1, 1, {0, 0, 0, 0}});
-  hasImagery_ = false;
+  // One layer until the scene says how many it streams, so the descriptor is always valid.
+  setImageryLayers(1, [](GpuImage&&) {});
 }
 
-void TerrainPass::uploadImagery(const ColorImage& image) {
-  imagery_ = createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_SRGB,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
-                           "terrain imagery");
-  GpuBuffer staging = createBuffer(*ctx_, image.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                                   "terrain imagery staging");
-  std::memcpy(staging.mapped, image.rgba.data(), image.rgba.size());
-  ctx_->submitAndWait([&](VkCommandBuffer cmd) { recordImageUpload(cmd, staging, imagery_); });
-  hasImagery_ = true;
-  writeImageryDescriptor();
-}
-
-void TerrainPass::writeImageryDescriptor() {
+void TerrainPass::setImageryLayers(uint32_t layers, const RetireImage& retire) {
+  assert(layers >= 1);
+  if (imagery_.image) retire(std::move(imagery_));
+  imagery_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, layers, VK_FORMAT_R8G8B8A8_SRGB,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain imagery array");
+  layers_ = layers;
+  // Every layer starts shader-readable (never sampled before its upload: the streamer hands out
+  // a layer only with its tile), so uploads can move one layer at a time.
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImageRange(cmd, imagery_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers}, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  });
+  // The caller guarantees no frame in flight uses the set (the renderer waits for idle first).
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
 }
 
-void TerrainPass::setMesh(const terrain::TerrainMesh& mesh, const ColorImage* imagery, const Retire& retire) {
-  // The descriptor set is rewritten below while earlier frames may still read it: wait for them
-  // (meshes change when a flight opens, not every frame).
-  vkCheck(vkDeviceWaitIdle(ctx_->device()), "vkDeviceWaitIdle");
-  retire(std::move(vertices_), GpuImage{});
-  retire(std::move(indices_), std::move(imagery_));
-  vertices_ = {};
-  indices_ = {};
-  indexCount_ = 0;
-  origin_ = mesh.origin;
-  uploadImagery(imagery && imagery->width > 0 ? *imagery : ColorImage{1, 1, {0, 0, 0, 0}});
-  hasImagery_ = imagery && imagery->width > 0;
-  gpuBytes_ = hasImagery_ ? imagery->rgba.size() : 0;
-  if (mesh.indices.empty()) return;
-  vertices_ = createBufferWithData(*ctx_, mesh.vertices.data(), mesh.vertices.size() * sizeof(terrain::TerrainVertex),
-                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "terrain vertices");
-  indices_ = createBufferWithData(*ctx_, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
-                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "terrain indices");
-  indexCount_ = static_cast<uint32_t>(mesh.indices.size());
-  gpuBytes_ += vertices_.size + indices_.size;
+void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what,
+                                 int slot, const RetireBuffer& retire) {
+  if (buffer.buffer && buffer.size >= bytes) return;
+  if (buffer.buffer) retire(std::move(buffer));
+  buffer = createBuffer(*ctx_, grownSize(bytes), usage, MemoryUse::HostUpload,
+                        std::string("terrain ") + what + " (slot " + std::to_string(slot) + ")");
 }
 
-uint64_t TerrainPass::record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition) const {
-  if (indexCount_ == 0) return 0;
+void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
+                                const RetireBuffer& retire) {
+  if (uploads.empty()) return;
+  const auto s = static_cast<size_t>(slot);
+  ensureCapacity(staging_[s], kTileBytes * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "imagery staging", slot,
+                 retire);
+  VkDeviceSize offset = 0;
+  for (const ImageryUpload& u : uploads) {
+    assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
+    std::memcpy(static_cast<uint8_t*>(staging_[s].mapped) + offset, u.rgba, kTileBytes);
+    recordImageUpload(cmd, staging_[s], imagery_, u.layer, offset);
+    offset += kTileBytes;
+  }
+}
+
+uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
+                             std::span<const TerrainDraw> draws, const RetireBuffer& retire) {
+  const auto s = static_cast<size_t>(slot);
+  VkDeviceSize vertexBytes = 0, indexBytes = 0;
+  for (const TerrainDraw& d : draws) {
+    if (!d.mesh || d.mesh->indices.empty()) continue;
+    vertexBytes += d.mesh->vertices.size() * sizeof(terrain::TerrainVertex);
+    indexBytes += d.mesh->indices.size() * sizeof(uint32_t);
+  }
+  if (indexBytes == 0) return 0;
+  ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices", slot, retire);
+  ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", slot, retire);
+
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
   const VkDescriptorSet sets[] = {frameSet, imagerySet_};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 2, sets, 0, nullptr);
-  // The subtraction happens in double; only the small camera-relative offset becomes float.
-  const TerrainPush push{glm::vec4(glm::vec3(origin_ - cameraPosition), 0.0f),
-                         glm::vec4(hasImagery_ ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f)};
-  vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
-  const VkBuffer vb = vertices_.get();
-  const VkDeviceSize offset = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, indexCount_, 1, 0, 0, 0);
-  return indexCount_ / 3;
+  const VkBuffer vb = vertices_[s].get();
+  const VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
+  vkCmdBindIndexBuffer(cmd, indices_[s].get(), 0, VK_INDEX_TYPE_UINT32);
+
+  auto* vdst = static_cast<uint8_t*>(vertices_[s].mapped);
+  auto* idst = static_cast<uint8_t*>(indices_[s].mapped);
+  uint32_t firstVertex = 0, firstIndex = 0;
+  uint64_t triangles = 0;
+  for (const TerrainDraw& d : draws) {
+    if (!d.mesh || d.mesh->indices.empty()) continue;
+    const terrain::TerrainMesh& m = *d.mesh;
+    std::memcpy(vdst + VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex), m.vertices.data(),
+                m.vertices.size() * sizeof(terrain::TerrainVertex));
+    std::memcpy(idst + VkDeviceSize{firstIndex} * sizeof(uint32_t), m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
+      return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
+    }();
+    assert(valid);
+    // The subtraction happens in double; only the small camera-relative offset becomes float.
+    const TerrainPush push{
+        glm::vec4(glm::vec3(m.origin - cameraPosition), d.morph), d.imageryUv, d.previousUv,
+        glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f, valid ? static_cast<float>(d.previousLayer) : -1.0f,
+                  d.imageryBlend, 0.0f)};
+    vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
+    vkCmdDrawIndexed(cmd, static_cast<uint32_t>(m.indices.size()), 1, firstIndex, static_cast<int32_t>(firstVertex), 0);
+    firstVertex += static_cast<uint32_t>(m.vertices.size());
+    firstIndex += static_cast<uint32_t>(m.indices.size());
+    triangles += m.indices.size() / 3;
+  }
+  return triangles;
+}
+
+uint64_t TerrainPass::gpuBytes() const {
+  uint64_t bytes = imagery_.bytes;
+  for (size_t s = 0; s < kSlots; ++s) bytes += vertices_[s].size + indices_[s].size + staging_[s].size;
+  return bytes;
 }
 
 }  // namespace vegstream::render

@@ -1,8 +1,16 @@
 #pragma once
-// The terrain surface: one indexed draw of the current TerrainMesh, drawn camera-relative and
-// coloured by the imagery texture where there is one (by height and slope elsewhere).
+// The terrain surface: each frame, the TerrainDraws of the FrameRequest (meshes of terrain
+// pieces, drawn camera-relative, one draw each) coloured from the imagery texture array (one
+// 256 × 256 tile per layer), with geomorphing and imagery fade-in driven by push constants.
+//
+// Geometry is copied each frame into the frame slot's host-visible vertex/index buffers: the
+// terrain changes as tiles stream in and (later) as ROAM refines, and copying a few MB is cheaper
+// than managing thousands of small buffers. Imagery arrives through a per-frame-slot staging
+// buffer (a ring of kSlots) and lands in its layer before the draws.
 
+#include <array>
 #include <functional>
+#include <span>
 
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
@@ -13,22 +21,33 @@ namespace vegstream::render {
 
 class TerrainPass {
  public:
+  static constexpr int kSlots = 2;  // frames in flight
+
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
 
-  using Retire = std::function<void(GpuBuffer&&, GpuImage&&)>;
+  using RetireImage = std::function<void(GpuImage&&)>;
+  using RetireBuffer = std::function<void(GpuBuffer&&)>;
 
-  // Uploads a new mesh and imagery (null: none). The previous GPU objects go to `retire`,
-  // which must keep them alive until the frames that use them have finished on the GPU.
-  void setMesh(const terrain::TerrainMesh& mesh, const ColorImage* imagery, const Retire& retire);
+  // A new imagery array of `layers` layers (≥ 1; contents undefined until uploaded). The old one
+  // goes to `retire`, which keeps it alive until the frames that use it have finished.
+  void setImageryLayers(uint32_t layers, const RetireImage& retire);
+  uint32_t imageryLayers() const { return layers_; }
 
-  // Records the draw; returns the number of triangles submitted.
-  uint64_t record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition) const;
+  // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
+  void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
+                     const RetireBuffer& retire);
 
-  uint64_t gpuBytes() const { return gpuBytes_; }
+  // Copies the draws' geometry into slot `slot`'s buffers and records the draws (inside
+  // rendering); returns the triangles submitted.
+  uint64_t record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
+                  std::span<const TerrainDraw> draws, const RetireBuffer& retire);
+
+  // Imagery array + geometry buffers of both slots.
+  uint64_t gpuBytes() const;
 
  private:
-  void uploadImagery(const ColorImage& image);
-  void writeImageryDescriptor();
+  void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what, int slot,
+                      const RetireBuffer& retire);
 
   const Context* ctx_;
   DescriptorSetLayout imageryLayout_;
@@ -37,12 +56,9 @@ class TerrainPass {
   Sampler sampler_;
   PipelineLayout layout_;
   Pipeline pipeline_;
-  GpuBuffer vertices_, indices_;
   GpuImage imagery_;
-  bool hasImagery_ = false;
-  uint32_t indexCount_ = 0;
-  uint64_t gpuBytes_ = 0;
-  glm::dvec3 origin_{0.0};
+  uint32_t layers_ = 0;
+  std::array<GpuBuffer, kSlots> vertices_, indices_, staging_;
 };
 
 }  // namespace vegstream::render

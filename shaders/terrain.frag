@@ -4,7 +4,7 @@
 #include "atmosphere.glsl"
 #include "terrain_palette.glsl"
 #include "terrain_push.glsl"
-layout(set = 1, binding = 0) uniform sampler2D imagery;  // sRGB: sampled as linear colour
+layout(set = 1, binding = 0) uniform sampler2DArray imagery;  // one tile per layer; sRGB: sampled as linear colour
 layout(location = 0) in vec3 inOffset;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in float inHeightMsl;
@@ -20,8 +20,12 @@ void main() {
   vec3 n = normalize(inNormal);
   float slope = 1.0 - clamp(n.z, 0.0, 1.0);  // 0 flat … 1 vertical
   vec3 albedo = terrainAlbedo(inHeightMsl, slope);
-  if (push.flags.x > 0.5) {
-    vec4 photo = texture(imagery, inUv);
+  if (push.layers.x >= 0.0) {
+    vec4 photo = texture(imagery, vec3(inUv * push.imageryUv.xy + push.imageryUv.zw, push.layers.x));
+    if (push.layers.y >= 0.0 && push.layers.z < 1.0) {  // a finer tile fading in over its ancestor
+      vec4 before = texture(imagery, vec3(inUv * push.previousUv.xy + push.previousUv.zw, push.layers.y));
+      photo = mix(before, photo, push.layers.z);
+    }
     albedo = mix(albedo, photo.rgb * kImageryExposure * 0.5, photo.a);  // alpha 0: no imagery there
   }
   float sun = max(dot(n, frame.sunDirection.xyz), 0.0);

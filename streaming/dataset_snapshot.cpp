@@ -7,9 +7,9 @@
 #include "datasets/tile_codec.h"
 #include "geo/projection.h"
 #include "geo/xyz_tiles.h"
+#include "streaming/tile_key.h"
 
 namespace vegstream::streaming {
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -74,57 +74,32 @@ Status forEachTilePixel(const MercatorRaster& g, LoadTile&& load, Visit&& visit)
   return {};
 }
 
-uint64_t fileBytes(const fs::path& p) {
-  std::error_code ec;
-  const auto size = fs::file_size(p, ec);
-  return ec ? 0 : static_cast<uint64_t>(size);
-}
-
 }  // namespace
 
-Result<DatasetSnapshot> loadDatasetSnapshot(const fs::path& dir, const SnapshotLimits& limits) {
-  auto meta = datasets::readDatasetMeta(dir);
-  if (!meta) return meta.error();
-  DatasetSnapshot snap;
-  snap.meta = std::move(*meta);
-
-  const int hz = finestZoomWithin(snap.meta, limits.maxHeightPixels, limits.maxSide);
-  static_cast<MercatorRaster&>(snap.heights) = gridFor(snap.meta.bounds, hz);
-  snap.heights.heights.assign(pixels(snap.heights), std::numeric_limits<float>::quiet_NaN());
+Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
+                                       const SnapshotLimits& limits) {
+  HeightMosaic mosaic;
+  const int hz = finestZoomWithin(meta, limits.maxHeightPixels, limits.maxSide);
+  static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, hz);
+  mosaic.heights.assign(pixels(mosaic), std::numeric_limits<float>::quiet_NaN());
   auto loadHeight = [&](const geo::TileId& id) -> Result<std::optional<datasets::HeightTile>> {
-    const fs::path p = datasets::elevationTilePath(dir, id);
-    if (!fs::exists(p)) return std::optional<datasets::HeightTile>{};
-    auto t = datasets::readHeightTile(p, id, snap.meta.elevationEncoding);
+    const std::string path = datasetRelativePath({TileLayer::Height, id}, meta);
+    auto bytes = source.readText(path);
+    if (!bytes) {
+      if (bytes.error().kind == ErrorKind::NotFound) return std::optional<datasets::HeightTile>{};
+      return bytes.error();
+    }
+    const auto* data = reinterpret_cast<const uint8_t*>(bytes->data());
+    auto t = datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding,
+                                        source.describe() + "/" + path);
     if (!t) return t.error();
-    ++snap.tilesRead;
-    snap.bytesRead += fileBytes(p);
     return std::optional<datasets::HeightTile>(std::move(*t));
   };
-  Status s = forEachTilePixel(snap.heights, loadHeight, [&](const datasets::HeightTile& t, int px, int py, size_t i) {
-    snap.heights.heights[i] = t.at(px, py);
+  Status s = forEachTilePixel(mosaic, loadHeight, [&](const datasets::HeightTile& t, int px, int py, size_t i) {
+    mosaic.heights[i] = t.at(px, py);
   });
   if (!s) return s.error();
-
-  if (snap.meta.imagery) {
-    const int iz = finestZoomWithin(snap.meta, limits.maxImageryPixels, limits.maxSide);
-    static_cast<MercatorRaster&>(snap.imagery) = gridFor(snap.meta.bounds, iz);
-    snap.imagery.rgba.assign(pixels(snap.imagery) * 4, 0);
-    auto loadColor = [&](const geo::TileId& id) -> Result<std::optional<datasets::ColorTile>> {
-      const fs::path p = datasets::imageryTilePath(dir, id, *snap.meta.imagery);
-      if (!fs::exists(p)) return std::optional<datasets::ColorTile>{};
-      auto t = datasets::readColorTile(p, id);
-      if (!t) return t.error();
-      ++snap.tilesRead;
-      snap.bytesRead += fileBytes(p);
-      return std::optional<datasets::ColorTile>(std::move(*t));
-    };
-    s = forEachTilePixel(snap.imagery, loadColor, [&](const datasets::ColorTile& t, int px, int py, size_t i) {
-      const size_t src = (static_cast<size_t>(py) * static_cast<size_t>(t.size) + static_cast<size_t>(px)) * 4;
-      std::copy_n(&t.rgba[src], 4, &snap.imagery.rgba[i * 4]);
-    });
-    if (!s) return s.error();
-  }
-  return snap;
+  return mosaic;
 }
 
 }  // namespace vegstream::streaming

@@ -1,8 +1,7 @@
 #pragma once
-// A whole dataset loaded at one zoom: every height tile of that zoom mosaicked into one raster
-// in Web Mercator pixels, and likewise the imagery. This is the stand-in for the tile streamer
-// (issue 5), which will replace it with asynchronous, budgeted loading; until then flights load
-// the dataset once, at open, at the finest zoom that fits the caller's limits.
+// A dataset's heights at one zoom, mosaicked into one raster in Web Mercator pixels: the ground
+// model a flight resolves terrain-relative altitudes against (the same for every frame and every
+// streaming state, so recordings stay deterministic).
 
 #include <cstdint>
 #include <filesystem>
@@ -10,6 +9,7 @@
 
 #include "core/result.h"
 #include "datasets/dataset_format.h"
+#include "streaming/tile_source.h"
 
 namespace vegstream::streaming {
 
@@ -28,27 +28,17 @@ struct HeightMosaic : MercatorRaster {
   std::vector<float> heights;  // NaN = nodata
 };
 
-struct ImageryMosaic : MercatorRaster {
-  std::vector<uint8_t> rgba;  // sRGB; alpha 0 = no data
-};
-
 struct SnapshotLimits {
-  uint64_t maxHeightPixels = 350'000;     // the mesh has about two triangles per height pixel
-  uint64_t maxImageryPixels = 16'000'000;
-  int maxSide = 4096;  // either mosaic's width and height: every Vulkan device takes 4096² textures
+  uint64_t maxHeightPixels = 1'000'000;
+  int maxSide = 4096;
 };
 
-struct DatasetSnapshot {
-  datasets::DatasetMeta meta;
-  HeightMosaic heights;
-  ImageryMosaic imagery;   // empty (width 0) when the dataset has no imagery
-  uint64_t tilesRead = 0;
-  uint64_t bytesRead = 0;  // tile files read from disk
-};
-
-// Reads dataset.json, picks the finest zoom within the limits for heights and for imagery
-// (never finer than the dataset's max zoom) and reads those tiles. The mosaics are cropped to
-// the dataset's bounds. Errors name the dataset directory or the tile file.
-Result<DatasetSnapshot> loadDatasetSnapshot(const std::filesystem::path& datasetDir, const SnapshotLimits& limits);
+// Heights of a whole dataset at one zoom, read through a tile source: the finest zoom within
+// the limits (never finer than the dataset's max zoom), cropped to the dataset's bounds. A tile
+// the source does not have is nodata. Blocking: for what must be known before a flight starts —
+// the ground under scripted paths (terrain-relative altitudes) — never on the frame path. Errors
+// name the source's file or URL.
+Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
+                                       const SnapshotLimits& limits);
 
 }  // namespace vegstream::streaming

@@ -13,7 +13,4 @@ namespace vegstream::terrain {
 
 HeightGrid heightGridFrom(const streaming::HeightMosaic& mosaic);
 
-// Texture coordinates (0…1 across the mosaic's outer pixel edges) of a longitude/latitude.
-std::function<glm::vec2(double lonDeg, double latDeg)> imageryUv(const streaming::MercatorRaster& imagery);
-
 }  // namespace vegstream::terrain

@@ -1,5 +1,8 @@
-// Push constants of the terrain pass (mirrors TerrainPush in render/terrain_pass.cpp).
+// Push constants of the terrain pass, one set per draw (mirrors TerrainPush in
+// render/terrain_pass.cpp).
 layout(push_constant) uniform TerrainPush {
-  vec4 originFromCamera;  // xyz: mesh origin − camera position (m, local ENU)
-  vec4 flags;             // x: 1 when the imagery texture colours the terrain
+  vec4 originFromCamera;  // xyz: mesh origin − camera position (m, local ENU); w: morph 0 fine … 1 coarse
+  vec4 imageryUv;         // layer uv = vertex uv · xy + zw
+  vec4 previousUv;        // the same for the layer it fades from
+  vec4 layers;            // x: imagery layer (−1 none), y: previous layer (−1 none), z: blend 0 previous … 1 current
 } push;

@@ -26,6 +26,15 @@ const std::vector<std::string> kLeading = {
 const std::vector<std::string> kTrailing = {
     "wall_ms", "recorder_ms", "png_ms", "terrain_triangles", "stat_input_primitives", "stat_clipping_primitives",
     "stat_fragment_invocations", "cpu_bytes", "gpu_bytes"};
+// Issue 5's streaming columns, after kTrailing.
+const std::vector<std::string> kStreaming = {
+    "streaming_wait_ms", "stream_longest_wait_ms", "stream_requests_issued", "stream_requests_completed",
+    "stream_requests_cancelled", "stream_requests_failed", "stream_requests_missing", "stream_retries",
+    "stream_bytes_read", "stream_uploads", "stream_upload_bytes", "stream_evictions_cpu", "stream_evictions_gpu",
+    "stream_tiles_resident_cpu", "stream_tiles_resident_gpu", "stream_bytes_resident_cpu",
+    "stream_bytes_resident_gpu", "stream_requests_in_flight", "stream_wanted", "stream_wanted_resident",
+    "stream_lookahead_wants", "terrain_pieces", "terrain_fallback_pieces", "terrain_max_levels_coarser",
+    "terrain_meshes_built", "terrain_error_bound_px", "terrain_error_relaxation"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -85,10 +94,11 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"}) EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  ASSERT_GE(csv.header.size(), kLeading.size() + kTrailing.size());
+  ASSERT_GE(csv.header.size(), kLeading.size() + kTrailing.size() + kStreaming.size());
   EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
-  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(), csv.header.rbegin()));
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size(); ++i)
+  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), csv.header.rbegin()));
+  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(), csv.header.rbegin() + static_cast<long>(kStreaming.size())));
+  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size() - kStreaming.size(); ++i)
     EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
   ASSERT_EQ(csv.rows.size(), 31u);
@@ -98,10 +108,11 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   }
   EXPECT_EQ(std::stod(csv.rows.back()[1]), 2.0);
   // Stages that do not exist yet are empty, never 0; those that exist are filled.
-  for (const char* empty : {"cpu_streaming_ms", "cpu_seeding_ms", "cpu_simulation_ms"})
+  for (const char* empty : {"cpu_seeding_ms", "cpu_simulation_ms"})
     for (const auto& v : csv.column(empty)) EXPECT_EQ(v, "") << empty;
   for (const char* filled : {"cpu_flight_ms", "cpu_terrain_ms", "cpu_record_submit_ms", "gpu_frame_ms", "wall_ms",
-                             "recorder_ms", "terrain_triangles", "cpu_bytes", "gpu_bytes"})
+                             "recorder_ms", "terrain_triangles", "cpu_bytes", "gpu_bytes", "cpu_streaming_ms",
+                             "streaming_wait_ms", "stream_bytes_resident_cpu", "terrain_pieces"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
@@ -109,11 +120,11 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);
   EXPECT_EQ(rec["per_pass_gpu_times_meaningful"], false);
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size(); ++i)
+  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size() - kStreaming.size(); ++i)
     for (const auto& v : csv.column(csv.header[i])) EXPECT_EQ(v, "") << csv.header[i];
 
   for (const char* k : {"summary_version", "recording", "frames", "flight_time_s", "times_ms", "counts", "hitches",
-                        "peak_memory", "resident_bytes", "totals", "recorder_overhead"})
+                        "peak_memory", "resident_bytes", "totals", "streaming", "recorder_overhead"})
     EXPECT_TRUE(s.contains(k)) << k;
   EXPECT_EQ(s["frames"], 31);
   EXPECT_EQ(s["recording"]["size"], json({160, 90}));
@@ -123,7 +134,10 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_FALSE(s["recording"]["device"]["name"].get<std::string>().empty());
   for (const char* q : {"p50", "p95", "p99", "max", "mean"}) EXPECT_TRUE(s["times_ms"]["gpu_frame_ms"].contains(q)) << q;
   EXPECT_LE(s["times_ms"]["gpu_frame_ms"]["p50"].get<double>(), s["times_ms"]["gpu_frame_ms"]["p95"].get<double>());
-  EXPECT_TRUE(s["times_ms"]["cpu_streaming_ms"].is_null());
+  EXPECT_FALSE(s["times_ms"]["cpu_streaming_ms"].is_null());
+  EXPECT_EQ(s["recording"]["streaming"]["mode"], "settled");
+  EXPECT_EQ(s["streaming"]["fallback_frames"], 0) << "settled: every frame draws the tiles it wants";
+  EXPECT_GT(s["streaming"]["requests"]["completed"].get<double>(), 0.0);
   for (const char* k : {"count", "frames", "factor", "window_frames"}) EXPECT_TRUE(s["hitches"].contains(k)) << k;
   EXPECT_GT(s["peak_memory"]["rss_hwm_bytes"].get<double>(), 1e6);
   EXPECT_GT(s["peak_memory"]["gpu_bytes"].get<double>(), 0.0);

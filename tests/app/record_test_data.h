@@ -13,8 +13,12 @@
 
 namespace vegstream::testing {
 
+// Shared by the tests of one build: the directories carry the executable's time stamp, so a
+// rebuilt vegstream never meets recordings or datasets an older one made.
 inline std::filesystem::path recordTmp(const std::string& name) {
-  return std::filesystem::path(VEGSTREAM_TEST_TMP) / name;
+  std::error_code ec;
+  const auto stamp = std::filesystem::last_write_time(VEGSTREAM_EXE, ec).time_since_epoch().count();
+  return std::filesystem::path(VEGSTREAM_TEST_TMP) / ("b" + std::to_string(stamp)) / name;
 }
 
 inline std::filesystem::path freshRecordDir(const std::string& name) {

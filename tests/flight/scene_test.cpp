@@ -1,7 +1,10 @@
-// A dataset opened for flying: the loaded mesh agrees with the dataset's own heights, the
-// camera points where the flight sample says, and the frame renders with validation silent.
+// A dataset opened for flying: the ground model agrees with the dataset's own heights, the
+// camera points where the flight sample says, frames stream their tiles (settled: all resident,
+// realtime: never waiting) and render with validation silent.
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -31,17 +34,19 @@ fs::path syntheticDataset() {
 }
 
 class SceneTest : public ::testing::Test {
+ public:
  protected:
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
-  std::unique_ptr<Scene> open(uint64_t maxTriangles) {
+  std::unique_ptr<Scene> open(StreamingMode mode = StreamingMode::Settled, uint64_t cpuBudget = 64ull << 20) {
     SceneOptions o;
-    o.dataset = syntheticDataset();
+    o.dataset = syntheticDataset().string();
+    o.mode = mode;
+    o.streaming.cpuBudgetBytes = cpuBudget;
     o.renderer.width = 160;
     o.renderer.height = 90;
     o.renderer.msaa = 1;
     o.renderer.context.validate = true;
     o.renderer.context.validationLog = validation;
-    o.maxMeshTriangles = maxTriangles;
     auto scene = Scene::open(o);
     EXPECT_TRUE(scene.ok()) << scene.error().message;
     return scene.ok() ? std::move(*scene) : nullptr;
@@ -49,15 +54,24 @@ class SceneTest : public ::testing::Test {
   void TearDown() override {
     for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
   }
+  FlightSample overCentre(const Scene& scene, double heightAboveGround, double headingDeg, double pitchDeg) {
+    const geo::GeoBounds& b = scene.info().bounds;
+    FlightSample s;
+    s.position = {0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0};
+    s.position.heightM = scene.groundHeight(s.position.latDeg, s.position.lonDeg) + heightAboveGround;
+    s.headingDeg = headingDeg;
+    s.pitchDeg = pitchDeg;
+    return s;
+  }
 };
 
-TEST_F(SceneTest, GroundHeightsMatchTheDatasetAtTheLoadedZoom) {
-  auto scene = open(200'000);
+TEST_F(SceneTest, GroundHeightsMatchTheDatasetAtTheGroundZoom) {
+  auto scene = open();
   ASSERT_TRUE(scene);
   const SceneInfo& info = scene->info();
-  EXPECT_LE(info.meshTriangles, 200'000u);
-  EXPECT_GT(info.meshTriangles, 20'000u);
-  EXPECT_GT(info.gpuBytes, info.meshTriangles * 3 * 4);  // at least the indices
+  EXPECT_EQ(info.groundZoom, info.maxZoom);  // a 3 km dataset fits the ground mosaic at full resolution
+  EXPECT_TRUE(info.hasImagery);
+  EXPECT_GT(info.imageryLayers, 0u);
   auto reader = datasets::DatasetReader::open(syntheticDataset());
   ASSERT_TRUE(reader.ok());
   const geo::GeoBounds& b = info.bounds;
@@ -66,7 +80,7 @@ TEST_F(SceneTest, GroundHeightsMatchTheDatasetAtTheLoadedZoom) {
     for (int j = 1; j < 10; ++j) {
       const double lat = b.southDeg + (b.northDeg - b.southDeg) * i / 10.0;
       const double lon = b.westDeg + (b.eastDeg - b.westDeg) * j / 10.0;
-      auto expected = reader->heightAtZoom(lat, lon, info.heightZoom);
+      auto expected = reader->heightAtZoom(lat, lon, info.groundZoom);
       ASSERT_TRUE(expected.ok());
       const double h = scene->groundHeight(lat, lon);
       ASSERT_FALSE(std::isnan(h));
@@ -77,27 +91,64 @@ TEST_F(SceneTest, GroundHeightsMatchTheDatasetAtTheLoadedZoom) {
   EXPECT_TRUE(std::isnan(scene->groundHeight(b.northDeg + 1.0, b.westDeg)));
 }
 
-TEST_F(SceneTest, CameraFollowsHeadingAndPitchAndTheFrameRenders) {
-  auto scene = open(100'000);
+TEST_F(SceneTest, CameraFollowsHeadingAndPitchAndASettledFrameDrawsOnlyWantedTiles) {
+  auto scene = open();
   ASSERT_TRUE(scene);
-  const geo::GeoBounds& b = scene->info().bounds;
-  FlightSample s;
-  s.position = {0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0};
-  s.position.heightM = scene->groundHeight(s.position.latDeg, s.position.lonDeg) + 300.0;
-  s.headingDeg = 90.0;  // east
-  s.pitchDeg = -20.0;
-  render::FrameRequest req = scene->frameRequest(s);
+  const FlightSample s = overCentre(*scene, 300.0, 90.0, -20.0);  // east, 20° down
+  render::FrameRequest req = scene->prepareFrame(s, 0.0);
   EXPECT_NEAR(req.camera.forward.x, std::cos(20.0 * M_PI / 180.0), 1e-3);
   EXPECT_NEAR(req.camera.forward.y, 0.0, 1e-3);
   EXPECT_NEAR(req.camera.forward.z, -std::sin(20.0 * M_PI / 180.0), 1e-3);
   EXPECT_NEAR(glm::length(req.camera.position - scene->frame().toLocal(s.position)), 0.0, 1e-6);
+  const SceneFrameFigures& fig = scene->lastFrameFigures();
+  EXPECT_GT(fig.terrain.pieces, 0u);
+  EXPECT_EQ(fig.terrain.fallbackPieces, 0u) << "settled: every wanted tile is resident";
+  EXPECT_EQ(fig.streaming.wantedResident, fig.streaming.wanted);
+  EXPECT_EQ(fig.uploads, fig.streaming.tilesResidentGpu);  // the first frame uploads every imagery tile it draws
+  EXPECT_EQ(req.terrain.size(), fig.terrain.pieces);
   req.readbackDepth = true;
+  req.readbackColor = true;
   auto frame = scene->renderer().renderFrame(req);
   ASSERT_TRUE(frame.ok()) << frame.error().message;
-  EXPECT_EQ(frame->terrainTriangles, scene->info().meshTriangles);
+  EXPECT_EQ(frame->terrainTriangles, fig.terrain.triangles);
   // Looking 20° down from 300 m: the bottom of the image is ground, nearer than 2 km.
   const float bottom = frame->depth->depth[size_t{89} * 160 + 80];
   EXPECT_GT(bottom, render::reverseZDepth(req.camera, 2000.0));
+
+  // Determinism: a second scene on the same dataset draws the same pieces and the same image.
+  auto again = open();
+  ASSERT_TRUE(again);
+  render::FrameRequest req2 = again->prepareFrame(s, 0.0);
+  req2.readbackColor = true;
+  auto frame2 = again->renderer().renderFrame(req2);
+  ASSERT_TRUE(frame2.ok());
+  EXPECT_EQ(frame2->terrainTriangles, frame->terrainTriangles);
+  EXPECT_EQ(frame2->color->rgba, frame->color->rgba);
+}
+
+TEST_F(SceneTest, RealtimeFramesNeverWaitAndFillInAsTilesArrive) {
+  auto scene = open(StreamingMode::Realtime);
+  ASSERT_TRUE(scene);
+  const FlightSample s = overCentre(*scene, 150.0, 0.0, -30.0);
+  uint64_t firstWanted = 0, resident = 0;
+  int frames = 0;
+  for (; frames < 400; ++frames) {
+    const auto start = std::chrono::steady_clock::now();
+    render::FrameRequest req = scene->prepareFrame(s, frames / 60.0);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const SceneFrameFigures& fig = scene->lastFrameFigures();
+    EXPECT_EQ(fig.settleWaitMs, 0.0);
+    EXPECT_LT(ms, 1000.0) << "a realtime frame must not wait for I/O";
+    if (frames == 0) firstWanted = fig.streaming.wanted;
+    resident = fig.streaming.wantedResident;
+    auto frame = scene->renderer().renderFrame(req);
+    ASSERT_TRUE(frame.ok()) << frame.error().message;
+    if (resident == fig.streaming.wanted && fig.terrain.fallbackPieces == 0 && fig.terrain.pieces > 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_GT(firstWanted, 0u);
+  EXPECT_LT(frames, 400) << "the wanted tiles never all arrived";
+  EXPECT_GT(frames, 0) << "the first realtime frame cannot have its tiles already";
 }
 
 }  // namespace

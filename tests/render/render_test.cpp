@@ -34,9 +34,11 @@ class RenderTest : public GpuTest {};
 TEST_F(RenderTest, SkyIsAboveTheHorizonWhereTheCameraSaysItShouldBe) {
   auto r = makeRenderer(kW, kH, 1);
   ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setTerrain(flatPlane(40'000.0, 8, 0.0f)).ok());
+  const terrain::TerrainMesh plane = flatPlane(40'000.0, 8, 0.0f);
+  const TerrainDraw draw{&plane};
   const double height = 100.0;
   auto req = lookingAt({0, 0, height}, {0, 1, 0}, {0, 0, 1});
+  req.terrain = {&draw, 1};
   auto frame = r->renderFrame(req);
   ASSERT_TRUE(frame.ok()) << frame.error().message;
   const DepthImage& depth = *frame->depth;
@@ -70,9 +72,11 @@ TEST_F(RenderTest, SkyIsAboveTheHorizonWhereTheCameraSaysItShouldBe) {
 TEST_F(RenderTest, PitchingUpMovesTheHorizonDown) {
   auto r = makeRenderer(kW, kH, 1);
   ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setTerrain(flatPlane(40'000.0, 8, 0.0f)).ok());
+  const terrain::TerrainMesh plane = flatPlane(40'000.0, 8, 0.0f);
+  const TerrainDraw draw{&plane};
   const double pitch = glm::radians(10.0);
   auto req = lookingAt({0, 0, 100.0}, {0, std::cos(pitch), std::sin(pitch)}, {0, 0, 1});
+  req.terrain = {&draw, 1};
   auto frame = r->renderFrame(req);
   ASSERT_TRUE(frame.ok());
   const double tanHalf = std::tan(glm::radians(req.camera.verticalFovDeg) / 2.0);
@@ -91,8 +95,10 @@ TEST_F(RenderTest, AKnownPlaneReadsBackTheExpectedDepth) {
     auto r = makeRenderer(kW, kH, msaa);
     ASSERT_TRUE(r);
     if (!r->device().supportsMsaa(msaa)) continue;
-    ASSERT_TRUE(r->setTerrain(flatPlane(10'000.0, 4, 0.0f)).ok());
+    const terrain::TerrainMesh plane = flatPlane(10'000.0, 4, 0.0f);
+    const TerrainDraw draw{&plane};
     auto req = lookingAt({12.5, -7.25, 250.0}, {0, 0, -1}, {0, 1, 0});
+    req.terrain = {&draw, 1};
     auto frame = r->renderFrame(req);
     ASSERT_TRUE(frame.ok());
     const double expected = reverseZDepth(req.camera, 250.0);
@@ -112,12 +118,13 @@ TEST_F(RenderTest, MsaaResolveLeavesNoHolesAndAgreesWithSingleSample) {
     v.normal = glm::normalize(glm::vec3(-0.4f * std::cos(v.position.x / 300.0f) * std::cos(v.position.y / 410.0f),
                                         0.29f * std::sin(v.position.x / 300.0f) * std::sin(v.position.y / 410.0f), 1.0f));
   }
+  const TerrainDraw draw{&mesh};
   auto req = lookingAt({0, -3'000, 450.0}, {0, 1, -0.35}, {0, 0, 1});
+  req.terrain = {&draw, 1};
   std::vector<ColorImage> images;
   for (int msaa : {1, 4}) {
     auto r = makeRenderer(kW, kH, msaa);
     ASSERT_TRUE(r);
-    ASSERT_TRUE(r->setTerrain(mesh).ok());
     auto frame = r->renderFrame(req);
     ASSERT_TRUE(frame.ok());
     images.push_back(*frame->color);
@@ -148,8 +155,10 @@ TEST_F(RenderTest, TimingsAndPipelineStatisticsCountTheSubmittedWork) {
   auto r = makeRenderer(kW, kH, 1);
   ASSERT_TRUE(r);
   const terrain::TerrainMesh mesh = flatPlane(2'000.0, 10, 0.0f);
-  ASSERT_TRUE(r->setTerrain(mesh).ok());
-  auto frame = r->renderFrame(lookingAt({0, -1'500, 300}, {0, 1, -0.3}, {0, 0, 1}));
+  const TerrainDraw draw{&mesh};
+  FrameRequest req = lookingAt({0, -1'500, 300}, {0, 1, -0.3}, {0, 0, 1});
+  req.terrain = {&draw, 1};
+  auto frame = r->renderFrame(req);
   ASSERT_TRUE(frame.ok());
   EXPECT_EQ(frame->terrainTriangles, 200u);
   EXPECT_GT(frame->gpu.frameMs, 0.0);
@@ -163,25 +172,81 @@ TEST_F(RenderTest, TimingsAndPipelineStatisticsCountTheSubmittedWork) {
   EXPECT_GT(frame->gpu.statistics.fragmentInvocations, uint64_t{kW} * kH / 2);
 }
 
-// Two frames in flight, a mesh replaced between them: the old buffers must outlive the frames
-// that use them (the validation layers would report a destroyed buffer in use).
-TEST_F(RenderTest, ReplacingTheMeshWhileFramesAreInFlightIsSafe) {
+// Two frames in flight, the second with more geometry than the first: each frame's geometry
+// lives in its own slot's buffers, and buffers that grow retire the old ones only after the
+// frames that use them (the validation layers would report a destroyed buffer in use).
+TEST_F(RenderTest, ChangingTheTerrainWhileFramesAreInFlightIsSafe) {
   auto r = makeRenderer(kW / 2, kH / 2, 1);
   ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setTerrain(flatPlane(2'000.0, 4, 0.0f)).ok());
+  const terrain::TerrainMesh small = flatPlane(2'000.0, 4, 0.0f), large = flatPlane(2'000.0, 200, 0.0f);
+  const TerrainDraw drawSmall{&small}, drawLarge[2] = {{&large}, {&small}};
   FrameRequest req = lookingAt({0, -1'500, 300}, {0, 1, -0.3}, {0, 0, 1});
   req.readbackColor = req.readbackDepth = false;
+  req.terrain = {&drawSmall, 1};
   auto a = r->submitFrame(req);
   ASSERT_TRUE(a.ok());
-  ASSERT_TRUE(r->setTerrain(flatPlane(2'000.0, 6, 0.0f)).ok());
+  req.terrain = {drawLarge, 2};
   auto b = r->submitFrame(req);
   ASSERT_TRUE(b.ok());
   auto fa = r->waitFrame(*a);
+  ASSERT_TRUE(fa.ok());
+  auto c = r->submitFrame(req);  // slot of a, grows its buffers
+  ASSERT_TRUE(c.ok());
   auto fb = r->waitFrame(*b);
-  ASSERT_TRUE(fa.ok() && fb.ok());
+  auto fc = r->waitFrame(*c);
+  ASSERT_TRUE(fb.ok() && fc.ok());
   EXPECT_EQ(fa->terrainTriangles, 32u);
-  EXPECT_EQ(fb->terrainTriangles, 72u);
+  EXPECT_EQ(fb->terrainTriangles, 2u * 200 * 200 + 32u);
+  EXPECT_EQ(fc->terrainTriangles, fb->terrainTriangles);
   EXPECT_FALSE(r->waitFrame(*a + 5).ok());
+}
+
+// Imagery tiles land in their array layers and colour the draws that name them; a fading tile
+// mixes with the layer it replaces by the blend factor.
+TEST_F(RenderTest, ImageryLayersColourTheDrawsThatNameThem) {
+  auto r = makeRenderer(kW / 2, kH / 2, 1);
+  ASSERT_TRUE(r);
+  ASSERT_FALSE(r->setImageryLayers(0).ok());
+  ASSERT_FALSE(r->setImageryLayers(r->maxImageryLayers() + 1).ok());
+  ASSERT_TRUE(r->setImageryLayers(4).ok());
+  EXPECT_EQ(r->imageryLayers(), 4u);
+  auto tile = [](uint8_t red, uint8_t green) {
+    std::vector<uint8_t> rgba(size_t{kImageryTileSize} * kImageryTileSize * 4);
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+      rgba[i] = red;
+      rgba[i + 1] = green;
+      rgba[i + 2] = 0;
+      rgba[i + 3] = 255;
+    }
+    return rgba;
+  };
+  const std::vector<uint8_t> red = tile(255, 0), green = tile(0, 255);
+  const ImageryUpload uploads[] = {{2, red.data()}, {3, green.data()}};
+  terrain::TerrainMesh plane = flatPlane(4'000.0, 4, 0.0f);
+  for (auto& v : plane.vertices) v.uv = {v.position.x / 4'000.0f + 0.5f, 0.5f - v.position.y / 4'000.0f};
+  FrameRequest req = lookingAt({0, 0, 500.0}, {0, 0, -1}, {0, 1, 0});
+  req.imageryUploads = uploads;
+  auto centre = [&](const FrameResult& f) { return pixel(*f.color, f.color->width / 2, f.color->height / 2); };
+
+  TerrainDraw draw{&plane};
+  draw.imageryLayer = 2;
+  req.terrain = {&draw, 1};
+  auto redFrame = r->renderFrame(req);
+  ASSERT_TRUE(redFrame.ok());
+  EXPECT_GT(centre(*redFrame)[0], 2 * centre(*redFrame)[1]);
+
+  req.imageryUploads = {};
+  draw.imageryLayer = 3;
+  auto greenFrame = r->renderFrame(req);
+  ASSERT_TRUE(greenFrame.ok());
+  EXPECT_GT(centre(*greenFrame)[1], 2 * centre(*greenFrame)[0]);
+
+  draw.previousLayer = 2;  // fading from red to green: a quarter of the way
+  draw.imageryBlend = 0.25f;
+  auto mixed = r->renderFrame(req);
+  ASSERT_TRUE(mixed.ok());
+  EXPECT_GT(centre(*mixed)[0], centre(*mixed)[1]);
+  EXPECT_GT(centre(*mixed)[1], centre(*redFrame)[1] + 20);
 }
 
 }  // namespace

@@ -1,0 +1,36 @@
+#pragma once
+// The streaming and terrain options that `fly` and `record` share (--cpu-budget-mb,
+// --gpu-budget-mb, --streaming, --no-look-ahead, --terrain-error-px, --http-cache, …), and how
+// they become SceneOptions. One definition, so both commands spell and check them alike.
+
+#include <cstdint>
+#include <string>
+
+#include "core/result.h"
+#include "flight/scene.h"
+
+namespace CLI { class App; }
+
+namespace vegstream::app {
+
+struct StreamingCli {
+  double cpuBudgetMb = 512.0;   // decoded tiles in memory
+  double gpuBudgetMb = 256.0;   // imagery tiles on the GPU
+  double uploadMbPerFrame = 8.0;
+  std::string mode;             // "settled" | "realtime"; empty: the command's default
+  bool noLookAhead = false;
+  double terrainErrorPx = 2.0;
+  int terrainMaxNodes = 384;
+  std::string httpCache;        // directory for the on-disk HTTP tile cache; empty: none
+};
+
+// Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).
+void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode);
+
+// Checks the values (one message naming the option) and fills the scene options.
+Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaultMode, flight::SceneOptions& scene);
+
+// "settled" / "realtime".
+const char* toString(flight::StreamingMode mode);
+
+}  // namespace vegstream::app

@@ -1,0 +1,135 @@
+// DecodePipeline (decode_pipeline.h): one mutex guards the job queue, the completions and the
+// cancel marks; decoding itself runs unlocked.
+
+#include "streaming/decode_pipeline.h"
+
+#include <algorithm>
+#include <cassert>
+#include <exception>
+
+namespace vegstream::streaming::detail {
+
+DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads) : encoding_(encoding) {
+  assert(decodeThreads >= 1);
+  for (int i = 0; i < decodeThreads; ++i) workers_.emplace_back([this] { runWorker(); });
+}
+
+DecodePipeline::~DecodePipeline() { assert(workers_.empty()); }
+
+void DecodePipeline::stop() {
+  {
+    std::lock_guard lock(mu_);
+    if (closed_ && workers_.empty()) return;
+    closed_ = true;
+    jobs_.clear();
+    completions_.clear();
+  }
+  jobsCv_.notify_all();
+  completionsCv_.notify_all();
+  for (auto& w : workers_) w.join();
+  workers_.clear();
+}
+
+void DecodePipeline::pushLocked(Completion&& c) {
+  completions_.push_back(std::move(c));
+  completionsCv_.notify_all();
+}
+
+void DecodePipeline::onFetched(const TileKey& key, const std::string& name, FetchResult&& result) {
+  std::lock_guard lock(mu_);
+  if (closed_) return;
+  if (cancelled_.erase(result.id) > 0) return;  // the frame thread no longer wants it
+  Completion c;
+  c.id = result.id;
+  c.attempts = result.attempts;
+  c.message = std::move(result.message);
+  switch (result.outcome) {
+    case FetchOutcome::Ok:
+      c.kind = Completion::Kind::Fetched;
+      c.bytes = result.bytes.size();
+      jobs_.push_back(Job{result.id, key, name, std::move(result.bytes)});
+      jobsCv_.notify_one();
+      break;
+    case FetchOutcome::Missing: c.kind = Completion::Kind::Missing; break;
+    case FetchOutcome::Failed: c.kind = Completion::Kind::FetchFailed; break;
+    case FetchOutcome::Cancelled: c.kind = Completion::Kind::Cancelled; break;
+  }
+  pushLocked(std::move(c));
+}
+
+void DecodePipeline::cancel(RequestId id) {
+  std::lock_guard lock(mu_);
+  if (closed_) return;
+  bool finalRemoved = false;
+  std::erase_if(completions_, [&](const Completion& c) {
+    if (c.id != id) return false;
+    finalRemoved = finalRemoved || c.kind != Completion::Kind::Fetched;
+    return true;
+  });
+  if (finalRemoved) return;  // nothing more will come for it
+  const auto job = std::find_if(jobs_.begin(), jobs_.end(), [&](const Job& j) { return j.id == id; });
+  if (job != jobs_.end()) {
+    jobs_.erase(job);
+    return;
+  }
+  // At the source, or being decoded: whichever arrives next is dropped.
+  cancelled_.insert(id);
+}
+
+std::vector<Completion> DecodePipeline::takeCompletions() {
+  std::lock_guard lock(mu_);
+  std::vector<Completion> out;
+  out.swap(completions_);
+  return out;
+}
+
+bool DecodePipeline::waitForCompletions(std::chrono::duration<double> timeout) {
+  std::unique_lock lock(mu_);
+  return completionsCv_.wait_for(lock, timeout, [&] { return closed_ || !completions_.empty(); }) && !closed_;
+}
+
+std::size_t DecodePipeline::decodesQueued() const {
+  std::lock_guard lock(mu_);
+  return jobs_.size() + decoding_.size();
+}
+
+Completion DecodePipeline::decode(Job& job) const {
+  Completion c;
+  c.id = job.id;
+  try {
+    if (job.key.layer == TileLayer::Height) {
+      auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, job.name);
+      if (t) c.heights = std::make_shared<const datasets::HeightTile>(std::move(t).value());
+      else c.message = t.error().message;
+    } else {
+      auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
+      if (t) c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());
+      else c.message = t.error().message;
+    }
+  } catch (const std::exception& e) {  // out of memory in the decoder: a failed tile, not a dead thread
+    c.message = job.name + ": " + e.what();
+  }
+  c.kind = c.heights || c.colors ? Completion::Kind::Decoded : Completion::Kind::DecodeFailed;
+  return c;
+}
+
+void DecodePipeline::runWorker() {
+  std::unique_lock lock(mu_);
+  for (;;) {
+    jobsCv_.wait(lock, [&] { return closed_ || !jobs_.empty(); });
+    if (closed_) return;
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    decoding_.insert(job.id);
+    lock.unlock();
+    Completion c = decode(job);
+    job.bytes = {};
+    lock.lock();
+    decoding_.erase(job.id);
+    if (closed_) return;
+    if (cancelled_.erase(job.id) > 0) continue;
+    pushLocked(std::move(c));
+  }
+}
+
+}  // namespace vegstream::streaming::detail

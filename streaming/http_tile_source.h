@@ -1,0 +1,84 @@
+#pragma once
+// HttpTileSource: a dataset directory served over HTTP(S) by any static server (nginx, a CDN,
+// object storage), read through libcurl.
+//
+// One I/O thread drives one libcurl multi handle: connections are kept alive and reused
+// between tiles (HTTP/1.1 keep-alive; HTTP/2 multiplexing where a TLS server offers it), DNS
+// answers are cached. start() and cancel() only queue a command and wake the thread
+// (curl_multi_wakeup); they never block on I/O.
+//
+// Policy (http_retry_policy.h): at most maxInFlight transfers at once, the rest wait in start
+// order; each attempt has a connect and a total time-out; 5xx, time-outs, connection errors
+// and truncated bodies are retried after an exponential back-off with jitter, up to
+// maxAttempts tries in all; 404/410 end as Missing and other 4xx as Failed at once.
+//
+// With a cache directory, Ok tiles are also written to a DiskTileCache, and a start() whose
+// file is cached is answered from it (FetchResult::fromCache) without touching the network.
+// readText() never uses the cache: dataset.json is always read fresh.
+//
+// Callbacks run on the I/O thread, exactly once per start(). The destructor cancels what is
+// still queued or running (those callbacks run with Cancelled) and joins the thread.
+// Counters count start()ed requests only; readText() is not a tile request and is not counted.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/log.h"
+#include "streaming/tile_source.h"
+
+namespace vegstream::streaming {
+
+struct HttpSourceOptions {
+  std::string baseUrl;            // the dataset root: "https://tiles.example.org/zion" ('/' optional)
+  int maxInFlight = 8;            // transfers running at once (≥ 1)
+  long connectTimeoutMs = 5000;   // per attempt
+  long totalTimeoutMs = 20000;    // per attempt, connect included
+  int maxAttempts = 4;            // tries in all (≥ 1): 1 = no retry
+  long backoffBaseMs = 100;       // delay before the 2nd attempt; doubles each time …
+  long backoffMaxMs = 3000;       // … up to this, then jittered down to half of it at most
+  std::optional<std::filesystem::path> cacheDir;  // on-disk tile cache (disk_tile_cache.h)
+  uint64_t cacheBudgetBytes = 2ull << 30;
+  Logger log;                     // null: nothing is logged
+};
+
+// Transport figures beyond SourceCounters, for tests and reports.
+struct HttpTransportStats {
+  uint64_t attempts = 0;           // transfers handed to libcurl (tiles and readText)
+  uint64_t connectionsOpened = 0;  // new connections libcurl made (CURLINFO_NUM_CONNECTS summed)
+};
+
+class HttpTileSource final : public TileSource {
+ public:
+  // InvalidInput when baseUrl is not an http:// or https:// URL with a host; Io when the
+  // cache directory cannot be opened.
+  static Result<std::shared_ptr<HttpTileSource>> create(HttpSourceOptions options);
+
+  ~HttpTileSource() override;
+  HttpTileSource(const HttpTileSource&) = delete;
+  HttpTileSource& operator=(const HttpTileSource&) = delete;
+
+  std::string describe() const override;
+  Result<std::string> readText(const std::string& relativePath) override;
+  void start(RequestId id, const std::string& relativePath, FetchCallback done) override;
+  void cancel(RequestId id) override;
+  std::size_t inFlight() const override;
+  SourceCounters counters() const override;
+
+  HttpTransportStats transportStats() const;
+  // The URL a relative path is fetched from (characters outside RFC 3986's unreserved set and
+  // '/' are percent-encoded).
+  std::string urlFor(const std::string& relativePath) const;
+
+ private:
+  struct Impl;
+  explicit HttpTileSource(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// OK when `url` is an http:// or https:// URL with a host, else InvalidInput naming it.
+Status checkHttpUrl(const std::string& url);
+
+}  // namespace vegstream::streaming

@@ -1,0 +1,209 @@
+// LocalTileSource (local_tile_source.h): a queue of read requests served by a few I/O threads.
+// Cancelled requests are answered by the I/O threads too (never inside cancel()), so a
+// callback always runs on a thread of the source's and never re-enters the caller.
+
+#include "streaming/local_tile_source.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cerrno>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <unordered_set>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/text_file.h"
+
+namespace vegstream::streaming {
+namespace {
+namespace fs = std::filesystem;
+
+struct Job {
+  RequestId id = 0;
+  std::string relativePath;
+  FetchCallback done;
+  bool cancelled = false;
+  bool outsideRoot = false;  // absolute or "..": failed without touching the disk
+};
+
+// A relative path that stays inside the dataset: no root, no "..".
+bool isInsideRoot(const std::string& relativePath) {
+  const fs::path p(relativePath);
+  if (relativePath.empty() || p.is_absolute() || p.has_root_name()) return false;
+  return std::none_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".."; });
+}
+
+std::string quotedPath(const fs::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+// Reads the whole file with POSIX calls (one open, one fstat, reads until the size is in).
+FetchResult readWholeFile(const fs::path& path) {
+  FetchResult r;
+  r.attempts = 1;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    r.outcome = err == ENOENT || err == ENOTDIR ? FetchOutcome::Missing : FetchOutcome::Failed;
+    r.message = quotedPath(path) + ": " + std::strerror(err);
+    return r;
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    r.outcome = FetchOutcome::Failed;
+    r.message = quotedPath(path) + ": not a regular file";
+    ::close(fd);
+    return r;
+  }
+  r.bytes.resize(static_cast<size_t>(st.st_size));
+  size_t got = 0;
+  while (got < r.bytes.size()) {
+    const ssize_t n = ::read(fd, r.bytes.data() + got, r.bytes.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      r.outcome = FetchOutcome::Failed;
+      r.message = quotedPath(path) + (n < 0 ? ": " + std::string(std::strerror(errno)) : ": file shrank while read");
+      r.bytes.clear();
+      ::close(fd);
+      return r;
+    }
+    got += static_cast<size_t>(n);
+  }
+  ::close(fd);
+  r.outcome = FetchOutcome::Ok;
+  return r;
+}
+
+}  // namespace
+
+struct LocalTileSource::Impl {
+  fs::path root;
+  mutable std::mutex mu;
+  std::condition_variable wake;
+  std::deque<Job> queue;                   // waiting to be read (cancelled ones are answered first)
+  std::unordered_set<RequestId> reading;   // being read right now
+  std::unordered_set<RequestId> cancelWhileReading;
+  std::size_t inFlight = 0;                // started, not yet called back
+  SourceCounters counters;
+  bool stopping = false;
+  std::vector<std::thread> threads;
+
+  void run() {
+    std::unique_lock lock(mu);
+    for (;;) {
+      wake.wait(lock, [&] { return stopping || !queue.empty(); });
+      if (queue.empty()) return;  // stopping and drained
+      Job job = std::move(queue.front());
+      queue.pop_front();
+      FetchResult r;
+      r.id = job.id;
+      if (job.cancelled || stopping) {
+        r.outcome = FetchOutcome::Cancelled;
+      } else if (job.outsideRoot) {
+        r.outcome = FetchOutcome::Failed;
+        r.attempts = 1;
+        r.message = "'" + job.relativePath + "' is not a path inside the dataset directory";
+      } else {
+        reading.insert(job.id);
+        lock.unlock();
+        r = readWholeFile(root / job.relativePath);
+        r.id = job.id;
+        lock.lock();
+        reading.erase(job.id);
+        if (cancelWhileReading.erase(job.id) > 0) {
+          r.outcome = FetchOutcome::Cancelled;
+          r.bytes.clear();
+        }
+      }
+      switch (r.outcome) {
+        case FetchOutcome::Ok: ++counters.requestsCompleted; counters.bytesRead += r.bytes.size(); break;
+        case FetchOutcome::Missing: ++counters.requestsMissing; break;
+        case FetchOutcome::Failed: ++counters.requestsFailed; break;
+        case FetchOutcome::Cancelled: ++counters.requestsCancelled; break;
+      }
+      // The callback runs unlocked (it may take its own locks); inFlight drops after it, so a
+      // caller that sees inFlight() == 0 knows every callback has returned.
+      lock.unlock();
+      job.done(std::move(r));
+      lock.lock();
+      --inFlight;
+    }
+  }
+};
+
+LocalTileSource::LocalTileSource(fs::path datasetDir, int ioThreads) : impl_(std::make_unique<Impl>()) {
+  assert(ioThreads >= 1);
+  impl_->root = std::move(datasetDir);
+  for (int i = 0; i < ioThreads; ++i) impl_->threads.emplace_back([this] { impl_->run(); });
+}
+
+LocalTileSource::~LocalTileSource() {
+  {
+    std::lock_guard lock(impl_->mu);
+    impl_->stopping = true;
+  }
+  impl_->wake.notify_all();
+  for (auto& t : impl_->threads) t.join();
+}
+
+std::string LocalTileSource::describe() const { return "dir " + impl_->root.string(); }
+
+Result<std::string> LocalTileSource::readText(const std::string& relativePath) {
+  if (!isInsideRoot(relativePath))
+    return makeError(ErrorKind::InvalidInput, "'" + relativePath + "' is not a path inside the dataset directory");
+  return readTextFile(impl_->root / relativePath);
+}
+
+void LocalTileSource::start(RequestId id, const std::string& relativePath, FetchCallback done) {
+  assert(done);
+  // A bad path is answered by an I/O thread like every other outcome.
+  Job job{id, relativePath, std::move(done), false, !isInsideRoot(relativePath)};
+  {
+    std::lock_guard lock(impl_->mu);
+    ++impl_->counters.requestsStarted;
+    ++impl_->inFlight;
+    impl_->queue.push_back(std::move(job));
+  }
+  impl_->wake.notify_one();
+}
+
+void LocalTileSource::cancel(RequestId id) {
+  bool found = false;
+  {
+    std::lock_guard lock(impl_->mu);
+    auto it = std::find_if(impl_->queue.begin(), impl_->queue.end(), [&](const Job& j) { return j.id == id; });
+    if (it != impl_->queue.end()) {
+      // Moved to the front so the answer comes at once rather than after the reads queued before it.
+      Job job = std::move(*it);
+      impl_->queue.erase(it);
+      job.cancelled = true;
+      impl_->queue.push_front(std::move(job));
+      found = true;
+    } else if (impl_->reading.count(id) > 0) {
+      impl_->cancelWhileReading.insert(id);
+    }
+  }
+  if (found) impl_->wake.notify_one();
+}
+
+std::size_t LocalTileSource::inFlight() const {
+  std::lock_guard lock(impl_->mu);
+  return impl_->inFlight;
+}
+
+SourceCounters LocalTileSource::counters() const {
+  std::lock_guard lock(impl_->mu);
+  return impl_->counters;
+}
+
+}  // namespace vegstream::streaming

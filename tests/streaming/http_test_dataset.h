@@ -1,0 +1,120 @@
+#pragma once
+// Shared by the HTTP source tests: a small synthetic dataset made once per test process (ctest
+// runs each test in its own process, possibly in parallel, so the directory carries the pid),
+// and small helpers to wait for callbacks.
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/log.h"
+#include "datasets/progress.h"
+#include "datasets/synthetic_generator.h"
+#include "streaming/tile_source.h"
+
+namespace vegstream::testing {
+
+// VEGSTREAM_TEST_TMP/http_<name>_<pid>, empty.
+inline std::filesystem::path httpTestTmp(const std::string& name) {
+  const auto p = std::filesystem::path(VEGSTREAM_TEST_TMP) / ("http_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(p);
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+inline std::vector<uint8_t> fileBytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A 4 km synthetic dataset (a few dozen tiles), made once per process.
+class HttpDataset : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new std::filesystem::path(httpTestTmp("root"));
+    datasets::SyntheticOptions o;
+    o.out = *root_ / "synthetic";
+    o.sizeKm = 4.0;
+    o.threads = 2;
+    datasets::NullProgress progress;
+    auto meta = datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
+    ASSERT_TRUE(meta.ok()) << meta.error().message;
+    meta_ = new datasets::DatasetMeta(*meta);
+    tiles_ = new std::vector<std::string>;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(o.out))
+      if (e.is_regular_file() && e.path().filename() != "dataset.json")
+        tiles_->push_back(std::filesystem::relative(e.path(), o.out).generic_string());
+    std::sort(tiles_->begin(), tiles_->end());
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*root_);
+    delete root_;
+    delete meta_;
+    delete tiles_;
+  }
+  static std::filesystem::path dir() { return *root_ / "synthetic"; }
+  static std::filesystem::path work() { return *root_; }
+  static const datasets::DatasetMeta& meta() { return *meta_; }
+  // Every tile file, relative to the dataset root ("elevation/13/4281/2913.png"), sorted.
+  static const std::vector<std::string>& tiles() { return *tiles_; }
+
+ private:
+  static inline std::filesystem::path* root_ = nullptr;
+  static inline datasets::DatasetMeta* meta_ = nullptr;
+  static inline std::vector<std::string>* tiles_ = nullptr;
+};
+
+// Collects callbacks (from any thread) and counts how often each request id was called back.
+class Results {
+ public:
+  streaming::FetchCallback callback() {
+    return [this](streaming::FetchResult&& r) {
+      std::lock_guard lock(mutex_);
+      ++calls_[r.id];
+      results_.push_back(std::move(r));
+      changed_.notify_all();
+    };
+  }
+  // Waits until `n` callbacks have arrived; false on time-out.
+  bool waitFor(size_t n, std::chrono::milliseconds timeout = std::chrono::seconds(20)) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, timeout, [&] { return results_.size() >= n; });
+  }
+  std::vector<streaming::FetchResult> take() {
+    std::lock_guard lock(mutex_);
+    return results_;
+  }
+  std::optional<streaming::FetchResult> find(streaming::RequestId id) {
+    std::lock_guard lock(mutex_);
+    for (const auto& r : results_)
+      if (r.id == id) return r;
+    return std::nullopt;
+  }
+  // Every id in [first, first + n) called back exactly once, and nothing else.
+  bool eachOnce(streaming::RequestId first, size_t n) {
+    std::lock_guard lock(mutex_);
+    if (calls_.size() != n) return false;
+    for (streaming::RequestId id = first; id < first + n; ++id)
+      if (calls_[id] != 1) return false;
+    return true;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<streaming::FetchResult> results_;
+  std::map<streaming::RequestId, int> calls_;
+};
+
+}  // namespace vegstream::testing

@@ -1,0 +1,392 @@
+// TileStreamer over a real dataset directory (LocalTileSource) and, for failures and timing,
+// over a scripted source: residency and decoded values, the CPU budget, cancellation, request
+// order, missing and failing tiles, the counters, settle and shutdown.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <set>
+#include <thread>
+
+#include "datasets/tile_codec.h"
+#include "scripted_tile_source.h"
+#include "streaming/local_tile_source.h"
+#include "streaming_fixture.h"
+
+namespace vegstream::streaming::test {
+namespace {
+
+constexpr uint64_t kTileBytes = 256 * 256 * 4;
+
+std::vector<uint8_t> fileBytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Repeats update() (time advancing 10 ms a call) until pred() holds; false after 10 s.
+template <typename Pred>
+bool updateUntil(TileStreamer& s, const std::vector<TileWant>& wants, double& t, Pred pred) {
+  for (int i = 0; i < 1000; ++i) {
+    s.update(wants, t);
+    t += 0.01;
+    if (pred()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+// Running sums of the per-frame counters.
+struct Totals {
+  uint64_t issued = 0, completed = 0, cancelled = 0, failed = 0, missing = 0;
+  void add(const StreamingFrameStats& f) {
+    issued += f.requestsIssued;
+    completed += f.requestsCompleted;
+    cancelled += f.requestsCancelled;
+    failed += f.requestsFailed;
+    missing += f.requestsMissing;
+  }
+  // Every request issued is resident, cancelled, failed, missing, or still under way.
+  void expectBalanced(const StreamingFrameStats& f) const {
+    EXPECT_EQ(issued, completed + cancelled + failed + missing + f.requestsInFlight + f.decodesQueued)
+        << "issued " << issued << " completed " << completed << " cancelled " << cancelled << " failed " << failed
+        << " missing " << missing << " in flight " << f.requestsInFlight << " decoding " << f.decodesQueued;
+  }
+};
+
+StreamingOptions smallOptions() {
+  StreamingOptions o;
+  o.decodeThreads = 2;
+  o.maxRequestsInFlight = 8;
+  return o;
+}
+
+using StreamerLocal = SyntheticDataset;
+
+TEST_F(StreamerLocal, SettleMakesEveryWantedTileResidentWithTheHeightsOfReadHeightTile) {
+  auto source = std::make_shared<LocalTileSource>(dir());
+  TileStreamer s(source, meta(), smallOptions(), makeNullLogger());
+  auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+  const auto colour = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom);
+  ASSERT_GE(keys.size(), 9u);
+  ASSERT_EQ(colour.size(), keys.size());
+  keys.insert(keys.end(), colour.begin(), colour.end());
+  const auto wants = wantsOf(keys);
+  const double waited = s.settle(wants, 0.0);
+  EXPECT_LT(waited, 30.0);
+  EXPECT_EQ(s.frameStats().wanted, keys.size());
+  EXPECT_EQ(s.frameStats().wantedResident, keys.size());
+  EXPECT_EQ(s.frameStats().bytesResidentCpu, s.frameStats().tilesResidentCpu * (kTileBytes + 256));
+  for (const auto& k : keys) {
+    EXPECT_EQ(s.state(k), TileState::ResidentCpu) << toString(k);
+    const auto tile = s.get(k);
+    ASSERT_TRUE(tile) << toString(k);
+    if (k.layer == TileLayer::Height) {
+      auto ref = datasets::readHeightTile(dir() / datasetRelativePath(k, meta()), k.id, meta().elevationEncoding);
+      ASSERT_TRUE(ref) << ref.error().message;
+      ASSERT_TRUE(tile->heights);
+      ASSERT_EQ(tile->heights->heights.size(), ref->heights.size());
+      for (size_t i = 0; i < ref->heights.size(); ++i)
+        ASSERT_TRUE(tile->heights->heights[i] == ref->heights[i] ||
+                    (std::isnan(tile->heights->heights[i]) && std::isnan(ref->heights[i])));
+    } else {
+      auto ref = datasets::readColorTile(dir() / datasetRelativePath(k, meta()), k.id);
+      ASSERT_TRUE(ref) << ref.error().message;
+      ASSERT_TRUE(tile->colors);
+      EXPECT_EQ(tile->colors->rgba, ref->rgba);
+    }
+  }
+  EXPECT_EQ(source->counters().requestsCompleted, keys.size());
+}
+
+// 40 rounds of random wants (some current, some look-ahead) under a budget of 12 tiles, each
+// round updated until nothing is under way: resident bytes never exceed the budget at any
+// update, and a current want that is resident stays resident.
+TEST_F(StreamerLocal, CpuBudgetHoldsAndCurrentWantsAreNeverEvicted) {
+  auto source = std::make_shared<LocalTileSource>(dir());
+  StreamingOptions o = smallOptions();
+  o.cpuBudgetBytes = 12 * (kTileBytes + 256);
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  std::vector<TileKey> pool;
+  for (int z = meta().minZoom; z <= meta().maxZoom; ++z)
+    for (auto layer : {TileLayer::Height, TileLayer::Imagery})
+      for (const auto& k : tilesAt(dir(), meta(), layer, z)) pool.push_back(k);
+  ASSERT_GT(pool.size(), 30u);
+  std::mt19937 rng(5);
+  Totals totals;
+  uint64_t evictions = 0, exceeded = 0, updates = 0;
+  double t = 0.0;
+  for (int round = 0; round < 40; ++round) {
+    std::shuffle(pool.begin(), pool.end(), rng);
+    const size_t current = std::uniform_int_distribution<size_t>(1, 14)(rng);  // sometimes over budget
+    std::vector<TileWant> wants;
+    for (size_t i = 0; i < current + 6; ++i) wants.push_back({pool[i], double(rng() % 100), i >= current});
+    for (int frame = 0; frame < 2000; ++frame) {
+      std::vector<TileKey> residentBefore;
+      for (size_t i = 0; i < current; ++i)
+        if (s.state(pool[i]) == TileState::ResidentCpu) residentBefore.push_back(pool[i]);
+      s.update(wants, t);
+      t += 1.0 / 60.0;
+      ++updates;
+      const auto& f = s.frameStats();
+      totals.add(f);
+      ASSERT_LE(f.bytesResidentCpu, o.cpuBudgetBytes) << "round " << round << " frame " << frame;
+      for (const auto& k : residentBefore) ASSERT_EQ(s.state(k), TileState::ResidentCpu) << toString(k);
+      evictions += f.evictionsCpu;
+      exceeded += f.wantsExceedCpuBudget ? 1 : 0;
+      totals.expectBalanced(f);
+      if (f.requestsInFlight + f.decodesQueued == 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  EXPECT_GT(updates, 80u);
+  EXPECT_GT(evictions, 20u);
+  EXPECT_GT(exceeded, 0u);  // 13 and 14 current wants do not fit in 12
+  EXPECT_GT(totals.completed, 100u);
+  EXPECT_EQ(totals.missing + totals.failed, 0u);
+}
+
+TEST_F(StreamerLocal, AWantThatGoesAwayIsCancelledAndNeverResident) {
+  auto source = std::make_shared<LocalTileSource>(dir(), 1);
+  StreamingOptions o = smallOptions();
+  o.maxRequestsInFlight = 64;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  auto keys = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom);
+  s.update(wantsOf(keys), 0.0);
+  EXPECT_EQ(s.frameStats().requestsIssued, keys.size());
+  Totals totals;
+  totals.add(s.frameStats());
+  s.update({}, 0.01);  // nothing wanted any more: all still under way are cancelled
+  totals.add(s.frameStats());
+  EXPECT_GT(s.frameStats().requestsCancelled, 0u);
+  while (source->inFlight() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // decodes of racing fetches
+  s.update({}, 0.2);
+  totals.add(s.frameStats());
+  uint64_t resident = 0;
+  for (const auto& k : keys) resident += s.state(k) == TileState::ResidentCpu ? 1u : 0u;
+  // Only what completed before the cancel can be resident.
+  EXPECT_EQ(resident, totals.completed);
+  EXPECT_EQ(totals.issued, totals.completed + totals.cancelled);
+  EXPECT_TRUE(s.planUploads().empty());
+}
+
+TEST_F(StreamerLocal, MissingTileFailsForGoodAndItsParentIsFound) {
+  const fs::path copy = testTmp("missing");
+  fs::copy(dir(), copy, fs::copy_options::recursive);
+  const auto keys = tilesAt(copy, meta(), TileLayer::Height, meta().maxZoom);
+  const TileKey gone = keys[keys.size() / 2];
+  fs::remove(copy / datasetRelativePath(gone, meta()));
+  auto source = std::make_shared<LocalTileSource>(copy);
+  TileStreamer s(source, meta(), smallOptions(), makeNullLogger());
+  const std::vector<TileWant> wants = {{gone, 2.0, false}, {parentOf(gone), 1.0, false}};
+  s.settle(wants, 0.0);
+  EXPECT_EQ(s.state(gone), TileState::Failed);
+  EXPECT_EQ(source->counters().requestsMissing, 1u);
+  const auto found = s.findResident(gone);
+  ASSERT_TRUE(found.tile);
+  EXPECT_EQ(found.levelsUp, 1);
+  EXPECT_EQ(found.tile->key, parentOf(gone));
+  // Failed is final: not asked again, even long after.
+  s.update(wants, 100.0);
+  EXPECT_EQ(s.frameStats().requestsIssued, 0u);
+  EXPECT_EQ(source->counters().requestsStarted, 2u);
+  fs::remove_all(copy);
+}
+
+TEST_F(StreamerLocal, DestructorWithRequestsInFlightIsClean) {
+  auto source = std::make_shared<LocalTileSource>(dir(), 1);
+  {
+    StreamingOptions o = smallOptions();
+    o.maxRequestsInFlight = 64;
+    TileStreamer s(source, meta(), o, makeNullLogger());
+    auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+    const auto more = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom);
+    keys.insert(keys.end(), more.begin(), more.end());
+    s.update(wantsOf(keys), 0.0);
+    EXPECT_EQ(s.frameStats().requestsInFlight, keys.size());
+  }
+  // The source outlives the streamer: its callbacks still arrive, safely, and every request ends.
+  for (int i = 0; i < 500 && source->inFlight() > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(source->inFlight(), 0u);
+  const auto c = source->counters();
+  EXPECT_EQ(c.requestsStarted, c.requestsCompleted + c.requestsCancelled);
+}
+
+// ---- scripted source: order, failures, counters ----
+
+using StreamerScripted = SyntheticDataset;
+
+TEST_F(StreamerScripted, RequestsGoOutInPriorityOrderCurrentBeforeLookAhead) {
+  auto source = std::make_shared<ScriptedSource>();  // holds everything
+  StreamingOptions o = smallOptions();
+  o.maxRequestsInFlight = 3;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+  ASSERT_GE(keys.size(), 8u);
+  // Current wants with priorities 1 … 5 (listed out of order), look-ahead ones with 100, 99.
+  std::vector<TileWant> wants = {{keys[0], 3, false}, {keys[1], 5, false}, {keys[2], 1, false}, {keys[3], 4, false},
+                                 {keys[4], 2, false}, {keys[5], 100, true}, {keys[6], 99, true}};
+  s.update(wants, 0.0);
+  auto started = source->started();
+  ASSERT_EQ(started.size(), 3u);
+  EXPECT_EQ(started[0].path, datasetRelativePath(keys[1], meta()));
+  EXPECT_EQ(started[1].path, datasetRelativePath(keys[3], meta()));
+  EXPECT_EQ(started[2].path, datasetRelativePath(keys[0], meta()));
+  // Answer them Missing: the next two current wants go out, then the first look-ahead one.
+  for (const auto& st : started) source->reply(st.id, ScriptedSource::outcome(FetchOutcome::Missing));
+  source->waitDelivered();
+  s.update(wants, 0.1);
+  started = source->started();
+  ASSERT_EQ(started.size(), 6u);
+  EXPECT_EQ(started[3].path, datasetRelativePath(keys[4], meta()));
+  EXPECT_EQ(started[4].path, datasetRelativePath(keys[2], meta()));
+  EXPECT_EQ(started[5].path, datasetRelativePath(keys[5], meta()));
+  // A new current want while the limit is reached displaces the look-ahead request.
+  for (size_t i = 3; i < 5; ++i) source->reply(started[i].id, ScriptedSource::outcome(FetchOutcome::Missing));
+  source->waitDelivered();
+  s.update(wants, 0.2);  // now: keys[5] and keys[6] (look-ahead) plus one free place
+  wants.push_back({keys[7], 1, false});
+  const size_t before = source->started().size();
+  s.update(wants, 0.3);
+  started = source->started();
+  ASSERT_GT(started.size(), before);
+  EXPECT_EQ(started.back().path, datasetRelativePath(keys[7], meta()));
+  EXPECT_EQ(s.state(keys[7]), TileState::Requested);
+  EXPECT_EQ(s.frameStats().requestsInFlight, 3u);
+}
+
+TEST_F(StreamerScripted, LookAheadRequestMakesRoomForACurrentWant) {
+  auto source = std::make_shared<ScriptedSource>();
+  StreamingOptions o = smallOptions();
+  o.maxRequestsInFlight = 2;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+  std::vector<TileWant> wants = {{keys[0], 10, true}, {keys[1], 20, true}};
+  s.update(wants, 0.0);
+  ASSERT_EQ(source->started().size(), 2u);
+  wants.push_back({keys[2], 1, false});
+  s.update(wants, 0.1);
+  EXPECT_EQ(s.state(keys[2]), TileState::Requested);
+  EXPECT_EQ(s.state(keys[0]), TileState::Unloaded);  // the weaker look-ahead request gave way
+  EXPECT_EQ(s.state(keys[1]), TileState::Requested);
+  EXPECT_EQ(s.frameStats().requestsCancelled, 1u);
+  ASSERT_EQ(source->cancels().size(), 1u);
+  EXPECT_EQ(source->started()[1].path, datasetRelativePath(keys[0], meta()));  // priority 20 went first
+  EXPECT_EQ(source->cancels()[0], source->started()[1].id);
+}
+
+TEST_F(StreamerScripted, OkArrivingAfterCancelIsNeverResidentNorUploaded) {
+  auto source = std::make_shared<ScriptedSource>();
+  source->ignoreCancel = true;  // the answer races the cancellation and wins
+  TileStreamer s(source, meta(), smallOptions(), makeNullLogger());
+  const TileKey k = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom)[0];
+  s.update(wantsOf({k}), 0.0);
+  ASSERT_EQ(source->started().size(), 1u);
+  s.update({}, 0.1);
+  EXPECT_EQ(s.frameStats().requestsCancelled, 1u);
+  ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
+  source->waitDelivered();
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // a decode, if one were started
+  for (int i = 0; i < 3; ++i) {
+    s.update(wantsOf({k}, true), 0.2 + i);  // wanted again, only as look-ahead: a new request
+    EXPECT_NE(s.state(k), TileState::ResidentCpu);
+    EXPECT_TRUE(s.planUploads().empty());
+  }
+  EXPECT_EQ(source->started().size(), 2u);
+  EXPECT_EQ(s.frameStats().bytesResidentCpu, 0u);
+}
+
+TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
+  const TileKey k = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom)[0];
+  const auto bytes = fileBytes(dir() / datasetRelativePath(k, meta()));
+  auto source = std::make_shared<ScriptedSource>([&](const std::string&, int attempt) -> std::optional<FetchResult> {
+    return attempt == 1 ? ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503") : ScriptedSource::ok(bytes);
+  });
+  StreamingOptions o = smallOptions();
+  o.failedRetryAfterS = 2.0;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const auto wants = wantsOf({k});
+  double t = 0.0;
+  s.update(wants, t);
+  EXPECT_EQ(s.frameStats().requestsIssued, 1u);
+  source->waitDelivered();
+  s.update(wants, 0.5);
+  EXPECT_EQ(s.state(k), TileState::FailedTemporarily);
+  EXPECT_EQ(s.frameStats().requestsFailed, 1u);
+  s.update(wants, 2.4);  // 1.9 s after the failure: too early
+  EXPECT_EQ(s.frameStats().requestsIssued, 0u);
+  s.update(wants, 2.6);
+  EXPECT_EQ(s.frameStats().requestsIssued, 1u);
+  EXPECT_EQ(s.frameStats().retries, 1u);
+  t = 2.6;
+  ASSERT_TRUE(updateUntil(s, wants, t, [&] { return s.state(k) == TileState::ResidentCpu; }));
+  EXPECT_EQ(source->started().size(), 2u);
+}
+
+// Random outcomes (Ok, Missing, Failed, corrupt bytes) under changing wants: every request is
+// accounted for at every frame, and corrupt bytes end Failed.
+TEST_F(StreamerScripted, CountersAddUpUnderRandomOutcomes) {
+  // Missing and corrupt tiles fail for good, so the pool is every tile of every zoom.
+  std::vector<TileKey> keys;
+  for (int z = meta().minZoom; z <= meta().maxZoom; ++z)
+    for (auto layer : {TileLayer::Height, TileLayer::Imagery})
+      for (const auto& k : tilesAt(dir(), meta(), layer, z)) keys.push_back(k);
+  std::map<std::string, std::vector<uint8_t>> files;
+  for (const auto& k : keys) files[datasetRelativePath(k, meta())] = fileBytes(dir() / datasetRelativePath(k, meta()));
+  std::mutex rngMu;
+  std::mt19937 outcomes(11);
+  auto source = std::make_shared<ScriptedSource>([&](const std::string& path, int) -> std::optional<FetchResult> {
+    std::lock_guard lock(rngMu);
+    switch (outcomes() % 6) {
+      case 0: return ScriptedSource::outcome(FetchOutcome::Missing);
+      case 1: return ScriptedSource::outcome(FetchOutcome::Failed);
+      case 2: {
+        auto b = files.at(path);
+        b.resize(b.size() / 3);  // truncated: a decode error
+        return ScriptedSource::ok(std::move(b));
+      }
+      case 3: return std::nullopt;  // held until cancelled
+      default: return ScriptedSource::ok(files.at(path));
+    }
+  });
+  StreamingOptions o = smallOptions();
+  o.failedRetryAfterS = 0.05;
+  o.cpuBudgetBytes = 10 * (kTileBytes + 256);
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  std::mt19937 rng(3);
+  Totals totals;
+  double t = 0.0;
+  for (int round = 0; round < 40; ++round) {
+    std::shuffle(keys.begin(), keys.end(), rng);
+    const auto n = std::uniform_int_distribution<size_t>(0, 12)(rng);
+    std::vector<TileWant> wants;
+    for (size_t i = 0; i < n; ++i) wants.push_back({keys[i], double(i), i % 3 == 2});
+    // A round lasts until only held requests are under way (or 2000 updates), then the wants
+    // change: whatever is held gets cancelled.
+    for (int frame = 0; frame < 2000; ++frame) {
+      s.update(wants, t);
+      t += 0.02;
+      totals.add(s.frameStats());
+      totals.expectBalanced(s.frameStats());
+      ASSERT_LE(s.frameStats().bytesResidentCpu, o.cpuBudgetBytes);
+      if (frame > 2 && s.frameStats().decodesQueued == 0 && s.frameStats().requestsInFlight == source->held().size()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    }
+  }
+  s.update({}, t);  // everything still under way is cancelled
+  totals.add(s.frameStats());
+  totals.expectBalanced(s.frameStats());
+  EXPECT_EQ(s.frameStats().requestsInFlight + s.frameStats().decodesQueued, 0u);
+  // Every kind of ending happened (the exact sums were checked every frame above).
+  EXPECT_GE(totals.completed, 5u);
+  EXPECT_GE(totals.failed, 5u);  // Failed answers and corrupt bytes
+  EXPECT_GE(totals.missing, 3u);
+  EXPECT_GE(totals.cancelled, 5u);
+}
+
+}  // namespace
+}  // namespace vegstream::streaming::test

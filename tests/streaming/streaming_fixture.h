@@ -1,0 +1,97 @@
+#pragma once
+// Shared by the streaming tests: datasets made once per test process (ctest runs each test in
+// its own process, possibly in parallel, so each gets its own directory under
+// VEGSTREAM_TEST_TMP), and helpers to list a dataset's tiles and make wants.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "datasets/geotiff_import.h"
+#include "datasets/progress.h"
+#include "datasets/synthetic_generator.h"
+#include "streaming/tile_streamer.h"
+
+namespace vegstream::streaming::test {
+namespace fs = std::filesystem;
+
+inline fs::path testTmp(const std::string& name) {
+  const auto p = fs::path(VEGSTREAM_TEST_TMP) / "streaming" / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p;
+}
+
+// A synthetic dataset of 3 km around the default centre, zooms 11 … 14 (about 20 tiles a layer
+// at zoom 14, PNG imagery): seconds to make, real files for the local source.
+inline Result<datasets::DatasetMeta> makeSynthetic(const fs::path& out) {
+  datasets::SyntheticOptions o;
+  o.out = out;
+  o.name = "synthetic";
+  o.sizeKm = 3.0;
+  o.maxZoom = 14;
+  o.minZoom = 11;
+  o.threads = 2;
+  datasets::NullProgress progress;
+  return datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
+}
+
+// The Zion sample (SRTM + Landsat bands 4/3/2, stretched p1–p99, JPEG imagery) at zoom ≤ 12.
+inline Result<datasets::DatasetMeta> importZion(const fs::path& out) {
+  const fs::path zion = fs::path(VEGSTREAM_DATASETS_DIR) / "zion";
+  datasets::GeoTiffImportOptions o;
+  o.dem = zion / "srtm.tif";
+  o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
+  o.imagery.stretch = datasets::Stretch{};
+  o.heightResampling = datasets::HeightResampling::Cubic;
+  o.maxZoom = 12;
+  o.out = out;
+  o.name = "zion";
+  o.threads = 2;
+  datasets::NullProgress progress;
+  return datasets::importGeoTiff(o, makeNullLogger(), progress);
+}
+
+// The tiles of a layer at zoom z whose files exist.
+inline std::vector<TileKey> tilesAt(const fs::path& dir, const datasets::DatasetMeta& meta, TileLayer layer, int z) {
+  std::vector<TileKey> out;
+  for (const auto& id : geo::tilesCovering(meta.bounds, z)) {
+    const TileKey k{layer, id};
+    if (fs::exists(dir / datasetRelativePath(k, meta))) out.push_back(k);
+  }
+  return out;
+}
+
+// Current wants, priority falling with the index (first = most important).
+inline std::vector<TileWant> wantsOf(const std::vector<TileKey>& keys, bool lookAhead = false) {
+  std::vector<TileWant> w;
+  for (size_t i = 0; i < keys.size(); ++i) w.push_back({keys[i], double(keys.size() - i), lookAhead});
+  return w;
+}
+
+// The synthetic dataset, made once per process.
+class SyntheticDataset : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(testTmp("synthetic"));
+    auto meta = makeSynthetic(*dir_);
+    ASSERT_TRUE(meta.ok()) << meta.error().message;
+    meta_ = new datasets::DatasetMeta(*meta);
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    delete meta_;
+  }
+  static const fs::path& dir() { return *dir_; }
+  static const datasets::DatasetMeta& meta() { return *meta_; }
+
+ private:
+  static inline fs::path* dir_ = nullptr;
+  static inline datasets::DatasetMeta* meta_ = nullptr;
+};
+
+}  // namespace vegstream::streaming::test

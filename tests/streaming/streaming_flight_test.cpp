@@ -1,0 +1,209 @@
+// Issue 5's flights: the Zion sample flown through flight::Scene with its tiles streamed —
+// under a budget of a few MB, in realtime from a slow HTTP server with and without look-ahead,
+// through a server that fails on a schedule, and settled over nginx against the local directory.
+// Each test asserts numbers; the counts it measures are printed for the closing figures.
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "flight/flight_path_json.h"
+#include "flight/path_sampler.h"
+#include "flight/scene.h"
+#include "tests/streaming/streaming_fixture.h"
+#include "tests/support/fault_http_server.h"
+#include "tests/support/nginx_server.h"
+
+namespace vegstream::streaming::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class StreamingFlight : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(testTmp("flight-zion"));
+    auto meta = importZion(*dir_);
+    ASSERT_TRUE(meta.ok()) << meta.error().message;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static const fs::path& dir() { return *dir_; }
+
+  std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
+
+  std::unique_ptr<flight::Scene> open(const std::string& location, flight::StreamingMode mode, bool lookAhead,
+                                      uint64_t cpuBudget = 512ull << 20, uint64_t gpuBudget = 256ull << 20) {
+    flight::SceneOptions o;
+    o.dataset = location;
+    o.mode = mode;
+    o.lookAhead = lookAhead;
+    o.streaming.cpuBudgetBytes = cpuBudget;
+    o.streaming.gpuBudgetBytes = gpuBudget;
+    o.renderer.width = 160;
+    o.renderer.height = 90;
+    o.renderer.msaa = 1;
+    o.renderer.context.validate = true;
+    o.renderer.context.validationLog = validation;
+    auto scene = flight::Scene::open(o);
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : nullptr;
+  }
+  static flight::FlightPath bundled(const std::string& name) {
+    auto p = flight::loadFlightPath(fs::path(VEGSTREAM_FLIGHT_PATHS_DIR) / (name + ".json"));
+    EXPECT_TRUE(p.ok()) << p.error().message;
+    return *p;
+  }
+  void TearDown() override {
+    for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
+  }
+
+  // Realtime flight of [0, seconds] of `path` at its recorded speed (flight time = wall time),
+  // without rendering (streaming is what is measured). Returns the frames after the first second
+  // that drew a tile more than one level coarser than wanted.
+  struct RealtimeFigures {
+    int frames = 0, coarseAfter1s = 0, fallbackFrames = 0;
+    double slowestPrepareMs = 0.0;
+  };
+  RealtimeFigures flyRealtime(flight::Scene& scene, const flight::FlightPath& path, double seconds) {
+    const flight::PathSampler sampler(path);
+    const auto ground = scene.groundFunction();
+    RealtimeFigures f;
+    const auto start = Clock::now();
+    for (;;) {
+      const double t = std::chrono::duration<double>(Clock::now() - start).count();
+      if (t > seconds) break;
+      const auto before = Clock::now();
+      scene.prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
+      f.slowestPrepareMs = std::max(f.slowestPrepareMs,
+                                    std::chrono::duration<double, std::milli>(Clock::now() - before).count());
+      const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
+      EXPECT_EQ(fig.settleWaitMs, 0.0);
+      if (t > 1.0 && fig.terrain.maxLevelsCoarser > 1) ++f.coarseAfter1s;
+      if (fig.terrain.fallbackPieces > 0) ++f.fallbackFrames;
+      ++f.frames;
+      std::this_thread::sleep_until(before + std::chrono::milliseconds(16));  // about 60 frames per second
+    }
+    return f;
+  }
+
+ private:
+  static inline fs::path* dir_ = nullptr;
+};
+
+TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBudget) {
+  constexpr uint64_t kCpuBudget = 4ull << 20, kGpuBudget = 2ull << 20;  // 16 decoded tiles, 8 imagery slots
+  auto scene = open(dir().string(), flight::StreamingMode::Settled, true, kCpuBudget, kGpuBudget);
+  ASSERT_TRUE(scene);
+  const flight::FlightPath path = bundled("canyon-run");
+  const flight::PathSampler sampler(path);
+  const auto ground = scene->groundFunction();
+  int frames = 0, relaxed = 0;
+  uint64_t maxCpu = 0, maxGpu = 0;
+  for (double t = 0.0; t <= sampler.duration(); t += 0.5, ++frames) {
+    render::FrameRequest req = scene->prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
+    const flight::SceneFrameFigures& fig = scene->lastFrameFigures();
+    ASSERT_LE(fig.streaming.bytesResidentCpu, kCpuBudget) << "t = " << t;
+    ASSERT_LE(fig.streaming.bytesResidentGpu, kGpuBudget) << "t = " << t;
+    ASSERT_GT(fig.terrain.pieces, 0u) << "t = " << t;
+    maxCpu = std::max(maxCpu, fig.streaming.bytesResidentCpu);
+    maxGpu = std::max(maxGpu, fig.streaming.bytesResidentGpu);
+    relaxed += fig.terrain.relaxation > 1.0 ? 1 : 0;
+    if (frames % 50 == 0) {  // the uploads and draws of a tight budget are valid Vulkan
+      auto frame = scene->renderer().renderFrame(req);
+      ASSERT_TRUE(frame.ok()) << frame.error().message;
+    }
+  }
+  std::printf("canyon-run, budget 4 MiB CPU / 2 MiB GPU: %d frames, max resident %.2f MiB CPU, %.2f MiB GPU, "
+              "%d frames with a relaxed error bound\n",
+              frames, double(maxCpu) / (1 << 20), double(maxGpu) / (1 << 20), relaxed);
+  EXPECT_EQ(frames, 603);
+  EXPECT_GT(relaxed, 0) << "a 4 MiB budget cannot hold what a 2 px bound wants: the bound must relax";
+  EXPECT_GT(maxCpu, kCpuBudget / 2) << "the budget is used, not avoided";
+}
+
+TEST_F(StreamingFlight, LookAheadKeepsARealtimeFlightFromASlowServerWithinOneLevel) {
+  // 120 ms per tile, answered concurrently (the server overlaps its delays): a distant server.
+  testing::FaultHttpServer server(dir());
+  server.setDefault({testing::FaultAction::Serve, 120});
+  const flight::FlightPath path = bundled("canyon-run");
+  RealtimeFigures with, without;
+  {
+    auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, true);
+    ASSERT_TRUE(scene);
+    with = flyRealtime(*scene, path, 20.0);
+  }
+  {
+    auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, false);
+    ASSERT_TRUE(scene);
+    without = flyRealtime(*scene, path, 20.0);
+  }
+  std::printf("canyon-run 0-20 s realtime over a 120 ms server: look-ahead on: %d frames, %d more than one level "
+              "coarser after 1 s, %d with a fallback; off: %d frames, %d, %d\n",
+              with.frames, with.coarseAfter1s, with.fallbackFrames, without.frames, without.coarseAfter1s,
+              without.fallbackFrames);
+  EXPECT_GT(with.frames, 200);
+  EXPECT_EQ(with.coarseAfter1s, 0);
+  EXPECT_GE(without.coarseAfter1s + without.fallbackFrames, with.coarseAfter1s + with.fallbackFrames);
+  EXPECT_LT(with.slowestPrepareMs, 1000.0) << "a realtime frame never waits for I/O";
+}
+
+TEST_F(StreamingFlight, ARealtimeFlightThroughAFailingServerCompletesWithEveryFailureAccounted) {
+  testing::FaultHttpServer server(dir());
+  server.setDefault({testing::FaultAction::Serve, 30});
+  // Every 5th request fails in one of four ways; libcurl's retries and the streamer's back-off
+  // must carry the flight through.
+  for (uint64_t n = 3; n < 400; n += 5) {
+    static const testing::FaultAction kinds[] = {testing::FaultAction::Status500, testing::FaultAction::Truncate,
+                                                 testing::FaultAction::Reset, testing::FaultAction::Status503};
+    server.scheduleForRequest(n, {kinds[(n / 5) % 4], 0});
+  }
+  auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, true);
+  ASSERT_TRUE(scene);
+  const RealtimeFigures f = flyRealtime(*scene, bundled("benchmark-30s"), 8.0);
+  const flight::SceneFrameFigures& last = scene->lastFrameFigures();
+  std::printf("benchmark-30s 0-8 s through faults: %d frames, slowest prepare %.1f ms, %llu server requests\n", f.frames,
+              f.slowestPrepareMs, static_cast<unsigned long long>(server.totalRequests()));
+  EXPECT_GT(f.frames, 100);
+  EXPECT_LT(f.slowestPrepareMs, 1000.0);
+  EXPECT_GT(server.totalRequests(), 20u);
+  EXPECT_GT(last.streaming.tilesResidentCpu, 0u);
+  EXPECT_EQ(last.streaming.wantedResident, last.streaming.wanted) << "every wanted tile arrives in the end";
+}
+
+TEST_F(StreamingFlight, ASettledFlightOverNginxDrawsWhatTheLocalDirectoryDraws) {
+  auto nginx = testing::NginxServer::start(dir(), testTmp("nginx"));
+  ASSERT_TRUE(nginx.ok()) << nginx.error().message;
+  auto local = open(dir().string(), flight::StreamingMode::Settled, true);
+  auto remote = open((*nginx)->baseUrl(), flight::StreamingMode::Settled, true);
+  ASSERT_TRUE(local && remote);
+  const flight::FlightPath path = bundled("benchmark-30s");
+  const flight::PathSampler sampler(path);
+  const auto ground = local->groundFunction();
+  int compared = 0;
+  for (double t = 0.0; t <= sampler.duration(); t += 2.5) {
+    const flight::FlightSample s = sampler.sample(t, ground);
+    const auto ahead = flight::lookAheadSamples(sampler, ground, t);
+    render::FrameRequest a = local->prepareFrame(s, t, ahead);
+    render::FrameRequest b = remote->prepareFrame(s, t, ahead);
+    EXPECT_EQ(local->lastFrameFigures().terrain.pieces, remote->lastFrameFigures().terrain.pieces) << t;
+    EXPECT_EQ(local->lastFrameFigures().terrain.triangles, remote->lastFrameFigures().terrain.triangles) << t;
+    EXPECT_EQ(remote->lastFrameFigures().terrain.fallbackPieces, 0u) << t;
+    a.readbackColor = b.readbackColor = true;
+    auto fa = local->renderer().renderFrame(a);
+    auto fb = remote->renderer().renderFrame(b);
+    ASSERT_TRUE(fa.ok() && fb.ok());
+    EXPECT_EQ(fa->terrainTriangles, fb->terrainTriangles) << t;
+    EXPECT_TRUE(fa->color->rgba == fb->color->rgba) << "images differ at t = " << t;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 13);
+  EXPECT_GT((*nginx)->accessLog().size(), 20u) << "the remote scene really read over HTTP";
+}
+
+}  // namespace
+}  // namespace vegstream::streaming::test

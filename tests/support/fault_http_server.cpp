@@ -1,0 +1,266 @@
+// FaultHttpServer (fault_http_server.h).
+
+#include "tests/support/fault_http_server.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <sstream>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace vegstream::testing {
+namespace fs = std::filesystem;
+namespace {
+using Clock = std::chrono::steady_clock;
+
+void setNonBlocking(int fd) { ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK); }
+
+std::string response(int status, const char* reason, const std::string& body, size_t announcedLength) {
+  std::ostringstream o;
+  o << "HTTP/1.1 " << status << ' ' << reason << "\r\n"
+    << "Content-Length: " << announcedLength << "\r\n"
+    << "Content-Type: application/octet-stream\r\n"
+    << "Connection: keep-alive\r\n\r\n"
+    << body;
+  return o.str();
+}
+
+}  // namespace
+
+struct FaultHttpServer::Connection {
+  enum class State { Reading, Waiting, Writing };
+  int fd = -1;
+  State state = State::Reading;
+  std::string in;
+  std::string path;          // of the request being answered
+  Fault fault;
+  Clock::time_point readyAt;
+  std::string out;
+  size_t sent = 0;
+  bool closeAfterWrite = false;
+  bool active = false;       // a request received and not yet answered
+  bool closed = false;
+};
+
+FaultHttpServer::FaultHttpServer(fs::path root) : root_(std::move(root)) {
+  listenFd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+  assert(listenFd_ >= 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = 0;
+  socklen_t len = sizeof(a);
+  [[maybe_unused]] const int bound = ::bind(listenFd_, reinterpret_cast<sockaddr*>(&a), sizeof(a));
+  assert(bound == 0);
+  ::listen(listenFd_, 128);
+  ::getsockname(listenFd_, reinterpret_cast<sockaddr*>(&a), &len);
+  port_ = ntohs(a.sin_port);
+  setNonBlocking(listenFd_);
+  [[maybe_unused]] const int piped = ::pipe(wakeFds_);
+  assert(piped == 0);
+  thread_ = std::thread([this] { run(); });
+}
+
+FaultHttpServer::~FaultHttpServer() {
+  stop_ = true;
+  const char byte = 1;
+  [[maybe_unused]] const ssize_t n = ::write(wakeFds_[1], &byte, 1);
+  thread_.join();
+  ::close(listenFd_);
+  ::close(wakeFds_[0]);
+  ::close(wakeFds_[1]);
+}
+
+std::string FaultHttpServer::baseUrl() const { return "http://127.0.0.1:" + std::to_string(port_); }
+
+void FaultHttpServer::scheduleForPath(const std::string& path, std::vector<Fault> faults) {
+  std::lock_guard lock(mutex_);
+  auto& q = byPath_[path];
+  q.insert(q.end(), faults.begin(), faults.end());
+}
+void FaultHttpServer::scheduleForRequest(uint64_t requestNumber, Fault fault) {
+  std::lock_guard lock(mutex_);
+  byNumber_[requestNumber] = fault;
+}
+void FaultHttpServer::setDefault(Fault fault) {
+  std::lock_guard lock(mutex_);
+  default_ = fault;
+}
+uint64_t FaultHttpServer::requestsFor(const std::string& path) const {
+  std::lock_guard lock(mutex_);
+  auto it = counts_.find(path);
+  return it == counts_.end() ? 0 : it->second;
+}
+uint64_t FaultHttpServer::totalRequests() const {
+  std::lock_guard lock(mutex_);
+  return total_;
+}
+uint64_t FaultHttpServer::connectionsAccepted() const {
+  std::lock_guard lock(mutex_);
+  return accepted_;
+}
+int FaultHttpServer::maxConcurrent() const {
+  std::lock_guard lock(mutex_);
+  return maxActive_;
+}
+uint64_t FaultHttpServer::abandoned() const {
+  std::lock_guard lock(mutex_);
+  return abandoned_;
+}
+
+Fault FaultHttpServer::faultFor(const std::string& path) {
+  // Under mutex_.
+  ++total_;
+  ++counts_[path];
+  if (auto it = byNumber_.find(total_); it != byNumber_.end()) return it->second;
+  if (auto it = byPath_.find(path); it != byPath_.end() && !it->second.empty()) {
+    const Fault f = it->second.front();
+    it->second.pop_front();
+    return f;
+  }
+  return default_;
+}
+
+void FaultHttpServer::onRequest(Connection& c, const std::string& path) {
+  std::lock_guard lock(mutex_);
+  c.path = path;
+  c.fault = faultFor(path);
+  c.active = true;
+  maxActive_ = std::max(maxActive_, ++active_);
+  c.state = Connection::State::Waiting;
+  c.readyAt = Clock::now() + std::chrono::milliseconds(c.fault.delayMs);
+}
+
+void FaultHttpServer::run() {
+  std::vector<std::unique_ptr<Connection>> conns;
+
+  // Ends a connection; a request still unanswered counts as abandoned unless we chose to drop it.
+  auto finish = [&](Connection& c, bool byClient) {
+    if (c.active) {
+      std::lock_guard lock(mutex_);
+      --active_;
+      abandoned_ += byClient ? 1 : 0;
+      c.active = false;
+    }
+    ::close(c.fd);
+    c.closed = true;
+  };
+  // Takes the next complete request out of c.in, if there is one.
+  auto takeRequest = [&](Connection& c) {
+    const size_t end = c.in.find("\r\n\r\n");
+    if (end == std::string::npos) return;
+    std::istringstream line(c.in.substr(0, c.in.find("\r\n")));
+    std::string method, target;
+    line >> method >> target;
+    c.in.erase(0, end + 4);
+    target = target.substr(0, target.find('?'));
+    if (!target.empty() && target[0] == '/') target.erase(0, 1);
+    onRequest(c, target);
+  };
+  // The answer to the fault of the request being answered, or a reset.
+  auto answer = [&](Connection& c) {
+    const FaultAction a = c.fault.action;
+    if (a == FaultAction::Reset) {
+      linger l{1, 0};
+      ::setsockopt(c.fd, SOL_SOCKET, SO_LINGER, &l, sizeof(l));
+      finish(c, false);
+      return;
+    }
+    std::string body;
+    bool found = false;
+    if (c.path.find("..") == std::string::npos) {
+      std::ifstream f(root_ / c.path, std::ios::binary);
+      if (f && fs::is_regular_file(root_ / c.path)) {
+        body.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+        found = true;
+      }
+    }
+    if (a == FaultAction::Status500) c.out = response(500, "Internal Server Error", "error\n", 6);
+    else if (a == FaultAction::Status503) c.out = response(503, "Service Unavailable", "busy\n", 5);
+    else if (a == FaultAction::NotFound || !found) c.out = response(404, "Not Found", "missing\n", 8);
+    else if (a == FaultAction::Truncate) {
+      c.out = response(200, "OK", body.substr(0, body.size() / 2), body.size());
+      c.closeAfterWrite = true;
+    } else c.out = response(200, "OK", body, body.size());
+    c.sent = 0;
+    c.state = Connection::State::Writing;
+  };
+
+  while (!stop_) {
+    std::vector<pollfd> fds{{listenFd_, POLLIN, 0}, {wakeFds_[0], POLLIN, 0}};
+    auto now = Clock::now();
+    int timeoutMs = 100;
+    for (auto& c : conns) {
+      const short events = c->state == Connection::State::Writing ? short(POLLIN | POLLOUT) : short(POLLIN);
+      fds.push_back({c->fd, events, 0});
+      if (c->state == Connection::State::Waiting) {
+        const auto ms = std::chrono::ceil<std::chrono::milliseconds>(c->readyAt - now).count();
+        timeoutMs = std::min(timeoutMs, static_cast<int>(std::max<long long>(0, ms)));
+      }
+    }
+    ::poll(fds.data(), fds.size(), timeoutMs);
+    if (stop_) break;
+
+    if (fds[0].revents & POLLIN) {
+      for (int fd; (fd = ::accept(listenFd_, nullptr, nullptr)) >= 0;) {
+        setNonBlocking(fd);
+        auto c = std::make_unique<Connection>();
+        c->fd = fd;
+        conns.push_back(std::move(c));
+        std::lock_guard lock(mutex_);
+        ++accepted_;
+      }
+    }
+    now = Clock::now();
+    for (size_t i = 0; i + 2 < fds.size(); ++i) {
+      Connection& c = *conns[i];
+      const short re = fds[i + 2].revents;
+      if (re & (POLLIN | POLLHUP | POLLERR)) {
+        char buf[4096];
+        const ssize_t n = ::recv(c.fd, buf, sizeof(buf), 0);
+        if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
+          finish(c, true);
+          continue;
+        }
+        if (n > 0) c.in.append(buf, static_cast<size_t>(n));
+      }
+      if (c.state == Connection::State::Reading) takeRequest(c);
+      if (c.state == Connection::State::Waiting && Clock::now() >= c.readyAt) answer(c);
+      if (!c.closed && c.state == Connection::State::Writing) {
+        const ssize_t n = ::send(c.fd, c.out.data() + c.sent, c.out.size() - c.sent, MSG_NOSIGNAL);
+        if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+          finish(c, true);
+          continue;
+        }
+        if (n > 0) c.sent += static_cast<size_t>(n);
+        if (c.sent == c.out.size()) {
+          {
+            std::lock_guard lock(mutex_);
+            --active_;
+            c.active = false;
+          }
+          if (c.closeAfterWrite) {
+            finish(c, false);
+            continue;
+          }
+          c.state = Connection::State::Reading;
+          c.out.clear();
+          takeRequest(c);  // a request that came while we were busy
+        }
+      }
+    }
+    conns.erase(std::remove_if(conns.begin(), conns.end(), [](const auto& c) { return c->closed; }), conns.end());
+  }
+  for (auto& c : conns) finish(*c, true);
+}
+
+}  // namespace vegstream::testing
