@@ -40,14 +40,14 @@ inline Result<datasets::DatasetMeta> makeSynthetic(const fs::path& out) {
 }
 
 // The Zion sample (SRTM + Landsat bands 4/3/2, stretched p1–p99, JPEG imagery) at zoom ≤ 12.
-inline Result<datasets::DatasetMeta> importZion(const fs::path& out) {
+inline Result<datasets::DatasetMeta> importZion(const fs::path& out, int maxZoom = 12) {
   const fs::path zion = fs::path(VEGSTREAM_DATASETS_DIR) / "zion";
   datasets::GeoTiffImportOptions o;
   o.dem = zion / "srtm.tif";
   o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
   o.imagery.stretch = datasets::Stretch{};
   o.heightResampling = datasets::HeightResampling::Cubic;
-  o.maxZoom = 12;
+  o.maxZoom = maxZoom;
   o.out = out;
   o.name = "zion";
   o.threads = 2;
