@@ -129,26 +129,59 @@ TEST_F(SceneTest, CameraFollowsHeadingAndPitchAndASettledFrameDrawsOnlyWantedTil
 TEST_F(SceneTest, RealtimeFramesNeverWaitAndFillInAsTilesArrive) {
   auto scene = open(StreamingMode::Realtime);
   ASSERT_TRUE(scene);
-  const FlightSample s = overCentre(*scene, 150.0, 0.0, -30.0);
-  uint64_t firstWanted = 0, resident = 0;
-  int frames = 0;
-  for (; frames < 400; ++frames) {
+  double t = 0.0;
+  int frame = 0;
+  // Renders one realtime frame; returns the request's draws' morph / blend extremes.
+  auto step = [&](const FlightSample& s, bool& allResident, bool& morphing, bool& blending) {
     const auto start = std::chrono::steady_clock::now();
-    render::FrameRequest req = scene->prepareFrame(s, frames / 60.0);
+    render::FrameRequest req = scene->prepareFrame(s, t);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const SceneFrameFigures& fig = scene->lastFrameFigures();
     EXPECT_EQ(fig.settleWaitMs, 0.0);
     EXPECT_LT(ms, 1000.0) << "a realtime frame must not wait for I/O";
-    if (frames == 0) firstWanted = fig.streaming.wanted;
-    resident = fig.streaming.wantedResident;
-    auto frame = scene->renderer().renderFrame(req);
-    ASSERT_TRUE(frame.ok()) << frame.error().message;
-    if (resident == fig.streaming.wanted && fig.terrain.fallbackPieces == 0 && fig.terrain.pieces > 0) break;
+    for (const render::TerrainDraw& d : req.terrain) {
+      EXPECT_GE(d.morph, 0.0f);
+      EXPECT_LE(d.morph, 1.0f);
+      morphing = morphing || (d.morph > 0.0f && d.morph < 1.0f);
+      blending = blending || (d.imageryBlend > 0.0f && d.imageryBlend < 1.0f && d.previousLayer >= 0);
+    }
+    auto result = scene->renderer().renderFrame(req);
+    EXPECT_TRUE(result.ok()) << result.error().message;
+    allResident = fig.streaming.wantedResident == fig.streaming.wanted && fig.terrain.fallbackPieces == 0 &&
+                  fig.terrain.pieces > 0;
+    t += 1.0 / 60.0;
+    ++frame;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return req;
+  };
+
+  // High above: the coarse tiles stream in; the first frame cannot have them yet.
+  bool resident = false, morphing = false, blending = false;
+  const FlightSample high = overCentre(*scene, 6000.0, 0.0, -60.0);
+  step(high, resident, morphing, blending);
+  EXPECT_FALSE(resident) << "the first realtime frame cannot have its tiles already";
+  while (!resident && frame < 400) step(high, resident, morphing, blending);
+  ASSERT_TRUE(resident) << "the wanted tiles never all arrived";
+
+  // Down low: nodes split and finer tiles arrive; each fades in over half a second of flight
+  // time (geometry morphs from the coarse surface, imagery blends over the layer drawn before).
+  const FlightSample low = overCentre(*scene, 150.0, 0.0, -30.0);
+  morphing = blending = false;
+  int lastArrival = frame;
+  for (int i = 0; i < 400 && frame - lastArrival < 45; ++i) {
+    bool allHere = false;
+    step(low, allHere, morphing, blending);
+    if (!allHere) lastArrival = frame;
   }
-  EXPECT_GT(firstWanted, 0u);
-  EXPECT_LT(frames, 400) << "the wanted tiles never all arrived";
-  EXPECT_GT(frames, 0) << "the first realtime frame cannot have its tiles already";
+  EXPECT_TRUE(morphing) << "finer heights arrived, so some geometry morphed";
+  EXPECT_TRUE(blending) << "finer imagery arrived, so some imagery blended";
+  // Over 0.5 s after the last arrival: everything drawn at the fine data.
+  bool unused = false, stillMorphing = false, stillBlending = false;
+  render::FrameRequest last = step(low, unused, stillMorphing, stillBlending);
+  for (const render::TerrainDraw& d : last.terrain) {
+    EXPECT_EQ(d.morph, 0.0f);
+    EXPECT_EQ(d.imageryBlend, 1.0f);
+  }
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "tests/streaming/streaming_fixture.h"
 #include "tests/support/fault_http_server.h"
 #include "tests/support/nginx_server.h"
+#include "tests/support/run_command.h"
 
 namespace vegstream::streaming::test {
 namespace {
@@ -212,6 +213,28 @@ TEST_F(StreamingFlight, ASettledFlightOverNginxDrawsWhatTheLocalDirectoryDraws) 
   }
   EXPECT_EQ(compared, 13);
   EXPECT_GT((*nginx)->accessLog().size(), 20u) << "the remote scene really read over HTTP";
+}
+
+// The user's side: `vegstream fly URL` flies over a dataset served by nginx; a URL with no
+// dataset behind it is one message naming it, exit code 2, nothing written.
+TEST_F(StreamingFlight, FlyOverAUrlWritesFramesAndAWrongUrlIsOneMessage) {
+  auto nginx = testing::NginxServer::start(dir(), testTmp("nginx-cli"));
+  ASSERT_TRUE(nginx.ok()) << nginx.error().message;
+  const fs::path out = testTmp("fly-url");
+  const auto ok = testing::runCommand(std::string(VEGSTREAM_EXE) + " fly " + (*nginx)->baseUrl() +
+                                      " --headless --validate --frames 2 --size 160x90 --msaa 1 --out '" + out.string() + "'");
+  ASSERT_EQ(ok.exitCode, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
+  EXPECT_NE(ok.err.find((*nginx)->baseUrl()), std::string::npos) << "the source is named";
+  EXPECT_EQ(ok.err.find("validation:"), std::string::npos) << ok.err;
+
+  const fs::path out2 = testTmp("fly-url-wrong");
+  const std::string wrong = (*nginx)->baseUrl() + "/no-such-dataset";
+  const auto bad = testing::runCommand(std::string(VEGSTREAM_EXE) + " fly " + wrong + " --headless --frames 2 --out '" +
+                                       out2.string() + "'");
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  EXPECT_NE(bad.err.find(wrong), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(out2 / "run.json"));
 }
 
 }  // namespace
