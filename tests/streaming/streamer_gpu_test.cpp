@@ -134,30 +134,15 @@ TEST_F(StreamerGpu, CpuEvictionOfAGpuTileFreesItsSlot) {
   EXPECT_EQ(s.frameStats().tilesResidentGpu, 1u);
 }
 
-class ZionStreaming : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(testTmp("zion"));
-    auto meta = importZion(*dir_);
-    ASSERT_TRUE(meta.ok()) << meta.error().message;
-    meta_ = new datasets::DatasetMeta(*meta);
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-    delete meta_;
-  }
-  static inline fs::path* dir_ = nullptr;
-  static inline datasets::DatasetMeta* meta_ = nullptr;
-};
+using ZionStreaming = ZionDataset;
 
 TEST_F(ZionStreaming, WholeRegionSettlesWithTheHeightsAndColoursOfTheCodec) {
-  const auto& meta = *meta_;
+  const auto& meta = this->meta();
   ASSERT_EQ(meta.imagery, datasets::ImageryFormat::Jpeg);
-  auto source = std::make_shared<LocalTileSource>(*dir_);
+  auto source = std::make_shared<LocalTileSource>(dir());
   TileStreamer s(source, meta, StreamingOptions{}, makeNullLogger());
-  auto keys = tilesAt(*dir_, meta, TileLayer::Height, meta.maxZoom);
-  const auto colour = tilesAt(*dir_, meta, TileLayer::Imagery, meta.maxZoom);
+  auto keys = tilesAt(dir(), meta, TileLayer::Height, meta.maxZoom);
+  const auto colour = tilesAt(dir(), meta, TileLayer::Imagery, meta.maxZoom);
   keys.insert(keys.end(), colour.begin(), colour.end());
   ASSERT_GE(keys.size(), 8u);
   s.settle(wantsOf(keys), 0.0);
@@ -165,7 +150,7 @@ TEST_F(ZionStreaming, WholeRegionSettlesWithTheHeightsAndColoursOfTheCodec) {
   for (const auto& k : keys) {
     const auto tile = s.get(k);
     ASSERT_TRUE(tile) << toString(k);
-    const fs::path file = *dir_ / datasetRelativePath(k, meta);
+    const fs::path file = dir() / datasetRelativePath(k, meta);
     if (k.layer == TileLayer::Height) {
       auto ref = datasets::readHeightTile(file, k.id, meta.elevationEncoding);
       ASSERT_TRUE(ref);

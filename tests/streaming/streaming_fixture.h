@@ -72,12 +72,13 @@ inline std::vector<TileWant> wantsOf(const std::vector<TileKey>& keys, bool look
   return w;
 }
 
-// The synthetic dataset, made once per process.
-class SyntheticDataset : public ::testing::Test {
+// A dataset made once per test process: Maker has kName and make(dir) → Result<DatasetMeta>.
+template <typename Maker>
+class MadeDataset : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(testTmp("synthetic"));
-    auto meta = makeSynthetic(*dir_);
+    dir_ = new fs::path(testTmp(Maker::kName));
+    auto meta = Maker::make(*dir_);
     ASSERT_TRUE(meta.ok()) << meta.error().message;
     meta_ = new datasets::DatasetMeta(*meta);
   }
@@ -93,5 +94,18 @@ class SyntheticDataset : public ::testing::Test {
   static inline fs::path* dir_ = nullptr;
   static inline datasets::DatasetMeta* meta_ = nullptr;
 };
+
+struct SyntheticMaker {
+  static constexpr const char* kName = "synthetic";
+  static Result<datasets::DatasetMeta> make(const fs::path& dir) { return makeSynthetic(dir); }
+};
+struct ZionMaker {
+  static constexpr const char* kName = "zion";
+  static Result<datasets::DatasetMeta> make(const fs::path& dir) { return importZion(dir); }
+};
+
+// The synthetic dataset and the Zion sample (zoom ≤ 12), each made once per process.
+using SyntheticDataset = MadeDataset<SyntheticMaker>;
+using ZionDataset = MadeDataset<ZionMaker>;
 
 }  // namespace vegstream::streaming::test

@@ -22,19 +22,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-class StreamingFlight : public ::testing::Test {
+class StreamingFlight : public ZionDataset {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(testTmp("flight-zion"));
-    auto meta = importZion(*dir_);
-    ASSERT_TRUE(meta.ok()) << meta.error().message;
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
-  static const fs::path& dir() { return *dir_; }
-
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
 
   std::unique_ptr<flight::Scene> open(const std::string& location, flight::StreamingMode mode, bool lookAhead,
@@ -94,9 +83,6 @@ class StreamingFlight : public ::testing::Test {
     }
     return f;
   }
-
- private:
-  static inline fs::path* dir_ = nullptr;
 };
 
 TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBudget) {
