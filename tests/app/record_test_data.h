@@ -18,7 +18,9 @@ namespace vegstream::testing {
 inline std::filesystem::path recordTmp(const std::string& name) {
   std::error_code ec;
   const auto stamp = std::filesystem::last_write_time(VEGSTREAM_EXE, ec).time_since_epoch().count();
-  return std::filesystem::path(VEGSTREAM_TEST_TMP) / ("b" + std::to_string(stamp)) / name;
+  const auto dir = std::filesystem::path(VEGSTREAM_TEST_TMP) / ("b" + std::to_string(stamp));
+  std::filesystem::create_directories(dir, ec);
+  return dir / name;
 }
 
 inline std::filesystem::path freshRecordDir(const std::string& name) {
