@@ -143,12 +143,15 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
 
   stage.restart();
   double waitMs = 0.0;
+  std::optional<streaming::StreamingFrameStats> settledCounters;
   if (m.options.mode == StreamingMode::Settled) {
     Stopwatch wait;
     // A wanted tile that turns out missing is replaced by its parent: settle until the wants stop
     // changing (each round can only move wants up the pyramid, so this ends).
+    streaming::StreamingFrameStats counted;
     for (int round = 0; round < 32; ++round) {
       m.streamer->settle(wants, timeS);
+      addFrameCounters(counted, m.streamer->frameStats());
       std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
       const bool same = again.size() == wants.size() &&
                         std::equal(again.begin(), again.end(), wants.begin(),
@@ -156,6 +159,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
       wants = std::move(again);
       if (same) break;
     }
+    settledCounters = counted;
     waitMs = wait.elapsedMs();
   } else {
     m.streamer->update(wants, timeS);
@@ -178,6 +182,11 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   fig.terrainMs = terrainMs + stage.elapsedMs();
 
   fig.streaming = m.streamer->frameStats();
+  if (settledCounters) {  // every settle round's requests; the uploads planned after them
+    const uint64_t uploadBytes = fig.streaming.uploadBytes;
+    setFrameCounters(fig.streaming, *settledCounters);
+    fig.streaming.uploadBytes = uploadBytes;
+  }
   fig.terrain = m.terrain->figures();
   fig.uploads = m.uploads.size();
   fig.cpuBytes = fig.streaming.bytesResidentCpu + m.info.groundBytes;

@@ -525,12 +525,33 @@ void TileStreamer::uploadsRecorded(std::span<const Upload> uploads) {
   }
 }
 
+namespace {
+// The per-frame counters of StreamingFrameStats (the rest are snapshots of the moment).
+constexpr uint64_t StreamingFrameStats::*kFrameCounters[] = {
+    &StreamingFrameStats::requestsIssued,  &StreamingFrameStats::requestsCompleted,
+    &StreamingFrameStats::requestsCancelled, &StreamingFrameStats::requestsFailed,
+    &StreamingFrameStats::requestsMissing, &StreamingFrameStats::retries,
+    &StreamingFrameStats::bytesRead,       &StreamingFrameStats::uploadBytes,
+    &StreamingFrameStats::evictionsCpu,    &StreamingFrameStats::evictionsGpu};
+}  // namespace
+
+void addFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from) {
+  for (auto counter : kFrameCounters) into.*counter += from.*counter;
+}
+
+void setFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from) {
+  for (auto counter : kFrameCounters) into.*counter = from.*counter;
+}
+
 double TileStreamer::settle(std::span<const TileWant> wants, double timeS) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto waited = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  StreamingFrameStats counted;  // every round's counters: the frame's figures miss none
   for (;;) {
     update(wants, timeS + waited());
+    addFrameCounters(counted, impl_->stats);
+    setFrameCounters(impl_->stats, counted);
     if (impl_->settled()) return waited();
     if (waited() > kSettleTimeoutS) {
       impl_->log->warn("settle: {} of {} wanted tiles still not resident after {:.0f} s; going on without them",

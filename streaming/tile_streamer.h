@@ -95,6 +95,13 @@ struct StreamingFrameStats {
   double longestWaitS = 0.0;                // oldest current want not yet resident: now − first wanted
 };
 
+// Adds the per-frame counters of `from` (requests, retries, bytes read, upload bytes, evictions)
+// to `into`, leaving the snapshot figures (resident, in flight, wanted) alone: for frames made
+// of several updates (settle()'s rounds).
+void addFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from);
+// Replaces the per-frame counters of `into` with those of `from`.
+void setFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from);
+
 class TileStreamer {
  public:
   TileStreamer(std::shared_ptr<TileSource> source, datasets::DatasetMeta meta, StreamingOptions options,
@@ -129,7 +136,7 @@ class TileStreamer {
 
   // Settled recordings: repeats update(wants) until every current want is resident (imagery:
   // ResidentCpu or later), Missing or Failed. Blocks the caller — never used by interactive flight.
-  // Returns the seconds waited.
+  // Returns the seconds waited. frameStats() then counts the requests of all its rounds.
   double settle(std::span<const TileWant> wants, double timeS);
 
   const StreamingFrameStats& frameStats() const;

@@ -138,6 +138,12 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_EQ(s["recording"]["streaming"]["mode"], "settled");
   EXPECT_EQ(s["streaming"]["fallback_frames"], 0) << "settled: every frame draws the tiles it wants";
   EXPECT_GT(s["streaming"]["requests"]["completed"].get<double>(), 0.0);
+  // Every request a frame issued is accounted for by the end: resident, cancelled, failed,
+  // missing, or still in flight after the last frame (look-ahead requests are not waited for).
+  const json& q = s["streaming"]["requests"];
+  const double ended = q["completed"].get<double>() + q["cancelled"].get<double>() + q["failed"].get<double>() +
+                       q["missing"].get<double>();
+  EXPECT_EQ(q["issued"].get<double>() - ended, std::stod(csv.column("stream_requests_in_flight").back()));
   for (const char* k : {"count", "frames", "factor", "window_frames"}) EXPECT_TRUE(s["hitches"].contains(k)) << k;
   EXPECT_GT(s["peak_memory"]["rss_hwm_bytes"].get<double>(), 1e6);
   EXPECT_GT(s["peak_memory"]["gpu_bytes"].get<double>(), 0.0);
