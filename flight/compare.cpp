@@ -32,10 +32,15 @@ std::vector<std::pair<std::string, double>> flatten(const json& s) {
         add("times_ms." + col + "." + q, st.is_object() ? st.value(q, json()) : json());
   if (s.contains("counts") && s["counts"].is_object())
     for (const auto& [col, st] : s["counts"].items()) add("counts." + col + ".mean", st.is_object() ? st.value("mean", json()) : json());
-  for (const char* group : {"hitches", "peak_memory", "resident_bytes", "totals", "recorder_overhead"}) {
+  // Numbers of the groups, one level of nesting flattened (streaming.requests.issued).
+  for (const char* group : {"hitches", "peak_memory", "resident_bytes", "totals", "streaming", "recorder_overhead"}) {
     if (!s.contains(group) || !s[group].is_object()) continue;
-    for (const auto& [k, v] : s[group].items())
+    for (const auto& [k, v] : s[group].items()) {
       if (v.is_number()) add(std::string(group) + "." + k, v);
+      if (v.is_object())
+        for (const auto& [k2, v2] : v.items())
+          if (v2.is_number()) add(std::string(group) + "." + k + "." + k2, v2);
+    }
   }
   return out;
 }

@@ -23,6 +23,7 @@ constexpr double kRelaxStep = 1.5;      // per frame while the wants do not fit
 constexpr double kRecoverStep = 1.05;   // per frame while they fit with room to spare
 constexpr double kMaxRelaxation = 1024.0;
 constexpr uint64_t kMeshIdleFrames = 240;
+constexpr uint64_t kAheadEveryFrames = 4;
 constexpr int kBeyondMaxZoom = kLevelsBeyondData;
 static_assert((1 << kBeyondMaxZoom) * kNodeQuads == datasets::kTileSize);
 
@@ -69,8 +70,14 @@ std::vector<streaming::TileWant> StreamedTerrain::wants(const SelectionView& now
   so.maxErrorPx = options_.maxErrorPx * relaxation_;
   so.maxNodes = options_.maxNodes;
   selection_ = selectTiles(now, dataset_, frame_, so);
-  aheadSelections_.clear();
-  for (const SelectionView& view : ahead) aheadSelections_.push_back(selectTiles(view, dataset_, frame_, so));
+  // The look-ahead poses are seconds away: their selections change slowly, so they are redone
+  // every kAheadEveryFrames frames (each costs as much as the frame's own selection).
+  if (ahead.empty()) {
+    aheadSelections_.clear();
+  } else if (aheadSelections_.empty() || frameNumber_ % kAheadEveryFrames == 0) {
+    aheadSelections_.clear();
+    for (const SelectionView& view : ahead) aheadSelections_.push_back(selectTiles(view, dataset_, frame_, so));
+  }
   figures_ = {};
   figures_.errorBoundPx = so.maxErrorPx;
   figures_.relaxation = relaxation_;
