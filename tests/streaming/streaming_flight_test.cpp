@@ -61,10 +61,19 @@ class StreamingFlight : public ZionDataset {
     int frames = 0, coarseAfter1s = 0, fallbackFrames = 0;
     double slowestPrepareMs = 0.0;
   };
-  RealtimeFigures flyRealtime(flight::Scene& scene, const flight::FlightPath& path, double seconds, double t0 = 0.0) {
+  RealtimeFigures flyRealtime(flight::Scene& scene, const flight::FlightPath& path, double seconds, double t0 = 0.0,
+                              bool warmStart = false) {
     const flight::PathSampler sampler(path);
     const auto ground = scene.groundFunction();
     RealtimeFigures f;
+    // A warm start loads the first pose's tiles first (realtime frames held at t0), so what is
+    // measured is flying into new tiles, not the start-up.
+    for (int i = 0; warmStart && i < 2000; ++i) {
+      scene.prepareFrame(sampler.sample(t0, ground), t0, flight::lookAheadSamples(sampler, ground, t0));
+      const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
+      if (fig.streaming.wanted == fig.streaming.wantedResident && fig.terrain.fallbackPieces == 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
     const auto start = Clock::now();
     for (;;) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
@@ -137,15 +146,15 @@ TEST_F(StreamingFlight, LookAheadKeepsARealtimeFlightFromASlowServerWithinOneLev
   {
     auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, true);
     ASSERT_TRUE(scene);
-    with = flyRealtime(*scene, path, kSliceS, kSliceStartS);
+    with = flyRealtime(*scene, path, kSliceS, kSliceStartS, true);
   }
   {
     auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, false);
     ASSERT_TRUE(scene);
-    without = flyRealtime(*scene, path, kSliceS, kSliceStartS);
+    without = flyRealtime(*scene, path, kSliceS, kSliceStartS, true);
   }
   fs::remove_all(fine);
-  std::printf("canyon-run 160-185 s realtime over a 120 ms server: look-ahead on: %d frames, %d more than one level "
+  std::printf("canyon-run 160-185 s realtime (warm start) over a 120 ms server: look-ahead on: %d frames, %d more than one level "
               "coarser after 1 s, %d with a fallback; off: %d frames, %d, %d\n",
               with.frames, with.coarseAfter1s, with.fallbackFrames, without.frames, without.coarseAfter1s,
               without.fallbackFrames);
