@@ -1,7 +1,7 @@
 // Grid-mesh construction over a synthetic DEM the size of the Zion sample (465 × 457): the
 // CPU cost of turning heights into a drawable mesh in the local ENU frame. Chunked-LOD tile
 // selection over the Zion sample's bounds (tiles of zoom 8 … 14, nodes to 17) for a low 1920 × 1080 camera, and the
-// mesh of one selected node from its own tile or an ancestor.
+// wedgie table of one height tile (ROAM's error bounds, built on a decode thread).
 
 #include <cmath>
 
@@ -12,8 +12,8 @@
 #include <glm/geometric.hpp>
 
 #include "terrain/grid_mesh.h"
-#include "terrain/tile_node_mesh.h"
 #include "terrain/tile_selection.h"
+#include "terrain/wedgie_table.h"
 
 namespace {
 
@@ -79,30 +79,20 @@ void BM_SelectTiles(benchmark::State& state) {
 }
 BENCHMARK(BM_SelectTiles)->Args({0, 512})->Args({0, 100'000})->Args({1, 512})->Unit(benchmark::kMicrosecond);
 
-// One node's mesh (33² grid + skirts) from a synthetic zoom-14 tile over Zion: the node itself
-// (range(0) = 0) or a zoom-17 node from it as ancestor (3), with a coarse source for morphing.
-void BM_BuildNodeMesh(benchmark::State& state) {
+// The wedgie table of one synthetic tile (what each height tile costs a decode thread).
+void BM_WedgieTable(benchmark::State& state) {
   using namespace vegstream;
-  const terrain::SelectionDataset d = zionDataset();
-  const geo::LocalFrame frame = geo::frameAtCentre(d.bounds, 0.5 * (d.minHeightM + d.maxHeightM));
   datasets::HeightTile tile;
-  tile.id = geo::tileContaining(d.bounds.centre(), 14);
+  tile.id = {14, 3100, 6300};
   tile.heights.resize(static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size));
   for (int y = 0; y < tile.size; ++y)
     for (int x = 0; x < tile.size; ++x)
       tile.heights[static_cast<size_t>(y * tile.size + x)] = static_cast<float>(1500.0 + 400.0 * std::sin(x * 0.05) * std::cos(y * 0.04));
-  const int levels = static_cast<int>(state.range(0));
-  const geo::TileId node{14 + levels, tile.id.x << levels, tile.id.y << levels};
-  terrain::NodeMeshOptions options;
-  options.coarse = terrain::HeightSource{&tile};
-  size_t triangles = 0;
   for (auto _ : state) {
-    auto m = terrain::buildNodeMesh(node, {&tile}, frame, options);
-    triangles = m.mesh.triangleCount();
-    benchmark::DoNotOptimize(m.mesh.vertices.data());
+    terrain::WedgieTable t(tile, 8);
+    benchmark::DoNotOptimize(&t);
   }
-  state.counters["triangles"] = static_cast<double>(triangles);
 }
-BENCHMARK(BM_BuildNodeMesh)->Arg(0)->Arg(3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WedgieTable)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -39,6 +39,11 @@ struct Scene::Impl {
     v.verticalFovRad = glm::radians(req.camera.verticalFovDeg);
     return v;
   }
+  terrain::EyeView eyeView(const render::FrameRequest& req) const {
+    return terrain::EyeView::lookAlong(req.camera.position, req.camera.forward, req.camera.up,
+                                       glm::radians(req.camera.verticalFovDeg), static_cast<double>(renderer->width()),
+                                       static_cast<double>(renderer->height()), req.camera.nearM);
+  }
 };
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -70,7 +75,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   const geo::GeoBounds& b = meta->bounds;
   impl->frame = geo::LocalFrame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
 
-  streaming::StreamingOptions streamingOptions = options.streaming;
+  streaming::StreamingOptions streamingOptions = terrain::streamingOptionsFor(*meta, options.streaming);
   streamingOptions.maxGpuSlots = std::min(streamingOptions.maxGpuSlots, impl->renderer->maxImageryLayers());
   SceneInfo& info = impl->info;
   info.datasetName = meta->name;
@@ -138,7 +143,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   std::vector<terrain::SelectionView> aheadViews;
   if (m.options.lookAhead)
     for (const FlightSample& s : ahead) aheadViews.push_back(m.selectionView(cameraRequest(s)));
-  std::vector<streaming::TileWant> wants = m.terrain->wants(m.selectionView(req), aheadViews);
+  std::vector<streaming::TileWant> wants = m.terrain->wants(m.selectionView(req), m.eyeView(req), aheadViews);
   double terrainMs = stage.elapsedMs();
 
   stage.restart();

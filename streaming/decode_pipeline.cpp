@@ -9,7 +9,8 @@
 
 namespace vegstream::streaming::detail {
 
-DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads) : encoding_(encoding) {
+DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads, HeightExtraFn heightExtra)
+    : encoding_(encoding), heightExtra_(std::move(heightExtra)) {
   assert(decodeThreads >= 1);
   for (int i = 0; i < decodeThreads; ++i) workers_.emplace_back([this] { runWorker(); });
 }
@@ -99,8 +100,12 @@ Completion DecodePipeline::decode(Job& job) const {
   try {
     if (job.key.layer == TileLayer::Height) {
       auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, job.name);
-      if (t) c.heights = std::make_shared<const datasets::HeightTile>(std::move(t).value());
-      else c.message = t.error().message;
+      if (t) {
+        c.heights = std::make_shared<const datasets::HeightTile>(std::move(t).value());
+        if (heightExtra_) c.extra = heightExtra_(*c.heights);
+      } else {
+        c.message = t.error().message;
+      }
     } else {
       auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
       if (t) c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());

@@ -28,6 +28,7 @@
 #include "datasets/tile_codec.h"
 #include "streaming/tile_key.h"
 #include "streaming/tile_source.h"
+#include "streaming/tile_streamer.h"
 
 namespace vegstream::streaming::detail {
 
@@ -47,11 +48,12 @@ struct Completion {
   std::string message;   // Missing / FetchFailed / DecodeFailed: why, naming the file
   std::shared_ptr<const datasets::HeightTile> heights;
   std::shared_ptr<const datasets::ColorTile> colors;
+  std::shared_ptr<const TileExtra> extra;
 };
 
 class DecodePipeline {
  public:
-  DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads);
+  DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads, HeightExtraFn heightExtra = {});
   ~DecodePipeline();  // stop() must have been called (asserted)
   DecodePipeline(const DecodePipeline&) = delete;
   DecodePipeline& operator=(const DecodePipeline&) = delete;
@@ -80,6 +82,7 @@ class DecodePipeline {
   void pushLocked(Completion&& c);
 
   const datasets::ElevationEncoding encoding_;
+  const HeightExtraFn heightExtra_;
   mutable std::mutex mu_;
   std::condition_variable jobsCv_;         // decode threads wait here
   std::condition_variable completionsCv_;  // settle() waits here

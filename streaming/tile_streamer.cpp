@@ -10,6 +10,7 @@
 #include <chrono>
 #include <thread>
 #include <unordered_map>
+#include <utility>
 
 #include "streaming/decode_pipeline.h"
 #include "streaming/gpu_slots.h"
@@ -71,12 +72,16 @@ struct TileStreamer::Impl {
   Logger log;
   std::shared_ptr<detail::DecodePipeline> pipeline;
   detail::GpuSlotAllocator slots;
-  uint64_t tileBytesEstimate;  // what one tile will cost once decoded
+  uint64_t tileBytesBase;  // what one tile will cost once decoded, before any extra
+  uint64_t tileBytesEstimate(const TileKey& key) const {
+    return tileBytesBase + (key.layer == TileLayer::Height ? options.heightExtraBytes : 0);
+  }
 
   std::unordered_map<TileKey, Entry, TileKeyHash> table;
   std::unordered_map<RequestId, TileKey> active;  // Requested or Decoding, not cancelled
   std::unordered_map<TileKey, Want, TileKeyHash> wanted;
   std::vector<TileWant> ordered;  // this frame's wants, current first, then priority (deduplicated)
+  std::vector<TileKey> residencyChanges;  // since takeResidencyChanges()
   RequestId nextRequest = 0;
   uint64_t frame = 0;
   uint64_t bytesCpu = 0, tilesCpu = 0;
@@ -85,13 +90,13 @@ struct TileStreamer::Impl {
   Impl(std::shared_ptr<TileSource> src, datasets::DatasetMeta m, StreamingOptions o, Logger l)
       : source(std::move(src)), meta(std::move(m)), options(o), log(l ? std::move(l) : makeNullLogger()),
         slots(uint32_t(std::min<uint64_t>(o.maxGpuSlots, o.gpuBudgetBytes / kGpuSlotBytes)), o.slotReuseDelayFrames),
-        tileBytesEstimate(uint64_t(m.tileSize) * uint64_t(m.tileSize) * 4 + kTileOverheadBytes) {
+        tileBytesBase(uint64_t(m.tileSize) * uint64_t(m.tileSize) * 4 + kTileOverheadBytes) {
     assert(source);
     assert(options.maxRequestsInFlight >= 1);
     const int threads = options.decodeThreads > 0
                             ? options.decodeThreads
                             : std::max(1, int(std::thread::hardware_concurrency()) - 1);
-    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, threads);
+    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, threads, options.heightExtra);
   }
 
   static constexpr uint64_t kGpuSlotBytes = uint64_t(datasets::kTileSize) * datasets::kTileSize * 4;
@@ -203,7 +208,7 @@ struct TileStreamer::Impl {
       const bool holds = isResident(e->second.state) || e->second.state == TileState::Requested ||
                          e->second.state == TileState::Decoding;
       if (!holds) continue;
-      const uint64_t b = e->second.tile ? e->second.tile->bytes : tileBytesEstimate;
+      const uint64_t b = e->second.tile ? e->second.tile->bytes : tileBytesEstimate(w.key);
       allBytes += b;
       if (!w.lookAhead) currentBytes += b;
     }
@@ -213,7 +218,8 @@ struct TileStreamer::Impl {
                        (e.state == TileState::FailedTemporarily && timeS - e.failedAtS >= options.failedRetryAfterS);
       if (!due) continue;
       const uint64_t held = w.lookAhead ? allBytes : currentBytes;
-      if (held + tileBytesEstimate > options.cpuBudgetBytes) {
+      const uint64_t estimate = tileBytesEstimate(w.key);
+      if (held + estimate > options.cpuBudgetBytes) {
         if (!w.lookAhead) {
           e.blockedByBudget = true;
           stats.wantsExceedCpuBudget = true;
@@ -224,12 +230,12 @@ struct TileStreamer::Impl {
         if (w.lookAhead) break;  // wants are ordered: only look-ahead ones remain
         const auto victim = weakestLookAheadRequest();
         if (!victim) break;
-        allBytes -= tileBytesEstimate;
+        allBytes -= tileBytesEstimate(active.at(*victim));
         cancelRequest(*victim);
       }
       issue(w.key, e);
-      allBytes += tileBytesEstimate;
-      if (!w.lookAhead) currentBytes += tileBytesEstimate;
+      allBytes += estimate;
+      if (!w.lookAhead) currentBytes += estimate;
     }
   }
 
@@ -246,6 +252,7 @@ struct TileStreamer::Impl {
     bytesCpu -= e.tile->bytes;
     --tilesCpu;
     ++stats.evictionsCpu;
+    residencyChanges.push_back(key);
     if (wanted.contains(key)) {  // a look-ahead want: keep the entry, it may be requested again
       e.state = TileState::Unloaded;
       e.tile.reset();
@@ -293,8 +300,9 @@ struct TileStreamer::Impl {
     tile->key = key;
     tile->heights = std::move(c.heights);
     tile->colors = std::move(c.colors);
+    tile->extra = std::move(c.extra);
     const uint64_t pixels = tile->heights ? tile->heights->heights.size() * sizeof(float) : tile->colors->rgba.size();
-    tile->bytes = pixels + kTileOverheadBytes;
+    tile->bytes = pixels + kTileOverheadBytes + (tile->extra ? tile->extra->bytes() : 0);
     tile->residentSinceS = timeS;
     Entry& e = table[key];
     if (!makeRoom(tile->bytes)) {
@@ -315,6 +323,7 @@ struct TileStreamer::Impl {
     bytesCpu += e.tile->bytes;
     ++tilesCpu;
     ++stats.requestsCompleted;
+    residencyChanges.push_back(key);
   }
 
   void takeCompletions(double timeS) {
@@ -392,7 +401,7 @@ struct TileStreamer::Impl {
       const Entry& e = table[w.key];
       ++stats.wanted;
       if (isResident(e.state)) ++stats.wantedResident;
-      if (e.state != TileState::Failed) stats.wantedBytes += e.tile ? e.tile->bytes : tileBytesEstimate;
+      if (e.state != TileState::Failed) stats.wantedBytes += e.tile ? e.tile->bytes : tileBytesEstimate(w.key);
       if (!isResident(e.state) && e.state != TileState::Failed)
         stats.longestWaitS = std::max(stats.longestWaitS, timeS - e.firstWantedS);
     }
@@ -542,6 +551,8 @@ void addFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from
 void setFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from) {
   for (auto counter : kFrameCounters) into.*counter = from.*counter;
 }
+
+std::vector<TileKey> TileStreamer::takeResidencyChanges() { return std::exchange(impl_->residencyChanges, {}); }
 
 double TileStreamer::settle(std::span<const TileWant> wants, double timeS) {
   using Clock = std::chrono::steady_clock;

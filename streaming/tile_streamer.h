@@ -24,6 +24,7 @@
 // Thread-safety: every public member is for the frame thread only, except where noted.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -40,6 +41,16 @@ namespace vegstream::streaming {
 enum class TileState { Unloaded, Requested, Decoding, ResidentCpu, Uploading, ResidentGpu, FailedTemporarily, Failed };
 const char* toString(TileState s);
 
+// Data derived from a decoded height tile on the decode thread (e.g. the terrain's wedgie
+// thicknesses), kept with the tile and counted against the CPU budget with it. The streamer
+// does not know what it is: the terrain injects the builder (StreamingOptions::heightExtra).
+class TileExtra {
+ public:
+  virtual ~TileExtra() = default;
+  virtual uint64_t bytes() const = 0;
+};
+using HeightExtraFn = std::function<std::shared_ptr<const TileExtra>(const datasets::HeightTile&)>;
+
 struct StreamingOptions {
   uint64_t cpuBudgetBytes = 512ull << 20;  // decoded tiles resident in memory (laptop-sized)
   uint64_t gpuBudgetBytes = 256ull << 20;  // imagery tiles resident on the GPU
@@ -49,6 +60,8 @@ struct StreamingOptions {
   uint32_t maxGpuSlots = 2048;             // the device's array-layer limit (Vulkan guarantees 256)
   int slotReuseDelayFrames = 2;            // a GPU slot freed at frame N is reused at N + this (frames in flight)
   double failedRetryAfterS = 2.0;          // FailedTemporarily tiles may be requested again after this
+  HeightExtraFn heightExtra;               // run on the decode threads for every height tile; may be empty
+  uint64_t heightExtraBytes = 0;           // what heightExtra adds to a tile (for the budget's estimates)
 };
 
 // One tile a frame wants. Priority: larger first (the terrain uses screen-space error in px);
@@ -64,6 +77,7 @@ struct ResidentTile {
   TileKey key;
   std::shared_ptr<const datasets::HeightTile> heights;  // layer Height
   std::shared_ptr<const datasets::ColorTile> colors;    // layer Imagery
+  std::shared_ptr<const TileExtra> extra;               // layer Height, when heightExtra is set
   uint64_t bytes = 0;                                   // what it counts against the CPU budget
   double residentSinceS = 0.0;                          // update() time when it became resident
 };
@@ -140,6 +154,10 @@ class TileStreamer {
   double settle(std::span<const TileWant> wants, double timeS);
 
   const StreamingFrameStats& frameStats() const;
+
+  // Keys that became CPU-resident or left the CPU since the last call, in the order it happened
+  // (a key may appear twice): how the terrain learns that the heights under it changed.
+  std::vector<TileKey> takeResidencyChanges();
 
  private:
   struct Impl;

@@ -1,0 +1,40 @@
+#pragma once
+// The camera as the ROAM traversal sees it (seed 001_3eca9f2c7752e4fb.txt §3.1, "we chose to
+// perform the culling operations in eye-space"): the world → eye transform split into a
+// rotation and a translation, so that only a split's new vertex is transformed and refined
+// triangles' eye coordinates are interpolated (rotations are linear); and a symmetric
+// perspective frustum whose planes in eye space are scalar comparisons.
+//
+// Eye space: x right, y up, looking down −z (as render/camera_math's view matrix).
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+namespace vegstream::terrain {
+
+enum class Cull { Outside, Partial, Inside };
+
+struct EyeView {
+  glm::dvec3 cameraEnu{0.0};
+  glm::dmat3 rotation{1.0};  // ENU directions → eye
+  glm::dvec3 upEye{0.0, 1.0, 0.0};  // the local up at the camera, in eye space
+  double tanHalfX = 1.0, tanHalfY = 1.0;
+  double nearM = 1.0;
+  double pixelsPerRadian = 1000.0;  // viewport height / (2 tan(fovY / 2))
+  double viewportWidthPx = 1920.0, viewportHeightPx = 1080.0;
+
+  // A camera at `position` looking along `forward` with `up` roughly up; vertical field of view.
+  static EyeView lookAlong(const glm::dvec3& position, const glm::dvec3& forward, const glm::dvec3& up,
+                           double verticalFovRad, double widthPx, double heightPx, double nearM);
+
+  glm::dvec3 rotate(const glm::dvec3& enuOffset) const { return rotation * enuOffset; }
+  glm::dvec3 toEye(const glm::dvec3& enu) const { return rotation * (enu - cameraEnu); }
+};
+
+// The wedgie of a triangle with eye-space vertices a, b, c: the prism from `below` metres under
+// it to `above` metres over it along the local up. Outside when all six corners are outside
+// one plane (near, left, right, bottom, top); Inside when all are inside all planes.
+Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+                double above);
+
+}  // namespace vegstream::terrain

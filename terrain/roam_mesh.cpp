@@ -1,0 +1,303 @@
+// The ROAM bintree (roam_mesh.h): Duchaineau et al. 1997 §4 (split, forced split, merge of
+// diamonds), as used by seed 001_3eca9f2c7752e4fb.txt §3.1.
+
+#include "terrain/roam_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace vegstream::terrain {
+namespace {
+
+constexpr double kEarthRadiusM = 6371000.0;
+
+double smooth(double s) { return s * s * (3.0 - 2.0 * s); }
+
+}  // namespace
+
+double RoamVertex::drawnHeight(double t, double fadeS) const {
+  if (!(fromHeightM == fromHeightM) || !(heightM == heightM) || fadeS <= 0.0) return heightM;
+  const double s = std::clamp((t - morphStartS) / fadeS, 0.0, 1.0);
+  return fromHeightM + (heightM - fromHeightM) * smooth(s);
+}
+
+RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,
+                   RoamMeshOptions options)
+    : grid_(grid), frame_(frame), heights_(&heights), options_(options) {
+  assert(roots.z == grid.rootZoom() && roots.count() > 0);
+  const int nx = roots.maxX - roots.minX + 1, ny = roots.maxY - roots.minY + 1;
+  const uint32_t s = 1u << (grid.gridZoom() - grid.rootZoom());
+  auto cornerAt = [&](int i, int j) { return cornerVertices_[size_t(j) * size_t(nx + 1) + size_t(i)]; };
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      cornerVertices_.push_back(newVertex({uint32_t(roots.minX + i) * s, uint32_t(roots.minY + j) * s},
+                                          std::numeric_limits<double>::quiet_NaN()));
+  auto pairAt = [&](int i, int j) { return uint32_t(2 * (j * nx + i)); };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const uint32_t p = allocPair();
+      assert(p == pairAt(i, j));
+      RoamNode& t0 = nodes_[p];
+      RoamNode& t1 = nodes_[p + 1];
+      const uint32_t nw = cornerAt(i, j), ne = cornerAt(i + 1, j), se = cornerAt(i + 1, j + 1), sw = cornerAt(i, j + 1);
+      t0.path = {roots.minX + i, roots.minY + j, 0, 0, 0};
+      t1.path = {roots.minX + i, roots.minY + j, 1, 0, 0};
+      t0.v[0] = sw; t0.v[1] = se; t0.v[2] = nw;
+      t1.v[0] = ne; t1.v[1] = nw; t1.v[2] = se;
+      t0.base = p + 1;
+      t1.base = p;
+      t0.left = j + 1 < ny ? pairAt(i, j + 1) + 1 : kNoNode;  // south edge: the southern tile's tree 1
+      t0.right = i > 0 ? pairAt(i - 1, j) + 1 : kNoNode;     // west edge: the western tile's tree 1
+      t1.left = j > 0 ? pairAt(i, j - 1) : kNoNode;          // north edge: the northern tile's tree 0
+      t1.right = i + 1 < nx ? pairAt(i + 1, j) : kNoNode;    // east edge: the eastern tile's tree 0
+      roots_.push_back(p);
+      roots_.push_back(p + 1);
+    }
+  }
+  leaves_ = roots_.size();
+  for (uint32_t r : roots_) nodes_[r].thickness = thicknessOf(r);
+}
+
+uint32_t RoamMesh::allocPair() {
+  if (!freePairs_.empty()) {
+    const uint32_t p = freePairs_.back();
+    freePairs_.pop_back();
+    nodes_[p] = RoamNode{};
+    nodes_[p + 1] = RoamNode{};
+    return p;
+  }
+  const auto p = static_cast<uint32_t>(nodes_.size());
+  nodes_.resize(nodes_.size() + 2);
+  return p;
+}
+
+void RoamMesh::freePair(uint32_t first) {
+  nodes_[first] = RoamNode{};
+  nodes_[first + 1] = RoamNode{};
+  nodes_[first].path.level = nodes_[first + 1].path.level = 0xFF;  // matches no queued path
+  freePairs_.push_back(first);
+}
+
+void RoamMesh::sampleVertex(RoamVertex& v, bool morph) {
+  const HeightSample s = heights_->sample(v.grid);
+  if (morph) {
+    v.fromHeightM = v.drawnHeight(timeS_, options_.fadeS);
+    v.morphStartS = timeS_;
+  }
+  v.heightM = s.heightM;
+  v.sourceZoom = s.sourceZoom;
+  // The ground normal: slopes in the vertex's own east/north/up, turned into the frame's axes.
+  const glm::dvec3 east = glm::normalize(glm::cross(glm::dvec3(0.0, 1.0, 0.0), v.up));
+  const glm::dvec3 north = glm::cross(v.up, east);
+  v.normal = glm::vec3(glm::normalize(v.up - east * s.slope.x - north * s.slope.y));
+}
+
+uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
+  uint32_t i;
+  if (!freeVertices_.empty()) {
+    i = freeVertices_.back();
+    freeVertices_.pop_back();
+  } else {
+    i = static_cast<uint32_t>(vertices_.size());
+    vertices_.emplace_back();
+  }
+  RoamVertex& v = vertices_[i];
+  v = RoamVertex{};
+  v.grid = p;
+  const glm::dvec2 lonLat = geo::tileXYToLonLat(grid_.tileXY(p, grid_.gridZoom()), grid_.gridZoom());
+  const geo::Geodetic g{lonLat.y, lonLat.x, 0.0};
+  v.base = frame_.toLocal(g);
+  v.up = frame_.upAt(g);
+  sampleVertex(v, false);
+  v.fromHeightM = fromHeight;
+  v.morphStartS = timeS_;
+  return i;
+}
+
+float RoamMesh::thicknessOf(uint32_t t) {
+  const RoamNode& n = nodes_[t];
+  const float e = heights_->thickness(corners(t), n.path.level);
+  if (!(e >= 0.0f)) return e;  // unknown (NaN) or no data (< 0)
+  const glm::dvec3 hyp = vertices_[n.v[1]].base - vertices_[n.v[2]].base;
+  return e + static_cast<float>(glm::dot(hyp, hyp) / (8.0 * kEarthRadiusM));
+}
+
+void RoamMesh::replaceLink(uint32_t at, uint32_t from, uint32_t to) {
+  if (at == kNoNode) return;
+  RoamNode& n = nodes_[at];
+  if (n.base == from) n.base = to;
+  else if (n.left == from) n.left = to;
+  else if (n.right == from) n.right = to;
+  else assert(false && "neighbour links are not symmetric");
+}
+
+void RoamMesh::splitOne(uint32_t t, uint32_t mid) {
+  const uint32_t c = allocPair();  // may reallocate: index from here on
+  RoamNode& n = nodes_[t];
+  RoamNode& c0 = nodes_[c];
+  RoamNode& c1 = nodes_[c + 1];
+  c0.path = childPath(n.path, 0);
+  c1.path = childPath(n.path, 1);
+  c0.v[0] = mid; c0.v[1] = n.v[0]; c0.v[2] = n.v[1];
+  c1.v[0] = mid; c1.v[1] = n.v[2]; c1.v[2] = n.v[0];
+  c0.parent = c1.parent = t;
+  c0.base = n.left;
+  c1.base = n.right;
+  c0.left = c + 1;
+  c1.right = c;
+  replaceLink(n.left, t, c);
+  replaceLink(n.right, t, c + 1);
+  n.child = c;
+  n.mid = mid;
+  ++leaves_;
+  nodes_[c].thickness = thicknessOf(c);
+  nodes_[c + 1].thickness = thicknessOf(c + 1);
+}
+
+bool RoamMesh::split(uint32_t t) {
+  if (!nodes_[t].isLeaf()) return true;
+  if (nodes_[t].path.level >= grid_.maxLevel()) return false;
+  // Forced split: the base neighbour must share our base before the diamond can split.
+  if (nodes_[t].base != kNoNode && nodes_[nodes_[t].base].base != t) {
+    if (!split(nodes_[t].base)) return false;
+    assert(nodes_[nodes_[t].base].base == t);
+  }
+  const uint32_t b = nodes_[t].base;
+  const RoamVertex& l = vertices_[nodes_[t].v[1]];
+  const RoamVertex& r = vertices_[nodes_[t].v[2]];
+  // Starts where the mesh was: on the base it splits (morphs to its sampled height from there).
+  const double from = 0.5 * (l.drawnHeight(timeS_, options_.fadeS) + r.drawnHeight(timeS_, options_.fadeS));
+  const uint32_t m = newVertex(midpoint(l.grid, r.grid), from);
+  splitOne(t, m);
+  if (b != kNoNode) {
+    splitOne(b, m);
+    const uint32_t tc = nodes_[t].child, bc = nodes_[b].child;
+    nodes_[tc].right = bc + 1;
+    nodes_[bc + 1].left = tc;
+    nodes_[tc + 1].left = bc;
+    nodes_[bc].right = tc + 1;
+  }
+  return true;
+}
+
+bool RoamMesh::isMergeable(uint32_t t) const {
+  auto childrenAreLeaves = [&](uint32_t n) {
+    const RoamNode& x = nodes_[n];
+    return !x.isLeaf() && nodes_[x.child].isLeaf() && nodes_[x.child + 1].isLeaf();
+  };
+  if (!childrenAreLeaves(t)) return false;
+  const uint32_t b = nodes_[t].base;
+  return b == kNoNode || (nodes_[b].base == t && childrenAreLeaves(b));
+}
+
+void RoamMesh::mergeOne(uint32_t t) {
+  RoamNode& n = nodes_[t];
+  const uint32_t c = n.child;
+  n.left = nodes_[c].base;
+  n.right = nodes_[c + 1].base;
+  replaceLink(n.left, c, t);
+  replaceLink(n.right, c + 1, t);
+  freePair(c);
+  n.child = kNoNode;
+  n.mid = kNoNode;
+  --leaves_;
+}
+
+void RoamMesh::merge(uint32_t t) {
+  assert(isMergeable(t));
+  const uint32_t b = nodes_[t].base;
+  const uint32_t m = nodes_[t].mid;
+  mergeOne(t);
+  if (b != kNoNode) mergeOne(b);
+  freeVertices_.push_back(m);
+}
+
+void RoamMesh::resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]) {
+  const TriCorners c = corners(t);
+  const uint32_t minX = std::min({c.apex.x, c.left.x, c.right.x}), maxX = std::max({c.apex.x, c.left.x, c.right.x});
+  const uint32_t minY = std::min({c.apex.y, c.left.y, c.right.y}), maxY = std::max({c.apex.y, c.left.y, c.right.y});
+  if (maxX < lo[0] || minX > hi[0] || maxY < lo[1] || minY > hi[1]) return;
+  RoamNode& n = nodes_[t];
+  if (grid_.squareZoom(n.path.level) >= tile.z) n.thickness = thicknessOf(t);
+  if (n.isLeaf()) return;
+  RoamVertex& m = vertices_[n.mid];
+  if (m.grid.x >= lo[0] && m.grid.x <= hi[0] && m.grid.y >= lo[1] && m.grid.y <= hi[1]) {
+    const HeightSample s = heights_->sample(m.grid);
+    if (s.sourceZoom != m.sourceZoom || !(s.heightM == m.heightM)) sampleVertex(m, true);
+  }
+  const uint32_t ch = n.child;
+  resampleNode(ch, tile, lo, hi);
+  resampleNode(ch + 1, tile, lo, hi);
+}
+
+void RoamMesh::resample(const geo::TileId& tile) {
+  if (tile.z > grid_.maxZoom()) return;
+  const int shift = grid_.gridZoom() - tile.z;
+  uint32_t lo[2] = {uint32_t(tile.x) << shift, uint32_t(tile.y) << shift};
+  uint32_t hi[2] = {uint32_t(tile.x + 1) << shift, uint32_t(tile.y + 1) << shift};
+  for (uint32_t v : cornerVertices_) {
+    RoamVertex& x = vertices_[v];
+    if (x.grid.x >= lo[0] && x.grid.x <= hi[0] && x.grid.y >= lo[1] && x.grid.y <= hi[1]) sampleVertex(x, true);
+  }
+  for (uint32_t r : roots_) resampleNode(r, tile, lo, hi);
+}
+
+std::vector<uint32_t> RoamMesh::leaves() const {
+  std::vector<uint32_t> out, stack(roots_.rbegin(), roots_.rend());
+  while (!stack.empty()) {
+    const uint32_t t = stack.back();
+    stack.pop_back();
+    if (nodes_[t].isLeaf()) {
+      out.push_back(t);
+    } else {
+      stack.push_back(nodes_[t].child + 1);
+      stack.push_back(nodes_[t].child);
+    }
+  }
+  return out;
+}
+
+uint64_t RoamMesh::conformityViolations() const {
+  uint64_t bad = 0;
+  const std::vector<uint32_t> all = leaves();
+  // The forest's outer boundary, in grid units.
+  uint32_t minX = UINT32_MAX, minY = UINT32_MAX, maxX = 0, maxY = 0;
+  for (uint32_t v : cornerVertices_) {
+    minX = std::min(minX, vertices_[v].grid.x); maxX = std::max(maxX, vertices_[v].grid.x);
+    minY = std::min(minY, vertices_[v].grid.y); maxY = std::max(maxY, vertices_[v].grid.y);
+  }
+  auto onBoundary = [&](GridPoint a, GridPoint b) {
+    return (a.x == b.x && (a.x == minX || a.x == maxX)) || (a.y == b.y && (a.y == minY || a.y == maxY));
+  };
+  for (uint32_t t : all) {
+    const RoamNode& n = nodes_[t];
+    const std::array<std::array<uint32_t, 2>, 3> edges{{{n.v[1], n.v[2]}, {n.v[0], n.v[1]}, {n.v[0], n.v[2]}}};
+    const std::array<uint32_t, 3> links{n.base, n.left, n.right};
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t o = links[size_t(e)];
+      const auto& edge = edges[size_t(e)];
+      if (o == kNoNode) {
+        if (!onBoundary(vertices_[edge[0]].grid, vertices_[edge[1]].grid)) ++bad;
+        continue;
+      }
+      const RoamNode& m = nodes_[o];
+      if (!m.isLeaf()) { ++bad; continue; }  // a T-junction: the neighbour is split along our edge
+      const std::array<std::array<uint32_t, 2>, 3> oe{{{m.v[1], m.v[2]}, {m.v[0], m.v[1]}, {m.v[0], m.v[2]}}};
+      const std::array<uint32_t, 3> ol{m.base, m.left, m.right};
+      bool found = false;
+      for (int k = 0; k < 3; ++k) {
+        if (ol[size_t(k)] != t) continue;
+        const auto& x = oe[size_t(k)];
+        found = (x[0] == edge[0] && x[1] == edge[1]) || (x[0] == edge[1] && x[1] == edge[0]);
+      }
+      if (!found) ++bad;
+    }
+  }
+  return bad;
+}
+
+}  // namespace vegstream::terrain

@@ -1,0 +1,135 @@
+#pragma once
+// The ROAM triangle bintree itself (Duchaineau et al. 1997; seed 001_3eca9f2c7752e4fb.txt §3.1,
+// fig. 4): a forest of bintrees over the root tiles (bintree.h), with the neighbour links that
+// make forced splits keep the mesh conforming — no cracks and no T-junctions, across tile
+// borders too, because the whole forest is one mesh whose shared edges share their vertices.
+//
+//   split(t)  splits a leaf and its base neighbour together (a diamond), first splitting the base
+//             neighbour's ancestors as far as needed (forced splits);
+//   merge(t)  undoes the split of a diamond whose four children are leaves.
+//
+// Heights: every vertex is sampled once from the finest resident tile when it is created
+// (ResidentHeights), and again when the tiles under it change (resample). It starts at the
+// height the mesh had there before (the midpoint of its parent's base, or its old height) and
+// morphs to the sampled one over `fadeS` (geomorphing, so splits and arriving tiles do not pop).
+// Every node keeps its nested wedgie thickness (wedgie_table.h) plus the earth-curvature sagitta
+// of its hypotenuse (a flat triangle in the ENU frame is below the curved ground between its
+// vertices).
+//
+// Pools with free lists: node and vertex indices stay valid until the node or vertex is removed;
+// children are allocated in pairs (child1 = child0 + 1). Frame thread only.
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "geo/local_frame.h"
+#include "geo/xyz_tiles.h"
+#include "terrain/bintree.h"
+#include "terrain/resident_heights.h"
+
+namespace vegstream::terrain {
+
+inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
+
+struct RoamVertex {
+  GridPoint grid;
+  glm::dvec3 base{0.0};     // ENU of the point on the ellipsoid (height 0)
+  glm::dvec3 up{0.0, 0.0, 1.0};  // the ellipsoid normal there, in the ENU frame
+  double heightM = std::numeric_limits<double>::quiet_NaN();  // sampled (target) height; NaN: nodata
+  double fromHeightM = std::numeric_limits<double>::quiet_NaN();  // what it morphs from
+  double morphStartS = -1e30;
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  int sourceZoom = -1;
+
+  // Height used for culling and priorities: nodata counts as the fill height (never drawn).
+  double geometryHeight(double fill) const { return heightM == heightM ? heightM : fill; }
+  glm::dvec3 position(double h) const { return base + up * h; }
+  // The height drawn at time t: from fromHeightM to heightM over fadeS.
+  double drawnHeight(double t, double fadeS) const;
+};
+
+struct RoamNode {
+  TriPath path;
+  uint32_t v[3] = {0, 0, 0};  // apex, left, right (RoamVertex indices)
+  uint32_t parent = kNoNode, child = kNoNode;  // child: the first of the pair
+  uint32_t base = kNoNode, left = kNoNode, right = kNoNode;  // neighbours across base, apex–left, apex–right
+  uint32_t mid = kNoNode;       // the split vertex, while split
+  float thickness = 0.0f;       // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
+  float priority = 0.0f;        // the last priority the update gave it
+  bool isLeaf() const { return child == kNoNode; }
+};
+
+struct RoamMeshOptions {
+  double fadeS = 0.5;        // geomorph time (s)
+  double fillHeightM = 0.0;  // the height nodata vertices count as for culling (e.g. mid dataset)
+};
+
+class RoamMesh {
+ public:
+  // One root tile pair for every tile of `roots` (at grid.rootZoom()).
+  RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,
+           RoamMeshOptions options = {});
+
+  const BintreeGrid& grid() const { return grid_; }
+  const RoamMeshOptions& options() const { return options_; }
+  void setTime(double timeS) { timeS_ = timeS; }
+
+  // Splits leaf t (and its diamond partner, forcing splits of coarser neighbours first). False
+  // when t or a node it would force is at the deepest level. Invalidates references to nodes.
+  bool split(uint32_t t);
+  // T and its base neighbour (if any) are split, their children leaves, and they form a diamond.
+  bool isMergeable(uint32_t t) const;
+  void merge(uint32_t t);
+
+  // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
+  void resample(const geo::TileId& tile);
+
+  const RoamNode& node(uint32_t i) const { return nodes_[i]; }
+  RoamNode& node(uint32_t i) { return nodes_[i]; }
+  const RoamVertex& vertex(uint32_t i) const { return vertices_[i]; }
+  const std::vector<uint32_t>& roots() const { return roots_; }
+  size_t nodeCapacity() const { return nodes_.size(); }
+  size_t vertexCapacity() const { return vertices_.size(); }
+  uint64_t leafCount() const { return leaves_; }
+  uint64_t vertexCount() const { return vertices_.size() - freeVertices_.size(); }
+  TriCorners corners(uint32_t t) const {
+    const RoamNode& n = nodes_[t];
+    return {vertices_[n.v[0]].grid, vertices_[n.v[1]].grid, vertices_[n.v[2]].grid};
+  }
+
+  // Every leaf, depth first from the roots (tests, benchmarks).
+  std::vector<uint32_t> leaves() const;
+  // Checks the links and the conformity of the mesh: every leaf edge is either on the boundary of
+  // the forest or shared with exactly one leaf with the same two vertices. Returns the number of
+  // violations (0 for a valid mesh).
+  uint64_t conformityViolations() const;
+
+ private:
+  uint32_t allocPair();
+  void freePair(uint32_t first);
+  uint32_t newVertex(GridPoint p, double fromHeight);
+  void sampleVertex(RoamVertex& v, bool morph);
+  void splitOne(uint32_t t, uint32_t mid);
+  void mergeOne(uint32_t t);
+  void replaceLink(uint32_t at, uint32_t from, uint32_t to);
+  float thicknessOf(uint32_t t);
+  void resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]);
+
+  BintreeGrid grid_;
+  geo::LocalFrame frame_;
+  ResidentHeights* heights_;
+  RoamMeshOptions options_;
+  double timeS_ = 0.0;
+  std::vector<RoamNode> nodes_;
+  std::vector<uint32_t> freePairs_;
+  std::vector<RoamVertex> vertices_;
+  std::vector<uint32_t> freeVertices_;
+  std::vector<uint32_t> roots_;
+  std::vector<uint32_t> cornerVertices_;  // the root tiles' corners (never removed)
+  uint64_t leaves_ = 0;
+};
+
+}  // namespace vegstream::terrain

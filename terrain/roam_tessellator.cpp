@@ -1,0 +1,228 @@
+// ROAM update: priorities, split and merge queues (roam_tessellator.h). Seed
+// 001_3eca9f2c7752e4fb.txt §3.1; Duchaineau et al. 1997 §6 (split/merge queues, budgets).
+
+#include "terrain/roam_tessellator.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/stopwatch.h"
+#include "terrain/roam_walk.h"
+
+namespace vegstream::terrain {
+
+void PieceSet::assign(std::span<const geo::TileId> tiles) {
+  tiles_.assign(tiles.begin(), tiles.end());
+  index_.clear();
+  above_.clear();
+  for (size_t i = 0; i < tiles_.size(); ++i) {
+    const geo::TileId& t = tiles_[i];
+    index_.emplace(pack(t), static_cast<int>(i));
+    for (int z = t.z - 1; z >= 0; --z) {
+      const int k = t.z - z;
+      if (!above_.insert(pack({z, t.x >> k, t.y >> k})).second) break;  // its ancestors are in already
+    }
+  }
+}
+
+int PieceSet::pieceOf(const geo::TileId& square) const {
+  for (int z = square.z; z >= 0; --z) {
+    const int k = square.z - z;
+    const int i = exactly({z, square.x >> k, square.y >> k});
+    if (i >= 0) return i;
+  }
+  return -1;
+}
+
+RoamTessellator::RoamTessellator(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame,
+                                 ResidentHeights& heights, RoamOptions options, SeedOptions seeds,
+                                 RoamMeshOptions meshOptions, double seedLatitudeDeg)
+    : mesh_(grid, roots, frame, heights, meshOptions), frame_(frame), options_(options), seeds_(seeds),
+      seedLevel_(seedLevelFor(grid, seedLatitudeDeg, seeds.targetAreaM2)) {}
+
+void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
+  for (const streaming::TileKey& k : keys)
+    if (k.layer == streaming::TileLayer::Height) mesh_.resample(k.id);
+}
+
+glm::dvec3 RoamTessellator::eyeOfVertex(const EyeView& view, uint32_t v) const {
+  const RoamVertex& x = mesh_.vertex(v);
+  return view.toEye(x.position(x.geometryHeight(mesh_.options().fillHeightM)));
+}
+
+void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
+  const RoamNode& n = mesh_.node(t);
+  for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
+}
+
+double RoamTessellator::sphereDistance(const EyeView& view, const glm::dvec3* eye, double thickness) const {
+  // The hypotenuse midpoint is the circumcentre of a right triangle (in the plane); heights make
+  // the radius the larger of the two distances.
+  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
+  const double r = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
+  return std::max(glm::length(c) - r - thickness, view.nearM);
+}
+
+RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square,
+                                                     InPiece parent, int level) const {
+  if (level > 0 && (parent != InPiece::Above || level % 2 == 1)) return parent;
+  if (pieces.exactly(square) >= 0) return InPiece::In;
+  return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
+}
+
+RoamTessellator::InPiece RoamTessellator::pieceStateOf(const PieceSet& pieces, uint32_t t) const {
+  const geo::TileId square = mesh_.grid().square(mesh_.corners(t), mesh_.node(t).path.level);
+  if (pieces.pieceOf(square) >= 0) return InPiece::In;
+  return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
+}
+
+float RoamTessellator::priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull,
+                                InPiece ps) const {
+  if (cull == Cull::Outside) return 0.0f;
+  if (ps == InPiece::Above) return kForcedPriority;
+  const RoamNode& n = mesh_.node(t);
+  if (!(n.thickness >= 0.0f)) return 0.0f;  // nothing known yet, or no data under it
+  const double d = sphereDistance(view, eye, n.thickness);
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && d < seeds_.horizonM) return kForcedPriority;
+  return static_cast<float>(n.thickness * view.pixelsPerRadian / d);
+}
+
+double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
+  glm::dvec3 eye[3];
+  eyeOf(view, t, eye);
+  const RoamNode& n = mesh_.node(t);
+  if (!(n.thickness >= 0.0f)) return 0.0;
+  return n.thickness * view.pixelsPerRadian / sphereDistance(view, eye, n.thickness);
+}
+
+void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+  RoamNode& n = mesh_.node(t);
+  const int level = n.path.level;
+  if (cull == Cull::Partial) {
+    const double e = std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f);
+    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+  }
+  if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
+    ps = pieceState(*w.pieces, mesh_.grid().square(mesh_.corners(t), level), ps, level);
+  if (n.isLeaf()) {
+    n.priority = priority(*w.view, t, eye, cull, ps);
+    if (n.priority > w.bound) w.splits->push_back({n.priority, t, n.path});
+    return;
+  }
+  const uint32_t c = n.child;
+  if (mesh_.node(c).isLeaf() && mesh_.node(c + 1).isLeaf()) {
+    n.priority = priority(*w.view, t, eye, cull, ps);
+    w.diamonds->push_back({n.priority, t, n.path});
+  }
+  glm::dvec3 e0[3], e1[3];
+  if (cull != Cull::Outside) {
+    const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
+    e0[0] = m; e0[1] = eye[0]; e0[2] = eye[1];
+    e1[0] = m; e1[1] = eye[2]; e1[2] = eye[0];
+  }
+  visitPriorities(w, c, e0, cull, ps);
+  visitPriorities(w, c + 1, e1, cull, ps);
+}
+
+void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double timeS) {
+  Stopwatch watch;
+  figures_ = {};
+  mesh_.setTime(timeS);
+  std::vector<Candidate> splits, diamonds;
+  Walk w;
+  w.view = &view;
+  w.pieces = &pieces;
+  w.bound = options_.maxErrorPx;
+  w.splits = &splits;
+  w.diamonds = &diamonds;
+  for (uint32_t r : mesh_.roots()) {
+    glm::dvec3 eye[3];
+    eyeOf(view, r, eye);
+    visitPriorities(w, r, eye, Cull::Partial, InPiece::None);
+  }
+  uint64_t ops = 0;
+  splitPhase(view, pieces, splits, ops, watch);
+  mergePhase(diamonds, ops, watch);
+  figures_.leaves = mesh_.leafCount();
+  figures_.updateMs = watch.elapsedMs();
+}
+
+bool RoamTessellator::outOfWork(uint64_t ops, const Stopwatch& watch) {
+  if (ops >= options_.maxOpsPerFrame || (options_.maxQueueMs > 0.0 && watch.elapsedMs() > options_.maxQueueMs)) {
+    figures_.workLimited = true;
+    return true;
+  }
+  return false;
+}
+
+void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, std::vector<Candidate>& heap,
+                                 uint64_t& ops, const Stopwatch& watch) {
+  auto less = [](const Candidate& a, const Candidate& b) { return a.priority < b.priority; };
+  std::make_heap(heap.begin(), heap.end(), less);
+  const double bound = options_.maxErrorPx;
+  while (!heap.empty() && heap.front().priority > bound) {
+    if (outOfWork(ops, watch)) break;
+    const bool forced = heap.front().priority >= kForcedPriority;
+    if (!forced && mesh_.leafCount() + 2 > options_.maxTriangles) {
+      figures_.budgetLimited = true;
+      break;
+    }
+    std::pop_heap(heap.begin(), heap.end(), less);
+    const Candidate c = heap.back();
+    heap.pop_back();
+    const RoamNode& n = mesh_.node(c.node);
+    if (!n.isLeaf() || n.path != c.path) continue;  // split or removed since it was queued
+    if (!mesh_.split(c.node)) continue;               // at the deepest level
+    ++ops;
+    ++figures_.splits;
+    // The new leaves of the diamond may need more splits this frame.
+    const uint32_t partner = mesh_.node(c.node).base;
+    for (uint32_t parent : {c.node, partner}) {
+      if (parent == kNoNode || mesh_.node(parent).isLeaf()) continue;
+      for (uint32_t k = 0; k < 2; ++k) {
+        const uint32_t leaf = mesh_.node(parent).child + k;
+        glm::dvec3 eye[3];
+        eyeOf(view, leaf, eye);
+        const RoamNode& ln = mesh_.node(leaf);
+        const double e = std::max(0.0f, ln.thickness == ln.thickness ? ln.thickness : 0.0f);
+        const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+        const float p = priority(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
+        mesh_.node(leaf).priority = p;
+        if (p > bound) {
+          heap.push_back({p, leaf, ln.path});
+          std::push_heap(heap.begin(), heap.end(), less);
+        }
+      }
+    }
+  }
+}
+
+void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch) {
+  // A diamond's priority is the larger of its two halves'.
+  std::vector<Candidate> queue;
+  for (const Candidate& d : diamonds) {
+    const uint32_t b = mesh_.node(d.node).base;
+    if (b != kNoNode && b < d.node) continue;  // the partner with the smaller index speaks for both
+    const float p = std::max(d.priority, b != kNoNode ? mesh_.node(b).priority : 0.0f);
+    if (p < kForcedPriority) queue.push_back({p, d.node, d.path});
+  }
+  std::sort(queue.begin(), queue.end(), [](const Candidate& a, const Candidate& b) {
+    return a.priority != b.priority ? a.priority < b.priority : a.node < b.node;
+  });
+  const double threshold = options_.mergeFraction * options_.maxErrorPx;
+  for (const Candidate& c : queue) {
+    if (c.priority >= threshold && mesh_.leafCount() <= options_.maxTriangles) break;
+    if (outOfWork(ops, watch)) break;
+    const RoamNode& n = mesh_.node(c.node);
+    if (n.path != c.path || !mesh_.isMergeable(c.node)) continue;
+    if (c.priority >= threshold) figures_.budgetLimited = true;  // merged for the budget, not the error
+    mesh_.merge(c.node);
+    ++ops;
+    ++figures_.merges;
+  }
+}
+
+}  // namespace vegstream::terrain

@@ -1,0 +1,158 @@
+#pragma once
+// ROAM over the streamed tiles (seed 001_3eca9f2c7752e4fb.txt §3.1; Duchaineau et al. 1997):
+// each frame the persistent bintree (roam_mesh.h) is split and merged towards the triangulation
+// whose on-screen error is within `maxErrorPx` under a triangle budget — frame-to-frame
+// coherent, never rebuilt — and then traversed once more to emit what is drawn and the seed
+// triangles.
+//
+// update():
+//   1. one traversal computes every leaf's priority (projected wedgie thickness, px: the nested
+//      thickness · pixels-per-radian / distance to the triangle's bounding sphere) with
+//      hierarchical culling (a leaf outside the view has priority 0, so it merges away), and the
+//      priority of every diamond whose four children are leaves;
+//   2. the split queue (max first) splits leaves above the bound, forcing splits as needed, and
+//      re-queues their children, until the bound is met, the triangle budget is reached or the
+//      per-frame work budget is spent (operations, and optionally milliseconds);
+//   3. the merge queue (min first) merges diamonds below mergeFraction × the bound, and more while
+//      the mesh is over budget.
+//   Two constraints force splits regardless of error: every drawn leaf lies inside one piece
+//   (the imagery tile it is coloured from), and, inside the seeding horizon, leaves reach the
+//   seed level so that seed triangles have sampled heights.
+// output(): the drawn leaves in eye space with hierarchical culling of the wedgie plus the canopy
+//   (the tallest plant, so no triangle whose plants can be seen is culled), grouped into one mesh
+//   per piece; and the seed triangles (seed_triangles.h): the visible triangles of the seed
+//   level within the horizon and facing the camera, their plant counts by eq. 1 or 2. Eye-space
+//   coordinates are carried down the recursion: only each split's new vertex is transformed,
+//   and refined seed triangles interpolate their parents' (§3.1 A and B).
+//
+// Deterministic: with maxQueueMs = 0 the same inputs give the same mesh. Frame thread only.
+
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "core/stopwatch.h"
+#include "geo/local_frame.h"
+#include "streaming/tile_key.h"
+#include "terrain/eye_space.h"
+#include "terrain/roam_mesh.h"
+#include "terrain/seed_triangles.h"
+#include "terrain/terrain_mesh.h"
+
+namespace vegstream::terrain {
+
+// Priority of a leaf that must split whatever its error (a constraint).
+inline constexpr float kForcedPriority = 3.0e38f;
+
+struct RoamOptions {
+  double maxErrorPx = 2.0;          // screen-space error bound
+  uint64_t maxTriangles = 120000;   // leaves in the mesh (the constraints may exceed it)
+  double mergeFraction = 0.6;       // merge diamonds whose priority is below this × the bound
+  uint64_t maxOpsPerFrame = 60000;  // splits + merges per frame (a deterministic work budget)
+  double maxQueueMs = 0.0;          // a time budget for the queue work; 0: none (deterministic)
+  double canopyM = 30.0;            // the tallest plant: wedgies grow by it for culling
+};
+
+// The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
+// of another. Every drawn leaf lies inside exactly one of them.
+class PieceSet {
+ public:
+  void assign(std::span<const geo::TileId> tiles);
+  const std::vector<geo::TileId>& tiles() const { return tiles_; }
+  // Index of the piece that is `square` or contains it; −1 when none does.
+  int pieceOf(const geo::TileId& square) const;
+  // True when a piece lies strictly inside `square`.
+  bool isAbove(const geo::TileId& square) const { return above_.count(pack(square)) != 0; }
+  int exactly(const geo::TileId& square) const {
+    auto it = index_.find(pack(square));
+    return it == index_.end() ? -1 : it->second;
+  }
+  static uint64_t pack(const geo::TileId& t) {
+    return (uint64_t(t.z) << 58) | (uint64_t(uint32_t(t.x)) << 29) | uint64_t(uint32_t(t.y));
+  }
+
+ private:
+  std::vector<geo::TileId> tiles_;
+  std::unordered_map<uint64_t, int> index_;
+  std::unordered_set<uint64_t> above_;
+};
+
+struct RoamFigures {
+  uint64_t leaves = 0;            // triangles in the mesh
+  uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
+  uint64_t splits = 0, merges = 0;
+  uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
+  bool budgetLimited = false;     // the triangle budget stopped refinement
+  bool workLimited = false;       // the per-frame work budget stopped the queues
+  double achievedErrorPx = 0.0;   // the largest priority of a visible leaf after the update
+  uint64_t seedTriangles = 0;
+  uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
+  double seedPlants = 0.0;        // Σ plant counts
+  double updateMs = 0.0, outputMs = 0.0;
+};
+
+class RoamTessellator {
+ public:
+  RoamTessellator(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,
+                  RoamOptions options, SeedOptions seeds, RoamMeshOptions meshOptions, double seedLatitudeDeg);
+
+  RoamMesh& mesh() { return mesh_; }
+  const RoamMesh& mesh() const { return mesh_; }
+  const RoamOptions& options() const { return options_; }
+  void setMaxErrorPx(double px) { options_.maxErrorPx = px; }
+  int seedLevel() const { return seedLevel_; }
+  const SeedOptions& seedOptions() const { return seeds_; }
+
+  // Height tiles whose residency changed: their vertices and thicknesses are sampled again.
+  void tilesChanged(std::span<const streaming::TileKey> keys);
+  void update(const EyeView& view, const PieceSet& pieces, double timeS);
+  // The drawn leaves, one mesh per piece (+1 at the end: leaves not yet inside a piece, drawn
+  // without imagery), and the seed triangles. `meshes` is resized to pieces.tiles().size() + 1.
+  void output(const EyeView& view, const PieceSet& pieces, double timeS, std::vector<TerrainMesh>& meshes,
+              std::vector<SeedTriangle>& seeds);
+
+  const RoamFigures& figures() const { return figures_; }
+  // Priority (px) a leaf would have for `view`, its constraints ignored (tests).
+  double errorPx(const EyeView& view, uint32_t node) const;
+
+ private:
+  enum class InPiece : uint8_t { None, Above, In };
+  struct Candidate {
+    float priority;
+    uint32_t node;
+    TriPath path;
+  };
+  struct Walk;  // the state of one traversal
+
+  float priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) const;
+  double sphereDistance(const EyeView& view, const glm::dvec3* eye, double thickness) const;
+  InPiece pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const;
+  InPiece pieceStateOf(const PieceSet& pieces, uint32_t t) const;
+  void eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const;
+  glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const;
+  void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
+  void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
+  void emitLeaf(Walk& w, uint32_t t, int piece);
+  void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated);
+  void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness);
+  void splitPhase(const EyeView& view, const PieceSet& pieces, std::vector<Candidate>& candidates, uint64_t& ops,
+                  const Stopwatch& watch);
+  void mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch);
+  bool outOfWork(uint64_t ops, const Stopwatch& watch);
+
+  RoamMesh mesh_;
+  geo::LocalFrame frame_;
+  RoamOptions options_;
+  SeedOptions seeds_;
+  int seedLevel_ = 0;
+  double fillHeightM_ = 0.0;
+  RoamFigures figures_;
+  // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
+  std::vector<uint64_t> stampFrame_;
+  std::vector<uint32_t> stampPiece_, stampIndex_;
+  uint64_t outputFrame_ = 0;
+};
+
+}  // namespace vegstream::terrain

@@ -1,0 +1,55 @@
+// Seed-triangle plant counts (eq. 1, eq. 2) and the seed level; seed 001_3eca9f2c7752e4fb.txt
+// §2.1 and §3.1.
+
+#include "terrain/seed_triangles.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace vegstream::terrain {
+namespace {
+constexpr double kEarthCircumferenceM = 40075016.685578488;
+}
+
+double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  auto project = [&](const glm::dvec3& p) {
+    return glm::dvec2(p.x / -p.z, p.y / -p.z) * view.pixelsPerRadian;
+  };
+  const glm::dvec2 pa = project(a), pb = project(b), pc = project(c);
+  return 0.5 * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
+}
+
+double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o,
+                        bool* nearPlane) {
+  const bool behind = std::any_of(eye.begin(), eye.end(), [&](const glm::dvec3& p) { return -p.z < view.nearM; });
+  if (nearPlane) *nearPlane = behind;
+  if (behind) return o.maxPlants;
+  return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]), o.maxPlants);
+}
+
+double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o) {
+  const glm::dvec3 cross = glm::cross(eye[1] - eye[0], eye[2] - eye[0]);
+  const double area = 0.5 * glm::length(cross);
+  if (area <= 0.0) return 0.0;
+  const glm::dvec3 n = cross / (2.0 * area);
+  const glm::dvec3 v = (eye[0] + eye[1] + eye[2]) / 3.0;
+  const double d2 = glm::dot(v, v);
+  if (d2 <= 0.0) return o.maxPlants;
+  const double cosine = std::abs(glm::dot(n, v)) / std::sqrt(d2);
+  const double k = view.pixelsPerRadian;
+  return std::min(o.density * area * cosine / d2 * k * k, o.maxPlants);
+}
+
+double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg) {
+  const double side = kEarthCircumferenceM / std::ldexp(1.0, grid.rootZoom()) * std::cos(latDeg * M_PI / 180.0);
+  return side * side / std::ldexp(1.0, level + 1);  // a root square is two level-0 triangles
+}
+
+int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2) {
+  const double l = std::log2(triangleAreaM2(grid, 0, latDeg) / areaM2);
+  return std::clamp(static_cast<int>(std::lround(l)), 0, grid.maxLevel());
+}
+
+}  // namespace vegstream::terrain

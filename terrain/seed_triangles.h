@@ -1,0 +1,61 @@
+#pragma once
+// Seed triangles: the terrain triangles plants grow on (seed 001_3eca9f2c7752e4fb.txt §2.1,
+// §3.1). They are the bintree's triangles at one fixed level (the *seed level*, chosen from a
+// target world-space area), so the same piece of ground is the same seed triangle — the same
+// TriPath and the same vertices — whatever the camera and however ROAM tessellates around it;
+// a ROAM leaf coarser than the seed level is refined on the fly by midpoint splits, without the
+// heightmap (then the seed triangle is marked `interpolated`).
+//
+// Plant count per triangle, eq. 1: n = min(ρ · A_s, n_max), A_s the triangle's projected area
+// in pixels², n_max when a vertex is behind the near plane. Eq. 2 (the cheap alternative):
+// n' = min(ρ · A_w · |n̂ · v/‖v‖| / ‖v‖², n_max), v from the observer to the triangle's centre;
+// here multiplied by (pixels per radian)² so that ρ means plants per pixel² in both rules
+// (A_w cos / ‖v‖² is a solid angle; times px/rad squared it is the area on screen near the
+// centre of the view).
+
+#include <array>
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "terrain/bintree.h"
+#include "terrain/eye_space.h"
+
+namespace vegstream::terrain {
+
+enum class PlantCountRule { ScreenArea, WorldArea };  // eq. 1, eq. 2
+
+struct SeedOptions {
+  double targetAreaM2 = 24.0;    // world area of a seed triangle (the seed level is the nearest)
+  double horizonM = 250.0;       // no seeds where the nearest vertex is farther (§3.1)
+  double density = 0.04;         // ρ: plants per pixel² of projected area
+  double maxPlants = 256.0;      // n_max per seed triangle
+  PlantCountRule rule = PlantCountRule::ScreenArea;
+  bool refineToSeedLevel = true; // ROAM reaches the seed level inside the horizon, so seed
+                                 // triangles have sampled (not interpolated) vertices
+};
+
+struct SeedTriangle {
+  TriPath path;                          // the identity of the ground it covers
+  std::array<glm::dvec3, 3> world{};     // apex, left, right in the local ENU frame (m)
+  std::array<glm::vec3, 3> fromCamera{}; // world − camera, for the GPU
+  float plantCount = 0.0f;               // eq. 1 or 2, before rounding
+  bool nearPlane = false;                // a vertex behind the near plane: n_max
+  bool interpolated = false;             // refined below a coarser leaf without the heightmap
+};
+
+// Projected area (pixels²) of an eye-space triangle entirely in front of the near plane.
+double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+// Eq. 1. Sets nearPlane when a vertex is behind the near plane (then n_max).
+double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o,
+                        bool* nearPlane = nullptr);
+// Eq. 2 from eye-space vertices (the observer is at the origin).
+double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o);
+
+// The bintree level whose triangles' ground area at latitude `latDeg` is nearest `areaM2`.
+int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2);
+// Ground area of a triangle of `level` at latitude `latDeg`.
+double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg);
+
+}  // namespace vegstream::terrain
