@@ -12,10 +12,11 @@
 // squares' diagonals alternate (a 4-8 mesh): a square of zoom z > rootZoom is split along its
 // NW–SE diagonal when x + y is even and along its SW–NE diagonal when it is odd.
 //
-// Vertices live on an integer grid: the pixel corners of the dataset's finest tiles
-// (zoom `gridZoom` = maxZoom + 8 for 256-pixel tiles), x eastwards and y southwards as in XYZ
-// tiles. Every vertex of a triangle down to kMaxLocalLevel levels below its finest tile's
-// square is exactly on that grid, so midpoints are exact integer halves.
+// Vertices live on an integer grid: the pixel corners of the dataset's finest tiles, subdivided
+// `extraLevels` / 2 more times (zoom `gridZoom` = maxZoom + 8 + extraLevels / 2 for 256-pixel
+// tiles), x eastwards and y southwards as in XYZ tiles. Every vertex down to maxLevel() is
+// exactly on that grid, so midpoints are exact integer halves. The extra levels go below the
+// data's pixels (on its bilinear surface): seed triangles can be smaller than a pixel.
 //
 // A triangle's identity (TriPath) is its root and the child indices on the way down: the same
 // piece of ground is the same path from any viewpoint, in every session.
@@ -73,14 +74,17 @@ inline TriPath childPath(const TriPath& p, int which) {
 class BintreeGrid {
  public:
   BintreeGrid() = default;
-  BintreeGrid(int rootZoom, int maxZoom) : rootZoom_(rootZoom), maxZoom_(maxZoom) {
-    assert(rootZoom >= 0 && rootZoom <= maxZoom && maxZoom + kTileLevels / 2 <= 31);
+  BintreeGrid(int rootZoom, int maxZoom, int extraLevels = 0)
+      : rootZoom_(rootZoom), maxZoom_(maxZoom), extraLevels_(extraLevels) {
+    assert(rootZoom >= 0 && rootZoom <= maxZoom && extraLevels >= 0 && gridZoom() <= 31);
   }
   int rootZoom() const { return rootZoom_; }
   int maxZoom() const { return maxZoom_; }
-  int gridZoom() const { return maxZoom_ + kTileLevels / 2; }
-  // The deepest level a triangle may have: half a pixel square of the finest tiles.
-  int maxLevel() const { return 2 * (maxZoom_ - rootZoom_) + kTileLevels; }
+  int gridZoom() const { return maxZoom_ + kTileLevels / 2 + (extraLevels_ + 1) / 2; }
+  // The level of half a pixel square of the finest tiles.
+  int pixelLevel() const { return 2 * (maxZoom_ - rootZoom_) + kTileLevels; }
+  // The deepest level a triangle may have.
+  int maxLevel() const { return pixelLevel() + extraLevels_; }
 
   // Corners of a root triangle.
   TriCorners rootCorners(int32_t rootX, int32_t rootY, int tree) const {
@@ -119,6 +123,7 @@ class BintreeGrid {
  private:
   int rootZoom_ = 0;
   int maxZoom_ = 0;
+  int extraLevels_ = 0;
 };
 
 }  // namespace vegstream::terrain

@@ -134,9 +134,25 @@ float ResidentHeights::thickness(const TriCorners& t, int level) {
   const geo::TileId& id = table->tile();
   const int localLevel = level - 2 * (id.z - grid_.rootZoom());
   assert(localLevel >= 0);
-  const glm::dvec2 a = grid_.tileXY(t.apex, id.z), l = grid_.tileXY(t.left, id.z), rr = grid_.tileXY(t.right, id.z);
-  const glm::dvec2 centroidPx = ((a + l + rr) / 3.0 - glm::dvec2(id.x, id.y)) * double(geo::kDefaultTileSize);
-  return table->thickness(localLevel, centroidPx);
+  auto local = [&](GridPoint p) {  // pixel-corner coordinates in the tile (exact to kTileLevels)
+    const int shift = grid_.gridZoom() - (id.z + kTileLevels / 2);
+    return GridPoint{(p.x >> shift) - uint32_t(id.x) * geo::kDefaultTileSize,
+                     (p.y >> shift) - uint32_t(id.y) * geo::kDefaultTileSize};
+  };
+  if (localLevel <= kStoredLevels) {
+    const glm::dvec2 a = grid_.tileXY(t.apex, id.z), l = grid_.tileXY(t.left, id.z), rr = grid_.tileXY(t.right, id.z);
+    const glm::dvec2 centroidPx = ((a + l + rr) / 3.0 - glm::dvec2(id.x, id.y)) * double(geo::kDefaultTileSize);
+    return table->thickness(localLevel, centroidPx);
+  }
+  if (localLevel <= kTileLevels)
+    return WedgieTable::deepThickness(*r->heights, {local(t.apex), local(t.left), local(t.right)}, localLevel);
+  // Inside one pixel the surface is bilinear: its departure from a triangle's plane shrinks by
+  // half per level, so the nested sum is twice the departure at the base midpoint.
+  const double hm = sampleTileXY(0.5 * (grid_.tileXY(t.left, id.z) + grid_.tileXY(t.right, id.z)), id.z).heightM;
+  const double hl = sampleTileXY(grid_.tileXY(t.left, id.z), id.z).heightM;
+  const double hr = sampleTileXY(grid_.tileXY(t.right, id.z), id.z).heightM;
+  if (std::isnan(hm) || std::isnan(hl) || std::isnan(hr)) return kNoData;
+  return static_cast<float>(2.0 * std::abs(hm - 0.5 * (hl + hr)));
 }
 
 ResidentHeights::Find findResidentHeights(streaming::TileStreamer& streamer) {

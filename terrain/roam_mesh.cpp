@@ -135,7 +135,7 @@ void RoamMesh::replaceLink(uint32_t at, uint32_t from, uint32_t to) {
   else assert(false && "neighbour links are not symmetric");
 }
 
-void RoamMesh::splitOne(uint32_t t, uint32_t mid) {
+void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created) {
   const uint32_t c = allocPair();  // may reallocate: index from here on
   RoamNode& n = nodes_[t];
   RoamNode& c0 = nodes_[c];
@@ -156,14 +156,18 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid) {
   ++leaves_;
   nodes_[c].thickness = thicknessOf(c);
   nodes_[c + 1].thickness = thicknessOf(c + 1);
+  if (created) {
+    created->push_back(c);
+    created->push_back(c + 1);
+  }
 }
 
-bool RoamMesh::split(uint32_t t) {
+bool RoamMesh::split(uint32_t t, std::vector<uint32_t>* created) {
   if (!nodes_[t].isLeaf()) return true;
   if (nodes_[t].path.level >= grid_.maxLevel()) return false;
   // Forced split: the base neighbour must share our base before the diamond can split.
   if (nodes_[t].base != kNoNode && nodes_[nodes_[t].base].base != t) {
-    if (!split(nodes_[t].base)) return false;
+    if (!split(nodes_[t].base, created)) return false;
     assert(nodes_[nodes_[t].base].base == t);
   }
   const uint32_t b = nodes_[t].base;
@@ -172,9 +176,11 @@ bool RoamMesh::split(uint32_t t) {
   // Starts where the mesh was: on the base it splits (morphs to its sampled height from there).
   const double from = 0.5 * (l.drawnHeight(timeS_, options_.fadeS) + r.drawnHeight(timeS_, options_.fadeS));
   const uint32_t m = newVertex(midpoint(l.grid, r.grid), from);
-  splitOne(t, m);
+  splitOne(t, m, created);
+  raiseThickness(t);
   if (b != kNoNode) {
-    splitOne(b, m);
+    splitOne(b, m, created);
+    raiseThickness(b);
     const uint32_t tc = nodes_[t].child, bc = nodes_[b].child;
     nodes_[tc].right = bc + 1;
     nodes_[bc + 1].left = tc;
@@ -182,6 +188,30 @@ bool RoamMesh::split(uint32_t t) {
     nodes_[bc].right = tc + 1;
   }
   return true;
+}
+
+float RoamMesh::nestedThickness(uint32_t t) const {
+  // Duchaineau's nested wedgie over the live mesh: the children's thickness plus how far the
+  // split vertex is from the parent's base, so every descendant's wedgie lies inside.
+  const RoamNode& n = nodes_[t];
+  const float own = n.thickness;
+  if (n.isLeaf()) return own;
+  const float c0 = nodes_[n.child].thickness, c1 = nodes_[n.child + 1].thickness;
+  if (!(c0 >= 0.0f) && !(c1 >= 0.0f)) return own;
+  const double fill = options_.fillHeightM;
+  const double dev = std::abs(vertices_[n.mid].geometryHeight(fill) -
+                              0.5 * (vertices_[n.v[1]].geometryHeight(fill) + vertices_[n.v[2]].geometryHeight(fill)));
+  const float nested = static_cast<float>(dev) + std::max({c0, c1, 0.0f});
+  return own >= 0.0f ? std::max(own, nested) : nested;
+}
+
+void RoamMesh::raiseThickness(uint32_t t) {
+  // Splits only add what was unknown before: walk up while a parent's bound grows.
+  for (; t != kNoNode; t = nodes_[t].parent) {
+    const float e = nestedThickness(t);
+    if (!(e > nodes_[t].thickness) && nodes_[t].thickness == nodes_[t].thickness) break;
+    nodes_[t].thickness = e;
+  }
 }
 
 bool RoamMesh::isMergeable(uint32_t t) const {
@@ -232,6 +262,7 @@ void RoamMesh::resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2],
   const uint32_t ch = n.child;
   resampleNode(ch, tile, lo, hi);
   resampleNode(ch + 1, tile, lo, hi);
+  nodes_[t].thickness = nestedThickness(t);  // post-order: the children are up to date
 }
 
 void RoamMesh::resample(const geo::TileId& tile) {

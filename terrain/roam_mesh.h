@@ -12,9 +12,11 @@
 // (ResidentHeights), and again when the tiles under it change (resample). It starts at the
 // height the mesh had there before (the midpoint of its parent's base, or its old height) and
 // morphs to the sampled one over `fadeS` (geomorphing, so splits and arriving tiles do not pop).
-// Every node keeps its nested wedgie thickness (wedgie_table.h) plus the earth-curvature sagitta
-// of its hypotenuse (a flat triangle in the ENU frame is below the curved ground between its
-// vertices).
+// Every node keeps its wedgie thickness: the bound of the tile it lies in (wedgie_table.h) plus
+// the earth-curvature sagitta of its hypotenuse (a flat triangle in the ENU frame is below the
+// curved ground between its vertices), raised where needed so that it nests over the live mesh
+// (e_T ≥ |h(m) − (h(l) + h(r)) / 2| + max(e_c0, e_c1), with the vertices' own heights): the
+// tables of different tiles and zooms need not nest with each other, the live tree always does.
 //
 // Pools with free lists: node and vertex indices stay valid until the node or vertex is removed;
 // children are allocated in pairs (child1 = child0 + 1). Frame thread only.
@@ -79,7 +81,8 @@ class RoamMesh {
 
   // Splits leaf t (and its diamond partner, forcing splits of coarser neighbours first). False
   // when t or a node it would force is at the deepest level. Invalidates references to nodes.
-  bool split(uint32_t t);
+  // `created` (optional) receives every node made a leaf by the split, forced ones included.
+  bool split(uint32_t t, std::vector<uint32_t>* created = nullptr);
   // T and its base neighbour (if any) are split, their children leaves, and they form a diamond.
   bool isMergeable(uint32_t t) const;
   void merge(uint32_t t);
@@ -112,10 +115,12 @@ class RoamMesh {
   void freePair(uint32_t first);
   uint32_t newVertex(GridPoint p, double fromHeight);
   void sampleVertex(RoamVertex& v, bool morph);
-  void splitOne(uint32_t t, uint32_t mid);
+  void splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created);
   void mergeOne(uint32_t t);
   void replaceLink(uint32_t at, uint32_t from, uint32_t to);
   float thicknessOf(uint32_t t);
+  float nestedThickness(uint32_t t) const;
+  void raiseThickness(uint32_t t);
   void resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]);
 
   BintreeGrid grid_;

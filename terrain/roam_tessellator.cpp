@@ -163,6 +163,7 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
   auto less = [](const Candidate& a, const Candidate& b) { return a.priority < b.priority; };
   std::make_heap(heap.begin(), heap.end(), less);
   const double bound = options_.maxErrorPx;
+  std::vector<uint32_t> created;
   while (!heap.empty() && heap.front().priority > bound) {
     if (outOfWork(ops, watch)) break;
     const bool forced = heap.front().priority >= kForcedPriority;
@@ -175,26 +176,23 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
     heap.pop_back();
     const RoamNode& n = mesh_.node(c.node);
     if (!n.isLeaf() || n.path != c.path) continue;  // split or removed since it was queued
-    if (!mesh_.split(c.node)) continue;               // at the deepest level
+    created.clear();
+    if (!mesh_.split(c.node, &created)) continue;  // at the deepest level
     ++ops;
     ++figures_.splits;
-    // The new leaves of the diamond may need more splits this frame.
-    const uint32_t partner = mesh_.node(c.node).base;
-    for (uint32_t parent : {c.node, partner}) {
-      if (parent == kNoNode || mesh_.node(parent).isLeaf()) continue;
-      for (uint32_t k = 0; k < 2; ++k) {
-        const uint32_t leaf = mesh_.node(parent).child + k;
-        glm::dvec3 eye[3];
-        eyeOf(view, leaf, eye);
-        const RoamNode& ln = mesh_.node(leaf);
-        const double e = std::max(0.0f, ln.thickness == ln.thickness ? ln.thickness : 0.0f);
-        const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
-        const float p = priority(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
-        mesh_.node(leaf).priority = p;
-        if (p > bound) {
-          heap.push_back({p, leaf, ln.path});
-          std::push_heap(heap.begin(), heap.end(), less);
-        }
+    // The new leaves (the diamond's and the forced splits') may need more splits this frame.
+    for (uint32_t leaf : created) {
+      const RoamNode& ln = mesh_.node(leaf);
+      if (!ln.isLeaf()) continue;
+      glm::dvec3 eye[3];
+      eyeOf(view, leaf, eye);
+      const double e = std::max(0.0f, ln.thickness == ln.thickness ? ln.thickness : 0.0f);
+      const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+      const float p = priority(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
+      mesh_.node(leaf).priority = p;
+      if (p > bound) {
+        heap.push_back({p, leaf, ln.path});
+        std::push_heap(heap.begin(), heap.end(), less);
       }
     }
   }

@@ -47,6 +47,13 @@ double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg) {
   return side * side / std::ldexp(1.0, level + 1);  // a root square is two level-0 triangles
 }
 
+BintreeGrid gridForSeeds(int rootZoom, int maxZoom, double latDeg, double areaM2) {
+  const int extra = std::min(kMaxExtraLevels, 31 - maxZoom - kTileLevels / 2);
+  const BintreeGrid deepest(rootZoom, maxZoom, std::max(0, 2 * (extra / 2)));
+  const int seedLevel = seedLevelFor(deepest, latDeg, areaM2);
+  return BintreeGrid(rootZoom, maxZoom, std::max(0, seedLevel - deepest.pixelLevel()));
+}
+
 int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2) {
   const double l = std::log2(triangleAreaM2(grid, 0, latDeg) / areaM2);
   return std::clamp(static_cast<int>(std::lround(l)), 0, grid.maxLevel());

@@ -55,6 +55,10 @@ double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye
 
 // The bintree level whose triangles' ground area at latitude `latDeg` is nearest `areaM2`.
 int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2);
+// The bintree grid of a dataset with enough levels below its pixels for seed triangles of
+// `areaM2` (at most kMaxExtraLevels more).
+inline constexpr int kMaxExtraLevels = 8;
+BintreeGrid gridForSeeds(int rootZoom, int maxZoom, double latDeg, double areaM2);
 // Ground area of a triangle of `level` at latitude `latDeg`.
 double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg);
 

@@ -50,7 +50,7 @@ StreamedTerrain::StreamedTerrain(streaming::TileStreamer& streamer, const geo::L
   dataset_.maxZoom = m.maxZoom;  // ROAM refines below a tile down to its pixels
   dataset_.minHeightM = m.minHeightM;
   dataset_.maxHeightM = m.maxHeightM;
-  const BintreeGrid grid(m.minZoom, m.maxZoom);
+  const BintreeGrid grid = gridForSeeds(m.minZoom, m.maxZoom, m.bounds.centre().y, options.seeds.targetAreaM2);
   heights_ = std::make_unique<ResidentHeights>(grid, findResidentHeights(streamer));
   const std::vector<geo::TileRange> ranges = geo::tileRangesCovering(m.bounds, m.minZoom);
   assert(ranges.size() == 1 && "datasets across the antimeridian are not supported by the bintree");

@@ -29,81 +29,80 @@ struct Acc {
   bool complete = false;  // data everywhere under it
 };
 
-class Builder {
- public:
-  Builder(const datasets::HeightTile& tile, const WedgieTable& table, std::vector<float>& errors)
-      : table_(table), errors_(errors) {
-    assert(tile.size == kSide);
-    // Corner heights: the bilinear surface at pixel corners = the mean of the (up to) four
-    // pixels around the corner, clamped at the tile's edge; nodata if any of them is.
-    corners_.resize(size_t{kCorners} * kCorners);
-    for (int j = 0; j < kCorners; ++j) {
-      const int y0 = std::max(j - 1, 0), y1 = std::min(j, kSide - 1);
-      for (int i = 0; i < kCorners; ++i) {
-        const int x0 = std::max(i - 1, 0), x1 = std::min(i, kSide - 1);
-        corners_[size_t(j) * kCorners + size_t(i)] =
-            0.25f * (tile.at(x0, y0) + tile.at(x1, y0) + tile.at(x0, y1) + tile.at(x1, y1));
-      }
-    }
-    const double latDeg = geo::tileXYToLonLat({tile.id.x + 0.5, tile.id.y + 0.5}, tile.id.z).y;
-    pixelM_ = kEarthCircumferenceM / (geo::tilesPerSide(tile.id.z) * kSide) * std::cos(latDeg * M_PI / 180.0);
-  }
+// Corner heights of a tile: the bilinear surface at pixel corners = the mean of the (up to)
+// four pixels around the corner, clamped at the tile's edge; nodata if any of them is.
+float cornerHeight(const datasets::HeightTile& tile, uint32_t i, uint32_t j) {
+  const int x0 = std::max(int(i) - 1, 0), x1 = std::min(int(i), kSide - 1);
+  const int y0 = std::max(int(j) - 1, 0), y1 = std::min(int(j), kSide - 1);
+  return 0.25f * (tile.at(x0, y0) + tile.at(x1, y0) + tile.at(x0, y1) + tile.at(x1, y1));
+}
 
-  Acc build(const TriCorners& t, int level) {
-    const float ha = h(t.apex), hl = h(t.left), hr = h(t.right);
-    const bool cornersOk = !std::isnan(ha) && !std::isnan(hl) && !std::isnan(hr);
-    const double dx = double(t.left.x) - double(t.right.x), dy = double(t.left.y) - double(t.right.y);
-    const float partialE = static_cast<float>(0.5 * std::sqrt(dx * dx + dy * dy) * pixelM_);
-    Acc out;
-    if (level == kTileLevels) {
-      // Half a pixel square: the bilinear surface departs most from the plane at the pixel centre.
-      const GridPoint opposite{t.left.x + t.right.x - t.apex.x, t.left.y + t.right.y - t.apex.y};
-      const float ho = h(opposite);
-      out.complete = cornersOk && !std::isnan(ho);
-      out.any = !std::isnan(ha) || !std::isnan(hl) || !std::isnan(hr);
-      if (out.complete) out.e = std::abs(0.25f * (ha + hl + hr + ho) - 0.5f * (hl + hr));
-      else out.e = out.any ? partialE : kNoData;
-    } else {
-      const Acc c0 = build(child(t, 0), level + 1), c1 = build(child(t, 1), level + 1);
-      const float hm = h(midpoint(t.left, t.right));
-      const float below = std::max({c0.e, c1.e, 0.0f});
-      out.any = c0.any || c1.any;
-      out.complete = c0.complete && c1.complete && cornersOk && !std::isnan(hm);
-      if (out.complete) out.e = std::abs(hm - 0.5f * (hl + hr)) + below;
-      else out.e = out.any ? std::max(below, partialE) : kNoData;
-    }
-    if (level <= kStoredLevels) errors_[table_index(t, level)] = out.e;
-    return out;
-  }
+double pixelGroundM(const geo::TileId& id) {
+  const double latDeg = geo::tileXYToLonLat({id.x + 0.5, id.y + 0.5}, id.z).y;
+  return kEarthCircumferenceM / (geo::tilesPerSide(id.z) * kSide) * std::cos(latDeg * M_PI / 180.0);
+}
 
- private:
-  float h(GridPoint p) const { return corners_[size_t(p.y) * kCorners + size_t(p.x)]; }
-  size_t table_index(const TriCorners& t, int level) const {
-    const glm::dvec2 c{(double(t.apex.x) + t.left.x + t.right.x) / 3.0, (double(t.apex.y) + t.left.y + t.right.y) / 3.0};
-    return table_.thicknessIndex(level, c);
+// The nested thickness of a tile-bintree triangle (pixel-corner coordinates) from its corner
+// heights, calling store(t, level, e) for every triangle of its subtree down to the pixels.
+template <typename Heights, typename Store>
+Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, const Store& store) {
+  const float ha = h(t.apex), hl = h(t.left), hr = h(t.right);
+  const bool cornersOk = !std::isnan(ha) && !std::isnan(hl) && !std::isnan(hr);
+  const double dx = double(t.left.x) - double(t.right.x), dy = double(t.left.y) - double(t.right.y);
+  const float partialE = static_cast<float>(0.5 * std::sqrt(dx * dx + dy * dy) * pixelM);
+  Acc out;
+  if (level == kTileLevels) {
+    // Half a pixel square: the bilinear surface departs most from the plane at the pixel centre.
+    const GridPoint opposite{t.left.x + t.right.x - t.apex.x, t.left.y + t.right.y - t.apex.y};
+    const float ho = h(opposite);
+    out.complete = cornersOk && !std::isnan(ho);
+    out.any = !std::isnan(ha) || !std::isnan(hl) || !std::isnan(hr);
+    if (out.complete) out.e = std::abs(0.25f * (ha + hl + hr + ho) - 0.5f * (hl + hr));
+    else out.e = out.any ? partialE : kNoData;
+  } else {
+    const Acc c0 = nested(child(t, 0), level + 1, h, pixelM, store);
+    const Acc c1 = nested(child(t, 1), level + 1, h, pixelM, store);
+    const float hm = h(midpoint(t.left, t.right));
+    const float below = std::max({c0.e, c1.e, 0.0f});
+    out.any = c0.any || c1.any;
+    out.complete = c0.complete && c1.complete && cornersOk && !std::isnan(hm);
+    if (out.complete) out.e = std::abs(hm - 0.5f * (hl + hr)) + below;
+    else out.e = out.any ? std::max(below, partialE) : kNoData;
   }
-
-  const WedgieTable& table_;
-  std::vector<float>& errors_;
-  std::vector<float> corners_;
-  double pixelM_ = 0.0;
-};
+  store(t, level, out.e);
+  return out;
+}
 
 }  // namespace
 
 WedgieTable::WedgieTable(const datasets::HeightTile& tile, int rootZoom) : tile_(tile.id), rootZoom_(rootZoom) {
-  assert(tile.id.z >= rootZoom);
+  assert(tile.id.z >= rootZoom && tile.size == kSide);
   errors_.assign(levelOffset(kStoredLevels + 1), kNoData);
-  Builder b(tile, *this, errors_);
+  std::vector<float> corners(size_t{kCorners} * kCorners);
+  for (uint32_t j = 0; j < uint32_t(kCorners); ++j)
+    for (uint32_t i = 0; i < uint32_t(kCorners); ++i) corners[size_t(j) * kCorners + i] = cornerHeight(tile, i, j);
+  auto h = [&](GridPoint p) { return corners[size_t(p.y) * kCorners + size_t(p.x)]; };
+  auto store = [&](const TriCorners& t, int level, float e) {
+    if (level > kStoredLevels) return;
+    const glm::dvec2 c{(double(t.apex.x) + t.left.x + t.right.x) / 3.0, (double(t.apex.y) + t.left.y + t.right.y) / 3.0};
+    errors_[thicknessIndex(level, c)] = e;
+  };
+  const double pixelM = pixelGroundM(tile.id);
   const GridPoint nw{0, 0}, ne{kSide, 0}, se{kSide, kSide}, sw{0, kSide};
   const bool swne = tile.id.z > rootZoom && ((tile.id.x + tile.id.y) & 1) != 0;
   if (swne) {
-    b.build({nw, sw, ne}, 0);
-    b.build({se, ne, sw}, 0);
+    nested(TriCorners{nw, sw, ne}, 0, h, pixelM, store);
+    nested(TriCorners{se, ne, sw}, 0, h, pixelM, store);
   } else {
-    b.build({sw, se, nw}, 0);
-    b.build({ne, nw, se}, 0);
+    nested(TriCorners{sw, se, nw}, 0, h, pixelM, store);
+    nested(TriCorners{ne, nw, se}, 0, h, pixelM, store);
   }
+}
+
+float WedgieTable::deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level) {
+  assert(level > kStoredLevels && level <= kTileLevels);
+  auto h = [&](GridPoint p) { return cornerHeight(tile, p.x, p.y); };
+  return nested(cornersPx, level, h, pixelGroundM(tile.id), [](const TriCorners&, int, float) {}).e;
 }
 
 size_t WedgieTable::thicknessIndex(int level, glm::dvec2 c) const {

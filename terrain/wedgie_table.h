@@ -14,9 +14,9 @@
 // its thickness is at least half its hypotenuse (it must be refined until the edge of the data
 // is resolved); a triangle without any data under it has no thickness (kNoData).
 //
-// Stored down to kStoredLevels (a half of a 4 × 4-pixel square); deeper triangles get their
-// level-kStoredLevels ancestor's thickness, an upper bound by nesting. Built on a decode
-// thread (makeWedgieTable is pure), read by the frame thread.
+// Stored down to kStoredLevels (a half of a 4 × 4-pixel square, 64 KiB a tile); the levels
+// below, down to the pixels, are computed when asked (deepThickness: at most 31 triangles).
+// Built on a decode thread, read by the frame thread.
 
 #include <cstdint>
 #include <memory>
@@ -26,6 +26,7 @@
 
 #include "datasets/tile_codec.h"
 #include "streaming/tile_streamer.h"
+#include "terrain/bintree.h"
 
 namespace vegstream::terrain {
 
@@ -42,6 +43,9 @@ class WedgieTable final : public streaming::TileExtra {
   // whose centroid is at `centroidPx` (pixel units of this tile, [0, 256]²); kNoData if there is
   // no data under it.
   float thickness(int level, glm::dvec2 centroidPx) const;
+  // The same for a triangle deeper than kStoredLevels (≤ kTileLevels), from the tile's heights;
+  // corners in pixel-corner coordinates of the tile.
+  static float deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level);
   uint64_t bytes() const override { return errors_.size() * sizeof(float) + sizeof(*this); }
   // Where the thickness of that triangle is stored (level ≤ kStoredLevels).
   size_t thicknessIndex(int level, glm::dvec2 centroidPx) const;

@@ -34,7 +34,7 @@ class ZionResident {
         }
       }
     }
-    grid_ = BintreeGrid(meta_.minZoom, meta_.maxZoom);
+    grid_ = gridForSeeds(meta_.minZoom, meta_.maxZoom, meta_.bounds.centre().y, SeedOptions{}.targetAreaM2);
     heights_ = std::make_unique<ResidentHeights>(grid_, [this](const geo::TileId& t) -> const streaming::ResidentTile* {
       for (geo::TileId a = t; a.z >= meta_.minZoom; a = geo::TileId{a.z - 1, a.x >> 1, a.y >> 1}) {
         auto it = tiles_.find(a);

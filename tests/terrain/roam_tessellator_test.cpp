@@ -1,0 +1,166 @@
+// ROAM updates over the Zion heights: the on-screen error bound or the budget, culling with the
+// canopy, frame-to-frame coherence, and the constraint that drawn leaves fit one piece.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "terrain/roam_tessellator.h"
+#include "tests/terrain/roam_fixture.h"
+
+namespace vegstream::terrain {
+namespace {
+
+using test::zionResident;
+
+// Updates until nothing more splits or merges (at most `frames` frames).
+int converge(RoamTessellator& r, const EyeView& view, const PieceSet& pieces, int frames = 40) {
+  for (int i = 0; i < frames; ++i) {
+    r.update(view, pieces, 0.0);
+    if (r.figures().splits == 0 && r.figures().merges == 0) return i;
+  }
+  return frames;
+}
+
+TEST(RoamTessellator, EveryVisibleLeafMeetsTheBoundOrTheBudgetIsReported) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  RoamOptions o;
+  o.maxErrorPx = 2.0;
+  auto r = z.tessellator(o);
+  const EyeView view = z.camera(37.30, -113.05, 300.0, 45.0, -12.0);
+  ASSERT_LT(converge(*r, view, pieces), 40);
+  ASSERT_FALSE(r->figures().budgetLimited);
+  uint64_t visible = 0;
+  double worst = 0.0;
+  for (uint32_t t : r->mesh().leaves()) {
+    glm::dvec3 eye[3];
+    const RoamNode& n = r->mesh().node(t);
+    for (int i = 0; i < 3; ++i) {
+      const RoamVertex& v = r->mesh().vertex(n.v[i]);
+      eye[i] = view.toEye(v.position(v.geometryHeight(r->mesh().options().fillHeightM)));
+    }
+    const double e = std::max(0.0f, n.thickness);
+    if (cullWedgie(view, eye[0], eye[1], eye[2], e, e) == Cull::Outside) continue;
+    ++visible;
+    const double px = r->errorPx(view, t);
+    worst = std::max(worst, px);
+    ASSERT_LE(px, o.maxErrorPx + 1e-6) << "leaf at level " << int(n.path.level);
+  }
+  EXPECT_GT(visible, 1000u);
+  RecordProperty("visible_leaves", std::to_string(visible));
+  RecordProperty("worst_error_px", std::to_string(worst));
+
+  // The same view with a budget far below what the bound needs: the budget holds and says so.
+  RoamOptions tight = o;
+  tight.maxTriangles = visible / 4;
+  auto b = z.tessellator(tight);
+  converge(*b, view, pieces);
+  b->update(view, pieces, 0.0);
+  EXPECT_TRUE(b->figures().budgetLimited);
+  EXPECT_LE(b->mesh().leafCount(), tight.maxTriangles + 4);
+  EXPECT_EQ(b->mesh().conformityViolations(), 0u);
+}
+
+TEST(RoamTessellator, FrameToFrameCoherentAndWorkBounded) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  RoamOptions o;
+  o.maxOpsPerFrame = 500;
+  auto r = z.tessellator(o);
+  const EyeView a = z.camera(37.30, -113.05, 300.0, 45.0, -12.0);
+  r->update(a, pieces, 0.0);
+  EXPECT_TRUE(r->figures().workLimited);
+  EXPECT_LE(r->figures().splits + r->figures().merges, 500u);
+  converge(*r, a, pieces, 400);
+  const uint64_t leaves = r->mesh().leafCount();
+  // A small move changes a small part of the mesh.
+  const EyeView b = z.camera(37.3003, -113.0497, 300.0, 46.0, -12.0);
+  r->update(b, pieces, 0.0);
+  EXPECT_LT(r->figures().splits + r->figures().merges, leaves / 10);
+  EXPECT_EQ(r->mesh().conformityViolations(), 0u);
+}
+
+TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  auto r = z.tessellator();
+  const EyeView view = z.camera(37.25, -113.10, 500.0, 30.0, -20.0, 320.0, 180.0);
+  converge(*r, view, pieces);
+  std::vector<TerrainMesh> meshes;
+  std::vector<SeedTriangle> seeds;
+  r->output(view, pieces, 0.0, meshes, seeds);
+  ASSERT_EQ(meshes.size(), pieces.tiles().size() + 1);
+  EXPECT_EQ(meshes.back().indices.size(), 0u) << "every drawn leaf fits one piece once converged";
+  uint64_t triangles = 0;
+  for (size_t p = 0; p < pieces.tiles().size(); ++p) {
+    const TerrainMesh& m = meshes[p];
+    for (size_t i = 0; i < m.indices.size(); i += 3) {
+      glm::dvec3 eye[3];
+      for (int k = 0; k < 3; ++k) {
+        const TerrainVertex& v = m.vertices[m.indices[i + size_t(k)]];
+        eye[k] = view.toEye(m.origin + glm::dvec3(v.position));
+        // uv inside the piece's tile
+        ASSERT_GE(v.uv.x, -1e-4f); ASSERT_LE(v.uv.x, 1.0001f);
+        ASSERT_GE(v.uv.y, -1e-4f); ASSERT_LE(v.uv.y, 1.0001f);
+      }
+      ++triangles;
+    }
+  }
+  EXPECT_GT(triangles, 500u);
+  EXPECT_EQ(triangles, r->figures().drawnTriangles);
+  // The hierarchical culling emits exactly the leaves whose own wedgie (thickness + canopy) is
+  // not entirely outside the view: none outside, none lost.
+  uint64_t expected = 0, outside = 0;
+  const double fill = r->mesh().options().fillHeightM;
+  for (uint32_t t : r->mesh().leaves()) {
+    const RoamNode& n = r->mesh().node(t);
+    glm::dvec3 eye[3];
+    bool data = true;
+    for (int k = 0; k < 3; ++k) {
+      const RoamVertex& v = r->mesh().vertex(n.v[k]);
+      data = data && v.heightM == v.heightM;
+      eye[k] = view.toEye(v.position(v.geometryHeight(fill)));
+    }
+    const double e = std::max(0.0f, n.thickness);
+    const bool in = cullWedgie(view, eye[0], eye[1], eye[2], e, e + r->options().canopyM) != Cull::Outside;
+    if (!in) ++outside;
+    if (in && data && pieces.pieceOf(z.grid().square(r->mesh().corners(t), n.path.level)) >= 0) ++expected;
+  }
+  EXPECT_EQ(r->figures().drawnTriangles, expected);
+  EXPECT_GT(outside, 0u) << "the view leaves some of the mesh out";
+}
+
+// True when a drawn triangle contains the point (x, y) of the ENU plane.
+bool drawnOver(const std::vector<TerrainMesh>& meshes, glm::dvec2 p) {
+  for (const TerrainMesh& m : meshes)
+    for (size_t i = 0; i < m.indices.size(); i += 3) {
+      glm::dvec2 v[3];
+      for (int k = 0; k < 3; ++k) v[k] = glm::dvec2(m.origin + glm::dvec3(m.vertices[m.indices[i + size_t(k)]].position));
+      auto side = [&](glm::dvec2 a, glm::dvec2 b) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+      if (side(v[0], v[1]) >= 0 && side(v[1], v[2]) >= 0 && side(v[2], v[0]) >= 0) return true;
+    }
+  return false;
+}
+
+TEST(RoamTessellator, ATriangleWhoseCanopyPokesIntoViewIsKept) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  // 8 m over the ground looking up 40°: the bottom of the view is 10° above the horizon, so the
+  // ground under the camera is out of view, but plants up to 30 m there reach past the camera.
+  const EyeView view = z.camera(37.20, -113.00, 8.0, 0.0, 40.0, 320.0, 180.0);
+  const glm::dvec2 under(view.cameraEnu);
+  for (double canopy : {30.0, 0.0}) {
+    RoamOptions o;
+    o.canopyM = canopy;
+    auto r = z.tessellator(o);
+    converge(*r, view, pieces);
+    std::vector<TerrainMesh> meshes;
+    std::vector<SeedTriangle> seeds;
+    r->output(view, pieces, 0.0, meshes, seeds);
+    EXPECT_EQ(drawnOver(meshes, under), canopy > 0.0) << "canopy " << canopy;
+  }
+}
+
+}  // namespace
+}  // namespace vegstream::terrain
