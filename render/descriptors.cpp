@@ -4,29 +4,39 @@
 
 namespace vegstream::render {
 
-DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
-                                              const std::string& name) {
-  const VkDescriptorSetLayoutBinding binding{0, type, 1, stages, nullptr};
+DescriptorSetLayout createLayout(const Context& ctx, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                 const std::string& name) {
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 1;
-  lci.pBindings = &binding;
+  lci.bindingCount = static_cast<uint32_t>(bindings.size());
+  lci.pBindings = bindings.data();
   VkDescriptorSetLayout layout;
   vkCheck(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
   ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, name);
   return DescriptorSetLayout(ctx.device(), layout);
 }
 
-DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
-                                       const std::string& name) {
-  const VkDescriptorPoolSize poolSize{type, maxSets};
+DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
+                                              const std::string& name) {
+  const VkDescriptorSetLayoutBinding binding{0, type, 1, stages, nullptr};
+  return createLayout(ctx, {&binding, 1}, name);
+}
+
+DescriptorPool createPool(const Context& ctx, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets,
+                          const std::string& name) {
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pci.maxSets = maxSets;
-  pci.poolSizeCount = 1;
-  pci.pPoolSizes = &poolSize;
+  pci.poolSizeCount = static_cast<uint32_t>(sizes.size());
+  pci.pPoolSizes = sizes.data();
   VkDescriptorPool pool;
   vkCheck(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
   ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name);
   return DescriptorPool(ctx.device(), pool);
+}
+
+DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
+                                       const std::string& name) {
+  const VkDescriptorPoolSize poolSize{type, maxSets};
+  return createPool(ctx, {&poolSize, 1}, maxSets, name);
 }
 
 VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
@@ -41,22 +51,24 @@ VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool,
   return set;
 }
 
-void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view) {
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view,
+                       uint32_t binding) {
   const VkDescriptorImageInfo ii{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
-  w.dstBinding = 0;
+  w.dstBinding = binding;
   w.descriptorCount = 1;
   w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   w.pImageInfo = &ii;
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
 }
 
-void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range) {
+void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
+                        uint32_t binding) {
   const VkDescriptorBufferInfo bi{buffer, 0, range};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
-  w.dstBinding = 0;
+  w.dstBinding = binding;
   w.descriptorCount = 1;
   w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   w.pBufferInfo = &bi;
@@ -70,6 +82,19 @@ Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
   sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sci.maxLod = 0.0f;
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
+  return Sampler(ctx.device(), sampler);
+}
+
+Sampler createLinearRepeatSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sci.maxLod = static_cast<float>(mipLevels);
   VkSampler sampler;
   vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
   ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);

@@ -1,14 +1,24 @@
 #pragma once
-// Descriptor plumbing shared by the passes. Every set vegstream uses has exactly one binding
-// (binding 0): a uniform buffer for the frame, a combined image sampler for a texture. These
-// helpers create, name and write such sets so each pass states only what differs.
+// Descriptor plumbing shared by the passes. Most sets vegstream uses have exactly one binding
+// (binding 0): a uniform buffer for the frame, a combined image sampler for a texture; the
+// terrain detail set has two (textures + terrain-type table). These helpers create, name and
+// write such sets so each pass states only what differs.
 
+#include <span>
 #include <string>
 
 #include "render/context.h"
 #include "render/handle.h"
 
 namespace vegstream::render {
+
+// A layout with the given bindings.
+DescriptorSetLayout createLayout(const Context& ctx, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                 const std::string& name);
+
+// A pool for `maxSets` sets holding the descriptors of `sizes` in all.
+DescriptorPool createPool(const Context& ctx, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets,
+                          const std::string& name);
 
 // A layout with one descriptor of `type` at binding 0, visible to `stages`.
 DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
@@ -22,14 +32,19 @@ DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type
 VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
                                       const std::string& name);
 
-// Binding 0 := the image view, sampled in SHADER_READ_ONLY_OPTIMAL. The caller guarantees no
+// `binding` := the image view, sampled in SHADER_READ_ONLY_OPTIMAL. The caller guarantees no
 // pending GPU work reads the set (Vulkan forbids updating a set in use).
-void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view);
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view,
+                       uint32_t binding = 0);
 
-// Binding 0 := the first `range` bytes of a uniform buffer.
-void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range);
+// `binding` := the first `range` bytes of a uniform buffer.
+void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
+                        uint32_t binding = 0);
 
 // Bilinear, clamped, no mip levels: what the terrain imagery and the HUD atlas both want.
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name);
+
+// Trilinear, repeating, all `mipLevels` levels: tiling textures (terrain detail).
+Sampler createLinearRepeatSampler(const Context& ctx, uint32_t mipLevels, const std::string& name);
 
 }  // namespace vegstream::render

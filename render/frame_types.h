@@ -74,6 +74,9 @@ struct FrameRequest {
   bool readbackColor = false;
   bool readbackDepth = false;
   bool present = false;          // to the window, when the renderer has one
+  // Strength of the close-up terrain detail textures (render/detail_textures.h), 0 … 1;
+  // 0 draws the terrain as the bare imagery at every distance.
+  float terrainDetail = 1.0f;
   // Drawn over the resolved frame (after the scene, before read-back and present) as the GPU
   // pass "hud"; must stay alive until submitFrame returns. Null: no overlay.
   const OverlayDrawData* overlay = nullptr;

@@ -18,6 +18,7 @@ struct FrameUniforms {
   glm::vec4 skyHorizon;
   glm::vec4 fog;
   glm::vec4 viewport;
+  glm::vec4 detail;  // xyz: camera position modulo kDetailPeriodM (render/terrain_detail.h), w: detail strength
 };
 
 static_assert(offsetof(FrameUniforms, viewProj) == 0);
@@ -28,6 +29,7 @@ static_assert(offsetof(FrameUniforms, skyZenith) == 160);
 static_assert(offsetof(FrameUniforms, skyHorizon) == 176);
 static_assert(offsetof(FrameUniforms, fog) == 192);
 static_assert(offsetof(FrameUniforms, viewport) == 208);
-static_assert(sizeof(FrameUniforms) == 224);
+static_assert(offsetof(FrameUniforms, detail) == 224);
+static_assert(sizeof(FrameUniforms) == 240);
 
 }  // namespace vegstream::render

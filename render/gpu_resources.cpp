@@ -1,6 +1,8 @@
 #include "render/gpu_resources.h"
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "render/vk_check.h"
 
@@ -59,12 +61,14 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
 
 namespace {
 GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                     VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name) {
+                     VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name,
+                     uint32_t mipLevels = 1) {
   VkDevice device = ctx.device();
   GpuImage out;
   out.format = format;
   out.extent = extent;
   out.layers = layers;
+  out.mipLevels = mipLevels;
   out.samples = samples;
   out.aspect = (format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM) ? VK_IMAGE_ASPECT_DEPTH_BIT
                                                                                  : VK_IMAGE_ASPECT_COLOR_BIT;
@@ -72,7 +76,7 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   ici.imageType = VK_IMAGE_TYPE_2D;
   ici.format = format;
   ici.extent = {extent.width, extent.height, 1};
-  ici.mipLevels = 1;
+  ici.mipLevels = mipLevels;
   ici.arrayLayers = layers;
   ici.samples = samples;
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -93,7 +97,7 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   vci.image = raw;
   vci.viewType = viewType;
   vci.format = format;
-  vci.subresourceRange = {out.aspect, 0, 1, 0, layers};
+  vci.subresourceRange = {out.aspect, 0, mipLevels, 0, layers};
   VkImageView view;
   vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
   out.view = ImageView(device, view);
@@ -108,8 +112,9 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 }
 
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
-                          VkImageUsageFlags usage, const std::string& name) {
-  return createImage(ctx, extent, layers, format, usage, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, name);
+                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels) {
+  return createImage(ctx, extent, layers, format, usage, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, name,
+                     mipLevels);
 }
 
 void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
@@ -152,6 +157,31 @@ void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuI
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image) {
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, image.mipLevels, 0, image.layers};
+  transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  std::vector<VkBufferImageCopy> regions;
+  VkDeviceSize offset = 0;
+  for (uint32_t layer = 0; layer < image.layers; ++layer)
+    for (uint32_t mip = 0; mip < image.mipLevels; ++mip) {
+      const uint32_t w = std::max(image.extent.width >> mip, 1u), h = std::max(image.extent.height >> mip, 1u);
+      VkBufferImageCopy region{};
+      region.bufferOffset = offset;
+      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, layer, 1};
+      region.imageExtent = {w, h, 1};
+      regions.push_back(region);
+      offset += VkDeviceSize{w} * h * 4;
+    }
+  vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         static_cast<uint32_t>(regions.size()), regions.data());
+  transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  return offset;
 }
 
 }  // namespace vegstream::render

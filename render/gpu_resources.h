@@ -37,6 +37,7 @@ struct GpuImage {
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
   uint32_t layers = 1;
+  uint32_t mipLevels = 1;
   VkDeviceSize bytes = 0;  // device memory it holds
 
   VkImage get() const { return image.get(); }
@@ -45,9 +46,10 @@ struct GpuImage {
 GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                        VkSampleCountFlagBits samples, const std::string& name);
 
-// A single-sampled colour image of `layers` array layers with a 2D-array view.
+// A single-sampled colour image of `layers` array layers (each with `mipLevels` levels) with a
+// 2D-array view of all of them.
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
-                          VkImageUsageFlags usage, const std::string& name);
+                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels = 1);
 
 // One pipeline barrier for a subresource range of an image (synchronization2).
 void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
@@ -65,5 +67,10 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
 // discarded; the staging buffer must live until the commands complete.
 void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer = 0,
                        VkDeviceSize stagingOffset = 0);
+
+// Records the copy of every layer and mip level of a 4-byte-per-texel `image` from a tightly
+// packed staging buffer holding layer 0 (mip 0, mip 1, …), then layer 1, …, leaving the whole
+// image in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Returns the bytes consumed.
+VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image);
 
 }  // namespace vegstream::render

@@ -1,10 +1,12 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
@@ -17,6 +19,7 @@
 #include "render/render_targets.h"
 #include "render/sky_pass.h"
 #include "render/swapchain.h"
+#include "render/terrain_detail.h"
 #include "render/terrain_pass.h"
 #include "render/vk_check.h"
 
@@ -163,6 +166,10 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
                     static_cast<float>(request.cameraHeightMsl), 0.0f);
   u.viewport = glm::vec4(static_cast<float>(extent.width), static_cast<float>(extent.height),
                          1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height));
+  // World-anchored detail tiling: the camera position modulo the period, in double, so the
+  // shader's coordinates stay small and continuous (the repeat counts are whole per period).
+  const glm::dvec3 wrapped = request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
+  u.detail = glm::vec4(glm::vec3(wrapped), std::clamp(request.terrainDetail, 0.0f, 1.0f));
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
 
   std::optional<uint32_t> imageIndex;

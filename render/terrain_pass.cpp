@@ -35,7 +35,7 @@ VkDeviceSize grownSize(VkDeviceSize needed) {
 }  // namespace
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
-    : ctx_(&ctx) {
+    : ctx_(&ctx), detail_(ctx, vegetation::defaultTerrainTypes()) {
   imageryLayout_ = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                              VK_SHADER_STAGE_FRAGMENT_BIT, "terrain imagery layout");
   imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
@@ -43,7 +43,7 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
 
   const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
-  const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get()};
+  const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get(), detail_.layout()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain pipeline layout");
   GraphicsPipelineDesc desc;
   desc.name = "terrain pipeline";
@@ -120,8 +120,8 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", slot, retire);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  const VkDescriptorSet sets[] = {frameSet, imagerySet_};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 2, sets, 0, nullptr);
+  const VkDescriptorSet sets[] = {frameSet, imagerySet_, detail_.set()};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets, 0, nullptr);
   const VkBuffer vb = vertices_[s].get();
   const VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
@@ -156,7 +156,7 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
 }
 
 uint64_t TerrainPass::gpuBytes() const {
-  uint64_t bytes = imagery_.bytes;
+  uint64_t bytes = imagery_.bytes + detail_.gpuBytes();
   for (size_t s = 0; s < kSlots; ++s) bytes += vertices_[s].size + indices_[s].size + staging_[s].size;
   return bytes;
 }

@@ -7,11 +7,16 @@
 // terrain changes as tiles stream in and (later) as ROAM refines, and copying a few MB is cheaper
 // than managing thousands of small buffers. Imagery arrives through a per-frame-slot staging
 // buffer (a ring of kSlots) and lands in its layer before the draws.
+//
+// Close up, the imagery gets detail textures blended by the colour score of its colour (core
+// seed 001 §3.3; render/detail_textures.h owns them and the terrain-type table, bound as set 2),
+// fading out with distance.
 
 #include <array>
 #include <functional>
 #include <span>
 
+#include "render/detail_textures.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
@@ -42,7 +47,7 @@ class TerrainPass {
   uint64_t record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
                   std::span<const TerrainDraw> draws, const RetireBuffer& retire);
 
-  // Imagery array + geometry buffers of both slots.
+  // Imagery array + detail textures + geometry buffers of both slots.
   uint64_t gpuBytes() const;
 
  private:
@@ -50,6 +55,7 @@ class TerrainPass {
                       const RetireBuffer& retire);
 
   const Context* ctx_;
+  DetailTextures detail_;
   DescriptorSetLayout imageryLayout_;
   DescriptorPool imageryPool_;
   VkDescriptorSet imagerySet_ = VK_NULL_HANDLE;

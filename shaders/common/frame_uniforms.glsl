@@ -10,4 +10,5 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 skyHorizon;    // rgb: sky colour at the horizon (linear)
   vec4 fog;           // x: extinction per metre at sea level, y: height falloff per metre, z: camera height (m MSL)
   vec4 viewport;      // xy: size in pixels, zw: 1 / size
+  vec4 detail;        // xyz: camera position modulo the detail period (m, world-anchored tiling), w: detail strength 0 … 1
 } frame;

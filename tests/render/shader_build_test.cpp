@@ -7,6 +7,7 @@
 #include "gpu_test_fixture.h"
 #include "render/context.h"
 #include "render/pipeline_builder.h"
+#include "shaders/colour_score_check.comp.h"
 #include "shaders/sky.frag.h"
 #include "shaders/sky.vert.h"
 #include "shaders/terrain.frag.h"
@@ -15,7 +16,8 @@
 namespace vegstream::render::testing {
 namespace {
 
-const std::span<const uint32_t> kModules[] = {spv_sky_vert, spv_sky_frag, spv_terrain_vert, spv_terrain_frag};
+const std::span<const uint32_t> kModules[] = {spv_sky_vert, spv_sky_frag, spv_terrain_vert, spv_terrain_frag,
+                                             spv_colour_score_check_comp};
 
 TEST(ShaderBuild, EveryShaderIsSpirv) {
   for (auto m : kModules) {

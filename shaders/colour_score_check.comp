@@ -1,0 +1,31 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Test kernel, not a pass: evaluates common/colour_score.glsl and common/terrain_detail.glsl for
+// a list of colours so tests/render/colour_score_gpu_test.cpp can compare them with the C++
+// (vegetation/colour_score.h, vegetation/terrain_types.h). Set 0: binding 1 the TerrainDetail
+// block (as the terrain pass fills it), 2 the input colours, 3 the results.
+#define TERRAIN_DETAIL_SET 0
+#include "colour_score.glsl"
+#include "terrain_detail.glsl"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 2, std430) readonly buffer Inputs {
+  vec4 linearRgb[];  // rgb: linear colour; a: unused
+} inputs;
+// Per colour, 4 vec4: HSV + the log score of type 0; type weights 0–3; 4–7; surface weights.
+layout(set = 0, binding = 3, std430) writeonly buffer Outputs {
+  vec4 values[];
+} outputs;
+layout(push_constant) uniform Push {
+  uint count;
+} push;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= push.count) return;
+  vec3 hsv = hsvFromLinear(inputs.linearRgb[i].rgb);
+  float w[kMaxTerrainTypes];
+  terrainTypeWeights(hsv, w);
+  outputs.values[4 * i + 0] = vec4(hsv, logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, hsv));
+  outputs.values[4 * i + 1] = vec4(w[0], w[1], w[2], w[3]);
+  outputs.values[4 * i + 2] = vec4(w[4], w[5], w[6], w[7]);
+  outputs.values[4 * i + 3] = detailSurfaceWeights(hsv);
+}

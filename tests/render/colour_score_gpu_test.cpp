@@ -1,0 +1,156 @@
+// shaders/common/colour_score.glsl + terrain_detail.glsl against vegetation/colour_score.h +
+// terrain_types.h: a compute kernel (shaders/colour_score_check.comp) evaluates HSV, a score and
+// the blend weights of the default terrain-type table — packed into the same uniform block the
+// terrain pass uses — for a few hundred colours; they must agree with the C++ within 1e-4.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "gpu_test_fixture.h"
+#include "render/context.h"
+#include "render/descriptors.h"
+#include "render/gpu_resources.h"
+#include "render/pipeline_builder.h"
+#include "render/terrain_detail.h"
+#include "render/vk_check.h"
+#include "shaders/colour_score_check.comp.h"
+#include "vegetation/terrain_types.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+namespace veg = vegstream::vegetation;
+
+// Linear colours to check: a 6³ grid (primaries, greys, black, white included), the sRGB
+// decodings of typical imagery colours, and each reference colour itself (the clamped,
+// exact-match case).
+std::vector<glm::vec4> testColours() {
+  std::vector<glm::vec4> out;
+  const float levels[] = {0.0f, 0.02f, 0.1f, 0.3f, 0.6f, 1.0f};
+  for (float r : levels)
+    for (float g : levels)
+      for (float b : levels) out.emplace_back(r, g, b, 0.0f);
+  auto fromSrgb = [](glm::vec3 c) {
+    return glm::vec4(veg::srgbDecode(c.r), veg::srgbDecode(c.g), veg::srgbDecode(c.b), 0.0f);
+  };
+  const glm::vec3 typical[] = {{104, 120, 60}, {36, 42, 25}, {149, 101, 88}, {106, 86, 77}, {100, 88, 88},
+                               {208, 196, 176}, {128, 128, 130}, {214, 188, 138}, {76, 91, 50}};
+  for (glm::vec3 c : typical) out.push_back(fromSrgb(c / 255.0f));
+  for (const veg::TerrainType& t : veg::defaultTerrainTypes()) {  // HSV → sRGB, hexcone
+    const glm::vec3 hsv = t.score.reference;
+    const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
+    const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
+    out.push_back(fromSrgb(sectors[static_cast<int>(h6) % 6] + (hsv.z - c)));
+  }
+  return out;
+}
+
+class ColourScoreGpu : public GpuTest {};
+
+TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
+  ContextOptions o;
+  o.validate = true;
+  o.validationLog = validation;
+  auto created = Context::create(o);
+  ASSERT_TRUE(created.ok()) << created.error().message;
+  const Context& ctx = **created;
+
+  const std::vector<glm::vec4> colours = testColours();
+  const auto count = static_cast<uint32_t>(colours.size());
+  const TerrainDetailUniforms block = packTerrainDetail(veg::defaultTerrainTypes());
+  GpuBuffer uniforms = createBuffer(ctx, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
+                                    "check uniforms");
+  std::memcpy(uniforms.mapped, &block, sizeof(block));
+  GpuBuffer inputs = createBuffer(ctx, sizeof(glm::vec4) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  MemoryUse::HostUpload, "check inputs");
+  std::memcpy(inputs.mapped, colours.data(), sizeof(glm::vec4) * count);
+  const VkDeviceSize outBytes = sizeof(glm::vec4) * 4 * count;
+  GpuBuffer outputs = createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
+                                   "check outputs");
+
+  const VkDescriptorSetLayoutBinding bindings[] = {
+      {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+  DescriptorSetLayout setLayout = createLayout(ctx, bindings, "check set layout");
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+  DescriptorPool pool = createPool(ctx, sizes, 1, "check pool");
+  VkDescriptorSet set = allocateDescriptorSet(ctx, pool.get(), setLayout.get(), "check set");
+  writeUniformBuffer(ctx, set, uniforms.get(), sizeof(block), 1);
+  const VkDescriptorBufferInfo in{inputs.get(), 0, VK_WHOLE_SIZE}, out{outputs.get(), 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+  for (int i = 0; i < 2; ++i) {
+    writes[i].dstSet = set;
+    writes[i].dstBinding = static_cast<uint32_t>(2 + i);
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = i == 0 ? &in : &out;
+  }
+  vkUpdateDescriptorSets(ctx.device(), 2, writes, 0, nullptr);
+
+  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
+  const VkDescriptorSetLayout layouts[] = {setLayout.get()};
+  PipelineLayout layout = createPipelineLayout(ctx, layouts, {&push, 1}, "check pipeline layout");
+  ShaderModule module = createShaderModule(ctx, spv_colour_score_check_comp, "colour score check");
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module.get();
+  ci.stage.pName = "main";
+  ci.layout = layout.get();
+  VkPipeline raw = VK_NULL_HANDLE;
+  vkCheck(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &raw), "vkCreateComputePipelines");
+  Pipeline pipeline(ctx.device(), raw);
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, raw, "colour score check pipeline");
+
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count), &count);
+    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  });
+  std::vector<glm::vec4> gpu(4 * count);
+  std::memcpy(gpu.data(), outputs.mapped, outBytes);
+
+  const auto types = veg::defaultTerrainTypes();
+  const auto params = veg::scoreParams(types);
+  float worstHsv = 0.0f, worstWeight = 0.0f, worstLog = 0.0f;
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::vec3 hsv = veg::hsvFromLinear(glm::vec3(colours[i]));
+    const glm::vec4* g = &gpu[4 * size_t{i}];
+    worstHsv = std::max({worstHsv, veg::hueDistance(hsv.x, g[0].x), std::abs(hsv.y - g[0].y), std::abs(hsv.z - g[0].z)});
+    // The score of type 0 (as a logarithm: it spans many orders of magnitude), relative.
+    const float log0 = veg::logColourScore(params[0], hsv);
+    worstLog = std::max(worstLog, std::abs(log0 - g[0].w) / std::max(1.0f, std::abs(log0)));
+    const std::vector<float> w = veg::terrainTypeWeights(types, hsv);
+    for (size_t t = 0; t < veg::kMaxTerrainTypes; ++t) {
+      const float cpu = t < w.size() ? w[t] : 0.0f;
+      const float got = t < 4 ? g[1][static_cast<int>(t)] : g[2][static_cast<int>(t - 4)];
+      worstWeight = std::max(worstWeight, std::abs(cpu - got));
+      EXPECT_NEAR(cpu, got, 1e-4f) << "colour " << i << " type " << t;
+    }
+    const std::vector<float> s = veg::surfaceWeights(types, hsv);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(s[static_cast<size_t>(k)], g[3][k], 1e-4f) << "colour " << i;
+  }
+  EXPECT_LT(worstHsv, 1e-4f);
+  EXPECT_LT(worstLog, 1e-4f);
+  std::printf("colour score CPU vs GPU over %u colours: HSV %.2g, log score %.2g (relative), weights %.2g\n", count,
+              double(worstHsv), double(worstLog), double(worstWeight));
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing

@@ -1,0 +1,75 @@
+#pragma once
+// Colour scores: how well a base colour (the imagery under a point) matches a reference colour.
+// Core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3, eq. 16:
+//
+//     s_i = ‖(r_i − b) ⊙ w_i‖^(−p_i)
+//
+// r_i: the reference colour of type i (HSV), b: the base colour (HSV), w_i: per-channel weights
+// (a weight of 0 ignores a channel, e.g. the hue of grey rock or the value that shadows change),
+// p_i: the exponent that sets how sharp transitions between types are. The hue difference wraps
+// around: Δh = min(|h_r − h_b|, 1 − |h_r − h_b|) for hues in [0, 1), so hue 0.95 and 0.05 are 0.1
+// apart. The distance is clamped to kMinColourDistance before the power, so a base colour equal
+// to a reference gives a large finite score instead of a division by zero.
+//
+// Blend weights over a set of types are s_i / Σ_j s_j, computed as exp(ln s_i − max ln s) /
+// Σ exp(ln s_j − max ln s): the same numbers without overflow for large p.
+//
+// Colour conventions: RGB components in [0, 1]. "sRGB" means gamma-encoded as 8-bit imagery
+// stores it; "linear" means what an sRGB texture sampler returns. HSV is always computed from the
+// sRGB-encoded components (the way people pick reference colours from a photo): h in [0, 1)
+// (0 red, 1/3 green, 2/3 blue; 0 for greys), s and v in [0, 1].
+//
+// shaders/common/colour_score.glsl is the same maths in GLSL, operation for operation, so GPU
+// and CPU agree to float precision (tests/render/colour_score_gpu_test.cpp checks it). General
+// on purpose: the terrain detail textures (vegetation/terrain_types.h) and the species catalog
+// both score colours through ColourScoreParams.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace vegstream::vegetation {
+
+// One colour score's parameters (eq. 16).
+struct ColourScoreParams {
+  glm::vec3 reference{0.0f};     // HSV: x hue [0, 1), y saturation, z value
+  glm::vec3 weights{1.0f};       // per channel (h, s, v), ≥ 0
+  float p = 2.0f;                // exponent, > 0
+};
+
+// Distances below this are treated as this (score (1e-4)^−p instead of infinity).
+inline constexpr float kMinColourDistance = 1e-4f;
+
+// The sRGB transfer function, one component (IEC 61966-2-1).
+float srgbEncode(float linear);
+float srgbDecode(float encoded);
+
+// HSV of sRGB-encoded components in [0, 1] (hexcone model; hue 0 and saturation 0 for greys
+// and black).
+glm::vec3 hsvFromSrgb(glm::vec3 srgb);
+// HSV of linear components: hsvFromSrgb of their sRGB encoding.
+glm::vec3 hsvFromLinear(glm::vec3 linear);
+// HSV of an 8-bit sRGB pixel.
+glm::vec3 hsvFromSrgb8(uint8_t r, uint8_t g, uint8_t b);
+
+// Hue difference on the colour circle: min(|a − b|, 1 − |a − b|), for a, b in [0, 1]; in [0, 0.5].
+float hueDistance(float a, float b);
+// ‖(Δh, Δs, Δv) ⊙ weights‖ with the wrapped hue difference (not clamped).
+float weightedHsvDistance(glm::vec3 hsvA, glm::vec3 hsvB, glm::vec3 weights);
+
+// ln s_i = −p · ln max(distance, kMinColourDistance): finite for every input.
+float logColourScore(const ColourScoreParams& params, glm::vec3 hsv);
+// s_i of eq. 16 (may be +inf in float only for extreme p; use logColourScore to compare).
+float colourScore(const ColourScoreParams& params, glm::vec3 hsv);
+
+// s_i / Σ s over `types` for base colour `hsv` into `out` (same size as `types`; sums to 1).
+// Empty `types`: nothing to write.
+void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::span<float> out);
+std::vector<float> blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv);
+
+// Index of the highest score (the first of equals); `types` must not be empty.
+size_t bestMatch(std::span<const ColourScoreParams> types, glm::vec3 hsv);
+
+}  // namespace vegstream::vegetation
