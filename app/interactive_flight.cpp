@@ -166,6 +166,7 @@ HudState Session::hudState(double now) const {
     s.terrainTriangles = last_->terrainTriangles;
   }
   const flight::SceneFrameFigures& fig = scene_.lastFrameFigures();
+  if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;  // plants: once vegetation is drawn
   const streaming::StreamingFrameStats& st = fig.streaming;
   char line[256];
   std::snprintf(line, sizeof(line),

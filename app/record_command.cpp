@@ -164,6 +164,11 @@ int runRecord(const RecordOptions& o, const Logger& log) {
     m.streaming.imageryLayers = info.imageryLayers;
     m.streaming.terrainErrorPx = so.terrain.maxErrorPx;
     m.streaming.terrainMaxNodes = so.terrain.maxNodes;
+    m.streaming.terrainMaxTriangles = so.terrain.roam.maxTriangles;
+    m.streaming.canopyM = so.terrain.roam.canopyM;
+    m.streaming.seedHorizonM = so.terrain.seeds.horizonM;
+    m.streaming.seedLevel = info.seedLevel;
+    m.streaming.seedTriangleAreaM2 = info.seedAreaM2;
     m.validate = o.validate;
     m.validationErrors = so.renderer.context.validationLog->errors();
     m.validationWarnings = so.renderer.context.validationLog->warnings();

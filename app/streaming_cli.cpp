@@ -22,6 +22,12 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--terrain-error-px", o.terrainErrorPx, "Screen-space error bound of the terrain, pixels")
       ->capture_default_str();
   cmd.add_option("--terrain-max-nodes", o.terrainMaxNodes, "Most terrain tiles drawn per frame")->capture_default_str();
+  cmd.add_option("--terrain-max-triangles", o.terrainMaxTriangles, "Triangle budget of the ROAM terrain mesh")
+      ->capture_default_str();
+  cmd.add_option("--canopy-m", o.canopyM, "Tallest plant, metres: terrain culling keeps triangles whose plants can be seen")
+      ->capture_default_str();
+  cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
+      ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
 }
 
@@ -38,6 +44,12 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
     return bad("--terrain-error-px " + std::to_string(o.terrainErrorPx) + ": must be 0.1 … 1000 pixels");
   if (o.terrainMaxNodes < 1 || o.terrainMaxNodes > 100000)
     return bad("--terrain-max-nodes " + std::to_string(o.terrainMaxNodes) + ": must be 1 … 100000");
+  if (o.terrainMaxTriangles < 2 || o.terrainMaxTriangles > 10'000'000)
+    return bad("--terrain-max-triangles " + std::to_string(o.terrainMaxTriangles) + ": must be 2 … 10000000");
+  if (!(o.canopyM >= 0.0 && o.canopyM <= 200.0))
+    return bad("--canopy-m " + std::to_string(o.canopyM) + ": must be 0 … 200 metres");
+  if (!(o.seedHorizonM >= 0.0 && o.seedHorizonM <= 20000.0))
+    return bad("--seed-horizon-m " + std::to_string(o.seedHorizonM) + ": must be 0 … 20000 metres");
   scene.streaming.cpuBudgetBytes = bytes(o.cpuBudgetMb);
   scene.streaming.gpuBudgetBytes = bytes(o.gpuBudgetMb);
   scene.streaming.uploadBytesPerFrame = bytes(o.uploadMbPerFrame);
@@ -46,6 +58,9 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   scene.lookAhead = !o.noLookAhead;
   scene.terrain.maxErrorPx = o.terrainErrorPx;
   scene.terrain.maxNodes = o.terrainMaxNodes;
+  scene.terrain.roam.maxTriangles = static_cast<uint64_t>(o.terrainMaxTriangles);
+  scene.terrain.roam.canopyM = o.canopyM;
+  scene.terrain.seeds.horizonM = o.seedHorizonM;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
 }

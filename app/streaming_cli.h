@@ -21,6 +21,9 @@ struct StreamingCli {
   bool noLookAhead = false;
   double terrainErrorPx = 2.0;
   int terrainMaxNodes = 384;
+  int64_t terrainMaxTriangles = 120000;  // ROAM leaves
+  double canopyM = 30.0;                 // tallest plant, for culling
+  double seedHorizonM = 250.0;           // seed triangles within this distance
   std::string httpCache;        // directory for the on-disk HTTP tile cache; empty: none
 };
 

@@ -82,6 +82,15 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
       r[c++] = count(v);
     r[c++] = tf.errorBoundPx;
     r[c++] = tf.relaxation;
+    // Issue 6: ROAM and seed triangles (sub-stages of cpu_terrain_ms, not added to cpu_frame_ms).
+    r[c++] = tf.roam.updateMs;
+    r[c++] = tf.roam.outputMs;
+    for (uint64_t v : {tf.roam.leaves, tf.roam.splits, tf.roam.merges, tf.roam.constrainedLeaves,
+                       static_cast<uint64_t>(tf.roam.budgetLimited), static_cast<uint64_t>(tf.roam.workLimited),
+                       tf.roam.seedTriangles, tf.roam.seedInterpolated})
+      r[c++] = count(v);
+    r[c++] = tf.roam.seedPlants;
+    r[c++] = tf.roam.achievedErrorPx;
     assert(c == r.size());
   }
 }
@@ -128,6 +137,14 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
     c.push_back({n, 0});
   c.push_back({"terrain_error_bound_px", 3});
   c.push_back({"terrain_error_relaxation", 3});
+  c.push_back({"terrain_roam_update_ms", 6});
+  c.push_back({"terrain_roam_output_ms", 6});
+  for (const char* n : {"terrain_leaves", "terrain_splits", "terrain_merges", "terrain_constrained_leaves",
+                        "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
+                        "terrain_seed_interpolated"})
+    c.push_back({n, 0});
+  c.push_back({"terrain_seed_plants", 1});
+  c.push_back({"terrain_achieved_error_px", 3});
   return c;
 }
 

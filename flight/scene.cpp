@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/stopwatch.h"
+#include "flight/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
 #include "terrain/snapshot_grid.h"
@@ -29,21 +30,12 @@ struct Scene::Impl {
   std::vector<streaming::Upload> planned;
   SceneFrameFigures figures;
 
+  double width() const { return static_cast<double>(renderer->width()); }
+  double height() const { return static_cast<double>(renderer->height()); }
   terrain::SelectionView selectionView(const render::FrameRequest& req) const {
-    const double aspect = static_cast<double>(renderer->width()) / static_cast<double>(renderer->height());
-    terrain::SelectionView v;
-    v.cameraEnu = req.camera.position;
-    v.viewProjection = render::projection(req.camera, aspect) * render::viewRotation(req.camera) *
-                       glm::translate(glm::dmat4(1.0), -req.camera.position);
-    v.viewportHeightPx = static_cast<double>(renderer->height());
-    v.verticalFovRad = glm::radians(req.camera.verticalFovDeg);
-    return v;
+    return selectionViewFor(req.camera, width(), height());
   }
-  terrain::EyeView eyeView(const render::FrameRequest& req) const {
-    return terrain::EyeView::lookAlong(req.camera.position, req.camera.forward, req.camera.up,
-                                       glm::radians(req.camera.verticalFovDeg), static_cast<double>(renderer->width()),
-                                       static_cast<double>(renderer->height()), req.camera.nearM);
-  }
+  terrain::EyeView eyeView(const render::FrameRequest& req) const { return eyeViewFor(req.camera, width(), height()); }
 };
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -94,6 +86,8 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
     if (Status s = impl->renderer->setImageryLayers(info.imageryLayers); !s) return s.error();
   }
   impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, options.terrain);
+  info.seedLevel = impl->terrain->roam().seedLevel();
+  info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
   info.loadMs = watch.elapsedMs();
   log->debug("dataset {} from {}: zooms {}…{}, ground at zoom {}, {} imagery layers ({:.0f} ms)", info.datasetName,
              info.source, info.minZoom, info.maxZoom, info.groundZoom, info.imageryLayers, info.loadMs);
@@ -114,20 +108,7 @@ GroundHeight Scene::groundFunction() const {
 
 render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
   render::FrameRequest req;
-  const geo::LocalFrame& frame = impl_->frame;
-  const glm::dvec3 position = frame.toLocal(sample.position);
-  // Heading and pitch are relative to the local east/north/up at the camera, which tilts away
-  // from the frame's axes with distance from its origin (earth curvature).
-  const glm::dvec3 up = frame.upAt(sample.position);
-  const glm::dvec3 northAhead =
-      frame.toLocal({sample.position.latDeg + 1e-4, sample.position.lonDeg, sample.position.heightM});
-  glm::dvec3 north = northAhead - position;
-  north = glm::normalize(north - up * glm::dot(north, up));
-  const glm::dvec3 east = glm::cross(north, up);
-  const glm::dvec3 f = forwardVector(sample.headingDeg, sample.pitchDeg);  // in east/north/up terms
-  req.camera.position = position;
-  req.camera.forward = glm::normalize(east * f.x + north * f.y + up * f.z);
-  req.camera.up = up;
+  req.camera = cameraFor(impl_->frame, sample);
   req.cameraHeightMsl = sample.position.heightM;
   req.lighting = impl_->lighting;
   return req;

@@ -60,6 +60,8 @@ struct SceneInfo {
   bool hasImagery = false;
   uint32_t imageryLayers = 0;  // GPU imagery slots (from the GPU budget)
   uint64_t groundBytes = 0;    // the ground mosaic on the CPU
+  int seedLevel = 0;           // the bintree level of the seed triangles
+  double seedAreaM2 = 0.0;     // their ground area at the dataset's centre
   double loadMs = 0.0;
 };
 

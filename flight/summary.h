@@ -49,6 +49,10 @@ struct RecordingMeta {
     uint32_t imageryLayers = 0;
     double terrainErrorPx = 0.0;
     int terrainMaxNodes = 0;
+    uint64_t terrainMaxTriangles = 0;
+    double canopyM = 0.0, seedHorizonM = 0.0;
+    int seedLevel = 0;
+    double seedTriangleAreaM2 = 0.0;
   } streaming;
   bool validate = false;
   uint64_t validationErrors = 0, validationWarnings = 0;

@@ -42,7 +42,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   w.meshes = &meshes;
   w.seeds = &seeds;
   w.untextured = static_cast<int>(pieces.tiles().size());
-  figures_.drawnTriangles = figures_.constrainedLeaves = 0;
+  figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
   figures_.seedTriangles = figures_.seedInterpolated = 0;
   figures_.seedPlants = 0.0;
   figures_.achievedErrorPx = 0.0;
@@ -124,6 +124,7 @@ void RoamTessellator::emitLeaf(Walk& w, uint32_t t, int piece) {
     }
     const RoamVertex& x = mesh_.vertex(v);
     const double h = x.drawnHeight(w.timeS, mesh_.options().fadeS);
+    if (h != x.heightM) ++figures_.morphingVertices;
     TerrainVertex out;
     out.position = glm::vec3(x.position(h) - m.origin);
     out.normal = x.normal;

@@ -84,6 +84,7 @@ struct RoamFigures {
   uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
   uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
+  uint64_t morphingVertices = 0;  // drawn vertices still on their way to a new height
   bool budgetLimited = false;     // the triangle budget stopped refinement
   bool workLimited = false;       // the per-frame work budget stopped the queues
   double achievedErrorPx = 0.0;   // the largest priority of a visible leaf after the update

@@ -47,8 +47,8 @@ TEST(FlyCommand, HeadlessDemoWritesFramesAndRunJsonWithValidationSilent) {
   EXPECT_EQ(run["size"][0], 160);
   // Zion streamed: headless frames are settled, so every piece is drawn from its own tiles.
   for (const auto& f : run["per_frame"]) {
-    EXPECT_GT(f["terrain_triangles"].get<int>(), 10'000);
-    EXPECT_GT(f["terrain_pieces"].get<int>(), 4);
+    EXPECT_GT(f["terrain_triangles"].get<int>(), 1'000);  // ROAM at 2 px on 160 × 90: a few thousand
+    EXPECT_GT(f["terrain_pieces"].get<int>(), 2);
     EXPECT_EQ(f["fallback_pieces"].get<int>(), 0);
     EXPECT_GT(f["gpu_bytes"].get<double>(), 0.0);
   }

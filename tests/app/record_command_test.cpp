@@ -35,6 +35,11 @@ const std::vector<std::string> kStreaming = {
     "stream_bytes_resident_gpu", "stream_requests_in_flight", "stream_wanted", "stream_wanted_resident",
     "stream_lookahead_wants", "terrain_pieces", "terrain_fallback_pieces", "terrain_max_levels_coarser",
     "terrain_meshes_built", "terrain_error_bound_px", "terrain_error_relaxation"};
+// Issue 6's ROAM and seed-triangle columns, after kStreaming.
+const std::vector<std::string> kRoam = {
+    "terrain_roam_update_ms", "terrain_roam_output_ms", "terrain_leaves", "terrain_splits", "terrain_merges",
+    "terrain_constrained_leaves", "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
+    "terrain_seed_interpolated", "terrain_seed_plants", "terrain_achieved_error_px"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -94,11 +99,14 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"}) EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  ASSERT_GE(csv.header.size(), kLeading.size() + kTrailing.size() + kStreaming.size());
+  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size();
+  ASSERT_GE(csv.header.size(), kLeading.size() + tail);
   EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
-  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), csv.header.rbegin()));
-  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(), csv.header.rbegin() + static_cast<long>(kStreaming.size())));
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size() - kStreaming.size(); ++i)
+  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), csv.header.rbegin()));
+  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), csv.header.rbegin() + static_cast<long>(kRoam.size())));
+  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(),
+                         csv.header.rbegin() + static_cast<long>(kStreaming.size() + kRoam.size())));
+  for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
     EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
   ASSERT_EQ(csv.rows.size(), 31u);
@@ -112,7 +120,8 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
     for (const auto& v : csv.column(empty)) EXPECT_EQ(v, "") << empty;
   for (const char* filled : {"cpu_flight_ms", "cpu_terrain_ms", "cpu_record_submit_ms", "gpu_frame_ms", "wall_ms",
                              "recorder_ms", "terrain_triangles", "cpu_bytes", "gpu_bytes", "cpu_streaming_ms",
-                             "streaming_wait_ms", "stream_bytes_resident_cpu", "terrain_pieces"})
+                             "streaming_wait_ms", "stream_bytes_resident_cpu", "terrain_pieces", "terrain_leaves",
+                             "terrain_roam_update_ms", "terrain_seed_triangles", "terrain_achieved_error_px"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
@@ -120,7 +129,7 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);
   EXPECT_EQ(rec["per_pass_gpu_times_meaningful"], false);
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - kTrailing.size() - kStreaming.size(); ++i)
+  for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
     for (const auto& v : csv.column(csv.header[i])) EXPECT_EQ(v, "") << csv.header[i];
 
   for (const char* k : {"summary_version", "recording", "frames", "flight_time_s", "times_ms", "counts", "hitches",

@@ -1,0 +1,134 @@
+// ROAM on real flights, rendering off (the CPU work does not depend on it): the bundled
+// benchmark-30s and canyon-run paths over the Zion sample (heights imported once, max zoom 12),
+// flown at 60 Hz with a 1920 × 1080 camera. Each frame: the tile selection's wants, the
+// streamer settled (untimed: I/O is not the terrain's), then timed — the streamed terrain's
+// pieces(): residency changes resampled, ROAM update (priorities, split/merge queues), output
+// (hierarchical culling, drawn leaves per piece, seed triangles). Counters: per-frame ms
+// (median, p99, max), ROAM update and output medians, drawn triangles (median), seed triangles,
+// and the drawn triangles against a full-resolution grid of the same area (every selected tile
+// drawn with 2 triangles per max-zoom pixel) as a ratio.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <benchmark/benchmark.h>
+
+#include "core/stopwatch.h"
+#include "datasets/geotiff_import.h"
+#include "datasets/progress.h"
+#include "flight/camera_views.h"
+#include "flight/flight_path_json.h"
+#include "flight/path_sampler.h"
+#include "streaming/dataset_snapshot.h"
+#include "streaming/open_tile_source.h"
+#include "terrain/snapshot_grid.h"
+#include "terrain/streamed_terrain.h"
+
+namespace {
+
+using namespace vegstream;
+namespace fs = std::filesystem;
+
+struct Zion {
+  fs::path dir;
+  datasets::DatasetMeta meta;
+  bool ok = false;
+  Zion() {
+    dir = fs::temp_directory_path() / ("vegstream_bench_roam_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    datasets::GeoTiffImportOptions o;
+    o.dem = fs::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
+    o.maxZoom = 12;
+    o.out = dir;
+    datasets::NullProgress progress;
+    auto m = datasets::importGeoTiff(o, makeNullLogger(), progress);
+    if (!m) {
+      std::fprintf(stderr, "bench_roam: cannot import the Zion sample: %s\n", m.error().message.c_str());
+      return;
+    }
+    meta = *m;
+    ok = true;
+  }
+  ~Zion() { fs::remove_all(dir); }
+};
+
+Zion& zion() {
+  static Zion z;
+  return z;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double x = p * static_cast<double>(v.size() - 1);
+  const auto i = static_cast<size_t>(x);
+  const double f = x - static_cast<double>(i);
+  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
+}
+
+void flyPath(benchmark::State& state, const char* pathName) {
+  Zion& z = zion();
+  if (!z.ok) return state.SkipWithError("no Zion dataset");
+  auto path = flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(pathName) + ".json"));
+  if (!path) return state.SkipWithError(path.error().message.c_str());
+  constexpr double kW = 1920.0, kH = 1080.0, kFps = 60.0;
+  for (auto _ : state) {
+    auto source = streaming::openTileSource(z.dir.string(), {});
+    if (!source) return state.SkipWithError("cannot open the dataset");
+    auto ground = streaming::loadGroundHeights(**source, z.meta, {});
+    if (!ground) return state.SkipWithError("no ground heights");
+    const terrain::HeightGrid grid = terrain::heightGridFrom(*ground);
+    const flight::GroundHeight groundFn = [&](double lat, double lon) { return grid.sampleLonLat(lon, lat); };
+    const geo::GeoBounds& b = z.meta.bounds;
+    const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
+    streaming::TileStreamer streamer(*source, z.meta, terrain::streamingOptionsFor(z.meta, {}), makeNullLogger());
+    terrain::StreamedTerrain terrain(streamer, frame, {});
+    const flight::PathSampler sampler(*path);
+    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio;
+    const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
+    for (int i = 0; i < frames; ++i) {
+      const double t = i / kFps;
+      const render::Camera cam = flight::cameraFor(frame, sampler.sample(t, groundFn));
+      auto wants = terrain.wants(flight::selectionViewFor(cam, kW, kH), flight::eyeViewFor(cam, kW, kH), {});
+      for (int round = 0; round < 32; ++round) {
+        streamer.settle(wants, t);
+        auto again = terrain.wantsAgain();
+        const bool same = again.size() == wants.size();
+        wants = std::move(again);
+        if (same) break;
+      }
+      Stopwatch watch;
+      const auto pieces = terrain.pieces(t);
+      frameMs.push_back(watch.elapsedMs());
+      const terrain::TerrainFrameFigures& f = terrain.figures();
+      updateMs.push_back(f.roam.updateMs);
+      outputMs.push_back(f.roam.outputMs);
+      drawn.push_back(static_cast<double>(f.triangles));
+      seeds.push_back(static_cast<double>(f.roam.seedTriangles));
+      double gridTriangles = 0.0;
+      for (const terrain::TerrainPiece& p : pieces)
+        if (p.mesh && p.node.z <= z.meta.maxZoom) gridTriangles += 2.0 * std::pow(256.0 * std::ldexp(1.0, z.meta.maxZoom - p.node.z), 2.0);
+      if (gridTriangles > 0.0) ratio.push_back(static_cast<double>(f.triangles) / gridTriangles);
+    }
+    state.counters["frames"] = static_cast<double>(frames);
+    state.counters["ms_p50"] = percentile(frameMs, 0.5);
+    state.counters["ms_p99"] = percentile(frameMs, 0.99);
+    state.counters["ms_max"] = percentile(frameMs, 1.0);
+    state.counters["update_ms_p50"] = percentile(updateMs, 0.5);
+    state.counters["output_ms_p50"] = percentile(outputMs, 0.5);
+    state.counters["tris_p50"] = percentile(drawn, 0.5);
+    state.counters["seed_tris_p50"] = percentile(seeds, 0.5);
+    state.counters["vs_full_grid_p50"] = percentile(ratio, 0.5);
+  }
+}
+
+void BM_RoamBenchmark30s(benchmark::State& state) { flyPath(state, "benchmark-30s"); }
+void BM_RoamCanyonRun(benchmark::State& state) { flyPath(state, "canyon-run"); }
+BENCHMARK(BM_RoamBenchmark30s)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_RoamCanyonRun)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
