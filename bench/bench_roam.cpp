@@ -88,7 +88,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     streaming::TileStreamer streamer(*source, z.meta, terrain::streamingOptionsFor(z.meta, {}), makeNullLogger());
     terrain::StreamedTerrain terrain(streamer, frame, {});
     const flight::PathSampler sampler(*path);
-    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio;
+    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
@@ -108,6 +108,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
       updateMs.push_back(f.roam.updateMs);
       outputMs.push_back(f.roam.outputMs);
       drawn.push_back(static_cast<double>(f.triangles));
+      leaves.push_back(static_cast<double>(f.roam.leaves));
       seeds.push_back(static_cast<double>(f.roam.seedTriangles));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
@@ -121,6 +122,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["update_ms_p50"] = percentile(updateMs, 0.5);
     state.counters["output_ms_p50"] = percentile(outputMs, 0.5);
     state.counters["tris_p50"] = percentile(drawn, 0.5);
+    state.counters["leaves_p50"] = percentile(leaves, 0.5);
     state.counters["seed_tris_p50"] = percentile(seeds, 0.5);
     state.counters["vs_full_grid_p50"] = percentile(ratio, 0.5);
   }

@@ -59,7 +59,10 @@ RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame
     }
   }
   leaves_ = roots_.size();
-  for (uint32_t r : roots_) nodes_[r].thickness = thicknessOf(r);
+  for (uint32_t r : roots_) {
+    nodes_[r].thickness = thicknessOf(r);
+    updateRadius(r);
+  }
 }
 
 uint32_t RoamMesh::allocPair() {
@@ -90,6 +93,7 @@ void RoamMesh::sampleVertex(RoamVertex& v, bool morph) {
   }
   v.heightM = s.heightM;
   v.sourceZoom = s.sourceZoom;
+  v.at = v.position(v.geometryHeight(options_.fillHeightM));
   // The ground normal: slopes in the vertex's own east/north/up, turned into the frame's axes.
   const glm::dvec3 east = glm::normalize(glm::cross(glm::dvec3(0.0, 1.0, 0.0), v.up));
   const glm::dvec3 north = glm::cross(v.up, east);
@@ -116,6 +120,12 @@ uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
   v.fromHeightM = fromHeight;
   v.morphStartS = timeS_;
   return i;
+}
+
+void RoamMesh::updateRadius(uint32_t t) {
+  RoamNode& n = nodes_[t];
+  const glm::dvec3 c = 0.5 * (vertices_[n.v[1]].at + vertices_[n.v[2]].at);
+  n.radius = static_cast<float>(std::max(glm::length(vertices_[n.v[0]].at - c), glm::length(vertices_[n.v[1]].at - c)) * 1.0001 + 0.01);
 }
 
 float RoamMesh::thicknessOf(uint32_t t) {
@@ -156,6 +166,8 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created
   ++leaves_;
   nodes_[c].thickness = thicknessOf(c);
   nodes_[c + 1].thickness = thicknessOf(c + 1);
+  updateRadius(c);
+  updateRadius(c + 1);
   if (created) {
     created->push_back(c);
     created->push_back(c + 1);
@@ -253,6 +265,7 @@ void RoamMesh::resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2],
   if (maxX < lo[0] || minX > hi[0] || maxY < lo[1] || minY > hi[1]) return;
   RoamNode& n = nodes_[t];
   if (grid_.squareZoom(n.path.level) >= tile.z) n.thickness = thicknessOf(t);
+  updateRadius(t);  // its vertices may have moved
   if (n.isLeaf()) return;
   RoamVertex& m = vertices_[n.mid];
   if (m.grid.x >= lo[0] && m.grid.x <= hi[0] && m.grid.y >= lo[1] && m.grid.y <= hi[1]) {
@@ -275,6 +288,56 @@ void RoamMesh::resample(const geo::TileId& tile) {
     if (x.grid.x >= lo[0] && x.grid.x <= hi[0] && x.grid.y >= lo[1] && x.grid.y <= hi[1]) sampleVertex(x, true);
   }
   for (uint32_t r : roots_) resampleNode(r, tile, lo, hi);
+}
+
+void RoamMesh::compact() {
+  std::vector<uint32_t> nodeMap(nodes_.size(), kNoNode), vertexMap(vertices_.size(), kNoNode);
+  std::vector<RoamNode> nodes;
+  std::vector<RoamVertex> vertices;
+  nodes.reserve(nodes_.size() - 2 * freePairs_.size());
+  vertices.reserve(vertices_.size() - freeVertices_.size());
+  for (uint32_t v : cornerVertices_) {
+    vertexMap[v] = static_cast<uint32_t>(vertices.size());
+    vertices.push_back(vertices_[v]);
+  }
+  for (uint32_t r : roots_) {  // roots are the first pairs, in order
+    assert(r == nodes.size());
+    nodeMap[r] = r;
+    nodes.push_back(nodes_[r]);
+  }
+  // Depth first, children pair by pair; a diamond's vertex goes where its first half meets it.
+  std::vector<uint32_t> stack(roots_.rbegin(), roots_.rend());
+  while (!stack.empty()) {
+    const uint32_t t = stack.back();
+    stack.pop_back();
+    const RoamNode& n = nodes_[t];
+    if (n.isLeaf()) continue;
+    if (vertexMap[n.mid] == kNoNode) {
+      vertexMap[n.mid] = static_cast<uint32_t>(vertices.size());
+      vertices.push_back(vertices_[n.mid]);
+    }
+    nodeMap[n.child] = static_cast<uint32_t>(nodes.size());
+    nodeMap[n.child + 1] = static_cast<uint32_t>(nodes.size() + 1);
+    nodes.push_back(nodes_[n.child]);
+    nodes.push_back(nodes_[n.child + 1]);
+    stack.push_back(n.child + 1);
+    stack.push_back(n.child);
+  }
+  auto mapNode = [&](uint32_t i) { return i == kNoNode ? kNoNode : nodeMap[i]; };
+  for (RoamNode& n : nodes) {
+    n.parent = mapNode(n.parent);
+    n.child = mapNode(n.child);
+    n.base = mapNode(n.base);
+    n.left = mapNode(n.left);
+    n.right = mapNode(n.right);
+    if (n.mid != kNoNode) n.mid = vertexMap[n.mid];
+    for (uint32_t& v : n.v) v = vertexMap[v];
+  }
+  for (uint32_t& v : cornerVertices_) v = vertexMap[v];
+  nodes_ = std::move(nodes);
+  vertices_ = std::move(vertices);
+  freePairs_.clear();
+  freeVertices_.clear();
 }
 
 std::vector<uint32_t> RoamMesh::leaves() const {

@@ -45,6 +45,7 @@ struct RoamVertex {
   double morphStartS = -1e30;
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   int sourceZoom = -1;
+  glm::dvec3 at{0.0};  // position(geometryHeight(fill)): what culling and priorities use
 
   // Height used for culling and priorities: nodata counts as the fill height (never drawn).
   double geometryHeight(double fill) const { return heightM == heightM ? heightM : fill; }
@@ -61,6 +62,7 @@ struct RoamNode {
   uint32_t mid = kNoNode;       // the split vertex, while split
   float thickness = 0.0f;       // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
   float priority = 0.0f;        // the last priority the update gave it
+  float radius = 0.0f;          // bounding sphere about the base midpoint (m, at geometry heights)
   bool isLeaf() const { return child == kNoNode; }
 };
 
@@ -86,6 +88,11 @@ class RoamMesh {
   // T and its base neighbour (if any) are split, their children leaves, and they form a diamond.
   bool isMergeable(uint32_t t) const;
   void merge(uint32_t t);
+
+  // Renumbers nodes and vertices in depth-first order (roots and root corners keep theirs), so
+  // traversals walk memory forwards: splits and merges scatter the pools over time. Every node
+  // and vertex index held outside is invalid afterwards.
+  void compact();
 
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
@@ -120,6 +127,7 @@ class RoamMesh {
   void replaceLink(uint32_t at, uint32_t from, uint32_t to);
   float thicknessOf(uint32_t t);
   float nestedThickness(uint32_t t) const;
+  void updateRadius(uint32_t t);
   void raiseThickness(uint32_t t);
   void resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]);
 

@@ -18,9 +18,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
                              std::vector<TerrainMesh>& meshes, std::vector<SeedTriangle>& seeds) {
   Stopwatch watch;
   ++outputFrame_;
-  stampFrame_.resize(mesh_.vertexCapacity(), 0);
-  stampPiece_.resize(mesh_.vertexCapacity(), 0);
-  stampIndex_.resize(mesh_.vertexCapacity(), 0);
+  beginView(view);
+  stamps_.resize(mesh_.vertexCapacity());
   meshes.resize(pieces.tiles().size() + 1);
   for (size_t i = 0; i < meshes.size(); ++i) {
     TerrainMesh& m = meshes[i];
@@ -77,7 +76,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   if (ps == InPiece::None) return;  // outside every piece: the tile selection found it invisible
 
   if (seeds && level <= seedLevel_) {
-    if (sphereDistance(*w.view, eye, e) > seeds_.horizonM) {
+    if (sphereDistance(*w.view, t, eye, e) > seeds_.horizonM) {
       seeds = false;
     } else if (level == seedLevel_ || n.isLeaf()) {
       glm::dvec3 world[3];
@@ -96,7 +95,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   }
   if (n.isLeaf()) {
     if (cull != Cull::Outside) {
-      const double px = n.thickness >= 0.0f ? n.thickness * w.view->pixelsPerRadian / sphereDistance(*w.view, eye, n.thickness) : 0.0;
+      const double px = n.thickness >= 0.0f ? projectedErrorPx(*w.view, t, eye, n.thickness) : 0.0;
       figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, px);
     }
     if (ps == InPiece::Above) ++figures_.constrainedLeaves;
@@ -117,9 +116,11 @@ void RoamTessellator::emitLeaf(Walk& w, uint32_t t, int piece) {
   TerrainMesh& m = (*w.meshes)[size_t(piece)];
   const bool textured = piece != w.untextured;
   const geo::TileId tile = textured ? w.pieces->tiles()[size_t(piece)] : geo::TileId{};
+  const double uvScale = std::ldexp(1.0, tile.z - mesh_.grid().gridZoom());
   for (uint32_t v : n.v) {
-    if (stampFrame_[v] == outputFrame_ && stampPiece_[v] == uint32_t(piece)) {
-      m.indices.push_back(stampIndex_[v]);
+    Stamp& st = stamps_[v];
+    if (st.frame == outputFrame_ && st.piece == uint32_t(piece)) {
+      m.indices.push_back(st.index);
       continue;
     }
     const RoamVertex& x = mesh_.vertex(v);
@@ -129,11 +130,9 @@ void RoamTessellator::emitLeaf(Walk& w, uint32_t t, int piece) {
     out.position = glm::vec3(x.position(h) - m.origin);
     out.normal = x.normal;
     out.heightMsl = static_cast<float>(h);
-    if (textured) out.uv = glm::vec2(mesh_.grid().tileXY(x.grid, tile.z) - glm::dvec2(tile.x, tile.y));
-    stampFrame_[v] = outputFrame_;
-    stampPiece_[v] = uint32_t(piece);
-    stampIndex_[v] = static_cast<uint32_t>(m.vertices.size());
-    m.indices.push_back(stampIndex_[v]);
+    if (textured) out.uv = glm::vec2(double(x.grid.x) * uvScale - tile.x, double(x.grid.y) * uvScale - tile.y);
+    st = {outputFrame_, uint32_t(piece), static_cast<uint32_t>(m.vertices.size())};
+    m.indices.push_back(st.index);
     m.vertices.push_back(out);
   }
   ++figures_.drawnTriangles;
@@ -167,7 +166,9 @@ void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
   if (cullWedgie(*w.view, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside) return;
-  if (sphereDistance(*w.view, eye, thickness) > seeds_.horizonM) return;
+  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
+  const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
+  if (glm::length(c) - radius - thickness > seeds_.horizonM) return;
   if (path.level == seedLevel_) {
     emitSeed(w, path, world, eye, true);
     return;

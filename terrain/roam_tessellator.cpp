@@ -48,9 +48,22 @@ void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
     if (k.layer == streaming::TileLayer::Height) mesh_.resample(k.id);
 }
 
+void RoamTessellator::beginView(const EyeView& view) {
+  if (view.cameraEnu == lastCamera_ && view.rotation == lastRotation_) return;
+  lastCamera_ = view.cameraEnu;
+  lastRotation_ = view.rotation;
+  ++viewId_;
+}
+
 glm::dvec3 RoamTessellator::eyeOfVertex(const EyeView& view, uint32_t v) const {
-  const RoamVertex& x = mesh_.vertex(v);
-  return view.toEye(x.position(x.geometryHeight(mesh_.options().fillHeightM)));
+  // Each vertex is transformed once per view (§3.1 A: only a split's new vertex is new).
+  if (v >= eyes_.size()) eyes_.resize(mesh_.vertexCapacity() + 1024);
+  EyeEntry& e = eyes_[v];
+  if (e.view != viewId_) {
+    e.eye = view.toEye(mesh_.vertex(v).at);
+    e.view = viewId_;
+  }
+  return e.eye;
 }
 
 void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
@@ -58,12 +71,27 @@ void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) co
   for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
 }
 
-double RoamTessellator::sphereDistance(const EyeView& view, const glm::dvec3* eye, double thickness) const {
+double RoamTessellator::sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
   // The hypotenuse midpoint is the circumcentre of a right triangle (in the plane); heights make
-  // the radius the larger of the two distances.
+  // the radius the larger of the two distances (RoamNode::radius, rotation-invariant).
   const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
-  const double r = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
-  return std::max(glm::length(c) - r - thickness, view.nearM);
+  return std::max(glm::length(c) - mesh_.node(t).radius - thickness, view.nearM);
+}
+
+double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
+  // The wedgie's thickness is vertical: seen along a ray at angle θ to the vertical it spans
+  // e·sin θ / d radians (Duchaineau et al. project the thickness vector the same way). Over the
+  // bounding sphere θ is within θ_c ± α, sin α = radius / ‖c‖, and sin(θ_c + α) ≤ sin θ_c + sin α.
+  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
+  const double r = mesh_.node(t).radius + thickness;
+  const double dc = glm::length(c);
+  const double d = std::max(dc - r, view.nearM);
+  double sinMax = 1.0;
+  if (dc > r) {
+    const double cosC = std::abs(glm::dot(view.upEye, c)) / dc;
+    sinMax = std::min(1.0, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)) + r / dc);
+  }
+  return thickness * sinMax * view.pixelsPerRadian / d;
 }
 
 RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square,
@@ -85,9 +113,9 @@ float RoamTessellator::priority(const EyeView& view, uint32_t t, const glm::dvec
   if (ps == InPiece::Above) return kForcedPriority;
   const RoamNode& n = mesh_.node(t);
   if (!(n.thickness >= 0.0f)) return 0.0f;  // nothing known yet, or no data under it
-  const double d = sphereDistance(view, eye, n.thickness);
-  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && d < seeds_.horizonM) return kForcedPriority;
-  return static_cast<float>(n.thickness * view.pixelsPerRadian / d);
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && sphereDistance(view, t, eye, n.thickness) < seeds_.horizonM)
+    return kForcedPriority;
+  return static_cast<float>(projectedErrorPx(view, t, eye, n.thickness));
 }
 
 double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
@@ -95,7 +123,7 @@ double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
   eyeOf(view, t, eye);
   const RoamNode& n = mesh_.node(t);
   if (!(n.thickness >= 0.0f)) return 0.0;
-  return n.thickness * view.pixelsPerRadian / sphereDistance(view, eye, n.thickness);
+  return projectedErrorPx(view, t, eye, n.thickness);
 }
 
 void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
@@ -115,7 +143,10 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   const uint32_t c = n.child;
   if (mesh_.node(c).isLeaf() && mesh_.node(c + 1).isLeaf()) {
     n.priority = priority(*w.view, t, eye, cull, ps);
-    w.diamonds->push_back({n.priority, t, n.path});
+    // A diamond merges below the threshold (its priority is the larger half's), or for the budget.
+    if (n.priority < w.mergeBelow || w.overBudget) w.diamonds->push_back({n.priority, t, n.path});
+  } else {
+    n.priority = kForcedPriority;  // not a diamond half: never merged as one
   }
   glm::dvec3 e0[3], e1[3];
   if (cull != Cull::Outside) {
@@ -131,6 +162,13 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   Stopwatch watch;
   figures_ = {};
   mesh_.setTime(timeS);
+  // Every kCompactEvery updates the pools are put back in depth-first order (cache locality).
+  if (++updates_ % kCompactEvery == 0) {
+    mesh_.compact();
+    eyes_.clear();
+    stamps_.clear();
+  }
+  beginView(view);
   std::vector<Candidate> splits, diamonds;
   Walk w;
   w.view = &view;
@@ -138,6 +176,8 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   w.bound = options_.maxErrorPx;
   w.splits = &splits;
   w.diamonds = &diamonds;
+  w.mergeBelow = options_.mergeFraction * options_.maxErrorPx;
+  w.overBudget = mesh_.leafCount() > options_.maxTriangles;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
     eyeOf(view, r, eye);
@@ -200,17 +240,19 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
 
 void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch) {
   // A diamond's priority is the larger of its two halves'.
+  // Only diamonds below the merge threshold are queued, unless the mesh is over budget.
+  const double threshold = options_.mergeFraction * options_.maxErrorPx;
+  const bool overBudget = mesh_.leafCount() > options_.maxTriangles;
   std::vector<Candidate> queue;
   for (const Candidate& d : diamonds) {
     const uint32_t b = mesh_.node(d.node).base;
     if (b != kNoNode && b < d.node) continue;  // the partner with the smaller index speaks for both
     const float p = std::max(d.priority, b != kNoNode ? mesh_.node(b).priority : 0.0f);
-    if (p < kForcedPriority) queue.push_back({p, d.node, d.path});
+    if (p < kForcedPriority && (overBudget || p < threshold)) queue.push_back({p, d.node, d.path});
   }
   std::sort(queue.begin(), queue.end(), [](const Candidate& a, const Candidate& b) {
     return a.priority != b.priority ? a.priority < b.priority : a.node < b.node;
   });
-  const double threshold = options_.mergeFraction * options_.maxErrorPx;
   for (const Candidate& c : queue) {
     if (c.priority >= threshold && mesh_.leafCount() <= options_.maxTriangles) break;
     if (outOfWork(ops, watch)) break;

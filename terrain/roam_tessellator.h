@@ -7,7 +7,8 @@
 //
 // update():
 //   1. one traversal computes every leaf's priority (projected wedgie thickness, px: the nested
-//      thickness · pixels-per-radian / distance to the triangle's bounding sphere) with
+//      thickness · sin(the largest angle between the vertical and a view ray to the triangle's
+//      bounding sphere) · pixels-per-radian / distance to that sphere) with
 //      hierarchical culling (a leaf outside the view has priority 0, so it merges away), and the
 //      priority of every diamond whose four children are leaves;
 //   2. the split queue (max first) splits leaves above the bound, forcing splits as needed, and
@@ -28,6 +29,7 @@
 // Deterministic: with maxQueueMs = 0 the same inputs give the same mesh. Frame thread only.
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <unordered_map>
 #include <unordered_set>
@@ -128,7 +130,8 @@ class RoamTessellator {
   struct Walk;  // the state of one traversal
 
   float priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) const;
-  double sphereDistance(const EyeView& view, const glm::dvec3* eye, double thickness) const;
+  double sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
+  double projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
   InPiece pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const;
   InPiece pieceStateOf(const PieceSet& pieces, uint32_t t) const;
   void eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const;
@@ -150,10 +153,25 @@ class RoamTessellator {
   int seedLevel_ = 0;
   double fillHeightM_ = 0.0;
   RoamFigures figures_;
+  // Eye-space vertices of the current view, computed once per view and vertex.
+  void beginView(const EyeView& view);
+  struct EyeEntry {
+    glm::dvec3 eye;
+    uint64_t view = 0;
+  };
+  mutable std::vector<EyeEntry> eyes_;
+  uint64_t viewId_ = 0;
+  glm::dvec3 lastCamera_{std::numeric_limits<double>::quiet_NaN()};
+  glm::dmat3 lastRotation_{0.0};
   // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
-  std::vector<uint64_t> stampFrame_;
-  std::vector<uint32_t> stampPiece_, stampIndex_;
+  struct Stamp {
+    uint64_t frame = 0;
+    uint32_t piece = 0, index = 0;
+  };
+  std::vector<Stamp> stamps_;
   uint64_t outputFrame_ = 0;
+  static constexpr uint64_t kCompactEvery = 64;
+  uint64_t updates_ = 0;
 };
 
 }  // namespace vegstream::terrain

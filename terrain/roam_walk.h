@@ -15,6 +15,8 @@ struct RoamTessellator::Walk {
   // update()
   std::vector<Candidate>* splits = nullptr;
   std::vector<Candidate>* diamonds = nullptr;
+  double mergeBelow = 0.0;
+  bool overBudget = false;
   // output()
   std::vector<TerrainMesh>* meshes = nullptr;
   std::vector<SeedTriangle>* seeds = nullptr;

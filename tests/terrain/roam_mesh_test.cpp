@@ -99,6 +99,17 @@ TEST(RoamMesh, RandomSplitsAndMergesNeverCrack) {
     if (step % 500 == 0) {
       ASSERT_EQ(mesh.conformityViolations(), 0u) << "after step " << step;
     }
+    if (step % 1500 == 1499) {  // renumbering keeps the mesh as it is
+      const uint64_t count = mesh.leafCount();
+      std::set<TriPath> before;
+      for (uint32_t leaf : mesh.leaves()) before.insert(mesh.node(leaf).path);
+      mesh.compact();
+      std::set<TriPath> after;
+      for (uint32_t leaf : mesh.leaves()) after.insert(mesh.node(leaf).path);
+      ASSERT_EQ(mesh.leafCount(), count);
+      ASSERT_EQ(before, after);
+      ASSERT_EQ(mesh.conformityViolations(), 0u) << "after compacting at step " << step;
+    }
   }
   ASSERT_EQ(mesh.conformityViolations(), 0u);
   EXPECT_GT(splits, 3000u);
