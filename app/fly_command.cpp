@@ -127,6 +127,9 @@ int runFly(const FlyOptions& o, const Logger& log) {
   if (Status s = applyStreamingOptions(o.streaming, windowWanted ? flight::StreamingMode::Realtime
                                                                  : flight::StreamingMode::Settled, so); !s)
     return reportError(log, s.error());
+  // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
+  // next (recordings and headless frames stay deterministic, bounded by operations only).
+  if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
   std::string dataset = o.dataset;
   if (dataset.empty()) {
     auto sample = ensureZionSample(o.samplesDir, "out/datasets/zion", log);

@@ -1,6 +1,6 @@
 // ROAM on real flights, rendering off (the CPU work does not depend on it): the bundled
 // benchmark-30s and canyon-run paths over the Zion sample (heights imported once, max zoom 12),
-// flown at 60 Hz with a 1920 × 1080 camera. Each frame: the tile selection's wants, the
+// flown at 60 Hz with a 1920 × 1080 camera, error bound 2 px (and 4 px on benchmark-30s). Each frame: the tile selection's wants, the
 // streamer settled (untimed: I/O is not the terrain's), then timed — the streamed terrain's
 // pieces(): residency changes resampled, ROAM update (priorities, split/merge queues), output
 // (hierarchical culling, drawn leaves per piece, seed triangles). Counters: per-frame ms
@@ -86,7 +86,9 @@ void flyPath(benchmark::State& state, const char* pathName) {
     const geo::GeoBounds& b = z.meta.bounds;
     const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
     streaming::TileStreamer streamer(*source, z.meta, terrain::streamingOptionsFor(z.meta, {}), makeNullLogger());
-    terrain::StreamedTerrain terrain(streamer, frame, {});
+    terrain::StreamedTerrainOptions to;
+    to.maxErrorPx = static_cast<double>(state.range(0));
+    terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
     std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
@@ -130,7 +132,8 @@ void flyPath(benchmark::State& state, const char* pathName) {
 
 void BM_RoamBenchmark30s(benchmark::State& state) { flyPath(state, "benchmark-30s"); }
 void BM_RoamCanyonRun(benchmark::State& state) { flyPath(state, "canyon-run"); }
-BENCHMARK(BM_RoamBenchmark30s)->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK(BM_RoamCanyonRun)->Iterations(1)->Unit(benchmark::kSecond);
+// range(0): the screen-space error bound, pixels.
+BENCHMARK(BM_RoamBenchmark30s)->Arg(2)->Arg(4)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_RoamCanyonRun)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
