@@ -20,9 +20,11 @@ double smooth(double s) { return s * s * (3.0 - 2.0 * s); }
 }  // namespace
 
 double RoamVertex::drawnHeight(double t, double fadeS) const {
-  if (!(fromHeightM == fromHeightM) || !(heightM == heightM) || fadeS <= 0.0) return heightM;
+  if (!(heightM == heightM)) return heightM;
+  const double to = toHeightM == toHeightM ? toHeightM : heightM;
+  if (!(fromHeightM == fromHeightM) || fadeS <= 0.0) return to;
   const double s = std::clamp((t - morphStartS) / fadeS, 0.0, 1.0);
-  return fromHeightM + (heightM - fromHeightM) * smooth(s);
+  return fromHeightM + (to - fromHeightM) * smooth(s);
 }
 
 RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,
@@ -92,6 +94,7 @@ void RoamMesh::sampleVertex(RoamVertex& v, bool morph) {
     v.morphStartS = timeS_;
   }
   v.heightM = s.heightM;
+  if (!v.merging) v.toHeightM = s.heightM;
   v.sourceZoom = s.sourceZoom;
   v.at = v.position(v.geometryHeight(options_.fillHeightM));
   // The ground normal: slopes in the vertex's own east/north/up, turned into the frame's axes.
@@ -234,6 +237,26 @@ bool RoamMesh::isMergeable(uint32_t t) const {
   if (!childrenAreLeaves(t)) return false;
   const uint32_t b = nodes_[t].base;
   return b == kNoNode || (nodes_[b].base == t && childrenAreLeaves(b));
+}
+
+void RoamMesh::beginMergeMorph(uint32_t t) {
+  RoamVertex& m = vertices_[nodes_[t].mid];
+  if (m.merging) return;
+  const RoamVertex& l = vertices_[nodes_[t].v[1]];
+  const RoamVertex& r = vertices_[nodes_[t].v[2]];
+  m.fromHeightM = m.drawnHeight(timeS_, options_.fadeS);
+  m.toHeightM = 0.5 * (l.drawnHeight(timeS_, options_.fadeS) + r.drawnHeight(timeS_, options_.fadeS));
+  m.morphStartS = timeS_;
+  m.merging = true;
+}
+
+void RoamMesh::cancelMergeMorph(uint32_t t) {
+  RoamVertex& m = vertices_[nodes_[t].mid];
+  if (!m.merging) return;
+  m.fromHeightM = m.drawnHeight(timeS_, options_.fadeS);
+  m.toHeightM = m.heightM;
+  m.morphStartS = timeS_;
+  m.merging = false;
 }
 
 void RoamMesh::mergeOne(uint32_t t) {

@@ -42,7 +42,9 @@ struct RoamVertex {
   glm::dvec3 up{0.0, 0.0, 1.0};  // the ellipsoid normal there, in the ENU frame
   double heightM = std::numeric_limits<double>::quiet_NaN();  // sampled (target) height; NaN: nodata
   double fromHeightM = std::numeric_limits<double>::quiet_NaN();  // what it morphs from
+  double toHeightM = std::numeric_limits<double>::quiet_NaN();    // what it morphs to: heightM, or its base while merging
   double morphStartS = -1e30;
+  bool merging = false;     // sinking to the midpoint of its diamond's base before the merge
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   int sourceZoom = -1;
   glm::dvec3 at{0.0};  // position(geometryHeight(fill)): what culling and priorities use
@@ -50,8 +52,9 @@ struct RoamVertex {
   // Height used for culling and priorities: nodata counts as the fill height (never drawn).
   double geometryHeight(double fill) const { return heightM == heightM ? heightM : fill; }
   glm::dvec3 position(double h) const { return base + up * h; }
-  // The height drawn at time t: from fromHeightM to heightM over fadeS.
+  // The height drawn at time t: from fromHeightM to toHeightM over fadeS.
   double drawnHeight(double t, double fadeS) const;
+  bool morphDone(double t, double fadeS) const { return t - morphStartS >= fadeS; }
 };
 
 struct RoamNode {
@@ -88,6 +91,10 @@ class RoamMesh {
   // T and its base neighbour (if any) are split, their children leaves, and they form a diamond.
   bool isMergeable(uint32_t t) const;
   void merge(uint32_t t);
+  // Merge morphs (so merges do not pop either): the split vertex of mergeable diamond t starts
+  // sinking to its base's midpoint; or, when the diamond is no longer to merge, rises back.
+  void beginMergeMorph(uint32_t t);
+  void cancelMergeMorph(uint32_t t);
 
   // Renumbers nodes and vertices in depth-first order (roots and root corners keep theirs), so
   // traversals walk memory forwards: splits and merges scatter the pools over time. Every node

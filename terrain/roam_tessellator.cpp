@@ -145,8 +145,10 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
     n.priority = priority(*w.view, t, eye, cull, ps);
     // A diamond merges below the threshold (its priority is the larger half's), or for the budget.
     if (n.priority < w.mergeBelow || w.overBudget) w.diamonds->push_back({n.priority, t, n.path});
+    else mesh_.cancelMergeMorph(t);  // it sank towards a merge that is no longer wanted
   } else {
     n.priority = kForcedPriority;  // not a diamond half: never merged as one
+    mesh_.cancelMergeMorph(t);
   }
   glm::dvec3 e0[3], e1[3];
   if (cull != Cull::Outside) {
@@ -162,6 +164,7 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   Stopwatch watch;
   figures_ = {};
   mesh_.setTime(timeS);
+  timeS_ = timeS;
   // Every kCompactEvery updates the pools are put back in depth-first order (cache locality).
   if (++updates_ % kCompactEvery == 0) {
     mesh_.compact();
@@ -249,6 +252,7 @@ void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops
     if (b != kNoNode && b < d.node) continue;  // the partner with the smaller index speaks for both
     const float p = std::max(d.priority, b != kNoNode ? mesh_.node(b).priority : 0.0f);
     if (p < kForcedPriority && (overBudget || p < threshold)) queue.push_back({p, d.node, d.path});
+    else mesh_.cancelMergeMorph(d.node);
   }
   std::sort(queue.begin(), queue.end(), [](const Candidate& a, const Candidate& b) {
     return a.priority != b.priority ? a.priority < b.priority : a.node < b.node;
@@ -258,7 +262,20 @@ void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops
     if (outOfWork(ops, watch)) break;
     const RoamNode& n = mesh_.node(c.node);
     if (n.path != c.path || !mesh_.isMergeable(c.node)) continue;
-    if (c.priority >= threshold) figures_.budgetLimited = true;  // merged for the budget, not the error
+    const bool forBudget = c.priority >= threshold;
+    if (forBudget) figures_.budgetLimited = true;  // merged for the budget, not the error: at once
+    // For the error: the split vertex first sinks to its base over fadeS, then the merge is exact.
+    const RoamVertex& mid = mesh_.vertex(n.mid);
+    const double fade = mesh_.options().fadeS;
+    const bool unseen = c.priority == 0.0f;  // culled: nothing to morph on screen
+    if (!forBudget && !unseen && fade > 0.0 && !(mid.merging && mid.morphDone(timeS_, fade))) {
+      if (!mid.merging) {
+        mesh_.beginMergeMorph(c.node);
+        ++ops;
+        ++figures_.mergesStarted;
+      }
+      continue;
+    }
     mesh_.merge(c.node);
     ++ops;
     ++figures_.merges;

@@ -14,8 +14,9 @@
 //   2. the split queue (max first) splits leaves above the bound, forcing splits as needed, and
 //      re-queues their children, until the bound is met, the triangle budget is reached or the
 //      per-frame work budget is spent (operations, and optionally milliseconds);
-//   3. the merge queue (min first) merges diamonds below mergeFraction × the bound, and more while
-//      the mesh is over budget.
+//   3. the merge queue (min first) merges diamonds below mergeFraction × the bound — after their
+//      split vertex has sunk to its base over fadeS, so merges do not pop — and, at once, more
+//      while the mesh is over budget.
 //   Two constraints force splits regardless of error: every drawn leaf lies inside one piece
 //   (the imagery tile it is coloured from), and, inside the seeding horizon, leaves reach the
 //   seed level so that seed triangles have sampled heights.
@@ -85,6 +86,7 @@ struct RoamFigures {
   uint64_t leaves = 0;            // triangles in the mesh
   uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
+  uint64_t mergesStarted = 0;     // diamonds whose split vertex began sinking to its base (merged after fadeS)
   uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
   uint64_t morphingVertices = 0;  // drawn vertices still on their way to a new height
   bool budgetLimited = false;     // the triangle budget stopped refinement
@@ -172,6 +174,7 @@ class RoamTessellator {
   uint64_t outputFrame_ = 0;
   static constexpr uint64_t kCompactEvery = 64;
   uint64_t updates_ = 0;
+  double timeS_ = 0.0;
 };
 
 }  // namespace vegstream::terrain

@@ -52,10 +52,10 @@ class ZionResident {
   const geo::LocalFrame& frame() const { return *frame_; }
   geo::TileRange roots() const { return geo::tileRangesCovering(meta_.bounds, meta_.minZoom).front(); }
 
-  std::unique_ptr<RoamTessellator> tessellator(RoamOptions o = {}, SeedOptions s = {}) {
+  std::unique_ptr<RoamTessellator> tessellator(RoamOptions o = {}, SeedOptions s = {}, double fadeS = 0.0) {
     RoamMeshOptions mo;
     mo.fillHeightM = 0.5 * (meta_.minHeightM + meta_.maxHeightM);
-    mo.fadeS = 0.0;
+    mo.fadeS = fadeS;
     return std::make_unique<RoamTessellator>(grid_, roots(), *frame_, *heights_, o, s, mo, meta_.bounds.centre().y);
   }
 
@@ -86,6 +86,15 @@ class ZionResident {
   std::unique_ptr<ResidentHeights> heights_;
   std::unique_ptr<geo::LocalFrame> frame_;
 };
+
+// Updates until nothing more splits or merges (at most `frames` frames); the frames it took.
+inline int converge(RoamTessellator& r, const EyeView& view, const PieceSet& pieces, int frames = 40) {
+  for (int i = 0; i < frames; ++i) {
+    r.update(view, pieces, 0.0);
+    if (r.figures().splits == 0 && r.figures().merges == 0) return i;
+  }
+  return frames;
+}
 
 inline ZionResident& zionResident() {
   static ZionResident r;

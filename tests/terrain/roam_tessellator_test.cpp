@@ -11,16 +11,8 @@
 namespace vegstream::terrain {
 namespace {
 
+using test::converge;
 using test::zionResident;
-
-// Updates until nothing more splits or merges (at most `frames` frames).
-int converge(RoamTessellator& r, const EyeView& view, const PieceSet& pieces, int frames = 40) {
-  for (int i = 0; i < frames; ++i) {
-    r.update(view, pieces, 0.0);
-    if (r.figures().splits == 0 && r.figures().merges == 0) return i;
-  }
-  return frames;
-}
 
 TEST(RoamTessellator, EveryVisibleLeafMeetsTheBoundOrTheBudgetIsReported) {
   auto& z = zionResident();
@@ -129,6 +121,51 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
   }
   EXPECT_EQ(r->figures().drawnTriangles, expected);
   EXPECT_GT(outside, 0u) << "the view leaves some of the mesh out";
+}
+
+TEST(RoamTessellator, SplitsAndMergesMorphInsteadOfPopping) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  auto r = z.tessellator({}, {}, 0.5);
+  const EyeView near = z.camera(37.30, -113.05, 120.0, 45.0, -20.0, 320.0, 180.0);
+  for (int i = 0; i < 40; ++i) r->update(near, pieces, 10.0 + i);  // converged, morphs long done
+  // New vertices start on the base they split (their parent's surface) and rise over fadeS.
+  const EyeView closer = z.camera(37.30, -113.05, 40.0, 45.0, -20.0, 320.0, 180.0);
+  r->update(closer, pieces, 100.0);
+  ASSERT_GT(r->figures().splits, 0u);
+  uint64_t rising = 0;
+  const RoamMesh& m = r->mesh();
+  for (uint32_t t : m.leaves()) {
+    const RoamNode& n = m.node(t);
+    const RoamVertex& apex = m.vertex(n.v[0]);
+    if (apex.morphStartS != 100.0 || apex.merging || !(apex.heightM == apex.heightM)) continue;
+    ++rising;
+    EXPECT_NEAR(apex.drawnHeight(100.0, 0.5), apex.fromHeightM, 1e-9);
+    EXPECT_NEAR(apex.drawnHeight(100.5, 0.5), apex.heightM, 1e-9);
+  }
+  EXPECT_GT(rising, 0u);
+  // Climbing away: visible diamonds first sink to their bases, and merge only after fadeS.
+  for (int i = 0; i < 40; ++i) r->update(closer, pieces, 101.0 + i);
+  const EyeView far = z.camera(37.30, -113.05, 600.0, 45.0, -20.0, 320.0, 180.0);
+  r->update(far, pieces, 200.0);
+  const uint64_t started = r->figures().mergesStarted;
+  EXPECT_GT(started, 0u);
+  uint64_t sinking = 0;
+  for (uint32_t v = 0; v < m.vertexCapacity(); ++v) {
+    const RoamVertex& x = m.vertex(v);
+    if (!x.merging) continue;
+    ++sinking;
+    EXPECT_EQ(x.morphStartS, 200.0);
+    EXPECT_NEAR(x.drawnHeight(200.5, 0.5), x.toHeightM, 1e-9);
+  }
+  EXPECT_EQ(sinking, started);
+  r->update(far, pieces, 200.25);  // half way: the sinking ones have not merged
+  uint64_t stillSinking = 0;
+  for (uint32_t v = 0; v < m.vertexCapacity(); ++v) stillSinking += m.vertex(v).merging;
+  EXPECT_GE(stillSinking, started);
+  r->update(far, pieces, 200.6);   // done: they merge
+  EXPECT_GT(r->figures().merges, 0u);
+  EXPECT_EQ(m.conformityViolations(), 0u);
 }
 
 // True when a drawn triangle contains the point (x, y) of the ENU plane.

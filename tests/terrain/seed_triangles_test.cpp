@@ -63,10 +63,7 @@ TEST(SeedTriangles, SameGroundSameTriangleFromAnyCameraAndTheyCoverTheVisibleGro
     const double dLat = (u(rng) - 0.5) * 160.0 / 111000.0, dLon = (u(rng) - 0.5) * 160.0 / 88000.0;
     const EyeView view = z.camera(lat + dLat, lon + dLon, 10.0 + 80.0 * u(rng), 360.0 * u(rng), -15.0 - 30.0 * u(rng),
                                   320.0, 180.0);
-    for (int f = 0; f < 30; ++f) {
-      r->update(view, pieces, 0.0);
-      if (r->figures().splits + r->figures().merges == 0) break;
-    }
+    test::converge(*r, view, pieces, 30);
     std::vector<TerrainMesh> meshes;
     std::vector<SeedTriangle> seeds;
     r->output(view, pieces, 0.0, meshes, seeds);
