@@ -87,7 +87,7 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
     r[c++] = tf.roam.outputMs;
     for (uint64_t v : {tf.roam.leaves, tf.roam.splits, tf.roam.merges, tf.roam.constrainedLeaves,
                        static_cast<uint64_t>(tf.roam.budgetLimited), static_cast<uint64_t>(tf.roam.workLimited),
-                       tf.roam.seedTriangles, tf.roam.seedInterpolated})
+                       tf.roam.seedTriangles, tf.roam.seedInterpolated, tf.roam.depthLimitedLeaves})
       r[c++] = count(v);
     r[c++] = tf.roam.seedPlants;
     r[c++] = tf.roam.achievedErrorPx;
@@ -141,7 +141,7 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   c.push_back({"terrain_roam_output_ms", 6});
   for (const char* n : {"terrain_leaves", "terrain_splits", "terrain_merges", "terrain_constrained_leaves",
                         "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
-                        "terrain_seed_interpolated"})
+                        "terrain_seed_interpolated", "terrain_depth_limited_leaves"})
     c.push_back({n, 0});
   c.push_back({"terrain_seed_plants", 1});
   c.push_back({"terrain_achieved_error_px", 3});

@@ -45,6 +45,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   figures_.seedTriangles = figures_.seedInterpolated = 0;
   figures_.seedPlants = 0.0;
   figures_.achievedErrorPx = 0.0;
+  figures_.depthLimitedLeaves = 0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
     eyeOf(view, r, eye);
@@ -97,6 +98,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     if (cull != Cull::Outside) {
       const double px = n.thickness >= 0.0f ? projectedErrorPx(*w.view, t, eye, n.thickness) : 0.0;
       figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, px);
+      if (px > options_.maxErrorPx && level >= mesh_.grid().maxLevel()) ++figures_.depthLimitedLeaves;
     }
     if (ps == InPiece::Above) ++figures_.constrainedLeaves;
     emitLeaf(w, t, ps == InPiece::In ? piece : w.untextured);

@@ -92,6 +92,7 @@ struct RoamFigures {
   bool budgetLimited = false;     // the triangle budget stopped refinement
   bool workLimited = false;       // the per-frame work budget stopped the queues
   double achievedErrorPx = 0.0;   // the largest priority of a visible leaf after the update
+  uint64_t depthLimitedLeaves = 0; // visible leaves over the bound at the deepest level (cannot split)
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
   double seedPlants = 0.0;        // Σ plant counts

@@ -39,7 +39,7 @@ const std::vector<std::string> kStreaming = {
 const std::vector<std::string> kRoam = {
     "terrain_roam_update_ms", "terrain_roam_output_ms", "terrain_leaves", "terrain_splits", "terrain_merges",
     "terrain_constrained_leaves", "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
-    "terrain_seed_interpolated", "terrain_seed_plants", "terrain_achieved_error_px"};
+    "terrain_seed_interpolated", "terrain_depth_limited_leaves", "terrain_seed_plants", "terrain_achieved_error_px"};
 
 struct Csv {
   std::vector<std::string> header;
