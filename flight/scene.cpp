@@ -164,7 +164,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   const std::span<const terrain::TerrainPiece> pieces = m.terrain->pieces(timeS);
   m.draws.clear();
   for (const terrain::TerrainPiece& p : pieces)
-    m.draws.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend, p.morph});
+    m.draws.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend});
   fig.terrainMs = terrainMs + stage.elapsedMs();
 
   fig.streaming = m.streamer->frameStats();

@@ -56,7 +56,6 @@ struct TerrainDraw {
   int32_t previousLayer = -1;           // the layer it fades from (−1: none)
   glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
   float imageryBlend = 1.0f;            // 0: only previousLayer … 1: only imageryLayer
-  float morph = 0.0f;                   // 0: the mesh's heights … 1: heights + morphDelta (coarse)
 };
 
 // Copies a tile into an imagery layer before the frame draws. `rgba` (256 × 256 × 4 bytes)

@@ -23,7 +23,7 @@ struct TerrainPush {  // shaders/common/terrain_push.glsl
   glm::vec4 layers;
 };
 static_assert(sizeof(TerrainPush) == 64 && sizeof(TerrainPush) <= 128, "Vulkan guarantees 128 bytes of push constants");
-static_assert(sizeof(terrain::TerrainVertex) == 40, "must match the attributes of shaders/terrain.vert");
+static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes of shaders/terrain.vert");
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
 
@@ -54,7 +54,6 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(terrain::TerrainVertex, normal)},
       {2, 0, VK_FORMAT_R32_SFLOAT, offsetof(terrain::TerrainVertex, heightMsl)},
       {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(terrain::TerrainVertex, uv)},
-      {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(terrain::TerrainVertex, morphDelta)},
   };
   desc.samples = samples;
   desc.colorFormat = kColorFormat;
@@ -143,7 +142,7 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
     assert(valid);
     // The subtraction happens in double; only the small camera-relative offset becomes float.
     const TerrainPush push{
-        glm::vec4(glm::vec3(m.origin - cameraPosition), d.morph), d.imageryUv, d.previousUv,
+        glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
         glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f, valid ? static_cast<float>(d.previousLayer) : -1.0f,
                   d.imageryBlend, 0.0f)};
     vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);

@@ -1,7 +1,8 @@
 #pragma once
 // The terrain surface: each frame, the TerrainDraws of the FrameRequest (meshes of terrain
 // pieces, drawn camera-relative, one draw each) coloured from the imagery texture array (one
-// 256 × 256 tile per layer), with geomorphing and imagery fade-in driven by push constants.
+// 256 × 256 tile per layer), with imagery fade-in driven by push constants (geomorphing is the
+// CPU's: the meshes arrive at their drawn heights).
 //
 // Geometry is copied each frame into the frame slot's host-visible vertex/index buffers: the
 // terrain changes as tiles stream in and (later) as ROAM refines, and copying a few MB is cheaper

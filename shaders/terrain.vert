@@ -5,25 +5,20 @@
 // Terrain vertices are float offsets from their mesh's origin; the push constant carries
 // origin − camera, computed in double on the CPU. Adding the two here keeps centimetre
 // precision kilometres from the origin (positions relative to the camera).
-// Geomorphing: a mesh built from finer heights than the frame before carries, per vertex, the
-// coarse surface's height minus its own (morphDelta, along the local up); the morph factor
-// slides it from the coarse surface to the fine one over about half a second, so arriving
-// tiles do not pop.
+// Geomorphing happens on the CPU (terrain/roam_mesh.h): the vertices arrive at their drawn heights.
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in float inHeightMsl;
 layout(location = 3) in vec2 inUv;
-layout(location = 4) in float inMorphDelta;
 layout(location = 0) out vec3 outOffset;   // camera-relative position
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out float outHeightMsl;
 layout(location = 3) out vec2 outUv;
 void main() {
-  float morph = push.originFromCamera.w;
-  vec3 offset = inPosition + push.originFromCamera.xyz + vec3(0.0, 0.0, inMorphDelta * morph);
+  vec3 offset = inPosition + push.originFromCamera.xyz;
   outOffset = offset;
   outNormal = inNormal;
-  outHeightMsl = inHeightMsl + inMorphDelta * morph;
+  outHeightMsl = inHeightMsl;
   outUv = inUv;
   gl_Position = frame.viewProj * vec4(offset, 1.0);
 }

@@ -87,8 +87,9 @@ void RoamMesh::freePair(uint32_t first) {
   freePairs_.push_back(first);
 }
 
-void RoamMesh::sampleVertex(RoamVertex& v, bool morph) {
-  const HeightSample s = heights_->sample(v.grid);
+void RoamMesh::sampleVertex(RoamVertex& v, bool morph) { applySample(v, heights_->sample(v.grid), morph); }
+
+void RoamMesh::applySample(RoamVertex& v, const HeightSample& s, bool morph) {
   if (morph) {
     v.fromHeightM = v.drawnHeight(timeS_, options_.fadeS);
     v.morphStartS = timeS_;
@@ -293,7 +294,7 @@ void RoamMesh::resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2],
   RoamVertex& m = vertices_[n.mid];
   if (m.grid.x >= lo[0] && m.grid.x <= hi[0] && m.grid.y >= lo[1] && m.grid.y <= hi[1]) {
     const HeightSample s = heights_->sample(m.grid);
-    if (s.sourceZoom != m.sourceZoom || !(s.heightM == m.heightM)) sampleVertex(m, true);
+    if (s.sourceZoom != m.sourceZoom || !(s.heightM == m.heightM)) applySample(m, s, true);
   }
   const uint32_t ch = n.child;
   resampleNode(ch, tile, lo, hi);

@@ -129,6 +129,7 @@ class RoamMesh {
   void freePair(uint32_t first);
   uint32_t newVertex(GridPoint p, double fromHeight);
   void sampleVertex(RoamVertex& v, bool morph);
+  void applySample(RoamVertex& v, const HeightSample& s, bool morph);
   void splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created);
   void mergeOne(uint32_t t);
   void replaceLink(uint32_t at, uint32_t from, uint32_t to);

@@ -61,7 +61,6 @@ struct TerrainPiece {
   int32_t previousLayer = -1;
   glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
   float imageryBlend = 1.0f;
-  float morph = 0.0f;                // always 0: ROAM morphs its vertices on the CPU
 };
 
 struct TerrainFrameFigures {

@@ -16,7 +16,6 @@ struct TerrainVertex {
   glm::vec3 normal;    // unit, local ENU
   float heightMsl;     // metres above mean sea level, for colouring
   glm::vec2 uv;        // imagery texture coordinates
-  float morphDelta = 0.0f;  // coarse surface height − heightMsl (m, along the local up): geomorphing
 };
 
 struct TerrainMesh {
