@@ -6,19 +6,11 @@
 #include <array>
 #include <cmath>
 
+#include "core/hash.h"
 #include "datasets/synthetic_generator.h"
 
 namespace vegstream::datasets {
 namespace {
-
-uint32_t mix32(uint32_t h) {
-  h ^= h >> 16;
-  h *= 0x7feb352dU;
-  h ^= h >> 15;
-  h *= 0x846ca68bU;
-  h ^= h >> 16;
-  return h;
-}
 
 uint32_t hashCell(int64_t ix, int64_t iy, uint32_t seed) {
   uint32_t h = mix32(static_cast<uint32_t>(ix) ^ seed);

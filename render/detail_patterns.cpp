@@ -5,6 +5,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "core/hash.h"
+
 namespace vegstream::render {
 namespace {
 
@@ -12,13 +14,7 @@ using vegetation::DetailSurface;
 constexpr float kTau = 6.28318530718f;
 
 uint32_t hash(uint32_t x, uint32_t y, uint32_t seed) {
-  uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ (seed + 1u) * 0xcb1ab31fu;
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return h;
+  return mix32(x * 0x8da6b343u ^ y * 0xd8163841u ^ (seed + 1u) * 0xcb1ab31fu);
 }
 
 float rand01(uint32_t x, uint32_t y, uint32_t seed) { return static_cast<float>(hash(x, y, seed) >> 8) / 16777216.0f; }

@@ -57,6 +57,9 @@ void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubre
                           VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 // One pipeline barrier for one whole single-layer image (synchronization2).
+// Makes writes of `srcStage` / `srcAccess` visible to the host once the submission's fence
+// signals (read-backs of images or storage buffers).
+void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess);
 void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                      VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
