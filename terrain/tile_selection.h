@@ -1,8 +1,10 @@
 #pragma once
-// Which tiles the terrain draws this frame, and at which level: chunked level of detail over the
-// XYZ Web Mercator pyramid of one dataset (Ulrich 2002). Every node of the quadtree is one XYZ
-// tile, drawn as a (kNodeQuads + 1)² grid (tile_node_mesh.h); a node is refined into its four
-// children while its geometric error, projected to the screen, exceeds the bound.
+// Which tiles the terrain streams and draws as pieces this frame, and at which level: chunked
+// level of detail over the XYZ Web Mercator pyramid of one dataset (Ulrich 2002). Every node of
+// the quadtree is one XYZ tile, whose error is modelled as a (kNodeQuads + 1)² grid over it; a
+// node is refined into its four children while that error, projected to the screen, exceeds the
+// bound. The streamed terrain wants the selected nodes' tiles and draws ROAM's triangles over
+// them (streamed_terrain.h): the selection decides which data is fine enough, not the triangles.
 //
 // Contract:
 //   - The drawn leaves never overlap (no leaf is an ancestor of another) and together cover the
@@ -34,11 +36,11 @@
 
 namespace vegstream::terrain {
 
-// Quads along one side of a node's mesh. A 256-pixel tile is sampled every 8 pixels.
+// Quads along one side of a node's error model: a 256-pixel tile sampled every 8 pixels.
 inline constexpr int kNodeQuads = 32;
-// So a node at a dataset's max zoom draws only every 8th pixel of its tile. For one quad per
-// data pixel, pass SelectionDataset::maxZoom = the dataset's max zoom + kLevelsBeyondData
-// (= log2(256 / kNodeQuads)); the deeper nodes are drawn from their max-zoom ancestor tile.
+// Selections that should reach one quad per data pixel pass SelectionDataset::maxZoom = the
+// dataset's max zoom + kLevelsBeyondData (= log2(256 / kNodeQuads)); the streamed terrain stops
+// at the data's max zoom (ROAM refines below a tile by itself).
 inline constexpr int kLevelsBeyondData = 3;
 static_assert(kNodeQuads << kLevelsBeyondData == geo::kDefaultTileSize);
 
