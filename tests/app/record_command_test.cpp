@@ -291,7 +291,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRecord{"missing_dataset", "/no/such/dataset {SMALL} --path {PATH}", "/no/such/dataset"},
                       BadRecord{"not_a_dataset", "'{TMP}' {SMALL} --path {PATH}", "dataset.json"},
                       BadRecord{"bad_size", "{DS} --path {PATH} --msaa 1 --size big", "--size"},
-                      BadRecord{"bad_msaa", "{DS} --path {PATH} --size 160x90 --msaa 3", "--msaa"}),
+                      BadRecord{"bad_msaa", "{DS} --path {PATH} --size 160x90 --msaa 3", "--msaa"},
+                      BadRecord{"bad_max_triangles", "{DS} {SMALL} --path {PATH} --terrain-max-triangles 1", "--terrain-max-triangles"},
+                      BadRecord{"bad_canopy", "{DS} {SMALL} --path {PATH} --canopy-m -3", "--canopy-m"},
+                      BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(RecordCommand, NonEmptyOutIsRefusedAndLeftAlone) {
