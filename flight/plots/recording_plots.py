@@ -16,6 +16,8 @@ VEGETATION_PASSES = ("classify", "grass", "gravel", "trees", "plants", "vegetati
 # Geometric-load columns, in legend order; those absent or empty are skipped.
 GEOMETRY_COLUMNS = (
     ("terrain_triangles", "terrain triangles submitted"),
+    ("terrain_leaves", "ROAM mesh triangles (leaves, culled ones too)"),
+    ("terrain_seed_triangles", "seed triangles (where plants grow)"),
     ("stat_input_primitives", "input primitives (pipeline statistics)"),
     ("stat_clipping_primitives", "primitives after clipping (pipeline statistics)"),
     ("clusters_submitted", "clusters submitted"),
