@@ -14,6 +14,21 @@ ShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> sp
   return ShaderModule(ctx.device(), module);
 }
 
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, std::span<const uint32_t> spirv,
+                               const std::string& name) {
+  ShaderModule module = createShaderModule(ctx, spirv, name + " shader");
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module.get();
+  ci.stage.pName = "main";
+  ci.layout = layout;
+  VkPipeline raw = VK_NULL_HANDLE;
+  vkCheck(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &raw), "vkCreateComputePipelines");
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, raw, name);
+  return Pipeline(ctx.device(), raw);
+}
+
 PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
                                     std::span<const VkPushConstantRange> pushConstants, const std::string& name) {
   VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};

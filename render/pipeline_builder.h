@@ -38,6 +38,10 @@ struct GraphicsPipelineDesc {
 
 Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc);
 
+// A compute pipeline of one shader (entry point "main"), named `name`.
+Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, std::span<const uint32_t> spirv,
+                               const std::string& name);
+
 PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
                                     std::span<const VkPushConstantRange> pushConstants, const std::string& name);
 

@@ -96,17 +96,7 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
   const VkDescriptorSetLayout layouts[] = {setLayout.get()};
   PipelineLayout layout = createPipelineLayout(ctx, layouts, {&push, 1}, "check pipeline layout");
-  ShaderModule module = createShaderModule(ctx, spv_colour_score_check_comp, "colour score check");
-  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  ci.stage.module = module.get();
-  ci.stage.pName = "main";
-  ci.layout = layout.get();
-  VkPipeline raw = VK_NULL_HANDLE;
-  vkCheck(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &raw), "vkCreateComputePipelines");
-  Pipeline pipeline(ctx.device(), raw);
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, raw, "colour score check pipeline");
+  Pipeline pipeline = createComputePipeline(ctx, layout.get(), spv_colour_score_check_comp, "colour score check pipeline");
 
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
