@@ -1,0 +1,258 @@
+// The species catalog's JSON (species_catalog.h has the format), core seed
+// ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3 (eq. 16 parameters, thresholds, bare soil).
+// Parsing records the first problem with its field path and stops there, so a user sees one
+// message naming the file and the field, never an exception.
+#include "vegetation/species_catalog.h"
+
+#include <cassert>
+#include <cmath>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "core/text_file.h"
+
+namespace vegstream::vegetation {
+namespace {
+using nlohmann::json;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+class Parser {
+ public:
+  explicit Parser(std::string source) : source_(std::move(source)) {}
+
+  bool fail(const std::string& path, const std::string& problem) {
+    if (!error_) error_ = makeError(ErrorKind::InvalidInput, source_ + ": " + path + ": " + problem);
+    return false;
+  }
+  const Error& error() const { return *error_; }
+  // fail() as a value to return.
+  Error failed(const std::string& path, const std::string& problem) {
+    fail(path, problem);
+    return *error_;
+  }
+
+  bool onlyKeys(const json& obj, const std::string& path, std::initializer_list<std::string_view> allowed) {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      bool known = false;
+      for (std::string_view a : allowed) known = known || it.key() == a;
+      if (!known) {
+        std::string list;
+        for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        return fail(join(path, it.key()), "unknown key (allowed here: " + list + ")");
+      }
+    }
+    return true;
+  }
+
+  bool object(const json& v, const std::string& path) {
+    return v.is_object() || fail(path, "must be an object");
+  }
+
+  // A number in [lo, hi] (closed; open bounds are checked by the caller's message).
+  bool number(const json& obj, std::string_view key, const std::string& path, float& out, bool required = true) {
+    const auto it = obj.find(key);
+    if (it == obj.end()) return !required || fail(join(path, key), "is missing");
+    if (!it->is_number()) return fail(join(path, key), "must be a number");
+    const double d = it->get<double>();
+    if (!std::isfinite(d) || std::abs(d) > 1e30) return fail(join(path, key), "must be a finite number");
+    out = static_cast<float>(d);
+    return true;
+  }
+
+  bool range(const json& obj, std::string_view key, const std::string& path, FloatRange& out, double lo,
+             bool loOpen, double hi, const char* what) {
+    const std::string p = join(path, key);
+    const auto it = obj.find(key);
+    if (it == obj.end()) return fail(p, "is missing");
+    if (!object(*it, p) || !onlyKeys(*it, p, {"min", "max"})) return false;
+    if (!number(*it, "min", p, out.min) || !number(*it, "max", p, out.max)) return false;
+    for (const auto& [name, v] : {std::pair{"min", out.min}, std::pair{"max", out.max}}) {
+      const bool low = loOpen ? !(v > lo) : !(v >= lo);
+      if (low || v > hi)
+        return fail(p + "." + name, std::string("must be ") + what + " (got " + fmt(v) + ")");
+    }
+    if (out.min > out.max) return fail(p + ".max", "must be ≥ min (got " + fmt(out.max) + " < " + fmt(out.min) + ")");
+    return true;
+  }
+
+  static std::string join(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+  }
+
+ private:
+  std::string source_;
+  std::optional<Error> error_;
+};
+
+int hexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::vec3& hsv) {
+  const std::string p = Parser::join(path, "reference");
+  const auto it = obj.find("reference");
+  if (it == obj.end()) return ps.fail(p, "is missing");
+  if (!ps.object(*it, p)) return false;
+  const json& r = *it;
+  if (r.contains("srgb")) {
+    if (!ps.onlyKeys(r, p, {"srgb"})) return ps.fail(p, "give either srgb or h_deg, s, v");
+    const json& s = r["srgb"];
+    const std::string text = s.is_string() ? s.get<std::string>() : "";
+    int v[6] = {};
+    bool good = text.size() == 7 && text[0] == '#';
+    for (size_t i = 0; good && i < 6; ++i) good = (v[i] = hexDigit(text[i + 1])) >= 0;
+    if (!good) return ps.fail(p + ".srgb", "must be a colour \"#rrggbb\"");
+    hsv = hsvFromSrgb8(static_cast<uint8_t>(v[0] * 16 + v[1]), static_cast<uint8_t>(v[2] * 16 + v[3]),
+                       static_cast<uint8_t>(v[4] * 16 + v[5]));
+    return true;
+  }
+  if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb"})) return false;
+  float h = 0.0f;
+  if (!ps.number(r, "h_deg", p, h) || !ps.number(r, "s", p, hsv.y) || !ps.number(r, "v", p, hsv.z)) return false;
+  if (h < 0.0f || h > 360.0f) return ps.fail(p + ".h_deg", "must be in 0 … 360 (got " + fmt(h) + ")");
+  if (hsv.y < 0.0f || hsv.y > 1.0f) return ps.fail(p + ".s", "must be in 0 … 1 (got " + fmt(hsv.y) + ")");
+  if (hsv.z < 0.0f || hsv.z > 1.0f) return ps.fail(p + ".v", "must be in 0 … 1 (got " + fmt(hsv.z) + ")");
+  hsv.x = h / 360.0f;
+  if (hsv.x >= 1.0f) hsv.x -= 1.0f;  // 360° is 0°: hues live in [0, 1) like hsvFromSrgb's
+  return true;
+}
+
+bool parseKind(Parser& ps, const json& obj, const std::string& path, RendererKind& kind) {
+  const std::string p = Parser::join(path, "kind");
+  const auto it = obj.find("kind");
+  if (it == obj.end()) return ps.fail(p, "is missing (grass, gravel, flowers or tree; or \"bare\": true)");
+  const std::string k = it->is_string() ? it->get<std::string>() : "";
+  for (RendererKind c : {RendererKind::Grass, RendererKind::Gravel, RendererKind::Flowers, RendererKind::Tree})
+    if (k == rendererKindName(c)) {
+      kind = c;
+      return true;
+    }
+  return ps.fail(p, "must be \"grass\", \"gravel\", \"flowers\" or \"tree\" (got " + it->dump() + ")");
+}
+
+bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species& out) {
+  if (!ps.object(obj, path)) return false;
+  if (!ps.onlyKeys(obj, path,
+                   {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
+                    "width_m", "colour_modulation"}))
+    return false;
+  const auto name = obj.find("name");
+  if (name == obj.end()) return ps.fail(path + ".name", "is missing");
+  if (!name->is_string() || name->get<std::string>().empty()) return ps.fail(path + ".name", "must be a non-empty string");
+  out.name = name->get<std::string>();
+  if (const auto about = obj.find("about"); about != obj.end() && !about->is_string())
+    return ps.fail(path + ".about", "must be a string");
+  if (const auto bare = obj.find("bare"); bare != obj.end()) {
+    if (!bare->is_boolean()) return ps.fail(path + ".bare", "must be true or false");
+    out.bare = bare->get<bool>();
+  }
+
+  if (!parseReference(ps, obj, path, out.score.reference)) return false;
+  const std::string wp = path + ".weights";
+  const auto w = obj.find("weights");
+  if (w == obj.end()) return ps.fail(wp, "is missing");
+  if (!ps.object(*w, wp) || !ps.onlyKeys(*w, wp, {"h", "s", "v"})) return false;
+  glm::vec3& wt = out.score.weights;
+  if (!ps.number(*w, "h", wp, wt.x) || !ps.number(*w, "s", wp, wt.y) || !ps.number(*w, "v", wp, wt.z)) return false;
+  for (const auto& [k, v] : {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z}})
+    if (v < 0.0f) return ps.fail(wp + "." + k, "must be ≥ 0 (got " + fmt(v) + ")");
+  if (wt.x == 0.0f && wt.y == 0.0f && wt.z == 0.0f) return ps.fail(wp, "must not all be 0 (the score would ignore the colour)");
+  if (!ps.number(obj, "p", path, out.score.p)) return false;
+  if (!(out.score.p > 0.0f) || out.score.p > 64.0f) return ps.fail(path + ".p", "must be > 0 and ≤ 64 (got " + fmt(out.score.p) + ")");
+  if (!ps.number(obj, "threshold", path, out.threshold, false)) return false;
+  if (out.threshold < 0.0f) return ps.fail(path + ".threshold", "must be ≥ 0 (got " + fmt(out.threshold) + ")");
+
+  // Bare soil grows nothing: the plant fields are optional there (checked when given).
+  const bool need = !out.bare;
+  if (need || obj.contains("kind"))
+    if (!parseKind(ps, obj, path, out.kind)) return false;
+  const struct {
+    const char* key;
+    FloatRange* range;
+    double lo;
+    bool loOpen;
+    double hi;
+    const char* what;
+  } ranges[] = {{"height_m", &out.heightM, 0.0, true, 200.0, "> 0 and ≤ 200"},
+                {"stiffness", &out.stiffness, 0.0, true, 1e6, "> 0"},
+                {"width_m", &out.widthM, 0.0, true, 50.0, "> 0 and ≤ 50"},
+                {"colour_modulation", &out.colourModulation, 0.0, false, 4.0, "in 0 … 4"}};
+  for (const auto& r : ranges)
+    if (need || obj.contains(r.key))
+      if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
+  return true;
+}
+
+}  // namespace
+
+const char* rendererKindName(RendererKind kind) {
+  switch (kind) {
+    case RendererKind::Grass: return "grass";
+    case RendererKind::Gravel: return "gravel";
+    case RendererKind::Flowers: return "flowers";
+    case RendererKind::Tree: return "tree";
+  }
+  return "?";
+}
+
+Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::string& sourceName) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {  // caught here: the caller gets a value, as everywhere
+    return makeError(ErrorKind::InvalidInput, sourceName + ": not valid JSON (" + e.what() + ")");
+  }
+  Parser ps(sourceName);
+  SpeciesCatalog out;
+  if (!doc.is_object()) return makeError(ErrorKind::InvalidInput, sourceName + ": must be a JSON object with \"species\": [...]");
+  if (!ps.onlyKeys(doc, "", {"about", "species"})) return ps.error();
+  if (const auto about = doc.find("about"); about != doc.end() && !about->is_string() && !about->is_object())
+    return ps.failed("about", "must be a string or an object of strings (field → what it means)");
+  const auto list = doc.find("species");
+  if (list == doc.end()) return ps.failed("species", "is missing");
+  if (!list->is_array() || list->empty() || list->size() > kMaxSpecies)
+    return ps.failed("species", "must be an array of 1 … " + std::to_string(kMaxSpecies) + " species (got " +
+                                   (list->is_array() ? std::to_string(list->size()) : list->type_name()) + ")");
+  std::set<std::string> names;
+  bool anyPlant = false;
+  for (size_t i = 0; i < list->size(); ++i) {
+    const std::string path = "species[" + std::to_string(i) + "]";
+    Species s;
+    if (!parseSpecies(ps, (*list)[i], path, s)) return ps.error();
+    if (!names.insert(s.name).second) return ps.failed(path + ".name", "duplicate name \"" + s.name + "\"");
+    anyPlant = anyPlant || !s.bare;
+    out.species.push_back(std::move(s));
+  }
+  if (!anyPlant) return ps.failed("species", "every entry is bare soil: at least one must grow plants");
+  return out;
+}
+
+Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file) {
+  auto text = readTextFile(file, "no such species catalog");
+  if (!text) return text.error();
+  return parseSpeciesCatalog(*text, file.string());
+}
+
+const SpeciesCatalog& defaultSpeciesCatalog() {
+  static const SpeciesCatalog catalog = [] {
+    auto parsed = parseSpeciesCatalog(defaultSpeciesCatalogJson(), "config/species.json (embedded)");
+    assert(parsed.ok() && "the shipped config/species.json must parse (tests/vegetation/species_catalog_test.cpp)");
+    return parsed.ok() ? std::move(parsed).value() : SpeciesCatalog{};
+  }();
+  return catalog;
+}
+
+}  // namespace vegstream::vegetation

@@ -1,0 +1,81 @@
+#pragma once
+// The species catalog: which plants exist and which imagery colours each one grows on.
+// Core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3: every species has a reference
+// colour r, channel weights w and an exponent p for the colour score of eq. 16, an optional
+// threshold (a score below it counts as 0, so a species can stay out of colours that merely
+// happen to be closer to it than to anything else), and "bare soil" entries that take part in
+// the choice but grow nothing (a seed that picks one is rejected).
+//
+// The catalog is a human-edited JSON file (config/species.json is the default, embedded into
+// the program at build time; `--species FILE` replaces it). Its format:
+//
+//   { "about": "…free text…",
+//     "species": [                                         1 … kMaxSpecies entries, ≥ 1 not bare
+//       { "name": "grass",                                 unique, non-empty
+//         "about": "…free text…",                          optional
+//         "reference": { "h_deg": 86, "s": 0.3, "v": 0.33 }   HSV: hue 0 … 360°, s, v in 0 … 1
+//                   or { "srgb": "#4a5042" },              8-bit sRGB of an imagery pixel
+//         "weights": { "h": 2, "s": 0.8, "v": 0.6 },       ≥ 0, not all 0
+//         "p": 3,                                          > 0, ≤ 64
+//         "threshold": 0,                                  optional, ≥ 0 (0: none)
+//         "bare": false,                                   optional
+//         "kind": "grass" | "gravel" | "flowers" | "tree", required unless bare
+//         "height_m": { "min": 0.15, "max": 0.5 },         > 0, min ≤ max   } required
+//         "stiffness": { "min": 0.4, "max": 0.9 },         k′ > 0           } unless bare
+//         "width_m": { "min": 0.004, "max": 0.01 },        > 0              } (checked
+//         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
+//       }, … ] }
+//
+// Every key not listed is an error (a typo must not pass silently), and every error names the
+// source and the field path: "species.json: species[2].height_m.max: must be ≥ min (got 0.1 < 0.3)".
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.h"
+#include "vegetation/colour_score.h"
+
+namespace vegstream::vegetation {
+
+// How a species is drawn (one tessellation pipeline each, DESIGN.md §3.5). JSON: "grass",
+// "gravel", "flowers", "tree". The values are what the GPU sees.
+enum class RendererKind : uint32_t { Grass = 0, Gravel = 1, Flowers = 2, Tree = 3 };
+
+const char* rendererKindName(RendererKind kind);
+
+// A closed range [min, max] a per-plant value is drawn from.
+struct FloatRange {
+  float min = 0.0f, max = 0.0f;
+};
+
+struct Species {
+  std::string name;
+  ColourScoreParams score;        // reference HSV (hue in [0, 1)), weights, p (eq. 16)
+  float threshold = 0.0f;         // score s below this → s = 0 for this species (0: no threshold)
+  bool bare = false;              // bare soil: seeds that pick it are rejected
+  RendererKind kind = RendererKind::Grass;  // ignored when bare
+  FloatRange heightM, stiffness, widthM, colourModulation;  // per-plant ranges (k′ = stiffness); zero when bare and not given
+};
+
+inline constexpr size_t kMaxSpecies = 16;
+
+struct SpeciesCatalog {
+  std::vector<Species> species;  // 1 … kMaxSpecies, at least one not bare
+};
+
+// `sourceName` names the text in errors (a file name, "embedded default").
+Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view json, const std::string& sourceName);
+// NotFound when the file is missing; InvalidInput for bad JSON or fields (named).
+Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file);
+
+// config/species.json as embedded at build time, parsed once (a bad shipped file is a build
+// defect: the tests parse it, and this asserts).
+const SpeciesCatalog& defaultSpeciesCatalog();
+// The embedded text itself (generated from config/species.json by CMake).
+std::string_view defaultSpeciesCatalogJson();
+
+}  // namespace vegstream::vegetation

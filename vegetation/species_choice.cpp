@@ -1,0 +1,53 @@
+// Species choice, core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3 eq. 16–18. Plain
+// float maths in the order species_choice.h documents, so the GLSL twin gives the same choice.
+#include "vegetation/species_choice.h"
+
+#include <cmath>
+
+namespace vegstream::vegetation {
+
+bool passesThreshold(const Species& s, float logScore) {
+  // s ≥ t ⇔ ln s ≥ ln t: compared as logs because s itself overflows float for large p.
+  return !(s.threshold > 0.0f) || !(logScore < std::log(s.threshold));
+}
+
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv) {
+  SpeciesCandidates c;
+  for (size_t i = 0; i < catalog.species.size(); ++i) {
+    const Species& s = catalog.species[i];
+    const float l = logColourScore(s.score, hsv);
+    if (!passesThreshold(s, l)) continue;
+    const int idx = static_cast<int>(i);
+    // Strictly greater: of equal scores the lower index stays ahead.
+    if (c.first < 0 || l > c.logFirst) {
+      c.second = c.first;
+      c.logSecond = c.logFirst;
+      c.first = idx;
+      c.logFirst = l;
+    } else if (c.second < 0 || l > c.logSecond) {
+      c.second = idx;
+      c.logSecond = l;
+    }
+  }
+  // s1 / (s0 + s1) = 1 / (1 + s0 / s1) = 1 / (1 + exp(l0 − l1)); exp(large) = inf gives 0.
+  if (c.second >= 0) c.secondRatio = 1.0f / (1.0f + std::exp(c.logFirst - c.logSecond));
+  return c;
+}
+
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv);
+  SpeciesChoice out;
+  if (c.first < 0) return out;  // nothing scores: rejected
+  out.secondRatio = c.secondRatio;
+  const bool second = z < c.secondRatio;  // eq. 18; never true when only one is in (ratio 0)
+  const int picked = second ? c.second : c.first;
+  out.sPrime = second ? c.secondRatio : 1.0f - c.secondRatio;
+  if (catalog.species[static_cast<size_t>(picked)].bare) {
+    out.species = -1;  // bare soil: the seed grows nothing
+    return out;
+  }
+  out.species = picked;
+  return out;
+}
+
+}  // namespace vegstream::vegetation

@@ -1,0 +1,45 @@
+#pragma once
+// Species choice from the imagery colour under a plant, core seed
+// ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3 eq. 16–18: every species scores the base
+// colour (eq. 16), the two best compete, and a uniform random z picks one of them with
+// probability proportional to its score (eq. 17–18); the winner's s′ (its share of the two)
+// later scales the plant, so plants thin out towards the border of their colour region.
+//
+// The GLSL twin (render/classify, written against this) must follow chooseSpecies operation for
+// operation; its float operations, in order, per species i (index order 0, 1, …):
+//   l_i = logColourScore(score_i, hsv)                 (colour_score.h: −p · log(max(dist, 1e-4)))
+//   out when threshold_i > 0 and l_i < log(threshold_i)   (log(threshold) is the only other log)
+//   best two by strictly greater l: a tie keeps the lower index first (l0 ≥ l1)
+// then, with d = l0 − l1 ≥ 0 (one species in: ratio = 0):
+//   ratio = 1 / (1 + exp(d))                          = s1 / (s0 + s1), never overflows to NaN
+//   z < ratio → the second, s′ = ratio;  else the first, s′ = 1 − ratio     (eq. 18)
+// and a bare-soil winner → species −1 (the seed is rejected), as is "no species in".
+
+#include <glm/vec3.hpp>
+
+#include "vegetation/species_catalog.h"
+
+namespace vegstream::vegetation {
+
+struct SpeciesChoice {
+  int species = -1;          // index into the catalog; −1: rejected (bare soil or nothing scores)
+  float sPrime = 0.0f;       // the chosen one's share s / (s0 + s1) of the two best (eq. 18)
+  float secondRatio = 0.0f;  // s1 / (s0 + s1): the probability of the second best (0: one in)
+};
+
+// The two best species at one base colour, before z decides (for `query` and the tests).
+struct SpeciesCandidates {
+  int first = -1, second = -1;  // catalog indices (bare included); −1: none in
+  float logFirst = 0.0f, logSecond = 0.0f;  // their log scores l0 ≥ l1
+  float secondRatio = 0.0f;                 // s1 / (s0 + s1), 0 when fewer than two are in
+};
+
+// Whether species `s` takes part at log score `logScore` (its threshold, eq. 16 score s ≥ t).
+bool passesThreshold(const Species& s, float logScore);
+
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv);
+
+// z uniform in [0, 1) (u01 of a Philox word). Eq. 16–18 as described above.
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z);
+
+}  // namespace vegstream::vegetation
