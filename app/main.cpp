@@ -79,10 +79,11 @@ int main(int argc, char** argv) {
   infoCmd->add_option("dataset", info.dataset, "Dataset directory")->required();
 
   app::QueryOptions query;
-  auto* queryCmd = cli.add_subcommand("query", "Height and base colour of a dataset at one point, as JSON");
+  auto* queryCmd = cli.add_subcommand("query", "Height, base colour and species of a dataset at one point, as JSON");
   queryCmd->add_option("dataset", query.dataset, "Dataset directory")->required();
   queryCmd->add_option("--lat", query.latDeg, "Latitude, degrees (WGS 84)")->required();
   queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required();
+  queryCmd->add_option("--species", query.speciesFile, "Species catalog JSON (default: the embedded config/species.json)");
 
   datasets::SyntheticOptions gen;
   std::string genOut, genEncoding = "terrarium";

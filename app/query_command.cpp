@@ -3,6 +3,8 @@
 #include "app/query_command.h"
 
 #include <cmath>
+#include <array>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 
@@ -10,10 +12,47 @@
 
 #include "app/exit_codes.h"
 #include "datasets/dataset_reader.h"
+#include "vegetation/colour_score.h"
+#include "vegetation/species_choice.h"
 
 namespace vegstream::app {
 
+namespace {
+
+// The species the colour score picks at a base colour (core seed §3.3 eq. 16–18): the best one
+// and the probabilities of the two best, deterministic (no z).
+nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c) {
+  const vegetation::SpeciesCandidates k = speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]));
+  nlohmann::json out;
+  if (k.first < 0) {  // every species under its threshold
+    out["species"] = nullptr;
+    out["species_bare"] = true;
+    out["species_candidates"] = nlohmann::json::array();
+    return out;
+  }
+  const auto& best = catalog.species[static_cast<size_t>(k.first)];
+  out["species"] = best.name;
+  out["species_bare"] = best.bare;
+  out["species_candidates"] = nlohmann::json::array();
+  out["species_candidates"].push_back({{"name", best.name}, {"bare", best.bare}, {"probability", 1.0f - k.secondRatio}});
+  if (k.second >= 0) {
+    const auto& second = catalog.species[static_cast<size_t>(k.second)];
+    out["species_candidates"].push_back({{"name", second.name}, {"bare", second.bare}, {"probability", k.secondRatio}});
+  }
+  return out;
+}
+
+}  // namespace
+
 int runQuery(const QueryOptions& options, const Logger& log) {
+  // The catalog first: a bad --species file is reported before any dataset I/O.
+  const vegetation::SpeciesCatalog* catalog = &vegetation::defaultSpeciesCatalog();
+  Result<vegetation::SpeciesCatalog> custom = vegetation::SpeciesCatalog{};
+  if (!options.speciesFile.empty()) {
+    custom = vegetation::loadSpeciesCatalog(options.speciesFile);
+    if (!custom) return reportError(log, custom.error());
+    catalog = &*custom;
+  }
   auto reader = datasets::DatasetReader::open(options.dataset);
   if (!reader) return reportError(log, reader.error());
   auto height = reader->heightAt(options.latDeg, options.lonDeg);
@@ -39,8 +78,10 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     char hex[8];
     std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", c[0], c[1], c[2]);
     out["color"] = {{"r", c[0]}, {"g", c[1]}, {"b", c[2]}, {"hex", hex}};
+    out.update(speciesJson(*catalog, c));
   } else {
-    out["color"] = nullptr;
+    out["color"] = nullptr;  // no imagery: no colour to choose a species from
+    out["species"] = nullptr;
   }
   std::cout << out.dump(2) << "\n";
   return kExitOk;

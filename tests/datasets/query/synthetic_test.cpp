@@ -64,6 +64,40 @@ TEST(Generate, PlausibleTerrainThatInfoAndQueryRead) {
   EXPECT_GE(qj["height_m"].get<double>(), lo - 0.01);
   EXPECT_LE(qj["height_m"].get<double>(), hi + 0.01);
   ASSERT_TRUE(qj["color"].is_object());
+  // The species the default catalog picks there: a name, and the two best with probabilities
+  // that sum to 1 (vegetation/species_choice.h).
+  ASSERT_TRUE(qj["species"].is_string()) << query.out;
+  ASSERT_TRUE(qj["species_bare"].is_boolean());
+  const json& cands = qj["species_candidates"];
+  ASSERT_EQ(cands.size(), 2u) << query.out;
+  EXPECT_EQ(cands[0]["name"], qj["species"]);
+  EXPECT_GE(cands[0]["probability"].get<double>(), cands[1]["probability"].get<double>());
+  EXPECT_NEAR(cands[0]["probability"].get<double>() + cands[1]["probability"].get<double>(), 1.0, 1e-6);
+
+  // --species: another catalog (one species: it always wins) …
+  const fs::path one = dir / "one_species.json";
+  std::ofstream(one) << R"({"species": [{"name": "moss", "reference": {"srgb": "#406030"},
+    "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02},
+    "stiffness": {"min": 1, "max": 2}, "width_m": {"min": 0.001, "max": 0.002},
+    "colour_modulation": {"min": 1, "max": 1}}]})";
+  const auto custom = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + one.string() + "'");
+  ASSERT_EQ(custom.exitCode, 0) << custom.err;
+  const json cj = json::parse(custom.out);
+  EXPECT_EQ(cj["species"], "moss");
+  ASSERT_EQ(cj["species_candidates"].size(), 1u);
+  EXPECT_EQ(cj["species_candidates"][0]["probability"], 1.0);
+  // … and a bad one: one message naming the file and the field, exit 2, nothing on stdout.
+  const fs::path bad = dir / "bad_species.json";
+  std::ofstream(bad) << R"({"species": [{"name": "moss", "reference": {"srgb": "#406030"}, "wieghts": {}}]})";
+  for (const fs::path& f : {bad, dir / "missing_species.json"}) {
+    const auto r = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + f.string() + "'");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(f.filename().string()), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  const auto badRun = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + bad.string() + "'");
+  EXPECT_NE(badRun.err.find("species[0].wieghts: unknown key"), std::string::npos) << badRun.err;
   fs::remove_all(dir);
 }
 
