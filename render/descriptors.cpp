@@ -63,16 +63,27 @@ void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sample
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
 }
 
-void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
-                        uint32_t binding) {
+namespace {
+void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
+                 uint32_t binding) {
   const VkDescriptorBufferInfo bi{buffer, 0, range};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
   w.dstBinding = binding;
   w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.descriptorType = type;
   w.pBufferInfo = &bi;
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+}
+}  // namespace
+
+void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
+                        uint32_t binding) {
+  writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, buffer, range, binding);
+}
+
+void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding) {
+  writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer, VK_WHOLE_SIZE, binding);
 }
 
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {

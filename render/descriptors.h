@@ -41,6 +41,9 @@ void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sample
 void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
                         uint32_t binding = 0);
 
+// `binding` := a whole storage buffer.
+void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding);
+
 // Bilinear, clamped, no mip levels: what the terrain imagery and the HUD atlas both want.
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name);
 

@@ -2,6 +2,7 @@
 // What callers hand the renderer each frame and what they get back: plain data only, so
 // folders above render/ never see a Vulkan type.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -10,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "render/classify_layout.h"
 #include "render/gpu_timing.h"
 #include "render/overlay_types.h"
 #include "terrain/terrain_mesh.h"
@@ -66,6 +68,29 @@ struct ImageryUpload {
   const uint8_t* rgba = nullptr;
 };
 
+// What the classify pass did in one frame (render/classify_pass.h): the CPU's bin layout and the
+// GPU's counts per species (read back after the frame's fence).
+inline constexpr size_t kSpeciesSlots = 16;  // = vegetation::kMaxSpecies
+struct VegetationFigures {
+  uint32_t seedTriangles = 0;   // submitted to the classify pass
+  uint32_t bins = 0;            // non-empty bins (one dispatch each)
+  uint64_t clusters = 0;        // Σ clusters per triangle, before species rejection
+  uint64_t clusterSlots = 0;    // threads the bins' dispatches covered (≥ clusters)
+  bool gpuCounts = false;       // the per-species counts below were read back
+  std::array<uint32_t, kSpeciesSlots> groups{};  // groups appended per species (drawn: ≤ capacity)
+  std::array<uint32_t, kSpeciesSlots> plants{};  // plants in those groups
+  uint64_t groupsTotal = 0, plantsTotal = 0;
+  bool overflow = false;        // a species' buffer was full: some groups were not drawn
+};
+
+// Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-
+// relative, and the cluster size C. Must stay alive until submitFrame returns.
+struct VegetationRequest {
+  std::span<const SeedTriangleGpu> triangles;
+  uint32_t clusterSize = 8;
+  bool markers = true;  // draw the classification markers
+};
+
 struct FrameRequest {
   Camera camera;
   Lighting lighting;
@@ -83,6 +108,8 @@ struct FrameRequest {
   // until submitFrame returns.
   std::span<const TerrainDraw> terrain;
   std::span<const ImageryUpload> imageryUploads;
+  // Plants (after the terrain); null: none. The species come from Renderer::setSpeciesCatalog.
+  const VegetationRequest* vegetation = nullptr;
 };
 
 struct ColorImage {
@@ -100,6 +127,7 @@ struct FrameResult {
   double cpuRecordMs = 0.0;
   GpuTimings gpu;
   uint64_t terrainTriangles = 0;  // triangles submitted by the terrain pass
+  std::optional<VegetationFigures> vegetation;  // when the request had plants
   std::optional<ColorImage> color;
   std::optional<DepthImage> depth;
 };

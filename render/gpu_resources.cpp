@@ -62,7 +62,7 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
 namespace {
 GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
                      VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name,
-                     uint32_t mipLevels = 1) {
+                     uint32_t mipLevels = 1, VkFormat alsoViewAs = VK_FORMAT_UNDEFINED) {
   VkDevice device = ctx.device();
   GpuImage out;
   out.format = format;
@@ -82,6 +82,7 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (alsoViewAs != VK_FORMAT_UNDEFINED) ici.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
   VkImage raw;
   vkCheck(vkCreateImage(device, &ici, nullptr, &raw), "vkCreateImage");
   out.image = Image(device, raw);
@@ -102,6 +103,12 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
   out.view = ImageView(device, view);
   ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view");
+  if (alsoViewAs != VK_FORMAT_UNDEFINED) {
+    vci.format = alsoViewAs;
+    vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
+    out.alternateView = ImageView(device, view);
+    ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view as another format");
+  }
   return out;
 }
 }  // namespace
@@ -112,9 +119,9 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 }
 
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
-                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels) {
+                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels, VkFormat alsoViewAs) {
   return createImage(ctx, extent, layers, format, usage, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, name,
-                     mipLevels);
+                     mipLevels, alsoViewAs);
 }
 
 void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
@@ -167,7 +174,8 @@ void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuI
   vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
   transitionImageRange(cmd, image.get(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 

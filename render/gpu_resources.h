@@ -21,6 +21,14 @@ struct GpuBuffer {
 
 enum class MemoryUse { DeviceLocal, HostUpload, HostReadback };
 
+// The size a growing per-frame buffer is given: `minimum`, doubled until it holds `needed`
+// (so a slowly growing scene reallocates rarely).
+inline VkDeviceSize grownSize(VkDeviceSize needed, VkDeviceSize minimum = 64 * 1024) {
+  VkDeviceSize size = minimum;
+  while (size < needed) size *= 2;
+  return size;
+}
+
 GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                        const std::string& name);
 
@@ -32,6 +40,7 @@ struct GpuImage {
   Image image;
   DeviceMemory memory;
   ImageView view;
+  ImageView alternateView;  // the same texels in the format asked for as `alsoViewAs` (else null)
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{};
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
@@ -49,7 +58,8 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 // A single-sampled colour image of `layers` array layers (each with `mipLevels` levels) with a
 // 2D-array view of all of them.
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
-                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels = 1);
+                          VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels = 1,
+                          VkFormat alsoViewAs = VK_FORMAT_UNDEFINED);
 
 // One pipeline barrier for a subresource range of an image (synchronization2).
 void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,

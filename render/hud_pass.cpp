@@ -19,11 +19,6 @@ struct HudPush {
   float translate[2];
 };
 
-VkDeviceSize grownSize(VkDeviceSize needed) {
-  VkDeviceSize size = 64 * 1024;
-  while (size < needed) size *= 2;
-  return size;
-}
 }  // namespace
 
 HudPass::HudPass(const Context& ctx) : ctx_(&ctx) {

@@ -17,6 +17,8 @@
 #include "render/gpu_timer.h"
 #include "render/hud_pass.h"
 #include "render/render_targets.h"
+#include "render/classify_pass.h"
+#include "render/plant_marker_pass.h"
 #include "render/sky_pass.h"
 #include "render/swapchain.h"
 #include "render/terrain_detail.h"
@@ -46,6 +48,7 @@ struct FrameSlot {
   bool readColor = false, readDepth = false;
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
+  std::optional<VegetationFigures> vegetation;
 };
 
 VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
@@ -61,6 +64,8 @@ struct Renderer::Impl {
   std::unique_ptr<SkyPass> sky;
   std::unique_ptr<TerrainPass> terrainPass;
   std::unique_ptr<HudPass> hudPass;
+  std::unique_ptr<ClassifyPass> classify;
+  std::unique_ptr<PlantMarkerPass> markers;
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
@@ -133,6 +138,9 @@ void Renderer::Impl::init(const RendererOptions& options) {
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa));
   hudPass = std::make_unique<HudPass>(*ctx);
+  classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
+  classify->setCatalog(vegetation::defaultSpeciesCatalog());
+  markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -182,7 +190,17 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
   const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
-  terrainPass->recordUploads(cmd, static_cast<int>(index % kFramesInFlight), request.imageryUploads, retireBuffer);
+  const int slotIndex = static_cast<int>(index % kFramesInFlight);
+  terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
+  slot.vegetation.reset();
+  const VegetationRequest* plants = request.vegetation;
+  if (plants) {
+    slot.timer->beginPass(cmd, "classify");
+    slot.vegetation = classify->record(cmd, slotIndex, plants->triangles, plants->clusterSize,
+                                       terrainPass->imageryBytesView(), PlantMarkerPass::verticesPerGroup(plants->clusterSize),
+                                       retireBuffer);
+    slot.timer->endPass(cmd);
+  }
 
   // Attachments start undefined each frame: everything is cleared.
   const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -241,6 +259,11 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   slot.terrainTriangles = terrainPass->record(cmd, static_cast<int>(index % kFramesInFlight), slot.descriptorSet,
                                               request.camera.position, request.terrain, retireBuffer);
   slot.timer->endPass(cmd);
+  if (plants && plants->markers) {
+    slot.timer->beginPass(cmd, "plants");
+    markers->record(cmd, slotIndex, slot.descriptorSet, *classify);
+    slot.timer->endPass(cmd);
+  }
   vkCmdEndRendering(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
     slot.timer->beginPass(cmd, "hud");
@@ -334,6 +357,10 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
   r.frameIndex = slot.frameIndex;
   r.cpuRecordMs = slot.cpuRecordMs;
   r.terrainTriangles = slot.terrainTriangles;
+  if (slot.vegetation) {
+    classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    r.vegetation = slot.vegetation;
+  }
   r.gpu = slot.timer->read();
   const VkExtent2D e = targets->extent();
   const size_t pixels = size_t{e.width} * e.height;
@@ -411,7 +438,18 @@ uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLay
 
 uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
-uint64_t Renderer::gpuBytes() const { return impl_->terrainPass->gpuBytes(); }
+uint64_t Renderer::gpuBytes() const { return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes(); }
+
+Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
+  if (catalog.species.size() > vegetation::kMaxSpecies)
+    return makeError(ErrorKind::InvalidInput, "species catalog: " + std::to_string(catalog.species.size()) +
+                                                  " species, at most " + std::to_string(vegetation::kMaxSpecies));
+  return guardGpu([&]() -> Status {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
+    impl_->classify->setCatalog(catalog);
+    return {};
+  });
+}
 
 Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
   return guardGpu([&]() -> Result<uint64_t> { return impl_->submit(request); });

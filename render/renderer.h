@@ -45,6 +45,9 @@ class Renderer {
   Status setImageryLayers(uint32_t layers);
   uint32_t imageryLayers() const;
   uint32_t maxImageryLayers() const;  // the device's maxImageArrayLayers
+  // The species the classify pass sorts plants into (the default catalog until set); waits for
+  // frames in flight.
+  Status setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog);
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
 

@@ -27,11 +27,6 @@ static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes o
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
 
-VkDeviceSize grownSize(VkDeviceSize needed) {
-  VkDeviceSize size = 256 * 1024;
-  while (size < needed) size *= 2;
-  return size;
-}
 }  // namespace
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
@@ -69,14 +64,16 @@ void TerrainPass::setImageryLayers(uint32_t layers, const RetireImage& retire) {
   assert(layers >= 1);
   if (imagery_.image) retire(std::move(imagery_));
   imagery_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, layers, VK_FORMAT_R8G8B8A8_SRGB,
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain imagery array");
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain imagery array", 1,
+                              VK_FORMAT_R8G8B8A8_UNORM);
   layers_ = layers;
   // Every layer starts shader-readable (never sampled before its upload: the streamer hands out
   // a layer only with its tile), so uploads can move one layer at a time.
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
     transitionImageRange(cmd, imagery_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers}, VK_IMAGE_LAYOUT_UNDEFINED,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   });
   // The caller guarantees no frame in flight uses the set (the renderer waits for idle first).
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
@@ -86,7 +83,7 @@ void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBuffer
                                  int slot, const RetireBuffer& retire) {
   if (buffer.buffer && buffer.size >= bytes) return;
   if (buffer.buffer) retire(std::move(buffer));
-  buffer = createBuffer(*ctx_, grownSize(bytes), usage, MemoryUse::HostUpload,
+  buffer = createBuffer(*ctx_, grownSize(bytes, 256 * 1024), usage, MemoryUse::HostUpload,
                         std::string("terrain ") + what + " (slot " + std::to_string(slot) + ")");
 }
 

@@ -38,6 +38,9 @@ class TerrainPass {
   // goes to `retire`, which keeps it alive until the frames that use it have finished.
   void setImageryLayers(uint32_t layers, const RetireImage& retire);
   uint32_t imageryLayers() const { return layers_; }
+  // The imagery array seen as UNORM (the sRGB bytes undecoded; shader-readable after
+  // recordUploads), for the classify pass, which decodes them exactly as the CPU does.
+  VkImageView imageryBytesView() const { return imagery_.alternateView.get(); }
 
   // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
   void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,

@@ -88,8 +88,9 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
         world[i] = v.position(v.heightM);
       }
       if (data) {
-        if (level == seedLevel_) emitSeed(w, n.path, world, eye, false);
-        else refineSeeds(w, n.path, world, eye, e);
+        const int seedPiece = ps == InPiece::In ? piece : -1;
+        if (level == seedLevel_) emitSeed(w, n.path, world, eye, false, seedPiece);
+        else refineSeeds(w, n.path, world, eye, e, seedPiece);
       }
       seeds = false;
     }
@@ -141,7 +142,7 @@ void RoamTessellator::emitLeaf(Walk& w, uint32_t t, int piece) {
 }
 
 void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
-                               bool interpolated) {
+                               bool interpolated, int piece) {
   // The seeding horizon is measured to the nearest vertex (§3.1).
   const double nearest = std::min({glm::length(eye[0]), glm::length(eye[1]), glm::length(eye[2])});
   if (nearest > seeds_.horizonM) return;
@@ -158,13 +159,15 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
     s.fromCamera[size_t(i)] = glm::vec3(world[i] - w.view->cameraEnu);
   }
   s.interpolated = interpolated;
+  s.corners = mesh_.grid().corners(path);
+  s.piece = piece;
   figures_.seedPlants += s.plantCount;
   if (interpolated) ++figures_.seedInterpolated;
   w.seeds->push_back(s);
 }
 
 void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
-                                  double thickness) {
+                                  double thickness, int piece) {
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
   if (cullWedgie(*w.view, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside) return;
@@ -172,14 +175,14 @@ void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3
   const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
   if (glm::length(c) - radius - thickness > seeds_.horizonM) return;
   if (path.level == seedLevel_) {
-    emitSeed(w, path, world, eye, true);
+    emitSeed(w, path, world, eye, true, piece);
     return;
   }
   const glm::dvec3 mw = 0.5 * (world[1] + world[2]), me = 0.5 * (eye[1] + eye[2]);
   const glm::dvec3 w0[3] = {mw, world[0], world[1]}, w1[3] = {mw, world[2], world[0]};
   const glm::dvec3 e0[3] = {me, eye[0], eye[1]}, e1[3] = {me, eye[2], eye[0]};
-  refineSeeds(w, childPath(path, 0), w0, e0, thickness);
-  refineSeeds(w, childPath(path, 1), w1, e1, thickness);
+  refineSeeds(w, childPath(path, 0), w0, e0, thickness, piece);
+  refineSeeds(w, childPath(path, 1), w1, e1, thickness, piece);
 }
 
 }  // namespace vegstream::terrain

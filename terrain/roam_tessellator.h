@@ -109,6 +109,7 @@ class RoamTessellator {
   const RoamOptions& options() const { return options_; }
   void setMaxErrorPx(double px) { options_.maxErrorPx = px; }
   int seedLevel() const { return seedLevel_; }
+  const BintreeGrid& grid() const { return mesh_.grid(); }
   const SeedOptions& seedOptions() const { return seeds_; }
 
   // Height tiles whose residency changed: their vertices and thicknesses are sampled again.
@@ -142,8 +143,10 @@ class RoamTessellator {
   void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
   void emitLeaf(Walk& w, uint32_t t, int piece);
-  void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated);
-  void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness);
+  void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
+                int piece);
+  void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
+                   int piece);
   void splitPhase(const EyeView& view, const PieceSet& pieces, std::vector<Candidate>& candidates, uint64_t& ops,
                   const Stopwatch& watch);
   void mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch);

@@ -3,6 +3,8 @@
 
 #include "terrain/seed_triangles.h"
 
+#include "core/hash.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -57,6 +59,14 @@ BintreeGrid gridForSeeds(int rootZoom, int maxZoom, double latDeg, double areaM2
 int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2) {
   const double l = std::log2(triangleAreaM2(grid, 0, latDeg) / areaM2);
   return std::clamp(static_cast<int>(std::lround(l)), 0, grid.maxLevel());
+}
+
+uint64_t seedKey(const TriPath& path) {
+  const uint32_t root = mix32(static_cast<uint32_t>(path.rootX) ^ mix32(static_cast<uint32_t>(path.rootY) ^
+                                                                       mix32(path.tree | (uint32_t{path.level} << 8))));
+  const uint32_t lo = mix32(root ^ static_cast<uint32_t>(path.bits));
+  const uint32_t hi = mix32(lo ^ static_cast<uint32_t>(path.bits >> 32) ^ 0x9E3779B9u);
+  return (uint64_t{hi} << 32) | lo;
 }
 
 }  // namespace vegstream::terrain

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "terrain/bintree.h"
@@ -42,7 +43,16 @@ struct SeedTriangle {
   float plantCount = 0.0f;               // eq. 1 or 2, before rounding
   bool nearPlane = false;                // a vertex behind the near plane: n_max
   bool interpolated = false;             // refined below a coarser leaf without the heightmap
+  TriCorners corners{};                  // on the bintree grid
+  int32_t piece = -1;                    // index into the PieceSet it lies in (−1: none)
+  // Filled by StreamedTerrain: the imagery layer drawn under it and each vertex's uv there.
+  int32_t imageryLayer = -1;
+  std::array<glm::vec2, 3> imageryUv{};
 };
+
+// The 64-bit identity of a seed triangle for plant hashing (vegetation/plant_seeding.h): a mix
+// of its path, the same in every session and from every viewpoint.
+uint64_t seedKey(const TriPath& path);
 
 // Projected area (pixels²) of an eye-space triangle entirely in front of the near plane.
 double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);

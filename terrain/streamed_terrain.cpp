@@ -200,9 +200,11 @@ std::span<const TerrainPiece> StreamedTerrain::pieces(double timeS) {
   roam_->update(eye_, pieceSet_, timeS);
   roam_->output(eye_, pieceSet_, timeS, meshes_, seeds_);
 
+  std::vector<int32_t> drawnPiece(tiles.size(), -1);
   for (size_t i = 0; i < tiles.size(); ++i) {
     const geo::TileId& node = tiles[i];
     if (meshes_[i].indices.empty()) continue;
+    drawnPiece[i] = static_cast<int32_t>(pieces_.size());
     auto [it, isNew] = nodes_.try_emplace(node);
     NodeState& st = it->second;
     if (isNew) st = startState(node);
@@ -219,6 +221,7 @@ std::span<const TerrainPiece> StreamedTerrain::pieces(double timeS) {
     figures_.maxLevelsCoarser = std::max(figures_.maxLevelsCoarser, coarser);
     pieces_.push_back(p);
   }
+  seedImagery(tiles, drawnPiece);
   if (!meshes_.back().indices.empty()) {  // leaves not yet inside one piece: coloured by height
     TerrainPiece p;
     p.mesh = &meshes_.back();
@@ -236,6 +239,25 @@ std::span<const TerrainPiece> StreamedTerrain::pieces(double timeS) {
   // Forget node states not drawn last frame (a split needs its parent's state of the frame before).
   std::erase_if(nodes_, [&](const auto& kv) { return kv.second.lastFrame + 1 < frameNumber_; });
   return pieces_;
+}
+
+void StreamedTerrain::seedImagery(std::span<const geo::TileId> tiles, std::span<const int32_t> drawnPiece) {
+  // Each seed triangle is coloured (and its species chosen) from the imagery its piece draws.
+  const BintreeGrid& grid = roam_->grid();
+  for (SeedTriangle& s : seeds_) {
+    s.imageryLayer = -1;
+    if (s.piece < 0 || static_cast<size_t>(s.piece) >= tiles.size()) continue;
+    const int32_t drawn = drawnPiece[size_t(s.piece)];
+    if (drawn < 0 || pieces_[size_t(drawn)].imageryLayer < 0) continue;
+    const TerrainPiece& p = pieces_[size_t(drawn)];
+    const geo::TileId& tile = tiles[size_t(s.piece)];
+    const GridPoint corners[3] = {s.corners.apex, s.corners.left, s.corners.right};
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 uv = grid.tileXY(corners[k], tile.z) - glm::dvec2(tile.x, tile.y);
+      s.imageryUv[size_t(k)] = glm::vec2(uv) * glm::vec2(p.imageryUv.x, p.imageryUv.y) + glm::vec2(p.imageryUv.z, p.imageryUv.w);
+    }
+    s.imageryLayer = p.imageryLayer;
+  }
 }
 
 }  // namespace vegstream::terrain

@@ -118,6 +118,7 @@ class StreamedTerrain {
   NodeState startState(const geo::TileId& node) const;
   geo::TileId bestAvailable(streaming::TileLayer layer, const geo::TileId& tile) const;
   void imageryFor(TerrainPiece& p, NodeState& st, double timeS);
+  void seedImagery(std::span<const geo::TileId> tiles, std::span<const int32_t> drawnPiece);
 
   streaming::TileStreamer* streamer_;
   geo::LocalFrame frame_;

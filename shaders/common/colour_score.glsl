@@ -11,6 +11,11 @@ float srgbEncode(float linear) {
   return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
 }
 
+float srgbDecode(float encoded) {
+  float c = clamp(encoded, 0.0, 1.0);
+  return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
 vec3 srgbEncode(vec3 linear) { return vec3(srgbEncode(linear.r), srgbEncode(linear.g), srgbEncode(linear.b)); }
 
 vec3 hsvFromSrgb(vec3 c) {

@@ -1,0 +1,223 @@
+// The classify pass (classify_pass.h), core seed 001_3eca9f2c7752e4fb.txt §3.2, §3.5.
+#include "render/classify_pass.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "render/descriptors.h"
+#include "render/pipeline_builder.h"
+#include "render/vk_check.h"
+#include "shaders/classify.comp.h"
+#include "shaders/classify_finish.comp.h"
+#include "vegetation/plant_bins.h"
+#include "vegetation/plant_seeding.h"
+
+namespace vegstream::render {
+namespace {
+
+static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
+constexpr uint32_t kWorkgroup = 64;       // shaders/classify.comp local_size_x
+constexpr uint32_t kMaxGroupsPerDispatch = 65535;
+constexpr VkDeviceSize kCounterBytes = 2 * kSpeciesSlots * sizeof(uint32_t);
+constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
+
+struct ClassifyPush {
+  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity;
+};
+struct FinishPush {
+  uint32_t verticesPerGroup, speciesCapacity;
+};
+
+VkDescriptorSetLayoutBinding storage(uint32_t binding) {
+  return {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+}
+
+}  // namespace
+
+ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) : ctx_(&ctx), options_(options) {
+  assert(options.clustersPerSpecies > 0);
+  species_ = createBuffer(ctx, sizeof(SpeciesBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
+                          "classify species block");
+  std::memset(species_.mapped, 0, sizeof(SpeciesBlock));
+  sampler_ = createLinearClampSampler(ctx, "classify imagery sampler");
+  const VkDescriptorSetLayoutBinding classifyBindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      storage(1), storage(2), storage(3), storage(4),
+      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+  classifyLayout_ = createLayout(ctx, classifyBindings, "classify set layout");
+  const VkDescriptorSetLayoutBinding finishBindings[] = {storage(0), storage(1), storage(2)};
+  finishLayout_ = createLayout(ctx, finishBindings, "classify finish set layout");
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots}};
+  pool_ = createPool(ctx, sizes, 2 * kSlots, "classify pool");
+
+  const VkPushConstantRange classifyPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ClassifyPush)};
+  const VkDescriptorSetLayout cl[] = {classifyLayout_.get()};
+  classifyPipelineLayout_ = createPipelineLayout(ctx, cl, {&classifyPush, 1}, "classify pipeline layout");
+  classify_ = createComputePipeline(ctx, classifyPipelineLayout_.get(), spv_classify_comp, "classify pipeline");
+  const VkPushConstantRange finishPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FinishPush)};
+  const VkDescriptorSetLayout fl[] = {finishLayout_.get()};
+  finishPipelineLayout_ = createPipelineLayout(ctx, fl, {&finishPush, 1}, "classify finish pipeline layout");
+  finish_ = createComputePipeline(ctx, finishPipelineLayout_.get(), spv_classify_finish_comp, "classify finish pipeline");
+
+  const VkDeviceSize recordBytes = VkDeviceSize{options.clustersPerSpecies} * kSpeciesSlots * sizeof(PlantClusterGpu);
+  for (int i = 0; i < kSlots; ++i) {
+    Slot& s = slots_[size_t(i)];
+    const std::string tag = " (slot " + std::to_string(i) + ")";
+    s.counters = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              MemoryUse::DeviceLocal, "classify counters" + tag);
+    // Transfer source: tests and tools read the records back.
+    s.records = createBuffer(ctx, recordBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             MemoryUse::DeviceLocal,
+                             "classify records" + tag);
+    s.indirect = createBuffer(ctx, kIndirectBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                              MemoryUse::DeviceLocal, "classify indirect draws" + tag);
+    s.figures = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
+                             "classify figures" + tag);
+    std::memset(s.figures.mapped, 0, kCounterBytes);
+    s.classifySet = allocateDescriptorSet(ctx, pool_.get(), classifyLayout_.get(), "classify set" + tag);
+    s.finishSet = allocateDescriptorSet(ctx, pool_.get(), finishLayout_.get(), "classify finish set" + tag);
+    writeStorageBuffer(ctx, s.finishSet, s.counters.get(), 0);
+    writeStorageBuffer(ctx, s.finishSet, s.indirect.get(), 1);
+    writeStorageBuffer(ctx, s.finishSet, s.figures.get(), 2);
+  }
+}
+
+void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
+  const SpeciesBlock block = packSpecies(catalog);
+  std::memcpy(species_.mapped, &block, sizeof(block));
+  speciesCount_ = block.count[0];
+}
+
+void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire) {
+  const std::string tag = " (slot " + std::to_string(slot) + ")";
+  const VkDeviceSize triBytes = std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu);
+  const VkDeviceSize orderBytes = std::max<size_t>(orderEntries, 1) * sizeof(uint32_t);
+  bool changed = false;
+  if (!s.triangles.buffer || s.triangles.size < triBytes) {
+    if (s.triangles.buffer) retire(std::move(s.triangles));
+    s.triangles = createBuffer(*ctx_, grownSize(triBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                               "classify triangles" + tag);
+    changed = true;
+  }
+  if (!s.order.buffer || s.order.size < orderBytes) {
+    if (s.order.buffer) retire(std::move(s.order));
+    s.order = createBuffer(*ctx_, grownSize(orderBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                           "classify bin order" + tag);
+    changed = true;
+  }
+  if (changed) s.boundImagery = VK_NULL_HANDLE;  // rewrite the set
+}
+
+void ClassifyPass::writeSets(Slot& s, VkImageView imagery) {
+  writeUniformBuffer(*ctx_, s.classifySet, species_.get(), sizeof(SpeciesBlock), 0);
+  writeStorageBuffer(*ctx_, s.classifySet, s.triangles.get(), 1);
+  writeStorageBuffer(*ctx_, s.classifySet, s.order.get(), 2);
+  writeStorageBuffer(*ctx_, s.classifySet, s.counters.get(), 3);
+  writeStorageBuffer(*ctx_, s.classifySet, s.records.get(), 4);
+  writeSampledImage(*ctx_, s.classifySet, sampler_.get(), imagery, 5);
+  s.boundImagery = imagery;
+}
+
+VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
+                                       uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
+                                       const RetireBuffer& retire) {
+  assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
+  Slot& s = slots_[size_t(slot)];
+  VegetationFigures f;
+  f.seedTriangles = static_cast<uint32_t>(triangles.size());
+
+  std::vector<uint32_t> counts(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i)
+    counts[i] = triangles[i].layer < 0 ? 0 : vegetation::clusterCount(triangles[i].v0.w, clusterSize);
+  const vegetation::BinnedTriangles bins = vegetation::binTriangles(counts);
+  f.clusters = bins.clusters;
+  f.clusterSlots = bins.slots;
+
+  ensureCapacity(s, slot, triangles.size(), bins.order.size(), retire);
+  if (!triangles.empty()) std::memcpy(s.triangles.mapped, triangles.data(), triangles.size_bytes());
+  if (!bins.order.empty()) std::memcpy(s.order.mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
+  // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
+  if (s.boundImagery != imagery) writeSets(s, imagery);
+
+  vkCmdFillBuffer(cmd, s.counters.get(), 0, kCounterBytes, 0);
+  VkMemoryBarrier2 clear{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  clear.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+  clear.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  clear.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  clear.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &clear;
+  vkCmdPipelineBarrier2(cmd, &dep);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelineLayout_.get(), 0, 1, &s.classifySet, 0,
+                          nullptr);
+  for (const vegetation::PlantBin& bin : bins.bins) {
+    if (bin.count == 0) continue;
+    ++f.bins;
+    const uint64_t threads = uint64_t{bin.count} * bin.capacity;
+    for (uint64_t base = 0; base < threads; base += uint64_t{kMaxGroupsPerDispatch} * kWorkgroup) {
+      const ClassifyPush push{bin.first, bin.count, bin.capacity, clusterSize, static_cast<uint32_t>(base),
+                              options_.clustersPerSpecies};
+      vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+      const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
+      vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
+    }
+  }
+
+  VkMemoryBarrier2 counted{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  counted.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  counted.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  counted.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  counted.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+  dep.pMemoryBarriers = &counted;
+  vkCmdPipelineBarrier2(cmd, &dep);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finish_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finishPipelineLayout_.get(), 0, 1, &s.finishSet, 0,
+                          nullptr);
+  const FinishPush fp{verticesPerGroup, options_.clustersPerSpecies};
+  vkCmdPushConstants(cmd, finishPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(fp), &fp);
+  vkCmdDispatch(cmd, 1, 1, 1);
+
+  // Records and draws to the species pipelines; the figures copy to the host.
+  VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  done.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  done.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  done.dstStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                      VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT;
+  done.dstAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                       VK_ACCESS_2_HOST_READ_BIT;
+  dep.pMemoryBarriers = &done;
+  vkCmdPipelineBarrier2(cmd, &dep);
+  return f;
+}
+
+void ClassifyPass::readFigures(int slot, VegetationFigures& f) const {
+  const auto* counters = static_cast<const uint32_t*>(slots_[size_t(slot)].figures.mapped);
+  f.gpuCounts = true;
+  f.groupsTotal = f.plantsTotal = 0;
+  for (size_t i = 0; i < kSpeciesSlots; ++i) {
+    f.groups[i] = counters[i];
+    f.plants[i] = counters[kSpeciesSlots + i];
+    f.groupsTotal += f.groups[i];
+    f.plantsTotal += f.plants[i];
+    if (f.groups[i] > options_.clustersPerSpecies) f.overflow = true;
+  }
+}
+
+uint64_t ClassifyPass::gpuBytes() const {
+  uint64_t bytes = species_.size;
+  for (const Slot& s : slots_)
+    bytes += s.triangles.size + s.order.size + s.counters.size + s.records.size + s.indirect.size + s.figures.size;
+  return bytes;
+}
+
+}  // namespace vegstream::render

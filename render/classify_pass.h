@@ -1,0 +1,82 @@
+#pragma once
+// The classify pass (core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.5, two-stage
+// per-species rendering, in Vulkan terms): each frame's seed triangles are binned by cluster
+// count (§3.2 eq. 15, vegetation/plant_bins.h), one compute dispatch per bin expands them into
+// clusters, samples the imagery under each cluster, picks the species and appends the group to
+// its species' buffer with atomics (shaders/classify.comp); a last dispatch turns the counters
+// into one indirect draw per species (shaders/classify_finish.comp). The species pipelines draw
+// from `records()` with `indirect()`; vegetation/plant_seeding.h is the CPU reference.
+//
+// Buffers per frame slot: triangles and bin order (host-upload, grown as needed), counters and
+// records (device-local; `clustersPerSpecies` groups per species — more are counted, not
+// drawn), indirect draws, and a read-back copy of the counters for the figures.
+
+#include <array>
+#include <functional>
+#include <span>
+
+#include "render/classify_layout.h"
+#include "render/context.h"
+#include "render/frame_types.h"
+#include "render/gpu_resources.h"
+#include "render/handle.h"
+
+namespace vegstream::render {
+
+struct ClassifyOptions {
+  uint32_t clustersPerSpecies = 1u << 16;
+};
+
+class ClassifyPass {
+ public:
+  static constexpr int kSlots = 2;
+  using RetireBuffer = std::function<void(GpuBuffer&&)>;
+
+  ClassifyPass(const Context& ctx, const ClassifyOptions& options);
+
+  // The species every later frame classifies into (uploaded now; waits for nothing: call it
+  // before the first frame or when no frame is in flight).
+  void setCatalog(const vegetation::SpeciesCatalog& catalog);
+
+  // Outside rendering: uploads `triangles`, bins them and records the dispatches for slot
+  // `slot`. `imagery` is the imagery array the triangles' layers index, viewed as UNORM (the
+  // sRGB bytes; shader-readable).
+  // `verticesPerGroup` goes into the indirect draws. Returns the CPU-side figures (the GPU's
+  // counts come from figures() after the frame's fence).
+  VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
+                           uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
+                           const RetireBuffer& retire);
+
+  // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
+  void readFigures(int slot, VegetationFigures& f) const;
+
+  VkBuffer records(int slot) const { return slots_[size_t(slot)].records.get(); }
+  VkBuffer triangles(int slot) const { return slots_[size_t(slot)].triangles.get(); }
+  VkBuffer indirect(int slot) const { return slots_[size_t(slot)].indirect.get(); }
+  VkBuffer species() const { return species_.get(); }
+  uint32_t clustersPerSpecies() const { return options_.clustersPerSpecies; }
+  uint32_t speciesCount() const { return speciesCount_; }
+  uint64_t gpuBytes() const;
+
+ private:
+  struct Slot {
+    GpuBuffer triangles, order, counters, records, indirect, figures;
+    VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
+    VkImageView boundImagery = VK_NULL_HANDLE;
+  };
+  void ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
+  void writeSets(Slot& s, VkImageView imagery);
+
+  const Context* ctx_;
+  ClassifyOptions options_;
+  uint32_t speciesCount_ = 0;
+  GpuBuffer species_;
+  Sampler sampler_;
+  DescriptorSetLayout classifyLayout_, finishLayout_;
+  DescriptorPool pool_;
+  PipelineLayout classifyPipelineLayout_, finishPipelineLayout_;
+  Pipeline classify_, finish_;
+  std::array<Slot, kSlots> slots_;
+};
+
+}  // namespace vegstream::render

@@ -1,0 +1,93 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The classify pass, core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.5 in compute form:
+// one thread per (seed triangle, cluster slot) of a bin (§3.2, eq. 15; vegetation/plant_bins.h),
+// which expands the cluster, samples the base colour at its centre (cluster 0: at each seed),
+// scores and picks the species (eq. 16–18), rejects bare soil and appends the group to its
+// species' buffer. The CPU reference is vegetation/plant_seeding.cpp: same operations.
+layout(local_size_x = 64) in;
+
+#include "philox.glsl"
+#include "colour_score.glsl"
+#include "classify_layout.glsl"
+
+layout(set = 0, binding = 0, std140) uniform SpeciesBlock {
+  Species species[kMaxSpecies];
+  uvec4 speciesCount;
+} catalog;
+layout(set = 0, binding = 1, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Order { uint order[]; };
+layout(set = 0, binding = 3, std430) buffer Counters { uint groups[kMaxSpecies]; uint plants[kMaxSpecies]; };
+layout(set = 0, binding = 4, std430) writeonly buffer Records { PlantCluster records[]; };
+layout(set = 0, binding = 5) uniform sampler2DArray imagery;
+
+layout(push_constant) uniform Push {
+  uint orderFirst;     // this bin's first entry in order[]
+  uint triangleCount;  // triangles in the bin
+  uint capacity;       // cluster slots per triangle
+  uint clusterSize;    // C
+  uint threadBase;     // for bins split over several dispatches
+  uint speciesCapacity;
+} pc;
+
+#include "species_choice.glsl"
+#include "seeding.glsl"
+
+// The imagery is bound as UNORM (sRGB bytes, not decoded by the texture unit, whose sRGB
+// decoding is approximate on some devices): decoded here with the CPU's formula.
+vec3 texelLinear(ivec2 p, int layer) {
+  vec3 c = texelFetch(imagery, ivec3(p, layer), 0).rgb;
+  return vec3(srgbDecode(c.r), srgbDecode(c.g), srgbDecode(c.b));
+}
+
+// Bilinear in linear light over texel centres, clamped to the edge: vegetation/imagery_texels.cpp.
+vec3 imageryLinear(int layer, vec2 uv) {
+  const float n = 256.0;
+  float x = uv.x * n - 0.5, y = uv.y * n - 0.5;
+  float fx0 = floor(x), fy0 = floor(y);
+  int x0 = int(fx0), y0 = int(fy0);
+  float fx = x - fx0, fy = y - fy0;
+  ivec2 lo = clamp(ivec2(x0, y0), ivec2(0), ivec2(255)), hi = clamp(ivec2(x0 + 1, y0 + 1), ivec2(0), ivec2(255));
+  vec3 a = texelLinear(lo, layer), b = texelLinear(ivec2(hi.x, lo.y), layer);
+  vec3 c = texelLinear(ivec2(lo.x, hi.y), layer), d = texelLinear(hi, layer);
+  return mix(mix(a, b, fx), mix(c, d, fx), fy);
+}
+
+vec3 baseHsv(SeedTriangle t, vec2 r) {
+  vec2 uv0 = t.uv01.xy;
+  vec2 uv = uv0 + r.x * (t.uv01.zw - uv0) + r.y * (t.uv2 - uv0);
+  return hsvFromLinear(imageryLinear(t.layer, uv));
+}
+
+void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, float sPrime, float fade) {
+  uint s = uint(pick.x);
+  uint i = atomicAdd(groups[s], 1u);
+  atomicAdd(plants[s], seedCount);
+  if (i >= pc.speciesCapacity) return;  // counted: the figures report the overflow
+  records[s * pc.speciesCapacity + i] = PlantCluster(tri, cluster, firstSeed, seedCount, s, sPrime, fade, 0u);
+}
+
+void main() {
+  uint id = pc.threadBase + gl_GlobalInvocationID.x;
+  if (id >= pc.triangleCount * pc.capacity) return;
+  uint tri = order[pc.orderFirst + id / pc.capacity];
+  uint c = id % pc.capacity;
+  SeedTriangle t = triangles[tri];
+  float n = t.v0.w;
+  if (t.layer < 0 || c >= clusterCount(n, pc.clusterSize)) return;
+  uvec2 key = uvec2(t.keyLo, t.keyHi);
+  if (c == 0u) {
+    uint seeds = uint(ceil(min(n, float(pc.clusterSize))));
+    for (uint s = 0u; s < seeds; ++s) {
+      float z = philoxU01(philoxDraw(key, 0u, kSlotColourSpecies + s).y);
+      vec2 pick = chooseSpecies(baseHsv(t, seedPoint(key, 0u, s)), z);
+      if (pick.x < 0.0) continue;
+      append(tri, 0u, s, 1u, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, 0u, s));
+    }
+    return;
+  }
+  float z = philoxU01(philoxDraw(key, c, kSlotSpecies).x);
+  vec2 pick = chooseSpecies(baseHsv(t, clusterCentre(key, c)), z);
+  if (pick.x < 0.0) return;
+  append(tri, c, 0u, pc.clusterSize, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, c, 0u));
+}

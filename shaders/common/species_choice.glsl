@@ -1,0 +1,34 @@
+// Species from the base colour, core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3
+// eq. 16–18: the GLSL twin of vegetation/species_choice.cpp (operation for operation). Needs
+// colour_score.glsl and a `catalog` uniform block (classify_layout.glsl's Species array).
+//
+// Returns (species index, s′), species −1 when the seed is rejected (bare soil, or no species
+// scores above its threshold).
+vec2 chooseSpecies(vec3 hsv, float z) {
+  int best = -1, second = -1;
+  float l0 = 0.0, l1 = 0.0;
+  for (uint i = 0u; i < catalog.speciesCount.x; ++i) {
+    Species sp = catalog.species[i];
+    float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, hsv);
+    if (l < sp.weights.w) continue;  // under its threshold: score 0
+    if (best < 0 || l > l0) {
+      second = best;
+      l1 = l0;
+      best = int(i);
+      l0 = l;
+    } else if (second < 0 || l > l1) {
+      second = int(i);
+      l1 = l;
+    }
+  }
+  if (best < 0) return vec2(-1.0, 0.0);
+  float ratio = second < 0 ? 0.0 : 1.0 / (1.0 + exp(l0 - l1));
+  int pick = best;
+  float sPrime = 1.0 - ratio;
+  if (z < ratio) {
+    pick = second;
+    sPrime = ratio;
+  }
+  if (catalog.species[pick].flags.x != 0u) return vec2(-1.0, 0.0);
+  return vec2(float(pick), sPrime);
+}

@@ -1,0 +1,268 @@
+// The classify pass (render/classify_pass.h, shaders/classify.comp) against its CPU reference
+// (vegetation/plant_seeding.h): over a few hundred seed triangles on a synthetic base map with
+// green, red-rock and pale regions, the GPU appends the same groups to the same species
+// buffers, and the plants' roots (shaders/common/seeding.glsl) are within 1 mm of the C++.
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include "core/hash.h"
+#include "gpu_test_fixture.h"
+#include "render/classify_pass.h"
+#include "render/context.h"
+#include "render/descriptors.h"
+#include "render/pipeline_builder.h"
+#include "shaders/seeding_check.comp.h"
+#include "vegetation/colour_score.h"
+#include "vegetation/imagery_texels.h"
+#include "vegetation/plant_seeding.h"
+#include "vegetation/philox.h"
+#include "vegetation/species_catalog.h"
+#include "vegetation/species_choice.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+namespace veg = vegstream::vegetation;
+
+constexpr uint32_t kTile = kImageryTileSize;
+
+// sRGB 8-bit tile: green meadow on the west, red rock in the middle, pale sandstone in the
+// east, with texel noise so colours vary within each region.
+std::vector<uint8_t> baseMap(uint32_t seed) {
+  std::vector<uint8_t> rgba(size_t{kTile} * kTile * 4);
+  for (uint32_t y = 0; y < kTile; ++y)
+    for (uint32_t x = 0; x < kTile; ++x) {
+      const uint32_t h = mix32(x * 7919u + y * 104729u + seed);
+      const int n = static_cast<int>(h % 21u) - 10;
+      int r = 90, g = 115, b = 55;                 // meadow green
+      if (x > 100 && x <= 180) r = 150, g = 90, b = 70;   // red rock
+      if (x > 180) r = 210, g = 198, b = 176;            // pale sandstone
+      uint8_t* p = &rgba[(size_t{y} * kTile + x) * 4];
+      p[0] = static_cast<uint8_t>(std::clamp(r + n, 0, 255));
+      p[1] = static_cast<uint8_t>(std::clamp(g + n, 0, 255));
+      p[2] = static_cast<uint8_t>(std::clamp(b + n, 0, 255));
+      p[3] = 255;
+    }
+  return rgba;
+}
+
+struct Scene {
+  std::vector<SeedTriangleGpu> gpu;
+  std::vector<veg::SeedTriangleInput> cpu;
+};
+
+// Right triangles of 4 m legs over the 256 m tile (1 m per texel), plant counts from 0.3 to 256
+// (unclustered, fading and clustered triangles in many bins).
+Scene makeScene(uint32_t layers) {
+  Scene s;
+  uint32_t i = 0;
+  for (float y = 2.0f; y < 250.0f; y += 9.0f)
+    for (float x = 2.0f; x < 250.0f; x += 9.0f, ++i) {
+      SeedTriangleGpu t;
+      const float n = 0.3f * std::pow(256.0f / 0.3f, static_cast<float>(mix32(i) % 1000u) / 999.0f);
+      t.v0 = {x, y, 10.0f, n};
+      t.v1 = {x + 4.0f, y, 10.5f, 0.0f};
+      t.v2 = {x, y + 4.0f, 9.5f, 0.0f};
+      const float s256 = 1.0f / 256.0f;
+      // Tile rows run north → south; the scene's y is northwards.
+      t.uv01 = {x * s256, 1.0f - y * s256, (x + 4.0f) * s256, 1.0f - y * s256};
+      t.uv2 = {x * s256, 1.0f - (y + 4.0f) * s256};
+      t.keyLo = mix32(i * 2u + 1u);
+      t.keyHi = mix32(i * 2u + 2u);
+      t.layer = static_cast<int32_t>(i % layers);
+      s.gpu.push_back(t);
+      veg::SeedTriangleInput c;
+      c.key = (uint64_t{t.keyHi} << 32) | t.keyLo;
+      c.vertices = {glm::dvec3(glm::vec3(t.v0)), glm::dvec3(glm::vec3(t.v1)), glm::dvec3(glm::vec3(t.v2))};
+      c.plantCount = n;
+      s.cpu.push_back(c);
+    }
+  return s;
+}
+
+using GroupKey = std::tuple<uint32_t, uint32_t, uint32_t>;  // triangle, cluster, first seed
+
+class ClassifyGpu : public GpuTest {};
+
+TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
+  ContextOptions o;
+  o.validate = true;
+  o.validationLog = validation;
+  auto created = Context::create(o);
+  ASSERT_TRUE(created.ok()) << created.error().message;
+  const Context& ctx = **created;
+
+  constexpr uint32_t kLayers = 2;
+  const std::vector<uint8_t> maps[kLayers] = {baseMap(1), baseMap(2)};
+  GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
+                                      VK_FORMAT_R8G8B8A8_UNORM);
+  const VkDeviceSize tileBytes = VkDeviceSize{kTile} * kTile * 4;
+  GpuBuffer staging = createBuffer(ctx, tileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                   "test imagery staging");
+  for (uint32_t l = 0; l < kLayers; ++l)
+    std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
+
+  const Scene scene = makeScene(kLayers);
+  const veg::SpeciesCatalog& catalog = veg::defaultSpeciesCatalog();
+  constexpr uint32_t kClusterSize = 8;
+  ClassifyPass pass(ctx, ClassifyOptions{1u << 14});
+  pass.setCatalog(catalog);
+  VegetationFigures figures;
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
+    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize,
+                          [](GpuBuffer&&) {});
+  });
+  pass.readFigures(0, figures);
+  EXPECT_GT(figures.bins, 10u);
+  EXPECT_FALSE(figures.overflow);
+
+  // The CPU reference, sampling the same texels.
+  const auto colourOf = [&](size_t i) -> veg::BaseColourAt {
+    const SeedTriangleGpu& t = scene.gpu[i];
+    const veg::ImageryTexels texels{maps[t.layer].data(), kTile};
+    return [texels, t](glm::vec2 r) {
+      const glm::vec2 uv0(t.uv01.x, t.uv01.y), uv1(t.uv01.z, t.uv01.w);
+      return veg::sampleImageryLinear(texels, uv0 + r.x * (uv1 - uv0) + r.y * (t.uv2 - uv0));
+    };
+  };
+  std::vector<veg::PlantCluster> cpu;
+  for (size_t i = 0; i < scene.cpu.size(); ++i)
+    veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colourOf(i), cpu);
+  // A decision the GPU may take differently: one that a change of 1e-3 in the colour (HSV) or
+  // in z flips on the CPU too. The GPU's pow/log/exp are not glibc's, and the hue of a greyish
+  // colour amplifies their last-bit differences; such groups are counted, everything else must
+  // agree exactly.
+  const auto sensitive = [&](const GroupKey& key) {
+    const auto [tri, cluster, seed] = key;
+    const uint64_t k = scene.cpu[tri].key;
+    const glm::vec2 r = cluster == 0 ? veg::seedPoint(k, 0, seed) : veg::clusterCentre(k, cluster);
+    const glm::vec3 hsv = veg::hsvFromLinear(colourOf(tri)(r));
+    const uint32_t slot = cluster == 0 ? veg::philox_slot::kColourSpecies + seed : veg::philox_slot::kSpecies;
+    const veg::Philox2x32Out draw = veg::philox((cluster << 8) | slot, static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k));
+    const float z = veg::u01(cluster == 0 ? draw.y : draw.x);
+    const int base = veg::chooseSpecies(catalog, hsv, z).species;
+    for (int axis = 0; axis < 4; ++axis)
+      for (float d : {-1e-3f, 1e-3f}) {
+        glm::vec3 h = hsv;
+        float zz = z;
+        if (axis < 3) h[axis] = axis == 0 ? std::fmod(h[axis] + d + 1.0f, 1.0f) : std::clamp(h[axis] + d, 0.0f, 1.0f);
+        else zz = std::clamp(z + d, 0.0f, 0.999999f);
+        if (veg::chooseSpecies(catalog, h, zz).species != base) return true;
+      }
+    return false;
+  };
+  std::map<uint32_t, std::map<GroupKey, veg::PlantCluster>> cpuBySpecies;
+  for (const veg::PlantCluster& g : cpu) cpuBySpecies[g.species][{g.triangle, g.cluster, g.firstSeed}] = g;
+
+  // The GPU's records, read back through a storage copy kernel-free path: the seeding check
+  // kernel reads them in place and the records themselves come back through a host buffer.
+  const uint32_t capacity = pass.clustersPerSpecies();
+  uint64_t plantsCpu = 0, plantsGpu = 0;
+  size_t groupsGpu = 0, mismatches = 0, gpuOnly = 0;
+  GpuBuffer recordsHost = createBuffer(ctx, VkDeviceSize{capacity} * kSpeciesSlots * sizeof(PlantClusterGpu),
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "test records");
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy all{0, 0, recordsHost.size};
+    vkCmdCopyBuffer(cmd, pass.records(0), recordsHost.get(), 1, &all);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  const auto* records = static_cast<const PlantClusterGpu*>(recordsHost.mapped);
+  for (uint32_t s = 0; s < catalog.species.size(); ++s) {
+    const auto& expected = cpuBySpecies[s];
+    EXPECT_EQ(figures.groups[s], expected.size()) << catalog.species[s].name;
+    std::map<GroupKey, PlantClusterGpu> got;
+    for (uint32_t i = 0; i < std::min(figures.groups[s], capacity); ++i) {
+      const PlantClusterGpu& g = records[size_t{s} * capacity + i];
+      EXPECT_EQ(g.species, s);
+      got[{g.triangle, g.cluster, g.firstSeed}] = g;
+      plantsGpu += g.seedCount;
+    }
+    groupsGpu += got.size();
+    for (const auto& [key, g] : got)
+      if (!expected.count(key)) {
+        EXPECT_TRUE(sensitive(key)) << "GPU-only group of triangle " << std::get<0>(key);
+        ++gpuOnly;
+      }
+    for (const auto& [key, e] : expected) {
+      plantsCpu += e.seedCount;
+      const auto it = got.find(key);
+      if (it == got.end()) {
+        EXPECT_TRUE(sensitive(key)) << "CPU-only group of triangle " << std::get<0>(key);
+        ++mismatches;
+        continue;
+      }
+      EXPECT_EQ(it->second.seedCount, e.seedCount);
+      EXPECT_NEAR(it->second.sPrime, e.sPrime, 2e-3f);
+      EXPECT_NEAR(it->second.fade, e.fade, 1e-6f);
+    }
+  }
+  // Precision-sensitive decisions stay rare: under 1 % of the groups.
+  EXPECT_LT(static_cast<double>(mismatches + gpuOnly), 0.01 * static_cast<double>(cpu.size()));
+  EXPECT_EQ(figures.plantsTotal, plantsGpu);
+  // All three kinds of region were exercised.
+  size_t species = 0;
+  for (const auto& [s, m] : cpuBySpecies) species += m.empty() ? 0 : 1;
+  EXPECT_GE(species, 2u);
+  EXPECT_GT(cpu.size(), 1000u);
+
+  // Roots of every plant, GPU (seeding.glsl) against the C++ (double), for the grass buffer.
+  const uint32_t grass = 0, groups = std::min(figures.groups[grass], capacity);
+  ASSERT_GT(groups, 100u);
+  GpuBuffer roots = createBuffer(ctx, VkDeviceSize{groups} * kClusterSize * sizeof(glm::vec4),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "test roots");
+  const VkDescriptorSetLayoutBinding bindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+  DescriptorSetLayout setLayout = createLayout(ctx, bindings, "roots set layout");
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+  DescriptorPool pool = createPool(ctx, sizes, 1, "roots pool");
+  VkDescriptorSet set = allocateDescriptorSet(ctx, pool.get(), setLayout.get(), "roots set");
+  writeStorageBuffer(ctx, set, pass.triangles(0), 0);
+  writeStorageBuffer(ctx, set, pass.records(0), 1);
+  writeStorageBuffer(ctx, set, roots.get(), 2);
+  const uint32_t push[3] = {groups, kClusterSize, grass * capacity};
+  const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push)};
+  const VkDescriptorSetLayout layouts[] = {setLayout.get()};
+  PipelineLayout layout = createPipelineLayout(ctx, layouts, {&range, 1}, "roots pipeline layout");
+  Pipeline pipeline = createComputePipeline(ctx, layout.get(), spv_seeding_check_comp, "roots pipeline");
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
+    vkCmdDispatch(cmd, (groups * kClusterSize + 63) / 64, 1, 1);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  });
+  const auto* gpuRoots = static_cast<const glm::vec4*>(roots.mapped);
+  double worst = 0.0;
+  size_t compared = 0;
+  for (uint32_t i = 0; i < groups; ++i) {
+    const PlantClusterGpu& g = records[size_t{grass} * capacity + i];
+    const veg::PlantCluster group{g.triangle, g.cluster, g.firstSeed, g.seedCount, g.species, g.sPrime, g.fade};
+    std::vector<veg::Plant> plants;
+    veg::growPlants(scene.cpu[g.triangle], {&group, 1}, catalog, {kClusterSize}, plants);
+    ASSERT_EQ(plants.size(), g.seedCount);
+    for (uint32_t k = 0; k < g.seedCount; ++k) {
+      const glm::vec4 r = gpuRoots[size_t{i} * kClusterSize + k];
+      ASSERT_EQ(r.w, 1.0f);
+      worst = std::max(worst, glm::length(glm::dvec3(glm::vec3(r)) - plants[k].position));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 1000u);
+  EXPECT_LT(worst, 1e-3) << "worst root distance (m)";
+  std::printf("classify: %zu groups (CPU), %zu (GPU), %zu CPU-only and %zu GPU-only (all precision-sensitive), "
+              "%llu plants, %u bins; roots compared %zu, worst %.2e m\n",
+              cpu.size(), groupsGpu, mismatches, gpuOnly, static_cast<unsigned long long>(plantsCpu), figures.bins,
+              compared, worst);
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing

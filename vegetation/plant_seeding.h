@@ -1,0 +1,118 @@
+#pragma once
+// The plants of one seed triangle: the CPU reference of the GPU classify pass
+// (render/classify_pass.h, shaders/classify.comp) and of the species pipelines' placement.
+// Core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2 (Philox per triangle and plant),
+// §3.3 (species from the base colour, eq. 16–18), §3.4 (clusters, eq. 19–25); the density fade
+// of seed 004_4f0be6bef8094cc2.txt §2.2.
+//
+// A triangle's plants form one fixed sequence, whatever the camera:
+//   - cluster 0 is the "unclustered" part: its C seeds are spread over the whole triangle
+//     (level 1) and each takes its own species at its own root — so a triangle with fewer than
+//     C plants is seeded exactly as without clustering (§3.4);
+//   - clusters 1, 2, … follow the hierarchical strata (stratified_clusters.h); each samples the
+//     base colour once, at its centre, and all its C seeds get that species.
+// A plant count N (eq. 1 or 2, a real number) shows the first min(N, C) seeds of cluster 0 and
+// then (N − C) / C further clusters. The element at the fractional end is drawn scaled by the
+// fraction (fade = clamp(count − index, 0, 1)), so as N grows with the camera's approach plants
+// grow in at the end of the sequence and nothing moves or pops (seed 004 §2.2's fade by weight,
+// here by size).
+//
+// Randomness: Philox-2×32-3 (vegetation/philox.h) with key = the low word of the triangle's
+// 64-bit identity, counter = (cluster << 8 | slot, high word). Slots below.
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "vegetation/species_catalog.h"
+#include "vegetation/stratified_clusters.h"
+
+namespace vegstream::vegetation {
+
+inline constexpr uint32_t kMaxClusterSize = 32;
+inline constexpr uint32_t kMaxClustersPerTriangle = 1u << 24;  // the counter's cluster field
+
+// Philox counter slots of a cluster (ctr0 = cluster << 8 | slot); s is the seed in the cluster.
+namespace philox_slot {
+inline constexpr uint32_t kCentre = 0;               // (u, v) of the cluster centre in its stratum
+inline constexpr uint32_t kSpecies = 1;              // x: the cluster's species z
+inline constexpr uint32_t kPosition = 2;             // + s: (u, v) of seed s in the stratum
+inline constexpr uint32_t kHeightStiffness = 64;     // + s
+inline constexpr uint32_t kOrientationWidth = 96;    // + s
+inline constexpr uint32_t kColourSpecies = 128;      // + s: x colour modulation, y z of a cluster-0 seed
+inline constexpr uint32_t kLevelOffset = 255;        // with cluster field = level: the level's stratum offset
+}  // namespace philox_slot
+static_assert(philox_slot::kPosition + kMaxClusterSize <= philox_slot::kHeightStiffness);
+
+struct SeedingOptions {
+  uint32_t clusterSize = 8;  // C, 1 … kMaxClusterSize
+};
+
+// One seed triangle as the seeding sees it (terrain/seed_triangles.h makes them).
+struct SeedTriangleInput {
+  uint64_t key = 0;                        // identity of the ground (a hash of its bintree path)
+  std::array<glm::dvec3, 3> vertices{};    // apex, left, right (local ENU, m)
+  float plantCount = 0.0f;                 // N
+};
+
+// The fade of the element `index` of a sequence shown up to `count`: 1 inside, the fraction at
+// the end, 0 beyond.
+inline float sequenceFade(float count, uint32_t index) {
+  const float f = count - static_cast<float>(index);
+  return f <= 0.0f ? 0.0f : (f >= 1.0f ? 1.0f : f);
+}
+// Clusters a count N touches: 0 for N ≤ 0, else 1 + ⌈max(N − C, 0) / C⌉.
+uint32_t clusterCount(float plantCount, uint32_t clusterSize);
+// Fade of seed s of cluster c for count N.
+float plantFade(float plantCount, uint32_t clusterSize, uint32_t cluster, uint32_t seed);
+
+// Where a cluster's plants can be: its stratum (cluster 0: the whole triangle).
+Stratum clusterStratumOf(uint64_t key, uint32_t cluster);
+// Seed s of cluster c on the unit triangle (r′1, r′2), and the cluster centre.
+glm::vec2 seedPoint(uint64_t key, uint32_t cluster, uint32_t seed);
+glm::vec2 clusterCentre(uint64_t key, uint32_t cluster);
+
+// The base colour (linear RGB) under a point of the triangle given by (r′1, r′2).
+using BaseColourAt = std::function<glm::vec3(glm::vec2 rPrime)>;
+
+// One classified group of plants, as the GPU appends it to its species' buffer: a whole cluster
+// (c ≥ 1) or one seed of cluster 0.
+struct PlantCluster {
+  uint32_t triangle = 0;   // index of the triangle in the caller's list
+  uint32_t cluster = 0;
+  uint32_t firstSeed = 0;
+  uint32_t seedCount = 0;  // plants shown (the last possibly faded)
+  uint32_t species = 0;
+  float sPrime = 0.0f;     // eq. 18
+  float fade = 1.0f;       // of the cluster (c ≥ 1) or the seed (c = 0)
+};
+
+// The surviving groups of one triangle in sequence order (bare soil and no-score rejected).
+void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex, const SpeciesCatalog& catalog,
+                      const SeedingOptions& options, const BaseColourAt& colourAt, std::vector<PlantCluster>& out);
+
+// A plant with its parameters (what the species pipelines draw).
+struct Plant {
+  glm::dvec3 position{0.0};   // root, local ENU
+  glm::vec2 rPrime{0.0f};     // on the triangle
+  uint32_t triangle = 0, cluster = 0, seed = 0;
+  uint32_t species = 0;
+  float sPrime = 0.0f;
+  float fade = 1.0f;          // size factor at the end of the sequence (1 at full density)
+  float heightM = 0.0f;       // full-size height: the species range, scaled by 0.6 + 0.4 s′
+  float stiffness = 0.0f;     // k′
+  float widthM = 0.0f;
+  float orientationRad = 0.0f;  // about the vertical, [0, 2π)
+  float colourModulation = 0.0f;
+};
+
+// The plants of the groups `clusters` of `triangle`, appended to `out`.
+void growPlants(const SeedTriangleInput& triangle, std::span<const PlantCluster> clusters,
+                const SpeciesCatalog& catalog, const SeedingOptions& options, std::vector<Plant>& out);
+
+}  // namespace vegstream::vegetation
