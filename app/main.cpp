@@ -13,6 +13,7 @@
 #include "app/import_command.h"
 #include "app/info_command.h"
 #include "app/path_command.h"
+#include "app/plants_command.h"
 #include "app/record_command.h"
 #include "app/report_command.h"
 #include "app/query_command.h"
@@ -85,6 +86,9 @@ int main(int argc, char** argv) {
   queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required();
   queryCmd->add_option("--species", query.speciesFile, "Species catalog JSON (default: the embedded config/species.json)");
 
+  app::PlantsOptions plantsOptions;
+  auto* plantsCmd = app::addPlantsCommand(cli, plantsOptions);
+
   datasets::SyntheticOptions gen;
   std::string genOut, genEncoding = "terrarium";
   auto* generateCmd = cli.add_subcommand("generate", "Write a synthetic dataset: fractal relief, biome colours");
@@ -116,6 +120,7 @@ int main(int argc, char** argv) {
   if (*importCmd) return app::runImport(importOptions, log);
   if (*infoCmd) return app::runInfo(info, log);
   if (*queryCmd) return app::runQuery(query, log);
+  if (*plantsCmd) return app::runPlants(plantsOptions, log);
   if (*generateCmd) {
     auto encoding = datasets::parseElevationEncoding(genEncoding);
     if (!encoding) return app::reportError(log, encoding.error());

@@ -1,0 +1,252 @@
+// `vegstream plants` (app/plants_command.h) on a small synthetic dataset, through the real
+// executable: CSV and JSON agree, every plant is in the box, the output is deterministic, a
+// sub-box gives exactly the big box's plants that lie in it (view and box independence, core
+// seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2), species come from the catalog, and every
+// user mistake is one message naming the option, exit 2 and no output file.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "tests/support/run_command.h"
+
+namespace vegstream::testing {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path testTmp(const std::string& name) {
+  const auto p = fs::path(VEGSTREAM_TEST_TMP) / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p;
+}
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+struct Row {
+  double lat = 0, lon = 0, height = 0, plantHeight = 0, stiffness = 0, sPrime = 0;
+  std::string species;
+  bool operator==(const Row&) const = default;
+};
+
+std::vector<Row> parseCsv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "lat,lon,height_m,species,plant_height_m,stiffness,s_prime");
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
+    EXPECT_EQ(f.size(), 7u) << line;
+    if (f.size() != 7) break;
+    rows.push_back({std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
+  }
+  return rows;
+}
+
+class Plants : public ::testing::Test {
+ protected:
+  // A 2 km synthetic dataset (max zoom 13), made once; the box: 100 m × 100 m at its centre.
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(testTmp("plants_synth"));
+    const auto g = runVegstream("generate --out " + q(*dir_) + " --name synth --size-km 2 --max-zoom 13 --seed 7");
+    ASSERT_EQ(g.exitCode, 0) << g.err;
+    const auto info = runVegstream("info " + q(*dir_));
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const json j = json::parse(info.out);
+    lat_ = 0.5 * (j["bounds"]["south"].get<double>() + j["bounds"]["north"].get<double>());
+    lon_ = 0.5 * (j["bounds"]["west"].get<double>() + j["bounds"]["east"].get<double>());
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static std::string bbox(double halfM, double offsetEastM = 0.0) {
+    const double dLat = halfM / 111000.0, mLon = 111000.0 * std::cos(lat_ * M_PI / 180.0);
+    const double dLon = halfM / mLon, c = lon_ + offsetEastM / mLon;
+    char buf[160];
+    std::snprintf(buf, sizeof(buf), "%.9f,%.9f,%.9f,%.9f", c - dLon, lat_ - dLat, c + dLon, lat_ + dLat);
+    return buf;
+  }
+  static std::vector<double> numbers(const std::string& box) {
+    std::vector<double> v;
+    std::stringstream ss(box);
+    for (std::string c; std::getline(ss, c, ',');) v.push_back(std::stod(c));
+    return v;
+  }
+  static std::string plants(const std::string& args) { return "plants " + q(*dir_) + " " + args; }
+
+  static inline fs::path* dir_ = nullptr;
+  static inline double lat_ = 0.0, lon_ = 0.0;
+};
+
+TEST_F(Plants, CsvAndJsonAgreeInsideTheBoxAndRunsAreIdentical) {
+  const std::string box = bbox(50.0);
+  const auto a = runVegstream(plants("--bbox " + box));
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  const auto b = runVegstream(plants("--bbox " + box + " --format csv"));
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  EXPECT_EQ(a.out, b.out) << "byte-identical runs";
+  const std::vector<Row> rows = parseCsv(a.out);
+  // 10⁴ m² at full density: n_max = 256 per seed triangle of ~24 m² (≈ 10 per m²), less bare soil.
+  EXPECT_GT(rows.size(), 10000u);
+  EXPECT_LT(rows.size(), 140000u);
+
+  const fs::path out = testTmp("plants_json") / "p.json";
+  fs::create_directories(out.parent_path());
+  const auto j = runVegstream(plants("--bbox " + box + " --format json --output " + q(out)));
+  ASSERT_EQ(j.exitCode, 0) << j.err;
+  EXPECT_TRUE(j.out.empty());
+  std::ifstream in(out);
+  const json doc = json::parse(in);
+  EXPECT_EQ(doc["dataset"], "synth");
+  EXPECT_EQ(doc["cluster_size"], 8);
+  EXPECT_GT(doc["seed_level"].get<int>(), 20);
+  ASSERT_EQ(doc["plant_count"].get<size_t>(), rows.size());
+  ASSERT_EQ(doc["plants"].size(), rows.size());
+  const std::vector<double> v = numbers(box);
+  ASSERT_EQ(doc["bbox"].size(), 4u);
+  for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(doc["bbox"][k].get<double>(), v[k], 1e-9);
+
+  std::set<std::string> names;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const json& p = doc["plants"][i];
+    const Row r{p["lat"], p["lon"], p["height_m"], p["plant_height_m"], p["stiffness"], p["s_prime"], p["species"]};
+    ASSERT_EQ(r, rows[i]) << "row " << i;
+    ASSERT_GE(r.lon, v[0]);
+    ASSERT_LT(r.lon, v[2]);
+    ASSERT_GE(r.lat, v[1]);
+    ASSERT_LT(r.lat, v[3]);
+    ASSERT_GT(r.plantHeight, 0.0);
+    ASSERT_GT(r.stiffness, 0.0);
+    ASSERT_GT(r.sPrime, 0.0);
+    ASSERT_LE(r.sPrime, 1.0);
+    names.insert(r.species);
+  }
+  // Names from the default catalog, never a bare entry.
+  const std::set<std::string> growing = {"grass", "conifer", "red gravel", "dry tufts"};
+  for (const std::string& n : names) EXPECT_TRUE(growing.count(n)) << n;
+  EXPECT_GE(names.size(), 1u);
+  fs::remove_all(out.parent_path());
+}
+
+TEST_F(Plants, ASubBoxGivesExactlyTheBigBoxsPlantsInIt) {
+  const std::string big = bbox(50.0), small = bbox(20.0, 15.0);
+  const auto a = runVegstream(plants("--bbox " + big)), b = runVegstream(plants("--bbox " + small));
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const std::vector<double> s = numbers(small);
+  // Rows printed within 1e-9° of an edge of the small box could round across it: left out.
+  const auto inSmall = [&](const Row& r) { return r.lon >= s[0] && r.lon < s[2] && r.lat >= s[1] && r.lat < s[3]; };
+  const auto nearEdge = [&](const Row& r) {
+    return std::abs(r.lon - s[0]) < 1e-9 || std::abs(r.lon - s[2]) < 1e-9 || std::abs(r.lat - s[1]) < 1e-9 ||
+           std::abs(r.lat - s[3]) < 1e-9;
+  };
+  std::vector<Row> expected, got;
+  for (const Row& r : parseCsv(a.out))
+    if (inSmall(r) && !nearEdge(r)) expected.push_back(r);
+  for (const Row& r : parseCsv(b.out))
+    if (!nearEdge(r)) got.push_back(r);
+  EXPECT_GT(expected.size(), 2000u);
+  ASSERT_EQ(got.size(), expected.size());
+  for (size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], expected[i]) << "row " << i;
+}
+
+TEST_F(Plants, SpeciesComeFromTheCatalogAndBareGroundGrowsNone) {
+  const fs::path tmp = testTmp("plants_species");
+  fs::create_directories(tmp);
+  // One species: every plant is it. Only bare soil: nothing grows.
+  std::ofstream(tmp / "moss.json") << R"({"species": [{"name": "moss", "reference": {"srgb": "#406030"},
+    "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02},
+    "stiffness": {"min": 0.5, "max": 0.6}}]})";
+  std::ofstream(tmp / "bare.json") << R"({"species": [
+    {"name": "dust", "reference": {"srgb": "#808080"}, "weights": {"h": 0, "s": 0, "v": 1}, "p": 2, "bare": true},
+    {"name": "blue moss", "reference": {"srgb": "#0000ff"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 8,
+     "threshold": 1e9, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02}, "stiffness": {"min": 0.5, "max": 0.6}}]})";
+  const std::string box = bbox(25.0);
+  const auto moss = runVegstream(plants("--bbox " + box + " --species " + q(tmp / "moss.json")));
+  ASSERT_EQ(moss.exitCode, 0) << moss.err;
+  const std::vector<Row> rows = parseCsv(moss.out);
+  EXPECT_GT(rows.size(), 3000u);
+  for (const Row& r : rows) {
+    ASSERT_EQ(r.species, "moss");
+    ASSERT_GE(r.plantHeight, 0.01 * 0.6 - 1e-4);
+    ASSERT_LE(r.plantHeight, 0.02 + 1e-4);
+  }
+  const auto bare = runVegstream(plants("--bbox " + box + " --species " + q(tmp / "bare.json") + " --format json"));
+  ASSERT_EQ(bare.exitCode, 0) << bare.err;
+  const json j = json::parse(bare.out);
+  EXPECT_EQ(j["plant_count"], 0);
+  EXPECT_TRUE(j["plants"].empty());
+  fs::remove_all(tmp);
+}
+
+TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
+  const fs::path tmp = testTmp("plants_bad");
+  fs::create_directories(tmp);
+  const fs::path out = tmp / "out.csv";
+  std::ofstream(tmp / "bad_species.json") << R"({"species": [{"name": "x"}]})";
+  // A copy of the dataset's description without imagery.
+  const fs::path noImagery = tmp / "noimagery";
+  fs::create_directories(noImagery);
+  fs::copy(*dir_ / "elevation", noImagery / "elevation", fs::copy_options::recursive);
+  {
+    std::ifstream in(*dir_ / "dataset.json");
+    json d = json::parse(in);
+    d.erase("imagery");
+    std::ofstream(noImagery / "dataset.json") << d.dump(2);
+  }
+  const std::string box = bbox(50.0), o = " --output " + q(out);
+  const std::vector<double> v = numbers(box);
+  char swapped[160], flat[160], outside[160];
+  std::snprintf(swapped, sizeof(swapped), "%.9f,%.9f,%.9f,%.9f", v[2], v[1], v[0], v[3]);
+  std::snprintf(flat, sizeof(flat), "%.9f,%.9f,%.9f,%.9f", v[0], v[3], v[2], v[1]);
+  std::snprintf(outside, sizeof(outside), "%.9f,%.9f,%.9f,%.9f", v[0] + 1.0, v[1], v[2] + 1.0, v[3]);
+  struct Case {
+    std::string args, names;
+  };
+  const std::vector<Case> cases = {
+      {plants("--bbox 1,2,3" + o), "--bbox"},
+      {plants("--bbox 1,2,x,4" + o), "--bbox"},
+      {plants(std::string("--bbox ") + swapped + o), "lon0"},
+      {plants(std::string("--bbox ") + flat + o), "lat0"},
+      {plants(std::string("--bbox ") + outside + o), "bounds"},
+      {"plants " + q(noImagery) + " --bbox " + box + o, "imagery"},
+      {plants("--bbox " + box + " --max-plants 1000" + o), "--max-plants"},
+      {plants("--bbox " + box + " --format xml" + o), "--format"},
+      {plants("--bbox " + box + " --cluster-size 33" + o), "--cluster-size"},
+      {plants("--bbox " + box + " --species " + q(tmp / "bad_species.json") + o), "bad_species.json"},
+      {plants("--bbox " + box + " --species " + q(tmp / "missing.json") + o), "missing.json"},
+      {plants("--bbox " + box + " --output " + q(tmp / "no" / "such" / "dir.csv")), "--output"},
+      {plants("--bbox " + box + " --output " + q(tmp)), "--output"},
+  };
+  for (const Case& c : cases) {
+    const auto r = runVegstream(c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.args;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+  // --max-plants says how many the box grows (and so what to raise it to).
+  const auto r = runVegstream(plants("--bbox " + box + " --max-plants 1000"));
+  EXPECT_NE(r.err.find("grows"), std::string::npos) << r.err;
+  // Nothing left beside the output either (no temporary files).
+  size_t leftovers = 0;
+  for (const auto& e : fs::directory_iterator(tmp)) leftovers += e.path().filename().string().find("out.csv") != std::string::npos;
+  EXPECT_EQ(leftovers, 0u);
+  fs::remove_all(tmp);
+}
+
+}  // namespace
+}  // namespace vegstream::testing
