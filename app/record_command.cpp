@@ -19,6 +19,7 @@
 #include "flight/scene.h"
 #include "flight/summary.h"
 #include "streaming/open_tile_source.h"
+#include "vegetation/species_catalog.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
@@ -169,6 +170,13 @@ int runRecord(const RecordOptions& o, const Logger& log) {
     m.streaming.seedHorizonM = so.terrain.seeds.horizonM;
     m.streaming.seedLevel = info.seedLevel;
     m.streaming.seedTriangleAreaM2 = info.seedAreaM2;
+    m.plants.enabled = so.plants;
+    m.plants.density = so.terrain.seeds.density;
+    m.plants.maxPerTriangle = so.terrain.seeds.maxPlants;
+    m.plants.clusterSize = so.clusterSize;
+    m.plants.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;
+    for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
+      m.plants.species.push_back(s.name);
     m.validate = o.validate;
     m.validationErrors = so.renderer.context.validationLog->errors();
     m.validationWarnings = so.renderer.context.validationLog->warnings();

@@ -4,6 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "vegetation/plant_seeding.h"
+#include "vegetation/species_catalog.h"
+
 namespace vegstream::app {
 
 void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
@@ -29,6 +32,14 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
       ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
+  cmd.add_option("--plant-density", o.plantDensity, "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1)")
+      ->capture_default_str();
+  cmd.add_option("--plant-max", o.plantMax, "Most plants per seed triangle (n_max of eq. 1)")->capture_default_str();
+  cmd.add_option("--cluster-size", o.clusterSize, "Plants per cluster that share one species lookup (C)")
+      ->capture_default_str();
+  cmd.add_option("--species", o.species, "Species catalog (JSON, see config/species.json); default: the built-in one");
+  cmd.add_flag("--no-plants", o.noPlants, "Draw the terrain only: no seeding, no classify pass");
+  cmd.add_flag("--no-plant-markers", o.noPlantMarkers, "Classify the plants but draw no markers for them");
 }
 
 Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaultMode, flight::SceneOptions& scene) {
@@ -50,6 +61,18 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
     return bad("--canopy-m " + std::to_string(o.canopyM) + ": must be 0 … 200 metres");
   if (!(o.seedHorizonM >= 0.0 && o.seedHorizonM <= 20000.0))
     return bad("--seed-horizon-m " + std::to_string(o.seedHorizonM) + ": must be 0 … 20000 metres");
+  if (!(o.plantDensity >= 0.0 && o.plantDensity <= 100.0))
+    return bad("--plant-density " + std::to_string(o.plantDensity) + ": must be 0 … 100 plants per pixel²");
+  if (!(o.plantMax >= 0.0 && o.plantMax <= 65536.0))
+    return bad("--plant-max " + std::to_string(o.plantMax) + ": must be 0 … 65536 plants per seed triangle");
+  if (o.clusterSize < 1 || o.clusterSize > static_cast<int>(vegetation::kMaxClusterSize))
+    return bad("--cluster-size " + std::to_string(o.clusterSize) + ": must be 1 … " +
+               std::to_string(vegetation::kMaxClusterSize));
+  if (!o.species.empty()) {
+    auto catalog = vegetation::loadSpeciesCatalog(o.species);
+    if (!catalog) return catalog.error();
+    scene.species = std::make_shared<const vegetation::SpeciesCatalog>(std::move(*catalog));
+  }
   scene.streaming.cpuBudgetBytes = bytes(o.cpuBudgetMb);
   scene.streaming.gpuBudgetBytes = bytes(o.gpuBudgetMb);
   scene.streaming.uploadBytesPerFrame = bytes(o.uploadMbPerFrame);
@@ -61,6 +84,11 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   scene.terrain.roam.maxTriangles = static_cast<uint64_t>(o.terrainMaxTriangles);
   scene.terrain.roam.canopyM = o.canopyM;
   scene.terrain.seeds.horizonM = o.seedHorizonM;
+  scene.terrain.seeds.density = o.plantDensity;
+  scene.terrain.seeds.maxPlants = o.plantMax;
+  scene.clusterSize = static_cast<uint32_t>(o.clusterSize);
+  scene.plants = !o.noPlants;
+  scene.plantMarkers = !o.noPlantMarkers;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
 }

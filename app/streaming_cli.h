@@ -25,6 +25,13 @@ struct StreamingCli {
   double canopyM = 30.0;                 // tallest plant, for culling
   double seedHorizonM = 250.0;           // seed triangles within this distance
   std::string httpCache;        // directory for the on-disk HTTP tile cache; empty: none
+  // Plants (issue 7): density ρ and n_max of eq. 1, cluster size C, species catalog.
+  double plantDensity = 0.04;   // plants per pixel² of projected seed-triangle area
+  double plantMax = 256.0;      // n_max per seed triangle
+  int clusterSize = 8;
+  std::string species;          // a species catalog JSON file; empty: the default
+  bool noPlants = false;
+  bool noPlantMarkers = false;
 };
 
 // Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).

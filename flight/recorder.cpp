@@ -6,6 +6,7 @@
 #include "flight/recorder.h"
 
 #include <array>
+#include <optional>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +34,7 @@ struct FrameRow {
   double wallMs = 0.0, recorderMs = 0.0, pngMs = kNoValue;
   double terrainTriangles = 0.0;
   double inputPrimitives = kNoValue, clippingPrimitives = kNoValue, fragmentInvocations = kNoValue;
+  std::optional<render::VegetationFigures> vegetation;
 };
 
 double count(uint64_t v) { return static_cast<double>(v); }
@@ -54,10 +56,11 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
     r[c++] = f.flightMs;
     r[c++] = f.streamingMs;
     r[c++] = f.terrainMs;
-    r[c++] = kNoValue;  // cpu_seeding_ms: no vegetation seeding yet
+    r[c++] = f.scene.seedingMs;  // the seed triangles made ready for the classify pass (binning: in record/submit)
     r[c++] = kNoValue;  // cpu_simulation_ms: no simulation yet
     r[c++] = f.recordSubmitMs;
-    r[c++] = f.flightMs + f.streamingMs + f.terrainMs + f.recordSubmitMs;  // cpu_frame_ms: the stages that exist
+    // cpu_frame_ms: the stages that exist.
+    r[c++] = f.flightMs + f.streamingMs + f.terrainMs + f.scene.seedingMs + f.recordSubmitMs;
     r[c++] = f.gpuFrameMs;
     assert(c == passColumn0);
     for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p) r[c++] = rec.perPassMeaningful ? f.passMs[p] : kNoValue;
@@ -91,6 +94,12 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
       r[c++] = count(v);
     r[c++] = tf.roam.seedPlants;
     r[c++] = tf.roam.achievedErrorPx;
+    // Issue 7: the classify pass (render/classify_pass.h); NaN when plants are off.
+    const auto& v = f.vegetation;
+    for (uint64_t x : {uint64_t{v ? v->seedTriangles : 0u}, uint64_t{v ? v->bins : 0u}, v ? v->clusters : 0,
+                       v ? v->clusterSlots : 0, v ? v->groupsTotal : 0, v ? v->plantsTotal : 0,
+                       uint64_t{v && v->overflow}})
+      r[c++] = v ? count(x) : kNoValue;
     assert(c == r.size());
   }
 }
@@ -145,6 +154,9 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
     c.push_back({n, 0});
   c.push_back({"terrain_seed_plants", 1});
   c.push_back({"terrain_achieved_error_px", 3});
+  for (const char* n : {"plant_seed_triangles", "plant_bins", "plant_clusters", "plant_cluster_slots", "plant_groups",
+                        "plants", "plant_overflow"})
+    c.push_back({n, 0});
   return c;
 }
 
@@ -215,6 +227,7 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
     for (std::size_t p = 0; p < rec.gpuPasses.size(); ++p)
       row.passMs[p] = p < gpu.passes.size() && gpu.passes[p].pass == rec.gpuPasses[p] ? gpu.passes[p].ms : kNoValue;
     row.terrainTriangles = count(result->terrainTriangles);
+    row.vegetation = result->vegetation;
     if (gpu.statistics.available) {
       row.inputPrimitives = count(gpu.statistics.inputPrimitives);
       row.clippingPrimitives = count(gpu.statistics.clippingPrimitives);

@@ -11,6 +11,7 @@
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
 #include "terrain/snapshot_grid.h"
+#include "vegetation/plant_seeding.h"
 
 namespace vegstream::flight {
 
@@ -28,6 +29,8 @@ struct Scene::Impl {
   std::vector<render::TerrainDraw> draws;
   std::vector<render::ImageryUpload> uploads;
   std::vector<streaming::Upload> planned;
+  std::vector<render::SeedTriangleGpu> seeds;
+  render::VegetationRequest vegetation;
   SceneFrameFigures figures;
 
   double width() const { return static_cast<double>(renderer->width()); }
@@ -85,6 +88,11 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
       return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
     if (Status s = impl->renderer->setImageryLayers(info.imageryLayers); !s) return s.error();
   }
+  if (options.species)
+    if (Status s = impl->renderer->setSpeciesCatalog(*options.species); !s) return s.error();
+  if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
+    return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) + ": must be 1 … " +
+                                                  std::to_string(vegetation::kMaxClusterSize));
   impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, options.terrain);
   info.seedLevel = impl->terrain->roam().seedLevel();
   info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
@@ -166,6 +174,15 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   for (const terrain::TerrainPiece& p : pieces)
     m.draws.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend});
   fig.terrainMs = terrainMs + stage.elapsedMs();
+  fig.seedingMs = 0.0;
+  if (m.options.plants) {
+    stage.restart();
+    seedTrianglesForGpu(m.terrain->seedTriangles(), req.camera.position, m.seeds);
+    fig.seedingMs = stage.elapsedMs();
+    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantMarkers};
+    req.vegetation = &m.vegetation;
+    fig.seedTrianglesClassified = m.seeds.size();
+  }
 
   fig.streaming = m.streamer->frameStats();
   if (settledCounters) {  // every settle round's requests; the uploads planned after them
@@ -180,6 +197,27 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   req.terrain = m.draws;
   req.imageryUploads = m.uploads;
   return req;
+}
+
+void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm::dvec3& camera,
+                         std::vector<render::SeedTriangleGpu>& out) {
+  out.clear();
+  out.reserve(seeds.size());
+  for (const terrain::SeedTriangle& s : seeds) {
+    if (s.imageryLayer < 0) continue;  // no imagery drawn under it yet: no colour, no species
+    render::SeedTriangleGpu g;
+    // Camera-relative in double, then float: centimetres stay exact kilometres from the origin.
+    g.v0 = glm::vec4(glm::vec3(s.world[0] - camera), s.plantCount);
+    g.v1 = glm::vec4(glm::vec3(s.world[1] - camera), 0.0f);
+    g.v2 = glm::vec4(glm::vec3(s.world[2] - camera), 0.0f);
+    g.uv01 = glm::vec4(s.imageryUv[0], s.imageryUv[1]);
+    g.uv2 = s.imageryUv[2];
+    const uint64_t key = terrain::seedKey(s.path);
+    g.keyLo = static_cast<uint32_t>(key);
+    g.keyHi = static_cast<uint32_t>(key >> 32);
+    g.layer = s.imageryLayer;
+    out.push_back(g);
+  }
 }
 
 std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,

@@ -48,6 +48,11 @@ struct SceneOptions {
   bool lookAhead = true;                   // prefetch the tiles of the poses expected next
   std::optional<std::filesystem::path> httpCacheDir;
   uint64_t groundMaxPixels = 1'000'000;    // the ground mosaic for path altitudes
+  // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
+  bool plants = true;
+  uint32_t clusterSize = 8;                // C, 1 … vegetation::kMaxClusterSize
+  bool plantMarkers = true;                // draw the classification markers
+  std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
   Logger logger;                           // may be null
 };
 
@@ -75,6 +80,8 @@ struct SceneFrameFigures {
   uint64_t uploads = 0;        // imagery tiles uploaded this frame
   uint64_t cpuBytes = 0;       // resident tiles + ground mosaic
   uint64_t gpuBytes = 0;       // imagery array + terrain buffers
+  uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
+  double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
 };
 
 class Scene {
@@ -109,6 +116,11 @@ class Scene {
 };
 
 // Look-ahead poses of a scripted path: the samples at t + 0.5, 1, …, horizonS (clamped to the end).
+// The frame's seed triangles as the classify pass reads them: camera-relative, with their keys
+// and imagery; triangles without imagery are left out.
+void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm::dvec3& camera,
+                         std::vector<render::SeedTriangleGpu>& out);
+
 std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
                                            double horizonS = 3.0, double stepS = 0.5);
 

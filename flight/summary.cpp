@@ -40,6 +40,10 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"terrain_max_triangles", m.streaming.terrainMaxTriangles}, {"canopy_m", m.streaming.canopyM},
         {"seed_horizon_m", m.streaming.seedHorizonM}, {"seed_level", m.streaming.seedLevel},
         {"seed_triangle_area_m2", m.streaming.seedTriangleAreaM2}}},
+      {"plants",
+       {{"enabled", m.plants.enabled}, {"density_per_px2", m.plants.density},
+        {"max_per_seed_triangle", m.plants.maxPerTriangle}, {"cluster_size", m.plants.clusterSize},
+        {"species_catalog", m.plants.speciesCatalog}, {"species", m.plants.species}}},
       {"validation", {{"enabled", m.validate}, {"errors", m.validationErrors}, {"warnings", m.validationWarnings}}},
       {"per_pass_gpu_times_meaningful", m.perPassMeaningful},
       {"pipeline_statistics", m.pipelineStatistics},
@@ -73,7 +77,8 @@ namespace {
 
 bool isTimeColumn(const std::string& name) { return name.size() > 3 && name.ends_with("_ms"); }
 bool isCountColumn(const std::string& name) {
-  return name.starts_with("terrain_") || name.starts_with("stat_") || (name.starts_with("stream_") && !isTimeColumn(name));
+  return name.starts_with("terrain_") || name.starts_with("stat_") || name.starts_with("plant") ||
+         (name.starts_with("stream_") && !isTimeColumn(name));
 }
 
 double sum(const std::vector<double>& v) {

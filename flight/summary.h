@@ -54,6 +54,13 @@ struct RecordingMeta {
     int seedLevel = 0;
     double seedTriangleAreaM2 = 0.0;
   } streaming;
+  struct Plants {
+    bool enabled = false;
+    double density = 0.0, maxPerTriangle = 0.0;  // ρ, n_max (eq. 1)
+    uint32_t clusterSize = 0;
+    std::string speciesCatalog;                  // the file, or "default"
+    std::vector<std::string> species;            // names, in catalog order
+  } plants;
   bool validate = false;
   uint64_t validationErrors = 0, validationWarnings = 0;
   bool perPassMeaningful = false;

@@ -37,7 +37,8 @@ void main() {
   uvec2 hs = philoxDraw(key, g.cluster, kSlotHeightStiffness + seed);
   uvec2 ow = philoxDraw(key, g.cluster, kSlotOrientationWidth + seed);
   float height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * (0.6 + 0.4 * g.sPrime) * g.fade;
-  float width = max(mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)), 0.02) * 3.0 * g.fade;
+  // Wider than the plant itself, so that markers of thin blades show at a distance.
+  float width = max(mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * 3.0, 0.3 * height);
   // Facing the camera: the base spans the horizontal perpendicular to the view ray.
   vec3 side = normalize(cross(vec3(0.0, 0.0, 1.0), root) + vec3(1e-6, 0.0, 0.0));
   vec3 p = corner == 0u ? root - 0.5 * width * side : (corner == 1u ? root + 0.5 * width * side : root + vec3(0.0, 0.0, height));

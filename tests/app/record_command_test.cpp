@@ -40,6 +40,9 @@ const std::vector<std::string> kRoam = {
     "terrain_roam_update_ms", "terrain_roam_output_ms", "terrain_leaves", "terrain_splits", "terrain_merges",
     "terrain_constrained_leaves", "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
     "terrain_seed_interpolated", "terrain_depth_limited_leaves", "terrain_seed_plants", "terrain_achieved_error_px"};
+// Issue 7's classify-pass columns, after kRoam.
+const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", "plant_clusters",
+                                          "plant_cluster_slots", "plant_groups", "plants", "plant_overflow"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -99,13 +102,14 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"}) EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size();
+  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size();
   ASSERT_GE(csv.header.size(), kLeading.size() + tail);
   EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
-  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), csv.header.rbegin()));
-  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), csv.header.rbegin() + static_cast<long>(kRoam.size())));
-  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(),
-                         csv.header.rbegin() + static_cast<long>(kStreaming.size() + kRoam.size())));
+  const auto back = [&](std::size_t skip) { return csv.header.rbegin() + static_cast<long>(skip); };
+  EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(0)));
+  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(kPlants.size())));
+  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(kPlants.size() + kRoam.size())));
+  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(), back(kPlants.size() + kStreaming.size() + kRoam.size())));
   for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
     EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
@@ -116,15 +120,20 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   }
   EXPECT_EQ(std::stod(csv.rows.back()[1]), 2.0);
   // Stages that do not exist yet are empty, never 0; those that exist are filled.
-  for (const char* empty : {"cpu_seeding_ms", "cpu_simulation_ms"})
+  for (const char* empty : {"cpu_simulation_ms"})
     for (const auto& v : csv.column(empty)) EXPECT_EQ(v, "") << empty;
   for (const char* filled : {"cpu_flight_ms", "cpu_terrain_ms", "cpu_record_submit_ms", "gpu_frame_ms", "wall_ms",
                              "recorder_ms", "terrain_triangles", "cpu_bytes", "gpu_bytes", "cpu_streaming_ms",
                              "streaming_wait_ms", "stream_bytes_resident_cpu", "terrain_pieces", "terrain_leaves",
-                             "terrain_roam_update_ms", "terrain_seed_triangles", "terrain_achieved_error_px"})
+                             "terrain_roam_update_ms", "terrain_seed_triangles", "terrain_achieved_error_px",
+                             "cpu_seeding_ms", "plant_seed_triangles", "plant_bins", "plants", "plant_overflow"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
+  EXPECT_EQ(rec["plants"]["enabled"], true);
+  EXPECT_EQ(rec["plants"]["cluster_size"], 8);
+  EXPECT_EQ(rec["plants"]["species_catalog"], "default");
+  EXPECT_GE(rec["plants"]["species"].size(), 3u);
   const json s = json::parse(readWhole(dir / "summary.json"));
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);
