@@ -271,13 +271,15 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
                                       " … " + fmt("%.6f", b.eastDeg) + ", lat " + fmt("%.6f", b.southDeg) + " … " +
                                       fmt("%.6f", b.northDeg) + ")"));
 
-  // The renderer's grid, seed level, roots and frame (StreamedTerrain, flight/scene): the same
-  // triangles, keys and vertices as in a flight.
+  // The renderer's grid, seed level and roots (StreamedTerrain): the same triangles, keys and
+  // vertices as in a flight.
   const terrain::SeedOptions seedOptions;
   const double lat = b.centre().y;
   const terrain::BintreeGrid grid = terrain::gridForSeeds(meta.minZoom, meta.maxZoom, lat, seedOptions.targetAreaM2);
   const geo::TileRange roots = geo::tileRangesCovering(b, meta.minZoom).front();
-  const geo::LocalFrame frame = geo::frameAtCentre(b, 0.5 * (meta.minHeightM + meta.maxHeightM));
+  // The flight's frame (flight/scene.cpp): the plants' ENU positions are then those a flight
+  // computes, bit for bit, not merely the same lat/lon.
+  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
   terrain::SeedRegionQuery query;
   query.box = *box;
   query.seedLevel = terrain::seedLevelFor(grid, lat, seedOptions.targetAreaM2);
