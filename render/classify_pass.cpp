@@ -133,9 +133,9 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
 
   std::vector<uint32_t> counts(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i)
-    counts[i] = triangles[i].layer < 0 ? 0 : vegetation::clusterCount(triangles[i].v0.w, clusterSize);
+    counts[i] = triangles[i].layer < 0 ? 0 : vegetation::classifyItems(triangles[i].v0.w, clusterSize);
   const vegetation::BinnedTriangles bins = vegetation::binTriangles(counts);
-  f.clusters = bins.clusters;
+  f.clusters = bins.clusters;  // work items: seeds of cluster 0 + further clusters
   f.clusterSlots = bins.slots;
 
   ensureCapacity(s, slot, triangles.size(), bins.order.size(), retire);

@@ -74,7 +74,7 @@ inline constexpr size_t kSpeciesSlots = 16;  // = vegetation::kMaxSpecies
 struct VegetationFigures {
   uint32_t seedTriangles = 0;   // submitted to the classify pass
   uint32_t bins = 0;            // non-empty bins (one dispatch each)
-  uint64_t clusters = 0;        // Σ clusters per triangle, before species rejection
+  uint64_t clusters = 0;        // species lookups: seeds of cluster 0 + further clusters, before rejection
   uint64_t clusterSlots = 0;    // threads the bins' dispatches covered (≥ clusters)
   bool gpuCounts = false;       // the per-species counts below were read back
   std::array<uint32_t, kSpeciesSlots> groups{};  // groups appended per species (drawn: ≤ capacity)

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The classify pass, core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.5 in compute form:
-// one thread per (seed triangle, cluster slot) of a bin (§3.2, eq. 15; vegetation/plant_bins.h),
+// one thread per (seed triangle, work item: a seed of cluster 0 or a further cluster) of a bin (§3.2, eq. 15; vegetation/plant_bins.h),
 // which expands the cluster, samples the base colour at its centre (cluster 0: at each seed),
 // scores and picks the species (eq. 16–18), rejects bare soil and appends the group to its
 // species' buffer. The CPU reference is vegetation/plant_seeding.cpp: same operations.
@@ -71,21 +71,24 @@ void main() {
   uint id = pc.threadBase + gl_GlobalInvocationID.x;
   if (id >= pc.triangleCount * pc.capacity) return;
   uint tri = order[pc.orderFirst + id / pc.capacity];
-  uint c = id % pc.capacity;
+  uint item = id % pc.capacity;
   SeedTriangle t = triangles[tri];
   float n = t.v0.w;
-  if (t.layer < 0 || c >= clusterCount(n, pc.clusterSize)) return;
+  if (t.layer < 0) return;
+  uint clusters = clusterCount(n, pc.clusterSize);
+  if (clusters == 0u) return;
+  // Items: the seeds of cluster 0 (each its own species), then clusters 1, 2, … (plant_seeding.h).
+  uint seeds = uint(ceil(min(n, float(pc.clusterSize))));
+  if (item >= seeds + clusters - 1u) return;
   uvec2 key = uvec2(t.keyLo, t.keyHi);
-  if (c == 0u) {
-    uint seeds = uint(ceil(min(n, float(pc.clusterSize))));
-    for (uint s = 0u; s < seeds; ++s) {
-      float z = philoxU01(philoxDraw(key, 0u, kSlotColourSpecies + s).y);
-      vec2 pick = chooseSpecies(baseHsv(t, seedPoint(key, 0u, s)), z);
-      if (pick.x < 0.0) continue;
-      append(tri, 0u, s, 1u, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, 0u, s));
-    }
+  if (item < seeds) {
+    float z = philoxU01(philoxDraw(key, 0u, kSlotColourSpecies + item).y);
+    vec2 pick = chooseSpecies(baseHsv(t, seedPoint(key, 0u, item)), z);
+    if (pick.x < 0.0) return;
+    append(tri, 0u, item, 1u, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, 0u, item));
     return;
   }
+  uint c = item - seeds + 1u;
   float z = philoxU01(philoxDraw(key, c, kSlotSpecies).x);
   vec2 pick = chooseSpecies(baseHsv(t, clusterCentre(key, c)), z);
   if (pick.x < 0.0) return;

@@ -31,6 +31,13 @@ uint32_t clusterCount(float plantCount, uint32_t clusterSize) {
   return 1u + static_cast<uint32_t>(std::ceil(rest));
 }
 
+uint32_t classifyItems(float plantCount, uint32_t clusterSize) {
+  const uint32_t clusters = clusterCount(plantCount, clusterSize);
+  if (clusters == 0) return 0;
+  const auto seeds = static_cast<uint32_t>(std::ceil(std::min(plantCount, static_cast<float>(clusterSize))));
+  return seeds + clusters - 1;
+}
+
 float plantFade(float plantCount, uint32_t clusterSize, uint32_t cluster, uint32_t seed) {
   const float c = static_cast<float>(clusterSize);
   if (cluster == 0) return sequenceFade(std::min(plantCount, c), seed);

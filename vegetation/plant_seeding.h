@@ -68,6 +68,10 @@ inline float sequenceFade(float count, uint32_t index) {
 }
 // Clusters a count N touches: 0 for N ≤ 0, else 1 + ⌈max(N − C, 0) / C⌉.
 uint32_t clusterCount(float plantCount, uint32_t clusterSize);
+// Work items of a triangle in the classify pass: one per seed of cluster 0 (each looks up its
+// own species) and one per further cluster — ⌈min(N, C)⌉ + clusterCount − 1 (0 for N ≤ 0).
+// Item k < ⌈min(N, C)⌉ is seed k of cluster 0, item k beyond is cluster k − ⌈min(N, C)⌉ + 1.
+uint32_t classifyItems(float plantCount, uint32_t clusterSize);
 // Fade of seed s of cluster c for count N.
 float plantFade(float plantCount, uint32_t clusterSize, uint32_t cluster, uint32_t seed);
 

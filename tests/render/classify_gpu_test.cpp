@@ -12,6 +12,7 @@
 
 #include "core/hash.h"
 #include "gpu_test_fixture.h"
+#include "tests/support/classify_scene.h"
 #include "render/classify_pass.h"
 #include "render/context.h"
 #include "render/descriptors.h"
@@ -30,60 +31,7 @@ namespace {
 namespace veg = vegstream::vegetation;
 
 constexpr uint32_t kTile = kImageryTileSize;
-
-// sRGB 8-bit tile: green meadow on the west, red rock in the middle, pale sandstone in the
-// east, with texel noise so colours vary within each region.
-std::vector<uint8_t> baseMap(uint32_t seed) {
-  std::vector<uint8_t> rgba(size_t{kTile} * kTile * 4);
-  for (uint32_t y = 0; y < kTile; ++y)
-    for (uint32_t x = 0; x < kTile; ++x) {
-      const uint32_t h = mix32(x * 7919u + y * 104729u + seed);
-      const int n = static_cast<int>(h % 21u) - 10;
-      int r = 90, g = 115, b = 55;                 // meadow green
-      if (x > 100 && x <= 180) r = 150, g = 90, b = 70;   // red rock
-      if (x > 180) r = 210, g = 198, b = 176;            // pale sandstone
-      uint8_t* p = &rgba[(size_t{y} * kTile + x) * 4];
-      p[0] = static_cast<uint8_t>(std::clamp(r + n, 0, 255));
-      p[1] = static_cast<uint8_t>(std::clamp(g + n, 0, 255));
-      p[2] = static_cast<uint8_t>(std::clamp(b + n, 0, 255));
-      p[3] = 255;
-    }
-  return rgba;
-}
-
-struct Scene {
-  std::vector<SeedTriangleGpu> gpu;
-  std::vector<veg::SeedTriangleInput> cpu;
-};
-
-// Right triangles of 4 m legs over the 256 m tile (1 m per texel), plant counts from 0.3 to 256
-// (unclustered, fading and clustered triangles in many bins).
-Scene makeScene(uint32_t layers) {
-  Scene s;
-  uint32_t i = 0;
-  for (float y = 2.0f; y < 250.0f; y += 9.0f)
-    for (float x = 2.0f; x < 250.0f; x += 9.0f, ++i) {
-      SeedTriangleGpu t;
-      const float n = 0.3f * std::pow(256.0f / 0.3f, static_cast<float>(mix32(i) % 1000u) / 999.0f);
-      t.v0 = {x, y, 10.0f, n};
-      t.v1 = {x + 4.0f, y, 10.5f, 0.0f};
-      t.v2 = {x, y + 4.0f, 9.5f, 0.0f};
-      const float s256 = 1.0f / 256.0f;
-      // Tile rows run north → south; the scene's y is northwards.
-      t.uv01 = {x * s256, 1.0f - y * s256, (x + 4.0f) * s256, 1.0f - y * s256};
-      t.uv2 = {x * s256, 1.0f - (y + 4.0f) * s256};
-      t.keyLo = mix32(i * 2u + 1u);
-      t.keyHi = mix32(i * 2u + 2u);
-      t.layer = static_cast<int32_t>(i % layers);
-      s.gpu.push_back(t);
-      veg::SeedTriangleInput c;
-      c.key = (uint64_t{t.keyHi} << 32) | t.keyLo;
-      c.vertices = {glm::dvec3(glm::vec3(t.v0)), glm::dvec3(glm::vec3(t.v1)), glm::dvec3(glm::vec3(t.v2))};
-      c.plantCount = n;
-      s.cpu.push_back(c);
-    }
-  return s;
-}
+using vegstream::testing::ClassifyScene;
 
 using GroupKey = std::tuple<uint32_t, uint32_t, uint32_t>;  // triangle, cluster, first seed
 
@@ -98,7 +46,8 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   const Context& ctx = **created;
 
   constexpr uint32_t kLayers = 2;
-  const std::vector<uint8_t> maps[kLayers] = {baseMap(1), baseMap(2)};
+  const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
+                                                 vegstream::testing::classifyBaseMap(2)};
   GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
                                       VK_FORMAT_R8G8B8A8_UNORM);
@@ -108,7 +57,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   for (uint32_t l = 0; l < kLayers; ++l)
     std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
 
-  const Scene scene = makeScene(kLayers);
+  const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers);
   const veg::SpeciesCatalog& catalog = veg::defaultSpeciesCatalog();
   constexpr uint32_t kClusterSize = 8;
   ClassifyPass pass(ctx, ClassifyOptions{1u << 14});
@@ -124,14 +73,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   EXPECT_FALSE(figures.overflow);
 
   // The CPU reference, sampling the same texels.
-  const auto colourOf = [&](size_t i) -> veg::BaseColourAt {
-    const SeedTriangleGpu& t = scene.gpu[i];
-    const veg::ImageryTexels texels{maps[t.layer].data(), kTile};
-    return [texels, t](glm::vec2 r) {
-      const glm::vec2 uv0(t.uv01.x, t.uv01.y), uv1(t.uv01.z, t.uv01.w);
-      return veg::sampleImageryLinear(texels, uv0 + r.x * (uv1 - uv0) + r.y * (t.uv2 - uv0));
-    };
-  };
+  const auto colourOf = [&](size_t i) { return vegstream::testing::classifyColour(scene.gpu[i], maps); };
   std::vector<veg::PlantCluster> cpu;
   for (size_t i = 0; i < scene.cpu.size(); ++i)
     veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colourOf(i), cpu);
