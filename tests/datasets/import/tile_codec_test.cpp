@@ -63,7 +63,8 @@ TEST_P(EncodingRoundTrip, TileFileKeepsHeightsAndNodataMask) {
     t.heights[i] = (i % 17 == 0) ? NAN : h(rng);
     nodata += std::isnan(t.heights[i]);
   }
-  const fs::path p = tmpDir("heights") / "t.png";
+  // One file per encoding: ctest may run the parameterised cases at the same time.
+  const fs::path p = tmpDir("heights") / ("t" + std::to_string(static_cast<int>(enc)) + ".png");
   ASSERT_TRUE(writeHeightTile(p, t, enc));
   auto back = readHeightTile(p, t.id, enc);
   ASSERT_TRUE(back) << back.error().message;
