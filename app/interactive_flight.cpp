@@ -166,7 +166,9 @@ HudState Session::hudState(double now) const {
     s.terrainTriangles = last_->terrainTriangles;
   }
   const flight::SceneFrameFigures& fig = scene_.lastFrameFigures();
-  if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;  // plants: once vegetation is drawn
+  if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;
+  // Plants classified on the GPU (plant triangles: once the species pipelines draw them).
+  if (last_ && last_->vegetation && last_->vegetation->gpuCounts) s.plants = last_->vegetation->plantsTotal;
   const streaming::StreamingFrameStats& st = fig.streaming;
   char line[256];
   std::snprintf(line, sizeof(line),
