@@ -145,16 +145,10 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   if (s.boundImagery != imagery) writeSets(s, imagery);
 
   vkCmdFillBuffer(cmd, s.counters.get(), 0, kCounterBytes, 0);
-  VkMemoryBarrier2 clear{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  clear.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
-                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
-  clear.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  clear.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  clear.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &clear;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  // The counters are cleared after the slot's previous draws read its records and indirect args.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelineLayout_.get(), 0, 1, &s.classifySet, 0,
@@ -172,13 +166,8 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
     }
   }
 
-  VkMemoryBarrier2 counted{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  counted.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  counted.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  counted.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  counted.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-  dep.pMemoryBarriers = &counted;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finish_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finishPipelineLayout_.get(), 0, 1, &s.finishSet, 0,
@@ -188,15 +177,10 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   vkCmdDispatch(cmd, 1, 1, 1);
 
   // Records and draws to the species pipelines; the figures copy to the host.
-  VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  done.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  done.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  done.dstStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                      VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT;
-  done.dstAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                       VK_ACCESS_2_HOST_READ_BIT;
-  dep.pMemoryBarriers = &done;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
   return f;
 }
 

@@ -144,16 +144,21 @@ void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubre
   vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess) {
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
   mb.srcStageMask = srcStage;
   mb.srcAccessMask = srcAccess;
-  mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-  mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  mb.dstStageMask = dstStage;
+  mb.dstAccessMask = dstAccess;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.memoryBarrierCount = 1;
   dep.pMemoryBarriers = &mb;
   vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess) {
+  memoryBarrier(cmd, srcStage, srcAccess, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,

@@ -69,6 +69,9 @@ void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubre
 // One pipeline barrier for one whole single-layer image (synchronization2).
 // Makes writes of `srcStage` / `srcAccess` visible to the host once the submission's fence
 // signals (read-backs of images or storage buffers).
+// A global memory barrier (synchronization2): writes of `srcStage` made visible to `dstStage`.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess);
 void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                      VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,

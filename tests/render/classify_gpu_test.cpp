@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/hash.h"
+#include "compute_check.h"
 #include "gpu_test_fixture.h"
 #include "tests/support/classify_scene.h"
 #include "render/classify_pass.h"
@@ -38,12 +39,9 @@ using GroupKey = std::tuple<uint32_t, uint32_t, uint32_t>;  // triangle, cluster
 class ClassifyGpu : public GpuTest {};
 
 TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
-  ContextOptions o;
-  o.validate = true;
-  o.validationLog = validation;
-  auto created = Context::create(o);
-  ASSERT_TRUE(created.ok()) << created.error().message;
-  const Context& ctx = **created;
+  const std::unique_ptr<Context> context = validatedContext();
+  ASSERT_TRUE(context);
+  const Context& ctx = *context;
 
   constexpr uint32_t kLayers = 2;
   const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
@@ -159,29 +157,12 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   ASSERT_GT(groups, 100u);
   GpuBuffer roots = createBuffer(ctx, VkDeviceSize{groups} * kClusterSize * sizeof(glm::vec4),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "test roots");
-  const VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-  DescriptorSetLayout setLayout = createLayout(ctx, bindings, "roots set layout");
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
-  DescriptorPool pool = createPool(ctx, sizes, 1, "roots pool");
-  VkDescriptorSet set = allocateDescriptorSet(ctx, pool.get(), setLayout.get(), "roots set");
-  writeStorageBuffer(ctx, set, pass.triangles(0), 0);
-  writeStorageBuffer(ctx, set, pass.records(0), 1);
-  writeStorageBuffer(ctx, set, roots.get(), 2);
+  const CheckBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.triangles(0)},
+                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.records(0)},
+                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, roots.get()}};
   const uint32_t push[3] = {groups, kClusterSize, grass * capacity};
-  const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push)};
-  const VkDescriptorSetLayout layouts[] = {setLayout.get()};
-  PipelineLayout layout = createPipelineLayout(ctx, layouts, {&range, 1}, "roots pipeline layout");
-  Pipeline pipeline = createComputePipeline(ctx, layout.get(), spv_seeding_check_comp, "roots pipeline");
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
-    vkCmdDispatch(cmd, (groups * kClusterSize + 63) / 64, 1, 1);
-    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  });
+  runComputeCheck(ctx, spv_seeding_check_comp, bindings, std::as_bytes(std::span(push)), groups * kClusterSize,
+                  "roots check");
   const auto* gpuRoots = static_cast<const glm::vec4*>(roots.mapped);
   double worst = 0.0;
   size_t compared = 0;

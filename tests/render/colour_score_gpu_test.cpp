@@ -11,6 +11,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "compute_check.h"
 #include "gpu_test_fixture.h"
 #include "render/context.h"
 #include "render/descriptors.h"
@@ -53,12 +54,9 @@ std::vector<glm::vec4> testColours() {
 class ColourScoreGpu : public GpuTest {};
 
 TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
-  ContextOptions o;
-  o.validate = true;
-  o.validationLog = validation;
-  auto created = Context::create(o);
-  ASSERT_TRUE(created.ok()) << created.error().message;
-  const Context& ctx = **created;
+  const std::unique_ptr<Context> context = validatedContext();
+  ASSERT_TRUE(context);
+  const Context& ctx = *context;
 
   const std::vector<glm::vec4> colours = testColours();
   const auto count = static_cast<uint32_t>(colours.size());
@@ -73,38 +71,11 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   GpuBuffer outputs = createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
                                    "check outputs");
 
-  const VkDescriptorSetLayoutBinding bindings[] = {
-      {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-  DescriptorSetLayout setLayout = createLayout(ctx, bindings, "check set layout");
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
-  DescriptorPool pool = createPool(ctx, sizes, 1, "check pool");
-  VkDescriptorSet set = allocateDescriptorSet(ctx, pool.get(), setLayout.get(), "check set");
-  writeUniformBuffer(ctx, set, uniforms.get(), sizeof(block), 1);
-  const VkDescriptorBufferInfo in{inputs.get(), 0, VK_WHOLE_SIZE}, out{outputs.get(), 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  for (int i = 0; i < 2; ++i) {
-    writes[i].dstSet = set;
-    writes[i].dstBinding = static_cast<uint32_t>(2 + i);
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = i == 0 ? &in : &out;
-  }
-  vkUpdateDescriptorSets(ctx.device(), 2, writes, 0, nullptr);
-
-  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
-  const VkDescriptorSetLayout layouts[] = {setLayout.get()};
-  PipelineLayout layout = createPipelineLayout(ctx, layouts, {&push, 1}, "check pipeline layout");
-  Pipeline pipeline = createComputePipeline(ctx, layout.get(), spv_colour_score_check_comp, "colour score check pipeline");
-
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count), &count);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  });
+  const CheckBinding bindings[] = {{1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms.get(), sizeof(block)},
+                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, inputs.get()},
+                                   {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()}};
+  runComputeCheck(ctx, spv_colour_score_check_comp, bindings, std::as_bytes(std::span(&count, 1)), count,
+                  "colour score check");
   std::vector<glm::vec4> gpu(4 * count);
   std::memcpy(gpu.data(), outputs.mapped, outBytes);
 

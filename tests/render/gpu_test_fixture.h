@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render/context.h"
 #include "render/renderer.h"
 #include "terrain/terrain_mesh.h"
 
@@ -29,6 +30,16 @@ class GpuTest : public ::testing::Test {
     auto r = Renderer::create(options(width, height, msaa));
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
     return r.ok() ? std::move(*r) : nullptr;
+  }
+
+  // A bare context (no renderer) with the validation layers reporting to this test.
+  std::unique_ptr<Context> validatedContext() {
+    ContextOptions o;
+    o.validate = true;
+    o.validationLog = validation;
+    auto created = Context::create(o);
+    EXPECT_TRUE(created.ok()) << (created.ok() ? "" : created.error().message);
+    return created.ok() ? std::move(*created) : nullptr;
   }
 
   void TearDown() override {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "compute_check.h"
 #include "gpu_test_fixture.h"
 #include "render/context.h"
 #include "render/descriptors.h"
@@ -24,44 +25,16 @@ namespace veg = vegstream::vegetation;
 class PhiloxGpu : public GpuTest {};
 
 TEST_F(PhiloxGpu, ShaderMatchesTheCppBitForBit) {
-  ContextOptions o;
-  o.validate = true;
-  o.validationLog = validation;
-  auto created = Context::create(o);
-  ASSERT_TRUE(created.ok()) << created.error().message;
-  const Context& ctx = **created;
+  const std::unique_ptr<Context> context = validatedContext();
+  ASSERT_TRUE(context);
+  const Context& ctx = *context;
 
   constexpr uint32_t count = 1000000;
   const VkDeviceSize outBytes = sizeof(uint32_t) * 6 * count;
   GpuBuffer outputs = createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
                                    "philox check outputs");
-  const VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-  DescriptorSetLayout setLayout = createLayout(ctx, bindings, "philox check set layout");
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
-  DescriptorPool pool = createPool(ctx, sizes, 1, "philox check pool");
-  VkDescriptorSet set = allocateDescriptorSet(ctx, pool.get(), setLayout.get(), "philox check set");
-  const VkDescriptorBufferInfo out{outputs.get(), 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = 0;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  write.pBufferInfo = &out;
-  vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
-
-  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
-  const VkDescriptorSetLayout layouts[] = {setLayout.get()};
-  PipelineLayout layout = createPipelineLayout(ctx, layouts, {&push, 1}, "philox check pipeline layout");
-  Pipeline pipeline = createComputePipeline(ctx, layout.get(), spv_philox_check_comp, "philox check pipeline");
-
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count), &count);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  });
+  const CheckBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()}};
+  runComputeCheck(ctx, spv_philox_check_comp, bindings, std::as_bytes(std::span(&count, 1)), count, "philox check");
   std::vector<uint32_t> gpu(6 * size_t{count});
   std::memcpy(gpu.data(), outputs.mapped, outBytes);
 
