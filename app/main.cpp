@@ -12,6 +12,7 @@
 #include "app/compare_command.h"
 #include "app/import_command.h"
 #include "app/info_command.h"
+#include "app/inspect_command.h"
 #include "app/path_command.h"
 #include "app/plants_command.h"
 #include "app/record_command.h"
@@ -88,6 +89,8 @@ int main(int argc, char** argv) {
 
   app::PlantsOptions plantsOptions;
   auto* plantsCmd = app::addPlantsCommand(cli, plantsOptions);
+  app::InspectOptions inspectOptions;
+  auto* inspectCmd = app::addInspectCommand(cli, inspectOptions);
 
   datasets::SyntheticOptions gen;
   std::string genOut, genEncoding = "terrarium";
@@ -121,6 +124,7 @@ int main(int argc, char** argv) {
   if (*infoCmd) return app::runInfo(info, log);
   if (*queryCmd) return app::runQuery(query, log);
   if (*plantsCmd) return app::runPlants(plantsOptions, log);
+  if (*inspectCmd) return app::runInspect(inspectOptions, log);
   if (*generateCmd) {
     auto encoding = datasets::parseElevationEncoding(genEncoding);
     if (!encoding) return app::reportError(log, encoding.error());
