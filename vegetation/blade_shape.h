@@ -40,6 +40,12 @@
 // corrector (analytic Jacobian, backtracking on ‖F‖²). With φ₀ = 0 it returns the straight blade
 // (exact, but unstable below k_c). The tip may droop below the root height at small k′: the
 // ground is not modelled (neither is it in eq. 12).
+//
+// Scale. k′ is per hinge and normalised by the segment length h, so the same blade cut into more
+// segments has a larger k′ (k′ ∝ N³ for a given continuous blade: k_c(N)/N³ tends to the
+// elastica's self-weight buckling 1/7.837). For N = 4, k_c = 11.9: k′ ≈ 1–1.5 k_c gives a
+// grass-like arch (tip at (2.98, 2.57) at k_c, (1.19, 3.82) at 1.5 k_c), while k′ < 0.5 k_c hangs
+// below the root (k′ = 0.4: tip (0.33, −3.96)) — catalog stiffnesses are read on this scale.
 
 #include <span>
 #include <vector>
