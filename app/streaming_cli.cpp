@@ -39,7 +39,15 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
       ->capture_default_str();
   cmd.add_option("--species", o.species, "Species catalog (JSON, see config/species.json); default: the built-in one");
   cmd.add_flag("--no-plants", o.noPlants, "Draw the terrain only: no seeding, no classify pass");
-  cmd.add_flag("--no-plant-markers", o.noPlantMarkers, "Classify the plants but draw no markers for them");
+  cmd.add_option("--plant-style", o.plantStyle,
+                 "plants: the species pipelines (grass, gravel, flowers; markers for trees); markers: one marker "
+                 "per plant, the classification alone; hidden: classified and counted, not drawn")
+      ->capture_default_str();
+  cmd.add_option("--plant-segments", o.plantSegments, "Segments of a blade at full detail (n_max of eq. 4)")
+      ->capture_default_str();
+  cmd.add_option("--plant-lod-m", o.plantLodM, "Blades have full detail within this distance, n_max / d² beyond, metres")
+      ->capture_default_str();
+  cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
 }
 
 Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaultMode, flight::SceneOptions& scene) {
@@ -68,6 +76,12 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   if (o.clusterSize < 1 || o.clusterSize > static_cast<int>(vegetation::kMaxClusterSize))
     return bad("--cluster-size " + std::to_string(o.clusterSize) + ": must be 1 … " +
                std::to_string(vegetation::kMaxClusterSize));
+  if (o.plantStyle != "plants" && o.plantStyle != "markers" && o.plantStyle != "hidden")
+    return bad("--plant-style " + o.plantStyle + ": must be plants, markers or hidden");
+  if (o.plantSegments < 1 || o.plantSegments > 16)
+    return bad("--plant-segments " + std::to_string(o.plantSegments) + ": must be 1 … 16");
+  if (!(o.plantLodM > 0.0 && o.plantLodM <= 1000.0))
+    return bad("--plant-lod-m " + std::to_string(o.plantLodM) + ": must be more than 0 and at most 1000 metres");
   if (!o.species.empty()) {
     auto catalog = vegetation::loadSpeciesCatalog(o.species);
     if (!catalog) return catalog.error();
@@ -88,7 +102,12 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   scene.terrain.seeds.maxPlants = o.plantMax;
   scene.clusterSize = static_cast<uint32_t>(o.clusterSize);
   scene.plants = !o.noPlants;
-  scene.plantMarkers = !o.noPlantMarkers;
+  scene.plantStyle = o.plantStyle == "markers" ? render::PlantStyle::Markers
+                     : o.plantStyle == "hidden"  ? render::PlantStyle::Hidden
+                                                 : render::PlantStyle::Plants;
+  scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
+  scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
+  scene.plantDraw.shadows = !o.noPlantShadows;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
 }

@@ -31,7 +31,10 @@ struct StreamingCli {
   int clusterSize = 8;
   std::string species;          // a species catalog JSON file; empty: the default
   bool noPlants = false;
-  bool noPlantMarkers = false;
+  std::string plantStyle = "plants";  // plants | markers | hidden
+  int plantSegments = 5;              // n_max segments per blade (eq. 4)
+  double plantLodM = 4.0;             // eq. 4's distance unit
+  bool noPlantShadows = false;
 };
 
 // Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).

@@ -179,7 +179,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     stage.restart();
     seedTrianglesForGpu(m.terrain->seedTriangles(), req.camera.position, m.seeds);
     fig.seedingMs = stage.elapsedMs();
-    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantMarkers};
+    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantStyle, m.options.plantDraw};
     req.vegetation = &m.vegetation;
     fig.seedTrianglesClassified = m.seeds.size();
   }

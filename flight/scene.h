@@ -51,7 +51,8 @@ struct SceneOptions {
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
   bool plants = true;
   uint32_t clusterSize = 8;                // C, 1 … vegetation::kMaxClusterSize
-  bool plantMarkers = true;                // draw the classification markers
+  render::PlantStyle plantStyle = render::PlantStyle::Plants;
+  render::PlantDrawOptions plantDraw;
   std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
   Logger logger;                           // may be null
 };

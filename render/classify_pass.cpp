@@ -28,7 +28,7 @@ struct ClassifyPush {
   uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity;
 };
 struct FinishPush {
-  uint32_t verticesPerGroup, speciesCapacity;
+  uint32_t verticesPerGroup, speciesCapacity, patchMask;
 };
 
 VkDescriptorSetLayoutBinding storage(uint32_t binding) {
@@ -91,6 +91,9 @@ void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
   const SpeciesBlock block = packSpecies(catalog);
   std::memcpy(species_.mapped, &block, sizeof(block));
   speciesCount_ = block.count[0];
+  kinds_.fill(kNoKind);
+  for (size_t i = 0; i < catalog.species.size(); ++i)
+    kinds_[i] = catalog.species[i].bare ? kNoKind : static_cast<uint32_t>(catalog.species[i].kind);
 }
 
 void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire) {
@@ -125,7 +128,7 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery) {
 
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                                        uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
-                                       const RetireBuffer& retire) {
+                                       uint32_t patchMask, const RetireBuffer& retire) {
   assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
   Slot& s = slots_[size_t(slot)];
   VegetationFigures f;
@@ -172,7 +175,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finish_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finishPipelineLayout_.get(), 0, 1, &s.finishSet, 0,
                           nullptr);
-  const FinishPush fp{verticesPerGroup, options_.clustersPerSpecies};
+  const FinishPush fp{verticesPerGroup, options_.clustersPerSpecies, patchMask};
   vkCmdPushConstants(cmd, finishPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(fp), &fp);
   vkCmdDispatch(cmd, 1, 1, 1);
 

@@ -41,10 +41,11 @@ class ClassifyPass {
   // Outside rendering: uploads `triangles`, bins them and records the dispatches for slot
   // `slot`. `imagery` is the imagery array the triangles' layers index, viewed as UNORM (the
   // sRGB bytes; shader-readable).
-  // `verticesPerGroup` goes into the indirect draws. Returns the CPU-side figures (the GPU's
-  // counts come from figures() after the frame's fence).
+  // The indirect draws get one vertex per group (a patch) for the species in `patchMask` (bit s:
+  // species s is drawn by a plant pipeline), `verticesPerGroup` for the others (markers).
+  // Returns the CPU-side figures (the GPU's counts come from readFigures after the fence).
   VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
-                           uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
+                           uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup, uint32_t patchMask,
                            const RetireBuffer& retire);
 
   // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
@@ -56,6 +57,9 @@ class ClassifyPass {
   VkBuffer species() const { return species_.get(); }
   uint32_t clustersPerSpecies() const { return options_.clustersPerSpecies; }
   uint32_t speciesCount() const { return speciesCount_; }
+  // The renderer kind of species s (vegetation::RendererKind), kNoKind for bare soil / none.
+  static constexpr uint32_t kNoKind = 0xffffffffu;
+  uint32_t kind(uint32_t s) const { return kinds_[s]; }
   uint64_t gpuBytes() const;
 
  private:
@@ -70,6 +74,7 @@ class ClassifyPass {
   const Context* ctx_;
   ClassifyOptions options_;
   uint32_t speciesCount_ = 0;
+  std::array<uint32_t, kSpeciesSlots> kinds_{};
   GpuBuffer species_;
   Sampler sampler_;
   DescriptorSetLayout classifyLayout_, finishLayout_;

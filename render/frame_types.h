@@ -85,10 +85,25 @@ struct VegetationFigures {
 
 // Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-
 // relative, and the cluster size C. Must stay alive until submitFrame returns.
+enum class PlantStyle {
+  Plants,   // the species pipelines (grass, gravel, flowers); markers for kinds without one (trees)
+  Markers,  // one marker per plant for every species: the classification alone
+  Hidden,   // classified and counted, not drawn
+};
+
+// How the species pipelines draw (render/plant_pass.h).
+struct PlantDrawOptions {
+  uint32_t maxSegments = 5;   // n_max of eq. 4: segments of a blade at full detail (1 … 16)
+  float lodDistanceM = 4.0f;  // eq. 4's distance unit: full detail within it, n_max / d² beyond
+  bool shadows = true;        // the planar shadows of §3.6
+  bool fullDetail = false;    // every blade at n_max segments (tests, speed-of-light runs)
+};
+
 struct VegetationRequest {
   std::span<const SeedTriangleGpu> triangles;
   uint32_t clusterSize = 8;
-  bool markers = true;  // draw the classification markers
+  PlantStyle style = PlantStyle::Plants;
+  PlantDrawOptions draw;
 };
 
 struct FrameRequest {

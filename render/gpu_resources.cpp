@@ -184,7 +184,8 @@ void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuI
                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
-VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image) {
+VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image,
+                                    VkPipelineStageFlags2 readers) {
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, image.mipLevels, 0, image.layers};
   transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -204,8 +205,7 @@ VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& stagin
                          static_cast<uint32_t>(regions.size()), regions.data());
   transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT, readers, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   return offset;
 }
 

@@ -72,6 +72,8 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
   rs.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = desc.samples;
+  VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+  ts.patchControlPoints = desc.patchControlPoints;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
   ds.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
@@ -108,6 +110,7 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
   ci.pViewportState = &vp;
   ci.pRasterizationState = &rs;
   ci.pMultisampleState = &ms;
+  ci.pTessellationState = desc.patchControlPoints > 0 ? &ts : nullptr;
   ci.pDepthStencilState = &ds;
   ci.pColorBlendState = &cb;
   ci.pDynamicState = &dyn;

@@ -42,7 +42,8 @@ PlantMarkerPass::PlantMarkerPass(const Context& ctx, VkDescriptorSetLayout frame
   pipeline_ = createGraphicsPipeline(*ctx_, desc);
 }
 
-void PlantMarkerPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify) {
+void PlantMarkerPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
+                             uint32_t skipMask) {
   if (classify.speciesCount() == 0 || classify.triangles(slot) == VK_NULL_HANDLE) return;
   // The slot's previous frame has finished: its set may be rewritten (buffers may have grown).
   const VkDescriptorSet set = sets_[size_t(slot)];
@@ -53,6 +54,7 @@ void PlantMarkerPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   const VkDescriptorSet sets[] = {frameSet, set};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 2, sets, 0, nullptr);
   for (uint32_t s = 0; s < classify.speciesCount(); ++s) {
+    if ((skipMask >> s) & 1u) continue;
     const MarkerPush push{s, classify.clustersPerSpecies()};
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
     vkCmdDrawIndirect(cmd, classify.indirect(slot), VkDeviceSize{s} * sizeof(VkDrawIndirectCommand), 1,

@@ -11,8 +11,10 @@ class PlantMarkerPass {
  public:
   PlantMarkerPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
 
-  // Inside rendering, after the terrain: draws slot `slot`'s classification.
-  void record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify);
+  // Inside rendering, after the terrain: draws slot `slot`'s classification, except the species
+  // in `skipMask` (bit s: drawn by a plant pipeline instead).
+  void record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
+              uint32_t skipMask = 0);
 
   // Vertices one indirect draw instance covers (3 per plant of a full cluster).
   static uint32_t verticesPerGroup(uint32_t clusterSize) { return 3 * clusterSize; }

@@ -19,6 +19,7 @@
 #include "render/render_targets.h"
 #include "render/classify_pass.h"
 #include "render/plant_marker_pass.h"
+#include "render/plant_pass.h"
 #include "render/sky_pass.h"
 #include "render/swapchain.h"
 #include "render/terrain_detail.h"
@@ -31,6 +32,7 @@ namespace {
 constexpr int kFramesInFlight = 2;
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 constexpr int kMaxPasses = 8;
+constexpr int kBladeTableSegments = 16;  // the solved shapes' resolution; blades draw ≤ 16 segments
 
 // Everything one frame in flight owns.
 struct FrameSlot {
@@ -66,6 +68,7 @@ struct Renderer::Impl {
   std::unique_ptr<HudPass> hudPass;
   std::unique_ptr<ClassifyPass> classify;
   std::unique_ptr<PlantMarkerPass> markers;
+  std::unique_ptr<PlantPass> plantPass;
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
@@ -141,6 +144,14 @@ void Renderer::Impl::init(const RendererOptions& options) {
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
   markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
+  // Species stiffness is relative to the blade's buckling stiffness k_c (the catalog's k′ = 1 is
+  // the critical blade, whatever its segment count): the table spans 0.2 … 20 k_c.
+  const double kc = vegetation::criticalStiffness(kBladeTableSegments);
+  auto table = vegetation::buildBladeShapeTable(kBladeTableSegments, vegetation::kDefaultShapeTableRows, 0.2 * kc,
+                                                20.0 * kc, vegetation::kDefaultRootTiltRad);
+  // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
+  if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
+  plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -194,11 +205,13 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
   slot.vegetation.reset();
   const VegetationRequest* plants = request.vegetation;
+  uint32_t patchMask = 0;
   if (plants) {
+    if (plants->style == PlantStyle::Plants) patchMask = PlantPass::patchMask(*classify);
     slot.timer->beginPass(cmd, "classify");
     slot.vegetation = classify->record(cmd, slotIndex, plants->triangles, plants->clusterSize,
                                        terrainPass->imageryBytesView(), PlantMarkerPass::verticesPerGroup(plants->clusterSize),
-                                       retireBuffer);
+                                       patchMask, retireBuffer);
     slot.timer->endPass(cmd);
   }
 
@@ -259,9 +272,11 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   slot.terrainTriangles = terrainPass->record(cmd, static_cast<int>(index % kFramesInFlight), slot.descriptorSet,
                                               request.camera.position, request.terrain, retireBuffer);
   slot.timer->endPass(cmd);
-  if (plants && plants->markers) {
+  if (plants && plants->style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
-    markers->record(cmd, slotIndex, slot.descriptorSet, *classify);
+    if (patchMask != 0)
+      plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants->draw);
+    markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
     slot.timer->endPass(cmd);
   }
   vkCmdEndRendering(cmd);

@@ -41,6 +41,8 @@ class TerrainPass {
   // The imagery array seen as UNORM (the sRGB bytes undecoded; shader-readable after
   // recordUploads), for the classify pass, which decodes them exactly as the CPU does.
   VkImageView imageryBytesView() const { return imagery_.alternateView.get(); }
+  // The imagery array as sRGB (sampled as linear colour), for the plant pipelines.
+  VkImageView imageryView() const { return imagery_.view.get(); }
 
   // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
   void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,

@@ -9,11 +9,13 @@ struct DrawIndirect { uint vertexCount, instanceCount, firstVertex, firstInstanc
 layout(set = 0, binding = 0, std430) readonly buffer Counters { uint groups[kMaxSpecies]; uint plants[kMaxSpecies]; };
 layout(set = 0, binding = 1, std430) writeonly buffer Draws { DrawIndirect draws[kMaxSpecies]; };
 layout(set = 0, binding = 2, std430) writeonly buffer Figures { uint figureGroups[kMaxSpecies]; uint figurePlants[kMaxSpecies]; };
-layout(push_constant) uniform Push { uint verticesPerGroup; uint speciesCapacity; } pc;
+// patchMask bit s: species s is drawn by a plant pipeline (one patch vertex per group).
+layout(push_constant) uniform Push { uint verticesPerGroup; uint speciesCapacity; uint patchMask; } pc;
 
 void main() {
   uint s = gl_LocalInvocationID.x;
-  draws[s] = DrawIndirect(pc.verticesPerGroup, min(groups[s], pc.speciesCapacity), 0u, 0u);
+  uint vertices = ((pc.patchMask >> s) & 1u) != 0u ? 1u : pc.verticesPerGroup;
+  draws[s] = DrawIndirect(vertices, min(groups[s], pc.speciesCapacity), 0u, 0u);
   figureGroups[s] = groups[s];
   figurePlants[s] = plants[s];
 }

@@ -63,7 +63,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   VegetationFigures figures;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
-    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize,
+    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize, 0,
                           [](GpuBuffer&&) {});
   });
   pass.readFigures(0, figures);

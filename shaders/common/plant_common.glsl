@@ -1,0 +1,84 @@
+// What every plant pipeline's stages share (render/plant_pass.h): the classify pass's buffers,
+// the species block, the blade-shape table, the imagery and the push constants, plus the
+// per-plant parameters — drawn from the same Philox slots as vegetation/plant_seeding.cpp, so a
+// plant on screen is the plant the CPU reference (and `vegstream plants`) describes.
+// Include philox.glsl, seeding.glsl and classify_layout.glsl first.
+
+layout(set = 1, binding = 0, std140) uniform SpeciesBlock {
+  Species species[kMaxSpecies];
+  uvec4 speciesCount;
+} catalog;
+layout(set = 1, binding = 1, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
+layout(set = 1, binding = 2, std430) readonly buffer Records { PlantCluster records[]; };
+layout(set = 1, binding = 3) uniform sampler2D bladeTable;       // RGBA32F: x segment end, y stiffness row
+layout(set = 1, binding = 4) uniform sampler2DArray imagery;     // sRGB tiles, sampled as linear colour
+
+layout(push_constant) uniform PlantPush {
+  uint species;
+  uint speciesCapacity;
+  uint maxSegments;      // n_max of eq. 4
+  uint flags;            // bit 0: planar shadows; bit 2: every plant at n_max; bits 8–15: MSAA samples
+  float lodDistanceM;    // eq. 4's distance unit: full detail within it
+  float tableLogKMin;    // ln of the table's first stiffness
+  float tableLogKStep;   // ln step between rows
+  uint tableRows;
+} pc;
+
+const uint kFlagShadows = 1u;
+const uint kFlagFullDetail = 4u;
+
+struct PlantParams {
+  vec3 root;          // camera-relative
+  float height;       // m, faded
+  float stiffness;    // k′
+  float orientation;  // rad about the vertical
+  float width;        // m, faded
+  float colourModulation;
+  float sPrime;
+};
+
+PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
+  Species sp = catalog.species[g.species];
+  uvec2 key = uvec2(t.keyLo, t.keyHi);
+  vec2 r = seedPoint(key, g.cluster, seed);
+  PlantParams p;
+  p.root = t.v0.xyz + r.x * (t.v1.xyz - t.v0.xyz) + r.y * (t.v2.xyz - t.v0.xyz);
+  uvec2 hs = philoxDraw(key, g.cluster, kSlotHeightStiffness + seed);
+  uvec2 ow = philoxDraw(key, g.cluster, kSlotOrientationWidth + seed);
+  uvec2 cm = philoxDraw(key, g.cluster, kSlotColourSpecies + seed);
+  p.height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * (0.6 + 0.4 * g.sPrime) * g.fade;
+  p.stiffness = mix(sp.heightStiffness.z, sp.heightStiffness.w, philoxU01(hs.y));
+  p.orientation = 6.28318530718 * philoxU01(ow.x);
+  p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * g.fade;
+  p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));
+  p.sPrime = g.sPrime;
+  return p;
+}
+
+// The imagery colour (linear) under a point of the triangle at (r′1, r′2).
+vec3 groundColour(SeedTriangle t, vec2 r) {
+  vec2 uv0 = t.uv01.xy;
+  vec2 uv = uv0 + r.x * (t.uv01.zw - uv0) + r.y * (t.uv2 - uv0);
+  return texture(imagery, vec3(uv, float(t.layer))).rgb;
+}
+
+// The blade's point at fraction x of its length from the root: (lateral, height) for a blade of
+// unit length, and the inclination from vertical there — from the solved shapes
+// (vegetation/blade_shape.h), rows spaced evenly in ln k′, bilinear between rows and along
+// the segment chain (its end points, the root at (0, 0)).
+vec3 bladeRow(int row, float x) {
+  int n = textureSize(bladeTable, 0).x;
+  float s = clamp(x, 0.0, 1.0) * float(n);
+  int j = min(int(s), n - 1);
+  float f = s - float(j);
+  vec4 b = texelFetch(bladeTable, ivec2(j, row), 0);
+  vec4 a = j == 0 ? vec4(0.0, 0.0, b.z, 0.0) : texelFetch(bladeTable, ivec2(j - 1, row), 0);
+  return vec3(mix(a.xy, b.xy, f) / float(n), b.z);
+}
+
+vec3 bladePoint(float stiffness, float x) {
+  float rowF = clamp((log(max(stiffness, 1e-6)) - pc.tableLogKMin) / pc.tableLogKStep, 0.0, float(pc.tableRows - 1u));
+  int r0 = int(rowF);
+  int r1 = min(r0 + 1, int(pc.tableRows) - 1);
+  return mix(bladeRow(r0, x), bladeRow(r1, x), rowF - float(r0));
+}
