@@ -175,6 +175,10 @@ int runRecord(const RecordOptions& o, const Logger& log) {
     m.plants.maxPerTriangle = so.terrain.seeds.maxPlants;
     m.plants.clusterSize = so.clusterSize;
     m.plants.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;
+    m.plants.style = o.streaming.plantStyle;
+    m.plants.maxSegments = so.plantDraw.maxSegments;
+    m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
+    m.plants.shadows = so.plantDraw.shadows;
     for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
       m.plants.species.push_back(s.name);
     m.validate = o.validate;

@@ -59,6 +59,10 @@ struct RecordingMeta {
     double density = 0.0, maxPerTriangle = 0.0;  // ρ, n_max (eq. 1)
     uint32_t clusterSize = 0;
     std::string speciesCatalog;                  // the file, or "default"
+    std::string style;                           // plants | markers | hidden
+    uint32_t maxSegments = 0;                    // n_max segments of a blade (eq. 4)
+    double lodDistanceM = 0.0;                   // eq. 4's distance unit
+    bool shadows = false;
     std::vector<std::string> species;            // names, in catalog order
   } plants;
   bool validate = false;

@@ -134,6 +134,9 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_EQ(rec["plants"]["cluster_size"], 8);
   EXPECT_EQ(rec["plants"]["species_catalog"], "default");
   EXPECT_GE(rec["plants"]["species"].size(), 3u);
+  EXPECT_EQ(rec["plants"]["style"], "plants");
+  EXPECT_EQ(rec["plants"]["max_segments"], 5);
+  EXPECT_EQ(rec["plants"]["shadows"], true);
   const json s = json::parse(readWhole(dir / "summary.json"));
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);

@@ -68,6 +68,22 @@ TEST_F(PlantPassTest, ARedRockFieldGrowsGravelAndNoBlades) {
   EXPECT_GT(changedPixels(*f.with.color, *f.without.color, kH / 5, kH / 2), 30u);
 }
 
+TEST_F(PlantPassTest, DryTuftsAreDrawnByTheFlowersPipeline) {
+  // The third kind: catalog data (kind "flowers") plus one geometry shader.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const FieldResult f = renderField(*r, "dry tufts", PlantStyle::Plants);
+  ASSERT_TRUE(f.with.vegetation.has_value());
+  const VegetationFigures& v = *f.with.vegetation;
+  const int tufts = speciesIndex("dry tufts");
+  ASSERT_GE(tufts, 0);
+  EXPECT_EQ(vegetation::defaultSpeciesCatalog().species[size_t(tufts)].kind, vegetation::RendererKind::Flowers);
+  EXPECT_GT(v.plants[size_t(tufts)], 0.9 * static_cast<double>(v.plantsTotal));
+  EXPECT_GT(f.with.gpu.statistics.geometryPrimitives, 0u);
+  EXPECT_GT(changedPixels(*f.with.color, *f.without.color, kH / 5, kH / 2, 4), 500u);
+}
+
 TEST_F(PlantPassTest, PipelineStatisticsEqualTheAnalyticCounts) {
   // Looking straight down from 120 m: every seed triangle in view, every blade at n_max segments.
   auto r = makeRenderer(kW, kH, 4);
