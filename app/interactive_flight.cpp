@@ -167,8 +167,10 @@ HudState Session::hudState(double now) const {
   }
   const flight::SceneFrameFigures& fig = scene_.lastFrameFigures();
   if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;
-  // Plants classified on the GPU (plant triangles: once the species pipelines draw them).
+  // Plants classified on the GPU and the triangles the species pipelines drew.
   if (last_ && last_->vegetation && last_->vegetation->gpuCounts) s.plants = last_->vegetation->plantsTotal;
+  if (last_ && last_->vegetation && last_->gpu.statistics.available)
+    s.plantTriangles = last_->gpu.statistics.geometryPrimitives;  // only the plant stages emit any
   const streaming::StreamingFrameStats& st = fig.streaming;
   char line[256];
   std::snprintf(line, sizeof(line),

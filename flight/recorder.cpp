@@ -35,6 +35,7 @@ struct FrameRow {
   double terrainTriangles = 0.0;
   double inputPrimitives = kNoValue, clippingPrimitives = kNoValue, fragmentInvocations = kNoValue;
   std::optional<render::VegetationFigures> vegetation;
+  double plantPatches = kNoValue, plantTriangles = kNoValue;  // pipeline statistics of the plant stages
 };
 
 double count(uint64_t v) { return static_cast<double>(v); }
@@ -100,6 +101,8 @@ void fillTable(RecordTable& table, const std::vector<FrameRow>& rows, const Reco
                        v ? v->clusterSlots : 0, v ? v->groupsTotal : 0, v ? v->plantsTotal : 0,
                        uint64_t{v && v->overflow}})
       r[c++] = v ? count(x) : kNoValue;
+    r[c++] = f.plantPatches;
+    r[c++] = f.plantTriangles;
     assert(c == r.size());
   }
 }
@@ -155,7 +158,7 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   c.push_back({"terrain_seed_plants", 1});
   c.push_back({"terrain_achieved_error_px", 3});
   for (const char* n : {"plant_seed_triangles", "plant_bins", "plant_clusters", "plant_cluster_slots", "plant_groups",
-                        "plants", "plant_overflow"})
+                        "plants", "plant_overflow", "plant_patches", "plant_triangles"})
     c.push_back({n, 0});
   return c;
 }
@@ -232,6 +235,11 @@ Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const Recor
       row.inputPrimitives = count(gpu.statistics.inputPrimitives);
       row.clippingPrimitives = count(gpu.statistics.clippingPrimitives);
       row.fragmentInvocations = count(gpu.statistics.fragmentInvocations);
+      // Only the plant pipelines tessellate and run geometry shaders: their figures are these.
+      if (result->vegetation) {
+        row.plantPatches = count(gpu.statistics.tessControlPatches);
+        row.plantTriangles = count(gpu.statistics.geometryPrimitives);
+      }
     }
     row.recorderMs = bookkeeping.elapsedMs();
     row.wallMs = frameWatch.elapsedMs() - figures.settleWaitMs;

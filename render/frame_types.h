@@ -97,6 +97,10 @@ struct PlantDrawOptions {
   float lodDistanceM = 4.0f;  // eq. 4's distance unit: full detail within it, n_max / d² beyond
   bool shadows = true;        // the planar shadows of §3.6
   bool fullDetail = false;    // every blade at n_max segments (tests, speed-of-light runs)
+  // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
+  // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry
+  // front end alone costs (bench/bench_plants.cpp).
+  bool speedOfLight = false;
 };
 
 struct VegetationRequest {

@@ -16,6 +16,9 @@
 #include "shaders/plant.tesc.h"
 #include "shaders/plant.tese.h"
 #include "shaders/plant.vert.h"
+#include "shaders/sol.frag.h"
+#include "shaders/sol.geom.h"
+#include "shaders/sol.tese.h"
 
 namespace vegstream::render {
 namespace {
@@ -89,16 +92,15 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "plant pipeline layout");
 
-  const std::span<const uint32_t> geometry[3] = {spv_grass_geom, spv_gravel_geom, spv_flowers_geom};
-  const char* names[3] = {"grass pipeline", "gravel pipeline", "flowers pipeline"};
-  for (size_t k = 0; k < pipelines_.size(); ++k) {
+  auto makePipeline = [&](const char* name, std::span<const uint32_t> tese, std::span<const uint32_t> geom,
+                          std::span<const uint32_t> frag) {
     GraphicsPipelineDesc desc;
-    desc.name = names[k];
+    desc.name = name;
     desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_plant_vert},
                    {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, spv_plant_tesc},
-                   {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, spv_plant_tese},
-                   {VK_SHADER_STAGE_GEOMETRY_BIT, geometry[k]},
-                   {VK_SHADER_STAGE_FRAGMENT_BIT, spv_plant_frag}};
+                   {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, tese},
+                   {VK_SHADER_STAGE_GEOMETRY_BIT, geom},
+                   {VK_SHADER_STAGE_FRAGMENT_BIT, frag}};
     desc.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
     desc.patchControlPoints = 1;
     desc.cullMode = VK_CULL_MODE_NONE;  // blades are two-sided
@@ -106,8 +108,12 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
     desc.colorFormat = kColorFormat;
     desc.depthFormat = kDepthFormat;
     desc.layout = layout_.get();
-    pipelines_[k] = createGraphicsPipeline(ctx, desc);
-  }
+    return createGraphicsPipeline(ctx, desc);
+  };
+  pipelines_[0] = makePipeline("grass pipeline", spv_plant_tese, spv_grass_geom, spv_plant_frag);
+  pipelines_[1] = makePipeline("gravel pipeline", spv_plant_tese, spv_gravel_geom, spv_plant_frag);
+  pipelines_[2] = makePipeline("flowers pipeline", spv_plant_tese, spv_flowers_geom, spv_plant_frag);
+  speedOfLight_ = makePipeline("speed-of-light plant pipeline", spv_sol_tese, spv_sol_geom, spv_sol_frag);
 }
 
 uint32_t PlantPass::patchMask(const ClassifyPass& classify) {
@@ -136,7 +142,8 @@ void PlantPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, 
   if (options.fullDetail) flags |= kFlagFullDetail;
   for (uint32_t s = 0; s < classify.speciesCount(); ++s) {
     if (!((mask >> s) & 1u)) continue;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[classify.kind(s)].get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      options.speedOfLight ? speedOfLight_.get() : pipelines_[classify.kind(s)].get());
     const PlantPush push{s,
                          classify.clustersPerSpecies(),
                          options.maxSegments,

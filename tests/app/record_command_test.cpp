@@ -42,7 +42,8 @@ const std::vector<std::string> kRoam = {
     "terrain_seed_interpolated", "terrain_depth_limited_leaves", "terrain_seed_plants", "terrain_achieved_error_px"};
 // Issue 7's classify-pass columns, after kRoam.
 const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", "plant_clusters",
-                                          "plant_cluster_slots", "plant_groups", "plants", "plant_overflow"};
+                                          "plant_cluster_slots", "plant_groups", "plants", "plant_overflow",
+                                          "plant_patches", "plant_triangles"};
 
 struct Csv {
   std::vector<std::string> header;

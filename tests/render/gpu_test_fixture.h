@@ -8,6 +8,7 @@
 
 #include "render/context.h"
 #include "render/renderer.h"
+#include "tests/support/plant_field_scene.h"
 #include "terrain/terrain_mesh.h"
 
 namespace vegstream::render::testing {
@@ -48,24 +49,5 @@ class GpuTest : public ::testing::Test {
     EXPECT_EQ(validation->warnings(), 0);
   }
 };
-
-// A flat square of side `size` metres centred on the origin at height z, subdivided n × n,
-// facing up (counter-clockwise seen from above).
-inline terrain::TerrainMesh flatPlane(double size, int n, float z) {
-  terrain::TerrainMesh mesh;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const float x = static_cast<float>(-0.5 * size + size * i / n);
-      const float y = static_cast<float>(-0.5 * size + size * j / n);
-      mesh.vertices.push_back({{x, y, z}, {0.0f, 0.0f, 1.0f}, 1500.0f});
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const auto a = static_cast<uint32_t>(j * (n + 1) + i), b = a + 1;
-      const auto c = static_cast<uint32_t>((j + 1) * (n + 1) + i), d = c + 1;
-      mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
-    }
-  return mesh;
-}
 
 }  // namespace vegstream::render::testing
