@@ -28,6 +28,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     g.reference = glm::vec4(s.score.reference, s.score.p);
     g.weights = glm::vec4(s.score.weights, s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
     g.flags = {s.bare ? 1u : 0u, static_cast<uint32_t>(s.kind), 0u, 0u};
+    g.marker.w = s.phototropism;
     g.heightStiffness = {s.heightM.min, s.heightM.max, s.stiffness.min, s.stiffness.max};
     g.widthColour = {s.widthM.min, s.widthM.max, s.colourModulation.min, s.colourModulation.max};
     // Markers in the species' own reference colour, brightened so dark species stay visible.
@@ -35,7 +36,8 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     hsv.z = std::max(hsv.z, 0.55f);
     hsv.y = std::max(hsv.y, 0.5f);
     const glm::vec3 srgb = srgbFromHsv(hsv);
-    g.marker = glm::vec4(vegetation::srgbDecode(srgb.r), vegetation::srgbDecode(srgb.g), vegetation::srgbDecode(srgb.b), 1.0f);
+    g.marker = glm::vec4(vegetation::srgbDecode(srgb.r), vegetation::srgbDecode(srgb.g), vegetation::srgbDecode(srgb.b),
+                         s.phototropism);
   }
   return b;
 }

@@ -45,7 +45,7 @@ struct SpeciesGpu {
   std::array<uint32_t, 4> flags{};  // x: bare, y: renderer kind
   glm::vec4 heightStiffness{0.0f};  // height min/max (m), k′ min/max
   glm::vec4 widthColour{0.0f};      // width min/max (m), colour modulation min/max
-  glm::vec4 marker{0.0f};           // linear RGB of the classification markers
+  glm::vec4 marker{0.0f};           // linear RGB of the classification markers, w: phototropism
 };
 static_assert(sizeof(SpeciesGpu) == 96);
 

@@ -147,7 +147,7 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.object(obj, path)) return false;
   if (!ps.onlyKeys(obj, path,
                    {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation"}))
+                    "width_m", "colour_modulation", "phototropism"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -174,6 +174,9 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!(out.score.p > 0.0f) || out.score.p > 64.0f) return ps.fail(path + ".p", "must be > 0 and ≤ 64 (got " + fmt(out.score.p) + ")");
   if (!ps.number(obj, "threshold", path, out.threshold, false)) return false;
   if (out.threshold < 0.0f) return ps.fail(path + ".threshold", "must be ≥ 0 (got " + fmt(out.threshold) + ")");
+  if (!ps.number(obj, "phototropism", path, out.phototropism, false)) return false;
+  if (!(out.phototropism >= 0.0f && out.phototropism <= 1.0f))
+    return ps.fail(path + ".phototropism", "must be in 0 … 1 (got " + fmt(out.phototropism) + ")");
 
   // Bare soil grows nothing: the plant fields are optional there (checked when given).
   const bool need = !out.bare;

@@ -100,6 +100,7 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
        "species[0].height_m.max: must be ≥ min (got 0.1 < 0.3)"},
       {"zero height", [](json& s) { s["height_m"]["min"] = 0; }, "species[0].height_m.min: must be > 0"},
       {"negative stiffness", [](json& s) { s["stiffness"]["min"] = -1; }, "species[0].stiffness.min: must be > 0"},
+      {"phototropism above 1", [](json& s) { s["phototropism"] = 1.5; }, "species[0].phototropism: must be in 0 … 1"},
       {"p zero", [](json& s) { s["p"] = 0; }, "species[0].p: must be > 0"},
       {"p string", [](json& s) { s["p"] = "3"; }, "species[0].p: must be a number"},
       {"negative weight", [](json& s) { s["weights"]["s"] = -0.5; }, "species[0].weights.s: must be ≥ 0"},
