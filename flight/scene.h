@@ -80,7 +80,7 @@ struct SceneFrameFigures {
   terrain::TerrainFrameFigures terrain;
   uint64_t uploads = 0;        // imagery tiles uploaded this frame
   uint64_t cpuBytes = 0;       // resident tiles + ground mosaic
-  uint64_t gpuBytes = 0;       // imagery array + terrain buffers
+  uint64_t gpuBytes = 0;       // imagery array, terrain, classify and plant buffers
   uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
   double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
 };

@@ -453,7 +453,9 @@ uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLay
 
 uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
-uint64_t Renderer::gpuBytes() const { return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes(); }
+uint64_t Renderer::gpuBytes() const {
+  return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes();
+}
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   if (catalog.species.size() > vegetation::kMaxSpecies)

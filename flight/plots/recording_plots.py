@@ -20,9 +20,10 @@ GEOMETRY_COLUMNS = (
     ("terrain_seed_triangles", "seed triangles (where plants grow)"),
     ("stat_input_primitives", "input primitives (pipeline statistics)"),
     ("stat_clipping_primitives", "primitives after clipping (pipeline statistics)"),
-    ("clusters_submitted", "clusters submitted"),
-    ("clusters_drawn", "clusters drawn"),
-    ("plant_triangles", "plant triangles"),
+    ("plant_clusters", "clusters submitted (species lookups)"),
+    ("plant_groups", "clusters drawn (bare soil rejected)"),
+    ("plants", "plants"),
+    ("plant_triangles", "plant triangles (shadows included)"),
 )
 
 
@@ -102,7 +103,7 @@ def plot_frame_time(directory, cols, summary):
     top.set_title(title_of(summary), fontsize=9)
     label = "non-vegetation share (terrain, sky)"
     if not veg:
-        label += " — today the whole frame: no vegetation passes yet"
+        label += " — the whole frame: no per-pass vegetation times"
     ax.fill_between(t, 0, nonveg, color="tab:blue", alpha=0.25, lw=0, label=label)
     if veg:
         ax.fill_between(t, nonveg, gpu, color="tab:green", alpha=0.3, lw=0, label="vegetation passes")
@@ -140,15 +141,13 @@ def plot_geometry(directory, cols, summary):
         ax2.plot(t, cols["stat_fragment_invocations"], color="0.5", lw=0.8, ls="--",
                  label="fragment invocations (right axis)")
         ax2.set_ylabel("fragment invocations")
-        ax2.legend(fontsize=8, loc="center right")
-    fig.text(0.01, 0.01, "vegetation columns (clusters, plant triangles) are plotted once their issues add them",
-             fontsize=8, color="0.3")
+        ax2.legend(fontsize=8, loc="upper right")
     ax.set_xlabel("flight time (s)")
     ax.set_ylabel("primitives per frame")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     if drawn:
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=8, loc="upper left")
     save(fig, os.path.join(directory, "geometric_load.png"))
 
 
