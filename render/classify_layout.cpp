@@ -7,16 +7,6 @@
 #include "vegetation/colour_score.h"
 
 namespace vegstream::render {
-namespace {
-
-// HSV (hexcone) → sRGB-encoded RGB: the inverse of vegetation::hsvFromSrgb.
-glm::vec3 srgbFromHsv(glm::vec3 hsv) {
-  const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
-  const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
-  return sectors[static_cast<int>(h6) % 6] + (hsv.z - c);
-}
-
-}  // namespace
 
 SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
   assert(catalog.species.size() <= vegetation::kMaxSpecies);
@@ -35,7 +25,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     glm::vec3 hsv = s.score.reference;
     hsv.z = std::max(hsv.z, 0.55f);
     hsv.y = std::max(hsv.y, 0.5f);
-    const glm::vec3 srgb = srgbFromHsv(hsv);
+    const glm::vec3 srgb = vegetation::srgbFromHsv(hsv);
     g.marker = glm::vec4(vegetation::srgbDecode(srgb.r), vegetation::srgbDecode(srgb.g), vegetation::srgbDecode(srgb.b),
                          s.phototropism);
   }

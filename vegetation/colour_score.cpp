@@ -38,6 +38,12 @@ glm::vec3 hsvFromSrgb(glm::vec3 c) {
   return {h, s, mx};
 }
 
+glm::vec3 srgbFromHsv(glm::vec3 hsv) {
+  const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
+  const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
+  return sectors[static_cast<int>(h6) % 6] + (hsv.z - c);
+}
+
 glm::vec3 hsvFromLinear(glm::vec3 linear) {
   return hsvFromSrgb({srgbEncode(linear.r), srgbEncode(linear.g), srgbEncode(linear.b)});
 }

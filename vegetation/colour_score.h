@@ -49,6 +49,9 @@ float srgbDecode(float encoded);
 // HSV of sRGB-encoded components in [0, 1] (hexcone model; hue 0 and saturation 0 for greys
 // and black).
 glm::vec3 hsvFromSrgb(glm::vec3 srgb);
+// The inverse: sRGB-encoded components of an HSV colour (hexcone), for reference colours
+// turned back into pixels (markers, test imagery).
+glm::vec3 srgbFromHsv(glm::vec3 hsv);
 // HSV of linear components: hsvFromSrgb of their sRGB encoding.
 glm::vec3 hsvFromLinear(glm::vec3 linear);
 // HSV of an 8-bit sRGB pixel.

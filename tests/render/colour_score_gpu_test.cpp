@@ -42,12 +42,7 @@ std::vector<glm::vec4> testColours() {
   const glm::vec3 typical[] = {{104, 120, 60}, {36, 42, 25}, {149, 101, 88}, {106, 86, 77}, {100, 88, 88},
                                {208, 196, 176}, {128, 128, 130}, {214, 188, 138}, {76, 91, 50}};
   for (glm::vec3 c : typical) out.push_back(fromSrgb(c / 255.0f));
-  for (const veg::TerrainType& t : veg::defaultTerrainTypes()) {  // HSV → sRGB, hexcone
-    const glm::vec3 hsv = t.score.reference;
-    const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
-    const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
-    out.push_back(fromSrgb(sectors[static_cast<int>(h6) % 6] + (hsv.z - c)));
-  }
+  for (const veg::TerrainType& t : veg::defaultTerrainTypes()) out.push_back(fromSrgb(veg::srgbFromHsv(t.score.reference)));
   return out;
 }
 

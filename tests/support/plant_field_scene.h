@@ -15,6 +15,7 @@
 #include "render/classify_layout.h"
 #include "render/frame_types.h"
 #include "terrain/terrain_mesh.h"
+#include "vegetation/colour_score.h"
 #include "vegetation/species_catalog.h"
 
 namespace vegstream::render::testing {
@@ -85,10 +86,7 @@ inline std::vector<SeedTriangleGpu> seedTriangles(const glm::dvec3& camera, floa
 inline std::array<uint8_t, 3> referenceColour(const std::string& name) {
   for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species) {
     if (s.name != name) continue;
-    const glm::vec3 hsv = s.score.reference;
-    const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
-    const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
-    const glm::vec3 rgb = sectors[static_cast<int>(h6) % 6] + (hsv.z - c);
+    const glm::vec3 rgb = vegetation::srgbFromHsv(s.score.reference);
     return {static_cast<uint8_t>(std::lround(rgb.r * 255.0f)), static_cast<uint8_t>(std::lround(rgb.g * 255.0f)),
             static_cast<uint8_t>(std::lround(rgb.b * 255.0f))};
   }

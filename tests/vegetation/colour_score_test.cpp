@@ -16,6 +16,19 @@ void expectHsv(glm::vec3 got, glm::vec3 want) {
   EXPECT_NEAR(got.z, want.z, 1e-6f);
 }
 
+TEST(ColourScore, SrgbFromHsvInvertsHsvFromSrgb) {
+  EXPECT_EQ(srgbFromHsv({0, 1, 1}), glm::vec3(1, 0, 0));
+  EXPECT_EQ(srgbFromHsv({0, 0, 0.5f}), glm::vec3(0.5f));
+  for (float r = 0.0f; r <= 1.0f; r += 0.125f)
+    for (float g = 0.0f; g <= 1.0f; g += 0.125f)
+      for (float b = 0.0f; b <= 1.0f; b += 0.125f) {
+        const glm::vec3 back = srgbFromHsv(hsvFromSrgb({r, g, b}));
+        EXPECT_NEAR(back.r, r, 1e-5f);
+        EXPECT_NEAR(back.g, g, 1e-5f);
+        EXPECT_NEAR(back.b, b, 1e-5f);
+      }
+}
+
 TEST(ColourScore, HsvOfPrimariesGreysAndMixtures) {
   expectHsv(hsvFromSrgb({1, 0, 0}), {0, 1, 1});
   expectHsv(hsvFromSrgb({1, 1, 0}), {1.0f / 6, 1, 1});

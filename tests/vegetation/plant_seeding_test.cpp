@@ -136,9 +136,7 @@ SpeciesCatalog threeSpecies() {
 }
 
 glm::vec3 linearFromHsv(glm::vec3 hsv) {
-  const float h6 = hsv.x * 6.0f, c = hsv.z * hsv.y, x = c * (1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f));
-  const glm::vec3 sectors[] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
-  const glm::vec3 s = sectors[static_cast<int>(h6) % 6] + (hsv.z - c);
+  const glm::vec3 s = srgbFromHsv(hsv);
   return {srgbDecode(s.r), srgbDecode(s.g), srgbDecode(s.b)};
 }
 
