@@ -1,0 +1,40 @@
+// A plant's root and parameters from the Philox slots of vegetation/plant_seeding.cpp (height
+// scaled by 0.6 + 0.4 s′ and faded, stiffness, orientation — phototropic where the species says
+// so — width, colour modulation): shared by the species pipelines and the markers. Needs
+// frame_uniforms.glsl, philox.glsl, seeding.glsl, classify_layout.glsl and a `catalog` block.
+
+struct PlantParams {
+  vec3 root;          // camera-relative
+  float height;       // m, faded
+  float stiffness;    // k′
+  float orientation;  // rad about the vertical
+  float width;        // m, faded
+  float colourModulation;
+  float sPrime;
+};
+
+PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
+  Species sp = catalog.species[g.species];
+  uvec2 key = uvec2(t.keyLo, t.keyHi);
+  vec2 r = seedPoint(key, g.cluster, seed);
+  PlantParams p;
+  p.root = t.v0.xyz + r.x * (t.v1.xyz - t.v0.xyz) + r.y * (t.v2.xyz - t.v0.xyz);
+  uvec2 hs = philoxDraw(key, g.cluster, kSlotHeightStiffness + seed);
+  uvec2 ow = philoxDraw(key, g.cluster, kSlotOrientationWidth + seed);
+  uvec2 cm = philoxDraw(key, g.cluster, kSlotColourSpecies + seed);
+  p.height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * (0.6 + 0.4 * g.sPrime) * g.fade;
+  p.stiffness = mix(sp.heightStiffness.z, sp.heightStiffness.w, philoxU01(hs.y));
+  // Uniform about the vertical, or (phototropism) spread less and less about the direction away
+  // from the sun: 0 keeps the uniform angle, 1 points every blade away from the sun.
+  // (The uniform angle is vegetation::Plant::orientationRad; the sun's pull is the renderer's.)
+  p.orientation = 6.28318530718 * philoxU01(ow.x);
+  if (sp.marker.w > 0.0) {
+    float antiSun = atan(-frame.sunDirection.y, -frame.sunDirection.x);
+    p.orientation = antiSun + (p.orientation - 3.14159265359) * (1.0 - sp.marker.w);
+  }
+  p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * g.fade;
+  p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));
+  p.sPrime = g.sPrime;
+  return p;
+}
+
