@@ -307,7 +307,15 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRecord{"bad_msaa", "{DS} --path {PATH} --size 160x90 --msaa 3", "--msaa"},
                       BadRecord{"bad_max_triangles", "{DS} {SMALL} --path {PATH} --terrain-max-triangles 1", "--terrain-max-triangles"},
                       BadRecord{"bad_canopy", "{DS} {SMALL} --path {PATH} --canopy-m -3", "--canopy-m"},
-                      BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"}),
+                      BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"},
+                      BadRecord{"bad_density", "{DS} {SMALL} --path {PATH} --plant-density -1", "--plant-density"},
+                      BadRecord{"bad_plant_max", "{DS} {SMALL} --path {PATH} --plant-max 1e7", "--plant-max"},
+                      BadRecord{"bad_cluster_size", "{DS} {SMALL} --path {PATH} --cluster-size 33", "--cluster-size"},
+                      BadRecord{"bad_plant_style", "{DS} {SMALL} --path {PATH} --plant-style fancy", "--plant-style"},
+                      BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
+                      BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
+                      BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
+                                "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(RecordCommand, NonEmptyOutIsRefusedAndLeftAlone) {
