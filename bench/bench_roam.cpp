@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <benchmark/benchmark.h>
@@ -90,7 +91,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     to.maxErrorPx = static_cast<double>(state.range(0));
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
-    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves;
+    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed, reused, built;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
@@ -112,6 +113,12 @@ void flyPath(benchmark::State& state, const char* pathName) {
       drawn.push_back(static_cast<double>(f.triangles));
       leaves.push_back(static_cast<double>(f.roam.leaves));
       seeds.push_back(static_cast<double>(f.roam.seedTriangles));
+      ops.push_back(static_cast<double>(f.roam.splits + f.roam.merges + f.roam.mergesStarted));
+      morphing.push_back(static_cast<double>(f.roam.morphingVertices));
+      visited.push_back(static_cast<double>(f.roam.nodesVisited));
+      computed.push_back(static_cast<double>(f.roam.prioritiesComputed));
+      reused.push_back(static_cast<double>(f.roam.chunksReused));
+      built.push_back(static_cast<double>(f.roam.chunksBuilt));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
         if (p.mesh && p.node.z <= z.meta.maxZoom) gridTriangles += 2.0 * std::pow(256.0 * std::ldexp(1.0, z.meta.maxZoom - p.node.z), 2.0);
@@ -125,6 +132,12 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["output_ms_p50"] = percentile(outputMs, 0.5);
     state.counters["tris_p50"] = percentile(drawn, 0.5);
     state.counters["leaves_p50"] = percentile(leaves, 0.5);
+    state.counters["ops_p50"] = percentile(ops, 0.5);
+    state.counters["morphing_p50"] = percentile(morphing, 0.5);
+    state.counters["visited_p50"] = percentile(visited, 0.5);
+    state.counters["computed_p50"] = percentile(computed, 0.5);
+    state.counters["chunks_reused_p50"] = percentile(reused, 0.5);
+    state.counters["chunks_built_p50"] = percentile(built, 0.5);
     state.counters["seed_tris_p50"] = percentile(seeds, 0.5);
     state.counters["vs_full_grid_p50"] = percentile(ratio, 0.5);
   }

@@ -81,6 +81,8 @@ uint32_t RoamMesh::allocPair() {
 }
 
 void RoamMesh::freePair(uint32_t first) {
+  for (uint32_t i = first; i < first + 2; ++i)
+    if (nodes_[i].drawnChunk != kNoNode) releasedChunks_.push_back(nodes_[i].drawnChunk);
   nodes_[first] = RoamNode{};
   nodes_[first + 1] = RoamNode{};
   nodes_[first].path.level = nodes_[first + 1].path.level = 0xFF;  // matches no queued path
@@ -140,6 +142,23 @@ float RoamMesh::thicknessOf(uint32_t t) {
   return e + static_cast<float>(glm::dot(hyp, hyp) / (8.0 * kEarthRadiusM));
 }
 
+void RoamMesh::expire(uint32_t t) {
+  constexpr double kNow = -std::numeric_limits<double>::infinity();
+  nodes_[t].deadline = kNow;
+  // A subtree's deadline is never later than its children's: stop at the first ancestor that
+  // is already due.
+  for (uint32_t u = t; u != kNoNode && nodes_[u].subtreeDeadline != kNow; u = nodes_[u].parent)
+    nodes_[u].subtreeDeadline = kNow;
+}
+
+void RoamMesh::markDrawnChanged(uint32_t t) {
+  // Every changed node's ancestors inside its chunk are marked too: stop at a marked one.
+  for (uint32_t u = t; u != kNoNode && !nodes_[u].drawnChanged; u = nodes_[u].parent) {
+    nodes_[u].drawnChanged = true;
+    if (nodes_[u].path.level % options_.chunkLevels == 0) break;  // the chunk's root
+  }
+}
+
 void RoamMesh::replaceLink(uint32_t at, uint32_t from, uint32_t to) {
   if (at == kNoNode) return;
   RoamNode& n = nodes_[at];
@@ -168,6 +187,9 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created
   n.child = c;
   n.mid = mid;
   ++leaves_;
+  expire(t);  // now a diamond half; its parent is no longer one
+  if (n.parent != kNoNode) expire(n.parent);
+  markDrawnChanged(t);
   nodes_[c].thickness = thicknessOf(c);
   nodes_[c + 1].thickness = thicknessOf(c + 1);
   updateRadius(c);
@@ -227,6 +249,7 @@ void RoamMesh::raiseThickness(uint32_t t) {
     const float e = nestedThickness(t);
     if (!(e > nodes_[t].thickness) && nodes_[t].thickness == nodes_[t].thickness) break;
     nodes_[t].thickness = e;
+    expire(t);
   }
 }
 
@@ -249,6 +272,7 @@ void RoamMesh::beginMergeMorph(uint32_t t) {
   m.toHeightM = 0.5 * (l.drawnHeight(timeS_, options_.fadeS) + r.drawnHeight(timeS_, options_.fadeS));
   m.morphStartS = timeS_;
   m.merging = true;
+  markDiamondLeaves(t);
 }
 
 void RoamMesh::cancelMergeMorph(uint32_t t) {
@@ -258,6 +282,16 @@ void RoamMesh::cancelMergeMorph(uint32_t t) {
   m.toHeightM = m.heightM;
   m.morphStartS = timeS_;
   m.merging = false;
+  markDiamondLeaves(t);
+}
+
+void RoamMesh::markDiamondLeaves(uint32_t t) {
+  // The leaves that share the diamond's split vertex: the children of t and of its base.
+  for (uint32_t half : {t, nodes_[t].base}) {
+    if (half == kNoNode || nodes_[half].isLeaf()) continue;
+    markDrawnChanged(nodes_[half].child);
+    markDrawnChanged(nodes_[half].child + 1);
+  }
 }
 
 void RoamMesh::mergeOne(uint32_t t) {
@@ -271,6 +305,9 @@ void RoamMesh::mergeOne(uint32_t t) {
   n.child = kNoNode;
   n.mid = kNoNode;
   --leaves_;
+  expire(t);  // a leaf again; its parent may have become a diamond half
+  if (n.parent != kNoNode) expire(n.parent);
+  markDrawnChanged(t);
 }
 
 void RoamMesh::merge(uint32_t t) {
@@ -290,6 +327,8 @@ void RoamMesh::resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2],
   RoamNode& n = nodes_[t];
   if (grid_.squareZoom(n.path.level) >= tile.z) n.thickness = thicknessOf(t);
   updateRadius(t);  // its vertices may have moved
+  expire(t);
+  markDrawnChanged(t);
   if (n.isLeaf()) return;
   RoamVertex& m = vertices_[n.mid];
   if (m.grid.x >= lo[0] && m.grid.x <= hi[0] && m.grid.y >= lo[1] && m.grid.y <= hi[1]) {
@@ -314,7 +353,7 @@ void RoamMesh::resample(const geo::TileId& tile) {
   for (uint32_t r : roots_) resampleNode(r, tile, lo, hi);
 }
 
-void RoamMesh::compact() {
+RoamRenumbering RoamMesh::compact() {
   std::vector<uint32_t> nodeMap(nodes_.size(), kNoNode), vertexMap(vertices_.size(), kNoNode);
   std::vector<RoamNode> nodes;
   std::vector<RoamVertex> vertices;
@@ -362,6 +401,7 @@ void RoamMesh::compact() {
   vertices_ = std::move(vertices);
   freePairs_.clear();
   freeVertices_.clear();
+  return {std::move(nodeMap), std::move(vertexMap)};
 }
 
 std::vector<uint32_t> RoamMesh::leaves() const {

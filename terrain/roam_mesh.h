@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -66,12 +67,30 @@ struct RoamNode {
   float thickness = 0.0f;       // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
   float priority = 0.0f;        // the last priority the update gave it
   float radius = 0.0f;          // bounding sphere about the base midpoint (m, at geometry heights)
+  // Deferred priority recomputation (the tessellator's, roam_tessellator.h): `priority` stays on
+  // the same side of the split / merge bounds until the camera has travelled `deadline` metres
+  // on the tessellator's odometer; subtreeDeadline is the least over the subtree. −∞: evaluate
+  // again (new, changed, or next to a bound); the mesh expires what it changes.
+  double deadline = -std::numeric_limits<double>::infinity();
+  double subtreeDeadline = -std::numeric_limits<double>::infinity();
+  uint8_t seenCull = 0xFF, seenPiece = 0xFF;  // the cull and piece states the priority was computed under
+  // Drawn chunks (the tessellator's output cache): the subtree between two levels that are
+  // multiples of RoamMeshOptions::chunkLevels, cached as drawn. drawnChanged: this node, or one
+  // below it in its chunk, changed in a way that shows since the chunk was last built.
+  bool drawnChanged = true;
+  uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   bool isLeaf() const { return child == kNoNode; }
 };
 
 struct RoamMeshOptions {
   double fadeS = 0.5;        // geomorph time (s)
   double fillHeightM = 0.0;  // the height nodata vertices count as for culling (e.g. mid dataset)
+  int chunkLevels = 8;       // drawn chunks span this many levels (RoamNode::drawnChanged)
+};
+
+// compact()'s renumbering: new index of every old node and vertex (kNoNode: free).
+struct RoamRenumbering {
+  std::vector<uint32_t> nodes, vertices;
 };
 
 class RoamMesh {
@@ -96,10 +115,17 @@ class RoamMesh {
   void beginMergeMorph(uint32_t t);
   void cancelMergeMorph(uint32_t t);
 
+  // Marks t's priority as to be computed again, and every ancestor's subtree as holding one.
+  void expire(uint32_t t);
+  // Marks t as changed on screen, up to its chunk's root.
+  void markDrawnChanged(uint32_t t);
+  // The drawnChunk slots of nodes freed since the last call.
+  std::vector<uint32_t> takeReleasedChunks() { return std::exchange(releasedChunks_, {}); }
+
   // Renumbers nodes and vertices in depth-first order (roots and root corners keep theirs), so
   // traversals walk memory forwards: splits and merges scatter the pools over time. Every node
   // and vertex index held outside is invalid afterwards.
-  void compact();
+  RoamRenumbering compact();
 
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
@@ -137,6 +163,7 @@ class RoamMesh {
   float nestedThickness(uint32_t t) const;
   void updateRadius(uint32_t t);
   void raiseThickness(uint32_t t);
+  void markDiamondLeaves(uint32_t t);
   void resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]);
 
   BintreeGrid grid_;
@@ -151,6 +178,7 @@ class RoamMesh {
   std::vector<uint32_t> roots_;
   std::vector<uint32_t> cornerVertices_;  // the root tiles' corners (never removed)
   uint64_t leaves_ = 0;
+  std::vector<uint32_t> releasedChunks_;
 };
 
 }  // namespace vegstream::terrain

@@ -18,8 +18,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
                              std::vector<TerrainMesh>& meshes, std::vector<SeedTriangle>& seeds) {
   Stopwatch watch;
   ++outputFrame_;
-  beginView(view);
   stamps_.resize(mesh_.vertexCapacity());
+  releaseChunks();
   meshes.resize(pieces.tiles().size() + 1);
   for (size_t i = 0; i < meshes.size(); ++i) {
     TerrainMesh& m = meshes[i];
@@ -43,9 +43,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   w.untextured = static_cast<int>(pieces.tiles().size());
   figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
   figures_.seedTriangles = figures_.seedInterpolated = 0;
+  figures_.chunksReused = figures_.chunksBuilt = 0;
   figures_.seedPlants = 0.0;
-  figures_.achievedErrorPx = 0.0;
-  figures_.depthLimitedLeaves = 0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
     eyeOf(view, r, eye);
@@ -57,6 +56,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
 
 void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece,
                                   bool seeds) {
+  // Eye coordinates are needed while the culling or the seeds are undecided, and only then.
+  assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
   const int level = n.path.level;
   const double e = std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f);
@@ -95,50 +96,145 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
       seeds = false;
     }
   }
+  if (options_.cacheChunks && cull == Cull::Inside && !seeds && ps == InPiece::In &&
+      level % mesh_.options().chunkLevels == 0) {
+    drawChunk(w, t, piece);
+    return;
+  }
   if (n.isLeaf()) {
-    if (cull != Cull::Outside) {
-      const double px = n.thickness >= 0.0f ? projectedErrorPx(*w.view, t, eye, n.thickness) : 0.0;
-      figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, px);
-      if (px > options_.maxErrorPx && level >= mesh_.grid().maxLevel()) ++figures_.depthLimitedLeaves;
-    }
     if (ps == InPiece::Above) ++figures_.constrainedLeaves;
-    emitLeaf(w, t, ps == InPiece::In ? piece : w.untextured);
+    const bool textured = ps == InPiece::In;
+    TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
+    if (emitLeaf(w, t, {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
+                        static_cast<uint32_t>(textured ? piece : w.untextured), nullptr}))
+      ++figures_.drawnTriangles;
     return;
   }
   const uint32_t c = n.child;
+  if (cull == Cull::Inside && !seeds) {
+    visitOutput(w, c, nullptr, cull, ps, piece, false);
+    visitOutput(w, c + 1, nullptr, cull, ps, piece, false);
+    return;
+  }
   const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);  // the only vertex transformed here (§3.1 A)
   const glm::dvec3 e0[3] = {m, eye[0], eye[1]}, e1[3] = {m, eye[2], eye[0]};
   visitOutput(w, c, e0, cull, ps, piece, seeds);
   visitOutput(w, c + 1, e1, cull, ps, piece, seeds);
 }
 
-void RoamTessellator::emitLeaf(Walk& w, uint32_t t, int piece) {
+void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
+  TerrainMesh& m = (*w.meshes)[size_t(piece)];
+  const geo::TileId& tile = w.pieces->tiles()[size_t(piece)];
+  uint32_t slot = mesh_.node(t).drawnChunk;
+  if (slot == kNoNode) {
+    if (freeChunks_.empty()) {
+      slot = static_cast<uint32_t>(chunks_.size());
+      chunks_.emplace_back();
+    } else {
+      slot = freeChunks_.back();
+      freeChunks_.pop_back();
+    }
+    mesh_.node(t).drawnChunk = slot;
+    mesh_.node(t).drawnChanged = true;
+  }
+  DrawnChunk& chunk = chunks_[slot];
+  if (mesh_.node(t).drawnChanged || chunk.root != t || !(chunk.piece == tile)) {
+    chunk.root = t;
+    chunk.piece = tile;
+    chunk.vertices.clear();
+    chunk.indices.clear();
+    chunk.below.clear();
+    chunk.morphing.clear();
+    // Stamps of chunks are told apart from pieces' by the top bit.
+    const LeafSink sink{&chunk.vertices, &chunk.indices, m.origin, &chunk.piece, 0x80000000u | slot, &chunk.morphing};
+    collectChunk(w, slot, t, mesh_.node(t).path.level, sink);
+    ++figures_.chunksBuilt;
+  } else {
+    // Unchanged but for its morphing vertices: move them to where they are drawn now.
+    const double fade = mesh_.options().fadeS;
+    size_t kept = 0;
+    for (const auto& [at, v] : chunk.morphing) {
+      const RoamVertex& x = mesh_.vertex(v);
+      const double h = x.drawnHeight(w.timeS, fade);
+      TerrainVertex& out = chunk.vertices[at];
+      out.position = glm::vec3(x.position(h) - m.origin);
+      out.heightMsl = static_cast<float>(h);
+      if (h != x.heightM) ++figures_.morphingVertices;
+      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = {at, v};
+    }
+    chunk.morphing.resize(kept);
+    ++figures_.chunksReused;
+  }
+  const auto base = static_cast<uint32_t>(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), chunk.vertices.begin(), chunk.vertices.end());
+  const size_t first = m.indices.size();
+  m.indices.resize(first + chunk.indices.size());
+  for (size_t i = 0; i < chunk.indices.size(); ++i) m.indices[first + i] = chunk.indices[i] + base;
+  figures_.drawnTriangles += chunk.indices.size() / 3;
+  // `chunk` may move as the chunks below claim slots: copy what is left to walk.
+  const std::vector<uint32_t> below = chunk.below;
+  for (uint32_t b : below) visitOutput(w, b, nullptr, Cull::Inside, InPiece::In, piece, false);
+}
+
+void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int rootLevel, const LeafSink& sink) {
+  RoamNode& n = mesh_.node(t);
+  n.drawnChanged = false;
+  if (n.isLeaf()) {
+    emitLeaf(w, t, sink);
+    return;
+  }
+  for (uint32_t c : {n.child, n.child + 1}) {
+    if (mesh_.node(c).path.level == rootLevel + mesh_.options().chunkLevels) chunks_[slot].below.push_back(c);
+    else collectChunk(w, slot, c, rootLevel, sink);
+  }
+}
+
+void RoamTessellator::releaseChunks() {
+  for (uint32_t slot : mesh_.takeReleasedChunks()) {
+    chunks_[slot] = DrawnChunk{};
+    freeChunks_.push_back(slot);
+  }
+}
+
+void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
+  // Chunks whose root was freed are released before compaction: every index here is live.
+  auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
+  auto vertex = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.vertices[i]; };
+  for (DrawnChunk& c : chunks_) {
+    if (c.root == kNoNode) continue;
+    c.root = node(c.root);
+    for (uint32_t& b : c.below) b = node(b);
+    for (auto& [at, v] : c.morphing) v = vertex(v);
+  }
+}
+
+bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
   const RoamNode& n = mesh_.node(t);
   for (uint32_t v : n.v)
-    if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return;  // nodata: a hole, never a drop to 0
-  TerrainMesh& m = (*w.meshes)[size_t(piece)];
-  const bool textured = piece != w.untextured;
-  const geo::TileId tile = textured ? w.pieces->tiles()[size_t(piece)] : geo::TileId{};
-  const double uvScale = std::ldexp(1.0, tile.z - mesh_.grid().gridZoom());
+    if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return false;  // nodata: a hole, never a drop to 0
+  const double uvScale = sink.tile ? std::ldexp(1.0, sink.tile->z - mesh_.grid().gridZoom()) : 0.0;
+  const double fade = mesh_.options().fadeS;
   for (uint32_t v : n.v) {
     Stamp& st = stamps_[v];
-    if (st.frame == outputFrame_ && st.piece == uint32_t(piece)) {
-      m.indices.push_back(st.index);
+    if (st.frame == outputFrame_ && st.piece == sink.stamp) {
+      sink.indices->push_back(st.index);
       continue;
     }
     const RoamVertex& x = mesh_.vertex(v);
-    const double h = x.drawnHeight(w.timeS, mesh_.options().fadeS);
+    const double h = x.drawnHeight(w.timeS, fade);
     if (h != x.heightM) ++figures_.morphingVertices;
     TerrainVertex out;
-    out.position = glm::vec3(x.position(h) - m.origin);
+    out.position = glm::vec3(x.position(h) - sink.origin);
     out.normal = x.normal;
     out.heightMsl = static_cast<float>(h);
-    if (textured) out.uv = glm::vec2(double(x.grid.x) * uvScale - tile.x, double(x.grid.y) * uvScale - tile.y);
-    st = {outputFrame_, uint32_t(piece), static_cast<uint32_t>(m.vertices.size())};
-    m.indices.push_back(st.index);
-    m.vertices.push_back(out);
+    if (sink.tile)
+      out.uv = glm::vec2(double(x.grid.x) * uvScale - sink.tile->x, double(x.grid.y) * uvScale - sink.tile->y);
+    st = {outputFrame_, sink.stamp, static_cast<uint32_t>(sink.vertices->size())};
+    if (sink.morphing && !x.morphDone(w.timeS, fade)) sink.morphing->push_back({st.index, v});
+    sink.indices->push_back(st.index);
+    sink.vertices->push_back(out);
   }
-  ++figures_.drawnTriangles;
+  return true;
 }
 
 void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,

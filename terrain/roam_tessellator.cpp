@@ -8,11 +8,62 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/stopwatch.h"
 #include "terrain/roam_walk.h"
 
 namespace vegstream::terrain {
+
+namespace {
+
+// The least radius of curvature of the ellipsoid (the meridian's at the equator, rounded down):
+// the local up turns by at most 1 / kMinCurvatureRadiusM radians per metre travelled.
+constexpr double kMinCurvatureRadiusM = 6.3e6;
+constexpr double kNever = std::numeric_limits<double>::infinity();
+constexpr double kNow = -std::numeric_limits<double>::infinity();
+
+// A wedgie as the error metric sees it: thickness e, bounding sphere radius r (grown by e), the
+// distance dc from the camera to the sphere's centre and the sine of the angle between the
+// vertical and the ray to it. errorPx(0) is the projected error; upperPx / lowerPx bound it
+// after the camera has moved `moved` metres in any direction (deferred recomputation).
+struct ErrorGeometry {
+  double e, r, dc, sinC, near, pixelsPerRadian;
+
+  // How far the ray to the centre can turn, the vertical's own turn included.
+  double turn(double moved) const {
+    return (moved < dc ? std::asin(moved / dc) : 0.5 * M_PI) + moved / kMinCurvatureRadiusM;
+  }
+  double upperPx(double moved) const {
+    const double dcMin = dc - moved;
+    const double sinMax = dcMin > r ? std::min(1.0, sinC + (moved > 0.0 ? turn(moved) : 0.0) + r / dcMin) : 1.0;
+    return e * sinMax * pixelsPerRadian / std::max(dcMin - r, near);
+  }
+  double lowerPx(double moved) const {
+    const double dcMax = dc + moved;
+    const double sinMin = std::min(1.0, std::max(0.0, sinC - turn(moved)) + r / dcMax);
+    return e * sinMin * pixelsPerRadian / std::max(dcMax - r, near);
+  }
+  // The distance the camera may travel before errorPx may rise above `bound` (rising) or fall
+  // below it (falling): the largest of dc / 2, dc / 4, … (down to dc / 2^12) that the bound
+  // allows, else 0. Conservative: the bounds above hold for every direction of travel.
+  double safeDistance(double bound, bool rising) const {
+    double moved = 0.5 * dc;
+    for (int i = 0; i < 12; ++i, moved *= 0.5)
+      if (rising ? upperPx(moved) <= bound : lowerPx(moved) >= bound) return moved;
+    return 0.0;
+  }
+};
+
+ErrorGeometry errorGeometry(const EyeView& view, const RoamNode& n, const glm::dvec3* eye) {
+  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
+  const double dc = glm::length(c);
+  const double cosC = dc > 0.0 ? std::abs(glm::dot(view.upEye, c)) / dc : 1.0;
+  return {n.thickness, n.radius + n.thickness, dc, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)), view.nearM,
+          view.pixelsPerRadian};
+}
+
+}  // namespace
 
 void PieceSet::assign(std::span<const geo::TileId> tiles) {
   tiles_.assign(tiles.begin(), tiles.end());
@@ -48,22 +99,24 @@ void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
     if (k.layer == streaming::TileLayer::Height) mesh_.resample(k.id);
 }
 
-void RoamTessellator::beginView(const EyeView& view) {
-  if (view.cameraEnu == lastCamera_ && view.rotation == lastRotation_) return;
+void RoamTessellator::beginUpdate(const EyeView& view) {
+  const Projection projection{view.nearM,    view.pixelsPerRadian,  view.tanHalfX,
+                              view.tanHalfY, options_.maxErrorPx, options_.mergeFraction * options_.maxErrorPx};
+  evaluateAll_ = !(projection == lastProjection_) || !(lastCamera_ == lastCamera_) ||
+                 mesh_.leafCount() > options_.maxTriangles;  // over budget: every diamond is a candidate
+  lastProjection_ = projection;
+  const double moved = lastCamera_ == lastCamera_ ? glm::length(view.cameraEnu - lastCamera_) : 0.0;
+  odometerM_ += moved;
   lastCamera_ = view.cameraEnu;
-  lastRotation_ = view.rotation;
-  ++viewId_;
+  // The bounds let the vertical turn as the ellipsoid's normal does over the distance moved; a
+  // view whose "up" turned more (not the local vertical) has every priority computed again.
+  const glm::dvec3 up = glm::transpose(view.rotation) * view.upEye;
+  if (glm::dot(up, lastUp_) < std::cos(moved / kMinCurvatureRadiusM) - 1e-12) evaluateAll_ = true;
+  lastUp_ = up;
 }
 
 glm::dvec3 RoamTessellator::eyeOfVertex(const EyeView& view, uint32_t v) const {
-  // Each vertex is transformed once per view (§3.1 A: only a split's new vertex is new).
-  if (v >= eyes_.size()) eyes_.resize(mesh_.vertexCapacity() + 1024);
-  EyeEntry& e = eyes_[v];
-  if (e.view != viewId_) {
-    e.eye = view.toEye(mesh_.vertex(v).at);
-    e.view = viewId_;
-  }
-  return e.eye;
+  return view.toEye(mesh_.vertex(v).at);
 }
 
 void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
@@ -82,16 +135,58 @@ double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const 
   // The wedgie's thickness is vertical: seen along a ray at angle θ to the vertical it spans
   // e·sin θ / d radians (Duchaineau et al. project the thickness vector the same way). Over the
   // bounding sphere θ is within θ_c ± α, sin α = radius / ‖c‖, and sin(θ_c + α) ≤ sin θ_c + sin α.
-  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
-  const double r = mesh_.node(t).radius + thickness;
-  const double dc = glm::length(c);
-  const double d = std::max(dc - r, view.nearM);
-  double sinMax = 1.0;
-  if (dc > r) {
-    const double cosC = std::abs(glm::dot(view.upEye, c)) / dc;
-    sinMax = std::min(1.0, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)) + r / dc);
+  ErrorGeometry g = errorGeometry(view, mesh_.node(t), eye);
+  g.e = thickness;
+  g.r = mesh_.node(t).radius + thickness;
+  return g.upperPx(0.0);
+}
+
+void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+  RoamNode& n = mesh_.node(t);
+  n.seenCull = static_cast<uint8_t>(cull);
+  n.seenPiece = static_cast<uint8_t>(ps);
+  n.priority = priority(view, t, eye, cull, ps);
+  ++figures_.prioritiesComputed;
+  // Outside, or no data: 0 until the cull or the mesh changes (both checked without a deadline).
+  if (n.priority == 0.0f) {
+    n.deadline = kNever;
+    return;
   }
-  return thickness * sinMax * view.pixelsPerRadian / d;
+  if (n.priority > options_.maxErrorPx) {  // to be split: every update looks at it again
+    n.deadline = kNow;
+    return;
+  }
+  figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, double(n.priority));
+  const ErrorGeometry g = errorGeometry(view, n, eye);
+  double safe = g.safeDistance(options_.maxErrorPx, true);
+  // The seed-level constraint starts where the sphere comes within the horizon.
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_) safe = std::min(safe, std::max(0.0, g.dc - g.r - seeds_.horizonM));
+  n.deadline = odometerM_ + safe;
+}
+
+void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+  RoamNode& n = mesh_.node(t);
+  n.seenCull = static_cast<uint8_t>(cull);
+  n.seenPiece = static_cast<uint8_t>(ps);
+  n.priority = priority(*w.view, t, eye, cull, ps);
+  ++figures_.prioritiesComputed;
+  if (n.priority < w.mergeBelow) {
+    // A merge candidate: the merge phase decides when to look again (at once while it waits for
+    // its morph or the work budget; while its partner holds it, until either may change).
+    n.deadline = n.priority == 0.0f ? kNever : odometerM_ + errorGeometry(*w.view, n, eye).safeDistance(w.mergeBelow, true);
+    return;
+  }
+  mesh_.cancelMergeMorph(t);  // it sank towards a merge that is no longer wanted
+  if (ps == InPiece::Above) {  // forced by the pieces: their changes are seen without a deadline
+    n.deadline = kNever;
+    return;
+  }
+  const ErrorGeometry g = errorGeometry(*w.view, n, eye);
+  if (n.priority >= kForcedPriority) {  // forced by the seed level until the sphere leaves the horizon
+    n.deadline = odometerM_ + std::max(0.0, seeds_.horizonM - std::max(g.dc - g.r, w.view->nearM));
+    return;
+  }
+  n.deadline = odometerM_ + g.safeDistance(w.mergeBelow, false);
 }
 
 RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square,
@@ -135,19 +230,30 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
     ps = pieceState(*w.pieces, mesh_.grid().square(mesh_.corners(t), level), ps, level);
+  const bool seenSame = n.seenCull == static_cast<uint8_t>(cull) && n.seenPiece == static_cast<uint8_t>(ps);
+  // Nothing below is due and it is wholly in (or out of) the view and the pieces as before:
+  // every priority below is still on the same side of its bounds (Inside and Outside, In and
+  // None hold for the whole subtree).
+  if (!evaluateAll_ && seenSame && cull != Cull::Partial && ps != InPiece::Above && n.subtreeDeadline > odometerM_)
+    return;
+  const bool due = evaluateAll_ || !seenSame || !(n.deadline > odometerM_);
+  ++figures_.nodesVisited;
   if (n.isLeaf()) {
-    n.priority = priority(*w.view, t, eye, cull, ps);
+    if (due) evaluateLeaf(*w.view, t, eye, cull, ps);
     if (n.priority > w.bound) w.splits->push_back({n.priority, t, n.path});
+    n.subtreeDeadline = n.deadline;
     return;
   }
   const uint32_t c = n.child;
   if (mesh_.node(c).isLeaf() && mesh_.node(c + 1).isLeaf()) {
-    n.priority = priority(*w.view, t, eye, cull, ps);
+    if (due) evaluateDiamond(w, t, eye, cull, ps);
     // A diamond merges below the threshold (its priority is the larger half's), or for the budget.
     if (n.priority < w.mergeBelow || w.overBudget) w.diamonds->push_back({n.priority, t, n.path});
-    else mesh_.cancelMergeMorph(t);  // it sank towards a merge that is no longer wanted
-  } else {
+  } else if (due) {
     n.priority = kForcedPriority;  // not a diamond half: never merged as one
+    n.deadline = kNever;
+    n.seenCull = static_cast<uint8_t>(cull);
+    n.seenPiece = static_cast<uint8_t>(ps);
     mesh_.cancelMergeMorph(t);
   }
   glm::dvec3 e0[3], e1[3];
@@ -158,6 +264,8 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   }
   visitPriorities(w, c, e0, cull, ps);
   visitPriorities(w, c + 1, e1, cull, ps);
+  RoamNode& after = mesh_.node(t);
+  after.subtreeDeadline = std::min({after.deadline, mesh_.node(c).subtreeDeadline, mesh_.node(c + 1).subtreeDeadline});
 }
 
 void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double timeS) {
@@ -167,11 +275,11 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   timeS_ = timeS;
   // Every kCompactEvery updates the pools are put back in depth-first order (cache locality).
   if (++updates_ % kCompactEvery == 0) {
-    mesh_.compact();
-    eyes_.clear();
+    releaseChunks();
+    remapChunks(mesh_.compact());
     stamps_.clear();
   }
-  beginView(view);
+  beginUpdate(view);
   std::vector<Candidate> splits, diamonds;
   Walk w;
   w.view = &view;
@@ -220,7 +328,13 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
     const RoamNode& n = mesh_.node(c.node);
     if (!n.isLeaf() || n.path != c.path) continue;  // split or removed since it was queued
     created.clear();
-    if (!mesh_.split(c.node, &created)) continue;  // at the deepest level
+    if (!mesh_.split(c.node, &created)) {  // at the deepest level
+      if (c.priority < kForcedPriority) {
+        ++figures_.depthLimitedLeaves;
+        figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, double(c.priority));
+      }
+      continue;
+    }
     ++ops;
     ++figures_.splits;
     // The new leaves (the diamond's and the forced splits') may need more splits this frame.
@@ -231,37 +345,72 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       eyeOf(view, leaf, eye);
       const double e = std::max(0.0f, ln.thickness == ln.thickness ? ln.thickness : 0.0f);
       const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
-      const float p = priority(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
-      mesh_.node(leaf).priority = p;
+      evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
+      RoamNode& evaluated = mesh_.node(leaf);
+      evaluated.subtreeDeadline = evaluated.deadline;  // its ancestors are due already (the split)
+      const float p = evaluated.priority;
       if (p > bound) {
         heap.push_back({p, leaf, ln.path});
         std::push_heap(heap.begin(), heap.end(), less);
       }
     }
   }
+  // What the budgets left unsplit is what the mesh misses the bound by.
+  for (const Candidate& c : heap) {
+    const RoamNode& n = mesh_.node(c.node);
+    if (!n.isLeaf() || n.path != c.path) continue;
+    double px = c.priority;
+    if (c.priority >= kForcedPriority) {  // a constraint: its own error
+      glm::dvec3 eye[3];
+      eyeOf(view, c.node, eye);
+      px = n.thickness >= 0.0f ? projectedErrorPx(view, c.node, eye, n.thickness) : 0.0;
+    }
+    figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, px);
+  }
+}
+
+void RoamTessellator::lowerDeadline(uint32_t t, double deadline) {
+  mesh_.node(t).deadline = std::min(mesh_.node(t).deadline, deadline);
+  for (uint32_t u = t; u != kNoNode && mesh_.node(u).subtreeDeadline > deadline; u = mesh_.node(u).parent)
+    mesh_.node(u).subtreeDeadline = deadline;
 }
 
 void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch) {
-  // A diamond's priority is the larger of its two halves'.
+  // A diamond's priority is the larger of its two halves'; either half may have been queued
+  // (the other's priority, not due, is still on the same side of the bound).
   // Only diamonds below the merge threshold are queued, unless the mesh is over budget.
   const double threshold = options_.mergeFraction * options_.maxErrorPx;
   const bool overBudget = mesh_.leafCount() > options_.maxTriangles;
+  auto pairOf = [&](uint32_t t) { return std::min(t, mesh_.node(t).base); };
+  std::sort(diamonds.begin(), diamonds.end(), [&](const Candidate& a, const Candidate& b) { return pairOf(a.node) < pairOf(b.node); });
   std::vector<Candidate> queue;
-  for (const Candidate& d : diamonds) {
+  for (size_t i = 0; i < diamonds.size(); ++i) {
+    const Candidate& d = diamonds[i];
+    if (i > 0 && pairOf(diamonds[i - 1].node) == pairOf(d.node)) continue;  // the pair is in already
     const uint32_t b = mesh_.node(d.node).base;
-    if (b != kNoNode && b < d.node) continue;  // the partner with the smaller index speaks for both
-    const float p = std::max(d.priority, b != kNoNode ? mesh_.node(b).priority : 0.0f);
-    if (p < kForcedPriority && (overBudget || p < threshold)) queue.push_back({p, d.node, d.path});
-    else mesh_.cancelMergeMorph(d.node);
+    const float p = std::max(mesh_.node(d.node).priority, b != kNoNode ? mesh_.node(b).priority : 0.0f);
+    if (p < kForcedPriority && (overBudget || p < threshold)) {
+      queue.push_back({p, d.node, d.path});
+      continue;
+    }
+    mesh_.cancelMergeMorph(d.node);
+    // Held by its partner: look again when either may have changed.
+    if (b != kNoNode) lowerDeadline(d.node, mesh_.node(b).deadline);
   }
   std::sort(queue.begin(), queue.end(), [](const Candidate& a, const Candidate& b) {
     return a.priority != b.priority ? a.priority < b.priority : a.node < b.node;
   });
-  for (const Candidate& c : queue) {
+  size_t next = 0;
+  for (; next < queue.size(); ++next) {
+    const Candidate& c = queue[next];
     if (c.priority >= threshold && mesh_.leafCount() <= options_.maxTriangles) break;
     if (outOfWork(ops, watch)) break;
     const RoamNode& n = mesh_.node(c.node);
-    if (n.path != c.path || !mesh_.isMergeable(c.node)) continue;
+    if (n.path != c.path) continue;
+    if (!mesh_.isMergeable(c.node)) {  // its partner is split further: until that changes
+      if (n.base != kNoNode) lowerDeadline(c.node, mesh_.node(n.base).deadline);
+      continue;
+    }
     const bool forBudget = c.priority >= threshold;
     if (forBudget) figures_.budgetLimited = true;  // merged for the budget, not the error: at once
     // For the error: the split vertex first sinks to its base over fadeS, then the merge is exact.
@@ -274,12 +423,16 @@ void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops
         ++ops;
         ++figures_.mergesStarted;
       }
+      lowerDeadline(c.node, kNow);  // the morph goes on: look again next update
       continue;
     }
     mesh_.merge(c.node);
     ++ops;
     ++figures_.merges;
   }
+  // Left for later by the budgets: look again next update.
+  for (; next < queue.size(); ++next)
+    if (mesh_.node(queue[next].node).path == queue[next].path) lowerDeadline(queue[next].node, kNow);
 }
 
 }  // namespace vegstream::terrain

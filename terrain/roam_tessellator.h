@@ -17,6 +17,11 @@
 //   3. the merge queue (min first) merges diamonds below mergeFraction × the bound — after their
 //      split vertex has sunk to its base over fadeS, so merges do not pop — and, at once, more
 //      while the mesh is over budget.
+//   Deferred: a priority is computed again only when the camera may have carried it across
+//   the split bound (a leaf) or the merge bound (a diamond) — bounds on how far the distance and
+//   the viewing angle can change over the metres travelled since — or when its cull or piece
+//   state, the mesh under it, the projection or the bound changed. A subtree none of whose
+//   priorities is due, entirely inside or outside the view as before, is not visited at all.
 //   Two constraints force splits regardless of error: every drawn leaf lies inside one piece
 //   (the imagery tile it is coloured from), and, inside the seeding horizon, leaves reach the
 //   seed level so that seed triangles have sampled heights.
@@ -56,6 +61,7 @@ struct RoamOptions {
   uint64_t maxOpsPerFrame = 60000;  // splits + merges per frame (a deterministic work budget)
   double maxQueueMs = 0.0;          // a time budget for the queue work; 0: none (deterministic)
   double canopyM = 30.0;            // the tallest plant: wedgies grow by it for culling
+  bool cacheChunks = true;          // output: append unchanged drawn chunks as cached (roam_output.cpp)
 };
 
 // The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
@@ -86,13 +92,19 @@ struct RoamFigures {
   uint64_t leaves = 0;            // triangles in the mesh
   uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
+  uint64_t nodesVisited = 0;      // the update's traversal (deferral skips subtrees none of whose priorities is due)
+  uint64_t prioritiesComputed = 0;
   uint64_t mergesStarted = 0;     // diamonds whose split vertex began sinking to its base (merged after fadeS)
   uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
   uint64_t morphingVertices = 0;  // drawn vertices still on their way to a new height
   bool budgetLimited = false;     // the triangle budget stopped refinement
   bool workLimited = false;       // the per-frame work budget stopped the queues
-  double achievedErrorPx = 0.0;   // the largest priority of a visible leaf after the update
+  // The largest on-screen error of a visible leaf whose priority the update computed (the
+  // others were below the bound and cannot have crossed it: so it exceeds the bound exactly
+  // when the mesh does), after the splits.
+  double achievedErrorPx = 0.0;
   uint64_t depthLimitedLeaves = 0; // visible leaves over the bound at the deepest level (cannot split)
+  uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks appended as cached, and rebuilt
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
   double seedPlants = 0.0;        // Σ plant counts
@@ -142,7 +154,20 @@ class RoamTessellator {
   glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const;
   void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
-  void emitLeaf(Walk& w, uint32_t t, int piece);
+  // Where emitLeaf writes: a piece's mesh, or a drawn chunk being built.
+  struct LeafSink {
+    std::vector<TerrainVertex>* vertices;
+    std::vector<uint32_t>* indices;
+    glm::dvec3 origin;
+    const geo::TileId* tile;  // the piece (uv), or null: untextured
+    uint32_t stamp;           // which vertices are already in it (stamps_)
+    std::vector<std::pair<uint32_t, uint32_t>>* morphing;  // null, or (vertex here, RoamVertex) still morphing
+  };
+  bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
+  void drawChunk(Walk& w, uint32_t t, int piece);
+  void collectChunk(Walk& w, uint32_t slot, uint32_t t, int rootLevel, const LeafSink& sink);
+  void releaseChunks();
+  void remapChunks(const RoamRenumbering& renumbering);
   void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
                 int piece);
   void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
@@ -151,6 +176,7 @@ class RoamTessellator {
                   const Stopwatch& watch);
   void mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch);
   bool outOfWork(uint64_t ops, const Stopwatch& watch);
+  void lowerDeadline(uint32_t t, double deadline);  // and its ancestors' subtree deadlines
 
   RoamMesh mesh_;
   geo::LocalFrame frame_;
@@ -159,16 +185,32 @@ class RoamTessellator {
   int seedLevel_ = 0;
   double fillHeightM_ = 0.0;
   RoamFigures figures_;
-  // Eye-space vertices of the current view, computed once per view and vertex.
-  void beginView(const EyeView& view);
-  struct EyeEntry {
-    glm::dvec3 eye;
-    uint64_t view = 0;
-  };
-  mutable std::vector<EyeEntry> eyes_;
-  uint64_t viewId_ = 0;
+  // Deferred priority recomputation (Duchaineau et al. 1997 §6): the camera's odometer (metres
+  // travelled), and what a change of which means every priority is computed again.
+  void beginUpdate(const EyeView& view);
+  void evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
+  void evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
+  double odometerM_ = 0.0;
   glm::dvec3 lastCamera_{std::numeric_limits<double>::quiet_NaN()};
-  glm::dmat3 lastRotation_{0.0};
+  glm::dvec3 lastUp_{0.0};
+  struct Projection {
+    double nearM = 0.0, pixelsPerRadian = 0.0, tanHalfX = 0.0, tanHalfY = 0.0, boundPx = 0.0, mergePx = 0.0;
+    auto operator<=>(const Projection&) const = default;
+  } lastProjection_;
+  bool evaluateAll_ = true;  // this update computes every priority again
+  // The output cache (roam_output.cpp): every chunk root drawn whole inside the view, inside
+  // one piece and beyond the seeds keeps its leaves as drawn, and is appended again as long as
+  // nothing in it changed (RoamNode::drawnChanged); only its morphing vertices are moved.
+  struct DrawnChunk {
+    uint32_t root = kNoNode;
+    geo::TileId piece{};  // positions are relative to its origin, uvs in it
+    std::vector<TerrainVertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<uint32_t> below;  // the chunk roots chunkLevels further down: drawn on their own
+    std::vector<std::pair<uint32_t, uint32_t>> morphing;
+  };
+  std::vector<DrawnChunk> chunks_;
+  std::vector<uint32_t> freeChunks_;
   // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
   struct Stamp {
     uint64_t frame = 0;
