@@ -152,10 +152,12 @@ void RoamMesh::expire(uint32_t t) {
 }
 
 void RoamMesh::markDrawnChanged(uint32_t t) {
-  // Every changed node's ancestors inside its chunk are marked too: stop at a marked one.
-  for (uint32_t u = t; u != kNoNode && !nodes_[u].drawnChanged; u = nodes_[u].parent) {
-    nodes_[u].drawnChanged = true;
-    if (nodes_[u].path.level % options_.chunkLevels == 0) break;  // the chunk's root
+  // A chunk may start at any node of a band and ends at the band's bottom: every node between
+  // the change and the band's top carries it.
+  ++drawnChanges_;
+  for (uint32_t u = t; u != kNoNode; u = nodes_[u].parent) {
+    nodes_[u].drawnStamp = drawnChanges_;
+    if (nodes_[u].path.level % options_.chunkLevels == 0) break;  // the band's top
   }
 }
 
@@ -355,8 +357,10 @@ void RoamMesh::resample(const geo::TileId& tile) {
 
 RoamRenumbering RoamMesh::compact() {
   std::vector<uint32_t> nodeMap(nodes_.size(), kNoNode), vertexMap(vertices_.size(), kNoNode);
-  std::vector<RoamNode> nodes;
-  std::vector<RoamVertex> vertices;
+  std::vector<RoamNode>& nodes = spareNodes_;
+  std::vector<RoamVertex>& vertices = spareVertices_;
+  nodes.clear();
+  vertices.clear();
   nodes.reserve(nodes_.size() - 2 * freePairs_.size());
   vertices.reserve(vertices_.size() - freeVertices_.size());
   for (uint32_t v : cornerVertices_) {
@@ -397,8 +401,8 @@ RoamRenumbering RoamMesh::compact() {
     for (uint32_t& v : n.v) v = vertexMap[v];
   }
   for (uint32_t& v : cornerVertices_) v = vertexMap[v];
-  nodes_ = std::move(nodes);
-  vertices_ = std::move(vertices);
+  nodes_.swap(nodes);
+  vertices_.swap(vertices);
   freePairs_.clear();
   freeVertices_.clear();
   return {std::move(nodeMap), std::move(vertexMap)};

@@ -74,10 +74,10 @@ struct RoamNode {
   double deadline = -std::numeric_limits<double>::infinity();
   double subtreeDeadline = -std::numeric_limits<double>::infinity();
   uint8_t seenCull = 0xFF, seenPiece = 0xFF;  // the cull and piece states the priority was computed under
-  // Drawn chunks (the tessellator's output cache): the subtree between two levels that are
-  // multiples of RoamMeshOptions::chunkLevels, cached as drawn. drawnChanged: this node, or one
-  // below it in its chunk, changed in a way that shows since the chunk was last built.
-  bool drawnChanged = true;
+  // Drawn chunks (the tessellator's output cache) span a node's subtree down to the next level
+  // that is a multiple of RoamMeshOptions::chunkLevels (a band). drawnStamp: the mesh's change
+  // count when this node, or one below it in its band, last changed in a way that shows.
+  uint64_t drawnStamp = 0;
   uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   bool isLeaf() const { return child == kNoNode; }
 };
@@ -85,7 +85,7 @@ struct RoamNode {
 struct RoamMeshOptions {
   double fadeS = 0.5;        // geomorph time (s)
   double fillHeightM = 0.0;  // the height nodata vertices count as for culling (e.g. mid dataset)
-  int chunkLevels = 8;       // drawn chunks span this many levels (RoamNode::drawnChanged)
+  int chunkLevels = 8;       // the bands drawn chunks span (RoamNode::drawnStamp)
 };
 
 // compact()'s renumbering: new index of every old node and vertex (kNoNode: free).
@@ -117,8 +117,9 @@ class RoamMesh {
 
   // Marks t's priority as to be computed again, and every ancestor's subtree as holding one.
   void expire(uint32_t t);
-  // Marks t as changed on screen, up to its chunk's root.
+  // Marks t as changed on screen, and its ancestors up to the top of its band.
   void markDrawnChanged(uint32_t t);
+  uint64_t drawnChanges() const { return drawnChanges_; }
   // The drawnChunk slots of nodes freed since the last call.
   std::vector<uint32_t> takeReleasedChunks() { return std::exchange(releasedChunks_, {}); }
 
@@ -179,6 +180,9 @@ class RoamMesh {
   std::vector<uint32_t> cornerVertices_;  // the root tiles' corners (never removed)
   uint64_t leaves_ = 0;
   std::vector<uint32_t> releasedChunks_;
+  std::vector<RoamNode> spareNodes_;      // compact()'s scratch, kept so that it does not fault pages in again
+  std::vector<RoamVertex> spareVertices_;
+  uint64_t drawnChanges_ = 0;
 };
 
 }  // namespace vegstream::terrain

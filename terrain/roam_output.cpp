@@ -96,8 +96,8 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
       seeds = false;
     }
   }
-  if (options_.cacheChunks && cull == Cull::Inside && !seeds && ps == InPiece::In &&
-      level % mesh_.options().chunkLevels == 0) {
+  if (options_.cacheChunks && !seeds && ps == InPiece::In && level % mesh_.options().chunkLevels == 0 &&
+      cull == Cull::Inside) {
     drawChunk(w, t, piece);
     return;
   }
@@ -135,57 +135,69 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
       freeChunks_.pop_back();
     }
     mesh_.node(t).drawnChunk = slot;
-    mesh_.node(t).drawnChanged = true;
+    chunks_[slot].root = kNoNode;
   }
-  DrawnChunk& chunk = chunks_[slot];
-  if (mesh_.node(t).drawnChanged || chunk.root != t || !(chunk.piece == tile)) {
-    chunk.root = t;
-    chunk.piece = tile;
-    chunk.vertices.clear();
-    chunk.indices.clear();
-    chunk.below.clear();
-    chunk.morphing.clear();
+  DrawnChunk* chunk = &chunks_[slot];
+  chunk->usedFrame = outputFrame_;
+  if (chunk->root != t || mesh_.node(t).drawnStamp > chunk->builtStamp || !(chunk->piece == tile)) {
+    chunk->root = t;
+    chunk->piece = tile;
+    chunk->builtStamp = mesh_.drawnChanges();
+    chunk->vertices.clear();
+    chunk->indices.clear();
+    chunk->below.clear();
+    chunk->morphing.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk.vertices, &chunk.indices, m.origin, &chunk.piece, 0x80000000u | slot, &chunk.morphing};
-    collectChunk(w, slot, t, mesh_.node(t).path.level, sink);
+    const LeafSink sink{&chunk->vertices, &chunk->indices, m.origin, &chunk->piece, 0x80000000u | slot, &chunk->morphing};
+    const int k = mesh_.options().chunkLevels;
+    collectChunk(w, slot, t, (mesh_.node(t).path.level / k + 1) * k, sink);
     ++figures_.chunksBuilt;
   } else {
     // Unchanged but for its morphing vertices: move them to where they are drawn now.
     const double fade = mesh_.options().fadeS;
     size_t kept = 0;
-    for (const auto& [at, v] : chunk.morphing) {
+    for (const auto& [at, v] : chunk->morphing) {
       const RoamVertex& x = mesh_.vertex(v);
       const double h = x.drawnHeight(w.timeS, fade);
-      TerrainVertex& out = chunk.vertices[at];
+      TerrainVertex& out = chunk->vertices[at];
       out.position = glm::vec3(x.position(h) - m.origin);
       out.heightMsl = static_cast<float>(h);
       if (h != x.heightM) ++figures_.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = {at, v};
+      if (!x.morphDone(w.timeS, fade)) chunk->morphing[kept++] = {at, v};
     }
-    chunk.morphing.resize(kept);
+    chunk->morphing.resize(kept);
     ++figures_.chunksReused;
   }
   const auto base = static_cast<uint32_t>(m.vertices.size());
-  m.vertices.insert(m.vertices.end(), chunk.vertices.begin(), chunk.vertices.end());
+  m.vertices.insert(m.vertices.end(), chunk->vertices.begin(), chunk->vertices.end());
   const size_t first = m.indices.size();
-  m.indices.resize(first + chunk.indices.size());
-  for (size_t i = 0; i < chunk.indices.size(); ++i) m.indices[first + i] = chunk.indices[i] + base;
-  figures_.drawnTriangles += chunk.indices.size() / 3;
+  m.indices.resize(first + chunk->indices.size());
+  for (size_t i = 0; i < chunk->indices.size(); ++i) m.indices[first + i] = chunk->indices[i] + base;
+  figures_.drawnTriangles += chunk->indices.size() / 3;
   // `chunk` may move as the chunks below claim slots: copy what is left to walk.
-  const std::vector<uint32_t> below = chunk.below;
+  const std::vector<uint32_t> below = chunk->below;
   for (uint32_t b : below) visitOutput(w, b, nullptr, Cull::Inside, InPiece::In, piece, false);
 }
 
-void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int rootLevel, const LeafSink& sink) {
-  RoamNode& n = mesh_.node(t);
-  n.drawnChanged = false;
+void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink) {
+  const RoamNode& n = mesh_.node(t);
   if (n.isLeaf()) {
     emitLeaf(w, t, sink);
     return;
   }
   for (uint32_t c : {n.child, n.child + 1}) {
-    if (mesh_.node(c).path.level == rootLevel + mesh_.options().chunkLevels) chunks_[slot].below.push_back(c);
-    else collectChunk(w, slot, c, rootLevel, sink);
+    if (mesh_.node(c).path.level == bottomLevel) chunks_[slot].below.push_back(c);
+    else collectChunk(w, slot, c, bottomLevel, sink);
+  }
+}
+
+void RoamTessellator::dropIdleChunks() {
+  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
+    DrawnChunk& c = chunks_[slot];
+    if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
+    mesh_.node(c.root).drawnChunk = kNoNode;
+    c = DrawnChunk{};
+    freeChunks_.push_back(slot);
   }
 }
 

@@ -102,7 +102,7 @@ void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
 void RoamTessellator::beginUpdate(const EyeView& view) {
   const Projection projection{view.nearM,    view.pixelsPerRadian,  view.tanHalfX,
                               view.tanHalfY, options_.maxErrorPx, options_.mergeFraction * options_.maxErrorPx};
-  evaluateAll_ = !(projection == lastProjection_) || !(lastCamera_ == lastCamera_) ||
+  evaluateAll_ = !options_.deferPriorities || !(projection == lastProjection_) || !(lastCamera_ == lastCamera_) ||
                  mesh_.leafCount() > options_.maxTriangles;  // over budget: every diamond is a candidate
   lastProjection_ = projection;
   const double moved = lastCamera_ == lastCamera_ ? glm::length(view.cameraEnu - lastCamera_) : 0.0;
@@ -276,6 +276,7 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   // Every kCompactEvery updates the pools are put back in depth-first order (cache locality).
   if (++updates_ % kCompactEvery == 0) {
     releaseChunks();
+    dropIdleChunks();
     remapChunks(mesh_.compact());
     stamps_.clear();
   }

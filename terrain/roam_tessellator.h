@@ -62,6 +62,7 @@ struct RoamOptions {
   double maxQueueMs = 0.0;          // a time budget for the queue work; 0: none (deterministic)
   double canopyM = 30.0;            // the tallest plant: wedgies grow by it for culling
   bool cacheChunks = true;          // output: append unchanged drawn chunks as cached (roam_output.cpp)
+  bool deferPriorities = true;      // update: compute a priority only when it may have crossed a bound
 };
 
 // The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
@@ -165,8 +166,10 @@ class RoamTessellator {
   };
   bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
   void drawChunk(Walk& w, uint32_t t, int piece);
-  void collectChunk(Walk& w, uint32_t slot, uint32_t t, int rootLevel, const LeafSink& sink);
+  void collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink);
   void releaseChunks();
+  void dropIdleChunks();
+  static constexpr uint64_t kChunkIdleFrames = 64;
   void remapChunks(const RoamRenumbering& renumbering);
   void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
                 int piece);
@@ -198,11 +201,14 @@ class RoamTessellator {
     auto operator<=>(const Projection&) const = default;
   } lastProjection_;
   bool evaluateAll_ = true;  // this update computes every priority again
-  // The output cache (roam_output.cpp): every chunk root drawn whole inside the view, inside
-  // one piece and beyond the seeds keeps its leaves as drawn, and is appended again as long as
-  // nothing in it changed (RoamNode::drawnChanged); only its morphing vertices are moved.
+  // The output cache (roam_output.cpp): the first node on the way down that is wholly inside
+  // the view, inside one piece and beyond the seeds keeps the leaves of its band as drawn, and
+  // is appended again as long as nothing in them changed (RoamNode::drawnStamp); only its
+  // morphing vertices are moved. Chunks unused for kChunkIdleFrames outputs are dropped.
   struct DrawnChunk {
     uint32_t root = kNoNode;
+    uint64_t builtStamp = 0;  // the mesh's change count when built
+    uint64_t usedFrame = 0;
     geo::TileId piece{};  // positions are relative to its origin, uvs in it
     std::vector<TerrainVertex> vertices;
     std::vector<uint32_t> indices;
