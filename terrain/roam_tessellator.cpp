@@ -11,57 +11,15 @@
 #include <glm/matrix.hpp>
 
 #include "core/stopwatch.h"
+#include "terrain/roam_error.h"
 #include "terrain/roam_walk.h"
 
 namespace vegstream::terrain {
 
 namespace {
 
-// The least radius of curvature of the ellipsoid (the meridian's at the equator, rounded down):
-// the local up turns by at most 1 / kMinCurvatureRadiusM radians per metre travelled.
-constexpr double kMinCurvatureRadiusM = 6.3e6;
 constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr double kNow = -std::numeric_limits<double>::infinity();
-
-// A wedgie as the error metric sees it: thickness e, bounding sphere radius r (grown by e), the
-// distance dc from the camera to the sphere's centre and the sine of the angle between the
-// vertical and the ray to it. errorPx(0) is the projected error; upperPx / lowerPx bound it
-// after the camera has moved `moved` metres in any direction (deferred recomputation).
-struct ErrorGeometry {
-  double e, r, dc, sinC, near, pixelsPerRadian;
-
-  // How far the ray to the centre can turn, the vertical's own turn included.
-  double turn(double moved) const {
-    return (moved < dc ? std::asin(moved / dc) : 0.5 * M_PI) + moved / kMinCurvatureRadiusM;
-  }
-  double upperPx(double moved) const {
-    const double dcMin = dc - moved;
-    const double sinMax = dcMin > r ? std::min(1.0, sinC + (moved > 0.0 ? turn(moved) : 0.0) + r / dcMin) : 1.0;
-    return e * sinMax * pixelsPerRadian / std::max(dcMin - r, near);
-  }
-  double lowerPx(double moved) const {
-    const double dcMax = dc + moved;
-    const double sinMin = std::min(1.0, std::max(0.0, sinC - turn(moved)) + r / dcMax);
-    return e * sinMin * pixelsPerRadian / std::max(dcMax - r, near);
-  }
-  // The distance the camera may travel before errorPx may rise above `bound` (rising) or fall
-  // below it (falling): the largest of dc / 2, dc / 4, … (down to dc / 2^12) that the bound
-  // allows, else 0. Conservative: the bounds above hold for every direction of travel.
-  double safeDistance(double bound, bool rising) const {
-    double moved = 0.5 * dc;
-    for (int i = 0; i < 12; ++i, moved *= 0.5)
-      if (rising ? upperPx(moved) <= bound : lowerPx(moved) >= bound) return moved;
-    return 0.0;
-  }
-};
-
-ErrorGeometry errorGeometry(const EyeView& view, const RoamNode& n, const glm::dvec3* eye) {
-  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
-  const double dc = glm::length(c);
-  const double cosC = dc > 0.0 ? std::abs(glm::dot(view.upEye, c)) / dc : 1.0;
-  return {n.thickness, n.radius + n.thickness, dc, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)), view.nearM,
-          view.pixelsPerRadian};
-}
 
 }  // namespace
 
@@ -125,27 +83,19 @@ void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) co
 }
 
 double RoamTessellator::sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
-  // The hypotenuse midpoint is the circumcentre of a right triangle (in the plane); heights make
-  // the radius the larger of the two distances (RoamNode::radius, rotation-invariant).
-  const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
-  return std::max(glm::length(c) - mesh_.node(t).radius - thickness, view.nearM);
+  return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).sphereDistance();
 }
 
 double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
-  // The wedgie's thickness is vertical: seen along a ray at angle θ to the vertical it spans
-  // e·sin θ / d radians (Duchaineau et al. project the thickness vector the same way). Over the
-  // bounding sphere θ is within θ_c ± α, sin α = radius / ‖c‖, and sin(θ_c + α) ≤ sin θ_c + sin α.
-  ErrorGeometry g = errorGeometry(view, mesh_.node(t), eye);
-  g.e = thickness;
-  g.r = mesh_.node(t).radius + thickness;
-  return g.upperPx(0.0);
+  return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).errorPx();
 }
 
 void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
   RoamNode& n = mesh_.node(t);
   n.seenCull = static_cast<uint8_t>(cull);
   n.seenPiece = static_cast<uint8_t>(ps);
-  n.priority = priority(view, t, eye, cull, ps);
+  ErrorGeometry g;
+  n.priority = priority(view, t, eye, cull, ps, &g);
   ++figures_.prioritiesComputed;
   // Outside, or no data: 0 until the cull or the mesh changes (both checked without a deadline).
   if (n.priority == 0.0f) {
@@ -157,7 +107,6 @@ void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::d
     return;
   }
   figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, double(n.priority));
-  const ErrorGeometry g = errorGeometry(view, n, eye);
   double safe = g.safeDistance(options_.maxErrorPx, true);
   // The seed-level constraint starts where the sphere comes within the horizon.
   if (seeds_.refineToSeedLevel && n.path.level < seedLevel_) safe = std::min(safe, std::max(0.0, g.dc - g.r - seeds_.horizonM));
@@ -168,12 +117,13 @@ void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec
   RoamNode& n = mesh_.node(t);
   n.seenCull = static_cast<uint8_t>(cull);
   n.seenPiece = static_cast<uint8_t>(ps);
-  n.priority = priority(*w.view, t, eye, cull, ps);
+  ErrorGeometry g;
+  n.priority = priority(*w.view, t, eye, cull, ps, &g);
   ++figures_.prioritiesComputed;
   if (n.priority < w.mergeBelow) {
     // A merge candidate: the merge phase decides when to look again (at once while it waits for
     // its morph or the work budget; while its partner holds it, until either may change).
-    n.deadline = n.priority == 0.0f ? kNever : odometerM_ + errorGeometry(*w.view, n, eye).safeDistance(w.mergeBelow, true);
+    n.deadline = n.priority == 0.0f ? kNever : odometerM_ + g.safeDistance(w.mergeBelow, true);
     return;
   }
   mesh_.cancelMergeMorph(t);  // it sank towards a merge that is no longer wanted
@@ -181,9 +131,8 @@ void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec
     n.deadline = kNever;
     return;
   }
-  const ErrorGeometry g = errorGeometry(*w.view, n, eye);
   if (n.priority >= kForcedPriority) {  // forced by the seed level until the sphere leaves the horizon
-    n.deadline = odometerM_ + std::max(0.0, seeds_.horizonM - std::max(g.dc - g.r, w.view->nearM));
+    n.deadline = odometerM_ + std::max(0.0, seeds_.horizonM - g.sphereDistance());
     return;
   }
   n.deadline = odometerM_ + g.safeDistance(w.mergeBelow, false);
@@ -202,15 +151,17 @@ RoamTessellator::InPiece RoamTessellator::pieceStateOf(const PieceSet& pieces, u
   return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
 }
 
-float RoamTessellator::priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull,
-                                InPiece ps) const {
+float RoamTessellator::priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
+                                ErrorGeometry* geometry) const {
   if (cull == Cull::Outside) return 0.0f;
   if (ps == InPiece::Above) return kForcedPriority;
   const RoamNode& n = mesh_.node(t);
   if (!(n.thickness >= 0.0f)) return 0.0f;  // nothing known yet, or no data under it
-  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && sphereDistance(view, t, eye, n.thickness) < seeds_.horizonM)
+  const ErrorGeometry g = ErrorGeometry::of(view, eye, n.thickness, n.radius);
+  if (geometry) *geometry = g;
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && g.sphereDistance() < seeds_.horizonM)
     return kForcedPriority;
-  return static_cast<float>(projectedErrorPx(view, t, eye, n.thickness));
+  return static_cast<float>(g.errorPx());
 }
 
 double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {

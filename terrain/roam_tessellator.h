@@ -51,6 +51,8 @@
 
 namespace vegstream::terrain {
 
+struct ErrorGeometry;  // roam_error.h
+
 // Priority of a leaf that must split whatever its error (a constraint).
 inline constexpr float kForcedPriority = 3.0e38f;
 
@@ -146,7 +148,9 @@ class RoamTessellator {
   };
   struct Walk;  // the state of one traversal
 
-  float priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) const;
+  // geometry (optional) receives the error geometry when the priority came from it.
+  float priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
+                 ErrorGeometry* geometry = nullptr) const;
   double sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
   double projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
   InPiece pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const;
