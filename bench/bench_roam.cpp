@@ -94,7 +94,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     to.roam.deferPriorities = to.roam.cacheChunks = state.range(1) != 0;
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
-    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed, reused, built;
+    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed, reused, built, emitted;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
@@ -122,6 +122,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
       computed.push_back(static_cast<double>(f.roam.prioritiesComputed));
       reused.push_back(static_cast<double>(f.roam.chunksReused));
       built.push_back(static_cast<double>(f.roam.chunksBuilt));
+      emitted.push_back(static_cast<double>(f.roam.leavesEmitted));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
         if (p.mesh && p.node.z <= z.meta.maxZoom) gridTriangles += 2.0 * std::pow(256.0 * std::ldexp(1.0, z.meta.maxZoom - p.node.z), 2.0);
@@ -141,6 +142,8 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["computed_p50"] = percentile(computed, 0.5);
     state.counters["chunks_reused_p50"] = percentile(reused, 0.5);
     state.counters["chunks_built_p50"] = percentile(built, 0.5);
+    state.counters["emitted_p50"] = percentile(emitted, 0.5);
+    state.counters["emitted_p99"] = percentile(emitted, 0.99);
     state.counters["seed_tris_p50"] = percentile(seeds, 0.5);
     state.counters["vs_full_grid_p50"] = percentile(ratio, 0.5);
   }

@@ -43,7 +43,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   w.untextured = static_cast<int>(pieces.tiles().size());
   figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
   figures_.seedTriangles = figures_.seedInterpolated = 0;
-  figures_.chunksReused = figures_.chunksBuilt = 0;
+  figures_.chunksReused = figures_.chunksBuilt = figures_.leavesEmitted = 0;
   figures_.seedPlants = 0.0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
@@ -174,9 +174,9 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
   m.indices.resize(first + chunk->indices.size());
   for (size_t i = 0; i < chunk->indices.size(); ++i) m.indices[first + i] = chunk->indices[i] + base;
   figures_.drawnTriangles += chunk->indices.size() / 3;
-  // `chunk` may move as the chunks below claim slots: copy what is left to walk.
-  const std::vector<uint32_t> below = chunk->below;
-  for (uint32_t b : below) visitOutput(w, b, nullptr, Cull::Inside, InPiece::In, piece, false);
+  // chunks_ may grow as the chunks below claim slots: index it afresh (this slot's list stays).
+  for (size_t i = 0; i < chunks_[slot].below.size(); ++i)
+    visitOutput(w, chunks_[slot].below[i], nullptr, Cull::Inside, InPiece::In, piece, false);
 }
 
 void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink) {
@@ -222,6 +222,7 @@ void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
 
 bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
   const RoamNode& n = mesh_.node(t);
+  ++figures_.leavesEmitted;
   for (uint32_t v : n.v)
     if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return false;  // nodata: a hole, never a drop to 0
   const double uvScale = sink.tile ? std::ldexp(1.0, sink.tile->z - mesh_.grid().gridZoom()) : 0.0;

@@ -108,6 +108,7 @@ struct RoamFigures {
   double achievedErrorPx = 0.0;
   uint64_t depthLimitedLeaves = 0; // visible leaves over the bound at the deepest level (cannot split)
   uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks appended as cached, and rebuilt
+  uint64_t leavesEmitted = 0;     // output: leaves turned into vertices this frame (the rest came from chunks)
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
   double seedPlants = 0.0;        // Σ plant counts
