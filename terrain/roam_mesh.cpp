@@ -67,7 +67,14 @@ RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame
   }
 }
 
+void RoamMesh::reserve(uint64_t leaves) {
+  // A bintree of L leaves has 2L − 1 nodes per root and about L / 2 vertices.
+  nodes_.reserve(size_t(2 * leaves + roots_.size()));
+  vertices_.reserve(size_t(leaves / 2 + leaves / 8 + cornerVertices_.size()));
+}
+
 uint32_t RoamMesh::allocPair() {
+  ++pairsAllocated_;
   if (!freePairs_.empty()) {
     const uint32_t p = freePairs_.back();
     freePairs_.pop_back();
@@ -361,8 +368,8 @@ RoamRenumbering RoamMesh::compact() {
   std::vector<RoamVertex>& vertices = spareVertices_;
   nodes.clear();
   vertices.clear();
-  nodes.reserve(nodes_.size() - 2 * freePairs_.size());
-  vertices.reserve(vertices_.size() - freeVertices_.size());
+  nodes.reserve(nodes_.capacity());  // the pools swap: both keep what reserve() asked for
+  vertices.reserve(vertices_.capacity());
   for (uint32_t v : cornerVertices_) {
     vertexMap[v] = static_cast<uint32_t>(vertices.size());
     vertices.push_back(vertices_[v]);
@@ -405,6 +412,7 @@ RoamRenumbering RoamMesh::compact() {
   vertices_.swap(vertices);
   freePairs_.clear();
   freeVertices_.clear();
+  pairsAllocated_ = 0;
   return {std::move(nodeMap), std::move(vertexMap)};
 }
 

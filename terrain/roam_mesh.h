@@ -127,6 +127,13 @@ class RoamMesh {
   // traversals walk memory forwards: splits and merges scatter the pools over time. Every node
   // and vertex index held outside is invalid afterwards.
   RoamRenumbering compact();
+  // Node pairs allocated since the last compaction (or construction), against those live: how
+  // far the pools have drifted from depth-first order.
+  uint64_t pairsAllocatedSinceCompact() const { return pairsAllocated_; }
+  uint64_t livePairs() const { return nodes_.size() / 2 - freePairs_.size(); }
+  // Room for a mesh of `leaves` leaves without reallocating the pools: growing them in a frame
+  // copies every node and faults the new pages in (milliseconds). Pages are touched only when used.
+  void reserve(uint64_t leaves);
 
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
@@ -183,6 +190,7 @@ class RoamMesh {
   std::vector<RoamNode> spareNodes_;      // compact()'s scratch, kept so that it does not fault pages in again
   std::vector<RoamVertex> spareVertices_;
   uint64_t drawnChanges_ = 0;
+  uint64_t pairsAllocated_ = 0;
 };
 
 }  // namespace vegstream::terrain

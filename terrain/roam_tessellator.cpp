@@ -50,7 +50,9 @@ RoamTessellator::RoamTessellator(BintreeGrid grid, geo::TileRange roots, const g
                                  ResidentHeights& heights, RoamOptions options, SeedOptions seeds,
                                  RoamMeshOptions meshOptions, double seedLatitudeDeg)
     : mesh_(grid, roots, frame, heights, meshOptions), frame_(frame), options_(options), seeds_(seeds),
-      seedLevel_(seedLevelFor(grid, seedLatitudeDeg, seeds.targetAreaM2)) {}
+      seedLevel_(seedLevelFor(grid, seedLatitudeDeg, seeds.targetAreaM2)) {
+  mesh_.reserve(options_.maxTriangles);
+}
 
 void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
   for (const streaming::TileKey& k : keys)
@@ -224,13 +226,20 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   figures_ = {};
   mesh_.setTime(timeS);
   timeS_ = timeS;
-  // Every kCompactEvery updates the pools are put back in depth-first order (cache locality).
-  if (++updates_ % kCompactEvery == 0) {
+  // The pools are put back in depth-first order (cache locality) once the splits since the last
+  // time have allocated 1 / kCompactChurn as many node pairs as are live: that is what scatters
+  // them (a compaction costs milliseconds, so it waits for churn, not for a number of frames).
+  const bool compact = mesh_.pairsAllocatedSinceCompact() * kCompactChurn >= mesh_.livePairs();
+  if (++updates_ % kChunkIdleFrames == 0 || compact) {
     releaseChunks();
     dropIdleChunks();
+  }
+  if (compact) {
     remapChunks(mesh_.compact());
     stamps_.clear();
+    figures_.compacted = true;
   }
+  figures_.compactMs = watch.elapsedMs();
   beginUpdate(view);
   std::vector<Candidate> splits, diamonds;
   Walk w;
@@ -246,9 +255,14 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
     eyeOf(view, r, eye);
     visitPriorities(w, r, eye, Cull::Partial, InPiece::None);
   }
+  const double visited = watch.elapsedMs();
+  figures_.prioritiesMs = visited - figures_.compactMs;
   uint64_t ops = 0;
   splitPhase(view, pieces, splits, ops, watch);
+  const double split = watch.elapsedMs();
+  figures_.splitMs = split - visited;
   mergePhase(diamonds, ops, watch);
+  figures_.mergeMs = watch.elapsedMs() - split;
   figures_.leaves = mesh_.leafCount();
   figures_.updateMs = watch.elapsedMs();
 }
@@ -289,6 +303,7 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
     }
     ++ops;
     ++figures_.splits;
+    figures_.leavesCreated += created.size();
     // The new leaves (the diamond's and the forced splits') may need more splits this frame.
     for (uint32_t leaf : created) {
       const RoamNode& ln = mesh_.node(leaf);

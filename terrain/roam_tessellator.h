@@ -95,11 +95,13 @@ struct RoamFigures {
   uint64_t leaves = 0;            // triangles in the mesh
   uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
+  uint64_t leavesCreated = 0;     // by the splits, forced ones included
   uint64_t nodesVisited = 0;      // the update's traversal (deferral skips subtrees none of whose priorities is due)
   uint64_t prioritiesComputed = 0;
   uint64_t mergesStarted = 0;     // diamonds whose split vertex began sinking to its base (merged after fadeS)
   uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
   uint64_t morphingVertices = 0;  // drawn vertices still on their way to a new height
+  bool compacted = false;         // the pools were put back in depth-first order (RoamMesh::compact)
   bool budgetLimited = false;     // the triangle budget stopped refinement
   bool workLimited = false;       // the per-frame work budget stopped the queues
   // The largest on-screen error of a visible leaf whose priority the update computed (the
@@ -113,6 +115,8 @@ struct RoamFigures {
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
   double seedPlants = 0.0;        // Σ plant counts
   double updateMs = 0.0, outputMs = 0.0;
+  // Where the update's time went: compaction, the priority traversal, the split and merge queues.
+  double compactMs = 0.0, prioritiesMs = 0.0, splitMs = 0.0, mergeMs = 0.0;
 };
 
 class RoamTessellator {
@@ -229,7 +233,7 @@ class RoamTessellator {
   };
   std::vector<Stamp> stamps_;
   uint64_t outputFrame_ = 0;
-  static constexpr uint64_t kCompactEvery = 64;
+  static constexpr uint64_t kCompactChurn = 4;
   uint64_t updates_ = 0;
   double timeS_ = 0.0;
 };

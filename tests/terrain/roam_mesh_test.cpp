@@ -103,7 +103,20 @@ TEST(RoamMesh, RandomSplitsAndMergesNeverCrack) {
       const uint64_t count = mesh.leafCount();
       std::set<TriPath> before;
       for (uint32_t leaf : mesh.leaves()) before.insert(mesh.node(leaf).path);
+      // What the churn counters say: the pairs allocated since the last compaction, and the
+      // live ones (every non-root node in the forest comes in a pair).
+      uint64_t nodes = 0;
+      for (std::vector<uint32_t> stack(mesh.roots()); !stack.empty();) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        ++nodes;
+        if (!mesh.node(n).isLeaf()) stack.insert(stack.end(), {mesh.node(n).child, mesh.node(n).child + 1});
+      }
+      ASSERT_EQ(mesh.livePairs() * 2, nodes);
+      ASSERT_GE(mesh.pairsAllocatedSinceCompact(), step == 1499 ? (nodes - mesh.roots().size()) / 2 : 500u);
       mesh.compact();
+      ASSERT_EQ(mesh.pairsAllocatedSinceCompact(), 0u);
+      ASSERT_EQ(mesh.livePairs() * 2, nodes);
       std::set<TriPath> after;
       for (uint32_t leaf : mesh.leaves()) after.insert(mesh.node(leaf).path);
       ASSERT_EQ(mesh.leafCount(), count);
