@@ -226,20 +226,6 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   figures_ = {};
   mesh_.setTime(timeS);
   timeS_ = timeS;
-  // The pools are put back in depth-first order (cache locality) once the splits since the last
-  // time have allocated 1 / kCompactChurn as many node pairs as are live: that is what scatters
-  // them (a compaction costs milliseconds, so it waits for churn, not for a number of frames).
-  const bool compact = mesh_.pairsAllocatedSinceCompact() * kCompactChurn >= mesh_.livePairs();
-  if (++updates_ % kChunkIdleFrames == 0 || compact) {
-    releaseChunks();
-    dropIdleChunks();
-  }
-  if (compact) {
-    remapChunks(mesh_.compact());
-    stamps_.clear();
-    figures_.compacted = true;
-  }
-  figures_.compactMs = watch.elapsedMs();
   beginUpdate(view);
   std::vector<Candidate> splits, diamonds;
   Walk w;
@@ -256,13 +242,30 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
     visitPriorities(w, r, eye, Cull::Partial, InPiece::None);
   }
   const double visited = watch.elapsedMs();
-  figures_.prioritiesMs = visited - figures_.compactMs;
+  figures_.prioritiesMs = visited;
   uint64_t ops = 0;
   splitPhase(view, pieces, splits, ops, watch);
   const double split = watch.elapsedMs();
   figures_.splitMs = split - visited;
   mergePhase(diamonds, ops, watch);
-  figures_.mergeMs = watch.elapsedMs() - split;
+  const double merged = watch.elapsedMs();
+  figures_.mergeMs = merged - split;
+  // The pools are put back in depth-first order (cache locality) once the splits since the last
+  // time have allocated 1 / kCompactChurn as many node pairs as are live: that is what scatters
+  // them (a compaction costs milliseconds, so it waits for churn, not for a number of frames).
+  // At the end of the update: the frame that churned pays for it (the first frame builds the
+  // whole mesh), and this frame's output walks the compacted pools.
+  const bool compact = mesh_.pairsAllocatedSinceCompact() * kCompactChurn >= mesh_.livePairs();
+  if (++updates_ % kChunkIdleFrames == 0 || compact) {
+    releaseChunks();
+    dropIdleChunks();
+  }
+  if (compact) {
+    remapChunks(mesh_.compact());
+    stamps_.clear();
+    figures_.compacted = true;
+  }
+  figures_.compactMs = watch.elapsedMs() - merged;
   figures_.leaves = mesh_.leafCount();
   figures_.updateMs = watch.elapsedMs();
 }
