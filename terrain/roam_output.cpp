@@ -96,9 +96,8 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
       seeds = false;
     }
   }
-  if (options_.cacheChunks && !seeds && ps == InPiece::In && level % mesh_.options().chunkLevels == 0 &&
-      cull == Cull::Inside) {
-    drawChunk(w, t, piece);
+  if (options_.cacheChunks && !seeds && ps == InPiece::In && level % mesh_.options().chunkLevels == 0) {
+    drawChunk(w, t, piece, cull != Cull::Inside);
     return;
   }
   if (n.isLeaf()) {
@@ -106,7 +105,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     const bool textured = ps == InPiece::In;
     TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
     if (emitLeaf(w, t, {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
-                        static_cast<uint32_t>(textured ? piece : w.untextured), nullptr}))
+                        static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, nullptr, nullptr}))
       ++figures_.drawnTriangles;
     return;
   }
@@ -122,7 +121,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   visitOutput(w, c + 1, e1, cull, ps, piece, seeds);
 }
 
-void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
+void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
   TerrainMesh& m = (*w.meshes)[size_t(piece)];
   const geo::TileId& tile = w.pieces->tiles()[size_t(piece)];
   uint32_t slot = mesh_.node(t).drawnChunk;
@@ -147,8 +146,11 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
     chunk->indices.clear();
     chunk->below.clear();
     chunk->morphing.clear();
+    chunk->sources.clear();
+    chunk->thickness.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk->vertices, &chunk->indices, m.origin, &chunk->piece, 0x80000000u | slot, &chunk->morphing};
+    const LeafSink sink{&chunk->vertices, &chunk->indices, m.origin, &chunk->piece, 0x80000000u | slot,
+                        &chunk->morphing, &chunk->sources, &chunk->thickness};
     const int k = mesh_.options().chunkLevels;
     collectChunk(w, slot, t, (mesh_.node(t).path.level / k + 1) * k, sink);
     ++figures_.chunksBuilt;
@@ -171,12 +173,36 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece) {
   const auto base = static_cast<uint32_t>(m.vertices.size());
   m.vertices.insert(m.vertices.end(), chunk->vertices.begin(), chunk->vertices.end());
   const size_t first = m.indices.size();
-  m.indices.resize(first + chunk->indices.size());
-  for (size_t i = 0; i < chunk->indices.size(); ++i) m.indices[first + i] = chunk->indices[i] + base;
-  figures_.drawnTriangles += chunk->indices.size() / 3;
+  if (!partial) {
+    m.indices.resize(first + chunk->indices.size());
+    for (size_t i = 0; i < chunk->indices.size(); ++i) m.indices[first + i] = chunk->indices[i] + base;
+  } else {
+    // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
+    // own, from its vertices' eye coordinates (each transformed once); the vertices of culled
+    // triangles stay in the mesh, unreferenced.
+    chunkEye_.resize(chunk->sources.size());
+    for (size_t i = 0; i < chunk->sources.size(); ++i) chunkEye_[i] = eyeOfVertex(*w.view, chunk->sources[i]);
+    for (size_t k = 0; k < chunk->thickness.size(); ++k) {
+      const uint32_t* tri = &chunk->indices[3 * k];
+      const double e = chunk->thickness[k];
+      if (cullWedgie(*w.view, chunkEye_[tri[0]], chunkEye_[tri[1]], chunkEye_[tri[2]], e, e + options_.canopyM) ==
+          Cull::Outside)
+        continue;
+      m.indices.insert(m.indices.end(), {tri[0] + base, tri[1] + base, tri[2] + base});
+    }
+  }
+  figures_.drawnTriangles += (m.indices.size() - first) / 3;
   // chunks_ may grow as the chunks below claim slots: index it afresh (this slot's list stays).
-  for (size_t i = 0; i < chunks_[slot].below.size(); ++i)
-    visitOutput(w, chunks_[slot].below[i], nullptr, Cull::Inside, InPiece::In, piece, false);
+  for (size_t i = 0; i < chunks_[slot].below.size(); ++i) {
+    const uint32_t b = chunks_[slot].below[i];
+    if (!partial) {
+      visitOutput(w, b, nullptr, Cull::Inside, InPiece::In, piece, false);
+      continue;
+    }
+    glm::dvec3 eye[3];
+    eyeOf(*w.view, b, eye);
+    visitOutput(w, b, eye, Cull::Partial, InPiece::In, piece, false);
+  }
 }
 
 void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink) {
@@ -217,6 +243,7 @@ void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
     c.root = node(c.root);
     for (uint32_t& b : c.below) b = node(b);
     for (auto& [at, v] : c.morphing) v = vertex(v);
+    for (uint32_t& v : c.sources) v = vertex(v);
   }
 }
 
@@ -244,9 +271,11 @@ bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
       out.uv = glm::vec2(double(x.grid.x) * uvScale - sink.tile->x, double(x.grid.y) * uvScale - sink.tile->y);
     st = {outputFrame_, sink.stamp, static_cast<uint32_t>(sink.vertices->size())};
     if (sink.morphing && !x.morphDone(w.timeS, fade)) sink.morphing->push_back({st.index, v});
+    if (sink.sources) sink.sources->push_back(v);
     sink.indices->push_back(st.index);
     sink.vertices->push_back(out);
   }
+  if (sink.thickness) sink.thickness->push_back(std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f));
   return true;
 }
 

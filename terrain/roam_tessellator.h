@@ -172,9 +172,12 @@ class RoamTessellator {
     const geo::TileId* tile;  // the piece (uv), or null: untextured
     uint32_t stamp;           // which vertices are already in it (stamps_)
     std::vector<std::pair<uint32_t, uint32_t>>* morphing;  // null, or (vertex here, RoamVertex) still morphing
+    std::vector<uint32_t>* sources;  // null, or the RoamVertex of every vertex added (a chunk)
+    std::vector<float>* thickness;   // null, or every emitted leaf's wedgie thickness (a chunk)
   };
   bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
-  void drawChunk(Walk& w, uint32_t t, int piece);
+  // partial: the chunk root straddles the edge of the view; its triangles are culled one by one.
+  void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
   void collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink);
   void releaseChunks();
   void dropIdleChunks();
@@ -210,10 +213,12 @@ class RoamTessellator {
     auto operator<=>(const Projection&) const = default;
   } lastProjection_;
   bool evaluateAll_ = true;  // this update computes every priority again
-  // The output cache (roam_output.cpp): the first node on the way down that is wholly inside
-  // the view, inside one piece and beyond the seeds keeps the leaves of its band as drawn, and
-  // is appended again as long as nothing in them changed (RoamNode::drawnStamp); only its
-  // morphing vertices are moved. Chunks unused for kChunkIdleFrames outputs are dropped.
+  // The output cache (roam_output.cpp): a node at the top of a band (a level that is a multiple
+  // of chunkLevels), not wholly outside the view, inside one piece and beyond the seeds keeps
+  // the leaves of its band as drawn, and is appended again as long as nothing in them changed
+  // (RoamNode::drawnStamp); only its morphing vertices are moved; where it straddles the edge of
+  // the view, its triangles are culled one by one. Chunks unused for kChunkIdleFrames outputs
+  // are dropped.
   struct DrawnChunk {
     uint32_t root = kNoNode;
     uint64_t builtStamp = 0;  // the mesh's change count when built
@@ -223,7 +228,13 @@ class RoamTessellator {
     std::vector<uint32_t> indices;
     std::vector<uint32_t> below;  // the chunk roots chunkLevels further down: drawn on their own
     std::vector<std::pair<uint32_t, uint32_t>> morphing;
+    // For culling it when it straddles the edge of the view: each vertex's RoamVertex, and each
+    // triangle's wedgie thickness (a leaf's own wedgie nests in its ancestors', so culling the
+    // leaves one by one gives what the hierarchical culling does).
+    std::vector<uint32_t> sources;
+    std::vector<float> thickness;
   };
+  std::vector<glm::dvec3> chunkEye_;  // drawChunk's scratch: eye coordinates of a chunk's vertices
   std::vector<DrawnChunk> chunks_;
   std::vector<uint32_t> freeChunks_;
   // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
