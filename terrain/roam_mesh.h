@@ -21,6 +21,7 @@
 // Pools with free lists: node and vertex indices stay valid until the node or vertex is removed;
 // children are allocated in pairs (child1 = child0 + 1). Frame thread only.
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -80,6 +81,8 @@ struct RoamNode {
   uint64_t drawnStamp = 0;
   uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   bool isLeaf() const { return child == kNoNode; }
+  // The thickness culling uses: unknown (NaN) or no data (< 0) count as flat.
+  float cullThickness() const { return std::max(0.0f, thickness == thickness ? thickness : 0.0f); }
 };
 
 struct RoamMeshOptions {

@@ -60,7 +60,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
   const int level = n.path.level;
-  const double e = std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f);
+  const double e = n.cullThickness();
   if (cull != Cull::Inside) {
     cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
     if (cull == Cull::Outside) return;
@@ -275,7 +275,7 @@ bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
     sink.indices->push_back(st.index);
     sink.vertices->push_back(out);
   }
-  if (sink.thickness) sink.thickness->push_back(std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f));
+  if (sink.thickness) sink.thickness->push_back(n.cullThickness());
   return true;
 }
 

@@ -178,7 +178,7 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   RoamNode& n = mesh_.node(t);
   const int level = n.path.level;
   if (cull == Cull::Partial) {
-    const double e = std::max(0.0f, n.thickness == n.thickness ? n.thickness : 0.0f);
+    const double e = n.cullThickness();
     cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
@@ -313,7 +313,7 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       if (!ln.isLeaf()) continue;
       glm::dvec3 eye[3];
       eyeOf(view, leaf, eye);
-      const double e = std::max(0.0f, ln.thickness == ln.thickness ? ln.thickness : 0.0f);
+      const double e = ln.cullThickness();
       const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
       evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
       RoamNode& evaluated = mesh_.node(leaf);
