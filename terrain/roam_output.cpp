@@ -150,7 +150,7 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     chunk->thickness.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
     const LeafSink sink{&chunk->vertices, &chunk->indices, m.origin, &chunk->piece, 0x80000000u | slot,
-                        &chunk->morphing, &chunk->sources, &chunk->thickness};
+                        &chunk->sources, &chunk->morphing, &chunk->thickness};
     const int k = mesh_.options().chunkLevels;
     collectChunk(w, slot, t, (mesh_.node(t).path.level / k + 1) * k, sink);
     ++figures_.chunksBuilt;
@@ -158,14 +158,14 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     // Unchanged but for its morphing vertices: move them to where they are drawn now.
     const double fade = mesh_.options().fadeS;
     size_t kept = 0;
-    for (const auto& [at, v] : chunk->morphing) {
-      const RoamVertex& x = mesh_.vertex(v);
+    for (const uint32_t at : chunk->morphing) {
+      const RoamVertex& x = mesh_.vertex(chunk->sources[at]);
       const double h = x.drawnHeight(w.timeS, fade);
       TerrainVertex& out = chunk->vertices[at];
       out.position = glm::vec3(x.position(h) - m.origin);
       out.heightMsl = static_cast<float>(h);
       if (h != x.heightM) ++figures_.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk->morphing[kept++] = {at, v};
+      if (!x.morphDone(w.timeS, fade)) chunk->morphing[kept++] = at;
     }
     chunk->morphing.resize(kept);
     ++figures_.chunksReused;
@@ -242,7 +242,6 @@ void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
     if (c.root == kNoNode) continue;
     c.root = node(c.root);
     for (uint32_t& b : c.below) b = node(b);
-    for (auto& [at, v] : c.morphing) v = vertex(v);
     for (uint32_t& v : c.sources) v = vertex(v);
   }
 }
@@ -270,7 +269,7 @@ bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
     if (sink.tile)
       out.uv = glm::vec2(double(x.grid.x) * uvScale - sink.tile->x, double(x.grid.y) * uvScale - sink.tile->y);
     st = {outputFrame_, sink.stamp, static_cast<uint32_t>(sink.vertices->size())};
-    if (sink.morphing && !x.morphDone(w.timeS, fade)) sink.morphing->push_back({st.index, v});
+    if (sink.morphing && !x.morphDone(w.timeS, fade)) sink.morphing->push_back(st.index);
     if (sink.sources) sink.sources->push_back(v);
     sink.indices->push_back(st.index);
     sink.vertices->push_back(out);

@@ -171,8 +171,8 @@ class RoamTessellator {
     glm::dvec3 origin;
     const geo::TileId* tile;  // the piece (uv), or null: untextured
     uint32_t stamp;           // which vertices are already in it (stamps_)
-    std::vector<std::pair<uint32_t, uint32_t>>* morphing;  // null, or (vertex here, RoamVertex) still morphing
     std::vector<uint32_t>* sources;  // null, or the RoamVertex of every vertex added (a chunk)
+    std::vector<uint32_t>* morphing; // null, or the vertices added that are still morphing (a chunk)
     std::vector<float>* thickness;   // null, or every emitted leaf's wedgie thickness (a chunk)
   };
   bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
@@ -227,11 +227,12 @@ class RoamTessellator {
     std::vector<TerrainVertex> vertices;
     std::vector<uint32_t> indices;
     std::vector<uint32_t> below;  // the chunk roots chunkLevels further down: drawn on their own
-    std::vector<std::pair<uint32_t, uint32_t>> morphing;
-    // For culling it when it straddles the edge of the view: each vertex's RoamVertex, and each
-    // triangle's wedgie thickness (a leaf's own wedgie nests in its ancestors', so culling the
-    // leaves one by one gives what the hierarchical culling does).
+    // Each vertex's RoamVertex (to move it while it morphs, and to cull the chunk), the vertices
+    // still morphing, and each triangle's wedgie thickness: where the chunk straddles the edge of
+    // the view its triangles are culled one by one (a leaf's wedgie nests in its ancestors', so
+    // that gives what the hierarchical culling does).
     std::vector<uint32_t> sources;
+    std::vector<uint32_t> morphing;
     std::vector<float> thickness;
   };
   std::vector<glm::dvec3> chunkEye_;  // drawChunk's scratch: eye coordinates of a chunk's vertices
