@@ -4,25 +4,19 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 
 #include <GLFW/glfw3.h>
-#include <nlohmann/json.hpp>
-
 #include "app/exit_codes.h"
 #include "app/interactive_flight.h"
-#include "app/sample_dataset.h"
-#include "core/atomic_file.h"
-#include "core/stopwatch.h"
+#include "app/scene_setup.h"
 #include "flight/flight_path_json.h"
 #include "flight/path_templates.h"
-#include "flight/scene.h"
-#include "render/png_writer.h"
+#include "flight/summary.h"
+#include "scene/playback.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
 
@@ -43,74 +37,48 @@ struct Window {
 
 // The flight: the given path (read before the dataset is opened, checked against it after),
 // else the benchmark-30s template placed over the dataset.
-Result<flight::FlightPath> choosePath(const std::optional<flight::FlightPath>& given, const flight::Scene& scene) {
+Result<flight::FlightPath> choosePath(const std::optional<flight::FlightPath>& given, const scene::Scene& scene) {
   if (!given) return flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
   if (Status s = flight::checkInside(*given, scene.info().bounds); !s) return s.error();
   return *given;
 }
 
-int runHeadless(const FlyOptions& o, flight::Scene& scene, const flight::FlightPath& path, const Logger& log,
-                const render::ValidationLog& validation) {
-  render::Renderer& r = scene.renderer();
-  const flight::PathSampler sampler(path);
-  const auto ground = scene.groundFunction();
-  json frames = json::array();
-  double sumGpu = 0.0, sumWall = 0.0;
-  uint64_t triangles = 0;
-  const int n = o.frames;
-  for (int i = 0; i < n; ++i) {
-    Stopwatch wall;
-    const double t = n > 1 ? sampler.duration() * i / (n - 1) : 0.0;
-    render::FrameRequest req =
-        scene.prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
-    const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
-    req.readbackColor = true;
-    auto result = r.renderFrame(req);
-    if (!result) return reportError(log, result.error());
-    const double wallMs = wall.elapsedMs();
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%04d.png", i);
-    if (auto s = render::writePng(fs::path(o.out) / name, *result->color); !s) return reportError(log, s.error());
-    frames.push_back({{"index", i}, {"t_s", t}, {"cpu_record_ms", result->cpuRecordMs},
-                      {"gpu_frame_ms", result->gpu.frameMs}, {"render_wall_ms", wallMs},
-                      {"terrain_triangles", result->terrainTriangles}, {"terrain_pieces", fig.terrain.pieces},
-                      {"fallback_pieces", fig.terrain.fallbackPieces}, {"streaming_wait_ms", fig.settleWaitMs},
-                      {"cpu_bytes", fig.cpuBytes}, {"gpu_bytes", fig.gpuBytes}});
-    sumGpu += result->gpu.frameMs;
-    sumWall += wallMs;
-    triangles = result->terrainTriangles;
+// Headless frames are a recording like `record`'s (frames.csv, recording.json, summary.json,
+// every frame as frames/frame_NNNNN.png): --frames N spread evenly over the path. `--out` may
+// hold an earlier recording (the default out/fly does after the first run): it is replaced only
+// once the new one is complete; anything else there is refused, never overwritten.
+int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, const Logger& log) {
+  const fs::path out = o.out;
+  std::error_code ec;
+  const bool earlier = fs::is_directory(out, ec) && !fs::is_empty(out, ec);
+  if (earlier && !fs::exists(out / flight::kRecordingJson, ec) && !fs::exists(out / "run.json", ec))
+    return reportError(log, makeError(ErrorKind::InvalidInput, "--out " + o.out +
+                                          " already exists and holds no earlier recording; choose another directory"));
+  const fs::path aside = out.string() + ".replaced";
+  if (earlier) {
+    fs::remove_all(aside, ec);
+    fs::rename(out, aside, ec);
+    if (ec) return reportError(log, makeError(ErrorKind::Io, "cannot move the earlier recording " + o.out +
+                                                                 " aside: " + ec.message()));
   }
-  const auto& dev = r.device();
-  const auto& info = scene.info();
-  const json run = {
-      {"device", {{"name", dev.name}, {"type", dev.type}, {"driver", dev.driver}, {"api_version", dev.apiVersion}}},
-      {"dataset", {{"name", info.datasetName}, {"source", info.source}, {"min_zoom", info.minZoom},
-                   {"max_zoom", info.maxZoom}, {"imagery", info.hasImagery}}},
-      {"path", path.name},
-      {"size", {o.width, o.height}},
-      {"msaa", r.msaa()},
-      {"frames", n},
-      {"terrain_triangles", triangles},
-      {"per_pass_gpu_times_meaningful", !dev.software},
-      {"mean_gpu_frame_ms", n ? sumGpu / n : 0.0},
-      {"mean_render_wall_ms", n ? sumWall / n : 0.0},
-      {"validation", {{"enabled", o.validate}, {"errors", validation.errors()}, {"warnings", validation.warnings()}}},
-      {"per_frame", frames}};
-  Status s = writeFileAtomically(fs::path(o.out) / "run.json", [&](const fs::path& tmp) -> Status {
-    std::ofstream f(tmp);
-    f << run.dump(2) << "\n";
-    return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
-  });
-  if (!s) return reportError(log, s.error());
-  log->info("{} frames of {}x{} along '{}' written to {} (mean GPU frame {:.1f} ms, {} terrain triangles)", n, o.width,
-            o.height, path.name, o.out, n ? sumGpu / n : 0.0, triangles);
-  if (dev.software) log->info("{} is a CPU rasteriser: only frame-level GPU times are meaningful", dev.name);
-  return kExitOk;
+  scene::RecordingRequest request;
+  request.out = out;
+  request.playback.fps = scene::fpsForFrames(path.duration(), static_cast<std::size_t>(o.frames));
+  request.playback.framesEvery = 1;
+  request.plots = false;  // `vegstream report DIR` makes them
+  request.pathFile = o.path;
+  request.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;
+  const int code = recordAndReport(scene, path, request, log);
+  if (earlier) {
+    if (fs::exists(out / flight::kRecordingJson, ec)) fs::remove_all(aside, ec);
+    else fs::rename(aside, out, ec);  // nothing new was written: the earlier recording stays
+  }
+  return code;
 }
 
 // The window: an interactive fly camera (app/interactive_flight.h) starting at the path's
 // first pose; screenshots and recorded paths go to --out when given, else the current directory.
-int runWindow(const FlyOptions& o, flight::Scene& scene, const flight::FlightPath& path, GLFWwindow* window,
+int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, GLFWwindow* window,
               const Logger& log) {
   InteractiveOptions io;
   io.frames = o.framesGiven ? o.frames : 0;
@@ -122,20 +90,16 @@ int runWindow(const FlyOptions& o, flight::Scene& scene, const flight::FlightPat
 }  // namespace
 
 int runFly(const FlyOptions& o, const Logger& log) {
-  flight::SceneOptions so;
+  scene::SceneOptions so;
   const bool windowWanted = !o.headless && displayAvailable();
-  if (Status s = applyStreamingOptions(o.streaming, windowWanted ? flight::StreamingMode::Realtime
-                                                                 : flight::StreamingMode::Settled, so); !s)
+  if (Status s = applyStreamingOptions(o.streaming, windowWanted ? scene::StreamingMode::Realtime
+                                                                 : scene::StreamingMode::Settled, so); !s)
     return reportError(log, s.error());
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
-  std::string dataset = o.dataset;
-  if (dataset.empty()) {
-    auto sample = ensureZionSample(o.samplesDir, "out/datasets/zion", log);
-    if (!sample) return reportError(log, sample.error());
-    dataset = sample->string();
-  }
+  auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
+  if (!dataset) return reportError(log, dataset.error());
 
   std::optional<flight::FlightPath> given;
   if (!o.path.empty()) {
@@ -145,37 +109,21 @@ int runFly(const FlyOptions& o, const Logger& log) {
   }
 
   Window window;
-  so.dataset = dataset;
-  so.logger = log;
-  so.renderer.width = o.width;
-  so.renderer.height = o.height;
-  so.renderer.msaa = o.msaa;
-  so.renderer.context.deviceName = o.device;
-  so.renderer.context.validate = o.validate;
-  so.renderer.context.logger = log;
-  auto validation = std::make_shared<render::ValidationLog>();
-  validation->setListener([log](const std::string& m, bool isError) {
-    if (isError) log->error("validation: {}", m); else log->warn("validation: {}", m);
-  });
-  so.renderer.context.validationLog = validation;
+  so.dataset = *dataset;
+  applyRendererOptions({o.width, o.height, o.msaa, o.device, o.validate}, log, so);
   if (windowWanted && glfwInit() == GLFW_TRUE) {
     window.initialised = true;
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window.handle = glfwCreateWindow(static_cast<int>(o.width), static_cast<int>(o.height), "vegstream", nullptr, nullptr);
     so.renderer.window = window.handle;
   }
-  auto scene = flight::Scene::open(so);
+  auto scene = scene::Scene::open(so);
   if (!scene) return reportError(log, scene.error());
   auto path = choosePath(given, **scene);
   if (!path) return reportError(log, path.error());
-  const flight::SceneInfo& info = (*scene)->info();
-  log->info("dataset {} from {}: zooms {}…{}{}, {} streaming (opened in {:.0f} ms)", info.datasetName, info.source,
-            info.minZoom, info.maxZoom, info.hasImagery ? " with imagery" : "", toString(so.mode), info.loadMs);
-  const auto& dev = (*scene)->renderer().device();
-  log->info("device: {} ({}, {}, Vulkan {}, MSAA {})", dev.name, dev.type, dev.driver, dev.apiVersion,
-            (*scene)->renderer().msaa());
+  logSceneOpened(**scene, log);
   if ((*scene)->renderer().hasWindow()) return runWindow(o, **scene, *path, window.handle, log);
-  return runHeadless(o, **scene, *path, log, *validation);
+  return runHeadless(o, **scene, *path, log);
 }
 
 }  // namespace vegstream::app

@@ -18,6 +18,7 @@
 #include "core/stopwatch.h"
 #include "flight/flight_path.h"
 #include "render/png_writer.h"
+#include "scene/frame_driver.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
@@ -27,7 +28,7 @@ constexpr size_t kGraphFrames = 120;
 constexpr double kMessageSeconds = 4.0;
 
 // Over the dataset, south of its centre, looking north and a little down.
-flight::FlightSample defaultStart(const flight::Scene& scene) {
+flight::FlightSample defaultStart(const scene::Scene& scene) {
   const geo::GeoBounds& b = scene.info().bounds;
   flight::FlightSample s;
   s.position.latDeg = b.southDeg + 0.3 * b.heightDeg();
@@ -52,7 +53,7 @@ std::string timestamp() {
 
 class Session {
  public:
-  Session(flight::Scene& scene, GLFWwindow* window, const InteractiveOptions& options, const Logger& log)
+  Session(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options, const Logger& log)
       : scene_(scene),
         window_(window),
         options_(options),
@@ -61,6 +62,7 @@ class Session {
         camera_(scene.frame(), scene.groundFunction(), scene.frame().toLocal(start_.position), start_.headingDeg,
                 start_.pitchDeg),
         input_(window),
+        driver_(scene),
         showHud_(options.hud) {}
 
   int run();
@@ -73,15 +75,16 @@ class Session {
   fs::path outputPath(const std::string& name) const;
   HudState hudState(double now) const;
 
-  render::FrameRequest prepareFrame();
+  scene::FrameInput frameInput();
 
-  flight::Scene& scene_;
+  scene::Scene& scene_;
   GLFWwindow* window_;
   InteractiveOptions options_;
   Logger log_;
   flight::FlightSample start_;
   FlyCamera camera_;
   WindowInput input_;
+  scene::FrameDriver driver_;
   ImGuiOverlay overlay_;
   PathRecorder recorder_;
   bool showHud_ = true;
@@ -89,7 +92,7 @@ class Session {
   bool screenshotWanted_ = false;
   int screenshots_ = 0;
   std::deque<float> frameTimes_;
-  std::optional<render::FrameResult> last_;
+  std::optional<scene::FrameRecord> last_;  // the last frame collected
   std::optional<flight::FlightSample> previousPose_;  // for velocity extrapolation (look-ahead)
   double previousPoseS_ = 0.0;
   std::string message_;
@@ -138,7 +141,7 @@ void Session::handleActions(const WindowActions& a, double now) {
 }
 
 Status Session::collect(uint64_t index, bool screenshot) {
-  auto result = scene_.renderer().waitFrame(index);
+  auto result = driver_.collect(index);
   if (!result) return result.error();
   if (screenshot && result->color) {
     char counter[16];
@@ -153,7 +156,7 @@ Status Session::collect(uint64_t index, bool screenshot) {
 }
 
 HudState Session::hudState(double now) const {
-  const flight::SceneInfo& info = scene_.info();
+  const scene::SceneInfo& info = scene_.info();
   HudState s;
   s.datasetName = info.datasetName;
   s.deviceName = scene_.renderer().device().name;
@@ -165,7 +168,8 @@ HudState Session::hudState(double now) const {
     s.gpu = last_->gpu;
     s.terrainTriangles = last_->terrainTriangles;
   }
-  const flight::SceneFrameFigures& fig = scene_.lastFrameFigures();
+  static const scene::SceneFrameFigures kNone{};
+  const scene::SceneFrameFigures& fig = last_ ? last_->scene : kNone;
   if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;
   // Plants classified on the GPU and the triangles the species pipelines drew.
   if (last_ && last_->vegetation && last_->vegetation->gpuCounts) s.plants = last_->vegetation->plantsTotal;
@@ -202,9 +206,11 @@ HudState Session::hudState(double now) const {
 
 // Interactive flight cannot know where the user goes next: the look-ahead extrapolates the
 // camera's velocity over the next seconds.
-render::FrameRequest Session::prepareFrame() {
+scene::FrameInput Session::frameInput() {
+  Stopwatch watch;
   const flight::FlightSample now = camera_.sample();
-  std::vector<flight::FlightSample> ahead;
+  scene::FrameInput input;
+  std::vector<flight::FlightSample>& ahead = input.ahead;
   if (previousPose_ && nowS_ > previousPoseS_) {
     const double dt = nowS_ - previousPoseS_;
     const double dLat = (now.position.latDeg - previousPose_->position.latDeg) / dt;
@@ -220,7 +226,10 @@ render::FrameRequest Session::prepareFrame() {
   }
   previousPose_ = now;
   previousPoseS_ = nowS_;
-  return scene_.prepareFrame(now, nowS_, ahead);
+  input.pose = now;
+  input.timeS = nowS_;
+  input.flightMs = watch.elapsedMs();
+  return input;
 }
 
 int Session::run() {
@@ -253,15 +262,15 @@ int Session::run() {
     if (recorder_.recording()) recorder_.add(nowS_, camera_.sample());
     if (options_.screenshotAtFrame == shown + 1) screenshotWanted_ = true;
 
-    render::FrameRequest req = prepareFrame();
-    req.present = true;
-    req.readbackColor = screenshotWanted_;
+    scene::FrameInput input = frameInput();
+    input.present = true;
+    input.readbackColor = screenshotWanted_;
     if (showHud_) {
       overlay_.begin(static_cast<float>(renderer.width()), static_cast<float>(renderer.height()), dt);
       drawHud(hudState(nowS_));
-      req.overlay = &overlay_.end();
+      input.overlay = &overlay_.end();
     }
-    auto index = renderer.submitFrame(req);
+    auto index = driver_.submit(input);
     if (!index) return reportError(log_, index.error());
     // Collect the previous frame while this one renders: one frame of CPU/GPU overlap.
     if (inFlight)
@@ -286,7 +295,7 @@ InteractiveOptions withEnvironment(InteractiveOptions options) {
   return options;
 }
 
-int runInteractiveFlight(flight::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
+int runInteractiveFlight(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
                          const Logger& log) {
   Session session(scene, window, options, log);
   return session.run();

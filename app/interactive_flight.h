@@ -13,7 +13,7 @@
 
 #include "core/log.h"
 #include "flight/path_sampler.h"
-#include "flight/scene.h"
+#include "scene/scene.h"
 
 struct GLFWwindow;
 
@@ -32,7 +32,7 @@ InteractiveOptions withEnvironment(InteractiveOptions options);
 
 // Runs until Esc, the window closing, or options.frames. `scene` must have been opened with
 // `window` as its renderer's window. Returns the process exit code.
-int runInteractiveFlight(flight::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
+int runInteractiveFlight(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
                          const Logger& log);
 
 }  // namespace vegstream::app

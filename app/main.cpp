@@ -19,7 +19,7 @@
 #include "app/report_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
-#include "render/context.h"
+#include "render/context_options.h"
 
 #ifndef VEGSTREAM_SAMPLES_DIR
 #define VEGSTREAM_SAMPLES_DIR "../shared/datasets"

@@ -50,7 +50,7 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
 }
 
-Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaultMode, flight::SceneOptions& scene) {
+Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
   auto bad = [](const std::string& m) { return makeError(ErrorKind::InvalidInput, m); };
   auto bytes = [](double mb) { return static_cast<uint64_t>(std::llround(mb * 1024.0 * 1024.0)); };
   if (!(o.cpuBudgetMb >= 1.0 && o.cpuBudgetMb <= 1e6))
@@ -90,8 +90,8 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   scene.streaming.cpuBudgetBytes = bytes(o.cpuBudgetMb);
   scene.streaming.gpuBudgetBytes = bytes(o.gpuBudgetMb);
   scene.streaming.uploadBytesPerFrame = bytes(o.uploadMbPerFrame);
-  scene.mode = o.mode.empty() ? defaultMode : (o.mode == "settled" ? flight::StreamingMode::Settled
-                                                                    : flight::StreamingMode::Realtime);
+  scene.mode = o.mode.empty() ? defaultMode : (o.mode == "settled" ? scene::StreamingMode::Settled
+                                                                    : scene::StreamingMode::Realtime);
   scene.lookAhead = !o.noLookAhead;
   scene.terrain.maxErrorPx = o.terrainErrorPx;
   scene.terrain.maxNodes = o.terrainMaxNodes;
@@ -110,10 +110,6 @@ Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaul
   scene.plantDraw.shadows = !o.noPlantShadows;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
-}
-
-const char* toString(flight::StreamingMode mode) {
-  return mode == flight::StreamingMode::Settled ? "settled" : "realtime";
 }
 
 }  // namespace vegstream::app

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/result.h"
-#include "flight/scene.h"
+#include "scene/scene.h"
 
 namespace CLI { class App; }
 
@@ -41,9 +41,6 @@ struct StreamingCli {
 void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode);
 
 // Checks the values (one message naming the option) and fills the scene options.
-Status applyStreamingOptions(const StreamingCli& o, flight::StreamingMode defaultMode, flight::SceneOptions& scene);
-
-// "settled" / "realtime".
-const char* toString(flight::StreamingMode mode);
+Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene);
 
 }  // namespace vegstream::app

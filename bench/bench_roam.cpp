@@ -23,7 +23,7 @@
 #include "core/stopwatch.h"
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
-#include "flight/camera_views.h"
+#include "scene/camera_views.h"
 #include "flight/flight_path_json.h"
 #include "flight/path_sampler.h"
 #include "streaming/dataset_snapshot.h"
@@ -112,8 +112,8 @@ void flyPath(benchmark::State& state, const char* pathName) {
     }
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
-      const render::Camera cam = flight::cameraFor(frame, sampler.sample(t, groundFn));
-      auto wants = terrain.wants(flight::selectionViewFor(cam, kW, kH), flight::eyeViewFor(cam, kW, kH), {});
+      const render::Camera cam = scene::cameraFor(frame, sampler.sample(t, groundFn));
+      auto wants = terrain.wants(scene::selectionViewFor(cam, kW, kH), scene::eyeViewFor(cam, kW, kH), {});
       for (int round = 0; round < 32; ++round) {
         streamer.settle(wants, t);
         auto again = terrain.wantsAgain();

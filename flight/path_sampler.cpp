@@ -97,4 +97,20 @@ FlightSample sampleAt(const FlightPath& path, double t, const GroundHeight& grou
   return PathSampler(path).sample(t, ground);
 }
 
+std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
+                                           double horizonS, double stepS) {
+  std::vector<FlightSample> out;
+  for (double dt = stepS; dt <= horizonS + 1e-9; dt += stepS) {
+    const double t = std::min(timeS + dt, sampler.duration());
+    out.push_back(sampler.sample(t, ground));
+    if (t >= sampler.duration()) break;
+  }
+  return out;
+}
+
+std::size_t frameCount(double durationS, double fps) {
+  assert(fps > 0.0 && durationS >= 0.0);
+  return static_cast<std::size_t>(std::floor(durationS * fps + 1e-9)) + 1;
+}
+
 }  // namespace vegstream::flight

@@ -6,6 +6,7 @@
 // interpolated, like pitch, with a monotone cubic (monotone_cubic.h): C¹, no overshoot, so a
 // turn from 170° to −170° passes through 180°, not 0°.
 
+#include <cstddef>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -68,5 +69,13 @@ glm::dvec3 forwardVector(double headingDeg, double pitchDeg);
 
 // Heading difference b − a wrapped to (−180, 180].
 double headingDelta(double aDeg, double bDeg);
+
+// Look-ahead poses of a scripted path: the samples at t + stepS, t + 2·stepS, …, t + horizonS
+// (clamped to the end, which ends the list). The streamer requests their tiles early.
+std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
+                                           double horizonS = 3.0, double stepS = 0.5);
+
+// Frames of a fixed-step playback at `fps`: t = 0, 1/fps, … up to and including the path's end.
+std::size_t frameCount(double durationS, double fps);
 
 }  // namespace vegstream::flight

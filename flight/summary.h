@@ -13,7 +13,6 @@
 
 #include "core/result.h"
 #include "flight/record_table.h"
-#include "render/device_info.h"
 
 namespace vegstream::flight {
 
@@ -27,8 +26,15 @@ inline constexpr const char* kFramesDir = "frames";
 inline constexpr double kHitchFactor = 2.0;
 inline constexpr std::size_t kHitchWindow = 60;
 
+// The device a recording was drawn with, as recording.json names it (filled from the renderer's
+// own description by scene/; flight/ knows no renderer).
+struct RecordingDevice {
+  std::string name, type, driver, apiVersion;
+  bool software = false;  // a CPU rasteriser: per-pass GPU times mean nothing
+};
+
 struct RecordingMeta {
-  render::DeviceInfo device;
+  RecordingDevice device;
   uint32_t width = 0, height = 0;
   int msaa = 1;
   double fps = 60.0;

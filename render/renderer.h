@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/result.h"
-#include "render/context.h"
+#include "render/context_options.h"
 #include "render/frame_types.h"
 #include "terrain/terrain_mesh.h"
 

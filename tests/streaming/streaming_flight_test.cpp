@@ -1,4 +1,4 @@
-// Issue 5's flights: the Zion sample flown through flight::Scene with its tiles streamed —
+// Issue 5's flights: the Zion sample flown through scene::Scene with its tiles streamed —
 // under a budget of a few MB, in realtime from a slow HTTP server with and without look-ahead,
 // through a server that fails on a schedule, and settled over nginx against the local directory.
 // Each test asserts numbers; the counts it measures are printed for the closing figures.
@@ -11,7 +11,7 @@
 
 #include "flight/flight_path_json.h"
 #include "flight/path_sampler.h"
-#include "flight/scene.h"
+#include "scene/scene.h"
 #include "tests/streaming/streaming_fixture.h"
 #include "tests/support/fault_http_server.h"
 #include "tests/support/nginx_server.h"
@@ -26,9 +26,9 @@ class StreamingFlight : public ZionDataset {
  protected:
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
 
-  std::unique_ptr<flight::Scene> open(const std::string& location, flight::StreamingMode mode, bool lookAhead,
+  std::unique_ptr<scene::Scene> open(const std::string& location, scene::StreamingMode mode, bool lookAhead,
                                       uint64_t cpuBudget = 512ull << 20, uint64_t gpuBudget = 256ull << 20) {
-    flight::SceneOptions o;
+    scene::SceneOptions o;
     o.dataset = location;
     o.mode = mode;
     o.lookAhead = lookAhead;
@@ -39,7 +39,7 @@ class StreamingFlight : public ZionDataset {
     o.renderer.msaa = 1;
     o.renderer.context.validate = true;
     o.renderer.context.validationLog = validation;
-    auto scene = flight::Scene::open(o);
+    auto scene = scene::Scene::open(o);
     EXPECT_TRUE(scene.ok()) << scene.error().message;
     return scene.ok() ? std::move(*scene) : nullptr;
   }
@@ -61,7 +61,7 @@ class StreamingFlight : public ZionDataset {
     int frames = 0, coarseAfter1s = 0, fallbackFrames = 0;
     double slowestPrepareMs = 0.0;
   };
-  RealtimeFigures flyRealtime(flight::Scene& scene, const flight::FlightPath& path, double seconds, double t0 = 0.0,
+  RealtimeFigures flyRealtime(scene::Scene& scene, const flight::FlightPath& path, double seconds, double t0 = 0.0,
                               bool warmStart = false) {
     const flight::PathSampler sampler(path);
     const auto ground = scene.groundFunction();
@@ -70,7 +70,7 @@ class StreamingFlight : public ZionDataset {
     // measured is flying into new tiles, not the start-up.
     for (int i = 0; warmStart && i < 2000; ++i) {
       scene.prepareFrame(sampler.sample(t0, ground), t0, flight::lookAheadSamples(sampler, ground, t0));
-      const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
+      const scene::SceneFrameFigures& fig = scene.lastFrameFigures();
       if (fig.streaming.wanted == fig.streaming.wantedResident && fig.terrain.fallbackPieces == 0) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
@@ -83,7 +83,7 @@ class StreamingFlight : public ZionDataset {
       scene.prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
       f.slowestPrepareMs = std::max(f.slowestPrepareMs,
                                     std::chrono::duration<double, std::milli>(Clock::now() - before).count());
-      const flight::SceneFrameFigures& fig = scene.lastFrameFigures();
+      const scene::SceneFrameFigures& fig = scene.lastFrameFigures();
       EXPECT_EQ(fig.settleWaitMs, 0.0);
       if (elapsed > 1.0 && fig.terrain.maxLevelsCoarser > 1) ++f.coarseAfter1s;
       if (fig.terrain.fallbackPieces > 0) ++f.fallbackFrames;
@@ -96,7 +96,7 @@ class StreamingFlight : public ZionDataset {
 
 TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBudget) {
   constexpr uint64_t kCpuBudget = 6ull << 20, kGpuBudget = 3ull << 20;  // 24 decoded tiles, 12 imagery slots
-  auto scene = open(dir().string(), flight::StreamingMode::Settled, true, kCpuBudget, kGpuBudget);
+  auto scene = open(dir().string(), scene::StreamingMode::Settled, true, kCpuBudget, kGpuBudget);
   ASSERT_TRUE(scene);
   const flight::FlightPath path = bundled("canyon-run");
   const flight::PathSampler sampler(path);
@@ -106,7 +106,7 @@ TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBu
   double maxRelaxation = 1.0;
   for (double t = 0.0; t <= sampler.duration(); t += 0.5, ++frames) {
     render::FrameRequest req = scene->prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
-    const flight::SceneFrameFigures& fig = scene->lastFrameFigures();
+    const scene::SceneFrameFigures& fig = scene->lastFrameFigures();
     ASSERT_LE(fig.streaming.bytesResidentCpu, kCpuBudget) << "t = " << t;
     ASSERT_LE(fig.streaming.bytesResidentGpu, kGpuBudget) << "t = " << t;
     ASSERT_GT(fig.terrain.pieces, 0u) << "t = " << t;
@@ -144,12 +144,12 @@ TEST_F(StreamingFlight, LookAheadKeepsARealtimeFlightFromASlowServerWithinOneLev
   const flight::FlightPath path = bundled("canyon-run");
   RealtimeFigures with, without;
   {
-    auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, true);
+    auto scene = open(server.baseUrl(), scene::StreamingMode::Realtime, true);
     ASSERT_TRUE(scene);
     with = flyRealtime(*scene, path, kSliceS, kSliceStartS, true);
   }
   {
-    auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, false);
+    auto scene = open(server.baseUrl(), scene::StreamingMode::Realtime, false);
     ASSERT_TRUE(scene);
     without = flyRealtime(*scene, path, kSliceS, kSliceStartS, true);
   }
@@ -175,10 +175,10 @@ TEST_F(StreamingFlight, ARealtimeFlightThroughAFailingServerCompletesWithEveryFa
                                                  testing::FaultAction::Reset, testing::FaultAction::Status503};
     server.scheduleForRequest(n, {kinds[(n / 5) % 4], 0});
   }
-  auto scene = open(server.baseUrl(), flight::StreamingMode::Realtime, true);
+  auto scene = open(server.baseUrl(), scene::StreamingMode::Realtime, true);
   ASSERT_TRUE(scene);
   const RealtimeFigures f = flyRealtime(*scene, bundled("benchmark-30s"), 8.0);
-  const flight::SceneFrameFigures& last = scene->lastFrameFigures();
+  const scene::SceneFrameFigures& last = scene->lastFrameFigures();
   std::printf("benchmark-30s 0-8 s through faults: %d frames, slowest prepare %.1f ms, %llu server requests\n", f.frames,
               f.slowestPrepareMs, static_cast<unsigned long long>(server.totalRequests()));
   EXPECT_GT(f.frames, 100);
@@ -191,8 +191,8 @@ TEST_F(StreamingFlight, ARealtimeFlightThroughAFailingServerCompletesWithEveryFa
 TEST_F(StreamingFlight, ASettledFlightOverNginxDrawsWhatTheLocalDirectoryDraws) {
   auto nginx = testing::NginxServer::start(dir(), testTmp("nginx"));
   ASSERT_TRUE(nginx.ok()) << nginx.error().message;
-  auto local = open(dir().string(), flight::StreamingMode::Settled, true);
-  auto remote = open((*nginx)->baseUrl(), flight::StreamingMode::Settled, true);
+  auto local = open(dir().string(), scene::StreamingMode::Settled, true);
+  auto remote = open((*nginx)->baseUrl(), scene::StreamingMode::Settled, true);
   ASSERT_TRUE(local && remote);
   const flight::FlightPath path = bundled("benchmark-30s");
   const flight::PathSampler sampler(path);

@@ -1,8 +1,10 @@
 #pragma once
-// The recorder: flies a path through a Scene at a fixed time step (deterministic: frame i is at
-// flight time i / fps, whatever the machine's speed) and keeps one row of figures per frame —
-// the rows of frames.csv (README.md "Recordings" documents every column). Optionally saves
-// every K-th frame as PNG. Writing the recording's files is the caller's (record_command).
+// Fixed-step playback of a flight path through the frame driver, as `record` and headless
+// `fly` use it: frame i is at flight time i / fps (whatever the machine's speed), up to and
+// including the path's end, so the same inputs give the same poses, counts and — on the same
+// driver — images. One FrameRecord per frame becomes one row of frames.csv (README.md
+// "Recordings" documents every column); every K-th frame can be saved as PNG.
+// Writing the recording's files is recording_files.h's.
 
 #include <cstddef>
 #include <cstdint>
@@ -14,11 +16,11 @@
 #include "core/result.h"
 #include "flight/flight_path.h"
 #include "flight/record_table.h"
-#include "flight/scene.h"
+#include "scene/frame_driver.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
 
-struct RecorderOptions {
+struct PlaybackOptions {
   double fps = 60.0;                  // frames per second of flight time (> 0)
   double warmupS = 0.0;               // frames rendered at t = 0 before recording, not recorded
   int framesEvery = 0;                // > 0: save frames 0, K, 2K, … as PNG
@@ -28,7 +30,7 @@ struct RecorderOptions {
 };
 
 struct Recording {
-  RecordTable table;                  // frames.csv
+  flight::RecordTable table;          // frames.csv
   std::vector<std::string> gpuPasses; // the renderer's passes, in order (gpu_<pass>_ms columns)
   bool perPassMeaningful = false;     // GpuTimings::perPassMeaningful of the device
   bool pipelineStatistics = false;    // the device reported pipeline statistics
@@ -38,20 +40,12 @@ struct Recording {
   uint64_t peakRssBytes = 0;          // the process's VmHWM after the recording; 0 if unknown
 };
 
-// Frames recorded for a path: t = 0, 1/fps, … up to and including the path's end.
-std::size_t frameCount(double durationS, double fps);
-
-// The columns of frames.csv for a renderer with these passes, in file order.
-std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses);
-
-// "gpu_terrain_ms" for pass "terrain" (lower case; anything but a-z0-9 becomes '_').
-std::string gpuPassColumn(const std::string& pass);
-
-// Peak resident set size of this process (VmHWM of /proc/self/status), 0 where unknown.
-uint64_t peakResidentBytes();
+// The fps that spreads `frames` frames over a path of durationS, first and last pose included
+// (headless `fly --frames N`); frameCount(durationS, result) == frames.
+double fpsForFrames(double durationS, std::size_t frames);
 
 // Flies `path` (valid and inside the scene: the caller checks) and returns its figures.
 // GPU and PNG-writing failures come back as errors.
-Result<Recording> recordFlight(Scene& scene, const FlightPath& path, const RecorderOptions& options);
+Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path, const PlaybackOptions& options);
 
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

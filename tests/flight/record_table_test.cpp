@@ -8,7 +8,8 @@
 
 #include "flight/compare.h"
 #include "flight/record_table.h"
-#include "flight/recorder.h"
+#include "flight/frame_columns.h"
+#include "flight/path_sampler.h"
 #include "flight/summary.h"
 
 namespace vegstream::flight {

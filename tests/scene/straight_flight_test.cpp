@@ -6,9 +6,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "flight/straight_flight.h"
+#include "scene/straight_flight.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
+using namespace vegstream::flight;
 namespace {
 
 TEST(StraightFlight, FollowsTheLineAboveTheGround) {
@@ -51,4 +52,4 @@ TEST(StraightFlight, UnknownGroundCountsAsSeaLevel) {
 }
 
 }  // namespace
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

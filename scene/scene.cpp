@@ -1,4 +1,4 @@
-#include "flight/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +7,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/stopwatch.h"
-#include "flight/camera_views.h"
+#include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
 #include "terrain/snapshot_grid.h"
 #include "vegetation/plant_seeding.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
 
 struct Scene::Impl {
   std::unique_ptr<render::Renderer> renderer;
@@ -102,7 +102,11 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   return std::unique_ptr<Scene>(new Scene(std::move(impl)));
 }
 
+const char* toString(StreamingMode mode) { return mode == StreamingMode::Settled ? "settled" : "realtime"; }
+
 render::Renderer& Scene::renderer() { return *impl_->renderer; }
+const render::Renderer& Scene::renderer() const { return *impl_->renderer; }
+const SceneOptions& Scene::options() const { return impl_->options; }
 const SceneInfo& Scene::info() const { return impl_->info; }
 const geo::LocalFrame& Scene::frame() const { return impl_->frame; }
 const SceneFrameFigures& Scene::lastFrameFigures() const { return impl_->figures; }
@@ -220,15 +224,4 @@ void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm
   }
 }
 
-std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
-                                           double horizonS, double stepS) {
-  std::vector<FlightSample> out;
-  for (double dt = stepS; dt <= horizonS + 1e-9; dt += stepS) {
-    const double t = std::min(timeS + dt, sampler.duration());
-    out.push_back(sampler.sample(t, ground));
-    if (t >= sampler.duration()) break;
-  }
-  return out;
-}
-
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

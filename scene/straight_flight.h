@@ -7,7 +7,9 @@
 #include "geo/local_frame.h"
 #include "render/frame_types.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
+
+using flight::GroundHeight;
 
 struct StraightFlight {
   geo::Geodetic start;     // heightM ignored: the height comes from the terrain
@@ -27,4 +29,4 @@ struct FlightPose {
 // samples around it, so steep canyon walls do not swallow it.
 FlightPose poseAt(const StraightFlight& flight, double t, const geo::LocalFrame& frame, const GroundHeight& ground);
 
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

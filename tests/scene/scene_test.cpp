@@ -12,9 +12,10 @@
 #include "datasets/dataset_reader.h"
 #include "datasets/progress.h"
 #include "datasets/synthetic_generator.h"
-#include "flight/scene.h"
+#include "scene/scene.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
+using namespace vegstream::flight;
 namespace {
 namespace fs = std::filesystem;
 
@@ -185,4 +186,4 @@ TEST_F(SceneTest, RealtimeFramesNeverWaitAndFillInAsTilesArrive) {
 }
 
 }  // namespace
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

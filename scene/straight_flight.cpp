@@ -1,11 +1,11 @@
-#include "flight/straight_flight.h"
+#include "scene/straight_flight.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
-namespace vegstream::flight {
+namespace vegstream::scene {
 
 FlightPose poseAt(const StraightFlight& flight, double t, const geo::LocalFrame& frame, const GroundHeight& ground) {
   const double u = flight.durationS > 0.0 ? std::clamp(t / flight.durationS, 0.0, 1.0) : 0.0;
@@ -37,4 +37,4 @@ FlightPose poseAt(const StraightFlight& flight, double t, const geo::LocalFrame&
   return pose;
 }
 
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

@@ -1,10 +1,10 @@
-#include "flight/camera_views.h"
+#include "scene/camera_views.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
-namespace vegstream::flight {
+namespace vegstream::scene {
 
 render::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sample) {
   render::Camera c;
@@ -15,7 +15,7 @@ render::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sampl
   glm::dvec3 north = northAhead - position;
   north = glm::normalize(north - up * glm::dot(north, up));
   const glm::dvec3 east = glm::cross(north, up);
-  const glm::dvec3 f = forwardVector(sample.headingDeg, sample.pitchDeg);  // in east/north/up terms
+  const glm::dvec3 f = flight::forwardVector(sample.headingDeg, sample.pitchDeg);  // in east/north/up terms
   c.position = position;
   c.forward = glm::normalize(east * f.x + north * f.y + up * f.z);
   c.up = up;
@@ -37,4 +37,4 @@ terrain::EyeView eyeViewFor(const render::Camera& camera, double widthPx, double
                                      widthPx, heightPx, camera.nearM);
 }
 
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

@@ -9,7 +9,9 @@
 #include "terrain/eye_space.h"
 #include "terrain/tile_selection.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
+
+using flight::FlightSample;
 
 // Heading and pitch are relative to the local east/north/up at the camera, which tilts away from
 // the frame's axes with distance from its origin (earth curvature).
@@ -17,4 +19,4 @@ render::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sampl
 terrain::SelectionView selectionViewFor(const render::Camera& camera, double widthPx, double heightPx);
 terrain::EyeView eyeViewFor(const render::Camera& camera, double widthPx, double heightPx);
 
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

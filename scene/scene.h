@@ -1,7 +1,8 @@
 #pragma once
-// A dataset opened for flying: its tiles streamed from a directory or an HTTP server under
-// memory budgets (streaming/), the terrain drawn from whatever is resident (terrain/
-// streamed_terrain.h), the renderer, and the conversion from flight samples to render frames.
+// The composition root: a dataset opened for flying — its tiles streamed from a directory or
+// an HTTP server under memory budgets (streaming/), the terrain drawn from whatever is resident
+// (terrain/streamed_terrain.h), the renderer, and the conversion from flight samples to render
+// frames. Frames are run by the frame driver (frame_driver.h), never assembled elsewhere.
 //
 // Per frame: prepareFrame(sample, t, ahead) — the terrain says which tiles it wants for this
 // camera and (look-ahead) for the poses expected next; the streamer updates (realtime: never
@@ -32,12 +33,18 @@
 #include "streaming/tile_streamer.h"
 #include "terrain/streamed_terrain.h"
 
-namespace vegstream::flight {
+namespace vegstream::scene {
+
+using flight::FlightSample;
+using flight::GroundHeight;
 
 enum class StreamingMode {
   Realtime,  // I/O races the frames, as in interactive flight: fallbacks are drawn and counted
   Settled,   // each frame waits until the tiles it wants are resident (the wait is reported apart)
 };
+
+// "settled" / "realtime".
+const char* toString(StreamingMode mode);
 
 struct SceneOptions {
   std::string dataset;                     // a dataset directory or an http(s):// URL of one
@@ -93,6 +100,8 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   render::Renderer& renderer();
+  const render::Renderer& renderer() const;
+  const SceneOptions& options() const;
   const SceneInfo& info() const;
   const geo::LocalFrame& frame() const;  // ENU at the dataset's centre, height 0
 
@@ -116,13 +125,9 @@ class Scene {
   std::unique_ptr<Impl> impl_;
 };
 
-// Look-ahead poses of a scripted path: the samples at t + 0.5, 1, …, horizonS (clamped to the end).
 // The frame's seed triangles as the classify pass reads them: camera-relative, with their keys
 // and imagery; triangles without imagery are left out.
 void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm::dvec3& camera,
                          std::vector<render::SeedTriangleGpu>& out);
 
-std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const GroundHeight& ground, double timeS,
-                                           double horizonS = 3.0, double stepS = 0.5);
-
-}  // namespace vegstream::flight
+}  // namespace vegstream::scene

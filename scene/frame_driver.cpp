@@ -1,0 +1,79 @@
+// The frame driver (frame_driver.h): the fixed order of a frame, and the one place where the
+// figures of its stages are gathered into a record.
+
+#include "scene/frame_driver.h"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace vegstream::scene {
+
+namespace {
+constexpr double kNoFigure = std::numeric_limits<double>::quiet_NaN();
+}
+
+double FrameRecord::cpuMs() const {
+  double ms = flightMs + scene.streamingMs + scene.terrainMs + scene.seedingMs + recordSubmitMs;
+  if (!std::isnan(simulationMs)) ms += simulationMs;
+  return ms;
+}
+
+FrameDriver::FrameDriver(Scene& scene) : scene_(scene) {}
+
+Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
+  assert(inFlight_.size() < 2 && "collect a frame before submitting a third");
+  // prepare
+  render::FrameRequest request = scene_.prepareFrame(input.pose, input.timeS, input.ahead);
+  request.present = input.present;
+  request.readbackColor = input.readbackColor;
+  request.overlay = input.overlay;
+
+  // simulate
+  Stopwatch simulate;
+  const double dt = lastStepS_ ? input.timeS - *lastStepS_ : 0.0;
+  simulation_.step({input.timeS, dt});
+  lastStepS_ = input.timeS;
+  const double simulationMs = simulation_.simulates() ? simulate.elapsedMs() : kNoFigure;
+
+  // submit
+  auto index = scene_.renderer().submitFrame(request);
+  if (!index) return index.error();
+
+  Stopwatch own;
+  FrameRecord& r = inFlight_.emplace_back();
+  r.index = *index;
+  r.timeS = input.timeS;
+  r.pose = input.pose;
+  r.flightMs = input.flightMs;
+  r.scene = scene_.lastFrameFigures();  // the next prepare overwrites the scene's copy
+  r.simulationMs = simulationMs;
+  r.driverMs = own.elapsedMs();
+  return *index;
+}
+
+Result<FrameRecord> FrameDriver::collect(uint64_t index) {
+  assert(!inFlight_.empty() && inFlight_.front().index == index && "collect frames oldest first");
+  auto result = scene_.renderer().waitFrame(index);
+  FrameRecord r = std::move(inFlight_.front());
+  inFlight_.pop_front();
+  if (!result) return result.error();
+
+  // collect
+  Stopwatch own;
+  r.recordSubmitMs = result->cpuRecordMs;
+  r.gpu = std::move(result->gpu);
+  r.terrainTriangles = result->terrainTriangles;
+  r.vegetation = result->vegetation;
+  r.color = std::move(result->color);
+  r.driverMs += own.elapsedMs();
+  return r;
+}
+
+Result<FrameRecord> FrameDriver::run(const FrameInput& input) {
+  auto index = submit(input);
+  if (!index) return index.error();
+  return collect(*index);
+}
+
+}  // namespace vegstream::scene

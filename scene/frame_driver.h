@@ -1,0 +1,80 @@
+#pragma once
+// The one frame driver. Every mode that draws frames — the window, headless `fly` and `record`
+// — runs each frame through it, in one fixed order:
+//
+//   prepare   Scene::prepareFrame: wanted tiles, streaming (settled or realtime), ROAM, the
+//             terrain's draws and the seed triangles
+//   simulate  the shared simulation's step at the frame's time (simulation/simulation.h)
+//   submit    the renderer records and submits the frame's commands
+//   collect   waits for the GPU and gathers the figures of every stage into one FrameRecord
+//
+// submit() and collect() are separate so a window keeps one frame of CPU/GPU overlap (submit
+// frame n, then collect frame n − 1); run() is both, for fixed-step playback.
+//
+// Contract: at most two frames are in flight (the renderer's frame slots); collect() takes the
+// index that submit() returned, oldest first. GPU failures come back as errors.
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "core/result.h"
+#include "core/stopwatch.h"
+#include "flight/path_sampler.h"
+#include "render/frame_types.h"
+#include "scene/scene.h"
+#include "simulation/simulation.h"
+
+namespace vegstream::scene {
+
+// What the caller decides about a frame: the camera, the time, the poses expected next.
+struct FrameInput {
+  flight::FlightSample pose;
+  double timeS = 0.0;                       // flight time (scripted) or session time (window)
+  std::vector<flight::FlightSample> ahead;  // look-ahead poses (ignored without look-ahead)
+  double flightMs = 0.0;                    // what the caller spent producing pose and ahead
+  bool present = false;                     // to the window, when the renderer has one
+  bool readbackColor = false;
+  const render::OverlayDrawData* overlay = nullptr;  // must stay alive until submit() returns
+};
+
+// One frame's figures from every stage; NaN (kNoFigure) where a figure does not exist.
+struct FrameRecord {
+  uint64_t index = 0;                 // the renderer's frame index
+  double timeS = 0.0;
+  flight::FlightSample pose;
+  double flightMs = 0.0;              // FrameInput::flightMs
+  SceneFrameFigures scene;            // prepare: streaming, terrain, seeding
+  double simulationMs = 0.0;          // NaN while the simulation does nothing
+  double recordSubmitMs = 0.0;        // the renderer's own timer
+  render::GpuTimings gpu;
+  uint64_t terrainTriangles = 0;
+  std::optional<render::VegetationFigures> vegetation;
+  std::optional<render::ColorImage> color;  // when FrameInput::readbackColor
+  double driverMs = 0.0;              // the driver's own bookkeeping (copying figures)
+  double cpuMs() const;               // the CPU stages that exist: flight … record/submit
+};
+
+class FrameDriver {
+ public:
+  explicit FrameDriver(Scene& scene);
+
+  // prepare → simulate → submit. Does not wait for the GPU.
+  Result<uint64_t> submit(const FrameInput& input);
+  // Waits for the oldest frame in flight (`index`, as submit() returned it) and returns its record.
+  Result<FrameRecord> collect(uint64_t index);
+  // submit + collect.
+  Result<FrameRecord> run(const FrameInput& input);
+
+  std::size_t framesInFlight() const { return inFlight_.size(); }
+  Scene& scene() { return scene_; }
+
+ private:
+  Scene& scene_;
+  simulation::Simulation simulation_;
+  std::optional<double> lastStepS_;
+  std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ 2)
+};
+
+}  // namespace vegstream::scene

@@ -1,0 +1,124 @@
+// The recording directory (recording_files.h).
+
+#include "scene/recording_files.h"
+
+#include <fstream>
+
+#include "core/atomic_file.h"
+#include "flight/report.h"
+#include "streaming/open_tile_source.h"
+#include "vegetation/species_catalog.h"
+
+namespace vegstream::scene {
+namespace fs = std::filesystem;
+
+namespace {
+
+Status writeText(const fs::path& file, const std::string& text) {
+  std::ofstream f(file, std::ios::binary);
+  f << text;
+  return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + file.string());
+}
+
+const char* styleName(render::PlantStyle style) {
+  switch (style) {
+    case render::PlantStyle::Plants: return "plants";
+    case render::PlantStyle::Markers: return "markers";
+    case render::PlantStyle::Hidden: return "hidden";
+  }
+  return "plants";
+}
+
+}  // namespace
+
+flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath& path, const Recording& recording,
+                                    const RecordingRequest& request) {
+  const SceneOptions& so = scene.options();
+  const SceneInfo& info = scene.info();
+  const render::DeviceInfo& dev = scene.renderer().device();
+  const render::Renderer& r = scene.renderer();
+  flight::RecordingMeta m;
+  m.device = {dev.name, dev.type, dev.driver, dev.apiVersion, dev.software};
+  m.width = r.width();
+  m.height = r.height();
+  m.msaa = r.msaa();
+  m.fps = request.playback.fps;
+  m.warmupS = request.playback.warmupS;
+  m.warmupFrames = recording.warmupFrames;
+  m.framesEvery = request.playback.framesEvery;
+  m.pathName = path.name;
+  m.pathFile = request.pathFile.empty() ? "" : fs::absolute(request.pathFile).lexically_normal().string();
+  m.pathDurationS = path.duration();
+  m.datasetName = info.datasetName;
+  m.datasetDir = streaming::isHttpLocation(so.dataset) ? so.dataset
+                                                       : fs::absolute(so.dataset).lexically_normal().string();
+  m.datasetSource = info.source;
+  m.heightZoom = info.maxZoom;
+  m.imageryZoom = info.hasImagery ? info.maxZoom : -1;
+  m.groundZoom = info.groundZoom;
+  m.sceneLoadMs = info.loadMs;
+  m.streaming.mode = toString(so.mode);
+  m.streaming.lookAhead = so.lookAhead;
+  m.streaming.cpuBudgetBytes = so.streaming.cpuBudgetBytes;
+  m.streaming.gpuBudgetBytes = so.streaming.gpuBudgetBytes;
+  m.streaming.uploadBytesPerFrame = so.streaming.uploadBytesPerFrame;
+  m.streaming.maxRequestsInFlight = so.streaming.maxRequestsInFlight;
+  m.streaming.imageryLayers = info.imageryLayers;
+  m.streaming.terrainErrorPx = so.terrain.maxErrorPx;
+  m.streaming.terrainMaxNodes = so.terrain.maxNodes;
+  m.streaming.terrainMaxTriangles = so.terrain.roam.maxTriangles;
+  m.streaming.canopyM = so.terrain.roam.canopyM;
+  m.streaming.seedHorizonM = so.terrain.seeds.horizonM;
+  m.streaming.seedLevel = info.seedLevel;
+  m.streaming.seedTriangleAreaM2 = info.seedAreaM2;
+  m.plants.enabled = so.plants;
+  m.plants.density = so.terrain.seeds.density;
+  m.plants.maxPerTriangle = so.terrain.seeds.maxPlants;
+  m.plants.clusterSize = so.clusterSize;
+  m.plants.speciesCatalog = request.speciesCatalog;
+  m.plants.style = styleName(so.plantStyle);
+  m.plants.maxSegments = so.plantDraw.maxSegments;
+  m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
+  m.plants.shadows = so.plantDraw.shadows;
+  for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
+    m.plants.species.push_back(s.name);
+  m.validate = so.renderer.context.validate;
+  if (const render::ValidationLog* v = r.validationLog()) {
+    m.validationErrors = static_cast<uint64_t>(v->errors());
+    m.validationWarnings = static_cast<uint64_t>(v->warnings());
+  }
+  m.perPassMeaningful = recording.perPassMeaningful;
+  m.pipelineStatistics = recording.pipelineStatistics;
+  m.gpuPasses = recording.gpuPasses;
+  m.wallS = recording.wallS;
+  m.peakRssBytes = recording.peakRssBytes;
+  return m;
+}
+
+Result<RecordingOutcome> recordToDirectory(FrameDriver& driver, const flight::FlightPath& path,
+                                           const RecordingRequest& request) {
+  RecordingOutcome outcome;
+  const Status written = writeDirectoryAtomically(request.out, [&](const fs::path& tmp) -> Status {
+    PlaybackOptions po = request.playback;
+    po.framesDir = tmp / flight::kFramesDir;
+    if (po.framesEvery > 0) {
+      std::error_code ec;
+      fs::create_directories(po.framesDir, ec);
+      if (ec) return makeError(ErrorKind::Io, "cannot create " + po.framesDir.string() + ": " + ec.message());
+    }
+    auto rec = playFlight(driver, path, po);
+    if (!rec) return rec.error();
+    outcome.recording = std::move(*rec);
+    const flight::RecordingMeta meta = recordingMeta(driver.scene(), path, outcome.recording, request);
+    if (Status s = writeText(tmp / flight::kFramesCsv, outcome.recording.table.toCsv()); !s) return s;
+    if (Status s = writeText(tmp / flight::kRecordingJson, flight::recordingMetaJson(meta)); !s) return s;
+    if (Status s = flight::writeSummary(tmp); !s) return s;
+    if (request.plots)
+      if (Status s = flight::makePlots(tmp, flight::defaultPythons()); !s) outcome.plotError = s.error();
+    return {};
+  });
+  if (!written) return written.error();
+  return outcome;
+}
+
+}  // namespace vegstream::scene
