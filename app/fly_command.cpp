@@ -47,13 +47,21 @@ Result<flight::FlightPath> choosePath(const std::optional<flight::FlightPath>& g
 // every frame as frames/frame_NNNNN.png): --frames N spread evenly over the path. `--out` may
 // hold an earlier recording (the default out/fly does after the first run): it is replaced only
 // once the new one is complete; anything else there is refused, never overwritten.
+Status checkHeadlessOut(const FlyOptions& o) {
+  const fs::path out = o.out;
+  std::error_code ec;
+  const bool earlier = fs::exists(out, ec) && !(fs::is_directory(out, ec) && fs::is_empty(out, ec));
+  if (earlier && !fs::exists(out / flight::kRecordingJson, ec) && !fs::exists(out / "run.json", ec))
+    return makeError(ErrorKind::InvalidInput,
+                     "--out " + o.out + " already exists and holds no earlier recording; choose another directory");
+  return {};
+}
+
 int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, const Logger& log) {
+  if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
   const fs::path out = o.out;
   std::error_code ec;
   const bool earlier = fs::is_directory(out, ec) && !fs::is_empty(out, ec);
-  if (earlier && !fs::exists(out / flight::kRecordingJson, ec) && !fs::exists(out / "run.json", ec))
-    return reportError(log, makeError(ErrorKind::InvalidInput, "--out " + o.out +
-                                          " already exists and holds no earlier recording; choose another directory"));
   const fs::path aside = out.string() + ".replaced";
   if (earlier) {
     fs::remove_all(aside, ec);
@@ -98,6 +106,8 @@ int runFly(const FlyOptions& o, const Logger& log) {
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
+  if (!windowWanted)  // checked again if a wanted window cannot be made
+    if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());
 

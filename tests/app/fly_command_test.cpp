@@ -1,5 +1,6 @@
-// `vegstream fly` as a user runs it: the headless demo writes frames and run.json with the
-// validation layers silent; user mistakes end with one message, exit code 2, nothing written.
+// `vegstream fly` as a user runs it: the headless demo writes a recording (frames.csv,
+// recording.json, summary.json, every frame as PNG) like `record`'s, with the validation layers
+// silent, and replaces only an earlier recording; user mistakes end with one message, exit code 2, nothing written.
 
 #include <filesystem>
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "flight/record_table.h"
 #include "tests/support/run_command.h"
 
 namespace vegstream::testing {
@@ -33,33 +35,71 @@ std::string zionDataset() {
 }
 const std::string kZion = zionDataset();
 
-TEST(FlyCommand, HeadlessDemoWritesFramesAndRunJsonWithValidationSilent) {
+// Column `name` of the recording's frames.csv, every row (empty cells as NaN).
+std::vector<double> column(const fs::path& recording, const std::string& name) {
+  auto table = flight::RecordTable::loadCsv(recording / "frames.csv");
+  EXPECT_TRUE(table.ok()) << table.error().message;
+  std::vector<double> out;
+  if (!table.ok()) return out;
+  const auto c = table->find(name);
+  EXPECT_TRUE(c.has_value()) << name;
+  if (!c) return out;
+  for (std::size_t i = 0; i < table->rowCount(); ++i) out.push_back(table->at(i, *c));
+  return out;
+}
+
+TEST(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
   const fs::path out = freshDir("fly_ok");
   const auto r = runVegstream("fly '" + kZion + "' --headless --validate --frames 3 --size 160x90 --msaa 1 --out '" +
                               out.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* f : {"frame_0000.png", "frame_0001.png", "frame_0002.png", "run.json"})
+  for (const char* f : {"frames/frame_00000.png", "frames/frame_00001.png", "frames/frame_00002.png", "frames.csv",
+                        "recording.json", "summary.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
-  const auto run = nlohmann::json::parse(readWhole(out / "run.json"));
-  EXPECT_EQ(run["frames"], 3);
-  EXPECT_EQ(run["validation"]["errors"], 0);
-  EXPECT_EQ(run["validation"]["warnings"], 0);
-  EXPECT_EQ(run["size"][0], 160);
+  EXPECT_FALSE(fs::exists(out / "run.json"));
+  const auto rec = nlohmann::json::parse(readWhole(out / "recording.json"));
+  EXPECT_EQ(rec["validation"]["errors"], 0);
+  EXPECT_EQ(rec["validation"]["warnings"], 0);
+  EXPECT_EQ(rec["size"][0], 160);
+  EXPECT_EQ(rec["path"]["name"], "benchmark-30s");
+  EXPECT_EQ(rec["streaming"]["mode"], "settled");
+  EXPECT_FALSE(rec["device"]["name"].get<std::string>().empty());
+  const auto summary = nlohmann::json::parse(readWhole(out / "summary.json"));
+  EXPECT_EQ(summary["frames"], 3);
+  // The three frames span the path: its start, middle and end.
+  EXPECT_EQ(column(out, "t_s"), (std::vector<double>{0.0, 15.0, 30.0}));
   // Zion streamed: headless frames are settled, so every piece is drawn from its own tiles.
-  for (const auto& f : run["per_frame"]) {
-    EXPECT_GT(f["terrain_triangles"].get<int>(), 1'000);  // ROAM at 2 px on 160 × 90: a few thousand
-    EXPECT_GT(f["terrain_pieces"].get<int>(), 2);
-    EXPECT_EQ(f["fallback_pieces"].get<int>(), 0);
-    EXPECT_GT(f["gpu_bytes"].get<double>(), 0.0);
-  }
-  EXPECT_EQ(run["path"], "benchmark-30s");
-  EXPECT_TRUE(run["dataset"]["imagery"].get<bool>());
-  EXPECT_GE(run["dataset"]["max_zoom"].get<int>(), run["dataset"]["min_zoom"].get<int>());
-  EXPECT_FALSE(run["device"]["name"].get<std::string>().empty());
+  for (double v : column(out, "terrain_triangles")) EXPECT_GT(v, 1'000.0);  // ROAM at 2 px on 160 × 90
+  for (double v : column(out, "terrain_pieces")) EXPECT_GT(v, 2.0);
+  for (double v : column(out, "terrain_fallback_pieces")) EXPECT_EQ(v, 0.0);
+  for (double v : column(out, "gpu_bytes")) EXPECT_GT(v, 0.0);
   EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("device:"), std::string::npos) << "the chosen device is printed";
   // Nothing temporary is left behind.
-  for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    EXPECT_EQ(e.path().filename().string().find("fly_ok."), std::string::npos) << e.path();
+}
+
+TEST(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
+  const fs::path dir = freshDir("fly_again");
+  const fs::path out = dir / "out";
+  const std::string args = "fly '" + kZion + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + out.string() + "'";
+  ASSERT_EQ(runVegstream(args).exitCode, 0);
+  const auto again = runVegstream(args);  // the demo run twice: the second replaces the first
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_TRUE(fs::exists(out / "frames.csv"));
+  EXPECT_EQ(column(out, "t_s").size(), 2u);
+  EXPECT_FALSE(fs::exists(dir / "out.replaced"));
+
+  const fs::path other = dir / "other";
+  fs::create_directories(other);
+  std::ofstream(other / "notes.txt") << "mine";
+  const auto refused = runVegstream("fly '" + kZion + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" +
+                                    other.string() + "'");
+  EXPECT_EQ(refused.exitCode, 2) << refused.err;
+  EXPECT_EQ(countLines(refused.err), 1) << refused.err;
+  EXPECT_NE(refused.err.find("--out"), std::string::npos) << refused.err;
+  EXPECT_EQ(readWhole(other / "notes.txt"), "mine");
 }
 
 struct BadInput {
@@ -136,10 +176,10 @@ TEST(FlyCommand, PlaysAGivenPathHeadless) {
   const auto r = runVegstream("fly '" + kZion + "' --headless --validate --frames 2 --size 96x54 --msaa 1 --path '" +
                               path.string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto run = nlohmann::json::parse(readWhole(out / "run.json"));
-  EXPECT_EQ(run["path"], "short");
-  EXPECT_EQ(run["validation"]["errors"], 0);
-  EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
+  const auto rec = nlohmann::json::parse(readWhole(out / "recording.json"));
+  EXPECT_EQ(rec["path"]["name"], "short");
+  EXPECT_EQ(rec["validation"]["errors"], 0);
+  EXPECT_TRUE(fs::exists(out / "frames/frame_00001.png"));
 }
 
 }  // namespace

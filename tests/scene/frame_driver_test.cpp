@@ -93,14 +93,14 @@ TEST_F(FrameDriverTest, PlaybackTwiceGivesTheSameCountsAndImages) {
   for (std::size_t c = 0; c < a.columns().size(); ++c) {
     const std::string& name = a.columns()[c].name;
     if (isTimeColumn(name) || name == "stream_longest_wait_ms") continue;
-    const auto va = a.values(c), vb = b.values(c);
-    for (std::size_t i = 0; i < va.size(); ++i) {
-      if (std::isnan(va[i]) && std::isnan(vb[i])) continue;
-      EXPECT_EQ(va[i], vb[i]) << name << " differs in frame " << i;
+    ASSERT_EQ(a.rowCount(), b.rowCount());
+    for (std::size_t i = 0; i < a.rowCount(); ++i) {
+      if (std::isnan(a.at(i, c)) && std::isnan(b.at(i, c))) continue;
+      EXPECT_EQ(a.at(i, c), b.at(i, c)) << name << " differs in frame " << i;
     }
     ++compared;
   }
-  EXPECT_GT(compared, 60u);
+  EXPECT_GT(compared, 50u);  // every count column of frames.csv
   // Terrain and plants were drawn: the comparison is of a real flight, not of empty frames.
   const auto triangles = a.values(*a.find("terrain_triangles"));
   EXPECT_GT(triangles.front(), 100.0);

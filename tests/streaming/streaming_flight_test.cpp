@@ -227,7 +227,7 @@ TEST_F(StreamingFlight, FlyOverAUrlWritesFramesAndAWrongUrlIsOneMessage) {
   const auto ok = testing::runCommand(std::string(VEGSTREAM_EXE) + " fly " + (*nginx)->baseUrl() +
                                       " --headless --validate --frames 2 --size 160x90 --msaa 1 --out '" + out.string() + "'");
   ASSERT_EQ(ok.exitCode, 0) << ok.err;
-  EXPECT_TRUE(fs::exists(out / "frame_0001.png"));
+  EXPECT_TRUE(fs::exists(out / "frames" / "frame_00001.png"));
   EXPECT_NE(ok.err.find((*nginx)->baseUrl()), std::string::npos) << "the source is named";
   EXPECT_EQ(ok.err.find("validation:"), std::string::npos) << ok.err;
 
