@@ -146,7 +146,13 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 void Context::init(const ContextOptions& options) {
   logger_ = options.logger ? options.logger : makeNullLogger();
   validationLog_ = options.validationLog;
+  createInstance(options);
+  choosePhysicalDevice(options);
+  createDevice(options);
+}
 
+// The instance, with the validation layer and its messenger when asked for.
+void Context::createInstance(const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "vegstream";
   app.pEngineName = "vegstream";
@@ -185,8 +191,10 @@ void Context::init(const ContextOptions& options) {
   }
   setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
       vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+}
 
-  // Choose the physical device.
+// The physical device: the first usable one whose name contains --device, else the best by type.
+void Context::choosePhysicalDevice(const ContextOptions& options) {
   const auto devices = physicalDevices(instance_);
   std::vector<DeviceInfo> infos;
   int best = -1, bestRank = -1;
@@ -219,9 +227,11 @@ void Context::init(const ContextOptions& options) {
   hasQueueFamily(physical_, &queueFamily_);
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+}
 
-  // The logical device: Vulkan 1.3 dynamic rendering and synchronization2, plus the optional
-  // features later passes use (tessellation, geometry, pipeline statistics) where offered.
+// The logical device: Vulkan 1.3 dynamic rendering and synchronization2, plus the optional
+// features later passes use (tessellation, geometry, pipeline statistics) where offered.
+void Context::createDevice(const ContextOptions& options) {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};

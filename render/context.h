@@ -53,6 +53,9 @@ class Context {
  private:
   Context() = default;
   void init(const ContextOptions& options);
+  void createInstance(const ContextOptions& options);
+  void choosePhysicalDevice(const ContextOptions& options);
+  void createDevice(const ContextOptions& options);
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -3,6 +3,7 @@
 // std140 layout equals the C++ layout; the static_asserts keep the two in step.
 
 #include <cstddef>
+#include <cstdint>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
@@ -31,5 +32,11 @@ static_assert(offsetof(FrameUniforms, fog) == 192);
 static_assert(offsetof(FrameUniforms, viewport) == 208);
 static_assert(offsetof(FrameUniforms, detail) == 224);
 static_assert(sizeof(FrameUniforms) == 240);
+
+struct FrameRequest;
+
+// The frame's uniforms: everything relative to the camera, rotation-only view, for a target of
+// width × height pixels.
+FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height);
 
 }  // namespace vegstream::render

@@ -1,5 +1,7 @@
 #include "render/render_targets.h"
 
+#include <vector>
+
 namespace vegstream::render {
 
 RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples)
@@ -15,6 +17,59 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
     depthMsaa_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
                                "depth target (MSAA)");
   }
+}
+
+void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
+  // Attachments start undefined each frame: everything is cleared.
+  const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  const auto depthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  std::vector<const GpuImage*> colorImages{&color()}, depthImages{&depth()};
+  if (multisampled()) {
+    colorImages.push_back(&colorAttachment());
+    depthImages.push_back(&depthAttachment());
+  }
+  for (const GpuImage* img : colorImages)
+    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  for (const GpuImage* img : depthImages)
+    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage, depthAccess);
+
+  VkRenderingAttachmentInfo colorInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  colorInfo.imageView = colorAttachment().view.get();
+  colorInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colorInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  colorInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depthInfo.imageView = depthAttachment().view.get();
+  depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depthInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
+  if (multisampled()) {
+    colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    colorInfo.resolveImageView = color().view.get();
+    colorInfo.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colorInfo.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depthInfo.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // required of every device
+    depthInfo.resolveImageView = depth().view.get();
+    depthInfo.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  }
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent_};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &colorInfo;
+  ri.pDepthAttachment = &depthInfo;
+  vkCmdBeginRendering(cmd, &ri);
+  // Flip nothing here: the projection matrix already flips y for Vulkan.
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent_};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
 }  // namespace vegstream::render

@@ -27,6 +27,10 @@ class RenderTargets {
   const GpuImage& color() const { return color_; }  // single-sample, after resolve
   const GpuImage& depth() const { return depth_; }  // single-sample, after resolve
 
+  // Clears every target and begins dynamic rendering into them (resolving to color() and
+  // depth() when multisampled), viewport and scissor over the whole extent.
+  void beginRendering(VkCommandBuffer cmd) const;
+
  private:
   VkExtent2D extent_;
   VkSampleCountFlagBits samples_;

@@ -83,6 +83,8 @@ struct Renderer::Impl {
   void init(const RendererOptions& options);
   void waitSlot(FrameSlot& slot);
   uint64_t submit(const FrameRequest& request);
+  void recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request);
+  void queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex);
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
   FrameResult collect(FrameSlot& slot);
@@ -170,25 +172,8 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   VkFence fence = slot.fence.get();
   vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
 
-  // Uniforms: everything relative to the camera, rotation-only view.
   const VkExtent2D extent = targets->extent();
-  const double aspect = static_cast<double>(extent.width) / static_cast<double>(extent.height);
-  const glm::dmat4 viewProj = projection(request.camera, aspect) * viewRotation(request.camera);
-  FrameUniforms u{};
-  u.viewProj = glm::mat4(viewProj);
-  u.invViewProj = glm::mat4(glm::inverse(viewProj));
-  u.sunDirection = glm::vec4(glm::vec3(glm::normalize(request.lighting.sunDirection)), 0.0f);
-  u.sunColor = glm::vec4(request.lighting.sunColor, 0.0f);
-  u.skyZenith = glm::vec4(request.lighting.skyZenith, 0.0f);
-  u.skyHorizon = glm::vec4(request.lighting.skyHorizon, 0.0f);
-  u.fog = glm::vec4(request.lighting.fogDensity, request.lighting.fogFalloff,
-                    static_cast<float>(request.cameraHeightMsl), 0.0f);
-  u.viewport = glm::vec4(static_cast<float>(extent.width), static_cast<float>(extent.height),
-                         1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height));
-  // World-anchored detail tiling: the camera position modulo the period, in double, so the
-  // shader's coordinates stay small and continuous (the repeat counts are whole per period).
-  const glm::dvec3 wrapped = request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
-  u.detail = glm::vec4(glm::vec3(wrapped), std::clamp(request.terrainDetail, 0.0f, 1.0f));
+  const FrameUniforms u = frameUniforms(request, extent.width, extent.height);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
 
   std::optional<uint32_t> imageIndex;
@@ -200,6 +185,26 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
+  recordPasses(cmd, slot, index, request);
+  recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
+  if (imageIndex) recordPresent(cmd, *imageIndex);
+  slot.timer->end(cmd);
+  vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+
+  queueSubmit(slot, imageIndex);
+  if (imageIndex) swapchain->present(*imageIndex, swapchain->renderDone(*imageIndex));
+
+  slot.frameIndex = index;
+  slot.submitted = true;
+  slot.readColor = request.readbackColor;
+  slot.readDepth = request.readbackDepth;
+  slot.cpuRecordMs = watch.elapsedMs();
+  return index;
+}
+
+// The frame's passes, in order: imagery uploads, classify (compute), then in one rendering
+// scope sky, terrain and plants, and the HUD over the resolved image.
+void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request) {
   const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
   const int slotIndex = static_cast<int>(index % kFramesInFlight);
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
@@ -215,56 +220,7 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     slot.timer->endPass(cmd);
   }
 
-  // Attachments start undefined each frame: everything is cleared.
-  const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  const auto depthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  std::vector<const GpuImage*> colorImages{&targets->color()}, depthImages{&targets->depth()};
-  if (targets->multisampled()) {
-    colorImages.push_back(&targets->colorAttachment());
-    depthImages.push_back(&targets->depthAttachment());
-  }
-  for (const GpuImage* img : colorImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  for (const GpuImage* img : depthImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage, depthAccess);
-
-  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = targets->colorAttachment().view.get();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = targets->depthAttachment().view.get();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
-  if (targets->multisampled()) {
-    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
-    color.resolveImageView = targets->color().view.get();
-    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // required of every device
-    depth.resolveImageView = targets->depth().view.get();
-    depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  }
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &color;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  // Flip nothing here: the projection matrix already flips y for Vulkan.
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  targets->beginRendering(cmd);
   slot.timer->beginPass(cmd, "sky");
   sky->record(cmd, slot.descriptorSet);
   slot.timer->endPass(cmd);
@@ -288,13 +244,12 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     slot.timer->endPass(cmd);
   }
 
-  recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
-  if (imageIndex) recordPresent(cmd, *imageIndex);
-  slot.timer->end(cmd);
-  vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+}
 
+void Renderer::Impl::queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex) {
+  VkFence fence = slot.fence.get();
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-  cbi.commandBuffer = cmd;
+  cbi.commandBuffer = slot.cmd;
   VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -311,14 +266,6 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     si.pSignalSemaphoreInfos = &signalInfo;
   }
   vkCheck(vkQueueSubmit2(ctx->queue(), 1, &si, fence), "vkQueueSubmit2");
-  if (imageIndex) swapchain->present(*imageIndex, swapchain->renderDone(*imageIndex));
-
-  slot.frameIndex = index;
-  slot.submitted = true;
-  slot.readColor = request.readbackColor;
-  slot.readDepth = request.readbackDepth;
-  slot.cpuRecordMs = watch.elapsedMs();
-  return index;
 }
 
 void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool readColor, bool readDepth) const {

@@ -1,0 +1,36 @@
+// frameUniforms (frame_uniforms.h): the per-frame constants every pass reads.
+
+#include "render/frame_uniforms.h"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "render/frame_types.h"
+#include "render/terrain_detail.h"
+
+namespace vegstream::render {
+
+FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height) {
+  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+  const glm::dmat4 viewProj = projection(request.camera, aspect) * viewRotation(request.camera);
+  FrameUniforms u{};
+  u.viewProj = glm::mat4(viewProj);
+  u.invViewProj = glm::mat4(glm::inverse(viewProj));
+  u.sunDirection = glm::vec4(glm::vec3(glm::normalize(request.lighting.sunDirection)), 0.0f);
+  u.sunColor = glm::vec4(request.lighting.sunColor, 0.0f);
+  u.skyZenith = glm::vec4(request.lighting.skyZenith, 0.0f);
+  u.skyHorizon = glm::vec4(request.lighting.skyHorizon, 0.0f);
+  u.fog = glm::vec4(request.lighting.fogDensity, request.lighting.fogFalloff,
+                    static_cast<float>(request.cameraHeightMsl), 0.0f);
+  u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
+                         1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
+  // World-anchored detail tiling: the camera position modulo the period, in double, so the
+  // shader's coordinates stay small and continuous (the repeat counts are whole per period).
+  const glm::dvec3 wrapped = request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
+  u.detail = glm::vec4(glm::vec3(wrapped), std::clamp(request.terrainDetail, 0.0f, 1.0f));
+  return u;
+}
+
+}  // namespace vegstream::render
