@@ -119,7 +119,7 @@ Completion DecodePipeline::decode(Job& job) const {
 
 void DecodePipeline::drain() {
   std::unique_lock lock(mu_);
-  while (!closed_ && !jobs_.empty()) {
+  if (!closed_ && !jobs_.empty()) {
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
     decoding_.insert(job.id);
@@ -128,14 +128,12 @@ void DecodePipeline::drain() {
     job.bytes = {};
     lock.lock();
     decoding_.erase(job.id);
-    if (closed_) {
-      idleCv_.notify_all();
-      break;
-    }
-    if (cancelled_.erase(job.id) > 0) continue;
-    pushLocked(std::move(c));
+    if (closed_) idleCv_.notify_all();
+    else if (cancelled_.erase(job.id) == 0) pushLocked(std::move(c));
   }
-  --tasks_;
+  // Posted again while jobs are queued: the runner interleaves decodes with other work.
+  if (!closed_ && !jobs_.empty()) runner_.post([self = shared_from_this()] { self->drain(); });
+  else --tasks_;
 }
 
 }  // namespace vegstream::streaming::detail

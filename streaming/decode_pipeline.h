@@ -84,7 +84,7 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
     std::string name;
     std::vector<uint8_t> bytes;
   };
-  void drain();  // a decode task: jobs until the queue is empty
+  void drain();  // a decode task: one job, then posted again while jobs are queued
   Completion decode(Job& job) const;
   void pushLocked(Completion&& c);
 

@@ -105,15 +105,18 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
   void postTaskLocked() {
     if (tasks >= maxTasks || queue.empty()) return;
     ++tasks;
+    postLocked();
+  }
+  void postLocked() {
     runner->post([self = shared_from_this()] { self->run(); });
   }
 
-  // One task: requests until the queue is empty.
+  // One task answers one request, then posts itself again while requests are queued (so the
+  // runner interleaves it with other work, and a ManualTaskRunner steps one read at a time).
   void run() {
     std::unique_lock lock(mu);
     ++busy;
-    for (;;) {
-      if (queue.empty() || stopping) break;  // the destructor answers what is left
+    if (!queue.empty() && !stopping) {  // when stopping, the destructor answers what is left
       Job job = std::move(queue.front());
       queue.pop_front();
       FetchResult r;
@@ -149,7 +152,8 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
       lock.lock();
       --inFlight;
     }
-    --tasks;
+    if (!queue.empty() && !stopping) postLocked();
+    else --tasks;
     if (--busy == 0) idle.notify_all();
   }
 };
