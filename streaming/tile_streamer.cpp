@@ -603,7 +603,7 @@ double TileStreamer::settle(std::span<const TileWant> wants, double timeS) {
   for (;;) {
     if (!m.awaitInFlight(start + kSettleTimeoutS)) {
       m.log->warn("settle: {} requests still in flight after {:.0f} s ({} wanted tiles not resident); going on "
-                  "without them",
+                  "without them (this frame and later ones are no longer repeatable)",
                   m.active.size(), kSettleTimeoutS, m.currentWantsPending());
       m.takeCompletions(timeS, true);
       break;
