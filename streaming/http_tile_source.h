@@ -48,7 +48,9 @@ struct HttpSourceOptions {
   std::optional<std::filesystem::path> cacheDir;  // on-disk tile cache (disk_tile_cache.h)
   uint64_t cacheBudgetBytes = 2ull << 30;
   Logger log;                     // null: nothing is logged
-  TaskRunner* tasks = nullptr;    // runs the I/O loop; outlives the source. Null: a pool of its own
+  TaskRunner* tasks = nullptr;    // runs the I/O loop (postLongRunning; it returns only when the
+                                  // source goes, so a ManualTaskRunner must not run it); outlives
+                                  // the source. Null: a pool of its own
   const Clock* clock = nullptr;   // back-off timing; outlives the source. Null: a steady clock
 };
 

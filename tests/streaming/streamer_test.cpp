@@ -8,10 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -399,6 +401,72 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
     tasks.runAll();
   }));
   EXPECT_EQ(source->started().size(), 2u);
+}
+
+// Settling, the streamer's time is the flight time and does not move: a current want that fails
+// is asked again at once, up to 3 times in a row, inside the one settle() call; a look-ahead
+// want that fails waits for the flight time to pass the back-off.
+TEST_F(StreamerScripted, SettleAsksAFailingCurrentWantAgainAtOnceUpToThreeTimes) {
+  const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+  const TileKey flaky = keys[0], broken = keys[1], ahead = keys[2];
+  const auto bytes = fileBytes(dir() / datasetRelativePath(flaky, meta()));
+  auto source = std::make_shared<ScriptedSource>([&](const std::string& path, int attempt) -> std::optional<FetchResult> {
+    if (path == datasetRelativePath(flaky, meta()) && attempt >= 3) return ScriptedSource::ok(bytes);
+    return ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503");
+  });
+  StreamingOptions o = smallOptions();  // decodes on a pool of the streamer's own
+  o.failedRetryAfterS = 2.0;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const std::vector<TileWant> wants = {{flaky, 2.0, false}, {broken, 1.0, false}, {ahead, 1.0, true}};
+  s.settle(wants, 10.0);
+  EXPECT_EQ(s.state(flaky), TileState::ResidentCpu);
+  EXPECT_EQ(s.state(broken), TileState::FailedTemporarily);
+  EXPECT_EQ(s.state(ahead), TileState::FailedTemporarily);
+  std::map<std::string, int> starts;
+  for (const auto& st : source->started()) ++starts[st.path];
+  EXPECT_EQ(starts[datasetRelativePath(flaky, meta())], 3);
+  EXPECT_EQ(starts[datasetRelativePath(broken, meta())], 3);
+  EXPECT_EQ(starts[datasetRelativePath(ahead, meta())], 1);
+  EXPECT_EQ(s.frameStats().retries, 4u);
+  EXPECT_EQ(s.frameStats().requestsInFlight, 0u);
+  // The next frame, 0.25 s of flight later: the look-ahead tile is not due yet; 2 s later it is.
+  s.settle(wants, 10.25);
+  EXPECT_EQ(s.frameStats().requestsIssued, 0u);
+  s.settle(wants, 12.5);
+  EXPECT_EQ(s.frameStats().requestsIssued, 2u) << "broken and ahead, due again by flight time, once each";
+}
+
+// A Clock that moves `stepS` every time it is read: with 10 s, settle()'s 30 s bound passes after
+// a few reads, without the test waiting 30 s.
+class RacingClock final : public Clock {
+ public:
+  double nowS() const override { return t_ += stepS.load(); }
+  std::atomic<double> stepS{10.0};
+
+ private:
+  mutable double t_ = 0.0;
+};
+
+// A request that never ends: settle() gives up when the injected clock says 30 s passed, and a
+// later frame takes the answer in when it comes.
+TEST_F(StreamerScripted, SettleGivesUpAfterThirtySecondsOfTheInjectedClock) {
+  auto source = std::make_shared<ScriptedSource>();  // holds everything until reply()
+  RacingClock clock;
+  StreamingOptions o = smallOptions();
+  o.clock = &clock;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const TileKey k = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom)[0];
+  const double waited = s.settle(wantsOf({k}), 0.0);
+  EXPECT_GE(waited, 30.0);
+  EXPECT_LT(waited, 100.0);
+  EXPECT_EQ(s.state(k), TileState::Requested);
+  EXPECT_EQ(s.frameStats().requestsInFlight, 1u);
+  ASSERT_EQ(source->started().size(), 1u);
+  ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
+  clock.stepS = 0.0;  // this time the wait is not cut short, however slow the decode
+  s.settle(wantsOf({k}), 0.25);
+  EXPECT_EQ(s.state(k), TileState::ResidentCpu);
+  EXPECT_EQ(source->started().size(), 1u) << "not asked twice";
 }
 
 // Random outcomes (Ok, Missing, Failed, corrupt bytes) under changing wants: every request is
