@@ -31,10 +31,11 @@ uint64_t fileBytes(const fs::path& path) {
 }
 
 Result<DatasetMeta> finishDataset(const fs::path& dir, DatasetMeta meta, ProgressSink& progress, int threads,
-                                  int jpegQuality) {
+                                  int jpegQuality, TaskRunner* tasks) {
   if (meta.minZoom < meta.maxZoom) {
     PyramidOptions po;
     po.threads = threads;
+    po.tasks = tasks;
     po.jpegQuality = jpegQuality;
     progress.stage("lower zooms");
     if (auto s = buildLowerZooms(dir, meta, progress, po); !s) return s.error();

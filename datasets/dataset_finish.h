@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/progress.h"
 
@@ -22,8 +23,9 @@ uint64_t fileBytes(const std::filesystem::path& path);
 
 // meta: maxZoom / minZoom set, the max-zoom tiles already counted in elevationTiles /
 // imageryTiles / bytes. Builds zooms maxZoom−1 … minZoom under dir, then writes dataset.json.
+// `threads` and `tasks` as in parallelFor.
 Result<DatasetMeta> finishDataset(const std::filesystem::path& dir, DatasetMeta meta, ProgressSink& progress,
-                                  int threads, int jpegQuality);
+                                  int threads, int jpegQuality, TaskRunner* tasks = nullptr);
 
 // The dataset name a user means by an output path ("out/grand/" → "grand").
 std::string defaultDatasetName(const std::filesystem::path& out);

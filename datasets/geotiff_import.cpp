@@ -226,7 +226,7 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     progress.stage(concat("zoom ", maxZoom));
     std::vector<TileOutcome> outcomes(tiles.size());
     const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr};
-    Status s = parallelFor(tiles.size(), o.threads, [&](size_t i) -> Status {
+    Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
       if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
       if (auto t = produceTile(tmp, tiles[i], src, o, outcomes[i]); !t) return t;
       progress.tileDone(outcomes[i].bytes);
@@ -249,7 +249,7 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     if (withHeights.empty())
       return makeError(ErrorKind::InvalidInput, concat(o.dem, " gave no valid height at zoom ", maxZoom));
     meta.minZoom = std::min(o.minZoom.value_or(singleTileZoom(withHeights)), maxZoom);
-    result = finishDataset(tmp, meta, progress, o.threads, o.jpegQuality);
+    result = finishDataset(tmp, meta, progress, o.threads, o.jpegQuality, o.tasks);
     if (!result) return result.error();
     if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
     return {};

@@ -23,6 +23,7 @@
 
 #include "core/log.h"
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/imagery_source.h"
 #include "datasets/progress.h"
@@ -56,6 +57,7 @@ struct GeoTiffImportOptions {
   uint64_t maxPixels = 400'000'000;   // per source raster, refused before allocating
   uint64_t maxTiles = 1'000'000;      // tiles at the max zoom; more is refused (pick --max-zoom)
   int threads = 0;                    // 0: all cores
+  TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop, leave nothing
 };
 

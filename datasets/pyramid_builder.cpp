@@ -177,7 +177,7 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
 
     std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0);
     std::vector<uint64_t> bytes(parents.size(), 0);
-    Status s = parallelFor(parents.size(), options.threads, [&](size_t i) -> Status {
+    Status s = parallelFor(parents.size(), options.threads, options.tasks, [&](size_t i) -> Status {
       const geo::TileId& id = parents[i];
       uint64_t written = 0;
       auto h = downsampleHeights(dir, id, elevation, meta);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/progress.h"
 
@@ -14,6 +15,7 @@ namespace vegstream::datasets {
 
 struct PyramidOptions {
   int threads = 0;       // 0: all cores
+  TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
   int jpegQuality = 90;  // for JPEG imagery
 };
 

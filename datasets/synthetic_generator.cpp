@@ -114,7 +114,7 @@ Result<DatasetMeta> generateSyntheticDataset(const SyntheticOptions& o, const Lo
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     progress.stage(concat("zoom ", maxZoom));
     progress.addTotal(ids.size());
-    Status s = parallelFor(ids.size(), o.threads, [&](size_t index) -> Status {
+    Status s = parallelFor(ids.size(), o.threads, o.tasks, [&](size_t index) -> Status {
       const geo::TileId& id = ids[index];
       const TileSamples samples = sampleTile(terrain, id, o, mpd);
       HeightTile ht{id, kTileSize, std::vector<float>(static_cast<size_t>(kTileSize * kTileSize))};
@@ -165,7 +165,7 @@ Result<DatasetMeta> generateSyntheticDataset(const SyntheticOptions& o, const Lo
     if (!s) return s;
     meta.minHeightM = lo;
     meta.maxHeightM = hi;
-    result = finishDataset(tmp, meta, progress, o.threads, 90);
+    result = finishDataset(tmp, meta, progress, o.threads, 90, o.tasks);
     return result ? Status{} : Status{result.error()};
   });
   if (!status) return status.error();

@@ -18,6 +18,7 @@
 
 #include "core/log.h"
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/xyz_import.h"
 
@@ -35,6 +36,7 @@ struct SyntheticOptions {
   std::optional<int> minZoom;   // nullopt: down to the zoom at which the area fits one tile
   ElevationEncoding encoding = ElevationEncoding::Terrarium;
   int threads = 0;              // 0: all cores
+  TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
 };
 
 // The terrain itself, for tests and for code that wants the continuous field.

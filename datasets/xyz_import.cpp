@@ -178,7 +178,7 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     progress.stage(concat("zoom ", maxZoom));
     progress.addTotal(elevation.size() + imagery.size());
-    Status s = parallelFor(elevation.size(), options.threads, [&](size_t i) -> Status {
+    Status s = parallelFor(elevation.size(), options.threads, options.tasks, [&](size_t i) -> Status {
       const XyzTileFile& f = elevation[i];
       auto tile = readHeightTile(f.path, f.id, options.encoding);
       if (!tile) return tile.error();
@@ -206,7 +206,7 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
                                                                       "' hold no valid heights"));
     meta.minHeightM = lo;
     meta.maxHeightM = hi;
-    s = parallelFor(imagery.size(), options.threads, [&](size_t i) -> Status {
+    s = parallelFor(imagery.size(), options.threads, options.tasks, [&](size_t i) -> Status {
       const XyzTileFile& f = imagery[i];
       auto tile = readColorTile(f.path, f.id);
       if (!tile) return tile.error();
@@ -225,7 +225,7 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
       return {};
     });
     if (!s) return s;
-    result = finishDataset(tmp, meta, progress, options.threads, options.jpegQuality);
+    result = finishDataset(tmp, meta, progress, options.threads, options.jpegQuality, options.tasks);
     return result ? Status{} : Status{result.error()};
   });
   if (!status) return status.error();

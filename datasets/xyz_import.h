@@ -20,6 +20,7 @@
 
 #include "core/log.h"
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/progress.h"
 
@@ -46,6 +47,7 @@ struct XyzImportOptions {
   std::optional<int> minZoom;
 
   int threads = 0;  // 0: all cores
+  TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
 };
 
 // (done, total) after each tile; total grows as stages (max zoom, each lower zoom) begin.

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/stopwatch.h"
+#include "core/task_runner.h"
 #include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
@@ -16,6 +17,7 @@
 namespace vegstream::scene {
 
 struct Scene::Impl {
+  std::unique_ptr<ThreadPool> tasks;  // the sources' I/O and the decodes; destroyed after them
   std::unique_ptr<render::Renderer> renderer;
   SceneOptions options;
   SceneInfo info;
@@ -48,9 +50,11 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   const Logger log = options.logger ? options.logger : makeNullLogger();
   Stopwatch watch;
   // The dataset first, then the renderer with its options: both fail before tiles are read.
+  auto tasks = std::make_unique<ThreadPool>();
   streaming::OpenSourceOptions so;
   so.http.cacheDir = options.httpCacheDir;
   so.log = log;
+  so.tasks = tasks.get();
   auto source = streaming::openTileSource(options.dataset, so);
   if (!source) return source.error();
   auto meta = streaming::readMetaFrom(**source);
@@ -59,9 +63,10 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (!renderer) return renderer.error();
 
   auto impl = std::make_unique<Impl>();
+  impl->tasks = std::move(tasks);
   impl->options = options;
   impl->renderer = std::move(*renderer);
-  impl->source = *source;
+  impl->source = std::move(*source);  // the source goes before the pool its tasks run on
   streaming::SnapshotLimits limits;
   limits.maxHeightPixels = options.groundMaxPixels;
   auto ground = streaming::loadGroundHeights(*impl->source, *meta, limits);
@@ -71,6 +76,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   impl->frame = geo::LocalFrame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
 
   streaming::StreamingOptions streamingOptions = terrain::streamingOptionsFor(*meta, options.streaming);
+  streamingOptions.tasks = impl->tasks.get();
   streamingOptions.maxGpuSlots = std::min(streamingOptions.maxGpuSlots, impl->renderer->maxImageryLayers());
   SceneInfo& info = impl->info;
   info.datasetName = meta->name;

@@ -9,26 +9,22 @@
 
 namespace vegstream::streaming::detail {
 
-DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads, HeightExtraFn heightExtra)
-    : encoding_(encoding), heightExtra_(std::move(heightExtra)) {
-  assert(decodeThreads >= 1);
-  for (int i = 0; i < decodeThreads; ++i) workers_.emplace_back([this] { runWorker(); });
+DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
+                               HeightExtraFn heightExtra)
+    : encoding_(encoding), heightExtra_(std::move(heightExtra)), runner_(runner), maxConcurrent_(maxConcurrent) {
+  assert(maxConcurrent >= 1);
 }
 
-DecodePipeline::~DecodePipeline() { assert(workers_.empty()); }
+DecodePipeline::~DecodePipeline() { assert(closed_ && decoding_.empty()); }
 
 void DecodePipeline::stop() {
-  {
-    std::lock_guard lock(mu_);
-    if (closed_ && workers_.empty()) return;
-    closed_ = true;
-    jobs_.clear();
-    completions_.clear();
-  }
-  jobsCv_.notify_all();
+  std::unique_lock lock(mu_);
+  closed_ = true;
+  jobs_.clear();
+  completions_.clear();
   completionsCv_.notify_all();
-  for (auto& w : workers_) w.join();
-  workers_.clear();
+  // Tasks not started yet return at once when they run; those decoding now are waited for.
+  idleCv_.wait(lock, [&] { return decoding_.empty(); });
 }
 
 void DecodePipeline::pushLocked(Completion&& c) {
@@ -49,7 +45,10 @@ void DecodePipeline::onFetched(const TileKey& key, const std::string& name, Fetc
       c.kind = Completion::Kind::Fetched;
       c.bytes = result.bytes.size();
       jobs_.push_back(Job{result.id, key, name, std::move(result.bytes)});
-      jobsCv_.notify_one();
+      if (tasks_ < maxConcurrent_) {
+        ++tasks_;
+        runner_.post([self = shared_from_this()] { self->drain(); });
+      }
       break;
     case FetchOutcome::Missing: c.kind = Completion::Kind::Missing; break;
     case FetchOutcome::Failed: c.kind = Completion::Kind::FetchFailed; break;
@@ -118,11 +117,9 @@ Completion DecodePipeline::decode(Job& job) const {
   return c;
 }
 
-void DecodePipeline::runWorker() {
+void DecodePipeline::drain() {
   std::unique_lock lock(mu_);
-  for (;;) {
-    jobsCv_.wait(lock, [&] { return closed_ || !jobs_.empty(); });
-    if (closed_) return;
+  if (!closed_ && !jobs_.empty()) {
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
     decoding_.insert(job.id);
@@ -131,10 +128,12 @@ void DecodePipeline::runWorker() {
     job.bytes = {};
     lock.lock();
     decoding_.erase(job.id);
-    if (closed_) return;
-    if (cancelled_.erase(job.id) > 0) continue;
-    pushLocked(std::move(c));
+    if (closed_) idleCv_.notify_all();
+    else if (cancelled_.erase(job.id) == 0) pushLocked(std::move(c));
   }
+  // Posted again while jobs are queued: the runner interleaves decodes with other work.
+  if (!closed_ && !jobs_.empty()) runner_.post([self = shared_from_this()] { self->drain(); });
+  else --tasks_;
 }
 
 }  // namespace vegstream::streaming::detail

@@ -1,7 +1,7 @@
 #pragma once
 // DecodePipeline (internal to the streamer): where fetched bytes become tiles, off the frame
 // thread. The source's callbacks hand their results in (onFetched); Ok results queue a decode
-// job for the decode threads; every outcome and every decoded tile becomes a Completion that the
+// job for the decode tasks; every outcome and every decoded tile becomes a Completion that the
 // frame thread takes in update() (takeCompletions). Nothing here knows tile states: the frame
 // thread owns them.
 //
@@ -10,9 +10,14 @@
 // in progress is marked, and its result dropped when it arrives. So a cancelled request can
 // never become resident.
 //
-// Lifetime: held through shared_ptr by the streamer and by every callback given to the source,
-// so a callback that arrives after the streamer is gone finds it alive; stop() (the streamer's
-// destructor) joins the decode threads, and results arriving later are dropped.
+// Decoding runs as tasks of an injected TaskRunner (core/task_runner.h), at most
+// `maxConcurrent` at once: a task takes jobs from the queue until it is empty.
+//
+// Lifetime: held through shared_ptr by the streamer, by every callback given to the source and
+// by every task it posts, so a callback or a task that runs after the streamer is gone finds it
+// alive; stop() (the streamer's destructor) waits for decodes under way, and results arriving
+// later are dropped. The runner must outlive the streamer (tasks posted before stop() still run
+// on it, and return at once).
 
 #include <condition_variable>
 #include <chrono>
@@ -21,10 +26,10 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <unordered_set>
 #include <vector>
 
+#include "core/task_runner.h"
 #include "datasets/tile_codec.h"
 #include "streaming/tile_key.h"
 #include "streaming/tile_source.h"
@@ -51,9 +56,11 @@ struct Completion {
   std::shared_ptr<const TileExtra> extra;
 };
 
-class DecodePipeline {
+class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
  public:
-  DecodePipeline(datasets::ElevationEncoding encoding, int decodeThreads, HeightExtraFn heightExtra = {});
+  // Made through std::make_shared (its tasks hold it). `maxConcurrent` ≥ 1.
+  DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
+                 HeightExtraFn heightExtra = {});
   ~DecodePipeline();  // stop() must have been called (asserted)
   DecodePipeline(const DecodePipeline&) = delete;
   DecodePipeline& operator=(const DecodePipeline&) = delete;
@@ -67,7 +74,7 @@ class DecodePipeline {
   // Waits until a completion is pending or `timeout` passes; true when one is pending.
   bool waitForCompletions(std::chrono::duration<double> timeout);
   std::size_t decodesQueued() const;
-  // Joins the decode threads; everything reported afterwards is dropped. Idempotent.
+  // Waits for the decodes under way to end; everything reported afterwards is dropped. Idempotent.
   void stop();
 
  private:
@@ -77,21 +84,23 @@ class DecodePipeline {
     std::string name;
     std::vector<uint8_t> bytes;
   };
-  void runWorker();
+  void drain();  // a decode task: one job, then posted again while jobs are queued
   Completion decode(Job& job) const;
   void pushLocked(Completion&& c);
 
   const datasets::ElevationEncoding encoding_;
   const HeightExtraFn heightExtra_;
   mutable std::mutex mu_;
-  std::condition_variable jobsCv_;         // decode threads wait here
   std::condition_variable completionsCv_;  // settle() waits here
   std::deque<Job> jobs_;
   std::vector<Completion> completions_;
   std::unordered_set<RequestId> cancelled_;  // at the source or being decoded: drop on arrival
   std::unordered_set<RequestId> decoding_;   // being decoded right now
+  std::condition_variable idleCv_;         // stop() waits here for decoding_ to empty
   bool closed_ = false;
-  std::vector<std::thread> workers_;
+  TaskRunner& runner_;
+  const int maxConcurrent_;
+  int tasks_ = 0;  // decode tasks posted and not yet finished
 };
 
 }  // namespace vegstream::streaming::detail

@@ -1,17 +1,20 @@
-// HttpTileSource (http_tile_source.h): one I/O thread, one libcurl multi handle.
+// HttpTileSource (http_tile_source.h): one long-running I/O task, one libcurl multi handle.
 //
 // Threads: callers of start()/cancel()/readText() append Commands under `mutex` and wake the
-// I/O thread; everything curl-related and every Transfer is touched by the I/O thread only.
+// I/O task; everything curl-related and every Transfer is touched by the I/O task only (or by
+// the destructor when the runner never started the task).
 // `mutex` also guards the counters and the set of live request ids, which any thread may read.
 
 #include "streaming/http_tile_source.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <chrono>
 #include <future>
 #include <map>
+#include <condition_variable>
 #include <mutex>
-#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -23,7 +26,6 @@
 
 namespace vegstream::streaming {
 namespace {
-using Clock = std::chrono::steady_clock;
 
 constexpr curl_off_t kMaxBodyBytes = 256ll << 20;  // no tile is this large: a server gone wrong
 constexpr long kIdlePollMs = 1000;                 // upper bound of one curl_multi_poll wait
@@ -42,7 +44,7 @@ struct Transfer {
   std::string cacheKey;    // the URL without its scheme
   FetchCallback done;
   int attempts = 0;
-  Clock::time_point notBefore{};  // back-off: not launched again before this
+  double notBeforeS = 0.0;        // back-off: not launched again before this (clock seconds)
   CURL* easy = nullptr;           // non-null while running
   std::vector<uint8_t> body;
   char errorBuffer[CURL_ERROR_SIZE] = {};
@@ -97,7 +99,10 @@ Status checkHttpUrl(const std::string& url) {
 }
 
 struct HttpTileSource::Impl {
+  enum class Loop { NotStarted, Running, Done };
   HttpSourceOptions opt;
+  SteadyClock ownClock;
+  const Clock* clock = &ownClock;
   std::string base;  // baseUrl ending in '/'
   std::unique_ptr<DiskTileCache> cache;
   Logger log;
@@ -116,7 +121,21 @@ struct HttpTileSource::Impl {
   std::map<uint64_t, std::unique_ptr<Transfer>> transfers;  // by seq: queued, backing off, running
   std::unordered_map<RequestId, uint64_t> seqOfTile;
   size_t running = 0;
-  std::thread thread;
+  Loop loop = Loop::NotStarted;  // under `mutex`
+  std::condition_variable loopDone;
+
+  // The I/O task, or the destructor when the task never started: runs run() once.
+  void runOnce() {
+    {
+      std::lock_guard lock(mutex);
+      if (loop != Loop::NotStarted) return;
+      loop = Loop::Running;
+    }
+    run();
+    std::lock_guard lock(mutex);
+    loop = Loop::Done;
+    loopDone.notify_all();
+  }
 
   // Queues a command for the I/O thread and wakes it. A tile start also becomes live and
   // counted in the same critical section, so a cancel() after start() always follows it.
@@ -140,24 +159,24 @@ struct HttpTileSource::Impl {
   void run();
   bool takeCommands();
   void accept(std::unique_ptr<Transfer> t);
-  void launchReady(Clock::time_point now);
+  void launchReady(double nowS);
   void launch(Transfer& t);
   void drainFinished();
   void endAttempt(Transfer& t, CURLcode code);
   void stopRunning(Transfer& t);
   void complete(uint64_t seq, FetchOutcome outcome, std::string message);
-  long pollTimeoutMs(Clock::time_point now) const;
+  long pollTimeoutMs(double nowS) const;
 };
 
 void HttpTileSource::Impl::run() {
   for (;;) {
     if (!takeCommands()) break;
-    launchReady(Clock::now());
+    launchReady(clock->nowS());
     int stillRunning = 0;
     curl_multi_perform(multi, &stillRunning);
     drainFinished();
-    launchReady(Clock::now());  // slots freed and back-offs ended: a new timer makes the poll short
-    curl_multi_poll(multi, nullptr, 0, static_cast<int>(pollTimeoutMs(Clock::now())), nullptr);
+    launchReady(clock->nowS());  // slots freed and back-offs ended: a new timer makes the poll short
+    curl_multi_poll(multi, nullptr, 0, static_cast<int>(pollTimeoutMs(clock->nowS())), nullptr);
   }
   // Stopping: whatever is left ends Cancelled, in start order.
   while (!transfers.empty()) complete(transfers.begin()->first, FetchOutcome::Cancelled, "the source was closed");
@@ -197,10 +216,10 @@ void HttpTileSource::Impl::accept(std::unique_ptr<Transfer> t) {
   }
 }
 
-void HttpTileSource::Impl::launchReady(Clock::time_point now) {
+void HttpTileSource::Impl::launchReady(double nowS) {
   for (auto& [seq, t] : transfers) {
     if (running >= static_cast<size_t>(opt.maxInFlight)) return;
-    if (t->easy == nullptr && t->notBefore <= now) launch(*t);
+    if (t->easy == nullptr && t->notBeforeS <= nowS) launch(*t);
   }
 }
 
@@ -267,7 +286,7 @@ void HttpTileSource::Impl::endAttempt(Transfer& t, CURLcode code) {
   } else if (verdict == AttemptVerdict::Retry && t.attempts < opt.maxAttempts) {
     const long delay = backoffDelayMs(t.attempts + 1, t.seq, opt.backoffBaseMs, opt.backoffMaxMs);
     log->debug("GET {}: {}; attempt {} in {} ms", t.url, t.lastProblem, t.attempts + 1, delay);
-    t.notBefore = Clock::now() + std::chrono::milliseconds(delay);
+    t.notBeforeS = clock->nowS() + static_cast<double>(delay) / 1000.0;
     if (t.isTile) {
       std::lock_guard lock(mutex);
       ++counters.retries;
@@ -318,7 +337,7 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
   t->done(std::move(r));
 }
 
-long HttpTileSource::Impl::pollTimeoutMs(Clock::time_point now) const {
+long HttpTileSource::Impl::pollTimeoutMs(double nowS) const {
   long timeout = kIdlePollMs;
   long curlTimeout = -1;
   curl_multi_timeout(multi, &curlTimeout);
@@ -326,8 +345,8 @@ long HttpTileSource::Impl::pollTimeoutMs(Clock::time_point now) const {
   if (running < static_cast<size_t>(opt.maxInFlight)) {
     for (const auto& [seq, t] : transfers) {
       if (t->easy != nullptr) continue;
-      const auto wait = std::chrono::ceil<std::chrono::milliseconds>(t->notBefore - now).count();
-      timeout = std::min(timeout, std::max<long>(0, static_cast<long>(wait)));
+      const double waitMs = std::ceil((t->notBeforeS - nowS) * 1000.0);
+      timeout = std::min(timeout, static_cast<long>(std::clamp(waitMs, 0.0, double(kIdlePollMs))));
     }
   }
   return timeout;
@@ -336,8 +355,9 @@ long HttpTileSource::Impl::pollTimeoutMs(Clock::time_point now) const {
 Result<std::shared_ptr<HttpTileSource>> HttpTileSource::create(HttpSourceOptions options) {
   assert(options.maxInFlight >= 1 && options.maxAttempts >= 1);
   if (Status s = checkHttpUrl(options.baseUrl); !s) return s.error();
-  auto impl = std::make_unique<Impl>();
+  auto impl = std::make_shared<Impl>();
   impl->log = options.log ? options.log : makeNullLogger();
+  if (options.clock) impl->clock = options.clock;
   impl->base = options.baseUrl;
   if (impl->base.back() != '/') impl->base += '/';
   if (options.cacheDir) {
@@ -351,12 +371,18 @@ Result<std::shared_ptr<HttpTileSource>> HttpTileSource::create(HttpSourceOptions
   // Idle connections kept for reuse: one per transfer slot, plus a few for redirects.
   curl_multi_setopt(impl->multi, CURLMOPT_MAXCONNECTS, static_cast<long>(impl->opt.maxInFlight + 4));
   curl_multi_setopt(impl->multi, CURLMOPT_PIPELINING, static_cast<long>(CURLPIPE_MULTIPLEX));
-  Impl* raw = impl.get();
-  impl->thread = std::thread([raw] { raw->run(); });
-  return std::shared_ptr<HttpTileSource>(new HttpTileSource(std::move(impl)));
+  std::unique_ptr<ThreadPool> ownPool;
+  TaskRunner* runner = impl->opt.tasks;
+  if (!runner) {
+    ownPool = std::make_unique<ThreadPool>(1);
+    runner = ownPool.get();
+  }
+  runner->postLongRunning([impl] { impl->runOnce(); });
+  return std::shared_ptr<HttpTileSource>(new HttpTileSource(std::move(impl), std::move(ownPool)));
 }
 
-HttpTileSource::HttpTileSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+HttpTileSource::HttpTileSource(std::shared_ptr<Impl> impl, std::unique_ptr<ThreadPool> ownPool)
+    : ownPool_(std::move(ownPool)), impl_(std::move(impl)) {}
 
 HttpTileSource::~HttpTileSource() {
   {
@@ -364,9 +390,16 @@ HttpTileSource::~HttpTileSource() {
     impl_->stopping = true;
   }
   curl_multi_wakeup(impl_->multi);
-  impl_->thread.join();
+  impl_->runOnce();  // the task never ran (a runner that is not running): shut down here
+  {
+    std::unique_lock lock(impl_->mutex);
+    impl_->loopDone.wait(lock, [&] { return impl_->loop == Impl::Loop::Done; });
+  }
   curl_multi_cleanup(impl_->multi);
+  impl_->multi = nullptr;
 }
+
+void HttpTileSource::wake() { curl_multi_wakeup(impl_->multi); }
 
 std::string HttpTileSource::describe() const { return impl_->opt.baseUrl; }
 

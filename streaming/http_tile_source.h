@@ -2,7 +2,8 @@
 // HttpTileSource: a dataset directory served over HTTP(S) by any static server (nginx, a CDN,
 // object storage), read through libcurl.
 //
-// One I/O thread drives one libcurl multi handle: connections are kept alive and reused
+// One long-running task (TaskRunner::postLongRunning: a thread the runner owns) drives one
+// libcurl multi handle: connections are kept alive and reused
 // between tiles (HTTP/1.1 keep-alive; HTTP/2 multiplexing where a TLS server offers it), DNS
 // answers are cached. start() and cancel() only queue a command and wake the thread
 // (curl_multi_wakeup); they never block on I/O.
@@ -16,8 +17,11 @@
 // file is cached is answered from it (FetchResult::fromCache) without touching the network.
 // readText() never uses the cache: dataset.json is always read fresh.
 //
-// Callbacks run on the I/O thread, exactly once per start(). The destructor cancels what is
-// still queued or running (those callbacks run with Cancelled) and joins the thread.
+// Callbacks run on the I/O task, exactly once per start(). The destructor cancels what is
+// still queued or running (those callbacks run with Cancelled) and waits for the I/O task to
+// return (or, if the runner never started it, runs its shutdown itself). Back-off delays are
+// measured on the injected clock (tests use a ManualClock and wake(); libcurl's own time-outs
+// are real time).
 // Counters count start()ed requests only; readText() is not a tile request and is not counted.
 
 #include <cstdint>
@@ -26,7 +30,9 @@
 #include <optional>
 #include <string>
 
+#include "core/clock.h"
 #include "core/log.h"
+#include "core/task_runner.h"
 #include "streaming/tile_source.h"
 
 namespace vegstream::streaming {
@@ -42,6 +48,10 @@ struct HttpSourceOptions {
   std::optional<std::filesystem::path> cacheDir;  // on-disk tile cache (disk_tile_cache.h)
   uint64_t cacheBudgetBytes = 2ull << 30;
   Logger log;                     // null: nothing is logged
+  TaskRunner* tasks = nullptr;    // runs the I/O loop (postLongRunning; it returns only when the
+                                  // source goes, so a ManualTaskRunner must not run it); outlives
+                                  // the source. Null: a pool of its own
+  const Clock* clock = nullptr;   // back-off timing; outlives the source. Null: a steady clock
 };
 
 // Transport figures beyond SourceCounters, for tests and reports.
@@ -71,11 +81,14 @@ class HttpTileSource final : public TileSource {
   // The URL a relative path is fetched from (characters outside RFC 3986's unreserved set and
   // '/' are percent-encoded).
   std::string urlFor(const std::string& relativePath) const;
+  // Makes the I/O task look at its back-offs again now (after a test moved a ManualClock).
+  void wake();
 
  private:
   struct Impl;
-  explicit HttpTileSource(std::unique_ptr<Impl> impl);
-  std::unique_ptr<Impl> impl_;
+  explicit HttpTileSource(std::shared_ptr<Impl> impl, std::unique_ptr<ThreadPool> ownPool);
+  std::unique_ptr<ThreadPool> ownPool_;  // only without an injected runner; outlives impl_'s loop
+  std::shared_ptr<Impl> impl_;           // shared with the I/O task
 };
 
 // OK when `url` is an http:// or https:// URL with a host, else InvalidInput naming it.

@@ -1,6 +1,7 @@
-// LocalTileSource (local_tile_source.h): a queue of read requests served by a few I/O threads.
-// Cancelled requests are answered by the I/O threads too (never inside cancel()), so a
-// callback always runs on a thread of the source's and never re-enters the caller.
+// LocalTileSource (local_tile_source.h): a queue of read requests served by at most
+// `ioConcurrency` tasks at once, each taking requests until the queue is empty. Cancelled
+// requests are answered by the tasks too (never inside cancel()), so a callback never
+// re-enters the caller.
 
 #include "streaming/local_tile_source.h"
 
@@ -11,7 +12,6 @@
 #include <cstring>
 #include <deque>
 #include <mutex>
-#include <thread>
 #include <unordered_set>
 #include <vector>
 
@@ -86,28 +86,42 @@ FetchResult readWholeFile(const fs::path& path) {
 
 }  // namespace
 
-struct LocalTileSource::Impl {
+struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
   fs::path root;
+  TaskRunner* runner = nullptr;
+  int maxTasks = 2;
   mutable std::mutex mu;
-  std::condition_variable wake;
+  std::condition_variable idle;            // the destructor waits here for `busy` to reach 0
   std::deque<Job> queue;                   // waiting to be read (cancelled ones are answered first)
   std::unordered_set<RequestId> reading;   // being read right now
   std::unordered_set<RequestId> cancelWhileReading;
   std::size_t inFlight = 0;                // started, not yet called back
   SourceCounters counters;
   bool stopping = false;
-  std::vector<std::thread> threads;
+  int tasks = 0;                           // read tasks posted and not finished
+  int busy = 0;                            // read tasks running right now
 
+  // Called with `mu` held: a task more if the queue has work and the limit allows.
+  void postTaskLocked() {
+    if (tasks >= maxTasks || queue.empty()) return;
+    ++tasks;
+    postLocked();
+  }
+  void postLocked() {
+    runner->post([self = shared_from_this()] { self->run(); });
+  }
+
+  // One task answers one request, then posts itself again while requests are queued (so the
+  // runner interleaves it with other work, and a ManualTaskRunner steps one read at a time).
   void run() {
     std::unique_lock lock(mu);
-    for (;;) {
-      wake.wait(lock, [&] { return stopping || !queue.empty(); });
-      if (queue.empty()) return;  // stopping and drained
+    ++busy;
+    if (!queue.empty() && !stopping) {  // when stopping, the destructor answers what is left
       Job job = std::move(queue.front());
       queue.pop_front();
       FetchResult r;
       r.id = job.id;
-      if (job.cancelled || stopping) {
+      if (job.cancelled) {
         r.outcome = FetchOutcome::Cancelled;
       } else if (job.outsideRoot) {
         r.outcome = FetchOutcome::Failed;
@@ -138,22 +152,43 @@ struct LocalTileSource::Impl {
       lock.lock();
       --inFlight;
     }
+    if (!queue.empty() && !stopping) postLocked();
+    else --tasks;
+    if (--busy == 0) idle.notify_all();
   }
 };
 
-LocalTileSource::LocalTileSource(fs::path datasetDir, int ioThreads) : impl_(std::make_unique<Impl>()) {
-  assert(ioThreads >= 1);
+LocalTileSource::LocalTileSource(fs::path datasetDir, int ioConcurrency, TaskRunner* tasks)
+    : impl_(std::make_shared<Impl>()) {
+  assert(ioConcurrency >= 1);
+  if (!tasks) {
+    ownPool_ = std::make_unique<ThreadPool>(ioConcurrency);
+    tasks = ownPool_.get();
+  }
   impl_->root = std::move(datasetDir);
-  for (int i = 0; i < ioThreads; ++i) impl_->threads.emplace_back([this] { impl_->run(); });
+  impl_->runner = tasks;
+  impl_->maxTasks = ioConcurrency;
 }
 
 LocalTileSource::~LocalTileSource() {
+  std::deque<Job> left;
   {
-    std::lock_guard lock(impl_->mu);
+    std::unique_lock lock(impl_->mu);
     impl_->stopping = true;
+    // Reads under way finish (their callbacks run); tasks that have not started find nothing.
+    impl_->idle.wait(lock, [&] { return impl_->busy == 0; });
+    left.swap(impl_->queue);
+    impl_->counters.requestsCancelled += left.size();
   }
-  impl_->wake.notify_all();
-  for (auto& t : impl_->threads) t.join();
+  for (Job& job : left) {
+    FetchResult r;
+    r.id = job.id;
+    r.outcome = FetchOutcome::Cancelled;
+    job.done(std::move(r));
+    std::lock_guard lock(impl_->mu);
+    --impl_->inFlight;
+  }
+  // ownPool_ (declared first) is destroyed after this body: its tasks, if any, return at once.
 }
 
 std::string LocalTileSource::describe() const { return "dir " + impl_->root.string(); }
@@ -173,27 +208,22 @@ void LocalTileSource::start(RequestId id, const std::string& relativePath, Fetch
     ++impl_->counters.requestsStarted;
     ++impl_->inFlight;
     impl_->queue.push_back(std::move(job));
+    impl_->postTaskLocked();
   }
-  impl_->wake.notify_one();
 }
 
 void LocalTileSource::cancel(RequestId id) {
-  bool found = false;
-  {
-    std::lock_guard lock(impl_->mu);
-    auto it = std::find_if(impl_->queue.begin(), impl_->queue.end(), [&](const Job& j) { return j.id == id; });
-    if (it != impl_->queue.end()) {
-      // Moved to the front so the answer comes at once rather than after the reads queued before it.
-      Job job = std::move(*it);
-      impl_->queue.erase(it);
-      job.cancelled = true;
-      impl_->queue.push_front(std::move(job));
-      found = true;
-    } else if (impl_->reading.count(id) > 0) {
-      impl_->cancelWhileReading.insert(id);
-    }
+  std::lock_guard lock(impl_->mu);
+  auto it = std::find_if(impl_->queue.begin(), impl_->queue.end(), [&](const Job& j) { return j.id == id; });
+  if (it != impl_->queue.end()) {
+    // Moved to the front so the answer comes at once rather than after the reads queued before it.
+    Job job = std::move(*it);
+    impl_->queue.erase(it);
+    job.cancelled = true;
+    impl_->queue.push_front(std::move(job));
+  } else if (impl_->reading.count(id) > 0) {
+    impl_->cancelWhileReading.insert(id);
   }
-  if (found) impl_->wake.notify_one();
 }
 
 std::size_t LocalTileSource::inFlight() const {

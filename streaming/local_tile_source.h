@@ -1,27 +1,31 @@
 #pragma once
-// LocalTileSource: the TileSource for a dataset directory on disk. A small pool of I/O threads
-// (2 by default: enough to keep a local SSD busy while the decode threads work) reads whole
-// files; the frame thread only queues requests.
+// LocalTileSource: the TileSource for a dataset directory on disk. Reads of whole files run as
+// tasks of an injected TaskRunner (core/task_runner.h), at most `ioConcurrency` at once (2 by
+// default: enough to keep a local SSD busy while the decodes run); the frame thread only queues
+// requests.
 //
 // Outcomes: Ok with the file's bytes; Missing when the file does not exist (ENOENT/ENOTDIR);
 // Failed for any other read error and for paths that are absolute or climb out of the root
 // ("..") — the message names the file. cancel() on a queued request makes it end Cancelled
 // without touching the disk; a request being read when cancelled also ends Cancelled (its bytes
-// are dropped). Callbacks run on the I/O threads. The destructor ends every queued request
-// Cancelled (its callback still runs) and joins the threads.
+// are dropped). Callbacks run on the runner's tasks, never inside start() or cancel(). The
+// destructor ends every queued request Cancelled (its callback runs, on the destroying thread)
+// and waits for the reads under way; tasks that run later find nothing to do. The runner must
+// outlive the source; without one the source makes a ThreadPool of its own.
 
 #include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "core/task_runner.h"
 #include "streaming/tile_source.h"
 
 namespace vegstream::streaming {
 
 class LocalTileSource final : public TileSource {
  public:
-  explicit LocalTileSource(std::filesystem::path datasetDir, int ioThreads = 2);
+  explicit LocalTileSource(std::filesystem::path datasetDir, int ioConcurrency = 2, TaskRunner* tasks = nullptr);
   ~LocalTileSource() override;
   LocalTileSource(const LocalTileSource&) = delete;
   LocalTileSource& operator=(const LocalTileSource&) = delete;
@@ -35,7 +39,8 @@ class LocalTileSource final : public TileSource {
 
  private:
   struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<ThreadPool> ownPool_;  // only without an injected runner; after impl_ is done
+  std::shared_ptr<Impl> impl_;           // shared with the tasks posted
 };
 
 }  // namespace vegstream::streaming

@@ -21,6 +21,7 @@ Result<std::shared_ptr<TileSource>> openTileSource(const std::string& location, 
     HttpSourceOptions http = options.http;
     http.baseUrl = location;
     if (!http.log) http.log = options.log;
+    if (!http.tasks) http.tasks = options.tasks;
     auto source = HttpTileSource::create(std::move(http));
     if (!source) return source.error();
     return std::shared_ptr<TileSource>(std::move(*source));
@@ -30,7 +31,7 @@ Result<std::shared_ptr<TileSource>> openTileSource(const std::string& location, 
   if (!fs::exists(dir, ec)) return makeError(ErrorKind::NotFound, "'" + location + "' does not exist");
   if (!fs::is_directory(dir, ec))
     return makeError(ErrorKind::NotFound, "'" + location + "' is not a dataset directory (nor an http(s) URL)");
-  return std::shared_ptr<TileSource>(std::make_shared<LocalTileSource>(dir, options.localIoThreads));
+  return std::shared_ptr<TileSource>(std::make_shared<LocalTileSource>(dir, options.localIoThreads, options.tasks));
 }
 
 Result<datasets::DatasetMeta> readMetaFrom(TileSource& source) {

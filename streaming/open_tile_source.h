@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/log.h"
+#include "core/task_runner.h"
 #include "core/result.h"
 #include "datasets/dataset_format.h"
 #include "streaming/http_tile_source.h"
@@ -21,8 +22,9 @@ namespace vegstream::streaming {
 
 struct OpenSourceOptions {
   HttpSourceOptions http;  // for URLs; its baseUrl is replaced by the location
-  int localIoThreads = 2;  // for directories
+  int localIoThreads = 2;  // for directories: reads at once
   Logger log;              // given to the HTTP source when http.log is null
+  TaskRunner* tasks = nullptr;  // the sources' I/O (outlives the source); null: each makes its own pool
 };
 
 // True for "http://…" and "https://…" (case-insensitive scheme).

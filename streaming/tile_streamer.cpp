@@ -70,7 +70,11 @@ struct TileStreamer::Impl {
   datasets::DatasetMeta meta;
   StreamingOptions options;
   Logger log;
+  std::unique_ptr<ThreadPool> ownPool;  // when no runner was given (destroyed after the pipeline stops)
+  SteadyClock ownClock;                 // when no clock was given
+  const Clock* clock;
   std::shared_ptr<detail::DecodePipeline> pipeline;
+  std::vector<Completion> heldBack;  // settle(): taken from the pipeline, not yet processed
   detail::GpuSlotAllocator slots;
   uint64_t tileBytesBase;  // what one tile will cost once decoded, before any extra
   uint64_t tileBytesEstimate(const TileKey& key) const {
@@ -93,10 +97,17 @@ struct TileStreamer::Impl {
         tileBytesBase(uint64_t(m.tileSize) * uint64_t(m.tileSize) * 4 + kTileOverheadBytes) {
     assert(source);
     assert(options.maxRequestsInFlight >= 1);
-    const int threads = options.decodeThreads > 0
-                            ? options.decodeThreads
-                            : std::max(1, int(std::thread::hardware_concurrency()) - 1);
-    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, threads, options.heightExtra);
+    clock = options.clock ? options.clock : &ownClock;
+    TaskRunner* runner = options.tasks;
+    if (!runner) {
+      const int threads = options.decodeThreads > 0
+                              ? options.decodeThreads
+                              : std::max(1, int(std::thread::hardware_concurrency()) - 1);
+      ownPool = std::make_unique<ThreadPool>(threads);
+      runner = ownPool.get();
+    }
+    const int decodes = options.decodeThreads > 0 ? options.decodeThreads : std::max(1, runner->concurrency() - 1);
+    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, *runner, decodes, options.heightExtra);
   }
 
   static constexpr uint64_t kGpuSlotBytes = uint64_t(datasets::kTileSize) * datasets::kTileSize * 4;
@@ -198,7 +209,7 @@ struct TileStreamer::Impl {
     return best;
   }
 
-  void schedule(double timeS) {
+  void schedule(double timeS, bool settling = false) {
     // Bytes the wants will hold once what is in flight lands: current wants may never be evicted,
     // so a want is requested only if it fits beside them (no request that is sure to be dropped).
     uint64_t currentBytes = 0, allBytes = 0;
@@ -214,8 +225,12 @@ struct TileStreamer::Impl {
     }
     for (const auto& w : ordered) {
       Entry& e = table[w.key];
+      // Settling, time stands still: a current want that failed is asked again at once (up to
+      // kSettleFailures in a row); look-ahead ones wait for the flight time to pass.
       const bool due = e.state == TileState::Unloaded ||
-                       (e.state == TileState::FailedTemporarily && timeS - e.failedAtS >= options.failedRetryAfterS);
+                       (e.state == TileState::FailedTemporarily &&
+                        (timeS - e.failedAtS >= options.failedRetryAfterS ||
+                         (settling && !w.lookAhead && e.failures < kSettleFailures)));
       if (!due) continue;
       const uint64_t held = w.lookAhead ? allBytes : currentBytes;
       const uint64_t estimate = tileBytesEstimate(w.key);
@@ -326,8 +341,15 @@ struct TileStreamer::Impl {
     residencyChanges.push_back(key);
   }
 
-  void takeCompletions(double timeS) {
-    for (Completion& c : pipeline->takeCompletions()) {
+  // What settle() held back, then what the pipeline has; `inRequestOrder` sorts them by request
+  // (stable: a request's Fetched stays before its final completion), so a batch is taken in the
+  // same order whatever order the workers finished in.
+  void takeCompletions(double timeS, bool inRequestOrder = false) {
+    std::vector<Completion> batch = std::exchange(heldBack, {});
+    for (Completion& c : pipeline->takeCompletions()) batch.push_back(std::move(c));
+    if (inRequestOrder)
+      std::stable_sort(batch.begin(), batch.end(), [](const Completion& a, const Completion& b) { return a.id < b.id; });
+    for (Completion& c : batch) {
       const auto a = active.find(c.id);
       if (a == active.end()) continue;  // cancelled after the pipeline queued it: dropped
       const TileKey key = a->second;
@@ -410,19 +432,33 @@ struct TileStreamer::Impl {
     assert(bytesCpu <= options.cpuBudgetBytes);
   }
 
-  // Every current want is resident, failed for good (or repeatedly), or cannot fit.
-  bool settled() const {
+  // settle(): waits until every request in flight has its final completion (held back, not yet
+  // processed); false when `deadlineS` (clock) passed first.
+  bool awaitInFlight(double deadlineS) {
+    for (;;) {
+      for (Completion& c : pipeline->takeCompletions()) heldBack.push_back(std::move(c));
+      const size_t finished = size_t(std::count_if(heldBack.begin(), heldBack.end(), [&](const Completion& c) {
+        return c.kind != Completion::Kind::Fetched && active.contains(c.id);
+      }));
+      if (finished >= active.size()) return true;
+      if (clock->nowS() > deadlineS) return false;
+      (void)pipeline->waitForCompletions(std::chrono::milliseconds(50));
+    }
+  }
+
+  // Current wants not yet resident, failed or too big (for settle()'s time-out warning).
+  size_t currentWantsPending() const {
+    size_t n = 0;
     for (const auto& w : ordered) {
       if (w.lookAhead) break;
       const auto it = table.find(w.key);
-      if (it == table.end()) return false;
-      const Entry& e = it->second;
-      const bool done = isResident(e.state) || e.state == TileState::Failed ||
-                        (e.state == TileState::FailedTemporarily && e.failures >= kSettleFailures) ||
-                        (e.state == TileState::Unloaded && e.blockedByBudget);
-      if (!done) return false;
+      const bool done = it != table.end() &&
+                        (isResident(it->second.state) || it->second.state == TileState::Failed ||
+                         it->second.state == TileState::FailedTemporarily ||
+                         (it->second.state == TileState::Unloaded && it->second.blockedByBudget));
+      n += done ? 0 : 1;
     }
-    return true;
+    return n;
   }
 };
 
@@ -431,7 +467,7 @@ TileStreamer::TileStreamer(std::shared_ptr<TileSource> source, datasets::Dataset
     : impl_(std::make_unique<Impl>(std::move(source), std::move(meta), options, std::move(log))) {}
 
 TileStreamer::~TileStreamer() {
-  // Stop listening first (later callbacks find the pipeline closed), then free the source.
+  // Stop listening first (later callbacks and tasks find the pipeline closed), then free the source.
   impl_->pipeline->stop();
   for (const auto& [id, key] : impl_->active)
     if (impl_->table[key].state == TileState::Requested) impl_->source->cancel(id);
@@ -555,23 +591,29 @@ void setFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from
 std::vector<TileKey> TileStreamer::takeResidencyChanges() { return std::exchange(impl_->residencyChanges, {}); }
 
 double TileStreamer::settle(std::span<const TileWant> wants, double timeS) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  auto waited = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  StreamingFrameStats counted;  // every round's counters: the frame's figures miss none
+  Impl& m = *impl_;
+  const double start = m.clock->nowS();
+  ++m.frame;
+  m.stats = {};
+  m.takeWants(wants, timeS);
+  m.cancelUnwanted();
+  // Rounds: everything in flight finishes, its results are taken in request order, the next
+  // requests are issued; done when nothing more is in flight. No round reads the clock's time
+  // into a tile: timeS alone is the streamer's time.
   for (;;) {
-    update(wants, timeS + waited());
-    addFrameCounters(counted, impl_->stats);
-    setFrameCounters(impl_->stats, counted);
-    if (impl_->settled()) return waited();
-    if (waited() > kSettleTimeoutS) {
-      impl_->log->warn("settle: {} of {} wanted tiles still not resident after {:.0f} s; going on without them",
-                       impl_->stats.wanted - impl_->stats.wantedResident, impl_->stats.wanted, kSettleTimeoutS);
-      return waited();
+    if (!m.awaitInFlight(start + kSettleTimeoutS)) {
+      m.log->warn("settle: {} requests still in flight after {:.0f} s ({} wanted tiles not resident); going on "
+                  "without them (this frame and later ones are no longer repeatable)",
+                  m.active.size(), kSettleTimeoutS, m.currentWantsPending());
+      m.takeCompletions(timeS, true);
+      break;
     }
-    // Short waits: a FailedTemporarily tile becomes due by time, not by a completion.
-    (void)impl_->pipeline->waitForCompletions(std::chrono::milliseconds(20));
+    m.takeCompletions(timeS, true);
+    m.schedule(timeS, true);
+    if (m.active.empty()) break;
   }
+  m.finishStats(timeS);
+  return m.clock->nowS() - start;
 }
 
 }  // namespace vegstream::streaming

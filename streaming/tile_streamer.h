@@ -10,8 +10,9 @@
 //   planUploads()         — imagery tiles to copy to the GPU this frame (→ Uploading), within
 //                           the per-frame byte budget and the GPU budget; uploadsRecorded()
 //                           after the copies are recorded (→ ResidentGpu).
-// Workers (never the frame thread): the source's I/O threads, then decode threads (OpenImageIO
-// through datasets/tile_codec) that turn bytes into HeightTile / ColorTile.
+// Workers (never the frame thread): the source's I/O tasks, then decode tasks (OpenImageIO
+// through datasets/tile_codec) that turn bytes into HeightTile / ColorTile, both on an injected
+// TaskRunner (core/task_runner.h).
 //
 // Tile states (README diagram):
 //   Unloaded → Requested → Decoding → ResidentCpu → Uploading → ResidentGpu   (imagery)
@@ -30,7 +31,9 @@
 #include <span>
 #include <vector>
 
+#include "core/clock.h"
 #include "core/log.h"
+#include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/tile_codec.h"
 #include "streaming/tile_key.h"
@@ -56,7 +59,10 @@ struct StreamingOptions {
   uint64_t gpuBudgetBytes = 256ull << 20;  // imagery tiles resident on the GPU
   uint64_t uploadBytesPerFrame = 8ull << 20;
   int maxRequestsInFlight = 24;
-  int decodeThreads = 0;                   // 0: hardware threads − 1, at least 1
+  int decodeThreads = 0;                   // decodes at once; 0: the runner's concurrency − 1, at least 1
+  TaskRunner* tasks = nullptr;             // runs the decodes; outlives the streamer. Null: a pool of
+                                           // the streamer's own (decodeThreads, 0: hardware − 1)
+  const Clock* clock = nullptr;            // settle()'s time-out; outlives the streamer. Null: steady
   uint32_t maxGpuSlots = 2048;             // the device's array-layer limit (Vulkan guarantees 256)
   int slotReuseDelayFrames = 2;            // a GPU slot freed at frame N is reused at N + this (frames in flight)
   double failedRetryAfterS = 2.0;          // FailedTemporarily tiles may be requested again after this
@@ -148,9 +154,17 @@ class TileStreamer {
   // GPU slots the renderer has (from the GPU budget): the size of its imagery array.
   uint32_t gpuSlotCount() const;
 
-  // Settled recordings: repeats update(wants) until every current want is resident (imagery:
-  // ResidentCpu or later), Missing or Failed. Blocks the caller — never used by interactive flight.
-  // Returns the seconds waited. frameStats() then counts the requests of all its rounds.
+  // Settled recordings: one frame like update(wants, timeS), but it waits until nothing is in
+  // flight any more — every current want resident (imagery: ResidentCpu or later), Missing,
+  // Failed (a current want that fails is asked again at once, up to 3 times) or too big for
+  // the budget, and every look-ahead want that fits resident or failed too. What arrives is
+  // taken in batches: all requests in flight finish, then their results are taken in request
+  // order, then the next requests are issued. So the tiles resident afterwards, the LRU order
+  // and the evictions depend on the wants and timeS only, never on when I/O or decoding ended:
+  // the same flight gives the same frames. timeS (flight time) is the streamer's time
+  // throughout; the clock only bounds the wait (30 s, then a warning and it returns).
+  // Blocks the caller — never used by interactive flight. Returns the seconds waited (clock).
+  // frameStats() then counts the requests of all its rounds.
   double settle(std::span<const TileWant> wants, double timeS);
 
   const StreamingFrameStats& frameStats() const;

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <thread>
 
+#include "core/clock.h"
+#include "core/task_runner.h"
 #include "streaming/disk_tile_cache.h"
 #include "streaming/http_retry_policy.h"
 #include "streaming/http_tile_source.h"
@@ -281,6 +283,58 @@ TEST_F(FaultServer, DestroyingWithRequestsInFlightCallsEachBackOnce) {
   EXPECT_TRUE(results.eachOnce(1, n));
   for (const auto& r : results.take()) EXPECT_EQ(r.outcome, FetchOutcome::Cancelled);
   EXPECT_TRUE(eventually([&] { return server_->abandoned() == 4; }));
+}
+
+// The back-off is measured on the injected clock: with a ManualClock that does not move, a
+// tile answered 503 is not asked again however long the test waits; once the clock has passed
+// the delay (and the I/O task is woken), the second attempt goes out and is served.
+TEST_F(FaultServer, BackOffWaitsForTheInjectedClock) {
+  ManualClock clock(100.0);
+  auto o = options(1);
+  o.backoffBaseMs = 1000;  // the second attempt after 0.5 … 1 s of the clock's time
+  o.backoffMaxMs = 1000;
+  o.clock = &clock;
+  auto source = open(o);
+  const std::string tile = tiles()[0];
+  server_->scheduleForPath(tile, {{FaultAction::Status503}});
+  Results results;
+  source->start(1, tile, results.callback());
+  ASSERT_TRUE(eventually([&] { return server_->requestsFor(tile) == 1; }));
+  // Real time passes, the clock's does not: no retry (a bounded wait on the callback's condition).
+  EXPECT_FALSE(results.waitFor(1, std::chrono::milliseconds(300)));
+  EXPECT_EQ(server_->requestsFor(tile), 1u);
+  clock.advance(0.2);  // not yet: the delay is at least 0.5 s
+  source->wake();
+  EXPECT_FALSE(results.waitFor(1, std::chrono::milliseconds(100)));
+  clock.advance(1.0);
+  source->wake();
+  ASSERT_TRUE(results.waitFor(1));
+  const auto r = results.find(1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->outcome, FetchOutcome::Ok) << r->message;
+  EXPECT_EQ(r->attempts, 2);
+  EXPECT_EQ(server_->requestsFor(tile), 2u);
+}
+
+// The I/O loop is a task of the injected runner: a runner that never runs it (a ManualTaskRunner
+// the test does not step) leaves requests unanswered, and the destructor still ends them all
+// Cancelled by running the loop's shutdown itself.
+TEST_F(FaultServer, TheIoLoopRunsOnTheInjectedRunner) {
+  ManualTaskRunner tasks;
+  Results results;
+  {
+    auto o = options(2);
+    o.tasks = &tasks;
+    auto source = open(o);
+    EXPECT_EQ(tasks.pending(), 1u) << "the long-running I/O task";
+    for (RequestId id = 1; id <= 3; ++id) source->start(id, tiles()[id], results.callback());
+    EXPECT_FALSE(results.waitFor(1, std::chrono::milliseconds(100)));
+    EXPECT_EQ(server_->totalRequests(), 0u);
+  }
+  ASSERT_TRUE(results.waitFor(3, std::chrono::milliseconds(0)));
+  for (const auto& r : results.take()) EXPECT_EQ(r.outcome, FetchOutcome::Cancelled) << r.id;
+  EXPECT_TRUE(results.eachOnce(1, 3));
+  EXPECT_EQ(tasks.runAll(), 1u);  // the loop's task, run late, returns at once
 }
 
 TEST(HttpRetryPolicy, JudgesAttempts) {

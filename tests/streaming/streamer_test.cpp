@@ -1,16 +1,24 @@
 // TileStreamer over a real dataset directory (LocalTileSource) and, for failures and timing,
 // over a scripted source: residency and decoded values, the CPU budget, cancellation, request
 // order, missing and failing tiles, the counters, settle and shutdown.
+//
+// Nothing here sleeps: reads and decodes run on a ManualTaskRunner the test steps (runAll), the
+// scripted source is waited on with a condition (waitDelivered), and settle() waits on the
+// streamer's own condition over a real ThreadPool.
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
+
+#include "core/task_runner.h"
 
 #include "datasets/tile_codec.h"
 #include "scripted_tile_source.h"
@@ -27,14 +35,15 @@ std::vector<uint8_t> fileBytes(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Repeats update() (time advancing 10 ms a call) until pred() holds; false after 10 s.
-template <typename Pred>
-bool updateUntil(TileStreamer& s, const std::vector<TileWant>& wants, double& t, Pred pred) {
+// Repeats update() (time advancing 10 ms a call) until pred() holds, running `between` (what
+// the workers would do meanwhile) after each; false after 1000 updates.
+template <typename Pred, typename Between>
+bool updateUntil(TileStreamer& s, const std::vector<TileWant>& wants, double& t, Pred pred, Between between) {
   for (int i = 0; i < 1000; ++i) {
     s.update(wants, t);
     t += 0.01;
     if (pred()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    between();
   }
   return false;
 }
@@ -57,10 +66,11 @@ struct Totals {
   }
 };
 
-StreamingOptions smallOptions() {
+StreamingOptions smallOptions(TaskRunner* tasks = nullptr) {
   StreamingOptions o;
   o.decodeThreads = 2;
   o.maxRequestsInFlight = 8;
+  o.tasks = tasks;
   return o;
 }
 
@@ -106,8 +116,9 @@ TEST_F(StreamerLocal, SettleMakesEveryWantedTileResidentWithTheHeightsOfReadHeig
 // round updated until nothing is under way: resident bytes never exceed the budget at any
 // update, and a current want that is resident stays resident.
 TEST_F(StreamerLocal, CpuBudgetHoldsAndCurrentWantsAreNeverEvicted) {
-  auto source = std::make_shared<LocalTileSource>(dir());
-  StreamingOptions o = smallOptions();
+  ManualTaskRunner tasks;  // reads and decodes run between updates, when the test says
+  auto source = std::make_shared<LocalTileSource>(dir(), 2, &tasks);
+  StreamingOptions o = smallOptions(&tasks);
   o.cpuBudgetBytes = 12 * (kTileBytes + 256);
   TileStreamer s(source, meta(), o, makeNullLogger());
   std::vector<TileKey> pool;
@@ -139,7 +150,8 @@ TEST_F(StreamerLocal, CpuBudgetHoldsAndCurrentWantsAreNeverEvicted) {
       exceeded += f.wantsExceedCpuBudget ? 1 : 0;
       totals.expectBalanced(f);
       if (f.requestsInFlight + f.decodesQueued == 0) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      // Some of the work, so that completions land between updates in varying numbers.
+      for (int k = 0; k < 1 + frame % 5; ++k) tasks.runOne();
     }
   }
   EXPECT_GT(updates, 80u);
@@ -150,28 +162,83 @@ TEST_F(StreamerLocal, CpuBudgetHoldsAndCurrentWantsAreNeverEvicted) {
 }
 
 TEST_F(StreamerLocal, AWantThatGoesAwayIsCancelledAndNeverResident) {
-  auto source = std::make_shared<LocalTileSource>(dir(), 1);
-  StreamingOptions o = smallOptions();
+  ManualTaskRunner tasks;
+  auto source = std::make_shared<LocalTileSource>(dir(), 1, &tasks);
+  StreamingOptions o = smallOptions(&tasks);
   o.maxRequestsInFlight = 64;
   TileStreamer s(source, meta(), o, makeNullLogger());
   auto keys = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom);
+  ASSERT_GE(keys.size(), 6u);
   s.update(wantsOf(keys), 0.0);
   EXPECT_EQ(s.frameStats().requestsIssued, keys.size());
   Totals totals;
   totals.add(s.frameStats());
+  // Read, decode, read, decode, read (each read posts its decode and then itself again): two
+  // tiles decoded, one fetched and queued for decoding, the rest still queued at the source.
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(tasks.runOne());
   s.update({}, 0.01);  // nothing wanted any more: all still under way are cancelled
   totals.add(s.frameStats());
-  EXPECT_GT(s.frameStats().requestsCancelled, 0u);
-  while (source->inFlight() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // decodes of racing fetches
+  EXPECT_EQ(s.frameStats().requestsCompleted, 0u) << "cancelled before the completions were taken";
+  EXPECT_EQ(s.frameStats().requestsCancelled, keys.size());
+  tasks.runAll();  // the source answers the rest (cancelled); no decode is left to run
+  EXPECT_EQ(source->inFlight(), 0u);
   s.update({}, 0.2);
   totals.add(s.frameStats());
   uint64_t resident = 0;
   for (const auto& k : keys) resident += s.state(k) == TileState::ResidentCpu ? 1u : 0u;
-  // Only what completed before the cancel can be resident.
+  // Nothing that was cancelled became resident, decoded or not.
+  EXPECT_EQ(resident, 0u);
   EXPECT_EQ(resident, totals.completed);
   EXPECT_EQ(totals.issued, totals.completed + totals.cancelled);
   EXPECT_TRUE(s.planUploads().empty());
+}
+
+// settle() is a function of the wants and the flight time only: the same frames of wants
+// (current and look-ahead, over a CPU budget that forces evictions) settled by two streamers —
+// one reading and decoding one tile at a time, one with several reads and decodes racing on a
+// pool — leave every tile in the same state after every frame, with the same counters, and
+// nothing in flight (look-ahead included).
+TEST_F(StreamerLocal, SettleGivesTheSameTilesWhateverOrderTheWorkersFinishIn) {
+  ThreadPool one(1), many(4);
+  StreamingOptions oa = smallOptions(&one), ob = smallOptions(&many);
+  oa.decodeThreads = 1;
+  ob.decodeThreads = 3;
+  oa.cpuBudgetBytes = ob.cpuBudgetBytes = 14 * (kTileBytes + 256);
+  TileStreamer a(std::make_shared<LocalTileSource>(dir(), 1, &one), meta(), oa, makeNullLogger());
+  TileStreamer b(std::make_shared<LocalTileSource>(dir(), 3, &many), meta(), ob, makeNullLogger());
+  std::vector<TileKey> pool;
+  for (int z = meta().minZoom; z <= meta().maxZoom; ++z)
+    for (auto layer : {TileLayer::Height, TileLayer::Imagery})
+      for (const auto& k : tilesAt(dir(), meta(), layer, z)) pool.push_back(k);
+  ASSERT_GT(pool.size(), 30u);
+  std::mt19937 rng(7);
+  uint64_t evictions = 0, lookAheadResident = 0;
+  for (int frame = 0; frame < 16; ++frame) {
+    std::shuffle(pool.begin(), pool.end(), rng);
+    std::vector<TileWant> wants;
+    for (size_t i = 0; i < 10; ++i) wants.push_back({pool[i], double(rng() % 100), i >= 6});
+    const double t = frame * 0.25;
+    a.settle(wants, t);
+    b.settle(wants, t);
+    const StreamingFrameStats& fa = a.frameStats();
+    const StreamingFrameStats& fb = b.frameStats();
+    EXPECT_EQ(fa.requestsInFlight + fa.decodesQueued, 0u) << "frame " << frame;
+    EXPECT_EQ(fb.requestsInFlight + fb.decodesQueued, 0u) << "frame " << frame;
+    EXPECT_EQ(fa.requestsIssued, fb.requestsIssued) << "frame " << frame;
+    EXPECT_EQ(fa.requestsCompleted, fb.requestsCompleted) << "frame " << frame;
+    EXPECT_EQ(fa.evictionsCpu, fb.evictionsCpu) << "frame " << frame;
+    EXPECT_EQ(fa.bytesResidentCpu, fb.bytesResidentCpu) << "frame " << frame;
+    for (const TileKey& k : pool) ASSERT_EQ(a.state(k), b.state(k)) << toString(k) << " frame " << frame;
+    for (size_t i = 6; i < 10; ++i) lookAheadResident += a.state(pool[i]) == TileState::ResidentCpu ? 1u : 0u;
+    evictions += fa.evictionsCpu;
+    // The frame's readers touch the same tiles in both (LRU order stays the same).
+    for (size_t i = 0; i < 3; ++i) {
+      (void)a.findResident(pool[i]);
+      (void)b.findResident(pool[i]);
+    }
+  }
+  EXPECT_GT(evictions, 5u) << "the budget made the streamers choose what to evict";
+  EXPECT_GT(lookAheadResident, 10u) << "look-ahead wants were settled too";
 }
 
 TEST_F(StreamerLocal, MissingTileFailsForGoodAndItsParentIsFound) {
@@ -198,9 +265,10 @@ TEST_F(StreamerLocal, MissingTileFailsForGoodAndItsParentIsFound) {
 }
 
 TEST_F(StreamerLocal, DestructorWithRequestsInFlightIsClean) {
-  auto source = std::make_shared<LocalTileSource>(dir(), 1);
+  ManualTaskRunner tasks;  // outlives both: what they posted runs after the streamer is gone
+  auto source = std::make_shared<LocalTileSource>(dir(), 1, &tasks);
   {
-    StreamingOptions o = smallOptions();
+    StreamingOptions o = smallOptions(&tasks);
     o.maxRequestsInFlight = 64;
     TileStreamer s(source, meta(), o, makeNullLogger());
     auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
@@ -208,9 +276,12 @@ TEST_F(StreamerLocal, DestructorWithRequestsInFlightIsClean) {
     keys.insert(keys.end(), more.begin(), more.end());
     s.update(wantsOf(keys), 0.0);
     EXPECT_EQ(s.frameStats().requestsInFlight, keys.size());
+    for (int i = 0; i < 3; ++i) tasks.runOne();  // a read, its decode task posted, another read
   }
-  // The source outlives the streamer: its callbacks still arrive, safely, and every request ends.
-  for (int i = 0; i < 500 && source->inFlight() > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // The source outlives the streamer: its callbacks still arrive, safely, and every request
+  // ends; decode tasks posted before the streamer went find the pipeline closed.
+  EXPECT_GT(source->inFlight(), 0u);
+  EXPECT_GT(tasks.runAll(), 0u);
   EXPECT_EQ(source->inFlight(), 0u);
   const auto c = source->counters();
   EXPECT_EQ(c.requestsStarted, c.requestsCompleted + c.requestsCancelled);
@@ -280,9 +351,10 @@ TEST_F(StreamerScripted, LookAheadRequestMakesRoomForACurrentWant) {
 }
 
 TEST_F(StreamerScripted, OkArrivingAfterCancelIsNeverResidentNorUploaded) {
+  ManualTaskRunner tasks;
   auto source = std::make_shared<ScriptedSource>();
   source->ignoreCancel = true;  // the answer races the cancellation and wins
-  TileStreamer s(source, meta(), smallOptions(), makeNullLogger());
+  TileStreamer s(source, meta(), smallOptions(&tasks), makeNullLogger());
   const TileKey k = tilesAt(dir(), meta(), TileLayer::Imagery, meta().maxZoom)[0];
   s.update(wantsOf({k}), 0.0);
   ASSERT_EQ(source->started().size(), 1u);
@@ -290,7 +362,7 @@ TEST_F(StreamerScripted, OkArrivingAfterCancelIsNeverResidentNorUploaded) {
   EXPECT_EQ(s.frameStats().requestsCancelled, 1u);
   ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
   source->waitDelivered();
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // a decode, if one were started
+  EXPECT_EQ(tasks.runAll(), 0u) << "no decode was started for it";
   for (int i = 0; i < 3; ++i) {
     s.update(wantsOf({k}, true), 0.2 + i);  // wanted again, only as look-ahead: a new request
     EXPECT_NE(s.state(k), TileState::ResidentCpu);
@@ -306,7 +378,8 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
   auto source = std::make_shared<ScriptedSource>([&](const std::string&, int attempt) -> std::optional<FetchResult> {
     return attempt == 1 ? ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503") : ScriptedSource::ok(bytes);
   });
-  StreamingOptions o = smallOptions();
+  ManualTaskRunner tasks;
+  StreamingOptions o = smallOptions(&tasks);
   o.failedRetryAfterS = 2.0;
   TileStreamer s(source, meta(), o, makeNullLogger());
   const auto wants = wantsOf({k});
@@ -323,8 +396,77 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
   EXPECT_EQ(s.frameStats().requestsIssued, 1u);
   EXPECT_EQ(s.frameStats().retries, 1u);
   t = 2.6;
-  ASSERT_TRUE(updateUntil(s, wants, t, [&] { return s.state(k) == TileState::ResidentCpu; }));
+  ASSERT_TRUE(updateUntil(s, wants, t, [&] { return s.state(k) == TileState::ResidentCpu; }, [&] {
+    source->waitDelivered();
+    tasks.runAll();
+  }));
   EXPECT_EQ(source->started().size(), 2u);
+}
+
+// Settling, the streamer's time is the flight time and does not move: a current want that fails
+// is asked again at once, up to 3 times in a row, inside the one settle() call; a look-ahead
+// want that fails waits for the flight time to pass the back-off.
+TEST_F(StreamerScripted, SettleAsksAFailingCurrentWantAgainAtOnceUpToThreeTimes) {
+  const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
+  const TileKey flaky = keys[0], broken = keys[1], ahead = keys[2];
+  const auto bytes = fileBytes(dir() / datasetRelativePath(flaky, meta()));
+  auto source = std::make_shared<ScriptedSource>([&](const std::string& path, int attempt) -> std::optional<FetchResult> {
+    if (path == datasetRelativePath(flaky, meta()) && attempt >= 3) return ScriptedSource::ok(bytes);
+    return ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503");
+  });
+  StreamingOptions o = smallOptions();  // decodes on a pool of the streamer's own
+  o.failedRetryAfterS = 2.0;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const std::vector<TileWant> wants = {{flaky, 2.0, false}, {broken, 1.0, false}, {ahead, 1.0, true}};
+  s.settle(wants, 10.0);
+  EXPECT_EQ(s.state(flaky), TileState::ResidentCpu);
+  EXPECT_EQ(s.state(broken), TileState::FailedTemporarily);
+  EXPECT_EQ(s.state(ahead), TileState::FailedTemporarily);
+  std::map<std::string, int> starts;
+  for (const auto& st : source->started()) ++starts[st.path];
+  EXPECT_EQ(starts[datasetRelativePath(flaky, meta())], 3);
+  EXPECT_EQ(starts[datasetRelativePath(broken, meta())], 3);
+  EXPECT_EQ(starts[datasetRelativePath(ahead, meta())], 1);
+  EXPECT_EQ(s.frameStats().retries, 4u);
+  EXPECT_EQ(s.frameStats().requestsInFlight, 0u);
+  // The next frame, 0.25 s of flight later: the look-ahead tile is not due yet; 2 s later it is.
+  s.settle(wants, 10.25);
+  EXPECT_EQ(s.frameStats().requestsIssued, 0u);
+  s.settle(wants, 12.5);
+  EXPECT_EQ(s.frameStats().requestsIssued, 2u) << "broken and ahead, due again by flight time, once each";
+}
+
+// A Clock that moves `stepS` every time it is read: with 10 s, settle()'s 30 s bound passes after
+// a few reads, without the test waiting 30 s.
+class RacingClock final : public Clock {
+ public:
+  double nowS() const override { return t_ += stepS.load(); }
+  std::atomic<double> stepS{10.0};
+
+ private:
+  mutable double t_ = 0.0;
+};
+
+// A request that never ends: settle() gives up when the injected clock says 30 s passed, and a
+// later frame takes the answer in when it comes.
+TEST_F(StreamerScripted, SettleGivesUpAfterThirtySecondsOfTheInjectedClock) {
+  auto source = std::make_shared<ScriptedSource>();  // holds everything until reply()
+  RacingClock clock;
+  StreamingOptions o = smallOptions();
+  o.clock = &clock;
+  TileStreamer s(source, meta(), o, makeNullLogger());
+  const TileKey k = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom)[0];
+  const double waited = s.settle(wantsOf({k}), 0.0);
+  EXPECT_GE(waited, 30.0);
+  EXPECT_LT(waited, 100.0);
+  EXPECT_EQ(s.state(k), TileState::Requested);
+  EXPECT_EQ(s.frameStats().requestsInFlight, 1u);
+  ASSERT_EQ(source->started().size(), 1u);
+  ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
+  clock.stepS = 0.0;  // this time the wait is not cut short, however slow the decode
+  s.settle(wantsOf({k}), 0.25);
+  EXPECT_EQ(s.state(k), TileState::ResidentCpu);
+  EXPECT_EQ(source->started().size(), 1u) << "not asked twice";
 }
 
 // Random outcomes (Ok, Missing, Failed, corrupt bytes) under changing wants: every request is
@@ -353,7 +495,8 @@ TEST_F(StreamerScripted, CountersAddUpUnderRandomOutcomes) {
       default: return ScriptedSource::ok(files.at(path));
     }
   });
-  StreamingOptions o = smallOptions();
+  ManualTaskRunner tasks;
+  StreamingOptions o = smallOptions(&tasks);
   o.failedRetryAfterS = 0.05;
   o.cpuBudgetBytes = 10 * (kTileBytes + 256);
   TileStreamer s(source, meta(), o, makeNullLogger());
@@ -374,7 +517,8 @@ TEST_F(StreamerScripted, CountersAddUpUnderRandomOutcomes) {
       totals.expectBalanced(s.frameStats());
       ASSERT_LE(s.frameStats().bytesResidentCpu, o.cpuBudgetBytes);
       if (frame > 2 && s.frameStats().decodesQueued == 0 && s.frameStats().requestsInFlight == source->held().size()) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(3));
+      source->waitDelivered();
+      if (frame % 2 == 0) tasks.runAll();  // decodes every other frame: some land a frame late
     }
   }
   s.update({}, t);  // everything still under way is cancelled

@@ -1,0 +1,169 @@
+// `vegstream record` is repeatable (DESIGN.md: "the same inputs give the same counts and, on
+// the same driver, the same images"): the real executable records the benchmark-30s flight over
+// the imported Zion sample twice — settled streaming with look-ahead, whose prefetched tiles
+// used to land at whatever frame their I/O finished — and every count column of frames.csv
+// (all but the `*_ms` timings) and every saved PNG must be equal, byte for byte. The same
+// flight served by nginx on loopback must give what the directory gives.
+//
+// Each test works in its own directory, <VEGSTREAM_TEST_TMP>/<suite>.<test>/, so the suite can
+// run in parallel; each imports the Zion sample there (a few seconds).
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/nginx_server.h"
+#include "tests/support/run_command.h"
+
+namespace vegstream {
+namespace {
+namespace fs = std::filesystem;
+using testing::runVegstream;
+
+fs::path testDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / (std::string(info->test_suite_name()) + "." + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The repository's benchmark flight (this file is tests/app/…; __FILE__ is relative to the build
+// directory, the parent of the executable's app/, when the compiler was given a relative path).
+fs::path benchmarkPath() {
+  fs::path self(__FILE__);
+  if (self.is_relative()) self = fs::path(VEGSTREAM_EXE).parent_path().parent_path() / self;
+  const fs::path path = self.parent_path().parent_path().parent_path() / "flight" / "paths" / "benchmark-30s.json";
+  EXPECT_TRUE(fs::exists(path)) << path;
+  return path.lexically_normal();
+}
+
+// The Zion sample (SRTM + Landsat 4/3/2) imported into `dir`/zion, as the README does it.
+fs::path importZion(const fs::path& dir) {
+  const fs::path out = dir / "zion";
+  const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
+  const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
+                              "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return out;
+}
+
+constexpr int kFramesEvery = 10;
+
+// benchmark-30s at 160x90, 4 fps (121 frames), every 10th frame saved.
+void record(const std::string& dataset, const fs::path& out) {
+  const auto r = runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" +
+                              out.string() + "' --size 160x90 --msaa 1 --fps 4 --frames-every " +
+                              std::to_string(kFramesEvery) + " --no-plots");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+}
+
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> column(const std::string& name) const {
+    const auto at = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(at, header.end()) << name;
+    std::vector<std::string> out;
+    if (at == header.end()) return out;
+    const auto i = static_cast<size_t>(at - header.begin());
+    for (const auto& r : rows) out.push_back(i < r.size() ? r[i] : "");
+    return out;
+  }
+};
+
+std::vector<std::string> splitCsvLine(const std::string& line) {  // frames.csv has no quoted fields
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+Table readFrames(const fs::path& recording) {
+  Table t;
+  std::ifstream f(recording / "frames.csv");
+  std::string line;
+  if (std::getline(f, line)) t.header = splitCsvLine(line);
+  while (std::getline(f, line))
+    if (!line.empty()) t.rows.push_back(splitCsvLine(line));
+  return t;
+}
+
+bool isTiming(const std::string& column) { return column.size() > 3 && column.ends_with("_ms"); }
+
+// Every column but the timings, cell by cell; the first few differences are named.
+void expectSameCounts(const fs::path& a, const fs::path& b) {
+  const Table ta = readFrames(a), tb = readFrames(b);
+  ASSERT_EQ(ta.header, tb.header);
+  ASSERT_EQ(ta.rows.size(), 121u) << "benchmark-30s at 4 fps";
+  ASSERT_EQ(tb.rows.size(), ta.rows.size());
+  int compared = 0, differing = 0;
+  for (const std::string& name : ta.header) {
+    if (isTiming(name)) continue;
+    ++compared;
+    const auto ca = ta.column(name), cb = tb.column(name);
+    for (size_t i = 0; i < ca.size(); ++i) {
+      if (ca[i] == cb[i]) continue;
+      if (++differing <= 10) ADD_FAILURE() << name << " differs at frame " << i << ": " << ca[i] << " vs " << cb[i];
+    }
+  }
+  EXPECT_EQ(differing, 0) << "cells that differ";
+  EXPECT_GT(compared, 40) << "count columns compared";
+  // What the comparison covers: the terrain's counts, and a flight that prefetches ahead.
+  for (const char* name : {"terrain_triangles", "terrain_splits", "stream_requests_completed", "plants"})
+    EXPECT_NE(std::find(ta.header.begin(), ta.header.end(), name), ta.header.end()) << name;
+  const auto ahead = ta.column("stream_lookahead_wants");
+  EXPECT_TRUE(std::any_of(ahead.begin(), ahead.end(), [](const std::string& v) { return !v.empty() && v != "0"; }))
+      << "the flight wants look-ahead tiles";
+}
+
+std::string readBytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+// The same frame files with the same bytes.
+void expectSameFrames(const fs::path& a, const fs::path& b) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(a / "frames")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  ASSERT_EQ(names.size(), 13u) << "frames 0, 10, …, 120";
+  for (const std::string& n : names) {
+    const std::string pa = readBytes(a / "frames" / n), pb = readBytes(b / "frames" / n);
+    EXPECT_GT(pa.size(), 100u) << n;
+    EXPECT_TRUE(pa == pb) << n << " differs (" << pa.size() << " vs " << pb.size() << " bytes)";
+  }
+}
+
+TEST(RecordDeterminism, TwoRecordingsOfBenchmark30sHaveTheSameCountsAndFrames) {
+  const fs::path dir = testDir();
+  const fs::path zion = importZion(dir);
+  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
+  record(zion.string(), dir / "first");
+  record(zion.string(), dir / "second");
+  expectSameCounts(dir / "first", dir / "second");
+  expectSameFrames(dir / "first", dir / "second");
+}
+
+TEST(RecordDeterminism, ARecordingOverNginxEqualsOneFromTheDirectory) {
+  const fs::path dir = testDir();
+  const fs::path zion = importZion(dir);
+  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
+  auto nginx = testing::NginxServer::start(zion, dir / "nginx");
+  ASSERT_TRUE(nginx.ok()) << nginx.error().message;
+  record(zion.string(), dir / "local");
+  record((*nginx)->baseUrl(), dir / "http");
+  EXPECT_GT((*nginx)->accessLog().size(), 50u) << "the tiles really came over HTTP";
+  expectSameCounts(dir / "local", dir / "http");
+  expectSameFrames(dir / "local", dir / "http");
+}
+
+}  // namespace
+}  // namespace vegstream
