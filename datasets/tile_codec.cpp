@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <new>
 #include <span>
 #include <string>
 
@@ -122,7 +123,7 @@ Result<const char*> sniffFormat(std::span<const uint8_t> bytes, const std::strin
   return invalidTile(name, concat("is not a PNG or JPEG image (", bytes.size(), " bytes of something else)"));
 }
 
-Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
   auto format = sniffFormat(bytes, name);
   if (!format) return format.error();
   // The proxy only reads the caller's bytes; it must outlive the ImageInput (declared first).
@@ -161,6 +162,18 @@ Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& nam
     }
   }
   return t;
+}
+
+// Any exception out of the image libraries (a corrupt file must never end the program, nor a
+// decode worker) becomes an error naming the tile.
+Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+  try {
+    return decodeRgba8Unguarded(bytes, name, requireEightBit);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorKind::Io, concat("tile '", name, "': out of memory while decoding"));
+  } catch (const std::exception& e) {
+    return invalidTile(name, concat("is not a readable PNG/JPEG: ", firstLine(e.what())));
+  }
 }
 
 // The whole file; NotFound when it does not exist, Io when it cannot be read.
