@@ -60,11 +60,14 @@ datasets::ColorTile syntheticColours() {
 }
 
 // Feeds `decode` kMutations mutations of `valid` (made by `mutate`) and checks the tally.
+// Nothing may be printed on stderr meanwhile: a corrupt tile is one error value, which the
+// command line prints as its one line (libpng's own "libpng error: …" lines were a second).
 template <typename Mutate, typename Decode>
-void fuzz(const std::vector<uint8_t>& valid, const char* reader, Mutate&& mutate, Decode&& decode) {
+void fuzz(const fs::path& dir, const std::vector<uint8_t>& valid, const char* reader, Mutate&& mutate, Decode&& decode) {
   ASSERT_TRUE(decode(valid).ok()) << reader << ": the unmutated tile must decode";
   const auto start = std::chrono::steady_clock::now();
   Outcomes tally;
+  StderrCapture printed(dir / "stderr.txt");
   for (int i = 0; i < kMutations; ++i) {
     const ByteMutation m = mutate(valid, kSeed, static_cast<uint64_t>(i));
     expectValueOrError(
@@ -78,6 +81,8 @@ void fuzz(const std::vector<uint8_t>& valid, const char* reader, Mutate&& mutate
         },
         std::string(reader) + " mutation " + std::to_string(i) + ": " + m.what, tally);
   }
+  const std::string noise = printed.text();
+  EXPECT_TRUE(noise.empty()) << reader << " printed on stderr:\n" << noise.substr(0, 2000);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::printf("%s: %d mutations, %d decoded, %d refused, %d threw, %.0f ms\n", reader, kMutations, tally.ok,
               tally.refused, tally.threw, ms);
@@ -96,7 +101,7 @@ TEST(TileDecodersFuzz, ElevationPng) {
     }
     return r;
   };
-  fuzz(fileBytes(file), "elevation tile (PNG)", mutatePng, decode);
+  fuzz(dir, fileBytes(file), "elevation tile (PNG)", mutatePng, decode);
 }
 
 TEST(TileDecodersFuzz, ImageryPng) {
@@ -110,7 +115,7 @@ TEST(TileDecodersFuzz, ImageryPng) {
     }
     return r;
   };
-  fuzz(fileBytes(file), "imagery tile (PNG)", mutatePng, decode);
+  fuzz(dir, fileBytes(file), "imagery tile (PNG)", mutatePng, decode);
 }
 
 TEST(TileDecodersFuzz, ImageryJpeg) {
@@ -124,7 +129,7 @@ TEST(TileDecodersFuzz, ImageryJpeg) {
     }
     return r;
   };
-  fuzz(fileBytes(file), "imagery tile (JPEG)", mutateBytes, decode);
+  fuzz(dir, fileBytes(file), "imagery tile (JPEG)", mutateBytes, decode);
 }
 
 }  // namespace
