@@ -1,6 +1,7 @@
 // Mutation test of every reader of user JSON (issue 16): the species catalog
-// (vegetation/species_catalog.h), dataset.json (datasets/dataset_format.h) and flight paths
-// (flight/flight_path_json.h) are each fed thousands of seeded, deterministic mutations of a
+// (vegetation/species_catalog.h), dataset.json (datasets/dataset_format.h), flight paths
+// (flight/flight_path_json.h), and a recording's recording.json and summary.json
+// (flight/summary.h, flight/compare.h) are each fed thousands of seeded, deterministic mutations of a
 // small valid file (json_mutations.h: byte flips, truncation, inserted tokens such as 1e9999,
 // -1e9990, null, nested arrays, wrong types, deleted and duplicated members), in process. Every
 // call must return a value or a user error — never throw, never crash. Then the real executable
@@ -16,7 +17,10 @@
 #include <nlohmann/json.hpp>
 
 #include "datasets/dataset_format.h"
+#include "flight/compare.h"
 #include "flight/flight_path_json.h"
+#include "flight/record_table.h"
+#include "flight/summary.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "tests/fuzz/json_mutations.h"
 #include "tests/support/run_command.h"
@@ -93,6 +97,25 @@ TEST(JsonReadersFuzz, FlightPath) {
   ]
 })";
   fuzz(valid, "flight path", [](const std::string& text) { return flight::parseFlightPath(text, "fuzz/path.json"); });
+}
+
+// `vegstream report` and `compare` read recording.json and summary.json, files people edit and
+// copy around: the same mutations, through makeSummaryJson and compareSummaries.
+TEST(JsonReadersFuzz, RecordingAndSummaryJson) {
+  ownTestDir();
+  auto frames = flight::RecordTable::parseCsv(
+      "frame,t_s,cpu_frame_ms,gpu_frame_ms,wall_ms,recorder_ms,terrain_triangles\n"
+      "0,0,1.5,2.5,4,0.01,1000\n1,0.016667,1.25,40,42,0.01,1100\n2,0.033333,1.5,2.75,4.5,0.01,900\n",
+      "fuzz/frames.csv");
+  ASSERT_TRUE(frames.ok()) << frames.error().message;
+  const std::string recording = R"({"path": "benchmark-30s", "fps": 60, "size": [640, 360], "msaa": 4,
+    "device": {"name": "llvmpipe", "type": "cpu"}, "peak_rss_bytes": 123456789, "per_pass_gpu_times_meaningful": false})";
+  fuzz(recording, "recording.json",
+       [&](const std::string& text) { return flight::makeSummaryJson(text, "fuzz/recording.json", *frames); });
+  const auto summary = flight::makeSummaryJson(recording, "fuzz/recording.json", *frames);
+  ASSERT_TRUE(summary.ok());
+  fuzz(*summary, "summary.json",
+       [&](const std::string& text) { return flight::compareSummaries(text, "fuzz/a/summary.json", *summary, "b"); });
 }
 
 // The executable on catalog mutations that hold a number overflow: the abort of issue 16
