@@ -32,6 +32,17 @@ std::string tidyRange(const std::string& what) {
                                     : "'" + value + "' is not a number (expected one in " + bounds + ")");
 }
 
+// "Could not convert: --threads = many" → "--threads: 'many' is not a valid INT" (the option's
+// type as its --help shows it).
+std::string tidyConversion(const CLI::App& app, const std::string& what) {
+  static const std::regex conversion("^Could not convert: (\\S+) = (.*)$");
+  std::smatch m;
+  if (!std::regex_search(what, m, conversion)) return what;
+  const CLI::Option* option = app.get_option_no_throw(m[1].str());
+  const std::string type = option != nullptr ? option->get_type_name() : "";
+  return m[1].str() + ": '" + m[2].str() + "' is not a valid " + (type.empty() ? std::string("value") : type);
+}
+
 std::string subcommandNames(const CLI::App& root) {
   std::string names;
   for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; }))
@@ -58,7 +69,7 @@ std::string parseErrorMessage(const CLI::App& root, const CLI::ParseError& error
     app = app->get_subcommands().back();
     where += " " + app->get_name();
   }
-  std::string what = tidyRange(oneLine(error.what()));
+  std::string what = tidyConversion(*app, tidyRange(oneLine(error.what())));
   if (what.empty()) what = error.get_name();
   return where + ": " + what;
 }
