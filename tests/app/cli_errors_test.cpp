@@ -35,6 +35,14 @@ struct Mistake {
   std::string named;  // what the one line must name (the option, or the unexpected argument)
 };
 
+// The line states a problem, not just a name: one of the phrasings the parser and the commands use.
+bool saysTheProblem(const std::string& err) {
+  for (const char* phrase : {"not in range", "not in {", "is not a number", "is not a valid", "not expected", "is required",
+                             "required", "missing", "must be", "expected", "unknown subcommand"})
+    if (err.find(phrase) != std::string::npos) return true;
+  return false;
+}
+
 // Runs each mistake in `dir` (so that a wrongly accepted command could only write there) and
 // checks the contract; `prefix` is what the line must also say (the subcommand).
 void expectOneLineUserErrors(const std::vector<Mistake>& mistakes, const std::string& prefix) {
@@ -46,6 +54,7 @@ void expectOneLineUserErrors(const std::vector<Mistake>& mistakes, const std::st
     EXPECT_NE(r.err.find_first_not_of(" \n"), std::string::npos) << "the line is not empty";
     EXPECT_NE(r.err.find(m.named), std::string::npos) << "names " << m.named << ": " << r.err;
     EXPECT_NE(r.err.find(prefix), std::string::npos) << "names " << prefix << ": " << r.err;
+    EXPECT_TRUE(saysTheProblem(r.err)) << r.err;
     EXPECT_EQ(r.err.find("--help for more"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
