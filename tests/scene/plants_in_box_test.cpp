@@ -2,8 +2,9 @@
 // plant lies in the half-open box, on the ground the dataset describes, with a catalog species
 // and parameters from its ranges; two calls agree; a sub-box gives exactly the big box's plants
 // that lie in it (core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2: a plant depends on its
-// triangle alone); tiles go through the streamer — a missing tile is drawn from its parent, a
-// corrupt one is an error naming it; mistakes are errors naming the box and the limit.
+// triangle alone); tiles go through the streamer — from a directory or over HTTP alike, a missing
+// tile drawn from its parent, a corrupt one an error naming it; mistakes are errors naming the box
+// and the limit.
 
 #include <algorithm>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "datasets/synthetic_generator.h"
 #include "geo/xyz_tiles.h"
 #include "scene/plants_in_box.h"
+#include "tests/support/nginx_server.h"
 
 namespace vegstream::scene {
 namespace {
@@ -120,8 +122,27 @@ TEST(PlantsInBox, ASubBoxGivesExactlyTheBigBoxsPlantsInIt) {
   EXPECT_EQ(got, expected);
 }
 
-// A box in the dataset's corner reaches tiles beside it; a tile the dataset lacks is drawn from its
-// parent (as a flight draws it), one that is corrupt is an error naming it.
+// The dataset served by nginx: the same plants, bit for bit, as from the directory (the ground
+// comes through the streamer, whatever the source).
+TEST(PlantsInBox, OverHttpTheSameAsFromTheDirectory) {
+  const fs::path dir = ownTestDir();
+  const fs::path dataset = makeDataset(dir);
+  auto server = testing::NginxServer::start(dataset, dir / "nginx");
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  const auto& catalog = vegetation::defaultSpeciesCatalog();
+  const geo::GeoBounds box = boxAround(kLat, kLon, 15.0);
+  const auto local = plantsInBox(dataset.string(), box, catalog, {});
+  const auto http = plantsInBox((*server)->baseUrl(), box, catalog, {});
+  ASSERT_TRUE(local.ok()) << local.error().message;
+  ASSERT_TRUE(http.ok()) << http.error().message;
+  ASSERT_GT(local->plants.size(), 1000u);
+  ASSERT_EQ(http->plants.size(), local->plants.size());
+  for (size_t i = 0; i < local->plants.size(); ++i) ASSERT_EQ(tie(http->plants[i]), tie(local->plants[i])) << i;
+  EXPECT_FALSE((*server)->accessLog().empty()) << "the tiles came over HTTP";
+}
+
+// A tile the dataset lacks is drawn from its parent (as a flight draws it); one that is corrupt is
+// an error naming it, never silently its parent's ground.
 TEST(PlantsInBox, MissingTilesComeFromTheirParentCorruptOnesAreErrors) {
   const fs::path dataset = makeDataset(ownTestDir());
   const auto& catalog = vegetation::defaultSpeciesCatalog();
