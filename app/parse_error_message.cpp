@@ -59,7 +59,8 @@ std::string parseErrorMessage(const CLI::App& root, const CLI::ParseError& error
   if (root.get_subcommands().empty()) {
     const std::vector<std::string> rest = root.remaining();
     if (!rest.empty())
-      return where + ": unknown subcommand or option '" + rest.front() + "' (subcommands: " + subcommandNames(root) + ")";
+      return where + ": unknown subcommand or option '" + rest.front() + "' (subcommands: " + subcommandNames(root) +
+             ")";
     return where + ": a subcommand is required (" + subcommandNames(root) + ")";
   }
   // The innermost subcommand CLI11 had started on when it threw: it is pushed onto its parent's

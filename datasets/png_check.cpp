@@ -62,12 +62,15 @@ struct Pass {
 };
 std::vector<Pass> passes(const Header& h) {
   if (h.interlace == 0) return {{h.width, h.height}};
-  static constexpr int kX0[7] = {0, 4, 0, 2, 0, 1, 0}, kDx[7] = {8, 8, 4, 4, 2, 2, 1};
-  static constexpr int kY0[7] = {0, 0, 4, 0, 2, 0, 1}, kDy[7] = {8, 8, 8, 4, 4, 2, 2};
+  static constexpr uint64_t kX0[7] = {0, 4, 0, 2, 0, 1, 0}, kDx[7] = {8, 8, 4, 4, 2, 2, 1};
+  static constexpr uint64_t kY0[7] = {0, 0, 4, 0, 2, 0, 1}, kDy[7] = {8, 8, 8, 4, 4, 2, 2};
+  // Pixels start, start + step, … below `size`.
+  const auto count = [](uint64_t size, uint64_t start, uint64_t step) {
+    return size > start ? (size - start + step - 1) / step : 0;
+  };
   std::vector<Pass> out;
   for (int p = 0; p < 7; ++p) {
-    const uint64_t w = h.width > uint64_t(kX0[p]) ? (h.width - uint64_t(kX0[p]) + uint64_t(kDx[p]) - 1) / uint64_t(kDx[p]) : 0;
-    const uint64_t r = h.height > uint64_t(kY0[p]) ? (h.height - uint64_t(kY0[p]) + uint64_t(kDy[p]) - 1) / uint64_t(kDy[p]) : 0;
+    const uint64_t w = count(h.width, kX0[p], kDx[p]), r = count(h.height, kY0[p], kDy[p]);
     if (w > 0 && r > 0) out.push_back({w, r});
   }
   return out;
