@@ -2,6 +2,8 @@
 // Exit codes of the command line: 0 done, 2 a user mistake (one message naming the file or
 // option and the problem), 1 anything else (driver or system failure, a bug).
 
+#include <string>
+
 #include "core/log.h"
 #include "core/result.h"
 
@@ -11,8 +13,17 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitUserError = 2;
 
+// The text with its line breaks turned into spaces and trailing spaces dropped: a message from a
+// library (an exception's what(), a driver's string) stays the one line the contract promises.
+inline std::string oneLine(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
 inline int reportError(const Logger& log, const Error& error) {
-  log->error("{}", error.message);
+  log->error("{}", oneLine(error.message));
   return error.isUserError() ? kExitUserError : kExitFailure;
 }
 

@@ -13,6 +13,7 @@
 #include "app/import_command.h"
 #include "app/info_command.h"
 #include "app/inspect_command.h"
+#include "app/parse_error_message.h"
 #include "app/path_command.h"
 #include "app/plants_command.h"
 #include "app/record_command.h"
@@ -30,6 +31,10 @@ namespace {
 int listDevicesCommand(const vegstream::Logger& log) {
   auto devices = vegstream::render::listDevices();
   if (!devices) return vegstream::app::reportError(log, devices.error());
+  // No device is the system's problem (no driver installed or none that loads), not the user's.
+  if (devices->empty())
+    return vegstream::app::reportError(
+        log, vegstream::makeError(vegstream::ErrorKind::Gpu, "no Vulkan device found (no driver loaded one)"));
   for (const auto& d : *devices)
     std::cout << d.index << ": " << d.name << " (" << d.type << ", " << d.driver << ", Vulkan " << d.apiVersion
               << ", MSAA " << d.msaaList() << ")\n";
@@ -83,8 +88,8 @@ int main(int argc, char** argv) {
   app::QueryOptions query;
   auto* queryCmd = cli.add_subcommand("query", "Height, base colour and species of a dataset at one point, as JSON");
   queryCmd->add_option("dataset", query.dataset, "Dataset directory")->required();
-  queryCmd->add_option("--lat", query.latDeg, "Latitude, degrees (WGS 84)")->required();
-  queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required();
+  queryCmd->add_option("--lat", query.latDeg, "Latitude, degrees (WGS 84)")->required()->check(CLI::Range(-90.0, 90.0));
+  queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required()->check(CLI::Range(-180.0, 180.0));
   queryCmd->add_option("--species", query.speciesFile, "Species catalog JSON (default: the embedded config/species.json)");
 
   app::PlantsOptions plantsOptions;
@@ -105,44 +110,60 @@ int main(int argc, char** argv) {
   generateCmd->add_option("--min-zoom", gen.minZoom, "Coarsest zoom (default: the area in one tile)");
   generateCmd->add_option("--encoding", genEncoding, "Elevation encoding: terrarium or terrain-rgb")->capture_default_str();
 
+  const auto runCommand = [&](const Logger& log) -> int {
+    if (*devicesCmd) return listDevicesCommand(log);
+    if (*recordCmd) return app::runRecord(recordOptions, log);
+    if (*reportCmd) return app::runReport(reportOptions, log);
+    if (*compareCmd) return app::runCompare(compareOptions, log);
+    if (*pathCmd) return app::runPath(pathOptions, log);
+    if (*importCmd) return app::runImport(importOptions, log);
+    if (*infoCmd) return app::runInfo(info, log);
+    if (*queryCmd) return app::runQuery(query, log);
+    if (*plantsCmd) return app::runPlants(plantsOptions, log);
+    if (*inspectCmd) return app::runInspect(inspectOptions, log);
+    if (*generateCmd) {
+      auto encoding = datasets::parseElevationEncoding(genEncoding);
+      if (!encoding) return app::reportError(log, encoding.error());
+      gen.encoding = *encoding;
+      gen.out = genOut;
+      return app::runGenerate(gen, log);
+    }
+    if (*flyCmd) {
+      if (!vegstream::app::parseFrameSize(size, fly.width, fly.height)) {
+        log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", size);
+        return app::kExitUserError;
+      }
+      if (fly.msaa != 1 && fly.msaa != 2 && fly.msaa != 4 && fly.msaa != 8 && fly.msaa != 16) {
+        log->error("--msaa {}: samples per pixel must be 1, 2, 4, 8 or 16", fly.msaa);
+        return app::kExitUserError;
+      }
+      fly.framesGiven = flyCmd->count("--frames") > 0;
+      return app::runFly(fly, log);
+    }
+    return app::kExitUserError;
+  };
+
+  const Logger log = makeConsoleLogger("vegstream", spdlog::level::info);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11 prints usage errors; its own code for --help is 0. Every other parse error is a
-    // user mistake: exit 2.
-    const int code = cli.exit(e);
-    return code == 0 ? 0 : app::kExitUserError;
+    // --help (and CLI11's other successes) print what was asked for, exit 0. Every other parse
+    // error is a user mistake: one line naming the subcommand, the option and the problem, exit 2
+    // (not cli.exit, which adds "Run with --help for more information.").
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return cli.exit(e);
+    log->error("{}", app::parseErrorMessage(cli, e));
+    return app::kExitUserError;
   }
-  const Logger log = makeConsoleLogger("vegstream", verbose ? spdlog::level::debug : spdlog::level::info);
+  if (verbose) log->set_level(spdlog::level::debug);
 
-  if (*devicesCmd) return listDevicesCommand(log);
-  if (*recordCmd) return app::runRecord(recordOptions, log);
-  if (*reportCmd) return app::runReport(reportOptions, log);
-  if (*compareCmd) return app::runCompare(compareOptions, log);
-  if (*pathCmd) return app::runPath(pathOptions, log);
-  if (*importCmd) return app::runImport(importOptions, log);
-  if (*infoCmd) return app::runInfo(info, log);
-  if (*queryCmd) return app::runQuery(query, log);
-  if (*plantsCmd) return app::runPlants(plantsOptions, log);
-  if (*inspectCmd) return app::runInspect(inspectOptions, log);
-  if (*generateCmd) {
-    auto encoding = datasets::parseElevationEncoding(genEncoding);
-    if (!encoding) return app::reportError(log, encoding.error());
-    gen.encoding = *encoding;
-    gen.out = genOut;
-    return app::runGenerate(gen, log);
+  // Commands return errors as values; an exception reaching here is a bug, reported in one line
+  // (exit 1) rather than left to end the program with a signal.
+  try {
+    return runCommand(log);
+  } catch (const std::exception& e) {
+    log->error("internal error (a bug in vegstream): {}", app::oneLine(e.what()));
+  } catch (...) {
+    log->error("internal error (a bug in vegstream): an unknown exception");
   }
-  if (*flyCmd) {
-    if (!vegstream::app::parseFrameSize(size, fly.width, fly.height)) {
-      log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", size);
-      return app::kExitUserError;
-    }
-    if (fly.msaa != 1 && fly.msaa != 2 && fly.msaa != 4 && fly.msaa != 8 && fly.msaa != 16) {
-      log->error("--msaa {}: samples per pixel must be 1, 2, 4, 8 or 16", fly.msaa);
-      return app::kExitUserError;
-    }
-    fly.framesGiven = flyCmd->count("--frames") > 0;
-    return app::runFly(fly, log);
-  }
-  return app::kExitUserError;
+  return app::kExitFailure;
 }

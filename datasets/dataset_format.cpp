@@ -214,9 +214,15 @@ Result<DatasetMeta> readDatasetMeta(const fs::path& datasetDir) {
 }
 
 Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::string& sourceName) {
+  // Without exceptions a broken text (a number no double holds, "1e9999", included) is discarded;
+  // the walk checks every type before reading, and the catch keeps a missed case an error value.
   json j = json::parse(jsonText, nullptr, false);
   if (j.is_discarded()) return makeError(ErrorKind::InvalidInput, concat("'", sourceName, "' is not valid JSON"));
-  return parseMeta(j, FieldReader(sourceName));
+  try {
+    return parseMeta(j, FieldReader(sourceName));
+  } catch (const json::exception& e) {
+    return makeError(ErrorKind::InvalidInput, concat("'", sourceName, "': ", e.what()));
+  }
 }
 
 Status writeDatasetMeta(const fs::path& datasetDir, const DatasetMeta& meta) {

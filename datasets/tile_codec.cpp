@@ -10,15 +10,16 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <new>
 #include <span>
 #include <string>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <zlib.h>
 
 #include "core/atomic_file.h"
 #include "datasets/message.h"
+#include "datasets/png_check.h"
 
 namespace vegstream::datasets {
 namespace {
@@ -88,43 +89,30 @@ struct Rgba8 {
   std::vector<uint8_t> rgba;
 };
 
-// libpng prints its own "libpng error: …" line to stderr before OIIO reports failure, which
-// would break the command line's one-line errors: so a PNG's chunk structure and CRCs are
-// checked here first, and only a sound file reaches libpng.
-Status checkPngChunks(std::span<const uint8_t> bytes, const std::string& name) {
-  size_t at = 8;  // after the signature (the caller checked it)
-  while (at + 12 <= bytes.size()) {
-    const uint32_t len = (uint32_t{bytes[at]} << 24) | (uint32_t{bytes[at + 1]} << 16) | (uint32_t{bytes[at + 2]} << 8) |
-                         uint32_t{bytes[at + 3]};
-    if (len > bytes.size() - at - 12) return invalidTile(name, "is truncated (a PNG chunk runs past the end of the file)");
-    const unsigned char* type = &bytes[at + 4];
-    const unsigned char* crcAt = type + 4 + len;
-    const uint32_t stored = (uint32_t{crcAt[0]} << 24) | (uint32_t{crcAt[1]} << 16) | (uint32_t{crcAt[2]} << 8) | uint32_t{crcAt[3]};
-    if (static_cast<uint32_t>(crc32(crc32(0L, Z_NULL, 0), type, len + 4)) != stored)
-      return invalidTile(name, "is corrupt (a PNG chunk fails its CRC check)");
-    if (std::memcmp(type, "IEND", 4) == 0) return {};
-    at += 12 + len;
-  }
-  return invalidTile(name, "is truncated (the PNG ends before its IEND chunk)");
-}
-
 // OIIO picks its reader from the file name's extension; bytes in memory have none, so the
-// magic number names the format (and a PNG's chunks are checked before libpng sees them).
+// magic number names the format.
 Result<const char*> sniffFormat(std::span<const uint8_t> bytes, const std::string& name) {
   static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0) {
-    if (auto s = checkPngChunks(bytes, name); !s) return s.error();
-    return "tile.png";
-  }
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0) return "tile.png";
   if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return "tile.jpg";
   if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
     return "tile.webp";
   return invalidTile(name, concat("is not a PNG or JPEG image (", bytes.size(), " bytes of something else)"));
 }
 
-Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
   auto format = sniffFormat(bytes, name);
   if (!format) return format.error();
+  // libpng prints its own "libpng error: …" line on stderr before OIIO reports a failure, which
+  // would break the command line's one-line errors: a PNG is checked in full first, and libpng
+  // sees only the chunks it needs of a sound file (png_check.h).
+  std::vector<uint8_t> checkedBytes;
+  if (std::strcmp(*format, "tile.png") == 0) {
+    auto checked = checkedPng(bytes, name);
+    if (!checked) return checked.error();
+    checkedBytes = std::move(*checked);
+    bytes = checkedBytes;
+  }
   // The proxy only reads the caller's bytes; it must outlive the ImageInput (declared first).
   OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
   auto in = ImageInput::open(*format, nullptr, &proxy);
@@ -161,6 +149,18 @@ Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& nam
     }
   }
   return t;
+}
+
+// Any exception out of the image libraries (a corrupt file must never end the program, nor a
+// decode worker) becomes an error naming the tile.
+Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+  try {
+    return decodeRgba8Unguarded(bytes, name, requireEightBit);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorKind::Io, concat("tile '", name, "': out of memory while decoding"));
+  } catch (const std::exception& e) {
+    return invalidTile(name, concat("is not a readable PNG/JPEG: ", firstLine(e.what())));
+  }
 }
 
 // The whole file; NotFound when it does not exist, Io when it cannot be read.

@@ -190,35 +190,8 @@ std::string fmt(double v, int decimals) {
   return buf;
 }
 
-}  // namespace
-
-Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sourceName) {
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    // e.byte is 1-based: the position of the character that broke the parse.
-    const LineCol lc = lineColAt(text, e.byte > 0 ? e.byte - 1 : 0);
-    std::string what = e.what();
-    const auto colon = what.find(": ");
-    if (colon != std::string::npos) what = what.substr(colon + 2);
-    return makeError(ErrorKind::InvalidInput, sourceName + ":" + std::to_string(lc.line) + ":" +
-                                                  std::to_string(lc.column) + ": malformed JSON: " + what);
-  } catch (const json::exception& e) {
-    // Number overflow ("1e999") carries no position: find the number it quotes.
-    std::string what = e.what(), where = sourceName;
-    const auto colon = what.find("] ");
-    if (colon != std::string::npos) what = what.substr(colon + 2);
-    const auto open = what.find('\''), close = what.rfind('\'');
-    if (open != std::string::npos && close > open) {
-      const auto at = text.find(what.substr(open + 1, close - open - 1));
-      if (at != std::string_view::npos) {
-        const LineCol lc = lineColAt(text, at);
-        where += ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
-      }
-    }
-    return makeError(ErrorKind::InvalidInput, where + ": malformed JSON: " + what);
-  }
+// The parsed document → a validated path.
+Result<FlightPath> readFlightPath(const json& doc, std::string_view text, const std::string& sourceName) {
   const JsonPositions positions(text);
   const Reader r{sourceName, positions};
   if (const auto& dup = positions.firstDuplicate()) return r.fail(*dup, "key given twice", *dup);
@@ -251,6 +224,43 @@ Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sou
   }
   if (auto p = findProblem(path)) return r.fail(p->field, p->problem, lineFieldFor(positions, p->field));
   return path;
+}
+
+}  // namespace
+
+Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sourceName) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    // e.byte is 1-based: the position of the character that broke the parse.
+    const LineCol lc = lineColAt(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = e.what();
+    const auto colon = what.find(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    return makeError(ErrorKind::InvalidInput, sourceName + ":" + std::to_string(lc.line) + ":" +
+                                                  std::to_string(lc.column) + ": malformed JSON: " + what);
+  } catch (const json::exception& e) {
+    // Number overflow ("1e999") carries no position: find the number it quotes.
+    std::string what = e.what(), where = sourceName;
+    const auto colon = what.find("] ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    const auto open = what.find('\''), close = what.rfind('\'');
+    if (open != std::string::npos && close > open) {
+      const auto at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string_view::npos) {
+        const LineCol lc = lineColAt(text, at);
+        where += ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
+      }
+    }
+    return makeError(ErrorKind::InvalidInput, where + ": malformed JSON: " + what);
+  }
+  // The walk checks every type before reading; a missed case stays an error value, not an abort.
+  try {
+    return readFlightPath(doc, text, sourceName);
+  } catch (const json::exception& e) {
+    return makeError(ErrorKind::InvalidInput, sourceName + ": " + e.what());
+  }
 }
 
 Result<FlightPath> loadFlightPath(const std::filesystem::path& file) {

@@ -135,7 +135,9 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
   const std::vector<double> cpuFrame = column("cpu_frame_ms"), recorder = column("recorder_ms");
   const std::vector<double> tS = column("t_s");
   const double gpuBytesMax = maxOf(optionalColumn("gpu_bytes"));
-  const double rss = rec.value("peak_rss_bytes", 0.0);
+  // Not rec.value(key, 0.0): it throws when the key holds another type (a hand-edited file).
+  const auto rssField = rec.find("peak_rss_bytes");
+  const double rss = rssField != rec.end() && rssField->is_number() ? rssField->get<double>() : 0.0;
   const double meanCpu = cpuFrame.empty() ? 0.0 : sum(cpuFrame) / static_cast<double>(cpuFrame.size());
   const double meanRecorder = recorder.empty() ? 0.0 : sum(recorder) / static_cast<double>(recorder.size());
   double maxShare = 0.0;

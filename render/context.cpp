@@ -139,6 +139,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     return makeError(ErrorKind::NotFound, e.what());
   } catch (const std::domain_error& e) {
     return makeError(ErrorKind::Unsupported, e.what());
+  } catch (const std::runtime_error& e) {  // no usable device: the system's, not the user's
+    return makeError(ErrorKind::Gpu, e.what());
   }
   return ctx;
 }
@@ -220,7 +222,7 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
     if (!options.deviceName.empty())
       throw std::invalid_argument("no Vulkan 1.3 device matches --device \"" + options.deviceName +
                                   "\"; available: " + available);
-    throw std::domain_error("no Vulkan 1.3 device with a graphics queue; devices found: " + available);
+    throw std::runtime_error("no Vulkan 1.3 device with a graphics queue; devices found: " + available);
   }
   physical_ = devices[static_cast<size_t>(best)];
   info_ = infos[static_cast<size_t>(best)];

@@ -199,25 +199,14 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   return true;
 }
 
-}  // namespace
-
-const char* rendererKindName(RendererKind kind) {
-  switch (kind) {
-    case RendererKind::Grass: return "grass";
-    case RendererKind::Gravel: return "gravel";
-    case RendererKind::Flowers: return "flowers";
-    case RendererKind::Tree: return "tree";
-  }
-  return "?";
+// nlohmann's message without its "[json.exception.parse_error.101] " tag.
+std::string jsonProblem(const json::exception& e) {
+  const std::string what = e.what();
+  const auto tag = what.find("] ");
+  return what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos ? what.substr(tag + 2) : what;
 }
 
-Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::string& sourceName) {
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {  // caught here: the caller gets a value, as everywhere
-    return makeError(ErrorKind::InvalidInput, sourceName + ": not valid JSON (" + e.what() + ")");
-  }
+Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceName) {
   Parser ps(sourceName);
   SpeciesCatalog out;
   if (!doc.is_object()) return makeError(ErrorKind::InvalidInput, sourceName + ": must be a JSON object with \"species\": [...]");
@@ -241,6 +230,35 @@ Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::str
   }
   if (!anyPlant) return ps.failed("species", "every entry is bare soil: at least one must grow plants");
   return out;
+}
+
+}  // namespace
+
+const char* rendererKindName(RendererKind kind) {
+  switch (kind) {
+    case RendererKind::Grass: return "grass";
+    case RendererKind::Gravel: return "gravel";
+    case RendererKind::Flowers: return "flowers";
+    case RendererKind::Tree: return "tree";
+  }
+  return "?";
+}
+
+Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::string& sourceName) {
+  // Caught here, so the caller gets a value, as everywhere: parse_error, and out_of_range for a
+  // number no double holds ("1e9999"); the walk checks every type before reading, and the second
+  // catch keeps a missed case an error value rather than an abort.
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    return makeError(ErrorKind::InvalidInput, sourceName + ": not valid JSON (" + jsonProblem(e) + ")");
+  }
+  try {
+    return readCatalog(doc, sourceName);
+  } catch (const json::exception& e) {
+    return makeError(ErrorKind::InvalidInput, sourceName + ": " + jsonProblem(e));
+  }
 }
 
 Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file) {

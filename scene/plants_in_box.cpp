@@ -1,0 +1,146 @@
+// Every plant in a box (plants_in_box.h): seed triangles of the box at full density, heights
+// through the streamer → clusters and species from the imagery colour → plants, kept where
+// their root lies in the box.
+
+#include "scene/plants_in_box.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "geo/xyz_tiles.h"
+#include "scene/settled_tiles.h"
+#include "streaming/open_tile_source.h"
+#include "terrain/resident_heights.h"
+#include "terrain/seed_region.h"
+#include "terrain/seed_triangles.h"
+#include "vegetation/imagery_texels.h"
+#include "vegetation/plant_seeding.h"
+
+namespace vegstream::scene {
+namespace {
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, v);
+  return buf;
+}
+
+std::string plural(uint64_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); }
+
+// The imagery tile a triangle's plants take their colour from: the finest over its centroid at
+// or above the max zoom (the renderer's pieces at full detail draw the finest imagery).
+const datasets::ColorTile* imageryOver(SettledTiles& tiles, const terrain::BintreeGrid& grid, int maxZoom,
+                                       const terrain::TriCorners& t) {
+  const geo::TileId finest = grid.square(t, 2 * (maxZoom - grid.rootZoom()));
+  const streaming::ResidentTile* r = tiles.finest({streaming::TileLayer::Imagery, finest});
+  return r && r->colors ? r->colors.get() : nullptr;
+}
+
+// Grows every seed triangle's plants and keeps those in the box (counting all of them).
+void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const terrain::SeedRegion& region,
+          const geo::GeoBounds& box, const vegetation::SpeciesCatalog& catalog, const vegetation::SeedingOptions& seeding,
+          SettledTiles& tiles, int maxZoom, uint64_t maxPlants, PlantsInBox& out, uint64_t& count) {
+  std::vector<vegetation::PlantCluster> clusters;
+  std::vector<vegetation::Plant> plants;
+  for (size_t i = 0; i < region.triangles.size(); ++i) {
+    const terrain::RegionSeedTriangle& s = region.triangles[i];
+    const datasets::ColorTile* c = imageryOver(tiles, grid, maxZoom, s.corners);
+    if (!c) continue;  // no imagery over it: no colour, no species (as a flight without it)
+    // uv of each vertex in that tile, as StreamedTerrain::seedImagery gives the GPU (float).
+    const terrain::GridPoint corners[3] = {s.corners.apex, s.corners.left, s.corners.right};
+    glm::vec2 uv[3];
+    for (int k = 0; k < 3; ++k) uv[k] = glm::vec2(grid.tileXY(corners[k], c->id.z) - glm::dvec2(c->id.x, c->id.y));
+    const vegetation::ImageryTexels texels{c->rgba.data(), static_cast<uint32_t>(c->size)};
+    const vegetation::BaseColourAt colourAt = [&](glm::vec2 r) {
+      return vegetation::sampleImageryLinear(texels, uv[0] + r.x * (uv[1] - uv[0]) + r.y * (uv[2] - uv[0]));
+    };
+    const vegetation::SeedTriangleInput input{s.key, s.world, s.plantCount};
+    clusters.clear();
+    plants.clear();
+    vegetation::classifyTriangle(input, static_cast<uint32_t>(i), catalog, seeding, colourAt, clusters);
+    vegetation::growPlants(input, clusters, catalog, seeding, plants);
+    for (const vegetation::Plant& p : plants) {
+      const geo::Geodetic at = frame.toGeodetic(p.position);
+      if (at.lonDeg < box.westDeg || at.lonDeg >= box.eastDeg || at.latDeg < box.southDeg || at.latDeg >= box.northDeg)
+        continue;
+      ++count;
+      if (out.plants.size() < maxPlants) out.plants.push_back({at, p.species, p.heightM, p.stiffness, p.sPrime});
+    }
+  }
+}
+
+}  // namespace
+
+Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds& box,
+                                const vegetation::SpeciesCatalog& catalog, const PlantsInBoxOptions& options) {
+  auto source = streaming::openTileSource(dataset, {});
+  if (!source) return source.error();
+  auto meta = streaming::readMetaFrom(**source);
+  if (!meta) return meta.error();
+  if (!meta->imagery)
+    return makeError(ErrorKind::InvalidInput, "dataset " + dataset + " has no imagery: species come from the imagery colour");
+  const geo::GeoBounds& b = meta->bounds;
+  if (b.crossesAntimeridian())
+    return makeError(ErrorKind::Unsupported, "dataset " + dataset + " crosses the antimeridian: not supported");
+  if (box.westDeg < b.westDeg || box.eastDeg > b.eastDeg || box.southDeg < b.southDeg || box.northDeg > b.northDeg)
+    return makeError(ErrorKind::InvalidInput, options.boxName + ": not inside the dataset's bounds (lon " +
+                                                  fmt("%.6f", b.westDeg) + " … " + fmt("%.6f", b.eastDeg) + ", lat " +
+                                                  fmt("%.6f", b.southDeg) + " … " + fmt("%.6f", b.northDeg) + ")");
+
+  // The renderer's grid, seed level and roots (StreamedTerrain): the same triangles, keys and
+  // vertices as in a flight.
+  const terrain::SeedOptions seedOptions;
+  const double lat = b.centre().y;
+  const terrain::BintreeGrid grid = terrain::gridForSeeds(meta->minZoom, meta->maxZoom, lat, seedOptions.targetAreaM2);
+  const geo::TileRange roots = geo::tileRangesCovering(b, meta->minZoom).front();
+  // The flight's frame (flight/scene.cpp): the plants' ENU positions are then those a flight
+  // computes, bit for bit, not merely the same lat/lon.
+  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
+  terrain::SeedRegionQuery query;
+  query.box = box;
+  query.seedLevel = terrain::seedLevelFor(grid, lat, seedOptions.targetAreaM2);
+  query.plantCount = static_cast<float>(seedOptions.maxPlants);
+  query.select = terrain::RegionSelect::Overlap;
+  const uint64_t maxPlants = options.maxPlants;
+  auto tooMany = [&](const std::string& howMany, uint64_t n) {
+    return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " + options.maxPlantsName +
+                                                  " " + std::to_string(maxPlants) + "; give a smaller box or " +
+                                                  options.maxPlantsName + " " + std::to_string(n));
+  };
+  // A cheap bound first (triangles × n_max, no heights): a huge box is refused at once, not
+  // after growing it.
+  const uint64_t triangles = terrain::countSeedTrianglesIn(grid, roots, query);
+  const auto upperBound = static_cast<uint64_t>(double(triangles) * seedOptions.maxPlants);
+  if (upperBound > 4 * maxPlants)
+    return tooMany("the box grows up to " + plural(upperBound, "plant") + " (" + plural(triangles, "seed triangle") +
+                       " × " + std::to_string(int(seedOptions.maxPlants)) + ")",
+                   upperBound);
+
+  // The box's finest tiles of both layers in one settle (decoded in parallel); the rest (tiles
+  // beside the box that edge triangles reach, ancestors where a tile is missing) on demand.
+  SettledTiles tiles(*source, *meta);
+  std::vector<streaming::TileKey> wanted;
+  for (const geo::TileId& id : geo::tilesCovering(box, meta->maxZoom))
+    for (streaming::TileLayer layer : {streaming::TileLayer::Height, streaming::TileLayer::Imagery})
+      wanted.push_back({layer, id});
+  tiles.prefetch(wanted);
+  terrain::ResidentHeights heights(grid, [&](const geo::TileId& t) {
+    return tiles.finest({streaming::TileLayer::Height, t});
+  });
+  const terrain::SeedRegion region = terrain::seedTrianglesIn(grid, roots, frame, heights, query);
+  if (tiles.error()) return *tiles.error();
+
+  PlantsInBox out;
+  out.datasetName = meta->name;
+  out.seedLevel = query.seedLevel;
+  out.seedTriangles = region.triangles.size();
+  out.nodataSkipped = region.nodataSkipped;
+  uint64_t count = 0;
+  grow(grid, frame, region, box, catalog, vegetation::SeedingOptions{options.clusterSize}, tiles, meta->maxZoom,
+       maxPlants, out, count);
+  if (tiles.error()) return *tiles.error();
+  if (count > maxPlants) return tooMany("the box grows " + plural(count, "plant"), count);
+  return out;
+}
+
+}  // namespace vegstream::scene
