@@ -4,15 +4,15 @@
 // ctest runs every test in its own process (gtest_discover_tests), two or more at a time, and a
 // suite's SetUpTestSuite runs again in each of them. So:
 // - testOutputDir(): VEGSTREAM_TEST_TMP/<program>/<Suite>.<Test>, emptied for the running test.
-// - processOutputDir(tag): VEGSTREAM_TEST_TMP/<program>/<tag>.pid<N>, for what a SetUpTestSuite
-//   makes for its own process (a server's work directory); those of dead processes are removed.
 // - cachedFixture(name, key, make): an expensive input (an imported dataset) made once and then
 //   shared, read-only, by every process: VEGSTREAM_TEST_TMP/fixtures/<name>.<key>. The key
-//   names the build that made it (programKey(): a hash of the executable that holds the making
-//   code), so a rebuilt importer never meets a dataset an older one made.
+//   names the build that made it (vegstreamKey(): a hash of the vegstream executable, for what
+//   the command line makes; programKey(): a hash of the test program, whose static libraries
+//   hold the code that made it), so a rebuilt importer never meets a dataset an older one made.
+// A suite's SetUpTestSuite runs in every test process, and GoogleTest skips the tests of a suite
+// whose SetUpTestSuite failed: fixtures are asked for in SetUp, where a failure fails the test.
 
 #include <cerrno>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -51,7 +51,7 @@ inline std::filesystem::path programTmp() {
 inline std::filesystem::path testOutputDir() {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   if (info == nullptr) {
-    ADD_FAILURE() << "testOutputDir() outside a test: use processOutputDir() in SetUpTestSuite";
+    ADD_FAILURE() << "testOutputDir() outside a test (in SetUpTestSuite, every test process runs it)";
     return programTmp() / "no-test";
   }
   const std::filesystem::path dir =
@@ -61,25 +61,6 @@ inline std::filesystem::path testOutputDir() {
     std::filesystem::remove_all(dir);
     emptiedFor = info;
   }
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-// VEGSTREAM_TEST_TMP/<program>/<tag>.pid<N>, empty; those of processes that ended (crashed
-// before their TearDownTestSuite) are removed on the way.
-inline std::filesystem::path processOutputDir(const std::string& tag) {
-  const std::filesystem::path root = programTmp();
-  std::filesystem::create_directories(root);
-  const std::string prefix = pathComponent(tag) + ".pid";
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(root, ec)) {
-    const std::string n = e.path().filename().string();
-    if (n.rfind(prefix, 0) != 0) continue;
-    const long pid = std::strtol(n.c_str() + prefix.size(), nullptr, 10);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(e.path(), ec);
-  }
-  const std::filesystem::path dir = root / (prefix + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
 }
