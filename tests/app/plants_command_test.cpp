@@ -73,7 +73,7 @@ class Plants : public ::testing::Test {
     lat_ = 0.5 * (j["bounds"]["south"].get<double>() + j["bounds"]["north"].get<double>());
     lon_ = 0.5 * (j["bounds"]["west"].get<double>() + j["bounds"]["east"].get<double>());
   }
-  std::string bbox(double halfM, double offsetEastM = 0.0) {
+  std::string bbox(double halfM, double offsetEastM = 0.0) const {
     const double dLat = halfM / 111000.0, mLon = 111000.0 * std::cos(lat_ * M_PI / 180.0);
     const double dLon = halfM / mLon, c = lon_ + offsetEastM / mLon;
     char buf[160];
