@@ -56,7 +56,7 @@ std::vector<Row> parseCsv(const std::string& text) {
 
 class Plants : public ::testing::Test {
  protected:
-  // A 2 km synthetic dataset (max zoom 13), made once per vegstream build for all test
+  // A 2 km synthetic dataset (max zoom 13), made once per build for all test
   // processes; the box: 100 m × 100 m at its centre. Made in SetUp (not SetUpTestSuite, whose
   // failure GoogleTest turns into skipped tests): a test without its dataset fails.
   void SetUp() override {

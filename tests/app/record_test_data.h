@@ -1,6 +1,6 @@
 #pragma once
 // Shared inputs of the recording tests: a small generated dataset (4 km, 46.55 N 7.95 E) made
-// once per vegstream build for all test processes (cachedFixture), and a 2-second path over its
+// once per build for all test processes (cachedFixture), and a 2-second path over its
 // middle written into the test's own directory.
 
 #include <filesystem>

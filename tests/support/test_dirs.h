@@ -6,9 +6,10 @@
 // - testOutputDir(): VEGSTREAM_TEST_TMP/<program>/<Suite>.<Test>, emptied for the running test.
 // - cachedFixture(name, key, make): an expensive input (an imported dataset) made once and then
 //   shared, read-only, by every process: VEGSTREAM_TEST_TMP/fixtures/<name>.<key>. The key
-//   names the build that made it (vegstreamKey(): a hash of the vegstream executable, for what
-//   the command line makes; programKey(): a hash of the test program, whose static libraries
-//   hold the code that made it), so a rebuilt importer never meets a dataset an older one made.
+//   names the build that made it (programKey(): a hash of the test program, which holds the
+//   making code and its arguments, the vegstream libraries being static; vegstreamKey(): that
+//   and a hash of the vegstream executable, for what the command line makes), so a rebuilt
+//   importer, or changed arguments, never meet a dataset an older build made.
 // A suite's SetUpTestSuite runs in every test process, and GoogleTest skips the tests of a suite
 // whose SetUpTestSuite failed: fixtures are asked for in SetUp, where a failure fails the test.
 
@@ -88,9 +89,10 @@ inline const std::string& programKey() {
   return key;
 }
 
-// Key of fixtures made by running the vegstream executable: "vegstream-<hash>".
+// Key of fixtures made by running the vegstream executable with arguments this program chose:
+// "<program>-<hash of the program><hash of vegstream>" (a changed argument is a changed program).
 inline const std::string& vegstreamKey() {
-  static const std::string key = "vegstream-" + fileKey(VEGSTREAM_EXE);
+  static const std::string key = programKey() + fileKey(VEGSTREAM_EXE);
   return key;
 }
 

@@ -124,6 +124,7 @@ TEST(FileKey, ChangesWithTheContents) {
   EXPECT_NE(fileKey(f), one);
   EXPECT_EQ(fileKey(testOutputDir() / "missing"), "missing");
   EXPECT_EQ(programKey().rfind("test_support_tests-", 0), 0u) << programKey();
+  EXPECT_EQ(vegstreamKey(), programKey() + fileKey(VEGSTREAM_EXE)) << "both builds name a command-line fixture";
 }
 
 }  // namespace

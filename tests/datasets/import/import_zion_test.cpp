@@ -14,7 +14,7 @@ namespace vegstream::datasets {
 namespace {
 using namespace vegstream::datasets::test;
 
-// The import, made once per vegstream build for all test processes (cachedFixture): a test
+// The import, made once per build for all test processes (cachedFixture): a test
 // whose import failed fails with the command's message.
 class ZionImport : public ::testing::Test {
  protected:
