@@ -1,6 +1,7 @@
 // `vegstream fly` as a user runs it: the headless demo writes a recording (frames.csv,
 // recording.json, summary.json, every frame as PNG) like `record`'s, with the validation layers
-// silent, and replaces only an earlier recording; user mistakes end with one message, exit code 2, nothing written.
+// silent, and replaces only an earlier recording; user mistakes end with one message, exit
+// code 2, nothing written.
 
 #include <filesystem>
 #include <fstream>
@@ -10,30 +11,36 @@
 
 #include "flight/record_table.h"
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
+#include "tests/support/virtual_display.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / name;
-  fs::remove_all(dir);
-  return dir;
-}
-
-// The Zion sample imported once (heights + Landsat colour) into the test's scratch space.
-std::string zionDataset() {
-  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / "zion-dataset";
-  if (!fs::exists(dir / "dataset.json")) {
-    fs::remove_all(dir);
+// The Zion sample imported (heights + Landsat colour) by this build's vegstream, once for all
+// the test processes (cachedFixture); made on first use, never at static-initialisation time
+// (which also runs when the build lists the tests).
+Result<fs::path> zionDataset() {
+  return cachedFixture("fly-zion", vegstreamKey(), [](const fs::path& dir) -> Status {
     const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
     const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
                                 "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
-    EXPECT_EQ(r.exitCode, 0) << r.err;
-  }
-  return dir.string();
+    if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
+    return {};
+  });
 }
-const std::string kZion = zionDataset();
+
+// Every fly test runs over the imported Zion sample: a test whose dataset could not be made fails.
+class FlyCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto zion = zionDataset();
+    ASSERT_TRUE(zion.ok()) << zion.error().message;
+    zion_ = zion->string();
+  }
+  std::string zion_;
+};
 
 // Column `name` of the recording's frames.csv, every row (empty cells as NaN).
 std::vector<double> column(const fs::path& recording, const std::string& name) {
@@ -48,9 +55,9 @@ std::vector<double> column(const fs::path& recording, const std::string& name) {
   return out;
 }
 
-TEST(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
-  const fs::path out = freshDir("fly_ok");
-  const auto r = runVegstream("fly '" + kZion + "' --headless --validate --frames 3 --size 160x90 --msaa 1 --out '" +
+TEST_F(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
+  const fs::path out = testOutputDir() / "out";
+  const auto r = runVegstream("fly '" + zion_ + "' --headless --validate --frames 3 --size 160x90 --msaa 1 --out '" +
                               out.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* f : {"frames/frame_00000.png", "frames/frame_00001.png", "frames/frame_00002.png", "frames.csv",
@@ -77,13 +84,13 @@ TEST(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
   EXPECT_NE(r.err.find("device:"), std::string::npos) << "the chosen device is printed";
   // Nothing temporary is left behind.
   for (const auto& e : fs::directory_iterator(out.parent_path()))
-    EXPECT_EQ(e.path().filename().string().find("fly_ok."), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
-TEST(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
-  const fs::path dir = freshDir("fly_again");
+TEST_F(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
+  const fs::path dir = testOutputDir();
   const fs::path out = dir / "out";
-  const std::string args = "fly '" + kZion + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + out.string() + "'";
+  const std::string args = "fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + out.string() + "'";
   ASSERT_EQ(runVegstream(args).exitCode, 0);
   const auto again = runVegstream(args);  // the demo run twice: the second replaces the first
   ASSERT_EQ(again.exitCode, 0) << again.err;
@@ -94,7 +101,7 @@ TEST(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
   const fs::path other = dir / "other";
   fs::create_directories(other);
   std::ofstream(other / "notes.txt") << "mine";
-  const auto refused = runVegstream("fly '" + kZion + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" +
+  const auto refused = runVegstream("fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" +
                                     other.string() + "'");
   EXPECT_EQ(refused.exitCode, 2) << refused.err;
   EXPECT_EQ(countLines(refused.err), 1) << refused.err;
@@ -108,11 +115,19 @@ struct BadInput {
   const char* mentions;
 };
 
+// {ZION} in `args` stands for the imported dataset (the parameters are made at static
+// initialisation, before any dataset exists).
 class FlyBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(FlyBadInput, OneMessageExitTwoNothingWritten) {
-  const fs::path out = freshDir(std::string("fly_bad_") + GetParam().name);
-  const auto r = runVegstream("fly " + GetParam().args + " --headless --frames 2 --out '" + out.string() + "'");
+  const fs::path out = testOutputDir() / "out";
+  std::string args = GetParam().args;
+  if (const size_t at = args.find("{ZION}"); at != std::string::npos) {
+    const auto zion = zionDataset();
+    ASSERT_TRUE(zion.ok()) << zion.error().message;
+    args.replace(at, 6, zion->string());
+  }
+  const auto r = runVegstream("fly " + args + " --headless --frames 2 --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(countLines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(GetParam().mentions), std::string::npos) << r.err;
@@ -124,19 +139,21 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadInput{"missing_dataset", "/no/such/dataset", "/no/such/dataset"},
         BadInput{"not_a_dataset", "'" + std::string(VEGSTREAM_DATASETS_DIR) + "/zion'", "dataset.json"},
-        BadInput{"missing_path", "'" + kZion + "' --path /no/such/path.json", "/no/such/path.json"},
-        BadInput{"unknown_device", "'" + kZion + "' --device no-such-gpu", "no-such-gpu"},
-        BadInput{"size_zero", "'" + kZion + "' --size 0x90", "--size"},
-        BadInput{"size_garbage", "'" + kZion + "' --size big", "--size"},
-        BadInput{"size_too_large", "'" + kZion + "' --size 99999x90", "--size"},
-        BadInput{"msaa_three", "'" + kZion + "' --msaa 3", "--msaa"},
+        BadInput{"missing_path", "'{ZION}' --path /no/such/path.json", "/no/such/path.json"},
+        BadInput{"unknown_device", "'{ZION}' --device no-such-gpu", "no-such-gpu"},
+        BadInput{"size_zero", "'{ZION}' --size 0x90", "--size"},
+        BadInput{"size_garbage", "'{ZION}' --size big", "--size"},
+        BadInput{"size_too_large", "'{ZION}' --size 99999x90", "--size"},
+        BadInput{"msaa_three", "'{ZION}' --msaa 3", "--msaa"},
         // lavapipe offers 1 and 4 samples only
-        BadInput{"msaa_unoffered", "'" + kZion + "' --device llvmpipe --msaa 8", "--msaa 8"}),
+        BadInput{"msaa_unoffered", "'{ZION}' --device llvmpipe --msaa 8", "--msaa 8"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
-TEST(FlyCommand, WindowModeUnderAVirtualDisplay) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) FAIL() << "xvfb-run missing: run scripts/setup";
-  const auto r = runCommand("xvfb-run -a '" + std::string(VEGSTREAM_EXE) + "' fly '" + kZion +
+TEST_F(FlyCommand, WindowModeUnderAVirtualDisplay) {
+  const fs::path dir = testOutputDir();
+  auto display = VirtualDisplay::start(dir / "xvfb.log");
+  ASSERT_TRUE(display.ok()) << display.error().message;
+  const auto r = runCommand((*display)->environment() + "'" + std::string(VEGSTREAM_EXE) + "' fly '" + zion_ +
                             "' --validate --frames 4 --size 160x90 --msaa 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("window open"), std::string::npos) << r.err;
@@ -150,30 +167,28 @@ TEST(FlyCommand, WindowModeUnderAVirtualDisplay) {
 namespace vegstream::testing {
 namespace {
 
-TEST(FlyCommand, APathOutsideTheDatasetIsRefusedWithOneLine) {
-  const fs::path dir = freshDir("fly_outside");
-  fs::create_directories(dir);
+TEST_F(FlyCommand, APathOutsideTheDatasetIsRefusedWithOneLine) {
+  const fs::path dir = testOutputDir();
   const fs::path path = dir / "elsewhere.json";
   std::ofstream(path) << R"({"name": "elsewhere", "keyframes": [
     {"t": 0, "lat": 46.5, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10},
     {"t": 10, "lat": 46.6, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10}]})";
   const fs::path out = dir / "out";
-  const auto r = runVegstream("fly '" + kZion + "' --headless --path '" + path.string() + "' --out '" + out.string() + "'");
+  const auto r = runVegstream("fly '" + zion_ + "' --headless --path '" + path.string() + "' --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(countLines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("keyframes[0]"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(FlyCommand, PlaysAGivenPathHeadless) {
-  const fs::path dir = freshDir("fly_path");
-  fs::create_directories(dir);
+TEST_F(FlyCommand, PlaysAGivenPathHeadless) {
+  const fs::path dir = testOutputDir();
   const fs::path path = dir / "short.json";
   std::ofstream(path) << R"({"name": "short", "keyframes": [
     {"t": 0, "lat": 37.25, "lon": -113.05, "alt_m": 400, "heading": 90, "pitch": -15},
     {"t": 4, "lat": 37.25, "lon": -113.00, "alt_m": 400, "heading": 90, "pitch": -15}]})";
   const fs::path out = dir / "out";
-  const auto r = runVegstream("fly '" + kZion + "' --headless --validate --frames 2 --size 96x54 --msaa 1 --path '" +
+  const auto r = runVegstream("fly '" + zion_ + "' --headless --validate --frames 2 --size 96x54 --msaa 1 --path '" +
                               path.string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto rec = nlohmann::json::parse(readWhole(out / "recording.json"));

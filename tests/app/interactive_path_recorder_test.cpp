@@ -8,6 +8,7 @@
 
 #include "app/path_recorder.h"
 #include "flight/flight_path_json.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::app {
 namespace {
@@ -42,9 +43,7 @@ TEST(InteractivePathRecorder, KeyframesEveryHalfSecondLoadableJson) {
     EXPECT_EQ(path->keyframes[i].altRef, flight::AltRef::Msl);
   }
 
-  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / "interactive_path";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = vegstream::testing::testOutputDir();
   const fs::path file = dir / "flown.json";
   ASSERT_TRUE(saveFlightPath(*path, file));
   auto loaded = flight::loadFlightPath(file);

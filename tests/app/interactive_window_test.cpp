@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
+#include "tests/support/virtual_display.h"
 
 namespace vegstream::testing {
 namespace {
@@ -17,26 +19,28 @@ namespace fs = std::filesystem;
 
 class InteractiveWindow : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return;
-    dataset_ = fs::path(VEGSTREAM_TEST_TMP) / "interactive_dataset";
-    if (!fs::exists(dataset_ / "dataset.json")) {
-      fs::remove_all(dataset_);
-      const auto r = runVegstream("generate --out '" + dataset_.string() + "' --size-km 3 --seed 2");
-      ASSERT_EQ(r.exitCode, 0) << r.err;
-    }
-  }
+  // A 3 km synthetic dataset made by this build's vegstream, once for all test processes; a
+  // test whose dataset or virtual display could not be made fails.
   void SetUp() override {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run missing";
+    auto dataset = cachedFixture("interactive-synthetic-3km", vegstreamKey(), [](const fs::path& dir) -> Status {
+      const auto r = runVegstream("generate --out '" + dir.string() + "' --size-km 3 --seed 2");
+      if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream generate: " + r.err);
+      return {};
+    });
+    ASSERT_TRUE(dataset.ok()) << dataset.error().message;
+    dataset_ = *dataset;
+    dir_ = testOutputDir();
+    auto display = VirtualDisplay::start(dir_ / "xvfb.log");
+    ASSERT_TRUE(display.ok()) << display.error().message;
+    display_ = std::move(*display);
   }
 
   // Runs 3 window frames at 320×180 with a screenshot of frame 3; returns the PNG's pixels.
-  static std::vector<uint8_t> screenshot(const std::string& name, bool hud, std::string* err) {
-    const fs::path out = fs::path(VEGSTREAM_TEST_TMP) / name;
-    fs::remove_all(out);
+  std::vector<uint8_t> screenshot(const std::string& name, bool hud, std::string* err) {
+    const fs::path out = dir_ / name;
     fs::create_directories(out);
     const std::string env = std::string("VEGSTREAM_FLY_SCREENSHOT_FRAME=3 ") + (hud ? "" : "VEGSTREAM_FLY_NO_HUD=1 ");
-    const auto r = runCommand("cd '" + out.string() + "' && " + env + "xvfb-run -a -s '-screen 0 640x480x24' '" +
+    const auto r = runCommand("cd '" + out.string() + "' && " + display_->environment() + env + "'" +
                               VEGSTREAM_EXE + "' fly '" + dataset_.string() +
                               "' --validate --frames 3 --size 320x180 --msaa 1");
     *err = r.err;
@@ -61,7 +65,8 @@ class InteractiveWindow : public ::testing::Test {
     return px;
   }
 
-  static inline fs::path dataset_;
+  fs::path dataset_, dir_;
+  std::unique_ptr<VirtualDisplay> display_;
 };
 
 TEST_F(InteractiveWindow, HudIsDrawnAndValidationSilent) {

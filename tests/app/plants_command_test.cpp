@@ -14,19 +14,19 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// `name` in the running test's own directory, not there yet.
 fs::path testTmp(const std::string& name) {
-  const auto p = fs::path(VEGSTREAM_TEST_TMP) / (name + "_" + std::to_string(::getpid()));
+  const auto p = testOutputDir() / name;
   fs::remove_all(p);
-  fs::create_directories(p.parent_path());
   return p;
 }
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
@@ -56,22 +56,24 @@ std::vector<Row> parseCsv(const std::string& text) {
 
 class Plants : public ::testing::Test {
  protected:
-  // A 2 km synthetic dataset (max zoom 13), made once; the box: 100 m × 100 m at its centre.
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(testTmp("plants_synth"));
-    const auto g = runVegstream("generate --out " + q(*dir_) + " --name synth --size-km 2 --max-zoom 13 --seed 7");
-    ASSERT_EQ(g.exitCode, 0) << g.err;
-    const auto info = runVegstream("info " + q(*dir_));
+  // A 2 km synthetic dataset (max zoom 13), made once per build for all test
+  // processes; the box: 100 m × 100 m at its centre. Made in SetUp (not SetUpTestSuite, whose
+  // failure GoogleTest turns into skipped tests): a test without its dataset fails.
+  void SetUp() override {
+    auto dir = cachedFixture("plants-synthetic-2km", vegstreamKey(), [](const fs::path& out) -> Status {
+      const auto g = runVegstream("generate --out " + q(out) + " --name synth --size-km 2 --max-zoom 13 --seed 7");
+      if (g.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream generate: " + g.err);
+      return {};
+    });
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    dir_ = *dir;
+    const auto info = runVegstream("info " + q(dir_));
     ASSERT_EQ(info.exitCode, 0) << info.err;
     const json j = json::parse(info.out);
     lat_ = 0.5 * (j["bounds"]["south"].get<double>() + j["bounds"]["north"].get<double>());
     lon_ = 0.5 * (j["bounds"]["west"].get<double>() + j["bounds"]["east"].get<double>());
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
-  static std::string bbox(double halfM, double offsetEastM = 0.0) {
+  std::string bbox(double halfM, double offsetEastM = 0.0) const {
     const double dLat = halfM / 111000.0, mLon = 111000.0 * std::cos(lat_ * M_PI / 180.0);
     const double dLon = halfM / mLon, c = lon_ + offsetEastM / mLon;
     char buf[160];
@@ -84,10 +86,10 @@ class Plants : public ::testing::Test {
     for (std::string c; std::getline(ss, c, ',');) v.push_back(std::stod(c));
     return v;
   }
-  static std::string plants(const std::string& args) { return "plants " + q(*dir_) + " " + args; }
+  std::string plants(const std::string& args) const { return "plants " + q(dir_) + " " + args; }
 
-  static inline fs::path* dir_ = nullptr;
-  static inline double lat_ = 0.0, lon_ = 0.0;
+  fs::path dir_;
+  double lat_ = 0.0, lon_ = 0.0;
 };
 
 TEST_F(Plants, CsvAndJsonAgreeInsideTheBoxAndRunsAreIdentical) {
@@ -201,9 +203,9 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
   // A copy of the dataset's description without imagery.
   const fs::path noImagery = tmp / "noimagery";
   fs::create_directories(noImagery);
-  fs::copy(*dir_ / "elevation", noImagery / "elevation", fs::copy_options::recursive);
+  fs::copy(dir_ / "elevation", noImagery / "elevation", fs::copy_options::recursive);
   {
-    std::ifstream in(*dir_ / "dataset.json");
+    std::ifstream in(dir_ / "dataset.json");
     json d = json::parse(in);
     d.erase("imagery");
     std::ofstream(noImagery / "dataset.json") << d.dump(2);

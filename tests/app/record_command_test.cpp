@@ -85,14 +85,19 @@ bool isPng(const fs::path& file) {
   return f && std::string(magic + 1, 3) == "PNG";
 }
 
-// One recording shared by the tests that only read it (made on first use, atomically).
+// One recording (every 10th frame saved) shared by the tests that only read it, made once per
+// vegstream build for all test processes; a test that cannot have it fails.
 fs::path baseRecording() {
-  const fs::path dir = recordTmp("record_base");
-  if (!fs::exists(dir / "summary.json")) {
-    const auto r = recordSmall(dir, "--frames-every 10");
-    EXPECT_TRUE(r.exitCode == 0 || fs::exists(dir / "summary.json")) << r.err;
+  const auto dir = cachedFixture("record-base", vegstreamKey(), [](const fs::path& out) -> Status {
+    const auto r = recordSmall(out, "--frames-every 10");
+    if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream record: " + r.err);
+    return {};
+  });
+  if (!dir.ok()) {
+    ADD_FAILURE() << dir.error().message;
+    return "/nonexistent/record-base";
   }
-  return dir;
+  return *dir;
 }
 
 TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {

@@ -1,7 +1,7 @@
 #pragma once
-// Shared inputs of the recording tests: a small generated dataset (4 km, 46.55 N 7.95 E) and a
-// 2-second path over its middle, made once per build tree and reused (every writer is atomic,
-// so an existing dataset.json means a complete dataset).
+// Shared inputs of the recording tests: a small generated dataset (4 km, 46.55 N 7.95 E) made
+// once per build for all test processes (cachedFixture), and a 2-second path over its
+// middle written into the test's own directory.
 
 #include <filesystem>
 #include <fstream>
@@ -10,34 +10,32 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::testing {
 
-// Shared by the tests of one build: the directories carry the executable's time stamp, so a
-// rebuilt vegstream never meets recordings or datasets an older one made.
-inline std::filesystem::path recordTmp(const std::string& name) {
-  std::error_code ec;
-  const auto stamp = std::filesystem::last_write_time(VEGSTREAM_EXE, ec).time_since_epoch().count();
-  const auto dir = std::filesystem::path(VEGSTREAM_TEST_TMP) / ("b" + std::to_string(stamp));
-  std::filesystem::create_directories(dir, ec);
-  return dir / name;
-}
+// `name` in the running test's own directory.
+inline std::filesystem::path recordTmp(const std::string& name) { return testOutputDir() / name; }
 
+// The same, removed (for an --out that must not exist).
 inline std::filesystem::path freshRecordDir(const std::string& name) {
   const auto dir = recordTmp(name);
   std::filesystem::remove_all(dir);
   return dir;
 }
 
-// The generated dataset (made on first use).
+// The generated dataset; a test that cannot have it fails (the path returned then does not exist).
 inline std::filesystem::path recordDataset() {
-  const auto dir = recordTmp("record_dataset");
-  if (!std::filesystem::exists(dir / "dataset.json")) {
-    const auto r = runVegstream("generate --out '" + dir.string() + "' --lat 46.55 --lon 7.95 --size-km 4 --seed 1");
-    // A parallel test may have made it first.
-    EXPECT_TRUE(r.exitCode == 0 || std::filesystem::exists(dir / "dataset.json")) << r.err;
+  const auto dir = cachedFixture("record-dataset-4km", vegstreamKey(), [](const std::filesystem::path& out) -> Status {
+    const auto r = runVegstream("generate --out '" + out.string() + "' --lat 46.55 --lon 7.95 --size-km 4 --seed 1");
+    if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream generate: " + r.err);
+    return {};
+  });
+  if (!dir.ok()) {
+    ADD_FAILURE() << dir.error().message;
+    return "/nonexistent/record-dataset";
   }
-  return dir;
+  return *dir;
 }
 
 // A 2 s flight path over the dataset's middle, 300 m above the terrain.

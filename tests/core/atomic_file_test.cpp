@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/test_dirs.h"
+
 namespace vegstream {
 namespace {
 namespace fs = std::filesystem;
 
+// `name`, empty, in the running test's own directory.
 fs::path freshDir(const std::string& name) {
-  fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / name;
+  fs::path dir = testing::testOutputDir() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -47,7 +50,7 @@ TEST(AtomicFile, DirectoryRefusesNonEmptyTargetAndCleansUp) {
   EXPECT_FALSE(s.ok());
   EXPECT_TRUE(fs::exists(dir / "keep.txt"));
 
-  const fs::path out = fs::path(VEGSTREAM_TEST_TMP) / "atomic_dir_new";
+  const fs::path out = testing::testOutputDir() / "atomic_dir_new";
   fs::remove_all(out);
   Status bad = writeDirectoryAtomically(out, [](const fs::path& tmp) -> Status {
     std::ofstream(tmp / "half.txt") << "x";

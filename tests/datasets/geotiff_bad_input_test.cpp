@@ -9,6 +9,7 @@
 
 #include "datasets/geotiff_reader.h"
 #include "tests/datasets/tiny_tiff.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 using test::TinyImage;
 
 fs::path tmpFile(const std::string& name) {
-  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / "datasets";
+  const fs::path dir = vegstream::testing::testOutputDir();
   fs::create_directories(dir);
   fs::remove(dir / name);
   return dir / name;

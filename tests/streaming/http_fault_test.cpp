@@ -27,7 +27,11 @@ using Clock = std::chrono::steady_clock;
 
 class FaultServer : public testing::HttpDataset {
  protected:
-  void SetUp() override { server_ = std::make_unique<FaultHttpServer>(dir()); }
+  void SetUp() override {
+    HttpDataset::SetUp();
+    if (HasFatalFailure()) return;
+    server_ = std::make_unique<FaultHttpServer>(dir());
+  }
   HttpSourceOptions options(int maxInFlight = 4) const {
     HttpSourceOptions o;
     o.baseUrl = server_->baseUrl();

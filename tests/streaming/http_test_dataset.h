@@ -38,10 +38,13 @@ inline std::vector<uint8_t> fileBytes(const std::filesystem::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// A 4 km synthetic dataset (a few dozen tiles), made once per process.
+// A 4 km synthetic dataset (a few dozen tiles), made once per process. A suite set-up that
+// fails records why in setupError_ and every test fails in SetUp (GoogleTest would skip them).
 class HttpDataset : public ::testing::Test {
  protected:
+  void SetUp() override { ASSERT_TRUE(setupError_.empty()) << setupError_; }
   static void SetUpTestSuite() {
+    setupError_.clear();
     root_ = new std::filesystem::path(httpTestTmp("root"));
     datasets::SyntheticOptions o;
     o.out = *root_ / "synthetic";
@@ -49,7 +52,10 @@ class HttpDataset : public ::testing::Test {
     o.threads = 2;
     datasets::NullProgress progress;
     auto meta = datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
-    ASSERT_TRUE(meta.ok()) << meta.error().message;
+    if (!meta.ok()) {
+      setupError_ = "synthetic dataset: " + meta.error().message;
+      return;
+    }
     meta_ = new datasets::DatasetMeta(*meta);
     tiles_ = new std::vector<std::string>;
     for (const auto& e : std::filesystem::recursive_directory_iterator(o.out))
@@ -68,6 +74,7 @@ class HttpDataset : public ::testing::Test {
   static const datasets::DatasetMeta& meta() { return *meta_; }
   // Every tile file, relative to the dataset root ("elevation/13/4281/2913.png"), sorted.
   static const std::vector<std::string>& tiles() { return *tiles_; }
+  static inline std::string setupError_;
 
  private:
   static inline std::filesystem::path* root_ = nullptr;

@@ -1,7 +1,7 @@
 #pragma once
-// Shared by the streaming tests: datasets made once per test process (ctest runs each test in
-// its own process, possibly in parallel, so each gets its own directory under
-// VEGSTREAM_TEST_TMP), and helpers to list a dataset's tiles and make wants.
+// Shared by the streaming tests: datasets made once and shared by the test processes (ctest runs
+// each test in its own process, possibly in parallel), each process's own scratch directories
+// under VEGSTREAM_TEST_TMP, and helpers to list a dataset's tiles and make wants.
 
 #include <filesystem>
 #include <string>
@@ -10,10 +10,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "datasets/dataset_format.h"
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
 #include "datasets/synthetic_generator.h"
 #include "streaming/tile_streamer.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::streaming::test {
 namespace fs = std::filesystem;
@@ -72,27 +74,31 @@ inline std::vector<TileWant> wantsOf(const std::vector<TileKey>& keys, bool look
   return w;
 }
 
-// A dataset made once per test process: Maker has kName and make(dir) → Result<DatasetMeta>.
+// A dataset made once per build of this program for all its test processes (cachedFixture; tests
+// only read it): Maker has kName and make(dir) → Result<DatasetMeta>. Made in SetUp, so that a
+// test without its dataset fails (GoogleTest skips the tests of a failed SetUpTestSuite).
 template <typename Maker>
 class MadeDataset : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(testTmp(Maker::kName));
-    auto meta = Maker::make(*dir_);
+  void SetUp() override {
+    auto dir = testing::cachedFixture(std::string("streaming-") + Maker::kName, testing::programKey(),
+                                      [](const fs::path& out) -> Status {
+                                        auto meta = Maker::make(out);
+                                        if (!meta.ok()) return meta.error();
+                                        return {};
+                                      });
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    auto meta = datasets::readDatasetMeta(*dir);
     ASSERT_TRUE(meta.ok()) << meta.error().message;
-    meta_ = new datasets::DatasetMeta(*meta);
+    dir_ = *dir;
+    meta_ = *meta;
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-    delete meta_;
-  }
-  static const fs::path& dir() { return *dir_; }
-  static const datasets::DatasetMeta& meta() { return *meta_; }
+  static const fs::path& dir() { return dir_; }
+  static const datasets::DatasetMeta& meta() { return meta_; }
 
  private:
-  static inline fs::path* dir_ = nullptr;
-  static inline datasets::DatasetMeta* meta_ = nullptr;
+  static inline fs::path dir_;
+  static inline datasets::DatasetMeta meta_;
 };
 
 struct SyntheticMaker {

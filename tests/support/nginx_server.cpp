@@ -128,6 +128,8 @@ Result<std::unique_ptr<NginxServer>> NginxServer::start(const fs::path& root, co
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) return makeError(ErrorKind::Io, std::string("cannot start nginx: ") + std::strerror(rc));
 
+    // nginx (an external process) says nothing when it listens: poll its port, with a deadline,
+    // and notice it exiting. The only sleep of the tests outside tests/streaming, and why.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     bool exited = false;
     while (std::chrono::steady_clock::now() < deadline) {

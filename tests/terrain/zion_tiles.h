@@ -1,9 +1,7 @@
 #pragma once
-// Real heights for the terrain tests: the Zion SRTM sample imported once per test process
-// (datasets::importGeoTiff, max zoom 11, no imagery) into a per-process directory under
-// VEGSTREAM_TEST_TMP, removed when the process ends. Tiles are read back through the codec.
-
-#include <unistd.h>
+// Real heights for the terrain tests: the Zion SRTM sample (datasets::importGeoTiff, max zoom 11,
+// no imagery) imported once per build of the test program for all its test processes
+// (cachedFixture), on the first get() inside a test. Tiles are read back through the codec.
 
 #include <filesystem>
 #include <map>
@@ -16,6 +14,7 @@
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
 #include "datasets/tile_codec.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::terrain::test {
 
@@ -38,29 +37,28 @@ class ZionTiles {
     return it->second;
   }
 
-  ~ZionTiles() {
-    std::error_code ec;
-    std::filesystem::remove_all(root_, ec);
-  }
-
+  // The import failing throws: the test that asked fails with the message.
  private:
   ZionTiles() {
-    root_ = std::filesystem::path(VEGSTREAM_TEST_TMP) / ("terrain-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(root_);
-    std::filesystem::create_directories(root_);
-    dir_ = root_ / "zion";
-    datasets::GeoTiffImportOptions options;
-    options.dem = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
-    options.out = dir_;
-    options.maxZoom = 11;
-    options.threads = 2;
-    datasets::NullProgress progress;
-    auto meta = datasets::importGeoTiff(options, makeNullLogger(), progress);
-    if (!meta) throw std::runtime_error("Zion import failed: " + meta.error().message);
+    auto dir = testing::cachedFixture("terrain-zion-z11", testing::programKey(), [](const std::filesystem::path& out) -> Status {
+      datasets::GeoTiffImportOptions options;
+      options.dem = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
+      options.out = out;
+      options.maxZoom = 11;
+      options.threads = 2;
+      datasets::NullProgress progress;
+      auto meta = datasets::importGeoTiff(options, makeNullLogger(), progress);
+      if (!meta) return meta.error();
+      return {};
+    });
+    if (!dir) throw std::runtime_error("Zion import failed: " + dir.error().message);
+    dir_ = *dir;
+    auto meta = datasets::readDatasetMeta(dir_);
+    if (!meta) throw std::runtime_error("Zion import unreadable: " + meta.error().message);
     meta_ = *meta;
   }
 
-  std::filesystem::path root_, dir_;
+  std::filesystem::path dir_;
   datasets::DatasetMeta meta_;
   std::map<geo::TileId, datasets::HeightTile> tiles_;
 };

@@ -7,13 +7,14 @@
 #include <sstream>
 
 #include "datasets/dataset_format.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::path(VEGSTREAM_TEST_TMP) / "format" / name;
+  const fs::path d = vegstream::testing::testOutputDir() / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

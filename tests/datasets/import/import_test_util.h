@@ -13,13 +13,14 @@
 #include "datasets/tile_codec.h"
 #include "geo/xyz_tiles.h"
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets::test {
 
 namespace fs = std::filesystem;
 
 inline fs::path importTmp(const std::string& name) {
-  const fs::path d = fs::path(VEGSTREAM_TEST_TMP) / "import" / name;
+  const fs::path d = vegstream::testing::testOutputDir() / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -14,32 +14,32 @@ namespace vegstream::datasets {
 namespace {
 using namespace vegstream::datasets::test;
 
+// The import, made once per build for all test processes (cachedFixture): a test
+// whose import failed fails with the command's message.
 class ZionImport : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    out_ = new fs::path(importTmp("zion") / "zion");
-    const std::string z = samples() + "/zion/";
-    // --max-zoom 14 (7.6 m pixels, 4× finer than the automatic zoom 12) and cubic height
-    // resampling: the height check samples the tiles bilinearly at the DEM's pixel centres, and
-    // a bilinear import's kinks leave 19 % of them beyond 0.5 m even at zoom 14 (README,
-    // "Height accuracy").
-    result_ = new testing::CommandResult(testing::runVegstream(
-        "import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," + z +
-        "landsat_b2.tif --stretch p1,p99 --max-zoom 14 --height-resampling cubic --out " + out_->string()));
+  void SetUp() override {
+    auto dir = testing::cachedFixture("import-zion-z14-cubic", testing::vegstreamKey(), [](const fs::path& out) -> Status {
+      const std::string z = samples() + "/zion/";
+      // --max-zoom 14 (7.6 m pixels, 4× finer than the automatic zoom 12) and cubic height
+      // resampling: the height check samples the tiles bilinearly at the DEM's pixel centres, and
+      // a bilinear import's kinks leave 19 % of them beyond 0.5 m even at zoom 14 (README,
+      // "Height accuracy").
+      const auto r = testing::runVegstream(
+          "import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," + z +
+          "landsat_b2.tif --stretch p1,p99 --max-zoom 14 --height-resampling cubic --out " + out.string());
+      if (r.exitCode != 0)
+        return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
+      return {};
+    });
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    out_ = *dir;
   }
-  static void TearDownTestSuite() {
-    delete out_;
-    delete result_;
-  }
-  static fs::path* out_;
-  static testing::CommandResult* result_;
+  fs::path out_;
 };
-fs::path* ZionImport::out_ = nullptr;
-testing::CommandResult* ZionImport::result_ = nullptr;
 
 TEST_F(ZionImport, SucceedsAndRecordsTheDataset) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  auto meta = readDatasetMeta(*out_);
+  auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta) << meta.error().message;
   EXPECT_EQ(meta->maxZoom, 14);
   EXPECT_LE(meta->minZoom, 9);
@@ -54,12 +54,11 @@ TEST_F(ZionImport, SucceedsAndRecordsTheDataset) {
 }
 
 TEST_F(ZionImport, HeightsMatchTheDemAtItsPixelCentres) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  auto meta = readDatasetMeta(*out_);
+  auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta);
   auto dem = readGeoTiff(samples() + "/zion/srtm.tif");
   ASSERT_TRUE(dem);
-  DatasetSampler sampler(*out_, *meta);
+  DatasetSampler sampler(out_, *meta);
   std::mt19937 rng(2024);
   std::uniform_int_distribution<int> col(0, dem->width - 1), row(0, dem->height - 1);
   const double tolerance = 0.5 + encodingStepM(meta->elevationEncoding);
@@ -81,8 +80,7 @@ TEST_F(ZionImport, HeightsMatchTheDemAtItsPixelCentres) {
 // quality 90 with 4:2:0 chroma subsampling moves a smooth colour by a few levels, bilinear
 // resampling of a homogeneous block by less than the neighbourhood spread (≈ 5 levels).
 TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  auto meta = readDatasetMeta(*out_);
+  auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta);
   const std::string z = samples() + "/zion/";
   auto r = readGeoTiff(z + "landsat_b4.tif"), g = readGeoTiff(z + "landsat_b3.tif"), b = readGeoTiff(z + "landsat_b2.tif");
@@ -102,7 +100,7 @@ TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
 
   auto crs = geo::crsFromEpsg(32612);
   ASSERT_TRUE(crs);
-  DatasetSampler sampler(*out_, *meta);
+  DatasetSampler sampler(out_, *meta);
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> col(5, r->width - 6), row(5, r->height - 6);
   int checked = 0, good = 0;

@@ -8,12 +8,13 @@
 #include <sstream>
 
 #include "datasets/progress.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
 
 TEST(Progress, PlainLinesAndSummaryCountTilesAndBytes) {
-  const auto path = std::filesystem::path(VEGSTREAM_TEST_TMP) / "progress.txt";
+  const auto path = vegstream::testing::testOutputDir() / "progress.txt";
   std::filesystem::create_directories(path.parent_path());
   std::FILE* f = std::fopen(path.c_str(), "w");
   ASSERT_NE(f, nullptr);

@@ -8,13 +8,14 @@
 
 #include "datasets/pyramid_builder.h"
 #include "datasets/tile_codec.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
 TEST(PyramidBuilder, ParentIsTheMeanOfValidChildren) {
-  const fs::path d = fs::path(VEGSTREAM_TEST_TMP) / "pyramid";
+  const fs::path d = vegstream::testing::testOutputDir() / "pyramid";
   fs::remove_all(d);
   DatasetMeta meta;
   meta.minZoom = 8;

@@ -9,13 +9,14 @@
 #include <random>
 
 #include "datasets/tile_codec.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
 fs::path tmpDir(const std::string& name) {
-  const fs::path d = fs::path(VEGSTREAM_TEST_TMP) / "codec" / name;
+  const fs::path d = vegstream::testing::testOutputDir() / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

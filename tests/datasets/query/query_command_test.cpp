@@ -118,7 +118,7 @@ TEST_F(GrandCanyon, BadFieldInDatasetJsonIsNamed) {
 }
 
 TEST(QueryCommand, MissingDatasetIsAUserError) {
-  const fs::path missing = fs::path(VEGSTREAM_TEST_TMP) / "no_such_dataset";
+  const fs::path missing = testOutputDir() / "no_such_dataset";
   for (const std::string& cmd : {"info " + q(missing), "query " + q(missing) + " --lat 1 --lon 2"}) {
     const auto r = runVegstream(cmd);
     EXPECT_EQ(r.exitCode, 2) << cmd;

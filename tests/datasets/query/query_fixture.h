@@ -1,24 +1,25 @@
 #pragma once
-// Shared by the query tests: the grandcanyon-xyz sample imported once per test process (ctest
-// runs every test in its own process, possibly in parallel, so each gets its own directory).
+// Shared by the query tests: the grandcanyon-xyz sample imported once per build of this test
+// program for all its test processes (cachedFixture), and each test's own scratch directory.
 
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
+#include "datasets/dataset_format.h"
 #include "datasets/xyz_import.h"
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::testing {
 
 inline std::filesystem::path grandCanyonDir() { return std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "grandcanyon-xyz"; }
 
+// `name` in the running test's own directory, not there yet.
 inline std::filesystem::path testTmp(const std::string& name) {
-  const auto p = std::filesystem::path(VEGSTREAM_TEST_TMP) / (name + "_" + std::to_string(::getpid()));
+  const auto p = testOutputDir() / name;
   std::filesystem::remove_all(p);
-  std::filesystem::create_directories(p.parent_path());
   return p;
 }
 
@@ -32,26 +33,28 @@ inline datasets::XyzImportOptions grandCanyonOptions(const std::filesystem::path
   return o;
 }
 
-// The imported dataset, made once per process.
+// The imported dataset; a test that cannot have it fails (made in SetUp: GoogleTest turns a
+// failed SetUpTestSuite into skipped tests).
 class GrandCanyon : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new std::filesystem::path(testTmp("grandcanyon"));
-    auto meta = datasets::importXyzTiles(grandCanyonOptions(*dir_), makeNullLogger());
+  void SetUp() override {
+    auto dir = cachedFixture("query-grandcanyon", programKey(), [](const std::filesystem::path& out) -> Status {
+      auto meta = datasets::importXyzTiles(grandCanyonOptions(out), makeNullLogger());
+      if (!meta.ok()) return meta.error();
+      return {};
+    });
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    dir_ = *dir;
+    auto meta = datasets::readDatasetMeta(dir_);
     ASSERT_TRUE(meta.ok()) << meta.error().message;
-    meta_ = new datasets::DatasetMeta(*meta);
+    meta_ = *meta;
   }
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*dir_);
-    delete dir_;
-    delete meta_;
-  }
-  static const std::filesystem::path& dir() { return *dir_; }
-  static const datasets::DatasetMeta& meta() { return *meta_; }
+  const std::filesystem::path& dir() const { return dir_; }
+  const datasets::DatasetMeta& meta() const { return meta_; }
 
  private:
-  static inline std::filesystem::path* dir_ = nullptr;
-  static inline datasets::DatasetMeta* meta_ = nullptr;
+  std::filesystem::path dir_;
+  datasets::DatasetMeta meta_;
 };
 
 }  // namespace vegstream::testing
