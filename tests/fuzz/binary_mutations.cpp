@@ -6,26 +6,14 @@
 #include <array>
 #include <cstddef>
 
+#include "tests/fuzz/mutation_rng.h"
+
 namespace vegstream::testing {
 namespace {
 
-struct Rng {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  size_t below(size_t n) { return n == 0 ? 0 : static_cast<size_t>(next() % n); }
-  uint8_t byte() { return static_cast<uint8_t>(next() & 0xff); }
-};
+using Rng = MutationRng;
 
-Rng rngFor(uint64_t seed, uint64_t index) {
-  Rng rng{seed * 0x100000001b3ULL ^ (index + 1) * 0x9e3779b97f4a7c15ULL};
-  rng.next();
-  return rng;
-}
+Rng rngFor(uint64_t seed, uint64_t index) { return mutationRng(seed, index); }
 
 // Values that break decoders: zero, all ones, sign bits, sizes just past limits.
 constexpr std::array<uint8_t, 8> kInteresting = {0x00, 0xff, 0x7f, 0x80, 0x01, 0x10, 0x40, 0xfe};

@@ -12,20 +12,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/fuzz/mutation_rng.h"
+
 namespace vegstream::testing {
 namespace {
 
-// splitmix64: tiny, seedable, and the same on every platform (unlike std:: distributions).
-struct Rng {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  size_t below(size_t n) { return n == 0 ? 0 : static_cast<size_t>(next() % n); }
-};
+using Rng = MutationRng;
 
 const std::string& deepArrays() {
   static const std::string s = std::string(400, '[') + std::string(400, ']');
@@ -182,8 +174,7 @@ std::string edit(std::string text, Rng& rng, bool structural, bool hugeOnly, std
 }
 
 JsonMutation mutate(const std::string& valid, uint64_t seed, uint64_t index, bool hugeOnly) {
-  Rng rng{seed * 0x100000001b3ULL ^ (index + 1) * 0x9e3779b97f4a7c15ULL};
-  rng.next();
+  Rng rng = mutationRng(seed, index);
   JsonMutation m{valid, ""};
   const size_t edits = hugeOnly ? 1 : 1 + rng.below(3);
   bool structural = true;  // the text is valid JSON: its spans can be scanned
