@@ -117,6 +117,8 @@ const SceneInfo& Scene::info() const { return impl_->info; }
 const geo::LocalFrame& Scene::frame() const { return impl_->frame; }
 const SceneFrameFigures& Scene::lastFrameFigures() const { return impl_->figures; }
 
+bool Scene::waitForTileArrivals(std::chrono::milliseconds timeout) { return impl_->streamer->waitForArrivals(timeout); }
+
 double Scene::groundHeight(double latDeg, double lonDeg) const { return impl_->ground.sampleLonLat(lonDeg, latDeg); }
 
 GroundHeight Scene::groundFunction() const {

@@ -16,6 +16,7 @@
 // Contract: open() checks the dataset and every renderer option before loading tiles, and
 // returns user mistakes as errors whose message names the dataset or option.
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -114,6 +115,10 @@ class Scene {
   // caller's to set on the returned request.
   render::FrameRequest prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {});
   const SceneFrameFigures& lastFrameFigures() const;
+  // Realtime: waits until a tile request has finished (the next prepareFrame takes it in) or
+  // `timeout` passes; true when one has. Lets a caller hold a pose until its tiles are in
+  // without sleeping (TileStreamer::waitForArrivals).
+  bool waitForTileArrivals(std::chrono::milliseconds timeout);
 
   // Camera and lighting for a sample, without streaming or terrain (for tests of the pose).
   render::FrameRequest cameraRequest(const FlightSample& sample) const;

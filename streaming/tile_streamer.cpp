@@ -476,6 +476,10 @@ TileStreamer::~TileStreamer() {
 const datasets::DatasetMeta& TileStreamer::meta() const { return impl_->meta; }
 const StreamingOptions& TileStreamer::options() const { return impl_->options; }
 const StreamingFrameStats& TileStreamer::frameStats() const { return impl_->stats; }
+
+bool TileStreamer::waitForArrivals(std::chrono::milliseconds timeout) {
+  return impl_->pipeline->waitForCompletions(timeout);
+}
 uint32_t TileStreamer::gpuSlotCount() const { return impl_->slots.count(); }
 
 void TileStreamer::update(std::span<const TileWant> wants, double timeS) {

@@ -24,6 +24,7 @@
 //
 // Thread-safety: every public member is for the frame thread only, except where noted.
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -168,6 +169,11 @@ class TileStreamer {
   double settle(std::span<const TileWant> wants, double timeS);
 
   const StreamingFrameStats& frameStats() const;
+
+  // Waits until a read or decode has finished (the next update takes it in) or `timeout` passes;
+  // true when one has. For callers that step realtime frames as fast as they like (tests, tools)
+  // and want the next frame to have something new, without sleeping.
+  bool waitForArrivals(std::chrono::milliseconds timeout);
 
   // Keys that became CPU-resident or left the CPU since the last call, in the order it happened
   // (a key may appear twice): how the terrain learns that the heights under it changed.

@@ -47,15 +47,11 @@ class FaultServer : public testing::HttpDataset {
     EXPECT_TRUE(s.ok()) << s.error().message;
     return *s;
   }
-  // Polls `done` for up to `limit`.
+  // Waits for `done` (a condition on the server's counters) for up to `limit`, woken by the
+  // server whenever its counters change.
   template <typename F>
-  static bool eventually(F done, std::chrono::milliseconds limit = std::chrono::seconds(2)) {
-    const auto end = Clock::now() + limit;
-    while (!done()) {
-      if (Clock::now() > end) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    return true;
+  bool eventually(F done, std::chrono::milliseconds limit = std::chrono::seconds(2)) const {
+    return server_->waitUntil(done, limit);
   }
   std::unique_ptr<FaultHttpServer> server_;
 };

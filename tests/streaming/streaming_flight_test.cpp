@@ -72,7 +72,7 @@ class StreamingFlight : public ZionDataset {
       scene.prepareFrame(sampler.sample(t0, ground), t0, flight::lookAheadSamples(sampler, ground, t0));
       const scene::SceneFrameFigures& fig = scene.lastFrameFigures();
       if (fig.streaming.wanted == fig.streaming.wantedResident && fig.terrain.fallbackPieces == 0) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      scene.waitForTileArrivals(std::chrono::milliseconds(50));  // then the next frame takes it in
     }
     const auto start = Clock::now();
     for (;;) {

@@ -117,6 +117,23 @@ uint64_t FaultHttpServer::abandoned() const {
   return abandoned_;
 }
 
+bool FaultHttpServer::waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    uint64_t seen = 0;
+    {
+      std::lock_guard lock(mutex_);
+      seen = generation_;
+    }
+    if (done()) return true;  // done() takes mutex_ itself
+    std::unique_lock lock(mutex_);
+    if (!changed_.wait_until(lock, end, [&] { return generation_ != seen; })) {
+      lock.unlock();
+      return done();
+    }
+  }
+}
+
 Fault FaultHttpServer::faultFor(const std::string& path) {
   // Under mutex_.
   ++total_;
@@ -136,6 +153,8 @@ void FaultHttpServer::onRequest(Connection& c, const std::string& path) {
   c.fault = faultFor(path);
   c.active = true;
   maxActive_ = std::max(maxActive_, ++active_);
+  ++generation_;
+  changed_.notify_all();
   c.state = Connection::State::Waiting;
   c.readyAt = Clock::now() + std::chrono::milliseconds(c.fault.delayMs);
 }
@@ -150,6 +169,8 @@ void FaultHttpServer::run() {
       --active_;
       abandoned_ += byClient ? 1 : 0;
       c.active = false;
+      ++generation_;
+      changed_.notify_all();
     }
     ::close(c.fd);
     c.closed = true;
@@ -218,6 +239,8 @@ void FaultHttpServer::run() {
         conns.push_back(std::move(c));
         std::lock_guard lock(mutex_);
         ++accepted_;
+        ++generation_;
+        changed_.notify_all();
       }
     }
     now = Clock::now();
@@ -247,6 +270,8 @@ void FaultHttpServer::run() {
             std::lock_guard lock(mutex_);
             --active_;
             c.active = false;
+            ++generation_;
+            changed_.notify_all();
           }
           if (c.closeAfterWrite) {
             finish(c, false);

@@ -18,6 +18,9 @@
 #include <deque>
 #include <filesystem>
 #include <map>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -58,6 +61,9 @@ class FaultHttpServer {
   uint64_t connectionsAccepted() const;
   int maxConcurrent() const;        // most requests being answered at one moment
   uint64_t abandoned() const;       // requests whose client closed before the answer was complete
+  // Waits until done() — a condition on the counters above — holds, checking it again each time
+  // the server changes them (no polling); false if it still does not hold after `limit`.
+  bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const;
 
  private:
   struct Connection;
@@ -78,6 +84,8 @@ class FaultHttpServer {
   std::map<std::string, uint64_t> counts_;
   uint64_t total_ = 0, accepted_ = 0, abandoned_ = 0;
   int active_ = 0, maxActive_ = 0;
+  uint64_t generation_ = 0;                  // bumped (under mutex_) whenever a counter changes
+  mutable std::condition_variable changed_;  // notified with it
 
   std::thread thread_;
 };
