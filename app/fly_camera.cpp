@@ -17,10 +17,7 @@ double wrapHeading(double deg) {
 
 FlyCamera::FlyCamera(const geo::LocalFrame& frame, flight::GroundHeight ground, const glm::dvec3& positionEnu,
                      double headingDeg, double pitchDeg, FlyCameraSettings settings)
-    : frame_(&frame),
-      ground_(std::move(ground)),
-      settings_(settings),
-      position_(positionEnu),
+    : frame_(&frame), ground_(std::move(ground)), settings_(settings), position_(positionEnu),
       headingDeg_(wrapHeading(headingDeg)),
       pitchDeg_(std::clamp(pitchDeg, -settings.maxPitchDeg, settings.maxPitchDeg)),
       speedMps_(std::clamp(settings.speedMps, settings.minSpeedMps, settings.maxSpeedMps)) {
@@ -55,8 +52,8 @@ void FlyCamera::update(const FlyInput& input, double dtS) {
   if (!(dtS > 0.0)) dtS = 0.0;
   // Look first, so this frame's movement goes where the camera now faces.
   headingDeg_ = wrapHeading(headingDeg_ + input.lookDxPx * settings_.degreesPerPixel);
-  pitchDeg_ = std::clamp(pitchDeg_ - input.lookDyPx * settings_.degreesPerPixel, -settings_.maxPitchDeg,
-                         settings_.maxPitchDeg);
+  pitchDeg_ =
+      std::clamp(pitchDeg_ - input.lookDyPx * settings_.degreesPerPixel, -settings_.maxPitchDeg, settings_.maxPitchDeg);
   if (input.wheelSteps != 0.0)
     speedMps_ = std::clamp(speedMps_ * std::pow(settings_.wheelFactor, input.wheelSteps), settings_.minSpeedMps,
                            settings_.maxSpeedMps);

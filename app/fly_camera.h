@@ -38,8 +38,8 @@ struct FlyCameraSettings {
 class FlyCamera {
  public:
   // `frame` and `ground` must outlive the camera (the scene's). NaN ground counts as 0 m.
-  FlyCamera(const geo::LocalFrame& frame, flight::GroundHeight ground, const glm::dvec3& positionEnu,
-            double headingDeg, double pitchDeg, FlyCameraSettings settings = {});
+  FlyCamera(const geo::LocalFrame& frame, flight::GroundHeight ground, const glm::dvec3& positionEnu, double headingDeg,
+            double pitchDeg, FlyCameraSettings settings = {});
 
   // Advances by dt seconds of input.
   void update(const FlyInput& input, double dtS);
@@ -50,7 +50,7 @@ class FlyCamera {
   double followHeightM() const { return followHeightM_; }
 
   const glm::dvec3& position() const { return position_; }  // ENU, metres
-  double headingDeg() const { return headingDeg_; }          // [0, 360)
+  double headingDeg() const { return headingDeg_; }         // [0, 360)
   double pitchDeg() const { return pitchDeg_; }
   double speedMps() const { return speedMps_; }
   glm::dvec3 forward() const { return flight::forwardVector(headingDeg_, pitchDeg_); }

@@ -66,8 +66,9 @@ int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPa
   if (earlier) {
     fs::remove_all(aside, ec);
     fs::rename(out, aside, ec);
-    if (ec) return reportError(log, makeError(ErrorKind::Io, "cannot move the earlier recording " + o.out +
-                                                                 " aside: " + ec.message()));
+    if (ec)
+      return reportError(
+          log, makeError(ErrorKind::Io, "cannot move the earlier recording " + o.out + " aside: " + ec.message()));
   }
   scene::RecordingRequest request;
   request.out = out;
@@ -78,8 +79,10 @@ int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPa
   request.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;
   const int code = recordAndReport(scene, path, request, log);
   if (earlier) {
-    if (fs::exists(out / flight::kRecordingJson, ec)) fs::remove_all(aside, ec);
-    else fs::rename(aside, out, ec);  // nothing new was written: the earlier recording stays
+    if (fs::exists(out / flight::kRecordingJson, ec))
+      fs::remove_all(aside, ec);
+    else
+      fs::rename(aside, out, ec);  // nothing new was written: the earlier recording stays
   }
   return code;
 }
@@ -100,8 +103,9 @@ int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath
 int runFly(const FlyOptions& o, const Logger& log) {
   scene::SceneOptions so;
   const bool windowWanted = !o.headless && displayAvailable();
-  if (Status s = applyStreamingOptions(o.streaming, windowWanted ? scene::StreamingMode::Realtime
-                                                                 : scene::StreamingMode::Settled, so); !s)
+  if (Status s = applyStreamingOptions(
+          o.streaming, windowWanted ? scene::StreamingMode::Realtime : scene::StreamingMode::Settled, so);
+      !s)
     return reportError(log, s.error());
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
@@ -124,7 +128,8 @@ int runFly(const FlyOptions& o, const Logger& log) {
   if (windowWanted && glfwInit() == GLFW_TRUE) {
     window.initialised = true;
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    window.handle = glfwCreateWindow(static_cast<int>(o.width), static_cast<int>(o.height), "vegstream", nullptr, nullptr);
+    window.handle =
+        glfwCreateWindow(static_cast<int>(o.width), static_cast<int>(o.height), "vegstream", nullptr, nullptr);
     so.renderer.window = window.handle;
   }
   auto scene = scene::Scene::open(so);

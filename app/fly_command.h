@@ -15,13 +15,13 @@ struct FlyOptions {
   std::string path;             // flight path JSON; empty: the benchmark-30s template
   std::string out = "out/fly";  // headless output directory
   int frames = 96;
-  bool framesGiven = false;     // --frames on the command line: a window closes after that many
+  bool framesGiven = false;  // --frames on the command line: a window closes after that many
   uint32_t width = 640, height = 360;
   int msaa = 4;
-  std::string device;           // --device NAME (substring)
+  std::string device;  // --device NAME (substring)
   bool validate = false;
-  bool headless = false;        // never open a window, even with a display
-  StreamingCli streaming;       // --streaming default: settled headless (frames to look at), realtime in a window
+  bool headless = false;   // never open a window, even with a display
+  StreamingCli streaming;  // --streaming default: settled headless (frames to look at), realtime in a window
 };
 
 // Returns the process exit code: 0 success, 2 user mistake, 1 anything else.

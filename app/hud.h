@@ -17,11 +17,11 @@ struct HudState {
   std::string datasetName;
   std::string deviceName;
   double fps = 0.0;
-  std::vector<float> frameTimesMs;     // oldest first (the graph)
+  std::vector<float> frameTimesMs;        // oldest first (the graph)
   std::optional<render::GpuTimings> gpu;  // of the last completed frame
   uint64_t terrainTriangles = 0;
   std::optional<uint64_t> seedTriangles, plants, plantTriangles;  // empty: not produced yet
-  std::string streaming;               // e.g. "whole dataset resident at zoom 12"
+  std::string streaming;                                          // e.g. "whole dataset resident at zoom 12"
   uint64_t cpuBytes = 0, gpuBytes = 0;
   double latDeg = 0.0, lonDeg = 0.0, altMslM = 0.0, aglM = 0.0;
   double headingDeg = 0.0, pitchDeg = 0.0, speedMps = 0.0;
@@ -29,7 +29,7 @@ struct HudState {
   bool recording = false;
   double recordingS = 0.0;
   std::size_t recordedKeyframes = 0;
-  std::string message;                 // last action's result (screenshot saved to …)
+  std::string message;  // last action's result (screenshot saved to …)
   bool showHelp = false;
 };
 

@@ -71,8 +71,7 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   if (!o.imagery.empty()) g.imagery.file = fs::path(o.imagery);
   if (!o.imageryBands.empty()) {
     g.imagery.bands = splitList(o.imageryBands);
-    if (g.imagery.bands.size() != 3)
-      {
+    if (g.imagery.bands.size() != 3) {
       std::string m = "--imagery-bands '";
       m += o.imageryBands;
       m += "': expected three files R,G,B separated by commas";
@@ -103,7 +102,8 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   if (o.maxZoom >= 0) g.maxZoom = o.maxZoom;
   if (o.minZoom >= 0) g.minZoom = o.minZoom;
   if (g.minZoom && g.maxZoom && *g.minZoom > *g.maxZoom) return userError("--min-zoom is greater than --max-zoom");
-  if (o.heightResampling == "cubic") g.heightResampling = datasets::HeightResampling::Cubic;
+  if (o.heightResampling == "cubic")
+    g.heightResampling = datasets::HeightResampling::Cubic;
   else if (o.heightResampling != "bilinear") {
     std::string m = "--height-resampling '";
     m += o.heightResampling;
@@ -160,18 +160,24 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--out", o.out, "Dataset directory to create (must not exist or be empty)")->required();
   cmd->add_option("--name", o.name, "Dataset name (default: the --out directory's name)");
   cmd->add_option("--attribution", o.attribution, "Source attribution, stored in dataset.json");
-  cmd->add_option("--max-zoom", o.maxZoom, "Finest zoom (default: from the source resolution)")->check(CLI::Range(0, 22));
+  cmd->add_option("--max-zoom", o.maxZoom, "Finest zoom (default: from the source resolution)")
+      ->check(CLI::Range(0, 22));
   cmd->add_option("--min-zoom", o.minZoom, "Coarsest zoom (default: the data in one tile)")->check(CLI::Range(0, 22));
-  cmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality of imagery tiles")->capture_default_str()
+  cmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality of imagery tiles")
+      ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  cmd->add_option("--max-pixels", o.maxPixels, "Refuse source rasters with more pixels than this")->capture_default_str();
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 1024));
+  cmd->add_option("--max-pixels", o.maxPixels, "Refuse source rasters with more pixels than this")
+      ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   return cmd;
 }
 
 int runImport(const ImportOptions& o, const Logger& log) {
   if (o.dem.empty() == o.xyzElevation.empty())
-    return reportError(log, userError("import needs exactly one of --dem FILE or --xyz-elevation 'DIR/{z}/{x}/{y}.png'"));
+    return reportError(log,
+                       userError("import needs exactly one of --dem FILE or --xyz-elevation 'DIR/{z}/{x}/{y}.png'"));
   gInterrupted = false;
   auto previousInt = std::signal(SIGINT, onInterrupt);
   auto previousTerm = std::signal(SIGTERM, onInterrupt);
@@ -182,7 +188,8 @@ int runImport(const ImportOptions& o, const Logger& log) {
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
     if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty())
-      meta = userError("--imagery, --imagery-bands and --stretch go with --dem; use --xyz-imagery with --xyz-elevation");
+      meta =
+          userError("--imagery, --imagery-bands and --stretch go with --dem; use --xyz-imagery with --xyz-elevation");
     else
       meta = runXyz(o, log, progress);
   }
@@ -196,11 +203,12 @@ int runImport(const ImportOptions& o, const Logger& log) {
   if (!meta) return reportError(log, meta.error());
   const uint64_t tiles = meta->elevationTiles + meta->imageryTiles;
   const double s = progress.seconds();
-  log->info("imported {}: {} tiles ({} elevation, {} imagery), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
-            "{:.2f} s ({:.0f} tiles/s) → {}",
-            meta->name, tiles, meta->elevationTiles, meta->imageryTiles, meta->minZoom, meta->maxZoom, meta->minHeightM,
-            meta->maxHeightM, static_cast<double>(meta->bytes) / 1048576.0, s, s > 0 ? static_cast<double>(tiles) / s : 0.0,
-            o.out);
+  log->info(
+      "imported {}: {} tiles ({} elevation, {} imagery), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
+      "{:.2f} s ({:.0f} tiles/s) → {}",
+      meta->name, tiles, meta->elevationTiles, meta->imageryTiles, meta->minZoom, meta->maxZoom, meta->minHeightM,
+      meta->maxHeightM, static_cast<double>(meta->bytes) / 1048576.0, s, s > 0 ? static_cast<double>(tiles) / s : 0.0,
+      o.out);
   return kExitOk;
 }
 

@@ -8,7 +8,10 @@
 
 #include "core/log.h"
 
-namespace CLI { class App; class Option; }
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace vegstream::app {
 
@@ -21,9 +24,9 @@ struct ImportOptions {
   std::string xyzElevation, xyzImagery;
   // Both.
   std::string out, name, attribution;
-  std::string encoding = "terrarium";   // output encoding (GeoTIFF) / source encoding (XYZ)
-  std::string imageryFormat;            // jpeg (GeoTIFF default) or png (XYZ default)
-  int maxZoom = -1, minZoom = -1;       // -1: chosen from the data
+  std::string encoding = "terrarium";  // output encoding (GeoTIFF) / source encoding (XYZ)
+  std::string imageryFormat;           // jpeg (GeoTIFF default) or png (XYZ default)
+  int maxZoom = -1, minZoom = -1;      // -1: chosen from the data
   int jpegQuality = 90;
   uint64_t maxPixels = 400'000'000;
   int threads = 0;

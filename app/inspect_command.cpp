@@ -38,7 +38,7 @@ int bladeShape(const InspectOptions& o, const Logger& log) {
   if (!parseNumber(o.segments, segments) || segments != std::floor(segments) || segments < 1 ||
       segments > vegetation::kMaxBladeSegments)
     return reportError(log, userError("--segments " + o.segments + ": expected a whole number 1 … " +
-                                          std::to_string(vegetation::kMaxBladeSegments)));
+                                      std::to_string(vegetation::kMaxBladeSegments)));
   if (!parseNumber(o.rootTilt, tilt) || !std::isfinite(tilt) || tilt < 0.0 || tilt >= 0.5 * M_PI)
     return reportError(log, userError("--root-tilt " + o.rootTilt + ": expected radians in [0, π/2)"));
   const int n = static_cast<int>(segments);
@@ -66,7 +66,8 @@ CLI::App* addInspectCommand(CLI::App& cli, InspectOptions& o) {
   cmd->add_option("topic", o.topic, std::string("What to inspect: ") + kTopics);
   cmd->add_option("--stiffness", o.stiffness, "blade-shape: spring stiffness k′ = k / (ρ h² g) > 0");
   cmd->add_option("--segments", o.segments, "blade-shape: rigid segments N, 1 … 16")->capture_default_str();
-  cmd->add_option("--root-tilt", o.rootTilt, "blade-shape: the root's rest angle from vertical, rad, [0, π/2)")->capture_default_str();
+  cmd->add_option("--root-tilt", o.rootTilt, "blade-shape: the root's rest angle from vertical, rad, [0, π/2)")
+      ->capture_default_str();
   return cmd;
 }
 

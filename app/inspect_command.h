@@ -13,13 +13,15 @@
 
 #include "core/log.h"
 
-namespace CLI { class App; }
+namespace CLI {
+class App;
+}
 
 namespace vegstream::app {
 
 struct InspectOptions {
-  std::string topic;       // empty: none given
-  std::string stiffness;   // parsed by runInspect, so every bad value is one message naming the option
+  std::string topic;      // empty: none given
+  std::string stiffness;  // parsed by runInspect, so every bad value is one message naming the option
   std::string segments = "4";
   std::string rootTilt = "0.1";
 };

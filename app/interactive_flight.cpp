@@ -54,16 +54,11 @@ std::string timestamp() {
 class Session {
  public:
   Session(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options, const Logger& log)
-      : scene_(scene),
-        window_(window),
-        options_(options),
-        log_(log),
+      : scene_(scene), window_(window), options_(options), log_(log),
         start_(options.start ? *options.start : defaultStart(scene)),
         camera_(scene.frame(), scene.groundFunction(), scene.frame().toLocal(start_.position), start_.headingDeg,
                 start_.pitchDeg),
-        input_(window),
-        driver_(scene),
-        showHud_(options.hud) {}
+        input_(window), driver_(scene), showHud_(options.hud) {}
 
   int run();
 
@@ -92,7 +87,7 @@ class Session {
   bool screenshotWanted_ = false;
   int screenshots_ = 0;
   std::deque<float> frameTimes_;
-  std::optional<scene::FrameRecord> last_;  // the last frame collected
+  std::optional<scene::FrameRecord> last_;            // the last frame collected
   std::optional<flight::FlightSample> previousPose_;  // for velocity extrapolation (look-ahead)
   double previousPoseS_ = 0.0;
   std::string message_;
@@ -101,7 +96,10 @@ class Session {
 };
 
 void Session::say(const std::string& text, double now, bool warn) {
-  if (warn) log_->warn("{}", text); else log_->info("{}", text);
+  if (warn)
+    log_->warn("{}", text);
+  else
+    log_->info("{}", text);
   message_ = text;
   messageUntil_ = now + kMessageSeconds;
 }
@@ -147,8 +145,10 @@ Status Session::collect(uint64_t index, bool screenshot) {
     char counter[16];
     std::snprintf(counter, sizeof(counter), "-%03d", ++screenshots_);
     const fs::path file = outputPath("vegstream-" + timestamp() + counter + ".png");
-    if (Status s = render::writePng(file, *result->color); !s) say("screenshot failed: " + s.error().message, nowS_, true);
-    else say("screenshot saved: " + file.string(), nowS_);
+    if (Status s = render::writePng(file, *result->color); !s)
+      say("screenshot failed: " + s.error().message, nowS_, true);
+    else
+      say("screenshot saved: " + file.string(), nowS_);
   }
   result->color.reset();
   last_ = std::move(*result);
@@ -177,13 +177,14 @@ HudState Session::hudState(double now) const {
     s.plantTriangles = last_->gpu.statistics.geometryPrimitives;  // only the plant stages emit any
   const streaming::StreamingFrameStats& st = fig.streaming;
   char line[256];
-  std::snprintf(line, sizeof(line),
-                "tiles %llu CPU / %llu GPU, %llu in flight, wanted %llu/%llu; %llu fallback pieces (%d lv), "
-                "error %.1f px (x%.2f)",
-                static_cast<unsigned long long>(st.tilesResidentCpu), static_cast<unsigned long long>(st.tilesResidentGpu),
-                static_cast<unsigned long long>(st.requestsInFlight), static_cast<unsigned long long>(st.wantedResident),
-                static_cast<unsigned long long>(st.wanted), static_cast<unsigned long long>(fig.terrain.fallbackPieces),
-                fig.terrain.maxLevelsCoarser, fig.terrain.errorBoundPx, fig.terrain.relaxation);
+  std::snprintf(
+      line, sizeof(line),
+      "tiles %llu CPU / %llu GPU, %llu in flight, wanted %llu/%llu; %llu fallback pieces (%d lv), "
+      "error %.1f px (x%.2f)",
+      static_cast<unsigned long long>(st.tilesResidentCpu), static_cast<unsigned long long>(st.tilesResidentGpu),
+      static_cast<unsigned long long>(st.requestsInFlight), static_cast<unsigned long long>(st.wantedResident),
+      static_cast<unsigned long long>(st.wanted), static_cast<unsigned long long>(fig.terrain.fallbackPieces),
+      fig.terrain.maxLevelsCoarser, fig.terrain.errorBoundPx, fig.terrain.relaxation);
   s.streaming = line;
   s.cpuBytes = fig.cpuBytes;
   s.gpuBytes = fig.gpuBytes;

@@ -20,10 +20,10 @@ struct GLFWwindow;
 namespace vegstream::app {
 
 struct InteractiveOptions {
-  int frames = 0;                          // > 0: close after this many frames (tests)
-  std::filesystem::path outDir;            // screenshots and recorded paths; empty: the current directory
+  int frames = 0;                             // > 0: close after this many frames (tests)
+  std::filesystem::path outDir;               // screenshots and recorded paths; empty: the current directory
   std::optional<flight::FlightSample> start;  // first pose; default: south of the centre, looking north
-  int screenshotAtFrame = 0;               // > 0: screenshot of that frame (1-based)
+  int screenshotAtFrame = 0;                  // > 0: screenshot of that frame (1-based)
   bool hud = true;
 };
 
@@ -32,7 +32,6 @@ InteractiveOptions withEnvironment(InteractiveOptions options);
 
 // Runs until Esc, the window closing, or options.frames. `scene` must have been opened with
 // `window` as its renderer's window. Returns the process exit code.
-int runInteractiveFlight(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options,
-                         const Logger& log);
+int runInteractiveFlight(scene::Scene& scene, GLFWwindow* window, const InteractiveOptions& options, const Logger& log);
 
 }  // namespace vegstream::app

@@ -54,13 +54,17 @@ int main(int argc, char** argv) {
   fly.samplesDir = VEGSTREAM_SAMPLES_DIR;
   std::string size = "640x360";
   auto* flyCmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
-  flyCmd->add_option("dataset", fly.dataset,
-                     "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion");
+  flyCmd->add_option(
+      "dataset", fly.dataset,
+      "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion");
   flyCmd->add_option("--path", fly.path, "Flight path JSON; default: the benchmark-30s template over the dataset");
   flyCmd->add_option("--out", fly.out, "Directory for headless frames and run.json")->capture_default_str();
-  flyCmd->add_option("--frames", fly.frames, "Number of headless frames")->capture_default_str()->check(CLI::Range(1, 100000));
+  flyCmd->add_option("--frames", fly.frames, "Number of headless frames")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   flyCmd->add_option("--size", size, "Frame size WxH")->capture_default_str();
-  flyCmd->add_option("--msaa", fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")->capture_default_str();
+  flyCmd->add_option("--msaa", fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")
+      ->capture_default_str();
   flyCmd->add_option("--device", fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
@@ -89,8 +93,11 @@ int main(int argc, char** argv) {
   auto* queryCmd = cli.add_subcommand("query", "Height, base colour and species of a dataset at one point, as JSON");
   queryCmd->add_option("dataset", query.dataset, "Dataset directory")->required();
   queryCmd->add_option("--lat", query.latDeg, "Latitude, degrees (WGS 84)")->required()->check(CLI::Range(-90.0, 90.0));
-  queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")->required()->check(CLI::Range(-180.0, 180.0));
-  queryCmd->add_option("--species", query.speciesFile, "Species catalog JSON (default: the embedded config/species.json)");
+  queryCmd->add_option("--lon", query.lonDeg, "Longitude, degrees (WGS 84)")
+      ->required()
+      ->check(CLI::Range(-180.0, 180.0));
+  queryCmd->add_option("--species", query.speciesFile,
+                       "Species catalog JSON (default: the embedded config/species.json)");
 
   app::PlantsOptions plantsOptions;
   auto* plantsCmd = app::addPlantsCommand(cli, plantsOptions);
@@ -108,7 +115,8 @@ int main(int argc, char** argv) {
   generateCmd->add_option("--name", gen.name, "Dataset name (default: the --out directory's name)");
   generateCmd->add_option("--max-zoom", gen.maxZoom, "Finest zoom (default: pixels of at most 10 m)");
   generateCmd->add_option("--min-zoom", gen.minZoom, "Coarsest zoom (default: the area in one tile)");
-  generateCmd->add_option("--encoding", genEncoding, "Elevation encoding: terrarium or terrain-rgb")->capture_default_str();
+  generateCmd->add_option("--encoding", genEncoding, "Elevation encoding: terrarium or terrain-rgb")
+      ->capture_default_str();
 
   const auto runCommand = [&](const Logger& log) -> int {
     if (*devicesCmd) return listDevicesCommand(log);

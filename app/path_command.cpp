@@ -41,11 +41,12 @@ int runPath(const PathOptions& o, const Logger& log) {
   auto path = flight::makePathFromTemplate(o.templateName, shared->meta().bounds, ground);
   if (!path) return reportError(log, path.error());
   const std::string text = flight::flightPathToJson(*path);
-  if (Status s = writeFileAtomically(o.out, [&](const fs::path& tmp) -> Status {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
-      });
+  if (Status s = writeFileAtomically(o.out,
+                                     [&](const fs::path& tmp) -> Status {
+                                       std::ofstream f(tmp, std::ios::binary);
+                                       f << text;
+                                       return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
+                                     });
       !s)
     return reportError(log, s.error());
   log->info("{}: {} over {} ({:.0f} s, {} keyframes)", o.out, o.templateName, shared->meta().name, path->duration(),

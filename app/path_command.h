@@ -7,7 +7,9 @@
 
 #include "core/log.h"
 
-namespace CLI { class App; }
+namespace CLI {
+class App;
+}
 
 namespace vegstream::app {
 

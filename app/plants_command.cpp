@@ -63,8 +63,10 @@ Status checkOutput(const std::string& output) {
   std::error_code ec;
   if (fs::is_directory(p, ec)) return userError("--output " + output + ": is a directory");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  if (!fs::is_directory(dir, ec)) return userError("--output " + output + ": directory " + dir.string() + " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) return userError("--output " + output + ": directory " + dir.string() + " is not writable");
+  if (!fs::is_directory(dir, ec))
+    return userError("--output " + output + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    return userError("--output " + output + ": directory " + dir.string() + " is not writable");
   return {};
 }
 
@@ -73,9 +75,8 @@ struct Fields {
   std::string lat, lon, height, plantHeight, stiffness, sPrime;
 };
 Fields fieldsOf(const scene::BoxPlant& r) {
-  return {fmt("%.10f", r.at.latDeg),          fmt("%.10f", r.at.lonDeg),
-          fmt("%.3f", r.at.heightM),          fmt("%.4f", double(r.heightM)),
-          fmt("%.5f", double(r.stiffness)),   fmt("%.5f", double(r.sPrime))};
+  return {fmt("%.10f", r.at.latDeg),      fmt("%.10f", r.at.lonDeg),        fmt("%.3f", r.at.heightM),
+          fmt("%.4f", double(r.heightM)), fmt("%.5f", double(r.stiffness)), fmt("%.5f", double(r.sPrime))};
 }
 
 void writeCsv(std::ostream& out, const std::vector<scene::BoxPlant>& rows, const vegetation::SpeciesCatalog& catalog) {
@@ -124,7 +125,8 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
     return reportError(log, userError("--format " + o.format + ": expected csv or json"));
   if (o.clusterSize < 1 || o.clusterSize > int(vegetation::kMaxClusterSize))
     return reportError(log, userError("--cluster-size " + std::to_string(o.clusterSize) + ": must be 1 … 32"));
-  if (o.maxPlants < 1) return reportError(log, userError("--max-plants " + std::to_string(o.maxPlants) + ": must be ≥ 1"));
+  if (o.maxPlants < 1)
+    return reportError(log, userError("--max-plants " + std::to_string(o.maxPlants) + ": must be ≥ 1"));
   auto box = parseBbox(o.bbox);
   if (!box) return reportError(log, box.error());
   const vegetation::SpeciesCatalog* catalog = &vegetation::defaultSpeciesCatalog();
@@ -149,8 +151,10 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
   const std::string bboxText = fmt("%.10g", box->westDeg) + ", " + fmt("%.10g", box->southDeg) + ", " +
                                fmt("%.10g", box->eastDeg) + ", " + fmt("%.10g", box->northDeg);
   auto write = [&](std::ostream& out) {
-    if (o.format == "csv") writeCsv(out, grown->plants, *catalog);
-    else writeJson(out, grown->plants, *catalog, grown->datasetName, bboxText, grown->seedLevel, o.clusterSize);
+    if (o.format == "csv")
+      writeCsv(out, grown->plants, *catalog);
+    else
+      writeJson(out, grown->plants, *catalog, grown->datasetName, bboxText, grown->seedLevel, o.clusterSize);
   };
   if (o.output.empty()) {
     write(std::cout);

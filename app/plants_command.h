@@ -24,18 +24,20 @@
 
 #include "core/log.h"
 
-namespace CLI { class App; }
+namespace CLI {
+class App;
+}
 
 namespace vegstream::app {
 
 struct PlantsOptions {
   std::string dataset;
-  std::string bbox;            // lon0,lat0,lon1,lat1
-  std::string format = "csv";  // csv | json
-  std::string output;          // empty: stdout
-  std::string speciesFile;     // empty: the embedded config/species.json
-  int clusterSize = 8;         // C of §3.4, 1 … 32
-  int64_t maxPlants = 5000000; // refuse boxes that grow more
+  std::string bbox;             // lon0,lat0,lon1,lat1
+  std::string format = "csv";   // csv | json
+  std::string output;           // empty: stdout
+  std::string speciesFile;      // empty: the embedded config/species.json
+  int clusterSize = 8;          // C of §3.4, 1 … 32
+  int64_t maxPlants = 5000000;  // refuse boxes that grow more
 };
 
 CLI::App* addPlantsCommand(CLI::App& cli, PlantsOptions& options);

@@ -34,7 +34,8 @@ nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const data
   out["species"] = best.name;
   out["species_bare"] = best.bare;
   out["species_candidates"] = nlohmann::json::array();
-  out["species_candidates"].push_back({{"name", best.name}, {"bare", best.bare}, {"probability", 1.0f - k.secondRatio}});
+  out["species_candidates"].push_back(
+      {{"name", best.name}, {"bare", best.bare}, {"probability", 1.0f - k.secondRatio}});
   if (k.second >= 0) {
     const auto& second = catalog.species[static_cast<size_t>(k.second)];
     out["species_candidates"].push_back({{"name", second.name}, {"bare", second.bare}, {"probability", k.secondRatio}});
@@ -69,10 +70,8 @@ int runQuery(const QueryOptions& options, const Logger& log) {
   auto color = reader->colorAt(options.latDeg, options.lonDeg);
   if (!color) return reportError(log, color.error());
 
-  nlohmann::json out = {{"dataset", reader->meta().name},
-                        {"lat", options.latDeg},
-                        {"lon", options.lonDeg},
-                        {"height_m", *height}};
+  nlohmann::json out = {
+      {"dataset", reader->meta().name}, {"lat", options.latDeg}, {"lon", options.lonDeg}, {"height_m", *height}};
   if (*color) {
     const auto& c = **color;
     char hex[8];

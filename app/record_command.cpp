@@ -27,19 +27,24 @@ bool parseFrameSize(const std::string& text, uint32_t& w, uint32_t& h) {
 }
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
-  auto* cmd = cli.add_subcommand("record", "Fly a path at a fixed time step and record per-frame figures, summary and plots");
+  auto* cmd =
+      cli.add_subcommand("record", "Fly a path at a fixed time step and record per-frame figures, summary and plots");
   cmd->add_option("dataset", o.dataset,
                   "Dataset directory (vegstream import) or http(s):// URL of one; default: the Zion sample");
   cmd->add_option("--path", o.path, "Flight path JSON (vegstream path makes one for any dataset)")->required();
   cmd->add_option("--out", o.out, "Recording directory to create (must not exist or be empty)")->required();
   cmd->add_option("--size", o.size, "Frame size WxH")->capture_default_str();
-  cmd->add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4, 8, 16 where the device offers them)")->capture_default_str();
-  cmd->add_option("--fps", o.fps, "Frames per second of flight time (the fixed step)")->capture_default_str()
+  cmd->add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4, 8, 16 where the device offers them)")
+      ->capture_default_str();
+  cmd->add_option("--fps", o.fps, "Frames per second of flight time (the fixed step)")
+      ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--frames-every", o.framesEvery, "Save every K-th frame as frames/frame_NNNNN.png (0: none)")
-      ->capture_default_str()->check(CLI::Range(0, 1000000));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   cmd->add_option("--warmup", o.warmupS, "Seconds of frames rendered at the start before recording")
-      ->capture_default_str()->check(CLI::Range(0.0, 600.0));
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 600.0));
   cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   cmd->add_flag("--no-plots", o.noPlots, "Write frames.csv and the JSON files only (no python3/matplotlib needed)");
@@ -69,15 +74,15 @@ int runRecord(const RecordOptions& o, const Logger& log) {
   if (!streaming::isHttpLocation(*dataset)) {  // a local dataset is checked against the path before the GPU is touched
     auto meta = datasets::readDatasetMeta(*dataset);
     if (!meta) return reportError(log, meta.error());
-    if (Status s = flight::checkInside(*path, meta->bounds); !s)
-      return userError(o.path + ": " + s.error().message);
+    if (Status s = flight::checkInside(*path, meta->bounds); !s) return userError(o.path + ": " + s.error().message);
   }
 
   so.dataset = *dataset;
   applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
   auto scene = scene::Scene::open(so);
   if (!scene) return reportError(log, scene.error());
-  if (Status s = flight::checkInside(*path, (*scene)->info().bounds); !s) return userError(o.path + ": " + s.error().message);
+  if (Status s = flight::checkInside(*path, (*scene)->info().bounds); !s)
+    return userError(o.path + ": " + s.error().message);
   logSceneOpened(**scene, log);
 
   scene::RecordingRequest request;

@@ -10,24 +10,26 @@
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
-namespace CLI { class App; }
+namespace CLI {
+class App;
+}
 
 namespace vegstream::app {
 
 struct RecordOptions {
-  std::string dataset;      // dataset directory or http(s) URL; empty: the Zion sample (imported once)
-  std::string samplesDir;   // where the shared sample data lives (for the default)
-  std::string path;         // flight path JSON (required)
-  std::string out;          // recording directory to create (required; must not exist or be empty)
+  std::string dataset;     // dataset directory or http(s) URL; empty: the Zion sample (imported once)
+  std::string samplesDir;  // where the shared sample data lives (for the default)
+  std::string path;        // flight path JSON (required)
+  std::string out;         // recording directory to create (required; must not exist or be empty)
   std::string size = "640x360";
   int msaa = 4;
   double fps = 60.0;
-  int framesEvery = 0;      // 0: no PNG frames
+  int framesEvery = 0;  // 0: no PNG frames
   double warmupS = 0.0;
   std::string device;
   bool validate = false;
-  bool noPlots = false;     // skip the plots (frames.csv and the JSON files only)
-  StreamingCli streaming;   // budgets, --streaming settled|realtime (default settled), look-ahead
+  bool noPlots = false;    // skip the plots (frames.csv and the JSON files only)
+  StreamingCli streaming;  // budgets, --streaming settled|realtime (default settled), look-ahead
 };
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& options);

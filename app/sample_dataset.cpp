@@ -11,8 +11,9 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   if (fs::exists(datasetDir / "dataset.json", ec)) return datasetDir;
   const fs::path zion = samplesDir / "zion";
   if (!fs::exists(zion / "srtm.tif", ec))
-    return makeError(ErrorKind::NotFound, (zion / "srtm.tif").string() +
-                                              ": the Zion sample is missing; give a dataset directory (vegstream import)");
+    return makeError(
+        ErrorKind::NotFound,
+        (zion / "srtm.tif").string() + ": the Zion sample is missing; give a dataset directory (vegstream import)");
   log->info("importing the Zion sample once into {}", datasetDir.string());
   datasets::GeoTiffImportOptions o;
   o.dem = zion / "srtm.tif";

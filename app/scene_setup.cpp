@@ -29,7 +29,10 @@ void applyRendererOptions(const RendererCli& cli, const Logger& log, scene::Scen
   so.renderer.context.logger = log;
   auto validation = std::make_shared<render::ValidationLog>();
   validation->setListener([log](const std::string& m, bool isError) {
-    if (isError) log->error("validation: {}", m); else log->warn("validation: {}", m);
+    if (isError)
+      log->error("validation: {}", m);
+    else
+      log->warn("validation: {}", m);
   });
   so.renderer.context.validationLog = validation;
 }

@@ -10,7 +10,8 @@
 namespace vegstream::app {
 
 void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
-  cmd.add_option("--cpu-budget-mb", o.cpuBudgetMb, "Memory for decoded tiles, MiB (never exceeded)")->capture_default_str();
+  cmd.add_option("--cpu-budget-mb", o.cpuBudgetMb, "Memory for decoded tiles, MiB (never exceeded)")
+      ->capture_default_str();
   cmd.add_option("--gpu-budget-mb", o.gpuBudgetMb, "GPU memory for imagery tiles, MiB (never exceeded)")
       ->capture_default_str();
   cmd.add_option("--upload-mb-per-frame", o.uploadMbPerFrame, "Imagery uploaded to the GPU per frame at most, MiB")
@@ -27,12 +28,14 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--terrain-max-nodes", o.terrainMaxNodes, "Most terrain tiles drawn per frame")->capture_default_str();
   cmd.add_option("--terrain-max-triangles", o.terrainMaxTriangles, "Triangle budget of the ROAM terrain mesh")
       ->capture_default_str();
-  cmd.add_option("--canopy-m", o.canopyM, "Tallest plant, metres: terrain culling keeps triangles whose plants can be seen")
+  cmd.add_option("--canopy-m", o.canopyM,
+                 "Tallest plant, metres: terrain culling keeps triangles whose plants can be seen")
       ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
       ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
-  cmd.add_option("--plant-density", o.plantDensity, "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1)")
+  cmd.add_option("--plant-density", o.plantDensity,
+                 "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1)")
       ->capture_default_str();
   cmd.add_option("--plant-max", o.plantMax, "Most plants per seed triangle (n_max of eq. 1)")->capture_default_str();
   cmd.add_option("--cluster-size", o.clusterSize, "Plants per cluster that share one species lookup (C)")
@@ -45,7 +48,8 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
       ->capture_default_str();
   cmd.add_option("--plant-segments", o.plantSegments, "Segments of a blade at full detail (n_max of eq. 4)")
       ->capture_default_str();
-  cmd.add_option("--plant-lod-m", o.plantLodM, "Blades have full detail within this distance, n_max / d² beyond, metres")
+  cmd.add_option("--plant-lod-m", o.plantLodM,
+                 "Blades have full detail within this distance, n_max / d² beyond, metres")
       ->capture_default_str();
   cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
 }
@@ -56,7 +60,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   if (!(o.cpuBudgetMb >= 1.0 && o.cpuBudgetMb <= 1e6))
     return bad("--cpu-budget-mb " + std::to_string(o.cpuBudgetMb) + ": must be 1 … 1000000 MiB");
   if (!(o.gpuBudgetMb >= 0.25 && o.gpuBudgetMb <= 1e6))
-    return bad("--gpu-budget-mb " + std::to_string(o.gpuBudgetMb) + ": must be 0.25 … 1000000 MiB (one imagery tile is 0.25)");
+    return bad("--gpu-budget-mb " + std::to_string(o.gpuBudgetMb) +
+               ": must be 0.25 … 1000000 MiB (one imagery tile is 0.25)");
   if (!(o.uploadMbPerFrame >= 0.25 && o.uploadMbPerFrame <= 1e5))
     return bad("--upload-mb-per-frame " + std::to_string(o.uploadMbPerFrame) + ": must be 0.25 … 100000 MiB");
   if (!(o.terrainErrorPx >= 0.1 && o.terrainErrorPx <= 1000.0))
@@ -90,8 +95,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.streaming.cpuBudgetBytes = bytes(o.cpuBudgetMb);
   scene.streaming.gpuBudgetBytes = bytes(o.gpuBudgetMb);
   scene.streaming.uploadBytesPerFrame = bytes(o.uploadMbPerFrame);
-  scene.mode = o.mode.empty() ? defaultMode : (o.mode == "settled" ? scene::StreamingMode::Settled
-                                                                    : scene::StreamingMode::Realtime);
+  scene.mode = o.mode.empty() ? defaultMode
+                              : (o.mode == "settled" ? scene::StreamingMode::Settled : scene::StreamingMode::Realtime);
   scene.lookAhead = !o.noLookAhead;
   scene.terrain.maxErrorPx = o.terrainErrorPx;
   scene.terrain.maxNodes = o.terrainMaxNodes;
@@ -102,9 +107,9 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrain.seeds.maxPlants = o.plantMax;
   scene.clusterSize = static_cast<uint32_t>(o.clusterSize);
   scene.plants = !o.noPlants;
-  scene.plantStyle = o.plantStyle == "markers" ? render::PlantStyle::Markers
-                     : o.plantStyle == "hidden"  ? render::PlantStyle::Hidden
-                                                 : render::PlantStyle::Plants;
+  scene.plantStyle = o.plantStyle == "markers"  ? render::PlantStyle::Markers
+                     : o.plantStyle == "hidden" ? render::PlantStyle::Hidden
+                                                : render::PlantStyle::Plants;
   scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
   scene.plantDraw.shadows = !o.noPlantShadows;

@@ -9,27 +9,29 @@
 #include "core/result.h"
 #include "scene/scene.h"
 
-namespace CLI { class App; }
+namespace CLI {
+class App;
+}
 
 namespace vegstream::app {
 
 struct StreamingCli {
-  double cpuBudgetMb = 512.0;   // decoded tiles in memory
-  double gpuBudgetMb = 256.0;   // imagery tiles on the GPU
+  double cpuBudgetMb = 512.0;  // decoded tiles in memory
+  double gpuBudgetMb = 256.0;  // imagery tiles on the GPU
   double uploadMbPerFrame = 8.0;
-  std::string mode;             // "settled" | "realtime"; empty: the command's default
+  std::string mode;  // "settled" | "realtime"; empty: the command's default
   bool noLookAhead = false;
   double terrainErrorPx = 2.0;
   int terrainMaxNodes = 384;
   int64_t terrainMaxTriangles = 120000;  // ROAM leaves
   double canopyM = 30.0;                 // tallest plant, for culling
   double seedHorizonM = 250.0;           // seed triangles within this distance
-  std::string httpCache;        // directory for the on-disk HTTP tile cache; empty: none
+  std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none
   // Plants (issue 7): density ρ and n_max of eq. 1, cluster size C, species catalog.
-  double plantDensity = 0.04;   // plants per pixel² of projected seed-triangle area
-  double plantMax = 256.0;      // n_max per seed triangle
+  double plantDensity = 0.04;  // plants per pixel² of projected seed-triangle area
+  double plantMax = 256.0;     // n_max per seed triangle
   int clusterSize = 8;
-  std::string species;          // a species catalog JSON file; empty: the default
+  std::string species;  // a species catalog JSON file; empty: the default
   bool noPlants = false;
   std::string plantStyle = "plants";  // plants | markers | hidden
   int plantSegments = 5;              // n_max segments per blade (eq. 4)

@@ -10,12 +10,12 @@ struct GLFWwindow;
 namespace vegstream::app {
 
 struct WindowActions {
-  bool quit = false;           // Esc
-  bool toggleFollow = false;   // F
-  bool screenshot = false;     // P
-  bool toggleRecord = false;   // R
-  bool toggleHelp = false;     // F1
-  bool toggleHud = false;      // H
+  bool quit = false;          // Esc
+  bool toggleFollow = false;  // F
+  bool screenshot = false;    // P
+  bool toggleRecord = false;  // R
+  bool toggleHelp = false;    // F1
+  bool toggleHud = false;     // H
 };
 
 class WindowInput {

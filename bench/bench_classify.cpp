@@ -61,8 +61,10 @@ void BM_ClassifyCpu(benchmark::State& state) {
   for (const auto& g : out) plants += g.seedCount;
   groups = out.size();
   const auto iterations = static_cast<double>(state.iterations());
-  state.counters["clusters/s"] = benchmark::Counter(static_cast<double>(clusters) * iterations, benchmark::Counter::kIsRate);
-  state.counters["plants/s"] = benchmark::Counter(static_cast<double>(plants) * iterations, benchmark::Counter::kIsRate);
+  state.counters["clusters/s"] =
+      benchmark::Counter(static_cast<double>(clusters) * iterations, benchmark::Counter::kIsRate);
+  state.counters["plants/s"] =
+      benchmark::Counter(static_cast<double>(plants) * iterations, benchmark::Counter::kIsRate);
   state.counters["groups"] = static_cast<double>(groups);
   state.counters["plants"] = static_cast<double>(plants);
 }
@@ -83,10 +85,9 @@ Gpu* gpu() {
     if (!created) return std::unique_ptr<Gpu>();
     out->ctx = std::move(*created);
     const render::Context& ctx = *out->ctx;
-    out->imagery = render::createImageArray(ctx, {testing::kClassifyTile, testing::kClassifyTile}, kLayers,
-                                            VK_FORMAT_R8G8B8A8_SRGB,
-                                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                            "bench imagery", 1, VK_FORMAT_R8G8B8A8_UNORM);
+    out->imagery = render::createImageArray(
+        ctx, {testing::kClassifyTile, testing::kClassifyTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "bench imagery", 1, VK_FORMAT_R8G8B8A8_UNORM);
     const VkDeviceSize tileBytes = maps()[0].size();
     render::GpuBuffer staging = render::createBuffer(ctx, tileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                      render::MemoryUse::HostUpload, "bench staging");
@@ -116,8 +117,7 @@ void BM_ClassifyGpu(benchmark::State& state) {
     g->ctx->submitAndWait([&](VkCommandBuffer cmd) {
       g->timer->begin(cmd);
       g->timer->beginPass(cmd, "classify");
-      f = g->pass->record(cmd, 0, s.gpu, size, g->imagery.alternateView.get(), 3 * size, 0,
-                           [](render::GpuBuffer&&) {});
+      f = g->pass->record(cmd, 0, s.gpu, size, g->imagery.alternateView.get(), 3 * size, 0, [](render::GpuBuffer&&) {});
       g->timer->endPass(cmd);
       g->timer->end(cmd);
     });
@@ -125,8 +125,10 @@ void BM_ClassifyGpu(benchmark::State& state) {
   }
   g->pass->readFigures(0, f);
   const auto iterations = static_cast<double>(state.iterations());
-  state.counters["clusters/s"] = benchmark::Counter(static_cast<double>(f.clusters) * iterations, benchmark::Counter::kIsRate);
-  state.counters["plants/s"] = benchmark::Counter(static_cast<double>(f.plantsTotal) * iterations, benchmark::Counter::kIsRate);
+  state.counters["clusters/s"] =
+      benchmark::Counter(static_cast<double>(f.clusters) * iterations, benchmark::Counter::kIsRate);
+  state.counters["plants/s"] =
+      benchmark::Counter(static_cast<double>(f.plantsTotal) * iterations, benchmark::Counter::kIsRate);
   state.counters["groups"] = static_cast<double>(f.groupsTotal);
   state.counters["plants"] = static_cast<double>(f.plantsTotal);
   state.counters["bins"] = static_cast<double>(f.bins);

@@ -100,7 +100,14 @@ void BM_Frame(benchmark::State& state) {
   state.SetLabel(r->device().name);
 }
 
-BENCHMARK(BM_Frame)->ArgName("case")->Arg(kTerrain)->Arg(kPlants)->Arg(kPlantsNoShadows)->Arg(kSpeedOfLight)
-    ->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_Frame)
+    ->ArgName("case")
+    ->Arg(kTerrain)
+    ->Arg(kPlants)
+    ->Arg(kPlantsNoShadows)
+    ->Arg(kSpeedOfLight)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 }  // namespace

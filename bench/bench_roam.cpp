@@ -78,7 +78,8 @@ double percentile(std::vector<double> v, double p) {
 void flyPath(benchmark::State& state, const char* pathName) {
   Zion& z = zion();
   if (!z.ok) return state.SkipWithError("no Zion dataset");
-  auto path = flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(pathName) + ".json"));
+  auto path =
+      flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(pathName) + ".json"));
   if (!path) return state.SkipWithError(path.error().message.c_str());
   constexpr double kW = 1920.0, kH = 1080.0, kFps = 60.0;
   for (auto _ : state) {
@@ -98,7 +99,8 @@ void flyPath(benchmark::State& state, const char* pathName) {
     to.roam.deferPriorities = to.roam.cacheChunks = state.range(1) != 0;
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
-    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed, reused, built, emitted;
+    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed,
+        reused, built, emitted;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     int compactions = 0;
     // VEGSTREAM_BENCH_CSV=DIR: one row per frame in DIR/<benchmark name>.csv (where the time goes).
@@ -108,7 +110,9 @@ void flyPath(benchmark::State& state, const char* pathName) {
                                (state.range(1) != 0 ? "incremental" : "every-frame");
       csv.reset(std::fopen((fs::path(dir) / (name + ".csv")).c_str(), "w"));
       if (!csv) return state.SkipWithError("VEGSTREAM_BENCH_CSV: cannot write there");
-      std::fprintf(csv.get(), "frame,ms,update_ms,compact_ms,priorities_ms,split_ms,merge_ms,output_ms,leaves,splits,merges,visited,computed,chunks_reused,chunks_built,emitted,seeds,created,compacted\n");
+      std::fprintf(csv.get(),
+                   "frame,ms,update_ms,compact_ms,priorities_ms,split_ms,merge_ms,output_ms,leaves,splits,merges,"
+                   "visited,computed,chunks_reused,chunks_built,emitted,seeds,created,compacted\n");
     }
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
@@ -139,21 +143,24 @@ void flyPath(benchmark::State& state, const char* pathName) {
       emitted.push_back(static_cast<double>(f.roam.leavesEmitted));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
-        if (p.mesh && p.node.z <= z.meta.maxZoom) gridTriangles += 2.0 * std::pow(256.0 * std::ldexp(1.0, z.meta.maxZoom - p.node.z), 2.0);
+        if (p.mesh && p.node.z <= z.meta.maxZoom)
+          gridTriangles += 2.0 * std::pow(256.0 * std::ldexp(1.0, z.meta.maxZoom - p.node.z), 2.0);
       if (gridTriangles > 0.0) ratio.push_back(static_cast<double>(f.triangles) / gridTriangles);
       if (csv)
-        std::fprintf(csv.get(), "%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%d\n", i, frameMs.back(),
-                     f.roam.updateMs, f.roam.compactMs, f.roam.prioritiesMs, f.roam.splitMs,
-                     f.roam.mergeMs, f.roam.outputMs, ull(f.roam.leaves), ull(f.roam.splits), ull(f.roam.merges),
-                     ull(f.roam.nodesVisited), ull(f.roam.prioritiesComputed), ull(f.roam.chunksReused),
-                     ull(f.roam.chunksBuilt), ull(f.roam.leavesEmitted), ull(f.roam.seedTriangles), ull(f.roam.leavesCreated), f.roam.compacted ? 1 : 0);
+        std::fprintf(
+            csv.get(), "%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%d\n",
+            i, frameMs.back(), f.roam.updateMs, f.roam.compactMs, f.roam.prioritiesMs, f.roam.splitMs, f.roam.mergeMs,
+            f.roam.outputMs, ull(f.roam.leaves), ull(f.roam.splits), ull(f.roam.merges), ull(f.roam.nodesVisited),
+            ull(f.roam.prioritiesComputed), ull(f.roam.chunksReused), ull(f.roam.chunksBuilt),
+            ull(f.roam.leavesEmitted), ull(f.roam.seedTriangles), ull(f.roam.leavesCreated), f.roam.compacted ? 1 : 0);
       compactions += f.roam.compacted ? 1 : 0;
     }
     state.counters["frames"] = static_cast<double>(frames);
     state.counters["ms_p50"] = percentile(frameMs, 0.5);
     state.counters["ms_p99"] = percentile(frameMs, 0.99);
     state.counters["ms_max"] = percentile(frameMs, 1.0);
-    state.counters["over_4ms"] = static_cast<double>(std::count_if(frameMs.begin(), frameMs.end(), [](double ms) { return ms > 4.0; }));
+    state.counters["over_4ms"] =
+        static_cast<double>(std::count_if(frameMs.begin(), frameMs.end(), [](double ms) { return ms > 4.0; }));
     state.counters["compactions"] = compactions;
     state.counters["update_ms_p50"] = percentile(updateMs, 0.5);
     state.counters["output_ms_p50"] = percentile(outputMs, 0.5);

@@ -120,8 +120,7 @@ void BM_StreamerSettle(benchmark::State& state) {
     if (s.frameStats().wantedResident != wants.size()) return state.SkipWithError("not every tile became resident");
   }
   state.counters["tiles"] = double(wants.size());
-  state.counters["tiles/s"] =
-      benchmark::Counter(double(wants.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tiles/s"] = benchmark::Counter(double(wants.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_StreamerSettle)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

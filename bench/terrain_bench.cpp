@@ -28,7 +28,8 @@ vegstream::terrain::HeightGrid makeGrid(int w, int h) {
   g.heights.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c)
-      g.heights[static_cast<size_t>(r * w + c)] = static_cast<float>(1500.0 + 400.0 * std::sin(c * 0.05) * std::cos(r * 0.04));
+      g.heights[static_cast<size_t>(r * w + c)] =
+          static_cast<float>(1500.0 + 400.0 * std::sin(c * 0.05) * std::cos(r * 0.04));
   return g;
 }
 
@@ -43,7 +44,8 @@ void BM_BuildGridMesh(benchmark::State& state) {
     benchmark::DoNotOptimize(mesh.indices.data());
   }
   state.counters["triangles"] = static_cast<double>(triangles);
-  state.counters["tris/s"] = benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_BuildGridMesh)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
@@ -87,7 +89,8 @@ void BM_WedgieTable(benchmark::State& state) {
   tile.heights.resize(static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size));
   for (int y = 0; y < tile.size; ++y)
     for (int x = 0; x < tile.size; ++x)
-      tile.heights[static_cast<size_t>(y * tile.size + x)] = static_cast<float>(1500.0 + 400.0 * std::sin(x * 0.05) * std::cos(y * 0.04));
+      tile.heights[static_cast<size_t>(y * tile.size + x)] =
+          static_cast<float>(1500.0 + 400.0 * std::sin(x * 0.05) * std::cos(y * 0.04));
   for (auto _ : state) {
     terrain::WedgieTable t(tile, 8);
     benchmark::DoNotOptimize(&t);

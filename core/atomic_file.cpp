@@ -19,7 +19,8 @@ fs::path temporaryBeside(const fs::path& target) {
 
 // Runs write(tmp); on failure or exception removes tmp; on success renames tmp → target
 // (replacing an empty directory, the only kind of existing target the callers allow).
-Status writeThenRename(const fs::path& tmp, const fs::path& target, const std::function<Status(const fs::path&)>& write) {
+Status writeThenRename(const fs::path& tmp, const fs::path& target,
+                       const std::function<Status(const fs::path&)>& write) {
   std::error_code ec;
   Status status;
   try {
@@ -58,7 +59,8 @@ Status writeFileAtomically(const fs::path& path, const std::function<Status(cons
 Status writeDirectoryAtomically(const fs::path& dir, const std::function<Status(const fs::path&)>& write) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
-    return makeError(ErrorKind::InvalidInput, dir.string() + " already exists and is not empty; choose another output directory");
+    return makeError(ErrorKind::InvalidInput,
+                     dir.string() + " already exists and is not empty; choose another output directory");
   if (Status s = createDirectories(dir.parent_path().empty() ? fs::path(".") : dir.parent_path()); !s) return s;
   const fs::path tmp = temporaryBeside(dir);
   if (Status s = createDirectories(tmp); !s) return s;

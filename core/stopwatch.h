@@ -9,9 +9,7 @@ class Stopwatch {
  public:
   Stopwatch() : start_(Clock::now()) {}
   void restart() { start_ = Clock::now(); }
-  double elapsedMs() const {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
-  }
+  double elapsedMs() const { return std::chrono::duration<double, std::milli>(Clock::now() - start_).count(); }
 
  private:
   using Clock = std::chrono::steady_clock;

@@ -52,7 +52,8 @@ class FieldReader {
     if (!(d >= lo && d <= hi)) return bad(field, concat("is ", d, "; expected ", lo, " … ", hi));
     return d;
   }
-  Result<int64_t> integer(const json& obj, const std::string& key, const std::string& field, int64_t lo, int64_t hi) const {
+  Result<int64_t> integer(const json& obj, const std::string& key, const std::string& field, int64_t lo,
+                          int64_t hi) const {
     auto v = get(obj, key, field);
     if (!v) return v.error();
     if (!(*v)->is_number_integer()) return bad(field, "must be an integer");
@@ -84,9 +85,10 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   int64_t version = 0;
   VEG_TRY_ASSIGN(version, f.integer(j, "format_version", "format_version", 1, 1'000'000));
   if (version != kDatasetFormatVersion)
-    return makeError(ErrorKind::Unsupported,
-                     f.bad("format_version", concat("is ", version, "; this vegstream reads version ",
-                                                    kDatasetFormatVersion)).message);
+    return makeError(
+        ErrorKind::Unsupported,
+        f.bad("format_version", concat("is ", version, "; this vegstream reads version ", kDatasetFormatVersion))
+            .message);
   m.formatVersion = static_cast<int>(version);
   VEG_TRY_ASSIGN(m.name, f.text(j, "name", "name"));
 
@@ -129,9 +131,12 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     if (!im->is_object()) return f.bad("imagery", "must be an object or null");
     std::string fmt;
     VEG_TRY_ASSIGN(fmt, f.text(*im, "format", "imagery.format"));
-    if (fmt == "jpeg") m.imagery = ImageryFormat::Jpeg;
-    else if (fmt == "png") m.imagery = ImageryFormat::Png;
-    else return f.bad("imagery.format", concat("is '", fmt, "'; expected jpeg or png"));
+    if (fmt == "jpeg")
+      m.imagery = ImageryFormat::Jpeg;
+    else if (fmt == "png")
+      m.imagery = ImageryFormat::Png;
+    else
+      return f.bad("imagery.format", concat("is '", fmt, "'; expected jpeg or png"));
     VEG_TRY_ASSIGN(count, f.integer(*im, "tile_count", "imagery.tile_count", 0, INT64_MAX));
     m.imageryTiles = static_cast<uint64_t>(count);
   }
@@ -170,16 +175,20 @@ json toJson(const DatasetMeta& m) {
   }
   return json{{"format_version", m.formatVersion},
               {"name", m.name},
-              {"bounds", {{"west", m.bounds.westDeg}, {"south", m.bounds.southDeg},
-                          {"east", m.bounds.eastDeg}, {"north", m.bounds.northDeg}}},
+              {"bounds",
+               {{"west", m.bounds.westDeg},
+                {"south", m.bounds.southDeg},
+                {"east", m.bounds.eastDeg},
+                {"north", m.bounds.northDeg}}},
               {"min_zoom", m.minZoom},
               {"max_zoom", m.maxZoom},
               {"tile_size", m.tileSize},
               {"min_height_m", m.minHeightM},
               {"max_height_m", m.maxHeightM},
-              {"elevation", {{"encoding", toString(m.elevationEncoding)},
-                             {"tiles", "elevation/{z}/{x}/{y}.png"},
-                             {"tile_count", m.elevationTiles}}},
+              {"elevation",
+               {{"encoding", toString(m.elevationEncoding)},
+                {"tiles", "elevation/{z}/{x}/{y}.png"},
+                {"tile_count", m.elevationTiles}}},
               {"imagery", imagery},
               {"attribution", m.attribution},
               {"sources", sources},
@@ -202,8 +211,7 @@ Result<DatasetMeta> readDatasetMeta(const fs::path& datasetDir) {
   const fs::path file = datasetDir / kMetaFile;
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) {
-    if (!fs::exists(datasetDir, ec))
-      return makeError(ErrorKind::NotFound, concat(datasetDir, " does not exist"));
+    if (!fs::exists(datasetDir, ec)) return makeError(ErrorKind::NotFound, concat(datasetDir, " does not exist"));
     return makeError(ErrorKind::NotFound, concat(datasetDir, " is not a vegstream dataset: it has no dataset.json"));
   }
   std::ifstream in(file, std::ios::binary);
@@ -242,8 +250,7 @@ fs::path elevationTilePath(const fs::path& datasetDir, const geo::TileId& id) {
 }
 
 fs::path imageryTilePath(const fs::path& datasetDir, const geo::TileId& id, ImageryFormat f) {
-  return datasetDir / "imagery" / std::to_string(id.z) / std::to_string(id.x) /
-         concat(id.y, ".", imageryExtension(f));
+  return datasetDir / "imagery" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".", imageryExtension(f));
 }
 
 }  // namespace vegstream::datasets

@@ -29,8 +29,8 @@ constexpr int kTileSize = 256;
 enum class ElevationEncoding { Terrarium, TerrainRgb };
 enum class ImageryFormat { Jpeg, Png };
 
-const char* toString(ElevationEncoding e);  // "terrarium", "terrain-rgb"
-const char* toString(ImageryFormat f);      // "jpeg", "png"
+const char* toString(ElevationEncoding e);                                  // "terrarium", "terrain-rgb"
+const char* toString(ImageryFormat f);                                      // "jpeg", "png"
 Result<ElevationEncoding> parseElevationEncoding(const std::string& text);  // error names the text
 
 struct SourceInfo {
@@ -43,10 +43,10 @@ struct SourceInfo {
 struct DatasetMeta {
   int formatVersion = kDatasetFormatVersion;
   std::string name;
-  geo::GeoBounds bounds;               // extent of the data, degrees
+  geo::GeoBounds bounds;  // extent of the data, degrees
   int minZoom = 0;
   int maxZoom = 0;
-  double minHeightM = 0.0;             // over all valid heights at maxZoom
+  double minHeightM = 0.0;  // over all valid heights at maxZoom
   double maxHeightM = 0.0;
   ElevationEncoding elevationEncoding = ElevationEncoding::Terrarium;
   std::optional<ImageryFormat> imagery;  // nullopt: no imagery tiles
@@ -55,7 +55,7 @@ struct DatasetMeta {
   std::vector<SourceInfo> sources;
   uint64_t elevationTiles = 0;
   uint64_t imageryTiles = 0;
-  uint64_t bytes = 0;                  // all tile files together
+  uint64_t bytes = 0;  // all tile files together
 };
 
 // dataset.json ↔ DatasetMeta. Reading checks every field and names the file and the field.

@@ -35,8 +35,7 @@ std::string GeoKeys::description() const {
   return out;
 }
 
-std::optional<GeoKeys> decodeGeoKeys(const std::vector<double>& directory,
-                                     const std::vector<double>& doubleParams,
+std::optional<GeoKeys> decodeGeoKeys(const std::vector<double>& directory, const std::vector<double>& doubleParams,
                                      const std::string& asciiParams) {
   // Header: KeyDirectoryVersion, KeyRevision, MinorRevision, NumberOfKeys; then 4 SHORTs a key.
   if (directory.size() < 4 || directory[0] != 1) return std::nullopt;
@@ -59,8 +58,7 @@ std::optional<GeoKeys> decodeGeoKeys(const std::vector<double>& directory,
       if (offset > asciiParams.size() || count > asciiParams.size() - offset) return std::nullopt;
       text = asciiParams.substr(offset, count);
       // Each ASCII value ends with '|' in the shared parameter string.
-      while (!text.empty() && (text.back() == '|' || text.back() == '\0' || text.back() == ' '))
-        text.pop_back();
+      while (!text.empty() && (text.back() == '|' || text.back() == '\0' || text.back() == ' ')) text.pop_back();
     } else if (location == kDoubleParamsTag) {
       if (offset > doubleParams.size() || count > doubleParams.size() - offset) return std::nullopt;
       continue;  // ellipsoid parameters and the like: not needed to name an EPSG code

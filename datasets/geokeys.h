@@ -15,9 +15,9 @@ inline constexpr int kRasterType = 1025;      // 1 PixelIsArea, 2 PixelIsPoint
 inline constexpr int kCitation = 1026;        // GTCitationGeoKey
 inline constexpr int kGeographicType = 2048;  // EPSG code of a geographic CRS
 inline constexpr int kGeogCitation = 2049;
-inline constexpr int kProjectedCsType = 3072; // EPSG code of a projected CRS
+inline constexpr int kProjectedCsType = 3072;  // EPSG code of a projected CRS
 inline constexpr int kPcsCitation = 3073;
-inline constexpr int kUserDefined = 32767;    // "defined by other keys": no EPSG code
+inline constexpr int kUserDefined = 32767;  // "defined by other keys": no EPSG code
 }  // namespace geokey
 
 struct GeoKeys {
@@ -37,8 +37,7 @@ struct GeoKeys {
 // Decodes the directory. nullopt when it is corrupt: a wrong version, fewer entries than its
 // header claims, or a value that points outside its parameter tag — the same cases in which
 // GDAL ignores the keys. `directory` holds the SHORT values of tag 34735.
-std::optional<GeoKeys> decodeGeoKeys(const std::vector<double>& directory,
-                                     const std::vector<double>& doubleParams,
+std::optional<GeoKeys> decodeGeoKeys(const std::vector<double>& directory, const std::vector<double>& doubleParams,
                                      const std::string& asciiParams);
 
 }  // namespace vegstream::datasets

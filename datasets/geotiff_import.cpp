@@ -26,8 +26,9 @@ namespace fs = std::filesystem;
 // A source's CRS from its GeoReference, with the file named in every message.
 Result<geo::Crs> sourceCrs(const Raster& r, const char* flag, const Logger& log) {
   if (r.georef.epsg == 0) {
-    std::string what = r.georef.crsDescription.empty() ? std::string("no EPSG code")
-                                                       : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
+    std::string what = r.georef.crsDescription.empty()
+                           ? std::string("no EPSG code")
+                           : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
     return makeError(ErrorKind::Unsupported,
                      concat(r.path, " names ", what, "; state its CRS with ", flag, " EPSG:N if you know it"));
   }
@@ -90,7 +91,8 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& sr
   std::array<float, 3> rgb{};
   for (size_t i = 0; i < imgPx.size(); ++i) {
     if (!sampleColour(src.imagery->raster(), imgPx[i], rgb)) continue;
-    for (size_t ch = 0; ch < 3; ++ch) c.rgba[i * 4 + ch] = static_cast<uint8_t>(std::lround(std::clamp(rgb[ch], 0.f, 255.f)));
+    for (size_t ch = 0; ch < 3; ++ch)
+      c.rgba[i * 4 + ch] = static_cast<uint8_t>(std::lround(std::clamp(rgb[ch], 0.f, 255.f)));
     c.rgba[i * 4 + 3] = 255;
     out.imagery = true;
   }
@@ -119,8 +121,9 @@ Status checkOutputDirectory(const fs::path& out) {
   std::error_code ec;
   if (fs::exists(out, ec)) {
     if (!fs::is_directory(out, ec) || !fs::is_empty(out, ec))
-      return makeError(ErrorKind::InvalidInput,
-                       concat("--out ", out, " already exists and is not an empty directory; choose another output directory"));
+      return makeError(
+          ErrorKind::InvalidInput,
+          concat("--out ", out, " already exists and is not an empty directory; choose another output directory"));
   }
   fs::path p = fs::absolute(out, ec).parent_path();
   while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path()) p = p.parent_path();
@@ -143,7 +146,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   if (!demRead) return demRead.error();
   Raster& dem = *demRead;
   if (dem.channels != 1)
-    return makeError(ErrorKind::InvalidInput, concat(o.dem, " has ", dem.channels, " channels; a DEM has one (heights)"));
+    return makeError(ErrorKind::InvalidInput,
+                     concat(o.dem, " has ", dem.channels, " channels; a DEM has one (heights)"));
   auto demCrs = sourceCrs(dem, "--dem-crs", log);
   if (!demCrs) return demCrs.error();
   uint64_t implausible = 0, validHeights = 0;
@@ -192,8 +196,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   for (const auto& r : geo::tileRangesCovering(bounds, maxZoom)) tileCount += static_cast<uint64_t>(r.count());
   if (tileCount > o.maxTiles)
     return makeError(ErrorKind::InvalidInput,
-                     concat(o.dem, " at zoom ", maxZoom, " needs ", tileCount, " tiles, more than the limit of ", o.maxTiles,
-                            "; choose a lower --max-zoom"));
+                     concat(o.dem, " at zoom ", maxZoom, " needs ", tileCount, " tiles, more than the limit of ",
+                            o.maxTiles, "; choose a lower --max-zoom"));
   const std::vector<geo::TileId> tiles = geo::tilesCovering(bounds, maxZoom);
   log->info("{}: {} ({:.1f} m pixels) → zoom {} ({:.1f} m pixels), {} tiles", o.dem.string(), demCrs->name(),
             demGrid->pixelSizeM(), maxZoom, geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
@@ -216,8 +220,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
       paths += b.string();
     }
     if (o.imagery.file) paths = o.imagery.file->string();
-    meta.sources.push_back({"imagery", paths, imageryGrid->crs().name(),
-                            concat(describe(*imageryGrid), ", ", imagery->description)});
+    meta.sources.push_back(
+        {"imagery", paths, imageryGrid->crs().name(), concat(describe(*imageryGrid), ", ", imagery->description)});
   }
 
   Result<DatasetMeta> result = makeError(ErrorKind::Internal, "import did not run");
@@ -227,7 +231,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     std::vector<TileOutcome> outcomes(tiles.size());
     const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr};
     Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
-      if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+      if (o.cancel && o.cancel->load())
+        return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
       if (auto t = produceTile(tmp, tiles[i], src, o, outcomes[i]); !t) return t;
       progress.tileDone(outcomes[i].bytes);
       return {};
@@ -251,7 +256,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     meta.minZoom = std::min(o.minZoom.value_or(singleTileZoom(withHeights)), maxZoom);
     result = finishDataset(tmp, meta, progress, o.threads, o.jpegQuality, o.tasks);
     if (!result) return result.error();
-    if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+    if (o.cancel && o.cancel->load())
+      return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
     return {};
   });
   if (!written) return written.error();

@@ -40,13 +40,13 @@ enum class HeightResampling { Bilinear, Cubic };
 
 struct GeoTiffImportOptions {
   std::filesystem::path dem;
-  std::optional<int> demEpsg;      // --dem-crs: stated CRS (corrupt GeoKeys), overrides the file
-  std::optional<double> demNodata; // --dem-nodata
-  ImageryInput imagery;            // neither file nor bands: no imagery
+  std::optional<int> demEpsg;       // --dem-crs: stated CRS (corrupt GeoKeys), overrides the file
+  std::optional<double> demNodata;  // --dem-nodata
+  ImageryInput imagery;             // neither file nor bands: no imagery
   HeightResampling heightResampling = HeightResampling::Bilinear;
 
   std::filesystem::path out;
-  std::string name;                // empty: the last component of `out`
+  std::string name;  // empty: the last component of `out`
   std::string attribution;
   ElevationEncoding encoding = ElevationEncoding::Terrarium;
   ImageryFormat imageryFormat = ImageryFormat::Jpeg;
@@ -54,10 +54,10 @@ struct GeoTiffImportOptions {
   std::optional<int> maxZoom;
   std::optional<int> minZoom;
 
-  uint64_t maxPixels = 400'000'000;   // per source raster, refused before allocating
-  uint64_t maxTiles = 1'000'000;      // tiles at the max zoom; more is refused (pick --max-zoom)
-  int threads = 0;                    // 0: all cores
-  TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
+  uint64_t maxPixels = 400'000'000;           // per source raster, refused before allocating
+  uint64_t maxTiles = 1'000'000;              // tiles at the max zoom; more is refused (pick --max-zoom)
+  int threads = 0;                            // 0: all cores
+  TaskRunner* tasks = nullptr;                // runs the workers (outlives the call); null: a pool made for the call
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop, leave nothing
 };
 

@@ -34,8 +34,7 @@ struct GeoReference {
   // CRS coordinates of the centre of pixel (col, row).
   std::array<double, 2> pixelCentre(double col, double row) const {
     const double c = col + 0.5, r = row + 0.5;
-    return {transform[0] + transform[1] * c + transform[2] * r,
-            transform[3] + transform[4] * c + transform[5] * r};
+    return {transform[0] + transform[1] * c + transform[2] * r, transform[3] + transform[4] * c + transform[5] * r};
   }
 };
 
@@ -44,13 +43,14 @@ struct Raster {
   int width = 0;
   int height = 0;
   int channels = 0;
-  std::vector<float> samples;   // row-major from the top row, channels interleaved
-  std::optional<double> nodata; // GDAL_NODATA, or ReadOptions::nodataOverride
+  std::vector<float> samples;    // row-major from the top row, channels interleaved
+  std::optional<double> nodata;  // GDAL_NODATA, or ReadOptions::nodataOverride
   GeoReference georef;
 
   float at(int col, int row, int channel = 0) const {
     return samples[(static_cast<size_t>(row) * static_cast<size_t>(width) + static_cast<size_t>(col)) *
-                       static_cast<size_t>(channels) + static_cast<size_t>(channel)];
+                       static_cast<size_t>(channels) +
+                   static_cast<size_t>(channel)];
   }
   bool isNodata(float v) const { return v != v || (nodata && static_cast<double>(v) == *nodata); }
 };

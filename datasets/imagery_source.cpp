@@ -58,11 +58,12 @@ Result<Raster> readMerged(const ImageryInput& in) {
     auto r = readGeoTiff(path, ro);
     if (!r) return r.error();
     if (r->channels != 1)
-      return makeError(ErrorKind::InvalidInput, concat(path, " has ", r->channels,
-                                                      " channels; each --imagery-bands file must hold one band"));
+      return makeError(ErrorKind::InvalidInput,
+                       concat(path, " has ", r->channels, " channels; each --imagery-bands file must hold one band"));
     if (!bands.empty() && !sameGrid(bands.front(), *r))
-      return makeError(ErrorKind::InvalidInput, concat(path, " is not on the same grid (size, transform, CRS) as ",
-                                                      bands.front().path, "; --imagery-bands files must share one grid"));
+      return makeError(ErrorKind::InvalidInput,
+                       concat(path, " is not on the same grid (size, transform, CRS) as ", bands.front().path,
+                              "; --imagery-bands files must share one grid"));
     bands.push_back(std::move(*r));
   }
   out = bands.front();
@@ -98,9 +99,9 @@ Result<Stretch> parseStretch(const std::string& text) {
     s.hi = std::stod(m[2]);
     if (s.lo < s.hi) return s;
   }
-  return makeError(ErrorKind::InvalidInput,
-                   concat("--stretch '", text, "': expected percentiles pLO,pHI (e.g. p1,p99, LO < HI ≤ 100) or "
-                                              "sample values LO,HI with LO < HI (e.g. 6700,18300)"));
+  return makeError(ErrorKind::InvalidInput, concat("--stretch '", text,
+                                                   "': expected percentiles pLO,pHI (e.g. p1,p99, LO < HI ≤ 100) or "
+                                                   "sample values LO,HI with LO < HI (e.g. 6700,18300)"));
 }
 
 Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& log) {
@@ -127,7 +128,8 @@ Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& 
   std::optional<Stretch> stretch = input.stretch;
   if (!stretch && (lo < 0.0f || hi > 255.0f)) {
     stretch = Stretch{};
-    log->info("{}: values {} … {} exceed 8 bits and no --stretch was given: stretching p1,p99", r.path.string(), lo, hi);
+    log->info("{}: values {} … {} exceed 8 bits and no --stretch was given: stretching p1,p99", r.path.string(), lo,
+              hi);
   }
   out.stretched = stretch.has_value();
   for (size_t c = 0; c < 3; ++c) {

@@ -21,7 +21,7 @@ namespace vegstream::datasets {
 struct Stretch {
   enum class Kind { Percentile, Fixed };
   Kind kind = Kind::Percentile;
-  double lo = 1.0;   // percent (Percentile) or sample value (Fixed)
+  double lo = 1.0;  // percent (Percentile) or sample value (Fixed)
   double hi = 99.0;
 };
 
@@ -29,9 +29,9 @@ struct Stretch {
 Result<Stretch> parseStretch(const std::string& text);
 
 struct ImageryInput {
-  std::optional<std::filesystem::path> file;       // --imagery
-  std::vector<std::filesystem::path> bands;        // --imagery-bands R,G,B
-  std::optional<int> assumeEpsg;                   // --imagery-crs
+  std::optional<std::filesystem::path> file;  // --imagery
+  std::vector<std::filesystem::path> bands;   // --imagery-bands R,G,B
+  std::optional<int> assumeEpsg;              // --imagery-crs
   std::optional<Stretch> stretch;
   uint64_t maxPixels = 400'000'000;
 };
@@ -40,7 +40,7 @@ struct PreparedImagery {
   Raster raster;                                // 3 channels, 0 … 255, NaN = no data
   std::array<std::array<double, 2>, 3> ranges;  // per band: the values mapped to 0 and 255
   bool stretched = false;
-  std::string description;                      // for dataset.json's sources
+  std::string description;  // for dataset.json's sources
 };
 
 // Errors as readGeoTiff's, plus: bands of different grids / CRSs, a band with more than one

@@ -21,12 +21,10 @@ inline void appendPiece(std::string& s, const std::filesystem::path& p) {
   s += '\'';
 }
 template <typename T>
-  requires std::is_integral_v<T>
-void appendPiece(std::string& s, T v) {
-  s += std::to_string(v);
-}
+requires std::is_integral_v<T>
+void appendPiece(std::string& s, T v) { s += std::to_string(v); }
 template <typename T>
-  requires std::is_floating_point_v<T>
+requires std::is_floating_point_v<T>
 void appendPiece(std::string& s, T v) {
   char buf[40];
   std::snprintf(buf, sizeof(buf), "%.10g", static_cast<double>(v));

@@ -48,7 +48,9 @@ std::optional<std::string> headerProblem(const Header& h) {
   switch (h.colourType) {
     case 0: depthOk = d == 1 || d == 2 || d == 4 || d == 8 || d == 16; break;
     case 3: depthOk = d == 1 || d == 2 || d == 4 || d == 8; break;
-    case 2: case 4: case 6: depthOk = d == 8 || d == 16; break;
+    case 2:
+    case 4:
+    case 6: depthOk = d == 8 || d == 16; break;
     default: return concat("IHDR colour type ", h.colourType, " does not exist");
   }
   if (!depthOk) return concat("IHDR bit depth ", d, " is impossible with colour type ", h.colourType);

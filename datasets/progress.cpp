@@ -14,15 +14,19 @@ using Clock = std::chrono::steady_clock;
 
 std::string formatBytes(uint64_t bytes) {
   char buf[32];
-  if (bytes >= 1024ull * 1024ull) std::snprintf(buf, sizeof(buf), "%.1f MB", static_cast<double>(bytes) / 1048576.0);
-  else std::snprintf(buf, sizeof(buf), "%.1f kB", static_cast<double>(bytes) / 1024.0);
+  if (bytes >= 1024ull * 1024ull)
+    std::snprintf(buf, sizeof(buf), "%.1f MB", static_cast<double>(bytes) / 1048576.0);
+  else
+    std::snprintf(buf, sizeof(buf), "%.1f kB", static_cast<double>(bytes) / 1024.0);
   return buf;
 }
 
 std::string formatDuration(double s) {
   char buf[32];
-  if (s < 60) std::snprintf(buf, sizeof(buf), "%.0fs", s);
-  else std::snprintf(buf, sizeof(buf), "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+  if (s < 60)
+    std::snprintf(buf, sizeof(buf), "%.0fs", s);
+  else
+    std::snprintf(buf, sizeof(buf), "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
   return buf;
 }
 
@@ -41,15 +45,11 @@ void CallbackProgress::tileDone(uint64_t) {
 }
 
 ProgressReporter::ProgressReporter(std::string label, std::FILE* out, int interactive)
-    : label_(std::move(label)),
-      out_(out),
-      interactive_(interactive < 0 ? ::isatty(::fileno(out)) != 0 : interactive != 0),
-      start_(Clock::now()),
+    : label_(std::move(label)), out_(out),
+      interactive_(interactive < 0 ? ::isatty(::fileno(out)) != 0 : interactive != 0), start_(Clock::now()),
       lastDraw_(start_) {}
 
-double ProgressReporter::seconds() const {
-  return std::chrono::duration<double>(Clock::now() - start_).count();
-}
+double ProgressReporter::seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
 void ProgressReporter::addTotal(uint64_t tiles) { total_ += tiles; }
 
@@ -84,9 +84,9 @@ void ProgressReporter::draw(bool force) {
     const int filled = static_cast<int>(frac * kWidth);
     std::string bar(static_cast<size_t>(filled), '#');
     bar.append(static_cast<size_t>(kWidth - filled), '-');
-    std::fprintf(out_, "\r%s %s [%s] %llu/%llu tiles %3.0f%%  %.0f tiles/s  ETA %s   ", label_.c_str(),
-                 stage_.c_str(), bar.c_str(), static_cast<unsigned long long>(done),
-                 static_cast<unsigned long long>(total), 100.0 * frac, rate, formatDuration(eta).c_str());
+    std::fprintf(out_, "\r%s %s [%s] %llu/%llu tiles %3.0f%%  %.0f tiles/s  ETA %s   ", label_.c_str(), stage_.c_str(),
+                 bar.c_str(), static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+                 100.0 * frac, rate, formatDuration(eta).c_str());
     drewBar_ = true;
   } else {
     std::fprintf(out_, "%s %s: %llu/%llu tiles (%.0f%%), %.0f tiles/s, ETA %s\n", label_.c_str(), stage_.c_str(),

@@ -59,8 +59,8 @@ uint64_t fileBytes(const fs::path& p) {
 
 // Child pixel block (2·px, 2·py) … +1 of quadrant q for parent pixel (i, j).
 struct Quadrant {
-  int child;  // index into children(): NW, NE, SW, SE
-  int cx, cy; // top-left child pixel of the 2×2 block
+  int child;   // index into children(): NW, NE, SW, SE
+  int cx, cy;  // top-left child pixel of the 2×2 block
 };
 Quadrant quadrantOf(int i, int j, int size) {
   const int half = size / 2;
@@ -79,8 +79,8 @@ Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const g
     auto t = readHeightTile(p, ids[static_cast<size_t>(k)], meta.elevationEncoding);
     if (!t) return t.error();
     if (t->size != meta.tileSize)
-      return makeError(ErrorKind::InvalidInput, concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ",
-                                                      meta.tileSize));
+      return makeError(ErrorKind::InvalidInput,
+                       concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ", meta.tileSize));
     kids[static_cast<size_t>(k)] = std::move(*t);
     any = true;
   }
@@ -101,10 +101,14 @@ Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const g
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
           const float h = kid->at(q.cx + dx, q.cy + dy);
-          if (std::isfinite(h)) { sum += h; ++n; }
+          if (std::isfinite(h)) {
+            sum += h;
+            ++n;
+          }
         }
       if (n) {
-        out.heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] = static_cast<float>(sum / n);
+        out.heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] =
+            static_cast<float>(sum / n);
         valid = true;
       }
     }
@@ -124,8 +128,8 @@ Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo
     auto t = readColorTile(p, ids[static_cast<size_t>(k)]);
     if (!t) return t.error();
     if (t->size != meta.tileSize)
-      return makeError(ErrorKind::InvalidInput, concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ",
-                                                      meta.tileSize));
+      return makeError(ErrorKind::InvalidInput,
+                       concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ", meta.tileSize));
     kids[static_cast<size_t>(k)] = std::move(*t);
     any = true;
   }
@@ -143,8 +147,9 @@ Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo
       int sum[3] = {0, 0, 0}, n = 0;
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
-          const uint8_t* px = &kid->rgba[(static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) +
-                                          static_cast<size_t>(q.cx + dx)) * 4];
+          const uint8_t* px =
+              &kid->rgba[(static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) + static_cast<size_t>(q.cx + dx)) *
+                         4];
           if (px[3] == 0) continue;
           for (int c = 0; c < 3; ++c) sum[c] += px[c];
           ++n;
@@ -207,8 +212,14 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
     elevation.clear();
     imagery.clear();
     for (size_t i = 0; i < parents.size(); ++i) {
-      if (wroteElevation[i]) { elevation.insert(parents[i]); ++meta.elevationTiles; }
-      if (wroteImagery[i]) { imagery.insert(parents[i]); ++meta.imageryTiles; }
+      if (wroteElevation[i]) {
+        elevation.insert(parents[i]);
+        ++meta.elevationTiles;
+      }
+      if (wroteImagery[i]) {
+        imagery.insert(parents[i]);
+        ++meta.imageryTiles;
+      }
       meta.bytes += bytes[i];
     }
   }

@@ -14,9 +14,9 @@
 namespace vegstream::datasets {
 
 struct PyramidOptions {
-  int threads = 0;       // 0: all cores
+  int threads = 0;              // 0: all cores
   TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
-  int jpegQuality = 90;  // for JPEG imagery
+  int jpegQuality = 90;         // for JPEG imagery
 };
 
 // Reads the tiles present at meta.maxZoom under `dir` (elevation/ and, when meta.imagery is

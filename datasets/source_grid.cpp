@@ -61,12 +61,15 @@ Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
     }
   }
   if (west < -180.0 - 1e-9 || east > 180.0 + 1e-9)
-    return makeError(ErrorKind::Unsupported,
-                     concat(raster.path, " reaches beyond ±180° longitude; rasters across the antimeridian are not supported"));
+    return makeError(
+        ErrorKind::Unsupported,
+        concat(raster.path, " reaches beyond ±180° longitude; rasters across the antimeridian are not supported"));
   const double lim = geo::kWebMercatorMaxLatDeg;
-  g.extent_ = {std::max(west, -180.0), std::clamp(south, -lim, lim), std::min(east, 180.0), std::clamp(north, -lim, lim)};
+  g.extent_ = {std::max(west, -180.0), std::clamp(south, -lim, lim), std::min(east, 180.0),
+               std::clamp(north, -lim, lim)};
   if (!(g.extent_.northDeg > g.extent_.southDeg))
-    return makeError(ErrorKind::Unsupported, concat(raster.path, " lies entirely beyond ±85.05° latitude, outside Web Mercator"));
+    return makeError(ErrorKind::Unsupported,
+                     concat(raster.path, " lies entirely beyond ±85.05° latitude, outside Web Mercator"));
 
   // Ground pixel size at the centre, in a local ENU frame there.
   const glm::dvec2 c{0.5 * w, 0.5 * h};
@@ -108,8 +111,8 @@ std::vector<glm::dvec2> SourceGrid::tilePixelsToSource(const geo::TileId& tile, 
   std::vector<glm::dvec2> grid(gn * gn);
   for (size_t gj = 0; gj < gn; ++gj)
     for (size_t gi = 0; gi < gn; ++gi) {
-      const glm::dvec2 lonLat = geo::pixelToLonLat(
-          tile, centre(static_cast<double>(gi * kStep), static_cast<double>(gj * kStep)), size);
+      const glm::dvec2 lonLat =
+          geo::pixelToLonLat(tile, centre(static_cast<double>(gi * kStep), static_cast<double>(gj * kStep)), size);
       auto xy = geo::toProjected(crs_, {lonLat.y, lonLat.x, 0.0});
       grid[gj * gn + gi] = xy ? toPixel(*xy) : glm::dvec2{kNaN, kNaN};
     }

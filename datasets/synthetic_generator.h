@@ -26,14 +26,14 @@ namespace vegstream::datasets {
 
 struct SyntheticOptions {
   std::filesystem::path out;
-  std::string name;            // empty: the last component of `out`
+  std::string name;             // empty: the last component of `out`
   double centreLatDeg = 46.55;  // an alpine valley-and-ridge setting (Bernese Oberland latitudes)
   double centreLonDeg = 7.95;
-  double sizeKm = 10.0;         // side of the square area, 0.1 … 200
+  double sizeKm = 10.0;  // side of the square area, 0.1 … 200
   uint64_t seed = 1;
   // Finest zoom; 0: the coarsest zoom whose pixels are at most 10 m on the ground.
   int maxZoom = 0;
-  std::optional<int> minZoom;   // nullopt: down to the zoom at which the area fits one tile
+  std::optional<int> minZoom;  // nullopt: down to the zoom at which the area fits one tile
   ElevationEncoding encoding = ElevationEncoding::Terrarium;
   int threads = 0;              // 0: all cores
   TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call

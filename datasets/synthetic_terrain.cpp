@@ -26,8 +26,8 @@ double gradientNoise(double x, double y, uint32_t seed) {
   const auto ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
   const double dx = x - fx, dy = y - fy;
   // 16 gradient directions, evenly spread (cos, sin of k·22.5°).
-  static constexpr double kGx[16] = {1.0, 0.92388, 0.70711, 0.38268, 0.0, -0.38268, -0.70711, -0.92388,
-                                     -1.0, -0.92388, -0.70711, -0.38268, 0.0, 0.38268, 0.70711, 0.92388};
+  static constexpr double kGx[16] = {1.0,  0.92388,  0.70711,  0.38268,  0.0, -0.38268, -0.70711, -0.92388,
+                                     -1.0, -0.92388, -0.70711, -0.38268, 0.0, 0.38268,  0.70711,  0.92388};
   auto corner = [&](int64_t cx, int64_t cy, double ox, double oy) {
     const uint32_t k = hashCell(ix + cx, iy + cy, seed) & 15U;
     return kGx[k] * ox + kGx[(k + 12U) & 15U] * oy;
@@ -101,17 +101,17 @@ double SyntheticTerrain::heightM(double eastM, double northM) const {
   // Domain warp: bends ridges and valleys so they do not follow the noise lattice.
   const double wx = px + 0.25 * fbm(px + 5.2, py + 1.3, 3, seed_[0]);
   const double wy = py + 0.25 * fbm(px + 1.7, py + 9.2, 3, seed_[1]);
-  const double region = fbm(0.6 * wx, 0.6 * wy, 3, seed_[2]);            // −1 … 1: valley … massif
+  const double region = fbm(0.6 * wx, 0.6 * wy, 3, seed_[2]);  // −1 … 1: valley … massif
   const double mountains = smoothstep(-0.45, 0.35, region);
-  const double ridges = ridged(1.3 * wx, 1.3 * wy, 7, seed_[3]);           // 0 … 1
-  const double hills = fbm(3.0 * wx, 3.0 * wy, 5, seed_[2] ^ 0xabcdefU);   // rolling valley floor
+  const double ridges = ridged(1.3 * wx, 1.3 * wy, 7, seed_[3]);          // 0 … 1
+  const double hills = fbm(3.0 * wx, 3.0 * wy, 5, seed_[2] ^ 0xabcdefU);  // rolling valley floor
   return kValleyFloorM + 250.0 * (region + 1.0) + 60.0 * hills + 2600.0 * mountains * std::pow(ridges, 1.6);
 }
 
 std::array<uint8_t, 3> SyntheticTerrain::color(double eastM, double northM, double h, double slopeRad) const {
   static constexpr Rgb kGrass{118, 148, 66}, kForest{46, 78, 38}, kMeadow{132, 138, 84}, kRock{122, 114, 104},
       kScree{150, 144, 134}, kSnow{238, 241, 246};
-  const double patch = fbm(eastM / 350.0, northM / 350.0, 4, seed_[0] ^ 0x5a5a5aU);    // −1 … 1
+  const double patch = fbm(eastM / 350.0, northM / 350.0, 4, seed_[0] ^ 0x5a5a5aU);  // −1 … 1
   const double detail = fbm(eastM / 40.0, northM / 40.0, 2, seed_[1] ^ 0xa5a5a5U);
   const double treeLine = 1900.0 + 120.0 * patch;
   const double snowLine = 2750.0 + 150.0 * patch;

@@ -18,18 +18,29 @@ constexpr uint64_t kMaxEntries = 4096;
 // Size in bytes of one value of each TIFF field type; 0 for unknown types.
 uint64_t typeSize(uint16_t type) {
   switch (type) {
-    case 1: case 2: case 6: case 7: return 1;        // BYTE ASCII SBYTE UNDEFINED
-    case 3: case 8: return 2;                        // SHORT SSHORT
-    case 4: case 9: case 11: case 13: return 4;      // LONG SLONG FLOAT IFD
-    case 5: case 10: case 12: case 16: case 17: case 18: return 8;  // RATIONAL … IFD8
+    case 1:
+    case 2:
+    case 6:
+    case 7: return 1;  // BYTE ASCII SBYTE UNDEFINED
+    case 3:
+    case 8: return 2;  // SHORT SSHORT
+    case 4:
+    case 9:
+    case 11:
+    case 13: return 4;  // LONG SLONG FLOAT IFD
+    case 5:
+    case 10:
+    case 12:
+    case 16:
+    case 17:
+    case 18: return 8;  // RATIONAL … IFD8
     default: return 0;
   }
 }
 
 class Reader {
  public:
-  Reader(const std::filesystem::path& path, std::ifstream& in, uint64_t size)
-      : path_(path), in_(in), size_(size) {}
+  Reader(const std::filesystem::path& path, std::ifstream& in, uint64_t size) : path_(path), in_(in), size_(size) {}
 
   void setBigEndian(bool big) { big_ = big; }
 
@@ -69,17 +80,21 @@ class Reader {
 
 double toNumber(const Reader& r, uint16_t type, const unsigned char* p) {
   switch (type) {
-    case 1: case 7: return p[0];
+    case 1:
+    case 7: return p[0];
     case 6: return static_cast<int8_t>(p[0]);
     case 3: return static_cast<double>(r.uint(p, 2));
     case 8: return static_cast<int16_t>(r.uint(p, 2));
-    case 4: case 13: return static_cast<double>(r.uint(p, 4));
+    case 4:
+    case 13: return static_cast<double>(r.uint(p, 4));
     case 9: return static_cast<int32_t>(r.uint(p, 4));
-    case 16: case 18: return static_cast<double>(r.uint(p, 8));
+    case 16:
+    case 18: return static_cast<double>(r.uint(p, 8));
     case 17: return static_cast<double>(static_cast<int64_t>(r.uint(p, 8)));
     case 11: return std::bit_cast<float>(static_cast<uint32_t>(r.uint(p, 4)));
     case 12: return std::bit_cast<double>(r.uint(p, 8));
-    case 5: case 10: {
+    case 5:
+    case 10: {
       const bool sign = type == 10;
       const uint64_t n = r.uint(p, 4), d = r.uint(p + 4, 4);
       const double num = sign ? static_cast<int32_t>(n) : static_cast<double>(n);
@@ -92,8 +107,7 @@ double toNumber(const Reader& r, uint16_t type, const unsigned char* p) {
 
 }  // namespace
 
-Result<TiffDirectory> readFirstTiffDirectory(const std::filesystem::path& path,
-                                             std::span<const uint16_t> wanted) {
+Result<TiffDirectory> readFirstTiffDirectory(const std::filesystem::path& path, std::span<const uint16_t> wanted) {
   std::error_code ec;
   const uint64_t size = std::filesystem::file_size(path, ec);
   if (ec) return makeError(ErrorKind::Io, "cannot read '" + path.string() + "': " + ec.message());
@@ -142,16 +156,15 @@ Result<TiffDirectory> readFirstTiffDirectory(const std::filesystem::path& path,
     const uint64_t count = r.uint(entry + 4, fieldBytes);
     const uint64_t unit = typeSize(type);
     if (unit == 0 || count > kMaxTagBytes / unit)
-      return r.invalid("has a corrupt TIFF tag " + std::to_string(tag) + " (type " +
-                       std::to_string(type) + ", count " + std::to_string(count) + ")");
+      return r.invalid("has a corrupt TIFF tag " + std::to_string(tag) + " (type " + std::to_string(type) + ", count " +
+                       std::to_string(count) + ")");
     const uint64_t bytes = unit * count;
     value.assign(bytes, 0);
     const unsigned char* field = entry + 4 + fieldBytes;
     if (bytes <= static_cast<uint64_t>(fieldBytes)) {
       std::memcpy(value.data(), field, bytes);  // small values sit in the entry itself
     } else if (!r.read(r.uint(field, fieldBytes), value.data(), bytes)) {
-      return r.invalid("has TIFF tag " + std::to_string(tag) +
-                       " pointing past the end of the file");
+      return r.invalid("has TIFF tag " + std::to_string(tag) + " pointing past the end of the file");
     }
     TiffTagValue v;
     v.type = type;

@@ -32,9 +32,9 @@ inline constexpr uint16_t kGdalNodata = 42113;
 }  // namespace tifftag
 
 struct TiffTagValue {
-  uint16_t type = 0;             // TIFF field type (3 SHORT, 12 DOUBLE, 2 ASCII …)
-  std::vector<double> numbers;   // numeric types, converted (rationals as num/den)
-  std::string text;              // ASCII, with its NULs kept as written
+  uint16_t type = 0;            // TIFF field type (3 SHORT, 12 DOUBLE, 2 ASCII …)
+  std::vector<double> numbers;  // numeric types, converted (rationals as num/den)
+  std::string text;             // ASCII, with its NULs kept as written
 };
 
 struct TiffDirectory {
@@ -48,7 +48,6 @@ struct TiffDirectory {
 // Reads the values of the `wanted` tags from the first IFD of `path` (other tags are skipped
 // without reading their values). Errors are InvalidInput (not a TIFF, offsets past the end of
 // the file) or Io, with the path in the message.
-Result<TiffDirectory> readFirstTiffDirectory(const std::filesystem::path& path,
-                                             std::span<const uint16_t> wanted);
+Result<TiffDirectory> readFirstTiffDirectory(const std::filesystem::path& path, std::span<const uint16_t> wanted);
 
 }  // namespace vegstream::datasets

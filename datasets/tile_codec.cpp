@@ -186,8 +186,8 @@ Result<std::vector<uint8_t>> readFileBytes(const fs::path& path) {
 
 std::array<uint8_t, 3> encodeHeight(double heightM, ElevationEncoding encoding) {
   assert(std::isfinite(heightM));
-  const double code = encoding == ElevationEncoding::Terrarium ? (heightM + 32768.0) * 256.0
-                                                               : (heightM + 10000.0) * 10.0;
+  const double code =
+      encoding == ElevationEncoding::Terrarium ? (heightM + 32768.0) * 256.0 : (heightM + 10000.0) * 10.0;
   int64_t n = static_cast<int64_t>(std::llround(code));
   n = n < 0 ? 0 : (n > kMaxCode ? kMaxCode : n);
   return {static_cast<uint8_t>(n >> 16), static_cast<uint8_t>((n >> 8) & 0xff), static_cast<uint8_t>(n & 0xff)};
@@ -214,18 +214,16 @@ Status writeHeightTile(const fs::path& path, const HeightTile& tile, ElevationEn
     rgba[i * 4 + 2] = c[2];
     rgba[i * 4 + 3] = 255;
   }
-  return writeFileAtomically(path, [&](const fs::path& tmp) {
-    return writePixels(path, tmp, "png", tile.size, 4, rgba.data(), 0);
-  });
+  return writeFileAtomically(
+      path, [&](const fs::path& tmp) { return writePixels(path, tmp, "png", tile.size, 4, rgba.data(), 0); });
 }
 
 Status writeColorTile(const fs::path& path, const ColorTile& tile, ImageryFormat format, int jpegQuality) {
   assert(tile.size > 0 && tile.rgba.size() == static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size) * 4);
   assert(jpegQuality >= 1 && jpegQuality <= 100);
   if (format == ImageryFormat::Png) {
-    return writeFileAtomically(path, [&](const fs::path& tmp) {
-      return writePixels(path, tmp, "png", tile.size, 4, tile.rgba.data(), 0);
-    });
+    return writeFileAtomically(
+        path, [&](const fs::path& tmp) { return writePixels(path, tmp, "png", tile.size, 4, tile.rgba.data(), 0); });
   }
   // JPEG has no alpha: nodata pixels become black, which readers see as "no data" only through
   // the elevation mask; imagery tiles themselves are written only where the source has data.
@@ -234,9 +232,8 @@ Status writeColorTile(const fs::path& path, const ColorTile& tile, ImageryFormat
     const bool valid = tile.rgba[i * 4 + 3] != 0;
     for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = valid ? tile.rgba[i * 4 + c] : 0;
   }
-  return writeFileAtomically(path, [&](const fs::path& tmp) {
-    return writePixels(path, tmp, "jpeg", tile.size, 3, rgb.data(), jpegQuality);
-  });
+  return writeFileAtomically(
+      path, [&](const fs::path& tmp) { return writePixels(path, tmp, "jpeg", tile.size, 3, rgb.data(), jpegQuality); });
 }
 
 Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
@@ -249,13 +246,14 @@ Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::T
   t.heights.resize(static_cast<size_t>(t.size) * static_cast<size_t>(t.size));
   const auto& s = px->rgba;
   for (size_t i = 0; i < t.heights.size(); ++i) {
-    t.heights[i] = s[i * 4 + 3] == 0 ? NAN
-                                     : static_cast<float>(decodeHeight(s[i * 4], s[i * 4 + 1], s[i * 4 + 2], encoding));
+    t.heights[i] =
+        s[i * 4 + 3] == 0 ? NAN : static_cast<float>(decodeHeight(s[i * 4], s[i * 4 + 1], s[i * 4 + 2], encoding));
   }
   return t;
 }
 
-Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, const std::string& nameForErrors) {
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+                                  const std::string& nameForErrors) {
   auto px = decodeRgba8(bytes, nameForErrors, false);
   if (!px) return px.error();
   ColorTile t;

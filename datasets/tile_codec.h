@@ -22,7 +22,9 @@ struct HeightTile {
   geo::TileId id;
   int size = kTileSize;
   std::vector<float> heights;  // size × size, row-major from the north, NaN = nodata
-  float at(int x, int y) const { return heights[static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)]; }
+  float at(int x, int y) const {
+    return heights[static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
+  }
 };
 
 struct ColorTile {
@@ -37,7 +39,8 @@ double encodingStepM(ElevationEncoding encoding);  // 1/256 or 0.1
 
 // Written atomically (temporary file + rename). Errors name the path.
 Status writeHeightTile(const std::filesystem::path& path, const HeightTile& tile, ElevationEncoding encoding);
-Status writeColorTile(const std::filesystem::path& path, const ColorTile& tile, ImageryFormat format, int jpegQuality = 90);
+Status writeColorTile(const std::filesystem::path& path, const ColorTile& tile, ImageryFormat format,
+                      int jpegQuality = 90);
 
 // Decoding checks size and channels; a corrupt or truncated file is an InvalidInput error that
 // names the path. Paletted and greyscale PNGs are expanded to RGB(A).
@@ -50,6 +53,7 @@ Result<ColorTile> readColorTile(const std::filesystem::path& path, const geo::Ti
 // URL). Thread-safe: any number of threads may decode at once.
 Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
                                     const std::string& nameForErrors);
-Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, const std::string& nameForErrors);
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+                                  const std::string& nameForErrors);
 
 }  // namespace vegstream::datasets

@@ -61,7 +61,8 @@ std::vector<XyzTileFile> atZoom(const std::vector<XyzTileFile>& files, int z) {
 Result<std::vector<XyzTileFile>> findXyzTiles(const std::string& tmpl) {
   for (const char* key : {"{z}", "{x}", "{y}"}) {
     const size_t first = tmpl.find(key);
-    if (first == std::string::npos) return badTemplate(tmpl, concat("has no ", key, "; expected e.g. DIR/{z}/{x}/{y}.png"));
+    if (first == std::string::npos)
+      return badTemplate(tmpl, concat("has no ", key, "; expected e.g. DIR/{z}/{x}/{y}.png"));
     if (tmpl.find(key, first + 1) != std::string::npos) return badTemplate(tmpl, concat("has ", key, " twice"));
   }
   if (tmpl.find("{-y}") != std::string::npos) return badTemplate(tmpl, "uses {-y} (TMS rows), which is not supported");
@@ -101,11 +102,13 @@ Result<std::vector<XyzTileFile>> findXyzTiles(const std::string& tmpl) {
     geo::TileId id;
     for (size_t g = 0; g < 3; ++g) {
       const long long v = std::stoll(m[g + 1].str());
-      if (v > std::numeric_limits<int>::max()) return badTemplate(tmpl, concat("matches ", it->path(), ", whose numbers are out of range"));
+      if (v > std::numeric_limits<int>::max())
+        return badTemplate(tmpl, concat("matches ", it->path(), ", whose numbers are out of range"));
       (order[g] == 'z' ? id.z : order[g] == 'x' ? id.x : id.y) = static_cast<int>(v);
     }
     if (id.z > geo::kMaxTileZoom || !geo::isValid(id))
-      return makeError(ErrorKind::InvalidInput, concat("tile ", it->path(), " is not a valid XYZ tile (", geo::toString(id), ")"));
+      return makeError(ErrorKind::InvalidInput,
+                       concat("tile ", it->path(), " is not a valid XYZ tile (", geo::toString(id), ")"));
     files.push_back({id, it->path()});
   }
   if (ec) return makeError(ErrorKind::Io, concat("cannot list ", root, ": ", ec.message()));
@@ -140,10 +143,10 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
     if (!files) return files.error();
     imagery = atZoom(*files, maxZoom);
     if (imagery.empty())
-      return makeError(ErrorKind::InvalidInput,
-                       concat("no imagery tiles at zoom ", maxZoom, " (the elevation's finest zoom) match '",
-                              *options.imageryTemplate, "'",
-                              files->empty() ? std::string() : concat("; found ", zoomsOf(*files))));
+      return makeError(
+          ErrorKind::InvalidInput,
+          concat("no imagery tiles at zoom ", maxZoom, " (the elevation's finest zoom) match '",
+                 *options.imageryTemplate, "'", files->empty() ? std::string() : concat("; found ", zoomsOf(*files))));
     if (imagery.size() != files->size())
       log->warn("imagery tiles found: {}; only zoom {} is imported", zoomsOf(*files), maxZoom);
   }
@@ -169,8 +172,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
   meta.sources.push_back({"elevation", options.elevationTemplate, crs,
                           concat(elevation.size(), " ", toString(options.encoding), " tiles at zoom ", maxZoom)});
   if (!imagery.empty())
-    meta.sources.push_back({"imagery", *options.imageryTemplate, crs,
-                            concat(imagery.size(), " tiles at zoom ", maxZoom)});
+    meta.sources.push_back(
+        {"imagery", *options.imageryTemplate, crs, concat(imagery.size(), " tiles at zoom ", maxZoom)});
 
   Result<DatasetMeta> result = meta;
   Status status = writeDirectoryAtomically(options.out, [&](const fs::path& tmp) -> Status {
@@ -183,8 +186,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
       auto tile = readHeightTile(f.path, f.id, options.encoding);
       if (!tile) return tile.error();
       if (tile->size != kTileSize)
-        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size, " pixels wide; vegstream reads ",
-                                                        kTileSize, "-pixel tiles"));
+        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size,
+                                                        " pixels wide; vegstream reads ", kTileSize, "-pixel tiles"));
       double tlo = std::numeric_limits<double>::infinity(), thi = -tlo;
       for (float h : tile->heights)
         if (!std::isnan(h)) tlo = std::min(tlo, double{h}), thi = std::max(thi, double{h});
@@ -202,8 +205,9 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
       return {};
     });
     if (!s) return s;
-    if (!(lo <= hi)) return makeError(ErrorKind::InvalidInput, concat("the elevation tiles of '", options.elevationTemplate,
-                                                                      "' hold no valid heights"));
+    if (!(lo <= hi))
+      return makeError(ErrorKind::InvalidInput,
+                       concat("the elevation tiles of '", options.elevationTemplate, "' hold no valid heights"));
     meta.minHeightM = lo;
     meta.maxHeightM = hi;
     s = parallelFor(imagery.size(), options.threads, options.tasks, [&](size_t i) -> Status {
@@ -211,8 +215,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
       auto tile = readColorTile(f.path, f.id);
       if (!tile) return tile.error();
       if (tile->size != kTileSize)
-        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size, " pixels wide; vegstream reads ",
-                                                        kTileSize, "-pixel tiles"));
+        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size,
+                                                        " pixels wide; vegstream reads ", kTileSize, "-pixel tiles"));
       const fs::path dst = imageryTilePath(tmp, f.id, options.imageryFormat);
       if (auto w = writeColorTile(dst, *tile, options.imageryFormat, options.jpegQuality); !w) return w;
       const uint64_t bytes = fileBytes(dst);

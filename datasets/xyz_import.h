@@ -46,7 +46,7 @@ struct XyzImportOptions {
   // nullopt: down to the zoom at which the data fits in one tile.
   std::optional<int> minZoom;
 
-  int threads = 0;  // 0: all cores
+  int threads = 0;              // 0: all cores
   TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
 };
 

@@ -65,8 +65,8 @@ glm::dvec3 CentripetalCatmullRom::derivative(double s) const {
   const double h = knots_[i + 1] - knots_[i];
   const double u = (s - knots_[i]) / h;
   const double u2 = u * u;
-  return ((6 * u2 - 6 * u) * points_[i] + (6 * u - 6 * u2) * points_[i + 1]) / h +
-         (3 * u2 - 4 * u + 1) * tangents_[i] + (3 * u2 - 2 * u) * tangents_[i + 1];
+  return ((6 * u2 - 6 * u) * points_[i] + (6 * u - 6 * u2) * points_[i + 1]) / h + (3 * u2 - 4 * u + 1) * tangents_[i] +
+         (3 * u2 - 2 * u) * tangents_[i + 1];
 }
 
 }  // namespace vegstream::flight

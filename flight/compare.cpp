@@ -31,7 +31,8 @@ std::vector<std::pair<std::string, double>> flatten(const json& s) {
       for (const char* q : {"p50", "p95", "p99", "max"})
         add("times_ms." + col + "." + q, st.is_object() ? st.value(q, json()) : json());
   if (s.contains("counts") && s["counts"].is_object())
-    for (const auto& [col, st] : s["counts"].items()) add("counts." + col + ".mean", st.is_object() ? st.value("mean", json()) : json());
+    for (const auto& [col, st] : s["counts"].items())
+      add("counts." + col + ".mean", st.is_object() ? st.value("mean", json()) : json());
   // Numbers of the groups, one level of nesting flattened (streaming.requests.issued).
   for (const char* group : {"hitches", "peak_memory", "resident_bytes", "totals", "streaming", "recorder_overhead"}) {
     if (!s.contains(group) || !s[group].is_object()) continue;
@@ -48,7 +49,8 @@ std::vector<std::pair<std::string, double>> flatten(const json& s) {
 Result<json> parseSummary(const std::string& text, const std::string& source) {
   json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("summary_version"))
-    return makeError(ErrorKind::InvalidInput, source + ": not a vegstream summary.json (run `vegstream report` on its directory)");
+    return makeError(ErrorKind::InvalidInput,
+                     source + ": not a vegstream summary.json (run `vegstream report` on its directory)");
   return j;
 }
 
@@ -72,8 +74,10 @@ Result<std::vector<CompareRow>> compareSummaries(const std::string& summaryA, co
   for (const auto& [k, v] : fa) rows.push_back({k, v, std::nan("")});
   for (const auto& [k, v] : fb) {
     auto it = std::find_if(rows.begin(), rows.end(), [&](const CompareRow& r) { return r.key == k; });
-    if (it != rows.end()) it->b = v;
-    else rows.push_back({k, std::nan(""), v});
+    if (it != rows.end())
+      it->b = v;
+    else
+      rows.push_back({k, std::nan(""), v});
   }
   return rows;
 }
@@ -91,7 +95,8 @@ double ratio(const CompareRow& row) {
   return row.b / row.a;
 }
 
-std::string formatCompareTable(const std::vector<CompareRow>& rows, const std::string& nameA, const std::string& nameB) {
+std::string formatCompareTable(const std::vector<CompareRow>& rows, const std::string& nameA,
+                               const std::string& nameB) {
   std::size_t width = 3;
   for (const auto& r : rows) width = std::max(width, r.key.size());
   std::string out = "A: " + nameA + "\nB: " + nameB + "\n";

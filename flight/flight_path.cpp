@@ -19,8 +19,7 @@ std::string at(const std::string& list, std::size_t i) { return list + "[" + std
 
 std::optional<PathProblem> checkNumber(const std::string& field, double v, double lo, double hi) {
   if (!std::isfinite(v)) return PathProblem{field, "is not a finite number"};
-  if (v < lo || v > hi)
-    return PathProblem{field, num(v) + " is out of range [" + num(lo, 0) + ", " + num(hi, 0) + "]"};
+  if (v < lo || v > hi) return PathProblem{field, num(v) + " is out of range [" + num(lo, 0) + ", " + num(hi, 0) + "]"};
   return std::nullopt;
 }
 
@@ -75,8 +74,8 @@ geo::GeoBounds FlightPath::bounds() const {
 
 std::optional<PathProblem> findProblem(const FlightPath& path) {
   if (path.keyframes.size() < 2)
-    return PathProblem{"keyframes", "a path needs at least 2 keyframes, found " +
-                                        std::to_string(path.keyframes.size())};
+    return PathProblem{"keyframes",
+                       "a path needs at least 2 keyframes, found " + std::to_string(path.keyframes.size())};
   if (path.keyframes[0].t != 0.0)
     return PathProblem{"keyframes[0].t", "the first keyframe must be at t = 0, found " + num(path.keyframes[0].t, 3)};
   if (auto p = checkPositions("keyframes", path.keyframes)) return p;
@@ -120,10 +119,10 @@ Status checkInside(const FlightPath& path, const geo::GeoBounds& datasetBounds) 
       const double t = path.keyframes[i].t + (path.keyframes[i + 1].t - path.keyframes[i].t) * j / kSteps;
       const geo::Geodetic g = sampler.horizontal(t);
       if (!inside(g.latDeg, g.lonDeg, datasetBounds))
-        return makeError(ErrorKind::InvalidInput,
-                         "path leaves the dataset between keyframes[" + std::to_string(i) + "] and [" +
-                             std::to_string(i + 1) + "] at t = " + num(t, 2) + " s (" + num(g.latDeg) + ", " +
-                             num(g.lonDeg) + ") — " + covers(datasetBounds));
+        return makeError(ErrorKind::InvalidInput, "path leaves the dataset between keyframes[" + std::to_string(i) +
+                                                      "] and [" + std::to_string(i + 1) + "] at t = " + num(t, 2) +
+                                                      " s (" + num(g.latDeg) + ", " + num(g.lonDeg) + ") — " +
+                                                      covers(datasetBounds));
     }
   }
   return {};

@@ -21,13 +21,13 @@ enum class AltRef {
 };
 
 struct Keyframe {
-  double t = 0.0;          // seconds of flight time
-  double lat = 0.0;        // degrees, WGS 84
-  double lon = 0.0;        // degrees, WGS 84
-  double altM = 0.0;       // metres, measured from altRef
+  double t = 0.0;     // seconds of flight time
+  double lat = 0.0;   // degrees, WGS 84
+  double lon = 0.0;   // degrees, WGS 84
+  double altM = 0.0;  // metres, measured from altRef
   AltRef altRef = AltRef::Terrain;
-  double headingDeg = 0.0; // 0 = north, clockwise (90 = east)
-  double pitchDeg = 0.0;   // 0 = level, negative looks down, in [-90, 90]
+  double headingDeg = 0.0;  // 0 = north, clockwise (90 = east)
+  double pitchDeg = 0.0;    // 0 = level, negative looks down, in [-90, 90]
 };
 
 struct ColliderKeyframe {
@@ -43,13 +43,13 @@ struct Collider {
   std::string name;
   Shape shape = Shape::Sphere;
   double radiusM = 1.0;
-  double lengthM = 0.0;  // capsule only: distance between the two end-cap centres (vertical)
+  double lengthM = 0.0;                     // capsule only: distance between the two end-cap centres (vertical)
   std::vector<ColliderKeyframe> keyframes;  // at least one; one keyframe = a static collider
 };
 
 struct FlightPath {
   std::string name;
-  std::string description;  // free text, optional
+  std::string description;          // free text, optional
   std::vector<Keyframe> keyframes;  // at least two, t strictly increasing, first t = 0
   std::vector<Collider> colliders;
 

@@ -1,6 +1,5 @@
 #include "flight/flight_path_json.h"
 
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -128,11 +127,11 @@ struct Reader {
   }
 };
 
-#define VEG_TRY_ASSIGN(lhs, expr)     \
-  do {                                \
-    auto r_ = (expr);                 \
-    if (!r_) return r_.error();       \
-    lhs = std::move(r_).value();      \
+#define VEG_TRY_ASSIGN(lhs, expr) \
+  do {                            \
+    auto r_ = (expr);             \
+    if (!r_) return r_.error();   \
+    lhs = std::move(r_).value();  \
   } while (false)
 
 template <typename K>
@@ -152,9 +151,12 @@ Result<Collider> readCollider(const Reader& r, const json& obj, const std::strin
   VEG_TRY_ASSIGN(c.name, r.string(obj, f, "name"));
   std::string shape;
   VEG_TRY_ASSIGN(shape, r.string(obj, f, "shape"));
-  if (shape == "sphere") c.shape = Collider::Shape::Sphere;
-  else if (shape == "capsule") c.shape = Collider::Shape::Capsule;
-  else return r.fail(f + ".shape", "\"" + shape + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
+  if (shape == "sphere")
+    c.shape = Collider::Shape::Sphere;
+  else if (shape == "capsule")
+    c.shape = Collider::Shape::Capsule;
+  else
+    return r.fail(f + ".shape", "\"" + shape + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
   VEG_TRY_ASSIGN(c.radiusM, r.number(obj, f, "radius_m"));
   if (c.shape == Collider::Shape::Capsule) {
     VEG_TRY_ASSIGN(c.lengthM, r.number(obj, f, "length_m"));
@@ -276,8 +278,8 @@ std::string flightPathToJson(const FlightPath& path) {
   auto str = [](const std::string& s) { return json(s).dump(); };
   auto ref = [](AltRef a) { return a == AltRef::Terrain ? "\"terrain\"" : "\"msl\""; };
   auto position = [&](double t, double lat, double lon, double alt, AltRef a) {
-    return "\"t\": " + fmt(t, 3) + ", \"lat\": " + fmt(lat, 7) + ", \"lon\": " + fmt(lon, 7) + ", \"alt_m\": " +
-           fmt(alt, 3) + ", \"alt_ref\": " + ref(a);
+    return "\"t\": " + fmt(t, 3) + ", \"lat\": " + fmt(lat, 7) + ", \"lon\": " + fmt(lon, 7) +
+           ", \"alt_m\": " + fmt(alt, 3) + ", \"alt_ref\": " + ref(a);
   };
   std::string out = "{\n  \"name\": " + str(path.name) + ",\n";
   if (!path.description.empty()) out += "  \"description\": " + str(path.description) + ",\n";

@@ -14,12 +14,22 @@ std::string gpuPassColumn(const std::string& pass) {
 }
 
 std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses) {
-  std::vector<RecordColumn> c = {
-      {"frame", 0},          {"t_s", 6},        {"lat", 9},        {"lon", 9},
-      {"alt_msl_m", 3},      {"height_above_ground_m", 3},         {"heading_deg", 4},
-      {"pitch_deg", 4},      {"cpu_flight_ms", 6},                 {"cpu_streaming_ms", 6},
-      {"cpu_terrain_ms", 6}, {"cpu_seeding_ms", 6},                {"cpu_simulation_ms", 6},
-      {"cpu_record_submit_ms", 6},              {"cpu_frame_ms", 6}, {"gpu_frame_ms", 4}};
+  std::vector<RecordColumn> c = {{"frame", 0},
+                                 {"t_s", 6},
+                                 {"lat", 9},
+                                 {"lon", 9},
+                                 {"alt_msl_m", 3},
+                                 {"height_above_ground_m", 3},
+                                 {"heading_deg", 4},
+                                 {"pitch_deg", 4},
+                                 {"cpu_flight_ms", 6},
+                                 {"cpu_streaming_ms", 6},
+                                 {"cpu_terrain_ms", 6},
+                                 {"cpu_seeding_ms", 6},
+                                 {"cpu_simulation_ms", 6},
+                                 {"cpu_record_submit_ms", 6},
+                                 {"cpu_frame_ms", 6},
+                                 {"gpu_frame_ms", 4}};
   for (const auto& p : gpuPasses) c.push_back({gpuPassColumn(p), 4});
   c.push_back({"wall_ms", 4});
   c.push_back({"recorder_ms", 6});  // sub-microsecond: nanosecond digits
@@ -29,13 +39,29 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
     c.push_back({n, 0});
   c.push_back({"streaming_wait_ms", 4});       // settled mode's wait, left out of the frame time
   c.push_back({"stream_longest_wait_ms", 1});  // oldest wanted tile not resident yet
-  for (const char* n : {"stream_requests_issued", "stream_requests_completed", "stream_requests_cancelled",
-                        "stream_requests_failed", "stream_requests_missing", "stream_retries", "stream_bytes_read",
-                        "stream_uploads", "stream_upload_bytes", "stream_evictions_cpu", "stream_evictions_gpu",
-                        "stream_tiles_resident_cpu", "stream_tiles_resident_gpu", "stream_bytes_resident_cpu",
-                        "stream_bytes_resident_gpu", "stream_requests_in_flight", "stream_wanted",
-                        "stream_wanted_resident", "stream_lookahead_wants", "terrain_pieces",
-                        "terrain_fallback_pieces", "terrain_max_levels_coarser", "terrain_meshes_built"})
+  for (const char* n : {"stream_requests_issued",
+                        "stream_requests_completed",
+                        "stream_requests_cancelled",
+                        "stream_requests_failed",
+                        "stream_requests_missing",
+                        "stream_retries",
+                        "stream_bytes_read",
+                        "stream_uploads",
+                        "stream_upload_bytes",
+                        "stream_evictions_cpu",
+                        "stream_evictions_gpu",
+                        "stream_tiles_resident_cpu",
+                        "stream_tiles_resident_gpu",
+                        "stream_bytes_resident_cpu",
+                        "stream_bytes_resident_gpu",
+                        "stream_requests_in_flight",
+                        "stream_wanted",
+                        "stream_wanted_resident",
+                        "stream_lookahead_wants",
+                        "terrain_pieces",
+                        "terrain_fallback_pieces",
+                        "terrain_max_levels_coarser",
+                        "terrain_meshes_built"})
     c.push_back({n, 0});
   c.push_back({"terrain_error_bound_px", 3});
   c.push_back({"terrain_error_relaxation", 3});

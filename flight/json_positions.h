@@ -34,7 +34,7 @@ class JsonPositions {
  private:
   void value(const std::string& path, int depth);
   void skipSpace();
-  void skipNested();  // at '{' or '[': past its matching close, unindexed
+  void skipNested();         // at '{' or '[': past its matching close, unindexed
   std::string readString();  // at '"': returns the raw (unescaped-enough) contents
 
   std::string_view text_;

@@ -56,9 +56,7 @@ glm::dvec3 forwardVector(double headingDeg, double pitchDeg) {
 }
 
 PathSampler::PathSampler(const FlightPath& path)
-    : camera_(cameraPoints(path)),
-      heading_(times(path), unwrappedHeadings(path)),
-      pitch_(times(path), pitches(path)),
+    : camera_(cameraPoints(path)), heading_(times(path), unwrappedHeadings(path)), pitch_(times(path), pitches(path)),
       colliderShapes_(path.colliders) {
   assert(path.keyframes.size() >= 2);
   for (const Collider& c : path.colliders) colliders_.emplace_back(colliderPoints(c));

@@ -23,10 +23,10 @@ namespace vegstream::flight {
 inline constexpr double kMinGroundClearanceM = 2.0;
 
 struct FlightSample {
-  geo::Geodetic position;      // height MSL
-  double headingDeg = 0.0;     // [0, 360), 0 = north, clockwise
-  double pitchDeg = 0.0;       // negative looks down
-  glm::dvec3 velocity{0.0};    // m/s in the ENU frame at the path's first keyframe (central difference)
+  geo::Geodetic position;    // height MSL
+  double headingDeg = 0.0;   // [0, 360), 0 = north, clockwise
+  double pitchDeg = 0.0;     // negative looks down
+  glm::dvec3 velocity{0.0};  // m/s in the ENU frame at the path's first keyframe (central difference)
   double heightAboveGroundM = 0.0;
 };
 

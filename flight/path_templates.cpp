@@ -43,11 +43,12 @@ Keyframe key(double t, const geo::Geodetic& g, double altM, AltRef ref, double h
 }
 
 FlightPath benchmark(const Area& a) {
-  struct Row { double t, along, altM, pitch; };
+  struct Row {
+    double t, along, altM, pitch;
+  };
   // Seed 001 §4: high at the start, near the ground at 10 s, climbing after 20 s.
-  static constexpr Row kRows[] = {{0, -3400, 1800, -40}, {5, -1500, 600, -25}, {10, -200, 15, -8},
-                                  {15, 0, 15, -5},       {20, 200, 15, -8},    {25, 1500, 600, -20},
-                                  {30, 3400, 1800, -35}};
+  static constexpr Row kRows[] = {{0, -3400, 1800, -40}, {5, -1500, 600, -25}, {10, -200, 15, -8},   {15, 0, 15, -5},
+                                  {20, 200, 15, -8},     {25, 1500, 600, -20}, {30, 3400, 1800, -35}};
   const double scale = std::min(1.0, 0.8 * a.halfLong() / 3400.0);
   FlightPath p;
   p.name = "benchmark-30s";
@@ -77,14 +78,14 @@ FlightPath canyonRun(const Area& a) {
     const glm::dvec2 d = pts[std::min<std::size_t>(k + 1, kKeys - 1)] - pts[k > 0 ? k - 1 : 0];
     const glm::dvec2 en = a.northSouth ? glm::dvec2(d.y, d.x) : d;  // (east, north)
     const double heading = std::fmod(std::atan2(en.x, en.y) * kRadToDeg + 360.0, 360.0);
-    p.keyframes.push_back(key(std::round(t * 1000.0) / 1000.0, a.at(pts[k].x, pts[k].y), kAltM, AltRef::Terrain,
-                              heading, -8.0));
+    p.keyframes.push_back(
+        key(std::round(t * 1000.0) / 1000.0, a.at(pts[k].x, pts[k].y), kAltM, AltRef::Terrain, heading, -8.0));
   }
   return p;
 }
 
 FlightPath orbit(const Area& a, const GroundHeight& ground) {
-  constexpr int kSteps = 24;        // keyframes every 15°, plus the closing one
+  constexpr int kSteps = 24;  // keyframes every 15°, plus the closing one
   constexpr double kPeriodS = 120.0, kAboveM = 400.0;
   const double radius = std::min(1500.0, 0.5 * a.halfShort());
   const geo::Geodetic centre = a.frame.toGeodetic({0.0, 0.0, 0.0});
@@ -126,9 +127,12 @@ Result<FlightPath> makePathFromTemplate(const std::string& templateName, const g
     return makeError(ErrorKind::InvalidInput, "cannot place a flight template over an empty dataset extent");
   const Area area(datasetBounds);
   FlightPath p;
-  if (templateName == "benchmark-30s") p = benchmark(area);
-  else if (templateName == "canyon-run") p = canyonRun(area);
-  else if (templateName == "orbit") p = orbit(area, ground);
+  if (templateName == "benchmark-30s")
+    p = benchmark(area);
+  else if (templateName == "canyon-run")
+    p = canyonRun(area);
+  else if (templateName == "orbit")
+    p = orbit(area, ground);
   else {
     std::string list;
     for (const std::string& n : templateNames()) list += (list.empty() ? "" : ", ") + n;

@@ -2,7 +2,6 @@
 
 #include "flight/record_table.h"
 
-
 #include <charconv>
 #include <cstdio>
 #include <fstream>
@@ -86,8 +85,8 @@ Result<RecordTable> RecordTable::parseCsv(const std::string& text, const std::st
     if (line.empty()) continue;
     const auto cells = splitCells(line);
     if (cells.size() != table.columns_.size())
-      return fail(lineNo, std::to_string(cells.size()) + " cells, the header has " +
-                              std::to_string(table.columns_.size()));
+      return fail(lineNo,
+                  std::to_string(cells.size()) + " cells, the header has " + std::to_string(table.columns_.size()));
     auto& row = table.addRow();
     for (std::size_t c = 0; c < cells.size(); ++c) {
       if (cells[c].empty()) continue;

@@ -46,7 +46,8 @@ class ScriptFile {
   bool ok_ = false;
 };
 
-const char* kInstallHint = "install python3-matplotlib (apt-get install python3-matplotlib) and run `vegstream report DIR` again";
+const char* kInstallHint =
+    "install python3-matplotlib (apt-get install python3-matplotlib) and run `vegstream report DIR` again";
 
 // Runs one interpreter; returns its exit status (-errno-like negative when it cannot start).
 int spawn(const std::string& python, const std::string& script, const std::vector<std::string>& args) {
@@ -58,30 +59,30 @@ int spawn(const std::string& python, const std::string& script, const std::vecto
   pid_t pid = 0;
   if (::posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
 Status runScript(const std::vector<std::string>& pythons, const std::vector<std::string>& args) {
   ScriptFile script;
-  if (!script.ok()) return makeError(ErrorKind::Io, "cannot write the plot script to " + fs::temp_directory_path().string());
+  if (!script.ok())
+    return makeError(ErrorKind::Io, "cannot write the plot script to " + fs::temp_directory_path().string());
   std::string tried;
   bool anyPython = false;
   for (const auto& python : pythons) {
     const int rc = spawn(python, script.path(), args);
     if (rc == 0) return {};
     tried += (tried.empty() ? "" : ", ") + python;
-    if (rc == -1 || rc == 127) continue;             // no such interpreter
+    if (rc == -1 || rc == 127) continue;  // no such interpreter
     anyPython = true;
-    if (rc == kScriptNoMatplotlib) continue;         // an interpreter without matplotlib
-    return makeError(ErrorKind::Io, "no plots: the plot script failed (" + python + " exit status " + std::to_string(rc) +
-                                        "; its message is above)");
+    if (rc == kScriptNoMatplotlib) continue;  // an interpreter without matplotlib
+    return makeError(ErrorKind::Io, "no plots: the plot script failed (" + python + " exit status " +
+                                        std::to_string(rc) + "; its message is above)");
   }
   return makeError(ErrorKind::Unsupported,
-                   std::string("no plots: ") + (anyPython ? "matplotlib cannot be imported by " : "cannot run ") + tried +
-                       "; " + kInstallHint + " (or set VEGSTREAM_PYTHON to a Python that has matplotlib)");
+                   std::string("no plots: ") + (anyPython ? "matplotlib cannot be imported by " : "cannot run ") +
+                       tried + "; " + kInstallHint + " (or set VEGSTREAM_PYTHON to a Python that has matplotlib)");
 }
 
 }  // namespace
@@ -101,7 +102,8 @@ Status makePlots(const fs::path& dir, const std::vector<std::string>& pythons) {
   return runScript(pythons, {"report", dir.string()});
 }
 
-Status makeComparePlot(const fs::path& dirA, const fs::path& dirB, const fs::path& outPng, const std::vector<std::string>& pythons) {
+Status makeComparePlot(const fs::path& dirA, const fs::path& dirB, const fs::path& outPng,
+                       const std::vector<std::string>& pythons) {
   return runScript(pythons, {"compare", dirA.string(), dirB.string(), outPng.string()});
 }
 

@@ -19,8 +19,11 @@ using nlohmann::json;
 std::string recordingMetaJson(const RecordingMeta& m) {
   const json j = {
       {"device",
-       {{"name", m.device.name}, {"type", m.device.type}, {"driver", m.device.driver},
-        {"api_version", m.device.apiVersion}, {"software", m.device.software}}},
+       {{"name", m.device.name},
+        {"type", m.device.type},
+        {"driver", m.device.driver},
+        {"api_version", m.device.apiVersion},
+        {"software", m.device.software}}},
       {"size", {m.width, m.height}},
       {"msaa", m.msaa},
       {"fps", m.fps},
@@ -29,22 +32,38 @@ std::string recordingMetaJson(const RecordingMeta& m) {
       {"frames_every", m.framesEvery},
       {"path", {{"name", m.pathName}, {"file", m.pathFile}, {"duration_s", m.pathDurationS}}},
       {"dataset",
-       {{"name", m.datasetName}, {"dir", m.datasetDir}, {"source", m.datasetSource}, {"height_zoom", m.heightZoom},
-        {"imagery_zoom", m.imageryZoom}, {"ground_zoom", m.groundZoom}, {"load_ms", m.sceneLoadMs}}},
+       {{"name", m.datasetName},
+        {"dir", m.datasetDir},
+        {"source", m.datasetSource},
+        {"height_zoom", m.heightZoom},
+        {"imagery_zoom", m.imageryZoom},
+        {"ground_zoom", m.groundZoom},
+        {"load_ms", m.sceneLoadMs}}},
       {"streaming",
-       {{"mode", m.streaming.mode}, {"look_ahead", m.streaming.lookAhead},
-        {"cpu_budget_bytes", m.streaming.cpuBudgetBytes}, {"gpu_budget_bytes", m.streaming.gpuBudgetBytes},
+       {{"mode", m.streaming.mode},
+        {"look_ahead", m.streaming.lookAhead},
+        {"cpu_budget_bytes", m.streaming.cpuBudgetBytes},
+        {"gpu_budget_bytes", m.streaming.gpuBudgetBytes},
         {"upload_bytes_per_frame", m.streaming.uploadBytesPerFrame},
-        {"max_requests_in_flight", m.streaming.maxRequestsInFlight}, {"imagery_layers", m.streaming.imageryLayers},
-        {"terrain_error_px", m.streaming.terrainErrorPx}, {"terrain_max_nodes", m.streaming.terrainMaxNodes},
-        {"terrain_max_triangles", m.streaming.terrainMaxTriangles}, {"canopy_m", m.streaming.canopyM},
-        {"seed_horizon_m", m.streaming.seedHorizonM}, {"seed_level", m.streaming.seedLevel},
+        {"max_requests_in_flight", m.streaming.maxRequestsInFlight},
+        {"imagery_layers", m.streaming.imageryLayers},
+        {"terrain_error_px", m.streaming.terrainErrorPx},
+        {"terrain_max_nodes", m.streaming.terrainMaxNodes},
+        {"terrain_max_triangles", m.streaming.terrainMaxTriangles},
+        {"canopy_m", m.streaming.canopyM},
+        {"seed_horizon_m", m.streaming.seedHorizonM},
+        {"seed_level", m.streaming.seedLevel},
         {"seed_triangle_area_m2", m.streaming.seedTriangleAreaM2}}},
       {"plants",
-       {{"enabled", m.plants.enabled}, {"density_per_px2", m.plants.density},
-        {"max_per_seed_triangle", m.plants.maxPerTriangle}, {"cluster_size", m.plants.clusterSize},
-        {"species_catalog", m.plants.speciesCatalog}, {"species", m.plants.species}, {"style", m.plants.style},
-        {"max_segments", m.plants.maxSegments}, {"lod_distance_m", m.plants.lodDistanceM},
+       {{"enabled", m.plants.enabled},
+        {"density_per_px2", m.plants.density},
+        {"max_per_seed_triangle", m.plants.maxPerTriangle},
+        {"cluster_size", m.plants.clusterSize},
+        {"species_catalog", m.plants.speciesCatalog},
+        {"species", m.plants.species},
+        {"style", m.plants.style},
+        {"max_segments", m.plants.maxSegments},
+        {"lod_distance_m", m.plants.lodDistanceM},
         {"shadows", m.plants.shadows}}},
       {"validation", {{"enabled", m.validate}, {"errors", m.validationErrors}, {"warnings", m.validationWarnings}}},
       {"per_pass_gpu_times_meaningful", m.perPassMeaningful},
@@ -69,7 +88,8 @@ std::vector<std::size_t> findHitches(const std::vector<double>& frameMs) {
   std::vector<double> window;
   for (std::size_t i = 1; i < frameMs.size(); ++i) {
     const std::size_t from = i > kHitchWindow ? i - kHitchWindow : 0;
-    window.assign(frameMs.begin() + static_cast<std::ptrdiff_t>(from), frameMs.begin() + static_cast<std::ptrdiff_t>(i));
+    window.assign(frameMs.begin() + static_cast<std::ptrdiff_t>(from),
+                  frameMs.begin() + static_cast<std::ptrdiff_t>(i));
     if (frameMs[i] > kHitchFactor * percentile(window, 50.0)) out.push_back(i);
   }
   return out;
@@ -117,12 +137,17 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
     const std::vector<double> v = frames.values(c);
     if (isTimeColumn(name)) {
       times[name] = v.empty() ? json(nullptr)
-                              : json{{"p50", percentile(v, 50)}, {"p95", percentile(v, 95)}, {"p99", percentile(v, 99)},
-                                     {"max", maxOf(v)}, {"mean", sum(v) / static_cast<double>(v.size())}};
+                              : json{{"p50", percentile(v, 50)},
+                                     {"p95", percentile(v, 95)},
+                                     {"p99", percentile(v, 99)},
+                                     {"max", maxOf(v)},
+                                     {"mean", sum(v) / static_cast<double>(v.size())}};
     } else if (isCountColumn(name)) {
       counts[name] = v.empty() ? json(nullptr)
-                               : json{{"min", *std::min_element(v.begin(), v.end())}, {"max", maxOf(v)},
-                                      {"mean", sum(v) / static_cast<double>(v.size())}, {"total", sum(v)}};
+                               : json{{"min", *std::min_element(v.begin(), v.end())},
+                                      {"max", maxOf(v)},
+                                      {"mean", sum(v) / static_cast<double>(v.size())},
+                                      {"total", sum(v)}};
     }
   }
 
@@ -186,8 +211,7 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
         {"factor", kHitchFactor},
         {"window_frames", kHitchWindow},
         {"rule", "cpu_frame_ms + gpu_frame_ms > factor x median of the previous window_frames frames"}}},
-      {"peak_memory",
-       {{"rss_hwm_bytes", rss}, {"gpu_bytes", gpuBytesMax}, {"total_bytes", rss + gpuBytesMax}}},
+      {"peak_memory", {{"rss_hwm_bytes", rss}, {"gpu_bytes", gpuBytesMax}, {"total_bytes", rss + gpuBytesMax}}},
       {"resident_bytes", {{"cpu_max", maxOf(optionalColumn("cpu_bytes"))}, {"gpu_max", gpuBytesMax}}},
       {"totals",
        {{"wall_s", sum(column("wall_ms")) / 1000.0},

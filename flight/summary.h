@@ -44,11 +44,11 @@ struct RecordingMeta {
   std::string pathName, pathFile;
   double pathDurationS = 0.0;
   std::string datasetName, datasetDir;
-  std::string datasetSource;   // "dir …" or the URL tiles were streamed from
+  std::string datasetSource;                             // "dir …" or the URL tiles were streamed from
   int heightZoom = 0, imageryZoom = -1, groundZoom = 0;  // finest zooms streamed; the ground mosaic's
   double sceneLoadMs = 0.0;
   struct Streaming {
-    std::string mode;            // "settled" or "realtime"
+    std::string mode;  // "settled" or "realtime"
     bool lookAhead = true;
     uint64_t cpuBudgetBytes = 0, gpuBudgetBytes = 0, uploadBytesPerFrame = 0;
     int maxRequestsInFlight = 0;
@@ -64,12 +64,12 @@ struct RecordingMeta {
     bool enabled = false;
     double density = 0.0, maxPerTriangle = 0.0;  // ρ, n_max (eq. 1)
     uint32_t clusterSize = 0;
-    std::string speciesCatalog;                  // the file, or "default"
-    std::string style;                           // plants | markers | hidden
-    uint32_t maxSegments = 0;                    // n_max segments of a blade (eq. 4)
-    double lodDistanceM = 0.0;                   // eq. 4's distance unit
+    std::string speciesCatalog;  // the file, or "default"
+    std::string style;           // plants | markers | hidden
+    uint32_t maxSegments = 0;    // n_max segments of a blade (eq. 4)
+    double lodDistanceM = 0.0;   // eq. 4's distance unit
     bool shadows = false;
-    std::vector<std::string> species;            // names, in catalog order
+    std::vector<std::string> species;  // names, in catalog order
   } plants;
   bool validate = false;
   uint64_t validationErrors = 0, validationWarnings = 0;

@@ -35,12 +35,9 @@ std::string Crs::code() const { return "EPSG:" + std::to_string(epsg); }
 
 std::string Crs::name() const {
   switch (kind) {
-    case Kind::Geographic:
-      return epsg == 4269 ? "NAD83 read as WGS 84 (" + code() + ")" : "WGS 84 (" + code() + ")";
-    case Kind::WebMercator:
-      return "WGS 84 / Pseudo-Mercator (" + code() + ")";
-    case Kind::Utm:
-      return "WGS 84 / UTM zone " + std::to_string(utmZone) + (north ? "N" : "S") + " (" + code() + ")";
+    case Kind::Geographic: return epsg == 4269 ? "NAD83 read as WGS 84 (" + code() + ")" : "WGS 84 (" + code() + ")";
+    case Kind::WebMercator: return "WGS 84 / Pseudo-Mercator (" + code() + ")";
+    case Kind::Utm: return "WGS 84 / UTM zone " + std::to_string(utmZone) + (north ? "N" : "S") + " (" + code() + ")";
   }
   return code();
 }
@@ -64,24 +61,23 @@ int standardUtmZone(double latDeg, double lonDeg) {
 
 Result<Crs> crsFromEpsg(int epsg, const WarningSink& warn) {
   switch (epsg) {
-    case 4326:
-      return wgs84Crs();
+    case 4326: return wgs84Crs();
     case 4269:
       // NAD83 is tied to the North American plate, WGS 84 (G1762+) to ITRF: they drift apart by
       // a couple of cm a year and differ by about 1 m today — far below a DEM or imagery pixel
       // of the data people fly over, so no datum shift is applied.
       if (warn) {
-        warn("EPSG:4269 (NAD83) is read as WGS 84 without a datum shift: the two differ by "
-             "about 1 m horizontally (sub-metre to ~2 m depending on realisation and place), "
-             "below the resolution of the data");
+        warn(
+            "EPSG:4269 (NAD83) is read as WGS 84 without a datum shift: the two differ by "
+            "about 1 m horizontally (sub-metre to ~2 m depending on realisation and place), "
+            "below the resolution of the data");
       }
       return Crs{Crs::Kind::Geographic, 4269, 0, true};
     case 3857:
     case 900913:  // the unofficial "GOOGLE" code still found in older files
     case 3785:    // the deprecated EPSG code of the same projection
       return webMercatorCrs();
-    default:
-      break;
+    default: break;
   }
   if (epsg >= kUtmNorthFirst && epsg < kUtmNorthFirst + kUtmZones) {
     return utmCrs(epsg - kUtmNorthFirst + 1, true);
@@ -89,10 +85,9 @@ Result<Crs> crsFromEpsg(int epsg, const WarningSink& warn) {
   if (epsg >= kUtmSouthFirst && epsg < kUtmSouthFirst + kUtmZones) {
     return utmCrs(epsg - kUtmSouthFirst + 1, false);
   }
-  return makeError(ErrorKind::Unsupported,
-                   "EPSG:" + std::to_string(epsg) +
-                       " is not supported; vegstream reads EPSG:4326, 4269, 3857 and UTM "
-                       "326xx/327xx (WGS 84 / UTM zones 1-60 north/south)");
+  return makeError(ErrorKind::Unsupported, "EPSG:" + std::to_string(epsg) +
+                                               " is not supported; vegstream reads EPSG:4326, 4269, 3857 and UTM "
+                                               "326xx/327xx (WGS 84 / UTM zones 1-60 north/south)");
 }
 
 Result<Crs> parseCrs(std::string_view text, const WarningSink& warn) {
@@ -105,8 +100,9 @@ Result<Crs> parseCrs(std::string_view text, const WarningSink& warn) {
     // Appended piecewise: GCC 12 at -O3 reports a false -Wrestrict on "'" + std::string(...).
     std::string message = "'";
     message.append(text);
-    message.append("' is not a CRS vegstream understands; write an EPSG code such as EPSG:4326 "
-                   "or EPSG:32612");
+    message.append(
+        "' is not a CRS vegstream understands; write an EPSG code such as EPSG:4326 "
+        "or EPSG:32612");
     return makeError(ErrorKind::InvalidInput, std::move(message));
   }
   return crsFromEpsg(epsg, warn);

@@ -11,7 +11,9 @@
 #include "geo/bounds.h"
 #include "geo/geodetic.h"
 
-namespace GeographicLib { class LocalCartesian; }
+namespace GeographicLib {
+class LocalCartesian;
+}
 
 namespace vegstream::geo {
 

@@ -26,8 +26,7 @@ double semiMajor() { return GeographicLib::Constants::WGS84_a(); }
 Error outOfRange(const Crs& crs, const Geodetic& p, const std::string& why) {
   std::ostringstream msg;
   msg.precision(10);
-  msg << "lat " << p.latDeg << ", lon " << p.lonDeg << " cannot be expressed in " << crs.name()
-      << ": " << why;
+  msg << "lat " << p.latDeg << ", lon " << p.lonDeg << " cannot be expressed in " << crs.name() << ": " << why;
   return makeError(ErrorKind::InvalidInput, msg.str());
 }
 
@@ -70,16 +69,14 @@ Result<glm::dvec2> toProjected(const Crs& crs, const Geodetic& p) {
   }
   if (std::abs(p.latDeg) > 90.0) return outOfRange(crs, p, "latitude is outside ±90°");
   switch (crs.kind) {
-    case Crs::Kind::Geographic:
-      return glm::dvec2(p.lonDeg, p.latDeg);
+    case Crs::Kind::Geographic: return glm::dvec2(p.lonDeg, p.latDeg);
     case Crs::Kind::WebMercator: {
       if (std::abs(p.latDeg) > kWebMercatorMaxLatDeg + kLatSlackDeg) {
         return outOfRange(crs, p, "Web Mercator ends at ±85.0511° latitude");
       }
       return lonLatToWebMercator(glm::dvec2(p.lonDeg, p.latDeg));
     }
-    case Crs::Kind::Utm:
-      return toUtm(crs, p);
+    case Crs::Kind::Utm: return toUtm(crs, p);
   }
   return makeError(ErrorKind::Internal, "unknown CRS kind");
 }
@@ -103,9 +100,8 @@ Geodetic fromProjected(const Crs& crs, glm::dvec2 xy, double heightM) {
       // The same series UTMUPS::Reverse evaluates, minus its range checks (which would make
       // this partial): false easting / northing removed, then the zone's central meridian.
       const double falseNorthing = crs.north ? 0.0 : GeographicLib::UTMUPS::UTMShift();
-      GeographicLib::TransverseMercator::UTM().Reverse(
-          utmCentralMeridianDeg(crs.utmZone), xy.x - kUtmFalseEasting,
-          xy.y - falseNorthing, p.latDeg, p.lonDeg);
+      GeographicLib::TransverseMercator::UTM().Reverse(utmCentralMeridianDeg(crs.utmZone), xy.x - kUtmFalseEasting,
+                                                       xy.y - falseNorthing, p.latDeg, p.lonDeg);
       break;
     }
   }

@@ -78,9 +78,7 @@ glm::dvec2 lonLatToTileXY(glm::dvec2 lonLat, int z) {
   return mercatorToTileXY(lonLatToWebMercator({lonLat.x, lat}), z);
 }
 
-glm::dvec2 tileXYToLonLat(glm::dvec2 tileXY, int z) {
-  return webMercatorToLonLat(tileXYToMercator(tileXY, z));
-}
+glm::dvec2 tileXYToLonLat(glm::dvec2 tileXY, int z) { return webMercatorToLonLat(tileXYToMercator(tileXY, z)); }
 
 TileId tileContaining(glm::dvec2 lonLat, int z) {
   const glm::dvec2 t = lonLatToTileXY(lonLat, z);

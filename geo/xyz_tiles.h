@@ -71,12 +71,9 @@ struct TileRange {
   int maxY = -1;
 
   std::int64_t count() const {
-    return maxX < minX || maxY < minY ? 0
-                                      : std::int64_t{maxX - minX + 1} * std::int64_t{maxY - minY + 1};
+    return maxX < minX || maxY < minY ? 0 : std::int64_t{maxX - minX + 1} * std::int64_t{maxY - minY + 1};
   }
-  bool contains(const TileId& t) const {
-    return t.z == z && t.x >= minX && t.x <= maxX && t.y >= minY && t.y <= maxY;
-  }
+  bool contains(const TileId& t) const { return t.z == z && t.x >= minX && t.x <= maxX && t.y >= minY && t.y <= maxY; }
 };
 
 // The tiles whose area overlaps the box's area: an edge that lies exactly on a tile boundary
@@ -87,7 +84,7 @@ std::vector<TileRange> tileRangesCovering(const GeoBounds& box, int z);
 // billions of tiles — count with tileRangesCovering first.
 std::vector<TileId> tilesCovering(const GeoBounds& box, int z);
 
-TileId parent(const TileId& t);                // t.z > 0 (asserted)
+TileId parent(const TileId& t);                   // t.z > 0 (asserted)
 std::array<TileId, 4> children(const TileId& t);  // NW, NE, SW, SE; t.z < kMaxTileZoom (asserted)
 
 // EPSG:3857 metres per pixel at zoom z (the same everywhere in projected units).

@@ -6,9 +6,7 @@
 
 namespace vegstream::render {
 
-glm::dmat4 viewRotation(const Camera& camera) {
-  return glm::lookAtRH(glm::dvec3(0.0), camera.forward, camera.up);
-}
+glm::dmat4 viewRotation(const Camera& camera) { return glm::lookAtRH(glm::dvec3(0.0), camera.forward, camera.up); }
 
 glm::dmat4 projection(const Camera& camera, double aspect) {
   // Swapping near and far in a [0, 1] depth projection gives reverse-Z.

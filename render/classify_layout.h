@@ -16,11 +16,11 @@ namespace vegstream::render {
 // One seed triangle (std430). Positions relative to the frame's camera (the renderer draws
 // camera-relative), imagery uv in its layer's [0, 1]² (−1 layer: no imagery, no plants).
 struct SeedTriangleGpu {
-  glm::vec4 v0{0.0f};    // xyz apex (m); w: plant count N (eq. 1/2)
-  glm::vec4 v1{0.0f};    // xyz left
-  glm::vec4 v2{0.0f};    // xyz right
-  glm::vec4 uv01{0.0f};  // uv of the apex (xy) and the left vertex (zw)
-  glm::vec2 uv2{0.0f};   // uv of the right vertex
+  glm::vec4 v0{0.0f};             // xyz apex (m); w: plant count N (eq. 1/2)
+  glm::vec4 v1{0.0f};             // xyz left
+  glm::vec4 v2{0.0f};             // xyz right
+  glm::vec4 uv01{0.0f};           // uv of the apex (xy) and the left vertex (zw)
+  glm::vec2 uv2{0.0f};            // uv of the right vertex
   uint32_t keyLo = 0, keyHi = 0;  // the triangle's identity (Philox key, counter word)
   int32_t layer = -1;
   uint32_t pad[3] = {0, 0, 0};

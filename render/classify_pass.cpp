@@ -19,7 +19,7 @@ namespace vegstream::render {
 namespace {
 
 static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
-constexpr uint32_t kWorkgroup = 64;       // shaders/classify.comp local_size_x
+constexpr uint32_t kWorkgroup = 64;  // shaders/classify.comp local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
 constexpr VkDeviceSize kCounterBytes = 2 * kSpeciesSlots * sizeof(uint32_t);
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
@@ -45,7 +45,10 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
   sampler_ = createLinearClampSampler(ctx, "classify imagery sampler");
   const VkDescriptorSetLayoutBinding classifyBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      storage(1), storage(2), storage(3), storage(4),
+      storage(1),
+      storage(2),
+      storage(3),
+      storage(4),
       {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   classifyLayout_ = createLayout(ctx, classifyBindings, "classify set layout");
   const VkDescriptorSetLayoutBinding finishBindings[] = {storage(0), storage(1), storage(2)};
@@ -62,7 +65,8 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
   const VkPushConstantRange finishPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FinishPush)};
   const VkDescriptorSetLayout fl[] = {finishLayout_.get()};
   finishPipelineLayout_ = createPipelineLayout(ctx, fl, {&finishPush, 1}, "classify finish pipeline layout");
-  finish_ = createComputePipeline(ctx, finishPipelineLayout_.get(), spv_classify_finish_comp, "classify finish pipeline");
+  finish_ =
+      createComputePipeline(ctx, finishPipelineLayout_.get(), spv_classify_finish_comp, "classify finish pipeline");
 
   const VkDeviceSize recordBytes = VkDeviceSize{options.clustersPerSpecies} * kSpeciesSlots * sizeof(PlantClusterGpu);
   for (int i = 0; i < kSlots; ++i) {
@@ -72,10 +76,10 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
                               MemoryUse::DeviceLocal, "classify counters" + tag);
     // Transfer source: tests and tools read the records back.
     s.records = createBuffer(ctx, recordBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                             MemoryUse::DeviceLocal,
-                             "classify records" + tag);
-    s.indirect = createBuffer(ctx, kIndirectBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                              MemoryUse::DeviceLocal, "classify indirect draws" + tag);
+                             MemoryUse::DeviceLocal, "classify records" + tag);
+    s.indirect =
+        createBuffer(ctx, kIndirectBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                     MemoryUse::DeviceLocal, "classify indirect draws" + tag);
     s.figures = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
                              "classify figures" + tag);
     std::memset(s.figures.mapped, 0, kCounterBytes);
@@ -96,7 +100,8 @@ void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
     kinds_[i] = catalog.species[i].bare ? kNoKind : static_cast<uint32_t>(catalog.species[i].kind);
 }
 
-void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire) {
+void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries,
+                                  const RetireBuffer& retire) {
   const std::string tag = " (slot " + std::to_string(slot) + ")";
   const VkDeviceSize triBytes = std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu);
   const VkDeviceSize orderBytes = std::max<size_t>(orderEntries, 1) * sizeof(uint32_t);
@@ -149,9 +154,11 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
 
   vkCmdFillBuffer(cmd, s.counters.get(), 0, kCounterBytes, 0);
   // The counters are cleared after the slot's previous draws read its records and indirect args.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
-                VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  memoryBarrier(
+      cmd,
+      VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelineLayout_.get(), 0, 1, &s.classifySet, 0,
@@ -161,8 +168,8 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
     ++f.bins;
     const uint64_t threads = uint64_t{bin.count} * bin.capacity;
     for (uint64_t base = 0; base < threads; base += uint64_t{kMaxGroupsPerDispatch} * kWorkgroup) {
-      const ClassifyPush push{bin.first, bin.count, bin.capacity, clusterSize, static_cast<uint32_t>(base),
-                              options_.clustersPerSpecies};
+      const ClassifyPush push{
+          bin.first, bin.count, bin.capacity, clusterSize, static_cast<uint32_t>(base), options_.clustersPerSpecies};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
       vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
@@ -180,10 +187,11 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   vkCmdDispatch(cmd, 1, 1, 1);
 
   // Records and draws to the species pipelines; the figures copy to the host.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                    VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+          VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
   return f;
 }
 

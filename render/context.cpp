@@ -54,8 +54,7 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
   info.driver = std::string(driver.driverName) + ": " + driver.driverInfo;
   info.apiVersion = versionString(p.apiVersion);
   info.software = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  const VkSampleCountFlags counts =
-      p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts;
+  const VkSampleCountFlags counts = p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts;
   for (int s : {1, 2, 4, 8, 16})
     if (counts & static_cast<VkSampleCountFlags>(s)) info.msaaCounts.push_back(s);
   return info;

@@ -14,12 +14,12 @@
 namespace vegstream::render {
 
 struct ContextOptions {
-  bool validate = false;                      // VK_LAYER_KHRONOS_validation + debug messenger
-  std::string deviceName;                     // empty: pick the best device
-  std::vector<std::string> instanceExtensions; // e.g. what GLFW needs for a window surface
-  bool wantSwapchain = false;                 // enable VK_KHR_swapchain on the device
-  std::shared_ptr<ValidationLog> validationLog; // where validation messages go (may be null)
-  Logger logger;                              // may be null
+  bool validate = false;                         // VK_LAYER_KHRONOS_validation + debug messenger
+  std::string deviceName;                        // empty: pick the best device
+  std::vector<std::string> instanceExtensions;   // e.g. what GLFW needs for a window surface
+  bool wantSwapchain = false;                    // enable VK_KHR_swapchain on the device
+  std::shared_ptr<ValidationLog> validationLog;  // where validation messages go (may be null)
+  Logger logger;                                 // may be null
 };
 
 // Every device the driver offers, in enumeration order. Does not create a logical device.

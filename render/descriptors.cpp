@@ -51,8 +51,7 @@ VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool,
   return set;
 }
 
-void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view,
-                       uint32_t binding) {
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
   const VkDescriptorImageInfo ii{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;

@@ -209,7 +209,8 @@ std::vector<uint8_t> withMipChain(const std::vector<uint8_t>& level0, uint32_t s
       for (uint32_t x = 0; x < h; ++x)
         for (size_t c = 0; c < 4; ++c) {
           auto at = [&](uint32_t xx, uint32_t yy) { return unsigned{out[previous + (size_t{yy} * s + xx) * 4 + c]}; };
-          const unsigned sum = at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1);
+          const unsigned sum =
+              at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1);
           out[start + (size_t{y} * h + x) * 4 + c] = static_cast<uint8_t>((sum + 2) / 4);
         }
     previous = start;
@@ -221,8 +222,8 @@ const std::vector<uint8_t>& detailTextureData() {
   static const std::vector<uint8_t> data = [] {
     std::vector<uint8_t> all;
     for (uint32_t s = 0; s < vegetation::kDetailSurfaceCount; ++s) {
-      const auto layer = withMipChain(generateDetailPattern(static_cast<DetailSurface>(s), kDetailTextureSize),
-                                      kDetailTextureSize);
+      const auto layer =
+          withMipChain(generateDetailPattern(static_cast<DetailSurface>(s), kDetailTextureSize), kDetailTextureSize);
       all.insert(all.end(), layer.begin(), layer.end());
     }
     return all;

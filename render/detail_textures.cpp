@@ -32,8 +32,8 @@ DetailTextures::DetailTextures(const Context& ctx, std::span<const vegetation::T
   ctx.submitAndWait([&](VkCommandBuffer cmd) { recordImageArrayUpload(cmd, staging, image_); });
 
   const TerrainDetailUniforms block = packTerrainDetail(types, settings);
-  uniforms_ = createBufferWithData(ctx, &block, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                   "terrain detail uniforms");
+  uniforms_ =
+      createBufferWithData(ctx, &block, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "terrain detail uniforms");
   writeSampledImage(ctx, set_, sampler_.get(), image_.view.get(), 0);
   writeUniformBuffer(ctx, set_, uniforms_.get(), sizeof(block), 1);
 }

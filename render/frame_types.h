@@ -41,8 +41,8 @@ struct Lighting {
   glm::vec3 sunColor{1.05f, 0.98f, 0.88f};
   glm::vec3 skyZenith{0.16f, 0.32f, 0.68f};
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.85f};
-  float fogDensity = 1.2e-5f;   // extinction per metre at sea level
-  float fogFalloff = 1.0e-4f;   // per metre of height (scale height 10 km)
+  float fogDensity = 1.2e-5f;  // extinction per metre at sea level
+  float fogFalloff = 1.0e-4f;  // per metre of height (scale height 10 km)
 };
 
 // Imagery tiles live in one GPU texture array, one 256 × 256 sRGB layer per tile; the streamer
@@ -53,11 +53,11 @@ inline constexpr uint32_t kImageryTileSize = 256;
 // origin) coloured by an imagery layer, possibly fading in over a coarser one.
 struct TerrainDraw {
   const terrain::TerrainMesh* mesh = nullptr;
-  int32_t imageryLayer = -1;            // −1: coloured by height and slope
-  glm::vec4 imageryUv{1.0f, 1.0f, 0.0f, 0.0f};   // layer uv = vertex uv · xy + zw
-  int32_t previousLayer = -1;           // the layer it fades from (−1: none)
+  int32_t imageryLayer = -1;                    // −1: coloured by height and slope
+  glm::vec4 imageryUv{1.0f, 1.0f, 0.0f, 0.0f};  // layer uv = vertex uv · xy + zw
+  int32_t previousLayer = -1;                   // the layer it fades from (−1: none)
   glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
-  float imageryBlend = 1.0f;            // 0: only previousLayer … 1: only imageryLayer
+  float imageryBlend = 1.0f;  // 0: only previousLayer … 1: only imageryLayer
 };
 
 // Copies a tile into an imagery layer before the frame draws. `rgba` (256 × 256 × 4 bytes)
@@ -72,15 +72,15 @@ struct ImageryUpload {
 // GPU's counts per species (read back after the frame's fence).
 inline constexpr size_t kSpeciesSlots = 16;  // = vegetation::kMaxSpecies
 struct VegetationFigures {
-  uint32_t seedTriangles = 0;   // submitted to the classify pass
-  uint32_t bins = 0;            // non-empty bins (one dispatch each)
-  uint64_t clusters = 0;        // species lookups: seeds of cluster 0 + further clusters, before rejection
-  uint64_t clusterSlots = 0;    // threads the bins' dispatches covered (≥ clusters)
-  bool gpuCounts = false;       // the per-species counts below were read back
+  uint32_t seedTriangles = 0;  // submitted to the classify pass
+  uint32_t bins = 0;           // non-empty bins (one dispatch each)
+  uint64_t clusters = 0;       // species lookups: seeds of cluster 0 + further clusters, before rejection
+  uint64_t clusterSlots = 0;   // threads the bins' dispatches covered (≥ clusters)
+  bool gpuCounts = false;      // the per-species counts below were read back
   std::array<uint32_t, kSpeciesSlots> groups{};  // groups appended per species (drawn: ≤ capacity)
   std::array<uint32_t, kSpeciesSlots> plants{};  // plants in those groups
   uint64_t groupsTotal = 0, plantsTotal = 0;
-  bool overflow = false;        // a species' buffer was full: some groups were not drawn
+  bool overflow = false;  // a species' buffer was full: some groups were not drawn
 };
 
 // Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-
@@ -116,7 +116,7 @@ struct FrameRequest {
   double cameraHeightMsl = 0.0;  // for the height fog
   bool readbackColor = false;
   bool readbackDepth = false;
-  bool present = false;          // to the window, when the renderer has one
+  bool present = false;  // to the window, when the renderer has one
   // Strength of the close-up terrain detail textures (render/detail_textures.h), 0 … 1;
   // 0 draws the terrain as the bare imagery at every distance.
   float terrainDetail = 1.0f;
@@ -145,7 +145,7 @@ struct FrameResult {
   uint64_t frameIndex = 0;
   double cpuRecordMs = 0.0;
   GpuTimings gpu;
-  uint64_t terrainTriangles = 0;  // triangles submitted by the terrain pass
+  uint64_t terrainTriangles = 0;                // triangles submitted by the terrain pass
   std::optional<VegetationFigures> vegetation;  // when the request had plants
   std::optional<ColorImage> color;
   std::optional<DepthImage> depth;

@@ -24,11 +24,12 @@ FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_
   u.skyHorizon = glm::vec4(request.lighting.skyHorizon, 0.0f);
   u.fog = glm::vec4(request.lighting.fogDensity, request.lighting.fogFalloff,
                     static_cast<float>(request.cameraHeightMsl), 0.0f);
-  u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
-                         1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
+  u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height), 1.0f / static_cast<float>(width),
+                         1.0f / static_cast<float>(height));
   // World-anchored detail tiling: the camera position modulo the period, in double, so the
   // shader's coordinates stay small and continuous (the repeat counts are whole per period).
-  const glm::dvec3 wrapped = request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
+  const glm::dvec3 wrapped =
+      request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
   u.detail = glm::vec4(glm::vec3(wrapped), std::clamp(request.terrainDetail, 0.0f, 1.0f));
   return u;
 }

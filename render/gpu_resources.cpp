@@ -49,7 +49,8 @@ GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags
 
 GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage,
                                const std::string& name) {
-  GpuBuffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, name + " staging");
+  GpuBuffer staging =
+      createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, name + " staging");
   std::memcpy(staging.mapped, bytes, static_cast<size_t>(size));
   GpuBuffer out = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::DeviceLocal, name);
   ctx.submitAndWait([&](VkCommandBuffer cmd) {

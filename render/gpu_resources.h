@@ -33,8 +33,8 @@ GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags
                        const std::string& name);
 
 // A device-local buffer filled with `bytes` through a staging copy (waits for the copy).
-GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSize size,
-                               VkBufferUsageFlags usage, const std::string& name);
+GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage,
+                               const std::string& name);
 
 struct GpuImage {
   Image image;

@@ -29,7 +29,7 @@ struct PipelineStatistics {
 };
 
 struct GpuTimings {
-  double frameMs = 0.0;        // first to last timestamp of the frame
+  double frameMs = 0.0;  // first to last timestamp of the frame
   std::vector<PassTime> passes;
   // False on a CPU rasteriser such as lavapipe, which runs geometry work when the command
   // buffer is flushed: its per-pass times are not what the passes cost, so callers print

@@ -58,13 +58,13 @@ void HudPass::uploadTexture(VkCommandBuffer cmd, const OverlayImage& image,
                             const std::function<void(GpuBuffer&&)>& retireBuffer,
                             const std::function<void(GpuImage&&)>& retireImage) {
   const VkDeviceSize bytes = VkDeviceSize{image.width} * image.height * 4;
-  GpuBuffer staging = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                                   "hud atlas staging");
+  GpuBuffer staging =
+      createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "hud atlas staging");
   std::memcpy(staging.mapped, image.rgba.data(), static_cast<size_t>(bytes));
   if (texture_.image) retireImage(std::move(texture_));
-  texture_ = createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_UNORM,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
-                           "hud atlas");
+  texture_ =
+      createImage2D(*ctx_, {image.width, image.height}, VK_FORMAT_R8G8B8A8_UNORM,
+                    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT, "hud atlas");
   recordImageUpload(cmd, staging, texture_);
   retireBuffer(std::move(staging));  // the copy runs with this frame
   textureId_ = image.id;
@@ -119,7 +119,8 @@ uint64_t HudPass::record(VkCommandBuffer cmd, int slot, const OverlayDrawData& d
   ri.pColorAttachments = &color;
   vkCmdBeginRendering(cmd, &ri);
 
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                            0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &sets_[s], 0, nullptr);

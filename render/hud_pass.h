@@ -28,7 +28,8 @@ class HudPass {
                   const std::function<void(GpuImage&&)>& retireImage);
 
  private:
-  void uploadTexture(VkCommandBuffer cmd, const OverlayImage& image, const std::function<void(GpuBuffer&&)>& retireBuffer,
+  void uploadTexture(VkCommandBuffer cmd, const OverlayImage& image,
+                     const std::function<void(GpuBuffer&&)>& retireBuffer,
                      const std::function<void(GpuImage&&)>& retireImage);
   void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what, int slot,
                       const std::function<void(GpuBuffer&&)>& retire);

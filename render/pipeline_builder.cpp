@@ -79,8 +79,8 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
   ds.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
   ds.depthCompareOp = desc.depthCompare;
   VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                         VK_COLOR_COMPONENT_A_BIT;
+  blend.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
   if (desc.alphaBlend) {
     blend.blendEnable = VK_TRUE;
     blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;

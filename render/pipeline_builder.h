@@ -30,7 +30,7 @@ struct GraphicsPipelineDesc {
   bool depthWrite = true;
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-  bool alphaBlend = false;  // straight alpha over the target (overlays); off: opaque writes
+  bool alphaBlend = false;          // straight alpha over the target (overlays); off: opaque writes
   uint32_t patchControlPoints = 0;  // > 0: tessellation (topology PATCH_LIST)
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;

@@ -27,13 +27,15 @@ PlantMarkerPass::PlantMarkerPass(const Context& ctx, VkDescriptorSetLayout frame
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * ClassifyPass::kSlots}};
   pool_ = createPool(ctx, sizes, ClassifyPass::kSlots, "plant marker pool");
   for (size_t i = 0; i < sets_.size(); ++i)
-    sets_[i] = allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "plant marker set (slot " + std::to_string(i) + ")");
+    sets_[i] =
+        allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "plant marker set (slot " + std::to_string(i) + ")");
   const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(MarkerPush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "plant marker pipeline layout");
   GraphicsPipelineDesc desc;
   desc.name = "plant marker pipeline";
-  desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_plant_marker_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_plant_marker_frag}};
+  desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_plant_marker_vert},
+                 {VK_SHADER_STAGE_FRAGMENT_BIT, spv_plant_marker_frag}};
   desc.cullMode = VK_CULL_MODE_NONE;
   desc.samples = samples;
   desc.colorFormat = kColorFormat;

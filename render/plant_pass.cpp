@@ -62,8 +62,8 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_SAMPLE_COUNT_1_BIT,
                          "blade shape table");
   const VkDeviceSize bytes = table.texels.size() * sizeof(float);
-  GpuBuffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                                   "blade shape table staging");
+  GpuBuffer staging =
+      createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "blade shape table staging");
   std::memcpy(staging.mapped, table.texels.data(), bytes);
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     recordImageArrayUpload(cmd, staging, table_, VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT);
@@ -74,12 +74,11 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   tableSampler_ = nearestClampSampler(ctx, "blade shape sampler");
   imagerySampler_ = createLinearClampSampler(ctx, "plant imagery sampler");
 
-  const VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kStages, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr},
-      {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kStages, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kStages, nullptr}};
+  const VkDescriptorSetLayoutBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kStages, nullptr},
+                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr},
+                                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr},
+                                                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kStages, nullptr},
+                                                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kStages, nullptr}};
   setLayout_ = createLayout(ctx, bindings, "plant set layout");
   constexpr auto slots = static_cast<uint32_t>(ClassifyPass::kSlots);
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},

@@ -55,7 +55,7 @@ class PlantPass {
   std::array<VkDescriptorSet, ClassifyPass::kSlots> sets_{};
   PipelineLayout layout_;
   std::array<Pipeline, 3> pipelines_;  // by vegetation::RendererKind: grass, gravel, flowers
-  Pipeline speedOfLight_;               // PlantDrawOptions::speedOfLight
+  Pipeline speedOfLight_;              // PlantDrawOptions::speedOfLight
 };
 
 }  // namespace vegstream::render

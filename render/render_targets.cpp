@@ -12,8 +12,8 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
   depth_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
                          VK_SAMPLE_COUNT_1_BIT, "depth target");
   if (multisampled()) {
-    colorMsaa_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, samples,
-                               "colour target (MSAA)");
+    colorMsaa_ =
+        createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, samples, "colour target (MSAA)");
     depthMsaa_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
                                "depth target (MSAA)");
   }
@@ -23,7 +23,8 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
   // Attachments start undefined each frame: everything is cleared.
   const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  const auto depthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  const auto depthAccess =
+      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   std::vector<const GpuImage*> colorImages{&color()}, depthImages{&depth()};
   if (multisampled()) {
     colorImages.push_back(&colorAttachment());
@@ -66,7 +67,8 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
   ri.pDepthAttachment = &depthInfo;
   vkCmdBeginRendering(cmd, &ri);
   // Flip nothing here: the projection matrix already flips y for Vulkan.
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height), 0.0f, 1.0f};
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height),
+                            0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent_};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);

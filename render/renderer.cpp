@@ -95,11 +95,11 @@ void Renderer::Impl::init(const RendererOptions& options) {
   targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa));
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
 
-  frameLayout = createSingleBindingLayout(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                          VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT,
-                                          "frame uniforms layout");
-  descriptorPool = createSingleBindingPool(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight,
-                                           "frame descriptor pool");
+  frameLayout =
+      createSingleBindingLayout(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, "frame uniforms layout");
+  descriptorPool =
+      createSingleBindingPool(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight, "frame descriptor pool");
   const VkDescriptorSetLayout layout = frameLayout.get();
 
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
@@ -214,9 +214,9 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   if (plants) {
     if (plants->style == PlantStyle::Plants) patchMask = PlantPass::patchMask(*classify);
     slot.timer->beginPass(cmd, "classify");
-    slot.vegetation = classify->record(cmd, slotIndex, plants->triangles, plants->clusterSize,
-                                       terrainPass->imageryBytesView(), PlantMarkerPass::verticesPerGroup(plants->clusterSize),
-                                       patchMask, retireBuffer);
+    slot.vegetation =
+        classify->record(cmd, slotIndex, plants->triangles, plants->clusterSize, terrainPass->imageryBytesView(),
+                         PlantMarkerPass::verticesPerGroup(plants->clusterSize), patchMask, retireBuffer);
     slot.timer->endPass(cmd);
   }
 
@@ -238,12 +238,12 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   vkCmdEndRendering(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
     slot.timer->beginPass(cmd, "hud");
-    hudPass->record(cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->color(),
-                    [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); },
-                    [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
+    hudPass->record(
+        cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->color(),
+        [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); },
+        [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
     slot.timer->endPass(cmd);
   }
-
 }
 
 void Renderer::Impl::queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex) {
@@ -391,7 +391,8 @@ Status Renderer::setImageryLayers(uint32_t layers) {
   return guardGpu([&]() -> Status {
     // The imagery descriptor is rewritten: no frame in flight may still read it.
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
-    impl_->terrainPass->setImageryLayers(layers, [&](GpuImage&& old) { impl_->deletions.defer(impl_->nextFrame - 1, std::move(old)); });
+    impl_->terrainPass->setImageryLayers(
+        layers, [&](GpuImage&& old) { impl_->deletions.defer(impl_->nextFrame - 1, std::move(old)); });
     return {};
   });
 }

@@ -38,7 +38,8 @@ void Swapchain::create() {
   uint32_t n = 0;
   vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface_, &n, nullptr), "vkGetPhysicalDeviceSurfaceFormatsKHR");
   std::vector<VkSurfaceFormatKHR> formats(n);
-  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface_, &n, formats.data()), "vkGetPhysicalDeviceSurfaceFormatsKHR");
+  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface_, &n, formats.data()),
+          "vkGetPhysicalDeviceSurfaceFormatsKHR");
   VkSurfaceFormatKHR chosen = formats.at(0);
   for (const auto& f : formats)
     if (f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) chosen = f;
@@ -48,12 +49,15 @@ void Swapchain::create() {
   glfwGetFramebufferSize(window_, &w, &h);
   extent_ = caps.currentExtent;
   if (extent_.width == UINT32_MAX) {
-    extent_.width = std::clamp(static_cast<uint32_t>(std::max(w, 1)), caps.minImageExtent.width, caps.maxImageExtent.width);
-    extent_.height = std::clamp(static_cast<uint32_t>(std::max(h, 1)), caps.minImageExtent.height, caps.maxImageExtent.height);
+    extent_.width =
+        std::clamp(static_cast<uint32_t>(std::max(w, 1)), caps.minImageExtent.width, caps.maxImageExtent.width);
+    extent_.height =
+        std::clamp(static_cast<uint32_t>(std::max(h, 1)), caps.minImageExtent.height, caps.maxImageExtent.height);
   }
   VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   ci.surface = surface_;
-  ci.minImageCount = caps.maxImageCount == 0 ? caps.minImageCount + 1 : std::min(caps.minImageCount + 1, caps.maxImageCount);
+  ci.minImageCount =
+      caps.maxImageCount == 0 ? caps.minImageCount + 1 : std::min(caps.minImageCount + 1, caps.maxImageCount);
   ci.imageFormat = chosen.format;
   ci.imageColorSpace = chosen.colorSpace;
   ci.imageExtent = extent_;

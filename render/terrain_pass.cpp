@@ -132,16 +132,16 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
     const terrain::TerrainMesh& m = *d.mesh;
     std::memcpy(vdst + VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex), m.vertices.data(),
                 m.vertices.size() * sizeof(terrain::TerrainVertex));
-    std::memcpy(idst + VkDeviceSize{firstIndex} * sizeof(uint32_t), m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    std::memcpy(idst + VkDeviceSize{firstIndex} * sizeof(uint32_t), m.indices.data(),
+                m.indices.size() * sizeof(uint32_t));
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
     assert(valid);
     // The subtraction happens in double; only the small camera-relative offset becomes float.
-    const TerrainPush push{
-        glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
-        glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f, valid ? static_cast<float>(d.previousLayer) : -1.0f,
-                  d.imageryBlend, 0.0f)};
+    const TerrainPush push{glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
+                           glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
+                                     valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f)};
     vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
     vkCmdDrawIndexed(cmd, static_cast<uint32_t>(m.indices.size()), 1, firstIndex, static_cast<int32_t>(firstVertex), 0);
     firstVertex += static_cast<uint32_t>(m.vertices.size());

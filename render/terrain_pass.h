@@ -45,8 +45,7 @@ class TerrainPass {
   VkImageView imageryView() const { return imagery_.view.get(); }
 
   // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
-  void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
-                     const RetireBuffer& retire);
+  void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads, const RetireBuffer& retire);
 
   // Copies the draws' geometry into slot `slot`'s buffers and records the draws (inside
   // rendering); returns the triangles submitted.

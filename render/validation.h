@@ -24,9 +24,18 @@ class ValidationLog {
     if (listener_) listener_(message, isError);
   }
 
-  int errors() const { std::lock_guard lock(mutex_); return errors_; }
-  int warnings() const { std::lock_guard lock(mutex_); return warnings_; }
-  std::vector<std::string> messages() const { std::lock_guard lock(mutex_); return messages_; }
+  int errors() const {
+    std::lock_guard lock(mutex_);
+    return errors_;
+  }
+  int warnings() const {
+    std::lock_guard lock(mutex_);
+    return warnings_;
+  }
+  std::vector<std::string> messages() const {
+    std::lock_guard lock(mutex_);
+    return messages_;
+  }
 
  private:
   mutable std::mutex mutex_;

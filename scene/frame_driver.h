@@ -41,19 +41,19 @@ struct FrameInput {
 
 // One frame's figures from every stage; NaN (kNoFigure) where a figure does not exist.
 struct FrameRecord {
-  uint64_t index = 0;                 // the renderer's frame index
+  uint64_t index = 0;  // the renderer's frame index
   double timeS = 0.0;
   flight::FlightSample pose;
-  double flightMs = 0.0;              // FrameInput::flightMs
-  SceneFrameFigures scene;            // prepare: streaming, terrain, seeding
-  double simulationMs = 0.0;          // NaN while the simulation does nothing
-  double recordSubmitMs = 0.0;        // the renderer's own timer
+  double flightMs = 0.0;        // FrameInput::flightMs
+  SceneFrameFigures scene;      // prepare: streaming, terrain, seeding
+  double simulationMs = 0.0;    // NaN while the simulation does nothing
+  double recordSubmitMs = 0.0;  // the renderer's own timer
   render::GpuTimings gpu;
   uint64_t terrainTriangles = 0;
   std::optional<render::VegetationFigures> vegetation;
   std::optional<render::ColorImage> color;  // when FrameInput::readbackColor
-  double driverMs = 0.0;              // the driver's own bookkeeping (copying figures)
-  double cpuMs() const;               // the CPU stages that exist: flight … record/submit
+  double driverMs = 0.0;                    // the driver's own bookkeeping (copying figures)
+  double cpuMs() const;                     // the CPU stages that exist: flight … record/submit
 };
 
 class FrameDriver {

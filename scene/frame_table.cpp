@@ -42,7 +42,7 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     r[c++] = f.flightMs;
     r[c++] = fig.streamingMs;
     r[c++] = fig.terrainMs;
-    r[c++] = fig.seedingMs;  // the seed triangles made ready for the classify pass (binning: in record/submit)
+    r[c++] = fig.seedingMs;   // the seed triangles made ready for the classify pass (binning: in record/submit)
     r[c++] = f.simulationMs;  // NaN (empty) while the simulation does nothing
     r[c++] = f.recordSubmitMs;
     r[c++] = f.cpuMs();
@@ -64,11 +64,29 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     const terrain::TerrainFrameFigures& tf = fig.terrain;
     r[c++] = fig.settleWaitMs;
     r[c++] = st.longestWaitS * 1000.0;
-    for (uint64_t v : {st.requestsIssued, st.requestsCompleted, st.requestsCancelled, st.requestsFailed,
-                       st.requestsMissing, st.retries, st.bytesRead, fig.uploads, st.uploadBytes, st.evictionsCpu,
-                       st.evictionsGpu, st.tilesResidentCpu, st.tilesResidentGpu, st.bytesResidentCpu,
-                       st.bytesResidentGpu, st.requestsInFlight, st.wanted, st.wantedResident, tf.lookAheadWants,
-                       tf.pieces, tf.fallbackPieces, static_cast<uint64_t>(tf.maxLevelsCoarser), tf.meshesBuilt})
+    for (uint64_t v : {st.requestsIssued,
+                       st.requestsCompleted,
+                       st.requestsCancelled,
+                       st.requestsFailed,
+                       st.requestsMissing,
+                       st.retries,
+                       st.bytesRead,
+                       fig.uploads,
+                       st.uploadBytes,
+                       st.evictionsCpu,
+                       st.evictionsGpu,
+                       st.tilesResidentCpu,
+                       st.tilesResidentGpu,
+                       st.bytesResidentCpu,
+                       st.bytesResidentGpu,
+                       st.requestsInFlight,
+                       st.wanted,
+                       st.wantedResident,
+                       tf.lookAheadWants,
+                       tf.pieces,
+                       tf.fallbackPieces,
+                       static_cast<uint64_t>(tf.maxLevelsCoarser),
+                       tf.meshesBuilt})
       r[c++] = count(v);
     r[c++] = tf.errorBoundPx;
     r[c++] = tf.relaxation;
@@ -83,9 +101,9 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     r[c++] = tf.roam.achievedErrorPx;
     // The classify pass (render/classify_pass.h); empty when plants are off.
     const auto& v = f.vegetation;
-    for (uint64_t x : {uint64_t{v ? v->seedTriangles : 0u}, uint64_t{v ? v->bins : 0u}, v ? v->clusters : 0,
-                       v ? v->clusterSlots : 0, v ? v->groupsTotal : 0, v ? v->plantsTotal : 0,
-                       uint64_t{v && v->overflow}})
+    for (uint64_t x :
+         {uint64_t{v ? v->seedTriangles : 0u}, uint64_t{v ? v->bins : 0u}, v ? v->clusters : 0, v ? v->clusterSlots : 0,
+          v ? v->groupsTotal : 0, v ? v->plantsTotal : 0, uint64_t{v && v->overflow}})
       r[c++] = v ? count(x) : kNoValue;
     // Only the plant pipelines tessellate and run geometry shaders: their statistics are these.
     r[c++] = v && stats.available ? count(stats.tessControlPatches) : kNoValue;

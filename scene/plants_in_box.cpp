@@ -38,8 +38,9 @@ const datasets::ColorTile* imageryOver(SettledTiles& tiles, const terrain::Bintr
 
 // Grows every seed triangle's plants and keeps those in the box (counting all of them).
 void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const terrain::SeedRegion& region,
-          const geo::GeoBounds& box, const vegetation::SpeciesCatalog& catalog, const vegetation::SeedingOptions& seeding,
-          SettledTiles& tiles, int maxZoom, uint64_t maxPlants, PlantsInBox& out, uint64_t& count) {
+          const geo::GeoBounds& box, const vegetation::SpeciesCatalog& catalog,
+          const vegetation::SeedingOptions& seeding, SettledTiles& tiles, int maxZoom, uint64_t maxPlants,
+          PlantsInBox& out, uint64_t& count) {
   std::vector<vegetation::PlantCluster> clusters;
   std::vector<vegetation::Plant> plants;
   for (size_t i = 0; i < region.triangles.size(); ++i) {
@@ -78,7 +79,8 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   auto meta = streaming::readMetaFrom(**source);
   if (!meta) return meta.error();
   if (!meta->imagery)
-    return makeError(ErrorKind::InvalidInput, "dataset " + dataset + " has no imagery: species come from the imagery colour");
+    return makeError(ErrorKind::InvalidInput,
+                     "dataset " + dataset + " has no imagery: species come from the imagery colour");
   const geo::GeoBounds& b = meta->bounds;
   if (b.crossesAntimeridian())
     return makeError(ErrorKind::Unsupported, "dataset " + dataset + " crosses the antimeridian: not supported");
@@ -103,9 +105,10 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   query.select = terrain::RegionSelect::Overlap;
   const uint64_t maxPlants = options.maxPlants;
   auto tooMany = [&](const std::string& howMany, uint64_t n) {
-    return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " + options.maxPlantsName +
-                                                  " " + std::to_string(maxPlants) + "; give a smaller box or " +
-                                                  options.maxPlantsName + " " + std::to_string(n));
+    return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " +
+                                                  options.maxPlantsName + " " + std::to_string(maxPlants) +
+                                                  "; give a smaller box or " + options.maxPlantsName + " " +
+                                                  std::to_string(n));
   };
   // A cheap bound first (triangles × n_max, no heights): a huge box is refused at once, not
   // after growing it.

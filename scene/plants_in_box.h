@@ -29,17 +29,17 @@
 namespace vegstream::scene {
 
 struct BoxPlant {
-  geo::Geodetic at;          // root: lat, lon (WGS 84 degrees) and the ground height there (m)
-  uint32_t species = 0;      // index into the catalog
-  float heightM = 0.0f;      // full-size plant height
-  float stiffness = 0.0f;    // k′
-  float sPrime = 0.0f;       // eq. 18
+  geo::Geodetic at;        // root: lat, lon (WGS 84 degrees) and the ground height there (m)
+  uint32_t species = 0;    // index into the catalog
+  float heightM = 0.0f;    // full-size plant height
+  float stiffness = 0.0f;  // k′
+  float sPrime = 0.0f;     // eq. 18
 };
 
 struct PlantsInBox {
   std::vector<BoxPlant> plants;
-  std::string datasetName;   // dataset.json's name
-  int seedLevel = 0;         // the bintree level of the seed triangles
+  std::string datasetName;  // dataset.json's name
+  int seedLevel = 0;        // the bintree level of the seed triangles
   uint64_t seedTriangles = 0, nodataSkipped = 0;
 };
 

@@ -21,23 +21,23 @@
 namespace vegstream::scene {
 
 struct PlaybackOptions {
-  double fps = 60.0;                  // frames per second of flight time (> 0)
-  double warmupS = 0.0;               // frames rendered at t = 0 before recording, not recorded
-  int framesEvery = 0;                // > 0: save frames 0, K, 2K, … as PNG
-  std::filesystem::path framesDir;    // where frame_NNNNN.png go (framesEvery > 0)
+  double fps = 60.0;                // frames per second of flight time (> 0)
+  double warmupS = 0.0;             // frames rendered at t = 0 before recording, not recorded
+  int framesEvery = 0;              // > 0: save frames 0, K, 2K, … as PNG
+  std::filesystem::path framesDir;  // where frame_NNNNN.png go (framesEvery > 0)
   // Called after each recorded frame (done = frames so far); may be empty.
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
 struct Recording {
-  flight::RecordTable table;          // frames.csv
-  std::vector<std::string> gpuPasses; // the renderer's passes, in order (gpu_<pass>_ms columns)
-  bool perPassMeaningful = false;     // GpuTimings::perPassMeaningful of the device
-  bool pipelineStatistics = false;    // the device reported pipeline statistics
+  flight::RecordTable table;           // frames.csv
+  std::vector<std::string> gpuPasses;  // the renderer's passes, in order (gpu_<pass>_ms columns)
+  bool perPassMeaningful = false;      // GpuTimings::perPassMeaningful of the device
+  bool pipelineStatistics = false;     // the device reported pipeline statistics
   std::size_t warmupFrames = 0;
   std::size_t pngFrames = 0;
-  double wallS = 0.0;                 // the whole recording, warm-up included
-  uint64_t peakRssBytes = 0;          // the process's VmHWM after the recording; 0 if unknown
+  double wallS = 0.0;         // the whole recording, warm-up included
+  uint64_t peakRssBytes = 0;  // the process's VmHWM after the recording; 0 if unknown
 };
 
 // The fps that spreads `frames` frames over a path of durationS, first and last pose included

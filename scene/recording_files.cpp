@@ -50,8 +50,8 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.pathFile = request.pathFile.empty() ? "" : fs::absolute(request.pathFile).lexically_normal().string();
   m.pathDurationS = path.duration();
   m.datasetName = info.datasetName;
-  m.datasetDir = streaming::isHttpLocation(so.dataset) ? so.dataset
-                                                       : fs::absolute(so.dataset).lexically_normal().string();
+  m.datasetDir =
+      streaming::isHttpLocation(so.dataset) ? so.dataset : fs::absolute(so.dataset).lexically_normal().string();
   m.datasetSource = info.source;
   m.heightZoom = info.maxZoom;
   m.imageryZoom = info.hasImagery ? info.maxZoom : -1;

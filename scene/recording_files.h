@@ -16,11 +16,11 @@
 namespace vegstream::scene {
 
 struct RecordingRequest {
-  std::filesystem::path out;    // the directory to create: must not exist, or be empty
-  PlaybackOptions playback;     // framesDir is set to out/frames
-  bool plots = true;            // run the matplotlib script (flight/report.h)
+  std::filesystem::path out;  // the directory to create: must not exist, or be empty
+  PlaybackOptions playback;   // framesDir is set to out/frames
+  bool plots = true;          // run the matplotlib script (flight/report.h)
   // For recording.json, what the scene does not know:
-  std::string pathFile;         // the flight-path file ("" for a template placed over the dataset)
+  std::string pathFile;                    // the flight-path file ("" for a template placed over the dataset)
   std::string speciesCatalog = "default";  // the catalog file, or "default"
 };
 

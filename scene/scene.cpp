@@ -97,8 +97,8 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (options.species)
     if (Status s = impl->renderer->setSpeciesCatalog(*options.species); !s) return s.error();
   if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
-    return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) + ": must be 1 … " +
-                                                  std::to_string(vegetation::kMaxClusterSize));
+    return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) +
+                                                  ": must be 1 … " + std::to_string(vegetation::kMaxClusterSize));
   impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, options.terrain);
   info.seedLevel = impl->terrain->roam().seedLevel();
   info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
@@ -159,9 +159,9 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
       m.streamer->settle(wants, timeS);
       addFrameCounters(counted, m.streamer->frameStats());
       std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
-      const bool same = again.size() == wants.size() &&
-                        std::equal(again.begin(), again.end(), wants.begin(),
-                                   [](const auto& a, const auto& b) { return a.key == b.key; });
+      const bool same =
+          again.size() == wants.size() && std::equal(again.begin(), again.end(), wants.begin(),
+                                                     [](const auto& a, const auto& b) { return a.key == b.key; });
       wants = std::move(again);
       if (same) break;
     }
@@ -171,8 +171,8 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     m.streamer->update(wants, timeS);
   }
   // Settled frames draw everything they waited for; realtime frames keep the per-frame budget.
-  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled
-                                          ? std::optional<uint64_t>(UINT64_MAX) : std::nullopt);
+  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled ? std::optional<uint64_t>(UINT64_MAX)
+                                                                               : std::nullopt);
   m.uploads.clear();
   for (const streaming::Upload& u : m.planned)
     if (u.tile && u.tile->colors) m.uploads.push_back({u.slot, u.tile->colors->rgba.data()});

@@ -48,29 +48,29 @@ enum class StreamingMode {
 const char* toString(StreamingMode mode);
 
 struct SceneOptions {
-  std::string dataset;                     // a dataset directory or an http(s):// URL of one
+  std::string dataset;  // a dataset directory or an http(s):// URL of one
   render::RendererOptions renderer;
   streaming::StreamingOptions streaming;
   terrain::StreamedTerrainOptions terrain;
   StreamingMode mode = StreamingMode::Realtime;
-  bool lookAhead = true;                   // prefetch the tiles of the poses expected next
+  bool lookAhead = true;  // prefetch the tiles of the poses expected next
   std::optional<std::filesystem::path> httpCacheDir;
-  uint64_t groundMaxPixels = 1'000'000;    // the ground mosaic for path altitudes
+  uint64_t groundMaxPixels = 1'000'000;  // the ground mosaic for path altitudes
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
   bool plants = true;
-  uint32_t clusterSize = 8;                // C, 1 … vegetation::kMaxClusterSize
+  uint32_t clusterSize = 8;  // C, 1 … vegetation::kMaxClusterSize
   render::PlantStyle plantStyle = render::PlantStyle::Plants;
   render::PlantDrawOptions plantDraw;
   std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
-  Logger logger;                           // may be null
+  Logger logger;                                              // may be null
 };
 
 struct SceneInfo {
   std::string datasetName;
-  std::string source;          // "dir …" or the URL
+  std::string source;  // "dir …" or the URL
   geo::GeoBounds bounds;
   int minZoom = 0, maxZoom = 0;
-  int groundZoom = 0;          // zoom of the ground mosaic
+  int groundZoom = 0;  // zoom of the ground mosaic
   bool hasImagery = false;
   uint32_t imageryLayers = 0;  // GPU imagery slots (from the GPU budget)
   uint64_t groundBytes = 0;    // the ground mosaic on the CPU
@@ -81,14 +81,14 @@ struct SceneInfo {
 
 // What one frame cost and did, for the recorder and the HUD.
 struct SceneFrameFigures {
-  double streamingMs = 0.0;    // update + upload planning, CPU (settle wait excluded)
-  double settleWaitMs = 0.0;   // settled mode: waiting for wanted tiles (left out of frame time)
-  double terrainMs = 0.0;      // selection, wants, pieces (mesh builds included)
+  double streamingMs = 0.0;   // update + upload planning, CPU (settle wait excluded)
+  double settleWaitMs = 0.0;  // settled mode: waiting for wanted tiles (left out of frame time)
+  double terrainMs = 0.0;     // selection, wants, pieces (mesh builds included)
   streaming::StreamingFrameStats streaming;
   terrain::TerrainFrameFigures terrain;
-  uint64_t uploads = 0;        // imagery tiles uploaded this frame
-  uint64_t cpuBytes = 0;       // resident tiles + ground mosaic
-  uint64_t gpuBytes = 0;       // imagery array, terrain, classify and plant buffers
+  uint64_t uploads = 0;                  // imagery tiles uploaded this frame
+  uint64_t cpuBytes = 0;                 // resident tiles + ground mosaic
+  uint64_t gpuBytes = 0;                 // imagery array, terrain, classify and plant buffers
   uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
   double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
 };

@@ -12,8 +12,8 @@ SettledTiles::SettledTiles(std::shared_ptr<streaming::TileSource> source, datase
   auto log = std::make_shared<spdlog::logger>("settled-tiles", warnings_);
   log->set_pattern("%v");
   log->set_level(spdlog::level::warn);
-  streamer_ = std::make_unique<streaming::TileStreamer>(std::move(source), std::move(meta), streaming::StreamingOptions{},
-                                                        std::move(log));
+  streamer_ = std::make_unique<streaming::TileStreamer>(std::move(source), std::move(meta),
+                                                        streaming::StreamingOptions{}, std::move(log));
 }
 
 SettledTiles::~SettledTiles() = default;

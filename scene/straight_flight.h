@@ -12,7 +12,7 @@ namespace vegstream::scene {
 using flight::GroundHeight;
 
 struct StraightFlight {
-  geo::Geodetic start;     // heightM ignored: the height comes from the terrain
+  geo::Geodetic start;  // heightM ignored: the height comes from the terrain
   geo::Geodetic end;
   double altitudeAboveTerrainM = 600.0;
   double durationS = 10.0;

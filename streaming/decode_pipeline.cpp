@@ -107,8 +107,10 @@ Completion DecodePipeline::decode(Job& job) const {
       }
     } else {
       auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
-      if (t) c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());
-      else c.message = t.error().message;
+      if (t)
+        c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());
+      else
+        c.message = t.error().message;
     }
   } catch (const std::exception& e) {  // out of memory in the decoder: a failed tile, not a dead thread
     c.message = job.name + ": " + e.what();
@@ -128,12 +130,16 @@ void DecodePipeline::drain() {
     job.bytes = {};
     lock.lock();
     decoding_.erase(job.id);
-    if (closed_) idleCv_.notify_all();
-    else if (cancelled_.erase(job.id) == 0) pushLocked(std::move(c));
+    if (closed_)
+      idleCv_.notify_all();
+    else if (cancelled_.erase(job.id) == 0)
+      pushLocked(std::move(c));
   }
   // Posted again while jobs are queued: the runner interleaves decodes with other work.
-  if (!closed_ && !jobs_.empty()) runner_.post([self = shared_from_this()] { self->drain(); });
-  else --tasks_;
+  if (!closed_ && !jobs_.empty())
+    runner_.post([self = shared_from_this()] { self->drain(); });
+  else
+    --tasks_;
 }
 
 }  // namespace vegstream::streaming::detail

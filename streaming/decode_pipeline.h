@@ -48,9 +48,9 @@ struct Completion {
   };
   Kind kind = Kind::Fetched;
   RequestId id = 0;
-  uint64_t bytes = 0;    // Fetched: payload size
-  int attempts = 0;      // fetch attempts the source made
-  std::string message;   // Missing / FetchFailed / DecodeFailed: why, naming the file
+  uint64_t bytes = 0;   // Fetched: payload size
+  int attempts = 0;     // fetch attempts the source made
+  std::string message;  // Missing / FetchFailed / DecodeFailed: why, naming the file
   std::shared_ptr<const datasets::HeightTile> heights;
   std::shared_ptr<const datasets::ColorTile> colors;
   std::shared_ptr<const TileExtra> extra;
@@ -96,7 +96,7 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
   std::vector<Completion> completions_;
   std::unordered_set<RequestId> cancelled_;  // at the source or being decoded: drop on arrival
   std::unordered_set<RequestId> decoding_;   // being decoded right now
-  std::condition_variable idleCv_;         // stop() waits here for decoding_ to empty
+  std::condition_variable idleCv_;           // stop() waits here for decoding_ to empty
   bool closed_ = false;
   TaskRunner& runner_;
   const int maxConcurrent_;

@@ -68,7 +68,8 @@ DiskTileCache::DiskTileCache(fs::path dir, uint64_t budgetBytes, Logger log)
 Result<std::unique_ptr<DiskTileCache>> DiskTileCache::open(const fs::path& dir, uint64_t budgetBytes, Logger log) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) return makeError(ErrorKind::Io, "cannot create the tile cache directory " + dir.string() + ": " + ec.message());
+  if (ec)
+    return makeError(ErrorKind::Io, "cannot create the tile cache directory " + dir.string() + ": " + ec.message());
   std::unique_ptr<DiskTileCache> cache(new DiskTileCache(dir, budgetBytes, std::move(log)));
 
   // Existing files, oldest modification first, become the least recently used.

@@ -72,8 +72,8 @@ class DiskTileCache {
   const uint64_t budgetBytes_;
   Logger log_;
   mutable std::mutex mutex_;
-  std::unordered_map<std::string, Entry> entries_;   // by relative file path (generic string)
-  std::map<uint64_t, std::string> byUse_;            // lastUse → relative file path
+  std::unordered_map<std::string, Entry> entries_;  // by relative file path (generic string)
+  std::map<uint64_t, std::string> byUse_;           // lastUse → relative file path
   uint64_t useClock_ = 0;
   DiskCacheStats stats_;
 };

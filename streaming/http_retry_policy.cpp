@@ -8,8 +8,7 @@ namespace vegstream::streaming {
 
 AttemptVerdict judgeAttempt(const AttemptEnd& end) {
   switch (end.code) {
-    case CURLE_OK:
-      break;
+    case CURLE_OK: break;
     // Set-up errors of our own: the same request fails the same way every time.
     case CURLE_UNSUPPORTED_PROTOCOL:
     case CURLE_URL_MALFORMAT:
@@ -17,12 +16,10 @@ AttemptVerdict judgeAttempt(const AttemptEnd& end) {
     case CURLE_OUT_OF_MEMORY:
     case CURLE_BAD_FUNCTION_ARGUMENT:
     case CURLE_FILESIZE_EXCEEDED:
-    case CURLE_TOO_MANY_REDIRECTS:
-      return AttemptVerdict::Fail;
+    case CURLE_TOO_MANY_REDIRECTS: return AttemptVerdict::Fail;
     // Everything else is transport trouble (resolve, connect, reset, time-out, partial body,
     // TLS hiccup, HTTP/2 stream error) that a fresh attempt may well not meet.
-    default:
-      return AttemptVerdict::Retry;
+    default: return AttemptVerdict::Retry;
   }
   const long s = end.httpStatus;
   if (s == 404 || s == 410) return AttemptVerdict::Missing;
@@ -30,8 +27,7 @@ AttemptVerdict judgeAttempt(const AttemptEnd& end) {
   if (s < 200 || s >= 300) return AttemptVerdict::Fail;
   // libcurl reports a short body as CURLE_PARTIAL_FILE when it knows the length; check anyway,
   // a truncated tile must never be handed to the decoder as if it were whole.
-  if (end.contentLength >= 0 && static_cast<uint64_t>(end.contentLength) != end.bodyBytes)
-    return AttemptVerdict::Retry;
+  if (end.contentLength >= 0 && static_cast<uint64_t>(end.contentLength) != end.bodyBytes) return AttemptVerdict::Retry;
   return AttemptVerdict::Ok;
 }
 

@@ -21,9 +21,9 @@ enum class AttemptVerdict { Ok, Missing, Retry, Fail };
 
 struct AttemptEnd {
   CURLcode code = CURLE_OK;
-  long httpStatus = 0;            // 0 when no response arrived
-  int64_t contentLength = -1;     // announced by the server, -1 when not announced
-  uint64_t bodyBytes = 0;         // what arrived
+  long httpStatus = 0;         // 0 when no response arrived
+  int64_t contentLength = -1;  // announced by the server, -1 when not announced
+  uint64_t bodyBytes = 0;      // what arrived
 };
 
 AttemptVerdict judgeAttempt(const AttemptEnd& end);

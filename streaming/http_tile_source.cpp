@@ -37,15 +37,15 @@ void initCurlOnce() {
 
 // One request from start() to its callback, across all its attempts.
 struct Transfer {
-  uint64_t seq = 0;        // start order: queued transfers launch in this order
+  uint64_t seq = 0;  // start order: queued transfers launch in this order
   RequestId id = 0;
-  bool isTile = true;      // start()ed (counted, cancellable, cached) or readText()'s
+  bool isTile = true;  // start()ed (counted, cancellable, cached) or readText()'s
   std::string url;
-  std::string cacheKey;    // the URL without its scheme
+  std::string cacheKey;  // the URL without its scheme
   FetchCallback done;
   int attempts = 0;
-  double notBeforeS = 0.0;        // back-off: not launched again before this (clock seconds)
-  CURL* easy = nullptr;           // non-null while running
+  double notBeforeS = 0.0;  // back-off: not launched again before this (clock seconds)
+  CURL* easy = nullptr;     // non-null while running
   std::vector<uint8_t> body;
   char errorBuffer[CURL_ERROR_SIZE] = {};
   std::string lastProblem;
@@ -327,7 +327,10 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
     std::lock_guard lock(mutex);
     live.erase(t->id);
     switch (outcome) {
-      case FetchOutcome::Ok: ++counters.requestsCompleted; counters.bytesRead += r.bytes.size(); break;
+      case FetchOutcome::Ok:
+        ++counters.requestsCompleted;
+        counters.bytesRead += r.bytes.size();
+        break;
       case FetchOutcome::Missing: ++counters.requestsMissing; break;
       case FetchOutcome::Failed: ++counters.requestsFailed; break;
       case FetchOutcome::Cancelled: ++counters.requestsCancelled; break;

@@ -38,20 +38,20 @@
 namespace vegstream::streaming {
 
 struct HttpSourceOptions {
-  std::string baseUrl;            // the dataset root: "https://tiles.example.org/zion" ('/' optional)
-  int maxInFlight = 8;            // transfers running at once (≥ 1)
-  long connectTimeoutMs = 5000;   // per attempt
-  long totalTimeoutMs = 20000;    // per attempt, connect included
-  int maxAttempts = 4;            // tries in all (≥ 1): 1 = no retry
-  long backoffBaseMs = 100;       // delay before the 2nd attempt; doubles each time …
-  long backoffMaxMs = 3000;       // … up to this, then jittered down to half of it at most
+  std::string baseUrl;                            // the dataset root: "https://tiles.example.org/zion" ('/' optional)
+  int maxInFlight = 8;                            // transfers running at once (≥ 1)
+  long connectTimeoutMs = 5000;                   // per attempt
+  long totalTimeoutMs = 20000;                    // per attempt, connect included
+  int maxAttempts = 4;                            // tries in all (≥ 1): 1 = no retry
+  long backoffBaseMs = 100;                       // delay before the 2nd attempt; doubles each time …
+  long backoffMaxMs = 3000;                       // … up to this, then jittered down to half of it at most
   std::optional<std::filesystem::path> cacheDir;  // on-disk tile cache (disk_tile_cache.h)
   uint64_t cacheBudgetBytes = 2ull << 30;
-  Logger log;                     // null: nothing is logged
-  TaskRunner* tasks = nullptr;    // runs the I/O loop (postLongRunning; it returns only when the
-                                  // source goes, so a ManualTaskRunner must not run it); outlives
-                                  // the source. Null: a pool of its own
-  const Clock* clock = nullptr;   // back-off timing; outlives the source. Null: a steady clock
+  Logger log;                    // null: nothing is logged
+  TaskRunner* tasks = nullptr;   // runs the I/O loop (postLongRunning; it returns only when the
+                                 // source goes, so a ManualTaskRunner must not run it); outlives
+                                 // the source. Null: a pool of its own
+  const Clock* clock = nullptr;  // back-off timing; outlives the source. Null: a steady clock
 };
 
 // Transport figures beyond SourceCounters, for tests and reports.

@@ -91,15 +91,15 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
   TaskRunner* runner = nullptr;
   int maxTasks = 2;
   mutable std::mutex mu;
-  std::condition_variable idle;            // the destructor waits here for `busy` to reach 0
-  std::deque<Job> queue;                   // waiting to be read (cancelled ones are answered first)
-  std::unordered_set<RequestId> reading;   // being read right now
+  std::condition_variable idle;           // the destructor waits here for `busy` to reach 0
+  std::deque<Job> queue;                  // waiting to be read (cancelled ones are answered first)
+  std::unordered_set<RequestId> reading;  // being read right now
   std::unordered_set<RequestId> cancelWhileReading;
-  std::size_t inFlight = 0;                // started, not yet called back
+  std::size_t inFlight = 0;  // started, not yet called back
   SourceCounters counters;
   bool stopping = false;
-  int tasks = 0;                           // read tasks posted and not finished
-  int busy = 0;                            // read tasks running right now
+  int tasks = 0;  // read tasks posted and not finished
+  int busy = 0;   // read tasks running right now
 
   // Called with `mu` held: a task more if the queue has work and the limit allows.
   void postTaskLocked() {
@@ -140,7 +140,10 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
         }
       }
       switch (r.outcome) {
-        case FetchOutcome::Ok: ++counters.requestsCompleted; counters.bytesRead += r.bytes.size(); break;
+        case FetchOutcome::Ok:
+          ++counters.requestsCompleted;
+          counters.bytesRead += r.bytes.size();
+          break;
         case FetchOutcome::Missing: ++counters.requestsMissing; break;
         case FetchOutcome::Failed: ++counters.requestsFailed; break;
         case FetchOutcome::Cancelled: ++counters.requestsCancelled; break;
@@ -152,8 +155,10 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
       lock.lock();
       --inFlight;
     }
-    if (!queue.empty() && !stopping) postLocked();
-    else --tasks;
+    if (!queue.empty() && !stopping)
+      postLocked();
+    else
+      --tasks;
     if (--busy == 0) idle.notify_all();
   }
 };

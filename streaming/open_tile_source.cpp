@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 
 bool isHttpLocation(const std::string& location) {
   std::string head = location.substr(0, 8);
-  std::transform(head.begin(), head.end(), head.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(head.begin(), head.end(), head.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return head.rfind("http://", 0) == 0 || head.rfind("https://", 0) == 0;
 }
 

@@ -21,9 +21,9 @@
 namespace vegstream::streaming {
 
 struct OpenSourceOptions {
-  HttpSourceOptions http;  // for URLs; its baseUrl is replaced by the location
-  int localIoThreads = 2;  // for directories: reads at once
-  Logger log;              // given to the HTTP source when http.log is null
+  HttpSourceOptions http;       // for URLs; its baseUrl is replaced by the location
+  int localIoThreads = 2;       // for directories: reads at once
+  Logger log;                   // given to the HTTP source when http.log is null
   TaskRunner* tasks = nullptr;  // the sources' I/O (outlives the source); null: each makes its own pool
 };
 

@@ -29,7 +29,8 @@ void TileStreamer::Impl::takeWants(std::span<const TileWant> wants, double timeS
       e->second.firstWantedS = -1.0;
       e->second.blockedByBudget = false;
     }
-    if (now == next.end() && (e->second.state == TileState::Unloaded || e->second.state == TileState::FailedTemporarily))
+    if (now == next.end() &&
+        (e->second.state == TileState::Unloaded || e->second.state == TileState::FailedTemporarily))
       table.erase(e);
   }
   wanted = std::move(next);
@@ -59,8 +60,8 @@ void TileStreamer::Impl::cancelRequest(RequestId id) {
   const bool atSource = e.state == TileState::Requested;
   e.state = TileState::Unloaded;
   e.request = 0;
-  pipeline->cancel(id);               // first: nothing about it reaches the table any more
-  if (atSource) source->cancel(id);   // then free the source's worker
+  pipeline->cancel(id);              // first: nothing about it reaches the table any more
+  if (atSource) source->cancel(id);  // then free the source's worker
   ++stats.requestsCancelled;
   if (!wanted.contains(key)) table.erase(key);
 }
@@ -116,10 +117,9 @@ void TileStreamer::Impl::schedule(double timeS, bool settling) {
     Entry& e = table[w.key];
     // Settling, time stands still: a current want that failed is asked again at once (up to
     // kSettleFailures in a row); look-ahead ones wait for the flight time to pass.
-    const bool due = e.state == TileState::Unloaded ||
-                     (e.state == TileState::FailedTemporarily &&
-                      (timeS - e.failedAtS >= options.failedRetryAfterS ||
-                       (settling && !w.lookAhead && e.failures < kSettleFailures)));
+    const bool due = e.state == TileState::Unloaded || (e.state == TileState::FailedTemporarily &&
+                                                        (timeS - e.failedAtS >= options.failedRetryAfterS ||
+                                                         (settling && !w.lookAhead && e.failures < kSettleFailures)));
     if (!due) continue;
     const uint64_t held = w.lookAhead ? allBytes : currentBytes;
     const uint64_t estimate = tileBytesEstimate(w.key);

@@ -128,8 +128,8 @@ void TileStreamer::Impl::takeCompletions(double timeS, bool inRequestOrder) {
         e.failedAtS = timeS;
         ++e.failures;
         ++stats.requestsFailed;
-        log->warn("tile {} failed after {} attempt(s): {}; asking again in {} s", toString(key), c.attempts,
-                  c.message, options.failedRetryAfterS);
+        log->warn("tile {} failed after {} attempt(s): {}; asking again in {} s", toString(key), c.attempts, c.message,
+                  options.failedRetryAfterS);
         break;
       case Completion::Kind::Cancelled:
         e.state = TileState::Unloaded;

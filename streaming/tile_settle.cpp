@@ -31,10 +31,9 @@ size_t TileStreamer::Impl::currentWantsPending() const {
   for (const auto& w : ordered) {
     if (w.lookAhead) break;
     const auto it = table.find(w.key);
-    const bool done = it != table.end() &&
-                      (isResident(it->second.state) || it->second.state == TileState::Failed ||
-                       it->second.state == TileState::FailedTemporarily ||
-                       (it->second.state == TileState::Unloaded && it->second.blockedByBudget));
+    const bool done = it != table.end() && (isResident(it->second.state) || it->second.state == TileState::Failed ||
+                                            it->second.state == TileState::FailedTemporarily ||
+                                            (it->second.state == TileState::Unloaded && it->second.blockedByBudget));
     n += done ? 0 : 1;
   }
   return n;
@@ -43,11 +42,11 @@ size_t TileStreamer::Impl::currentWantsPending() const {
 namespace {
 // The per-frame counters of StreamingFrameStats (the rest are snapshots of the moment).
 constexpr uint64_t StreamingFrameStats::*kFrameCounters[] = {
-    &StreamingFrameStats::requestsIssued,  &StreamingFrameStats::requestsCompleted,
+    &StreamingFrameStats::requestsIssued,    &StreamingFrameStats::requestsCompleted,
     &StreamingFrameStats::requestsCancelled, &StreamingFrameStats::requestsFailed,
-    &StreamingFrameStats::requestsMissing, &StreamingFrameStats::retries,
-    &StreamingFrameStats::bytesRead,       &StreamingFrameStats::uploadBytes,
-    &StreamingFrameStats::evictionsCpu,    &StreamingFrameStats::evictionsGpu};
+    &StreamingFrameStats::requestsMissing,   &StreamingFrameStats::retries,
+    &StreamingFrameStats::bytesRead,         &StreamingFrameStats::uploadBytes,
+    &StreamingFrameStats::evictionsCpu,      &StreamingFrameStats::evictionsGpu};
 }  // namespace
 
 void addFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from) {
@@ -70,9 +69,10 @@ double TileStreamer::settle(std::span<const TileWant> wants, double timeS) {
   // into a tile: timeS alone is the streamer's time.
   for (;;) {
     if (!m.awaitInFlight(start + kSettleTimeoutS)) {
-      m.log->warn("settle: {} requests still in flight after {:.0f} s ({} wanted tiles not resident); going on "
-                  "without them (this frame and later ones are no longer repeatable)",
-                  m.active.size(), kSettleTimeoutS, m.currentWantsPending());
+      m.log->warn(
+          "settle: {} requests still in flight after {:.0f} s ({} wanted tiles not resident); going on "
+          "without them (this frame and later ones are no longer repeatable)",
+          m.active.size(), kSettleTimeoutS, m.currentWantsPending());
       m.takeCompletions(timeS, true);
       break;
     }

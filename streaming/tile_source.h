@@ -45,7 +45,7 @@ struct SourceCounters {
   uint64_t requestsFailed = 0;
   uint64_t requestsCancelled = 0;
   uint64_t retries = 0;
-  uint64_t bytesRead = 0;          // payload bytes of Ok results
+  uint64_t bytesRead = 0;  // payload bytes of Ok results
   uint64_t cacheHits = 0;
 };
 

@@ -51,7 +51,7 @@ void TileStreamer::update(std::span<const TileWant> wants, double timeS) {
   ++m.frame;
   m.stats = {};
   m.takeWants(wants, timeS);
-  m.cancelUnwanted();       // before taking completions: a cancelled tile never becomes resident
+  m.cancelUnwanted();  // before taking completions: a cancelled tile never becomes resident
   m.takeCompletions(timeS);
   m.schedule(timeS);
   m.finishStats(timeS);

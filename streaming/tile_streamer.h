@@ -60,15 +60,15 @@ struct StreamingOptions {
   uint64_t gpuBudgetBytes = 256ull << 20;  // imagery tiles resident on the GPU
   uint64_t uploadBytesPerFrame = 8ull << 20;
   int maxRequestsInFlight = 24;
-  int decodeThreads = 0;                   // decodes at once; 0: the runner's concurrency − 1, at least 1
-  TaskRunner* tasks = nullptr;             // runs the decodes; outlives the streamer. Null: a pool of
-                                           // the streamer's own (decodeThreads, 0: hardware − 1)
-  const Clock* clock = nullptr;            // settle()'s time-out; outlives the streamer. Null: steady
-  uint32_t maxGpuSlots = 2048;             // the device's array-layer limit (Vulkan guarantees 256)
-  int slotReuseDelayFrames = 2;            // a GPU slot freed at frame N is reused at N + this (frames in flight)
-  double failedRetryAfterS = 2.0;          // FailedTemporarily tiles may be requested again after this
-  HeightExtraFn heightExtra;               // run on the decode threads for every height tile; may be empty
-  uint64_t heightExtraBytes = 0;           // what heightExtra adds to a tile (for the budget's estimates)
+  int decodeThreads = 0;           // decodes at once; 0: the runner's concurrency − 1, at least 1
+  TaskRunner* tasks = nullptr;     // runs the decodes; outlives the streamer. Null: a pool of
+                                   // the streamer's own (decodeThreads, 0: hardware − 1)
+  const Clock* clock = nullptr;    // settle()'s time-out; outlives the streamer. Null: steady
+  uint32_t maxGpuSlots = 2048;     // the device's array-layer limit (Vulkan guarantees 256)
+  int slotReuseDelayFrames = 2;    // a GPU slot freed at frame N is reused at N + this (frames in flight)
+  double failedRetryAfterS = 2.0;  // FailedTemporarily tiles may be requested again after this
+  HeightExtraFn heightExtra;       // run on the decode threads for every height tile; may be empty
+  uint64_t heightExtraBytes = 0;   // what heightExtra adds to a tile (for the budget's estimates)
 };
 
 // One tile a frame wants. Priority: larger first (the terrain uses screen-space error in px);
@@ -104,8 +104,8 @@ struct Upload {
 struct StreamingFrameStats {
   uint64_t requestsIssued = 0, requestsCompleted = 0, requestsCancelled = 0, requestsFailed = 0;
   uint64_t requestsMissing = 0, retries = 0;
-  uint64_t bytesRead = 0;                // payload bytes that arrived this frame
-  uint64_t uploadBytes = 0;              // planned for the GPU this frame
+  uint64_t bytesRead = 0;    // payload bytes that arrived this frame
+  uint64_t uploadBytes = 0;  // planned for the GPU this frame
   uint64_t evictionsCpu = 0, evictionsGpu = 0;
   uint64_t tilesResidentCpu = 0, tilesResidentGpu = 0;
   uint64_t bytesResidentCpu = 0, bytesResidentGpu = 0;
@@ -125,8 +125,7 @@ void setFrameCounters(StreamingFrameStats& into, const StreamingFrameStats& from
 
 class TileStreamer {
  public:
-  TileStreamer(std::shared_ptr<TileSource> source, datasets::DatasetMeta meta, StreamingOptions options,
-               Logger log);
+  TileStreamer(std::shared_ptr<TileSource> source, datasets::DatasetMeta meta, StreamingOptions options, Logger log);
   ~TileStreamer();  // cancels what is in flight, joins the workers
   TileStreamer(const TileStreamer&) = delete;
   TileStreamer& operator=(const TileStreamer&) = delete;
@@ -141,7 +140,11 @@ class TileStreamer {
   // The key or its nearest resident ancestor (up to the dataset's min zoom); tile null if none.
   ResidentLookup findResident(const TileKey& key);
   // Same, among imagery tiles that are ResidentGpu, with their slot.
-  struct GpuLookup { std::shared_ptr<const ResidentTile> tile; uint32_t slot = 0; int levelsUp = 0; };
+  struct GpuLookup {
+    std::shared_ptr<const ResidentTile> tile;
+    uint32_t slot = 0;
+    int levelsUp = 0;
+  };
   GpuLookup findGpuResident(const TileKey& key);
 
   TileState state(const TileKey& key) const;

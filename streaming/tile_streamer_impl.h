@@ -26,7 +26,6 @@
 namespace vegstream::streaming {
 namespace detail {
 
-
 // What a resident tile costs beyond its pixels (the ResidentTile, the shared_ptr blocks, the
 // table entry): small, but it keeps "bytes" honest for many tiles.
 constexpr uint64_t kTileOverheadBytes = 256;
@@ -41,14 +40,14 @@ inline bool isOnGpu(TileState s) { return s == TileState::Uploading || s == Tile
 
 struct Entry {
   TileState state = TileState::Unloaded;
-  RequestId request = 0;                      // Requested / Decoding
-  std::shared_ptr<const ResidentTile> tile;   // resident states
-  uint64_t lastUsedFrame = 0;                 // LRU recency
-  double failedAtS = 0.0;                     // FailedTemporarily: when
-  int failures = 0;                           // failed fetches in a row
-  double firstWantedS = -1.0;                 // < 0: not a current want
-  uint32_t slot = 0;                          // Uploading / ResidentGpu
-  bool blockedByBudget = false;               // current want not requested: would not fit
+  RequestId request = 0;                     // Requested / Decoding
+  std::shared_ptr<const ResidentTile> tile;  // resident states
+  uint64_t lastUsedFrame = 0;                // LRU recency
+  double failedAtS = 0.0;                    // FailedTemporarily: when
+  int failures = 0;                          // failed fetches in a row
+  double firstWantedS = -1.0;                // < 0: not a current want
+  uint32_t slot = 0;                         // Uploading / ResidentGpu
+  bool blockedByBudget = false;              // current want not requested: would not fit
 };
 
 struct Want {
@@ -86,7 +85,7 @@ struct TileStreamer::Impl {
   std::unordered_map<TileKey, Entry, TileKeyHash> table;
   std::unordered_map<RequestId, TileKey> active;  // Requested or Decoding, not cancelled
   std::unordered_map<TileKey, Want, TileKeyHash> wanted;
-  std::vector<TileWant> ordered;  // this frame's wants, current first, then priority (deduplicated)
+  std::vector<TileWant> ordered;          // this frame's wants, current first, then priority (deduplicated)
   std::vector<TileKey> residencyChanges;  // since takeResidencyChanges()
   RequestId nextRequest = 0;
   uint64_t frame = 0;
@@ -102,9 +101,8 @@ struct TileStreamer::Impl {
     clock = options.clock ? options.clock : &ownClock;
     TaskRunner* runner = options.tasks;
     if (!runner) {
-      const int threads = options.decodeThreads > 0
-                              ? options.decodeThreads
-                              : std::max(1, int(std::thread::hardware_concurrency()) - 1);
+      const int threads =
+          options.decodeThreads > 0 ? options.decodeThreads : std::max(1, int(std::thread::hardware_concurrency()) - 1);
       ownPool = std::make_unique<ThreadPool>(threads);
       runner = ownPool.get();
     }

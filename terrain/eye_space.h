@@ -16,7 +16,7 @@ enum class Cull { Outside, Partial, Inside };
 
 struct EyeView {
   glm::dvec3 cameraEnu{0.0};
-  glm::dmat3 rotation{1.0};  // ENU directions → eye
+  glm::dmat3 rotation{1.0};         // ENU directions → eye
   glm::dvec3 upEye{0.0, 1.0, 0.0};  // the local up at the camera, in eye space
   double tanHalfX = 1.0, tanHalfY = 1.0;
   double nearM = 1.0;

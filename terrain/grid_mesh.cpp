@@ -20,7 +20,9 @@ TerrainMesh buildGridMesh(const HeightGrid& grid, const geo::LocalFrame& frame, 
   std::vector<glm::dvec3> positions(mesh.vertices.size());
   std::vector<bool> valid(mesh.vertices.size());
 
-  auto index = [cols](int c, int r) { return static_cast<size_t>(r) * static_cast<size_t>(cols) + static_cast<size_t>(c); };
+  auto index = [cols](int c, int r) {
+    return static_cast<size_t>(r) * static_cast<size_t>(cols) + static_cast<size_t>(c);
+  };
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const float h = grid.at(c * step, r * step);

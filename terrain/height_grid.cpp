@@ -13,8 +13,8 @@ glm::dvec2 HeightGrid::lonLatAt(double col, double row) const {
 }
 
 glm::dvec2 HeightGrid::gridAt(double lonDeg, double latDeg) const {
-  const glm::dvec2 xy = crs == GridCrs::Geographic ? glm::dvec2{lonDeg, latDeg}
-                                                   : geo::lonLatToWebMercator({lonDeg, latDeg});
+  const glm::dvec2 xy =
+      crs == GridCrs::Geographic ? glm::dvec2{lonDeg, latDeg} : geo::lonLatToWebMercator({lonDeg, latDeg});
   return {(xy.x - lonFirst) / lonStep, (xy.y - latFirst) / latStep};
 }
 

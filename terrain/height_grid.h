@@ -20,10 +20,10 @@ struct HeightGrid {
   GridCrs crs = GridCrs::Geographic;
   int width = 0;
   int height = 0;
-  double lonFirst = 0.0;  // x of the centre of column 0 (degrees or metres, see crs)
-  double latFirst = 0.0;  // y of the centre of row 0 (row 0 is the north edge)
-  double lonStep = 0.0;   // x per column (> 0)
-  double latStep = 0.0;   // y per row (< 0 for north-up rasters)
+  double lonFirst = 0.0;       // x of the centre of column 0 (degrees or metres, see crs)
+  double latFirst = 0.0;       // y of the centre of row 0 (row 0 is the north edge)
+  double lonStep = 0.0;        // x per column (> 0)
+  double latStep = 0.0;        // y per row (< 0 for north-up rasters)
   std::vector<float> heights;  // row-major, metres MSL, NaN = nodata
 
   float at(int col, int row) const {

@@ -79,7 +79,8 @@ double ResidentHeights::bilinearAcross(const datasets::HeightTile& tile, int z, 
     const geo::TileId other{zt, int(px / tile.size), int(py / tile.size)};
     const streaming::ResidentTile* r = find(other);
     if (r && r->heights->id == other) return r->heights->at(int(px % tile.size), int(py % tile.size));
-    return tile.at(int(std::clamp(lx, 0ll, (long long)tile.size - 1)), int(std::clamp(ly, 0ll, (long long)tile.size - 1)));
+    return tile.at(int(std::clamp(lx, 0ll, (long long)tile.size - 1)),
+                   int(std::clamp(ly, 0ll, (long long)tile.size - 1)));
   };
   // A neighbour with zero weight is not read (a sample on a pixel centre next to nodata is valid).
   auto row = [&](long long y) {
@@ -101,7 +102,8 @@ HeightSample ResidentHeights::sampleTileXY(glm::dvec2 xy, int z) {
   // Central differences one source pixel apart (one-sided where a neighbour is nodata).
   const double d = std::ldexp(1.0, z - tile.id.z) / tile.size;  // one source pixel in zoom-z tile units
   const double latDeg = geo::tileXYToLonLat(xy, z).y;
-  const double pixelM = kEarthCircumferenceM / (geo::tilesPerSide(tile.id.z) * tile.size) * std::cos(latDeg * M_PI / 180.0);
+  const double pixelM =
+      kEarthCircumferenceM / (geo::tilesPerSide(tile.id.z) * tile.size) * std::cos(latDeg * M_PI / 180.0);
   auto diff = [&](glm::dvec2 step) {
     const double a = bilinearAcross(tile, z, xy + step);
     const double b = bilinearAcross(tile, z, xy - step);

@@ -35,8 +35,8 @@ struct ErrorGeometry {
     const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
     const double dc = glm::length(c);
     const double cosC = dc > 0.0 ? std::abs(glm::dot(view.upEye, c)) / dc : 1.0;
-    return {thickness, radius + thickness, dc, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)), view.nearM,
-            view.pixelsPerRadian};
+    return {thickness,  radius + thickness,  dc, std::sqrt(std::max(0.0, 1.0 - cosC * cosC)),
+            view.nearM, view.pixelsPerRadian};
   }
   // The distance from the camera to the sphere (at least the near distance).
   double sphereDistance() const { return std::max(dc - r, near); }

@@ -48,14 +48,18 @@ RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame
       const uint32_t nw = cornerAt(i, j), ne = cornerAt(i + 1, j), se = cornerAt(i + 1, j + 1), sw = cornerAt(i, j + 1);
       t0.path = {roots.minX + i, roots.minY + j, 0, 0, 0};
       t1.path = {roots.minX + i, roots.minY + j, 1, 0, 0};
-      t0.v[0] = sw; t0.v[1] = se; t0.v[2] = nw;
-      t1.v[0] = ne; t1.v[1] = nw; t1.v[2] = se;
+      t0.v[0] = sw;
+      t0.v[1] = se;
+      t0.v[2] = nw;
+      t1.v[0] = ne;
+      t1.v[1] = nw;
+      t1.v[2] = se;
       t0.base = p + 1;
       t1.base = p;
       t0.left = j + 1 < ny ? pairAt(i, j + 1) + 1 : kNoNode;  // south edge: the southern tile's tree 1
-      t0.right = i > 0 ? pairAt(i - 1, j) + 1 : kNoNode;     // west edge: the western tile's tree 1
-      t1.left = j > 0 ? pairAt(i, j - 1) : kNoNode;          // north edge: the northern tile's tree 0
-      t1.right = i + 1 < nx ? pairAt(i + 1, j) : kNoNode;    // east edge: the eastern tile's tree 0
+      t0.right = i > 0 ? pairAt(i - 1, j) + 1 : kNoNode;      // west edge: the western tile's tree 1
+      t1.left = j > 0 ? pairAt(i, j - 1) : kNoNode;           // north edge: the northern tile's tree 0
+      t1.right = i + 1 < nx ? pairAt(i + 1, j) : kNoNode;     // east edge: the eastern tile's tree 0
       roots_.push_back(p);
       roots_.push_back(p + 1);
     }
@@ -138,7 +142,8 @@ uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
 void RoamMesh::updateRadius(uint32_t t) {
   RoamNode& n = nodes_[t];
   const glm::dvec3 c = 0.5 * (vertices_[n.v[1]].at + vertices_[n.v[2]].at);
-  n.radius = static_cast<float>(std::max(glm::length(vertices_[n.v[0]].at - c), glm::length(vertices_[n.v[1]].at - c)) * 1.0001 + 0.01);
+  n.radius = static_cast<float>(
+      std::max(glm::length(vertices_[n.v[0]].at - c), glm::length(vertices_[n.v[1]].at - c)) * 1.0001 + 0.01);
 }
 
 float RoamMesh::thicknessOf(uint32_t t) {
@@ -171,10 +176,14 @@ void RoamMesh::markDrawnChanged(uint32_t t) {
 void RoamMesh::replaceLink(uint32_t at, uint32_t from, uint32_t to) {
   if (at == kNoNode) return;
   RoamNode& n = nodes_[at];
-  if (n.base == from) n.base = to;
-  else if (n.left == from) n.left = to;
-  else if (n.right == from) n.right = to;
-  else assert(false && "neighbour links are not symmetric");
+  if (n.base == from)
+    n.base = to;
+  else if (n.left == from)
+    n.left = to;
+  else if (n.right == from)
+    n.right = to;
+  else
+    assert(false && "neighbour links are not symmetric");
 }
 
 void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created) {
@@ -184,8 +193,12 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created
   RoamNode& c1 = nodes_[c + 1];
   c0.path = childPath(n.path, 0);
   c1.path = childPath(n.path, 1);
-  c0.v[0] = mid; c0.v[1] = n.v[0]; c0.v[2] = n.v[1];
-  c1.v[0] = mid; c1.v[1] = n.v[2]; c1.v[2] = n.v[0];
+  c0.v[0] = mid;
+  c0.v[1] = n.v[0];
+  c0.v[2] = n.v[1];
+  c1.v[0] = mid;
+  c1.v[1] = n.v[2];
+  c1.v[2] = n.v[0];
   c0.parent = c1.parent = t;
   c0.base = n.left;
   c1.base = n.right;
@@ -437,8 +450,10 @@ uint64_t RoamMesh::conformityViolations() const {
   // The forest's outer boundary, in grid units.
   uint32_t minX = UINT32_MAX, minY = UINT32_MAX, maxX = 0, maxY = 0;
   for (uint32_t v : cornerVertices_) {
-    minX = std::min(minX, vertices_[v].grid.x); maxX = std::max(maxX, vertices_[v].grid.x);
-    minY = std::min(minY, vertices_[v].grid.y); maxY = std::max(maxY, vertices_[v].grid.y);
+    minX = std::min(minX, vertices_[v].grid.x);
+    maxX = std::max(maxX, vertices_[v].grid.x);
+    minY = std::min(minY, vertices_[v].grid.y);
+    maxY = std::max(maxY, vertices_[v].grid.y);
   }
   auto onBoundary = [&](GridPoint a, GridPoint b) {
     return (a.x == b.x && (a.x == minX || a.x == maxX)) || (a.y == b.y && (a.y == minY || a.y == maxY));
@@ -455,7 +470,10 @@ uint64_t RoamMesh::conformityViolations() const {
         continue;
       }
       const RoamNode& m = nodes_[o];
-      if (!m.isLeaf()) { ++bad; continue; }  // a T-junction: the neighbour is split along our edge
+      if (!m.isLeaf()) {
+        ++bad;
+        continue;
+      }  // a T-junction: the neighbour is split along our edge
       const std::array<std::array<uint32_t, 2>, 3> oe{{{m.v[1], m.v[2]}, {m.v[0], m.v[1]}, {m.v[0], m.v[2]}}};
       const std::array<uint32_t, 3> ol{m.base, m.left, m.right};
       bool found = false;

@@ -40,13 +40,13 @@ inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 
 struct RoamVertex {
   GridPoint grid;
-  glm::dvec3 base{0.0};     // ENU of the point on the ellipsoid (height 0)
-  glm::dvec3 up{0.0, 0.0, 1.0};  // the ellipsoid normal there, in the ENU frame
-  double heightM = std::numeric_limits<double>::quiet_NaN();  // sampled (target) height; NaN: nodata
+  glm::dvec3 base{0.0};                                           // ENU of the point on the ellipsoid (height 0)
+  glm::dvec3 up{0.0, 0.0, 1.0};                                   // the ellipsoid normal there, in the ENU frame
+  double heightM = std::numeric_limits<double>::quiet_NaN();      // sampled (target) height; NaN: nodata
   double fromHeightM = std::numeric_limits<double>::quiet_NaN();  // what it morphs from
-  double toHeightM = std::numeric_limits<double>::quiet_NaN();    // what it morphs to: heightM, or its base while merging
+  double toHeightM = std::numeric_limits<double>::quiet_NaN();  // what it morphs to: heightM, or its base while merging
   double morphStartS = -1e30;
-  bool merging = false;     // sinking to the midpoint of its diamond's base before the merge
+  bool merging = false;  // sinking to the midpoint of its diamond's base before the merge
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   int sourceZoom = -1;
   glm::dvec3 at{0.0};  // position(geometryHeight(fill)): what culling and priorities use
@@ -61,13 +61,13 @@ struct RoamVertex {
 
 struct RoamNode {
   TriPath path;
-  uint32_t v[3] = {0, 0, 0};  // apex, left, right (RoamVertex indices)
-  uint32_t parent = kNoNode, child = kNoNode;  // child: the first of the pair
+  uint32_t v[3] = {0, 0, 0};                                 // apex, left, right (RoamVertex indices)
+  uint32_t parent = kNoNode, child = kNoNode;                // child: the first of the pair
   uint32_t base = kNoNode, left = kNoNode, right = kNoNode;  // neighbours across base, apex–left, apex–right
-  uint32_t mid = kNoNode;       // the split vertex, while split
-  float thickness = 0.0f;       // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
-  float priority = 0.0f;        // the last priority the update gave it
-  float radius = 0.0f;          // bounding sphere about the base midpoint (m, at geometry heights)
+  uint32_t mid = kNoNode;                                    // the split vertex, while split
+  float thickness = 0.0f;  // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
+  float priority = 0.0f;   // the last priority the update gave it
+  float radius = 0.0f;     // bounding sphere about the base midpoint (m, at geometry heights)
   // Deferred priority recomputation (the tessellator's, roam_tessellator.h): `priority` stays on
   // the same side of the split / merge bounds until the camera has travelled `deadline` metres
   // on the tessellator's odometer; subtreeDeadline is the least over the subtree. −∞: evaluate
@@ -190,7 +190,7 @@ class RoamMesh {
   std::vector<uint32_t> cornerVertices_;  // the root tiles' corners (never removed)
   uint64_t leaves_ = 0;
   std::vector<uint32_t> releasedChunks_;
-  std::vector<RoamNode> spareNodes_;      // compact()'s scratch, kept so that it does not fault pages in again
+  std::vector<RoamNode> spareNodes_;  // compact()'s scratch, kept so that it does not fault pages in again
   std::vector<RoamVertex> spareVertices_;
   uint64_t drawnChanges_ = 0;
   uint64_t pairsAllocated_ = 0;

@@ -90,8 +90,10 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
       }
       if (data) {
         const int seedPiece = ps == InPiece::In ? piece : -1;
-        if (level == seedLevel_) emitSeed(w, n.path, world, eye, false, seedPiece);
-        else refineSeeds(w, n.path, world, eye, e, seedPiece);
+        if (level == seedLevel_)
+          emitSeed(w, n.path, world, eye, false, seedPiece);
+        else
+          refineSeeds(w, n.path, world, eye, e, seedPiece);
       }
       seeds = false;
     }
@@ -104,8 +106,9 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     if (ps == InPiece::Above) ++figures_.constrainedLeaves;
     const bool textured = ps == InPiece::In;
     TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
-    if (emitLeaf(w, t, {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
-                        static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, nullptr, nullptr}))
+    if (emitLeaf(w, t,
+                 {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
+                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, nullptr, nullptr}))
       ++figures_.drawnTriangles;
     return;
   }
@@ -149,8 +152,8 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     chunk->sources.clear();
     chunk->thickness.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk->vertices, &chunk->indices, m.origin, &chunk->piece, 0x80000000u | slot,
-                        &chunk->sources, &chunk->morphing, &chunk->thickness};
+    const LeafSink sink{&chunk->vertices,   &chunk->indices, m.origin,         &chunk->piece,
+                        0x80000000u | slot, &chunk->sources, &chunk->morphing, &chunk->thickness};
     const int k = mesh_.options().chunkLevels;
     collectChunk(w, slot, t, (mesh_.node(t).path.level / k + 1) * k, sink);
     ++figures_.chunksBuilt;
@@ -212,8 +215,10 @@ void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int botto
     return;
   }
   for (uint32_t c : {n.child, n.child + 1}) {
-    if (mesh_.node(c).path.level == bottomLevel) chunks_[slot].below.push_back(c);
-    else collectChunk(w, slot, c, bottomLevel, sink);
+    if (mesh_.node(c).path.level == bottomLevel)
+      chunks_[slot].below.push_back(c);
+    else
+      collectChunk(w, slot, c, bottomLevel, sink);
   }
 }
 
@@ -288,9 +293,9 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   SeedTriangle s;
   s.path = path;
   const std::array<glm::dvec3, 3> e{eye[0], eye[1], eye[2]};
-  s.plantCount = static_cast<float>(seeds_.rule == PlantCountRule::ScreenArea
-                                        ? plantCountScreen(*w.view, e, seeds_, &s.nearPlane)
-                                        : plantCountWorld(*w.view, e, seeds_));
+  s.plantCount =
+      static_cast<float>(seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(*w.view, e, seeds_, &s.nearPlane)
+                                                                   : plantCountWorld(*w.view, e, seeds_));
   for (int i = 0; i < 3; ++i) {
     s.world[size_t(i)] = world[i];
     s.fromCamera[size_t(i)] = glm::vec3(world[i] - w.view->cameraEnu);

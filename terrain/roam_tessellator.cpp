@@ -60,8 +60,8 @@ void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
 }
 
 void RoamTessellator::beginUpdate(const EyeView& view) {
-  const Projection projection{view.nearM,    view.pixelsPerRadian,  view.tanHalfX,
-                              view.tanHalfY, options_.maxErrorPx, options_.mergeFraction * options_.maxErrorPx};
+  const Projection projection{view.nearM,    view.pixelsPerRadian, view.tanHalfX,
+                              view.tanHalfY, options_.maxErrorPx,  options_.mergeFraction * options_.maxErrorPx};
   evaluateAll_ = !options_.deferPriorities || !(projection == lastProjection_) || !(lastCamera_ == lastCamera_) ||
                  mesh_.leafCount() > options_.maxTriangles;  // over budget: every diamond is a candidate
   lastProjection_ = projection;
@@ -88,7 +88,8 @@ double RoamTessellator::sphereDistance(const EyeView& view, uint32_t t, const gl
   return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).sphereDistance();
 }
 
-double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
+double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye,
+                                         double thickness) const {
   return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).errorPx();
 }
 
@@ -111,7 +112,8 @@ void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::d
   figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, double(n.priority));
   double safe = g.safeDistance(options_.maxErrorPx, true);
   // The seed-level constraint starts where the sphere comes within the horizon.
-  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_) safe = std::min(safe, std::max(0.0, g.dc - g.r - seeds_.horizonM));
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_)
+    safe = std::min(safe, std::max(0.0, g.dc - g.r - seeds_.horizonM));
   n.deadline = odometerM_ + safe;
 }
 
@@ -128,7 +130,7 @@ void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec
     n.deadline = n.priority == 0.0f ? kNever : odometerM_ + g.safeDistance(w.mergeBelow, true);
     return;
   }
-  mesh_.cancelMergeMorph(t);  // it sank towards a merge that is no longer wanted
+  mesh_.cancelMergeMorph(t);   // it sank towards a merge that is no longer wanted
   if (ps == InPiece::Above) {  // forced by the pieces: their changes are seen without a deadline
     n.deadline = kNever;
     return;
@@ -140,8 +142,8 @@ void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec
   n.deadline = odometerM_ + g.safeDistance(w.mergeBelow, false);
 }
 
-RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square,
-                                                     InPiece parent, int level) const {
+RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent,
+                                                     int level) const {
   if (level > 0 && (parent != InPiece::Above || level % 2 == 1)) return parent;
   if (pieces.exactly(square) >= 0) return InPiece::In;
   return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
@@ -212,8 +214,12 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   glm::dvec3 e0[3], e1[3];
   if (cull != Cull::Outside) {
     const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
-    e0[0] = m; e0[1] = eye[0]; e0[2] = eye[1];
-    e1[0] = m; e1[1] = eye[2]; e1[2] = eye[0];
+    e0[0] = m;
+    e0[1] = eye[0];
+    e0[2] = eye[1];
+    e1[0] = m;
+    e1[1] = eye[2];
+    e1[2] = eye[0];
   }
   visitPriorities(w, c, e0, cull, ps);
   visitPriorities(w, c + 1, e1, cull, ps);
@@ -352,7 +358,8 @@ void RoamTessellator::mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops
   const double threshold = options_.mergeFraction * options_.maxErrorPx;
   const bool overBudget = mesh_.leafCount() > options_.maxTriangles;
   auto pairOf = [&](uint32_t t) { return std::min(t, mesh_.node(t).base); };
-  std::sort(diamonds.begin(), diamonds.end(), [&](const Candidate& a, const Candidate& b) { return pairOf(a.node) < pairOf(b.node); });
+  std::sort(diamonds.begin(), diamonds.end(),
+            [&](const Candidate& a, const Candidate& b) { return pairOf(a.node) < pairOf(b.node); });
   std::vector<Candidate> queue;
   for (size_t i = 0; i < diamonds.size(); ++i) {
     const Candidate& d = diamonds[i];

@@ -92,25 +92,25 @@ class PieceSet {
 };
 
 struct RoamFigures {
-  uint64_t leaves = 0;            // triangles in the mesh
-  uint64_t drawnTriangles = 0;    // leaves drawn (visible, with data)
+  uint64_t leaves = 0;          // triangles in the mesh
+  uint64_t drawnTriangles = 0;  // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
-  uint64_t leavesCreated = 0;     // by the splits, forced ones included
-  uint64_t nodesVisited = 0;      // the update's traversal (deferral skips subtrees none of whose priorities is due)
+  uint64_t leavesCreated = 0;  // by the splits, forced ones included
+  uint64_t nodesVisited = 0;   // the update's traversal (deferral skips subtrees none of whose priorities is due)
   uint64_t prioritiesComputed = 0;
-  uint64_t mergesStarted = 0;     // diamonds whose split vertex began sinking to its base (merged after fadeS)
-  uint64_t constrainedLeaves = 0; // drawn leaves still coarser than a piece (drawn untextured)
-  uint64_t morphingVertices = 0;  // drawn vertices still on their way to a new height
-  bool compacted = false;         // the pools were put back in depth-first order (RoamMesh::compact)
-  bool budgetLimited = false;     // the triangle budget stopped refinement
-  bool workLimited = false;       // the per-frame work budget stopped the queues
+  uint64_t mergesStarted = 0;      // diamonds whose split vertex began sinking to its base (merged after fadeS)
+  uint64_t constrainedLeaves = 0;  // drawn leaves still coarser than a piece (drawn untextured)
+  uint64_t morphingVertices = 0;   // drawn vertices still on their way to a new height
+  bool compacted = false;          // the pools were put back in depth-first order (RoamMesh::compact)
+  bool budgetLimited = false;      // the triangle budget stopped refinement
+  bool workLimited = false;        // the per-frame work budget stopped the queues
   // The largest on-screen error of a visible leaf whose priority the update computed (the
   // others were below the bound and cannot have crossed it: so it exceeds the bound exactly
   // when the mesh does), after the splits.
   double achievedErrorPx = 0.0;
-  uint64_t depthLimitedLeaves = 0; // visible leaves over the bound at the deepest level (cannot split)
+  uint64_t depthLimitedLeaves = 0;             // visible leaves over the bound at the deepest level (cannot split)
   uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks appended as cached, and rebuilt
-  uint64_t leavesEmitted = 0;     // output: leaves turned into vertices this frame (the rest came from chunks)
+  uint64_t leavesEmitted = 0;  // output: leaves turned into vertices this frame (the rest came from chunks)
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
   double seedPlants = 0.0;        // Σ plant counts
@@ -169,11 +169,11 @@ class RoamTessellator {
     std::vector<TerrainVertex>* vertices;
     std::vector<uint32_t>* indices;
     glm::dvec3 origin;
-    const geo::TileId* tile;  // the piece (uv), or null: untextured
-    uint32_t stamp;           // which vertices are already in it (stamps_)
-    std::vector<uint32_t>* sources;  // null, or the RoamVertex of every vertex added (a chunk)
-    std::vector<uint32_t>* morphing; // null, or the vertices added that are still morphing (a chunk)
-    std::vector<float>* thickness;   // null, or every emitted leaf's wedgie thickness (a chunk)
+    const geo::TileId* tile;          // the piece (uv), or null: untextured
+    uint32_t stamp;                   // which vertices are already in it (stamps_)
+    std::vector<uint32_t>* sources;   // null, or the RoamVertex of every vertex added (a chunk)
+    std::vector<uint32_t>* morphing;  // null, or the vertices added that are still morphing (a chunk)
+    std::vector<float>* thickness;    // null, or every emitted leaf's wedgie thickness (a chunk)
   };
   bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
   // partial: the chunk root straddles the edge of the view; its triangles are culled one by one.

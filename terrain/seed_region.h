@@ -41,8 +41,8 @@ enum class RegionSelect {
 struct RegionSeedTriangle {
   TriPath path;
   TriCorners corners{};
-  uint64_t key = 0;                     // seedKey(path)
-  std::array<glm::dvec3, 3> world{};    // apex, left, right in the local ENU frame (m)
+  uint64_t key = 0;                   // seedKey(path)
+  std::array<glm::dvec3, 3> world{};  // apex, left, right in the local ENU frame (m)
   float plantCount = 0.0f;
 };
 
@@ -52,9 +52,9 @@ struct SeedRegion {
 };
 
 struct SeedRegionQuery {
-  geo::GeoBounds box;           // lon/lat (WGS 84), not across the antimeridian
-  int seedLevel = 0;            // seedLevelFor(grid, …), as the tessellator uses
-  float plantCount = 256.0f;    // N of every triangle (full density: SeedOptions::maxPlants)
+  geo::GeoBounds box;         // lon/lat (WGS 84), not across the antimeridian
+  int seedLevel = 0;          // seedLevelFor(grid, …), as the tessellator uses
+  float plantCount = 256.0f;  // N of every triangle (full density: SeedOptions::maxPlants)
   RegionSelect select = RegionSelect::Centroid;
 };
 

@@ -16,9 +16,7 @@ constexpr double kEarthCircumferenceM = 40075016.685578488;
 }
 
 double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  auto project = [&](const glm::dvec3& p) {
-    return glm::dvec2(p.x / -p.z, p.y / -p.z) * view.pixelsPerRadian;
-  };
+  auto project = [&](const glm::dvec3& p) { return glm::dvec2(p.x / -p.z, p.y / -p.z) * view.pixelsPerRadian; };
   const glm::dvec2 pa = project(a), pb = project(b), pc = project(c);
   return 0.5 * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
 }
@@ -62,8 +60,9 @@ int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2) {
 }
 
 uint64_t seedKey(const TriPath& path) {
-  const uint32_t root = mix32(static_cast<uint32_t>(path.rootX) ^ mix32(static_cast<uint32_t>(path.rootY) ^
-                                                                       mix32(path.tree | (uint32_t{path.level} << 8))));
+  const uint32_t root =
+      mix32(static_cast<uint32_t>(path.rootX) ^
+            mix32(static_cast<uint32_t>(path.rootY) ^ mix32(path.tree | (uint32_t{path.level} << 8))));
   const uint32_t lo = mix32(root ^ static_cast<uint32_t>(path.bits));
   const uint32_t hi = mix32(lo ^ static_cast<uint32_t>(path.bits >> 32) ^ 0x9E3779B9u);
   return (uint64_t{hi} << 32) | lo;

@@ -27,24 +27,24 @@ namespace vegstream::terrain {
 enum class PlantCountRule { ScreenArea, WorldArea };  // eq. 1, eq. 2
 
 struct SeedOptions {
-  double targetAreaM2 = 24.0;    // world area of a seed triangle (the seed level is the nearest)
-  double horizonM = 250.0;       // no seeds where the nearest vertex is farther (§3.1)
-  double density = 0.04;         // ρ: plants per pixel² of projected area
-  double maxPlants = 256.0;      // n_max per seed triangle
+  double targetAreaM2 = 24.0;  // world area of a seed triangle (the seed level is the nearest)
+  double horizonM = 250.0;     // no seeds where the nearest vertex is farther (§3.1)
+  double density = 0.04;       // ρ: plants per pixel² of projected area
+  double maxPlants = 256.0;    // n_max per seed triangle
   PlantCountRule rule = PlantCountRule::ScreenArea;
-  bool refineToSeedLevel = true; // ROAM reaches the seed level inside the horizon, so seed
-                                 // triangles have sampled (not interpolated) vertices
+  bool refineToSeedLevel = true;  // ROAM reaches the seed level inside the horizon, so seed
+                                  // triangles have sampled (not interpolated) vertices
 };
 
 struct SeedTriangle {
-  TriPath path;                          // the identity of the ground it covers
-  std::array<glm::dvec3, 3> world{};     // apex, left, right in the local ENU frame (m)
-  std::array<glm::vec3, 3> fromCamera{}; // world − camera, for the GPU
-  float plantCount = 0.0f;               // eq. 1 or 2, before rounding
-  bool nearPlane = false;                // a vertex behind the near plane: n_max
-  bool interpolated = false;             // refined below a coarser leaf without the heightmap
-  TriCorners corners{};                  // on the bintree grid
-  int32_t piece = -1;                    // index into the PieceSet it lies in (−1: none)
+  TriPath path;                           // the identity of the ground it covers
+  std::array<glm::dvec3, 3> world{};      // apex, left, right in the local ENU frame (m)
+  std::array<glm::vec3, 3> fromCamera{};  // world − camera, for the GPU
+  float plantCount = 0.0f;                // eq. 1 or 2, before rounding
+  bool nearPlane = false;                 // a vertex behind the near plane: n_max
+  bool interpolated = false;              // refined below a coarser leaf without the heightmap
+  TriCorners corners{};                   // on the bintree grid
+  int32_t piece = -1;                     // index into the PieceSet it lies in (−1: none)
   // Filled by StreamedTerrain: the imagery layer drawn under it and each vertex's uv there.
   int32_t imageryLayer = -1;
   std::array<glm::vec2, 3> imageryUv{};

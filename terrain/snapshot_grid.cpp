@@ -17,5 +17,4 @@ HeightGrid heightGridFrom(const streaming::HeightMosaic& mosaic) {
   return g;
 }
 
-
 }  // namespace vegstream::terrain

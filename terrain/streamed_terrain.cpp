@@ -21,8 +21,8 @@ geo::TileId ancestorAt(const geo::TileId& t, int z) {
   return {z, t.x >> k, t.y >> k};
 }
 
-constexpr double kRelaxStep = 1.5;      // per frame while the wants do not fit
-constexpr double kRecoverStep = 1.05;   // per frame while they fit with room to spare
+constexpr double kRelaxStep = 1.5;     // per frame while the wants do not fit
+constexpr double kRecoverStep = 1.05;  // per frame while they fit with room to spare
 constexpr double kMaxRelaxation = 1024.0;
 constexpr uint64_t kAheadEveryFrames = 4;
 
@@ -70,14 +70,16 @@ void StreamedTerrain::relax() {
   const bool hasImagery = streamer_->meta().imagery.has_value();
   const uint64_t imageryWanted = hasImagery ? s.wanted / 2 : 0;
   const bool tooMuch = s.wantsExceedCpuBudget || imageryWanted > streamer_->gpuSlotCount();
-  const bool roomy = s.wantedBytes * 2 < streamer_->options().cpuBudgetBytes &&
-                     imageryWanted * 2 < streamer_->gpuSlotCount();
-  if (tooMuch) relaxation_ = std::min(kMaxRelaxation, relaxation_ * kRelaxStep);
-  else if (roomy) relaxation_ = std::max(1.0, relaxation_ / kRecoverStep);
+  const bool roomy =
+      s.wantedBytes * 2 < streamer_->options().cpuBudgetBytes && imageryWanted * 2 < streamer_->gpuSlotCount();
+  if (tooMuch)
+    relaxation_ = std::min(kMaxRelaxation, relaxation_ * kRelaxStep);
+  else if (roomy)
+    relaxation_ = std::max(1.0, relaxation_ / kRecoverStep);
 }
 
 std::vector<streaming::TileWant> StreamedTerrain::wants(const SelectionView& now, const EyeView& eye,
-                                                       std::span<const SelectionView> ahead) {
+                                                        std::span<const SelectionView> ahead) {
   ++frameNumber_;
   eye_ = eye;
   if (frameNumber_ > 1) relax();
@@ -254,7 +256,8 @@ void StreamedTerrain::seedImagery(std::span<const geo::TileId> tiles, std::span<
     const GridPoint corners[3] = {s.corners.apex, s.corners.left, s.corners.right};
     for (int k = 0; k < 3; ++k) {
       const glm::dvec2 uv = grid.tileXY(corners[k], tile.z) - glm::dvec2(tile.x, tile.y);
-      s.imageryUv[size_t(k)] = glm::vec2(uv) * glm::vec2(p.imageryUv.x, p.imageryUv.y) + glm::vec2(p.imageryUv.z, p.imageryUv.w);
+      s.imageryUv[size_t(k)] =
+          glm::vec2(uv) * glm::vec2(p.imageryUv.x, p.imageryUv.y) + glm::vec2(p.imageryUv.z, p.imageryUv.w);
     }
     s.imageryLayer = p.imageryLayer;
   }

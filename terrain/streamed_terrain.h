@@ -38,11 +38,11 @@
 namespace vegstream::terrain {
 
 struct StreamedTerrainOptions {
-  double maxErrorPx = 2.0;           // screen-space error bound (the selection's relaxes under budget pressure)
-  int maxNodes = 384;                // most pieces drawn
-  double fadeS = 0.5;                // morph / imagery fade-in time, seconds of flight
-  double lookAheadPriority = 0.25;   // look-ahead wants' priority, relative to the current frame's
-  RoamOptions roam;                  // maxErrorPx is taken from above
+  double maxErrorPx = 2.0;          // screen-space error bound (the selection's relaxes under budget pressure)
+  int maxNodes = 384;               // most pieces drawn
+  double fadeS = 0.5;               // morph / imagery fade-in time, seconds of flight
+  double lookAheadPriority = 0.25;  // look-ahead wants' priority, relative to the current frame's
+  RoamOptions roam;                 // maxErrorPx is taken from above
   SeedOptions seeds;
 };
 
@@ -52,10 +52,10 @@ streaming::StreamingOptions streamingOptionsFor(const datasets::DatasetMeta& met
 // One drawable piece: plain data the caller turns into a render::TerrainDraw.
 struct TerrainPiece {
   const TerrainMesh* mesh = nullptr;
-  geo::TileId node;                  // the selected tile it covers (untextured pieces: none)
-  int heightLevelsUp = 0;            // heights come from this many levels above the node (at its centre)
-  int imageryLevelsUp = -1;          // −1: no imagery on the GPU for it yet
-  int imageryFallback = 0;           // levels coarser than the best tile for it (0: the best)
+  geo::TileId node;          // the selected tile it covers (untextured pieces: none)
+  int heightLevelsUp = 0;    // heights come from this many levels above the node (at its centre)
+  int imageryLevelsUp = -1;  // −1: no imagery on the GPU for it yet
+  int imageryFallback = 0;   // levels coarser than the best tile for it (0: the best)
   int32_t imageryLayer = -1;
   glm::vec4 imageryUv{1.0f, 1.0f, 0.0f, 0.0f};
   int32_t previousLayer = -1;
@@ -65,13 +65,13 @@ struct TerrainPiece {
 
 struct TerrainFrameFigures {
   uint64_t pieces = 0, triangles = 0;
-  uint64_t fallbackPieces = 0;       // pieces drawn from an ancestor (heights or imagery)
-  int maxLevelsCoarser = 0;          // the coarsest fallback, in levels
-  uint64_t meshesBuilt = 0;          // piece meshes built this frame (ROAM output: all of them)
-  double errorBoundPx = 0.0;         // the selection's bound this frame (maxErrorPx × relaxation)
-  double relaxation = 1.0;           // 1: the wanted tiles fit the budgets
-  double achievedErrorPx = 0.0;      // the largest on-screen error of a drawn ROAM leaf
-  bool budgetLimited = false;        // the node or triangle budget cut refinement
+  uint64_t fallbackPieces = 0;   // pieces drawn from an ancestor (heights or imagery)
+  int maxLevelsCoarser = 0;      // the coarsest fallback, in levels
+  uint64_t meshesBuilt = 0;      // piece meshes built this frame (ROAM output: all of them)
+  double errorBoundPx = 0.0;     // the selection's bound this frame (maxErrorPx × relaxation)
+  double relaxation = 1.0;       // 1: the wanted tiles fit the budgets
+  double achievedErrorPx = 0.0;  // the largest on-screen error of a drawn ROAM leaf
+  bool budgetLimited = false;    // the node or triangle budget cut refinement
   uint64_t lookAheadWants = 0;
   RoamFigures roam;
   int seedLevel = 0;
@@ -105,7 +105,7 @@ class StreamedTerrain {
 
  private:
   struct NodeState {
-    int imageryZ = -1;                    // the imagery drawn last frame
+    int imageryZ = -1;  // the imagery drawn last frame
     uint64_t lastFrame = 0;
     double imagerySwitchS = -1e9;
     int32_t previousLayer = -1;

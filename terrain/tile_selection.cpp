@@ -132,7 +132,8 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
   const std::array<glm::dvec4, 5> planes = frustumPlanes(view.viewProjection);
   // The tiles of each zoom that overlap the dataset (the same rule for roots and children).
   std::vector<std::vector<geo::TileRange>> coverage;
-  for (int z = dataset.minZoom; z <= dataset.maxZoom; ++z) coverage.push_back(geo::tileRangesCovering(dataset.bounds, z));
+  for (int z = dataset.minZoom; z <= dataset.maxZoom; ++z)
+    coverage.push_back(geo::tileRangesCovering(dataset.bounds, z));
 
   // nullopt when culled.
   auto evaluate = [&](const geo::TileId& id) -> std::optional<Candidate> {

@@ -52,8 +52,8 @@ static_assert(kNodeQuads << kLevelsBeyondData == geo::kDefaultTileSize);
 inline constexpr double kErrorPerQuad = 0.5;
 
 struct SelectionView {
-  glm::dvec3 cameraEnu{0.0};        // camera position in the dataset's local ENU frame, metres
-  glm::dmat4 viewProjection{1.0};   // ENU → clip; only used for the frustum planes (see above)
+  glm::dvec3 cameraEnu{0.0};       // camera position in the dataset's local ENU frame, metres
+  glm::dmat4 viewProjection{1.0};  // ENU → clip; only used for the frustum planes (see above)
   double viewportHeightPx = 1080.0;
   double verticalFovRad = 1.0;
 };

@@ -57,8 +57,10 @@ Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, cons
     const float ho = h(opposite);
     out.complete = cornersOk && !std::isnan(ho);
     out.any = !std::isnan(ha) || !std::isnan(hl) || !std::isnan(hr);
-    if (out.complete) out.e = std::abs(0.25f * (ha + hl + hr + ho) - 0.5f * (hl + hr));
-    else out.e = out.any ? partialE : kNoData;
+    if (out.complete)
+      out.e = std::abs(0.25f * (ha + hl + hr + ho) - 0.5f * (hl + hr));
+    else
+      out.e = out.any ? partialE : kNoData;
   } else {
     const Acc c0 = nested(child(t, 0), level + 1, h, pixelM, store);
     const Acc c1 = nested(child(t, 1), level + 1, h, pixelM, store);
@@ -66,8 +68,10 @@ Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, cons
     const float below = std::max({c0.e, c1.e, 0.0f});
     out.any = c0.any || c1.any;
     out.complete = c0.complete && c1.complete && cornersOk && !std::isnan(hm);
-    if (out.complete) out.e = std::abs(hm - 0.5f * (hl + hr)) + below;
-    else out.e = out.any ? std::max(below, partialE) : kNoData;
+    if (out.complete)
+      out.e = std::abs(hm - 0.5f * (hl + hr)) + below;
+    else
+      out.e = out.any ? std::max(below, partialE) : kNoData;
   }
   store(t, level, out.e);
   return out;
@@ -84,7 +88,8 @@ WedgieTable::WedgieTable(const datasets::HeightTile& tile, int rootZoom) : tile_
   auto h = [&](GridPoint p) { return corners[size_t(p.y) * kCorners + size_t(p.x)]; };
   auto store = [&](const TriCorners& t, int level, float e) {
     if (level > kStoredLevels) return;
-    const glm::dvec2 c{(double(t.apex.x) + t.left.x + t.right.x) / 3.0, (double(t.apex.y) + t.left.y + t.right.y) / 3.0};
+    const glm::dvec2 c{(double(t.apex.x) + t.left.x + t.right.x) / 3.0,
+                       (double(t.apex.y) + t.left.y + t.right.y) / 3.0};
     errors_[thicknessIndex(level, c)] = e;
   };
   const double pixelM = pixelGroundM(tile.id);

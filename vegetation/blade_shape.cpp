@@ -115,7 +115,8 @@ Status checkArguments(double stiffness, int segments, double tilt) {
   if (!std::isfinite(stiffness) || stiffness <= 0.0)
     return invalid("blade shape: stiffness k′ " + std::to_string(stiffness) + " must be a finite number > 0");
   if (segments < 1 || segments > kMaxBladeSegments)
-    return invalid("blade shape: segments " + std::to_string(segments) + " must be 1 … " + std::to_string(kMaxBladeSegments));
+    return invalid("blade shape: segments " + std::to_string(segments) + " must be 1 … " +
+                   std::to_string(kMaxBladeSegments));
   if (!std::isfinite(tilt) || tilt < 0.0 || tilt >= 0.5 * std::numbers::pi)
     return invalid("blade shape: root tilt " + std::to_string(tilt) + " rad must be in [0, π/2)");
   return {};
@@ -193,7 +194,8 @@ Result<BladeShape> solveBladeShape(double stiffness, const BladeShapeOptions& o)
   }
   int iterations = 0;
   double residual = newton(phi, k, tilt, iterations);
-  if (!(residual <= kAcceptable)) return makeError(ErrorKind::Internal, "blade shape: no convergence at the stiff start k′ = " + std::to_string(k));
+  if (!(residual <= kAcceptable))
+    return makeError(ErrorKind::Internal, "blade shape: no convergence at the stiff start k′ = " + std::to_string(k));
 
   // Continuation to the target: geometric steps in k′ (the shape depends on k′ / k_c), a tangent
   // predictor dφ/dk′ = J⁻¹ (φ − φ₀ e₁) (from ∂F/∂k′ = −(φ − φ₀ e₁)), Newton as corrector; a step

@@ -66,17 +66,17 @@ inline constexpr double kDefaultShapeTableKMax = 50.0;
 inline constexpr int kDefaultShapeTableRows = 64;
 
 struct BladeShape {
-  double stiffness = 0.0;            // k′
-  std::vector<double> phi;           // N hinge angles, rad, root first; phi[0] includes the root tilt
-  std::vector<glm::dvec2> points;    // N + 1 points (lateral, height), root first at (0, 0), unit segments
-  std::vector<double> inclination;   // N segment angles from vertical θ′_n = Σ_{i≤n} phi, rad
-  double residual = 0.0;             // max |F_n| at the solution
-  int iterations = 0;                // Newton iterations over the whole continuation
+  double stiffness = 0.0;           // k′
+  std::vector<double> phi;          // N hinge angles, rad, root first; phi[0] includes the root tilt
+  std::vector<glm::dvec2> points;   // N + 1 points (lateral, height), root first at (0, 0), unit segments
+  std::vector<double> inclination;  // N segment angles from vertical θ′_n = Σ_{i≤n} phi, rad
+  double residual = 0.0;            // max |F_n| at the solution
+  int iterations = 0;               // Newton iterations over the whole continuation
 };
 
 struct BladeShapeOptions {
-  int segments = 4;                         // N, 1 … kMaxBladeSegments
-  double rootTiltRad = kDefaultRootTiltRad; // φ₀, in [0, π/2)
+  int segments = 4;                          // N, 1 … kMaxBladeSegments
+  double rootTiltRad = kDefaultRootTiltRad;  // φ₀, in [0, π/2)
 };
 
 // The drooping branch at k′ = stiffness (see above). Errors (InvalidInput): stiffness not finite or

@@ -34,9 +34,9 @@ namespace vegstream::vegetation {
 
 // One colour score's parameters (eq. 16).
 struct ColourScoreParams {
-  glm::vec3 reference{0.0f};     // HSV: x hue [0, 1), y saturation, z value
-  glm::vec3 weights{1.0f};       // per channel (h, s, v), ≥ 0
-  float p = 2.0f;                // exponent, > 0
+  glm::vec3 reference{0.0f};  // HSV: x hue [0, 1), y saturation, z value
+  glm::vec3 weights{1.0f};    // per channel (h, s, v), ≥ 0
+  float p = 2.0f;             // exponent, > 0
 };
 
 // Distances below this are treated as this (score (1e-4)^−p instead of infinity).

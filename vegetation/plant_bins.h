@@ -23,18 +23,18 @@ namespace vegstream::vegetation {
 inline constexpr uint32_t kDefaultBins = 32;
 
 struct PlantBin {
-  float centre = 0.0f;     // c_i
-  uint32_t capacity = 0;   // ⌈c_i⌉: clusters per triangle this bin's dispatch covers
-  uint32_t first = 0;      // into BinnedTriangles::order
-  uint32_t count = 0;      // triangles in the bin
+  float centre = 0.0f;    // c_i
+  uint32_t capacity = 0;  // ⌈c_i⌉: clusters per triangle this bin's dispatch covers
+  uint32_t first = 0;     // into BinnedTriangles::order
+  uint32_t count = 0;     // triangles in the bin
 };
 
 struct BinnedTriangles {
-  std::vector<PlantBin> bins;        // n_b of them, increasing centres (empty: no triangle)
-  std::vector<uint32_t> order;       // triangle indices grouped by bin, each bin in input order
+  std::vector<PlantBin> bins;   // n_b of them, increasing centres (empty: no triangle)
+  std::vector<uint32_t> order;  // triangle indices grouped by bin, each bin in input order
   uint32_t minCount = 0, maxCount = 0;
-  uint64_t clusters = 0;             // Σ counts
-  uint64_t slots = 0;                // Σ capacity × count: threads the dispatches cover
+  uint64_t clusters = 0;  // Σ counts
+  uint64_t slots = 0;     // Σ capacity × count: threads the dispatches cover
 };
 
 // Bins the triangles with counts[i] clusters (0: left out). binCount ≥ 1.

@@ -39,13 +39,13 @@ inline constexpr uint32_t kMaxClustersPerTriangle = 1u << 24;  // the counter's 
 
 // Philox counter slots of a cluster (ctr0 = cluster << 8 | slot); s is the seed in the cluster.
 namespace philox_slot {
-inline constexpr uint32_t kCentre = 0;               // (u, v) of the cluster centre in its stratum
-inline constexpr uint32_t kSpecies = 1;              // x: the cluster's species z
-inline constexpr uint32_t kPosition = 2;             // + s: (u, v) of seed s in the stratum
-inline constexpr uint32_t kHeightStiffness = 64;     // + s
-inline constexpr uint32_t kOrientationWidth = 96;    // + s
-inline constexpr uint32_t kColourSpecies = 128;      // + s: x colour modulation, y z of a cluster-0 seed
-inline constexpr uint32_t kLevelOffset = 255;        // with cluster field = level: the level's stratum offset
+inline constexpr uint32_t kCentre = 0;             // (u, v) of the cluster centre in its stratum
+inline constexpr uint32_t kSpecies = 1;            // x: the cluster's species z
+inline constexpr uint32_t kPosition = 2;           // + s: (u, v) of seed s in the stratum
+inline constexpr uint32_t kHeightStiffness = 64;   // + s
+inline constexpr uint32_t kOrientationWidth = 96;  // + s
+inline constexpr uint32_t kColourSpecies = 128;    // + s: x colour modulation, y z of a cluster-0 seed
+inline constexpr uint32_t kLevelOffset = 255;      // with cluster field = level: the level's stratum offset
 }  // namespace philox_slot
 static_assert(philox_slot::kPosition + kMaxClusterSize <= philox_slot::kHeightStiffness);
 
@@ -55,9 +55,9 @@ struct SeedingOptions {
 
 // One seed triangle as the seeding sees it (terrain/seed_triangles.h makes them).
 struct SeedTriangleInput {
-  uint64_t key = 0;                        // identity of the ground (a hash of its bintree path)
-  std::array<glm::dvec3, 3> vertices{};    // apex, left, right (local ENU, m)
-  float plantCount = 0.0f;                 // N
+  uint64_t key = 0;                      // identity of the ground (a hash of its bintree path)
+  std::array<glm::dvec3, 3> vertices{};  // apex, left, right (local ENU, m)
+  float plantCount = 0.0f;               // N
 };
 
 // The fade of the element `index` of a sequence shown up to `count`: 1 inside, the fraction at
@@ -87,13 +87,13 @@ using BaseColourAt = std::function<glm::vec3(glm::vec2 rPrime)>;
 // One classified group of plants, as the GPU appends it to its species' buffer: a whole cluster
 // (c ≥ 1) or one seed of cluster 0.
 struct PlantCluster {
-  uint32_t triangle = 0;   // index of the triangle in the caller's list
+  uint32_t triangle = 0;  // index of the triangle in the caller's list
   uint32_t cluster = 0;
   uint32_t firstSeed = 0;
   uint32_t seedCount = 0;  // plants shown (the last possibly faded)
   uint32_t species = 0;
-  float sPrime = 0.0f;     // eq. 18
-  float fade = 1.0f;       // of the cluster (c ≥ 1) or the seed (c = 0)
+  float sPrime = 0.0f;  // eq. 18
+  float fade = 1.0f;    // of the cluster (c ≥ 1) or the seed (c = 0)
 };
 
 // The surviving groups of one triangle in sequence order (bare soil and no-score rejected).
@@ -102,14 +102,14 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
 
 // A plant with its parameters (what the species pipelines draw).
 struct Plant {
-  glm::dvec3 position{0.0};   // root, local ENU
-  glm::vec2 rPrime{0.0f};     // on the triangle
+  glm::dvec3 position{0.0};  // root, local ENU
+  glm::vec2 rPrime{0.0f};    // on the triangle
   uint32_t triangle = 0, cluster = 0, seed = 0;
   uint32_t species = 0;
   float sPrime = 0.0f;
-  float fade = 1.0f;          // size factor at the end of the sequence (1 at full density)
-  float heightM = 0.0f;       // full-size height: the species range, scaled by 0.6 + 0.4 s′
-  float stiffness = 0.0f;     // k′
+  float fade = 1.0f;       // size factor at the end of the sequence (1 at full density)
+  float heightM = 0.0f;    // full-size height: the species range, scaled by 0.6 + 0.4 s′
+  float stiffness = 0.0f;  // k′
   float widthM = 0.0f;
   float orientationRad = 0.0f;  // about the vertical, [0, 2π)
   float colourModulation = 0.0f;

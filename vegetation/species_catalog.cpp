@@ -54,9 +54,7 @@ class Parser {
     return true;
   }
 
-  bool object(const json& v, const std::string& path) {
-    return v.is_object() || fail(path, "must be an object");
-  }
+  bool object(const json& v, const std::string& path) { return v.is_object() || fail(path, "must be an object"); }
 
   // A number in [lo, hi] (closed; open bounds are checked by the caller's message).
   bool number(const json& obj, std::string_view key, const std::string& path, float& out, bool required = true) {
@@ -69,8 +67,8 @@ class Parser {
     return true;
   }
 
-  bool range(const json& obj, std::string_view key, const std::string& path, FloatRange& out, double lo,
-             bool loOpen, double hi, const char* what) {
+  bool range(const json& obj, std::string_view key, const std::string& path, FloatRange& out, double lo, bool loOpen,
+             double hi, const char* what) {
     const std::string p = join(path, key);
     const auto it = obj.find(key);
     if (it == obj.end()) return fail(p, "is missing");
@@ -78,8 +76,7 @@ class Parser {
     if (!number(*it, "min", p, out.min) || !number(*it, "max", p, out.max)) return false;
     for (const auto& [name, v] : {std::pair{"min", out.min}, std::pair{"max", out.max}}) {
       const bool low = loOpen ? !(v > lo) : !(v >= lo);
-      if (low || v > hi)
-        return fail(p + "." + name, std::string("must be ") + what + " (got " + fmt(v) + ")");
+      if (low || v > hi) return fail(p + "." + name, std::string("must be ") + what + " (got " + fmt(v) + ")");
     }
     if (out.min > out.max) return fail(p + ".max", "must be ≥ min (got " + fmt(out.max) + " < " + fmt(out.min) + ")");
     return true;
@@ -151,7 +148,8 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
-  if (!name->is_string() || name->get<std::string>().empty()) return ps.fail(path + ".name", "must be a non-empty string");
+  if (!name->is_string() || name->get<std::string>().empty())
+    return ps.fail(path + ".name", "must be a non-empty string");
   out.name = name->get<std::string>();
   if (const auto about = obj.find("about"); about != obj.end() && !about->is_string())
     return ps.fail(path + ".about", "must be a string");
@@ -169,9 +167,11 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.number(*w, "h", wp, wt.x) || !ps.number(*w, "s", wp, wt.y) || !ps.number(*w, "v", wp, wt.z)) return false;
   for (const auto& [k, v] : {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z}})
     if (v < 0.0f) return ps.fail(wp + "." + k, "must be ≥ 0 (got " + fmt(v) + ")");
-  if (wt.x == 0.0f && wt.y == 0.0f && wt.z == 0.0f) return ps.fail(wp, "must not all be 0 (the score would ignore the colour)");
+  if (wt.x == 0.0f && wt.y == 0.0f && wt.z == 0.0f)
+    return ps.fail(wp, "must not all be 0 (the score would ignore the colour)");
   if (!ps.number(obj, "p", path, out.score.p)) return false;
-  if (!(out.score.p > 0.0f) || out.score.p > 64.0f) return ps.fail(path + ".p", "must be > 0 and ≤ 64 (got " + fmt(out.score.p) + ")");
+  if (!(out.score.p > 0.0f) || out.score.p > 64.0f)
+    return ps.fail(path + ".p", "must be > 0 and ≤ 64 (got " + fmt(out.score.p) + ")");
   if (!ps.number(obj, "threshold", path, out.threshold, false)) return false;
   if (out.threshold < 0.0f) return ps.fail(path + ".threshold", "must be ≥ 0 (got " + fmt(out.threshold) + ")");
   if (!ps.number(obj, "phototropism", path, out.phototropism, false)) return false;
@@ -209,7 +209,8 @@ std::string jsonProblem(const json::exception& e) {
 Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceName) {
   Parser ps(sourceName);
   SpeciesCatalog out;
-  if (!doc.is_object()) return makeError(ErrorKind::InvalidInput, sourceName + ": must be a JSON object with \"species\": [...]");
+  if (!doc.is_object())
+    return makeError(ErrorKind::InvalidInput, sourceName + ": must be a JSON object with \"species\": [...]");
   if (!ps.onlyKeys(doc, "", {"about", "species"})) return ps.error();
   if (const auto about = doc.find("about"); about != doc.end() && !about->is_string() && !about->is_object())
     return ps.failed("about", "must be a string or an object of strings (field → what it means)");
@@ -217,7 +218,7 @@ Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceNam
   if (list == doc.end()) return ps.failed("species", "is missing");
   if (!list->is_array() || list->empty() || list->size() > kMaxSpecies)
     return ps.failed("species", "must be an array of 1 … " + std::to_string(kMaxSpecies) + " species (got " +
-                                   (list->is_array() ? std::to_string(list->size()) : list->type_name()) + ")");
+                                    (list->is_array() ? std::to_string(list->size()) : list->type_name()) + ")");
   std::set<std::string> names;
   bool anyPlant = false;
   for (size_t i = 0; i < list->size(); ++i) {

@@ -29,7 +29,7 @@ struct SpeciesChoice {
 
 // The two best species at one base colour, before z decides (for `query` and the tests).
 struct SpeciesCandidates {
-  int first = -1, second = -1;  // catalog indices (bare included); −1: none in
+  int first = -1, second = -1;              // catalog indices (bare included); −1: none in
   float logFirst = 0.0f, logSecond = 0.0f;  // their log scores l0 ≥ l1
   float secondRatio = 0.0f;                 // s1 / (s0 + s1), 0 when fewer than two are in
 };

@@ -50,7 +50,7 @@ uint32_t clusterLevel(uint32_t i);
 uint32_t strataStride(uint32_t n);
 
 struct Stratum {
-  uint32_t level = 1;   // the partition is level × level
+  uint32_t level = 1;     // the partition is level × level
   uint32_t x = 0, y = 0;  // the stratum's column and row, each in [0, level)
 };
 
@@ -70,8 +70,7 @@ inline glm::vec2 pointInStratum(const Stratum& s, glm::vec2 f) {
 }
 
 // Eq. 25, in double (the CPU reference; the GPU does it in float relative to the camera).
-inline glm::dvec3 pointOnTriangle(const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2,
-                                  glm::vec2 rPrime) {
+inline glm::dvec3 pointOnTriangle(const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2, glm::vec2 rPrime) {
   return v0 + static_cast<double>(rPrime.x) * (v1 - v0) + static_cast<double>(rPrime.y) * (v2 - v0);
 }
 

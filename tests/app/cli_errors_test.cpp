@@ -37,8 +37,8 @@ struct Mistake {
 
 // The line states a problem, not just a name: one of the phrasings the parser and the commands use.
 bool saysTheProblem(const std::string& err) {
-  for (const char* phrase : {"not in range", "not in {", "is not a number", "is not a valid", "not expected", "is required",
-                             "required", "missing", "must be", "expected", "unknown subcommand"})
+  for (const char* phrase : {"not in range", "not in {", "is not a number", "is not a valid", "not expected",
+                             "is required", "required", "missing", "must be", "expected", "unknown subcommand"})
     if (err.find(phrase) != std::string::npos) return true;
   return false;
 }
@@ -91,10 +91,9 @@ TEST(CliErrors, Generate) {
 
 TEST(CliErrors, Info) {
   const fs::path dir = ownDir(), d = dir / "no-dataset";
-  expectOneLineUserErrors({{"info", "dataset"},
-                           {"info " + q(d) + " --bogus", "--bogus"},
-                           {"info " + q(d) + " extra", "extra"}},
-                          "vegstream info");
+  expectOneLineUserErrors(
+      {{"info", "dataset"}, {"info " + q(d) + " --bogus", "--bogus"}, {"info " + q(d) + " extra", "extra"}},
+      "vegstream info");
 }
 
 TEST(CliErrors, Query) {
@@ -159,20 +158,17 @@ TEST(CliErrors, Record) {
 
 TEST(CliErrors, Report) {
   const fs::path dir = ownDir(), rec = dir / "no-recording";
-  expectOneLineUserErrors({{"report", "dir"},
-                           {"report " + q(rec) + " --bogus", "--bogus"},
-                           {"report " + q(rec) + " extra", "extra"}},
-                          "vegstream report");
+  expectOneLineUserErrors(
+      {{"report", "dir"}, {"report " + q(rec) + " --bogus", "--bogus"}, {"report " + q(rec) + " extra", "extra"}},
+      "vegstream report");
 }
 
 TEST(CliErrors, Compare) {
   const fs::path dir = ownDir(), a = dir / "a", b = dir / "b";
   const std::string ab = "compare " + q(a) + " " + q(b);
-  expectOneLineUserErrors({{"compare " + q(a), "dir_b"},
-                           {ab + " --bogus", "--bogus"},
-                           {ab + " --out", "--out"},
-                           {ab + " extra", "extra"}},
-                          "vegstream compare");
+  expectOneLineUserErrors(
+      {{"compare " + q(a), "dir_b"}, {ab + " --bogus", "--bogus"}, {ab + " --out", "--out"}, {ab + " extra", "extra"}},
+      "vegstream compare");
 }
 
 TEST(CliErrors, Path) {
@@ -231,8 +227,9 @@ bool mentionsVulkan(const std::string& err) {
 // devices or opening one is the system's failure, not the user's — exit 1, one line.
 TEST(CliErrors, NoVulkanDeviceIsExitOneWithOneLine) {
   const fs::path dir = ownDir();
-  const std::string noDriver = "env -u VK_ADD_DRIVER_FILES VK_ICD_FILENAMES=/nonexistent.json "
-                               "VK_DRIVER_FILES=/nonexistent.json ";
+  const std::string noDriver =
+      "env -u VK_ADD_DRIVER_FILES VK_ICD_FILENAMES=/nonexistent.json "
+      "VK_DRIVER_FILES=/nonexistent.json ";
   const auto devices = runCommand(noDriver + "'" + VEGSTREAM_EXE + "' devices");
   EXPECT_EQ(devices.exitCode, 1) << devices.err;
   EXPECT_EQ(countLines(devices.err), 1) << devices.err;

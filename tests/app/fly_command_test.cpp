@@ -26,7 +26,8 @@ Result<fs::path> zionDataset() {
     const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
     const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
                                 "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
-    if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
+    if (r.exitCode != 0)
+      return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
     return {};
   });
 }
@@ -90,7 +91,8 @@ TEST_F(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
 TEST_F(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
   const fs::path dir = testOutputDir();
   const fs::path out = dir / "out";
-  const std::string args = "fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + out.string() + "'";
+  const std::string args =
+      "fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + out.string() + "'";
   ASSERT_EQ(runVegstream(args).exitCode, 0);
   const auto again = runVegstream(args);  // the demo run twice: the second replaces the first
   ASSERT_EQ(again.exitCode, 0) << again.err;
@@ -101,8 +103,8 @@ TEST_F(FlyCommand, AnEarlierRecordingIsReplacedAnythingElseIsRefused) {
   const fs::path other = dir / "other";
   fs::create_directories(other);
   std::ofstream(other / "notes.txt") << "mine";
-  const auto refused = runVegstream("fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" +
-                                    other.string() + "'");
+  const auto refused =
+      runVegstream("fly '" + zion_ + "' --headless --frames 2 --size 96x54 --msaa 1 --out '" + other.string() + "'");
   EXPECT_EQ(refused.exitCode, 2) << refused.err;
   EXPECT_EQ(countLines(refused.err), 1) << refused.err;
   EXPECT_NE(refused.err.find("--out"), std::string::npos) << refused.err;
@@ -136,17 +138,16 @@ TEST_P(FlyBadInput, OneMessageExitTwoNothingWritten) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, FlyBadInput,
-    ::testing::Values(
-        BadInput{"missing_dataset", "/no/such/dataset", "/no/such/dataset"},
-        BadInput{"not_a_dataset", "'" + std::string(VEGSTREAM_DATASETS_DIR) + "/zion'", "dataset.json"},
-        BadInput{"missing_path", "'{ZION}' --path /no/such/path.json", "/no/such/path.json"},
-        BadInput{"unknown_device", "'{ZION}' --device no-such-gpu", "no-such-gpu"},
-        BadInput{"size_zero", "'{ZION}' --size 0x90", "--size"},
-        BadInput{"size_garbage", "'{ZION}' --size big", "--size"},
-        BadInput{"size_too_large", "'{ZION}' --size 99999x90", "--size"},
-        BadInput{"msaa_three", "'{ZION}' --msaa 3", "--msaa"},
-        // lavapipe offers 1 and 4 samples only
-        BadInput{"msaa_unoffered", "'{ZION}' --device llvmpipe --msaa 8", "--msaa 8"}),
+    ::testing::Values(BadInput{"missing_dataset", "/no/such/dataset", "/no/such/dataset"},
+                      BadInput{"not_a_dataset", "'" + std::string(VEGSTREAM_DATASETS_DIR) + "/zion'", "dataset.json"},
+                      BadInput{"missing_path", "'{ZION}' --path /no/such/path.json", "/no/such/path.json"},
+                      BadInput{"unknown_device", "'{ZION}' --device no-such-gpu", "no-such-gpu"},
+                      BadInput{"size_zero", "'{ZION}' --size 0x90", "--size"},
+                      BadInput{"size_garbage", "'{ZION}' --size big", "--size"},
+                      BadInput{"size_too_large", "'{ZION}' --size 99999x90", "--size"},
+                      BadInput{"msaa_three", "'{ZION}' --msaa 3", "--msaa"},
+                      // lavapipe offers 1 and 4 samples only
+                      BadInput{"msaa_unoffered", "'{ZION}' --device llvmpipe --msaa 8", "--msaa 8"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST_F(FlyCommand, WindowModeUnderAVirtualDisplay) {
@@ -174,7 +175,8 @@ TEST_F(FlyCommand, APathOutsideTheDatasetIsRefusedWithOneLine) {
     {"t": 0, "lat": 46.5, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10},
     {"t": 10, "lat": 46.6, "lon": 7.9, "alt_m": 300, "heading": 0, "pitch": -10}]})";
   const fs::path out = dir / "out";
-  const auto r = runVegstream("fly '" + zion_ + "' --headless --path '" + path.string() + "' --out '" + out.string() + "'");
+  const auto r =
+      runVegstream("fly '" + zion_ + "' --headless --path '" + path.string() + "' --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(countLines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("keyframes[0]"), std::string::npos) << r.err;

@@ -40,9 +40,8 @@ class InteractiveWindow : public ::testing::Test {
     const fs::path out = dir_ / name;
     fs::create_directories(out);
     const std::string env = std::string("VEGSTREAM_FLY_SCREENSHOT_FRAME=3 ") + (hud ? "" : "VEGSTREAM_FLY_NO_HUD=1 ");
-    const auto r = runCommand("cd '" + out.string() + "' && " + display_->environment() + env + "'" +
-                              VEGSTREAM_EXE + "' fly '" + dataset_.string() +
-                              "' --validate --frames 3 --size 320x180 --msaa 1");
+    const auto r = runCommand("cd '" + out.string() + "' && " + display_->environment() + env + "'" + VEGSTREAM_EXE +
+                              "' fly '" + dataset_.string() + "' --validate --frames 3 --size 320x180 --msaa 1");
     *err = r.err;
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("window closed after 3 frames"), std::string::npos) << r.err;

@@ -25,7 +25,8 @@ TEST(PathCommand, TemplatesLoadAndLieInsideTheDataset) {
   const geo::GeoBounds bounds = datasetBounds(ds);
   for (const char* name : {"benchmark-30s", "canyon-run", "orbit"}) {
     const fs::path out = freshRecordDir(std::string("path_") + name + ".json");
-    const auto r = runVegstream("path --dataset '" + ds.string() + "' --template " + name + " --out '" + out.string() + "'");
+    const auto r =
+        runVegstream("path --dataset '" + ds.string() + "' --template " + name + " --out '" + out.string() + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto path = flight::loadFlightPath(out);
     ASSERT_TRUE(path) << path.error().message;
@@ -39,7 +40,9 @@ TEST(PathCommand, TemplatesLoadAndLieInsideTheDataset) {
 
 TEST(PathCommand, UserMistakesExitTwoWithOneLineAndNoFile) {
   const fs::path out = freshRecordDir("path_bad.json");
-  for (const std::string& args : std::vector<std::string>{"--dataset /no/such/dataset --template benchmark-30s", "--dataset '" + recordDataset().string() + "' --template nope"}) {
+  for (const std::string& args :
+       std::vector<std::string>{"--dataset /no/such/dataset --template benchmark-30s",
+                                "--dataset '" + recordDataset().string() + "' --template nope"}) {
     const auto r = runVegstream("path " + args + " --out '" + out.string() + "'");
     EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
     EXPECT_EQ(countLines(r.err), 1) << r.err;

@@ -49,7 +49,8 @@ std::vector<Row> parseCsv(const std::string& text) {
     for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
     EXPECT_EQ(f.size(), 7u) << line;
     if (f.size() != 7) break;
-    rows.push_back({std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
+    rows.push_back(
+        {std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
   }
   return rows;
 }
@@ -247,7 +248,8 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
   EXPECT_NE(r.err.find("grows"), std::string::npos) << r.err;
   // Nothing left beside the output either (no temporary files).
   size_t leftovers = 0;
-  for (const auto& e : fs::directory_iterator(tmp)) leftovers += e.path().filename().string().find("out.csv") != std::string::npos;
+  for (const auto& e : fs::directory_iterator(tmp))
+    leftovers += e.path().filename().string().find("out.csv") != std::string::npos;
   EXPECT_EQ(leftovers, 0u);
   fs::remove_all(tmp);
 }

@@ -19,31 +19,77 @@ using nlohmann::json;
 
 // frames.csv's documented columns (README.md "Recordings"), in order; gpu_<pass>_ms columns sit
 // between gpu_frame_ms and wall_ms.
-const std::vector<std::string> kLeading = {
-    "frame", "t_s", "lat", "lon", "alt_msl_m", "height_above_ground_m", "heading_deg", "pitch_deg",
-    "cpu_flight_ms", "cpu_streaming_ms", "cpu_terrain_ms", "cpu_seeding_ms", "cpu_simulation_ms",
-    "cpu_record_submit_ms", "cpu_frame_ms", "gpu_frame_ms"};
-const std::vector<std::string> kTrailing = {
-    "wall_ms", "recorder_ms", "png_ms", "terrain_triangles", "stat_input_primitives", "stat_clipping_primitives",
-    "stat_fragment_invocations", "cpu_bytes", "gpu_bytes"};
+const std::vector<std::string> kLeading = {"frame",
+                                           "t_s",
+                                           "lat",
+                                           "lon",
+                                           "alt_msl_m",
+                                           "height_above_ground_m",
+                                           "heading_deg",
+                                           "pitch_deg",
+                                           "cpu_flight_ms",
+                                           "cpu_streaming_ms",
+                                           "cpu_terrain_ms",
+                                           "cpu_seeding_ms",
+                                           "cpu_simulation_ms",
+                                           "cpu_record_submit_ms",
+                                           "cpu_frame_ms",
+                                           "gpu_frame_ms"};
+const std::vector<std::string> kTrailing = {"wall_ms",
+                                            "recorder_ms",
+                                            "png_ms",
+                                            "terrain_triangles",
+                                            "stat_input_primitives",
+                                            "stat_clipping_primitives",
+                                            "stat_fragment_invocations",
+                                            "cpu_bytes",
+                                            "gpu_bytes"};
 // Issue 5's streaming columns, after kTrailing.
-const std::vector<std::string> kStreaming = {
-    "streaming_wait_ms", "stream_longest_wait_ms", "stream_requests_issued", "stream_requests_completed",
-    "stream_requests_cancelled", "stream_requests_failed", "stream_requests_missing", "stream_retries",
-    "stream_bytes_read", "stream_uploads", "stream_upload_bytes", "stream_evictions_cpu", "stream_evictions_gpu",
-    "stream_tiles_resident_cpu", "stream_tiles_resident_gpu", "stream_bytes_resident_cpu",
-    "stream_bytes_resident_gpu", "stream_requests_in_flight", "stream_wanted", "stream_wanted_resident",
-    "stream_lookahead_wants", "terrain_pieces", "terrain_fallback_pieces", "terrain_max_levels_coarser",
-    "terrain_meshes_built", "terrain_error_bound_px", "terrain_error_relaxation"};
+const std::vector<std::string> kStreaming = {"streaming_wait_ms",
+                                             "stream_longest_wait_ms",
+                                             "stream_requests_issued",
+                                             "stream_requests_completed",
+                                             "stream_requests_cancelled",
+                                             "stream_requests_failed",
+                                             "stream_requests_missing",
+                                             "stream_retries",
+                                             "stream_bytes_read",
+                                             "stream_uploads",
+                                             "stream_upload_bytes",
+                                             "stream_evictions_cpu",
+                                             "stream_evictions_gpu",
+                                             "stream_tiles_resident_cpu",
+                                             "stream_tiles_resident_gpu",
+                                             "stream_bytes_resident_cpu",
+                                             "stream_bytes_resident_gpu",
+                                             "stream_requests_in_flight",
+                                             "stream_wanted",
+                                             "stream_wanted_resident",
+                                             "stream_lookahead_wants",
+                                             "terrain_pieces",
+                                             "terrain_fallback_pieces",
+                                             "terrain_max_levels_coarser",
+                                             "terrain_meshes_built",
+                                             "terrain_error_bound_px",
+                                             "terrain_error_relaxation"};
 // Issue 6's ROAM and seed-triangle columns, after kStreaming.
-const std::vector<std::string> kRoam = {
-    "terrain_roam_update_ms", "terrain_roam_output_ms", "terrain_leaves", "terrain_splits", "terrain_merges",
-    "terrain_constrained_leaves", "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
-    "terrain_seed_interpolated", "terrain_depth_limited_leaves", "terrain_seed_plants", "terrain_achieved_error_px"};
+const std::vector<std::string> kRoam = {"terrain_roam_update_ms",
+                                        "terrain_roam_output_ms",
+                                        "terrain_leaves",
+                                        "terrain_splits",
+                                        "terrain_merges",
+                                        "terrain_constrained_leaves",
+                                        "terrain_triangle_budget_hit",
+                                        "terrain_work_budget_hit",
+                                        "terrain_seed_triangles",
+                                        "terrain_seed_interpolated",
+                                        "terrain_depth_limited_leaves",
+                                        "terrain_seed_plants",
+                                        "terrain_achieved_error_px"};
 // Issue 7's classify-pass columns, after kRoam.
-const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", "plant_clusters",
-                                          "plant_cluster_slots", "plant_groups", "plants", "plant_overflow",
-                                          "plant_patches", "plant_triangles"};
+const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins",    "plant_clusters",
+                                          "plant_cluster_slots",  "plant_groups",  "plants",
+                                          "plant_overflow",       "plant_patches", "plant_triangles"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -102,10 +148,11 @@ fs::path baseRecording() {
 
 TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   const fs::path dir = baseRecording();
-  for (const char* f : {"frames.csv", "recording.json", "summary.json", "frame_time.png", "geometric_load.png",
-                        "streaming_memory.png"})
+  for (const char* f :
+       {"frames.csv", "recording.json", "summary.json", "frame_time.png", "geometric_load.png", "streaming_memory.png"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
-  for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"}) EXPECT_TRUE(isPng(dir / f)) << f;
+  for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"})
+    EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
   const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size();
@@ -115,7 +162,8 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(0)));
   EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(kPlants.size())));
   EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(kPlants.size() + kRoam.size())));
-  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(), back(kPlants.size() + kStreaming.size() + kRoam.size())));
+  EXPECT_TRUE(
+      std::equal(kTrailing.rbegin(), kTrailing.rend(), back(kPlants.size() + kStreaming.size() + kRoam.size())));
   for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
     EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
@@ -128,11 +176,28 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   // Stages that do not exist yet are empty, never 0; those that exist are filled.
   for (const char* empty : {"cpu_simulation_ms"})
     for (const auto& v : csv.column(empty)) EXPECT_EQ(v, "") << empty;
-  for (const char* filled : {"cpu_flight_ms", "cpu_terrain_ms", "cpu_record_submit_ms", "gpu_frame_ms", "wall_ms",
-                             "recorder_ms", "terrain_triangles", "cpu_bytes", "gpu_bytes", "cpu_streaming_ms",
-                             "streaming_wait_ms", "stream_bytes_resident_cpu", "terrain_pieces", "terrain_leaves",
-                             "terrain_roam_update_ms", "terrain_seed_triangles", "terrain_achieved_error_px",
-                             "cpu_seeding_ms", "plant_seed_triangles", "plant_bins", "plants", "plant_overflow"})
+  for (const char* filled : {"cpu_flight_ms",
+                             "cpu_terrain_ms",
+                             "cpu_record_submit_ms",
+                             "gpu_frame_ms",
+                             "wall_ms",
+                             "recorder_ms",
+                             "terrain_triangles",
+                             "cpu_bytes",
+                             "gpu_bytes",
+                             "cpu_streaming_ms",
+                             "streaming_wait_ms",
+                             "stream_bytes_resident_cpu",
+                             "terrain_pieces",
+                             "terrain_leaves",
+                             "terrain_roam_update_ms",
+                             "terrain_seed_triangles",
+                             "terrain_achieved_error_px",
+                             "cpu_seeding_ms",
+                             "plant_seed_triangles",
+                             "plant_bins",
+                             "plants",
+                             "plant_overflow"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
@@ -159,7 +224,8 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_EQ(s["recording"]["fps"], 15.0);
   EXPECT_EQ(s["recording"]["path"]["name"], "test-2s");
   EXPECT_FALSE(s["recording"]["device"]["name"].get<std::string>().empty());
-  for (const char* q : {"p50", "p95", "p99", "max", "mean"}) EXPECT_TRUE(s["times_ms"]["gpu_frame_ms"].contains(q)) << q;
+  for (const char* q : {"p50", "p95", "p99", "max", "mean"})
+    EXPECT_TRUE(s["times_ms"]["gpu_frame_ms"].contains(q)) << q;
   EXPECT_LE(s["times_ms"]["gpu_frame_ms"]["p50"].get<double>(), s["times_ms"]["gpu_frame_ms"]["p95"].get<double>());
   EXPECT_FALSE(s["times_ms"]["cpu_streaming_ms"].is_null());
   EXPECT_EQ(s["recording"]["streaming"]["mode"], "settled");
@@ -186,7 +252,8 @@ TEST(RecordCommand, FramesEveryWritesEveryKthFrameAsPng) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir / "frames")) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"frame_00000.png", "frame_00010.png", "frame_00020.png", "frame_00030.png"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"frame_00000.png", "frame_00010.png", "frame_00020.png", "frame_00030.png"}));
   for (const auto& n : names) EXPECT_TRUE(isPng(dir / "frames" / n)) << n;
   const Csv csv = readCsv(dir / "frames.csv");
   const auto png = csv.column("png_ms");
@@ -215,7 +282,8 @@ TEST(RecordCommand, ReportRemakesTheSummaryAndPlots) {
   const auto r = runVegstream("report '" + dir.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(readWhole(dir / "summary.json"), readWhole(base / "summary.json")) << "summary.json derives from the files";
-  for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"}) EXPECT_TRUE(isPng(dir / f)) << f;
+  for (const char* f : {"frame_time.png", "geometric_load.png", "streaming_memory.png"})
+    EXPECT_TRUE(isPng(dir / f)) << f;
 }
 
 TEST(RecordCommand, ReportWithoutPythonOrMatplotlibSaysSoAndDrawsNothing) {
@@ -224,7 +292,8 @@ TEST(RecordCommand, ReportWithoutPythonOrMatplotlibSaysSoAndDrawsNothing) {
   fs::create_directories(dir);
   for (const char* f : {"frames.csv", "recording.json"}) fs::copy_file(base / f, dir / f);
   // No interpreter at all.
-  auto r = runCommand("VEGSTREAM_PYTHON=/no/such/python3 '" + std::string(VEGSTREAM_EXE) + "' report '" + dir.string() + "'");
+  auto r = runCommand("VEGSTREAM_PYTHON=/no/such/python3 '" + std::string(VEGSTREAM_EXE) + "' report '" + dir.string() +
+                      "'");
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_NE(r.err.find("python3-matplotlib"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("/no/such/python3"), std::string::npos) << r.err;
@@ -303,24 +372,26 @@ TEST_P(RecordBadInput, OneMessageExitTwoNothingWritten) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, RecordBadInput,
-    ::testing::Values(BadRecord{"malformed_path", "{DS} {SMALL} --path '{TMP}/record_malformed.json'", "record_malformed.json:1:"},
-                      BadRecord{"path_outside", "{DS} {SMALL} --path '{TMP}/record_outside.json'", "leaves the dataset"},
-                      BadRecord{"missing_path", "{DS} {SMALL} --path /no/such/path.json", "/no/such/path.json"},
-                      BadRecord{"missing_dataset", "/no/such/dataset {SMALL} --path {PATH}", "/no/such/dataset"},
-                      BadRecord{"not_a_dataset", "'{TMP}' {SMALL} --path {PATH}", "dataset.json"},
-                      BadRecord{"bad_size", "{DS} --path {PATH} --msaa 1 --size big", "--size"},
-                      BadRecord{"bad_msaa", "{DS} --path {PATH} --size 160x90 --msaa 3", "--msaa"},
-                      BadRecord{"bad_max_triangles", "{DS} {SMALL} --path {PATH} --terrain-max-triangles 1", "--terrain-max-triangles"},
-                      BadRecord{"bad_canopy", "{DS} {SMALL} --path {PATH} --canopy-m -3", "--canopy-m"},
-                      BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"},
-                      BadRecord{"bad_density", "{DS} {SMALL} --path {PATH} --plant-density -1", "--plant-density"},
-                      BadRecord{"bad_plant_max", "{DS} {SMALL} --path {PATH} --plant-max 1e7", "--plant-max"},
-                      BadRecord{"bad_cluster_size", "{DS} {SMALL} --path {PATH} --cluster-size 33", "--cluster-size"},
-                      BadRecord{"bad_plant_style", "{DS} {SMALL} --path {PATH} --plant-style fancy", "--plant-style"},
-                      BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
-                      BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
-                      BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
-                                "/no/such/species.json"}),
+    ::testing::Values(
+        BadRecord{"malformed_path", "{DS} {SMALL} --path '{TMP}/record_malformed.json'", "record_malformed.json:1:"},
+        BadRecord{"path_outside", "{DS} {SMALL} --path '{TMP}/record_outside.json'", "leaves the dataset"},
+        BadRecord{"missing_path", "{DS} {SMALL} --path /no/such/path.json", "/no/such/path.json"},
+        BadRecord{"missing_dataset", "/no/such/dataset {SMALL} --path {PATH}", "/no/such/dataset"},
+        BadRecord{"not_a_dataset", "'{TMP}' {SMALL} --path {PATH}", "dataset.json"},
+        BadRecord{"bad_size", "{DS} --path {PATH} --msaa 1 --size big", "--size"},
+        BadRecord{"bad_msaa", "{DS} --path {PATH} --size 160x90 --msaa 3", "--msaa"},
+        BadRecord{"bad_max_triangles", "{DS} {SMALL} --path {PATH} --terrain-max-triangles 1",
+                  "--terrain-max-triangles"},
+        BadRecord{"bad_canopy", "{DS} {SMALL} --path {PATH} --canopy-m -3", "--canopy-m"},
+        BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"},
+        BadRecord{"bad_density", "{DS} {SMALL} --path {PATH} --plant-density -1", "--plant-density"},
+        BadRecord{"bad_plant_max", "{DS} {SMALL} --path {PATH} --plant-max 1e7", "--plant-max"},
+        BadRecord{"bad_cluster_size", "{DS} {SMALL} --path {PATH} --cluster-size 33", "--cluster-size"},
+        BadRecord{"bad_plant_style", "{DS} {SMALL} --path {PATH} --plant-style fancy", "--plant-style"},
+        BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
+        BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
+        BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
+                  "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(RecordCommand, NonEmptyOutIsRefusedAndLeftAlone) {

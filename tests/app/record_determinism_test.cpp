@@ -57,9 +57,9 @@ constexpr int kFramesEvery = 10;
 
 // benchmark-30s at 160x90, 4 fps (121 frames), every 10th frame saved.
 void record(const std::string& dataset, const fs::path& out) {
-  const auto r = runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" +
-                              out.string() + "' --size 160x90 --msaa 1 --fps 4 --frames-every " +
-                              std::to_string(kFramesEvery) + " --no-plots");
+  const auto r =
+      runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" + out.string() +
+                   "' --size 160x90 --msaa 1 --fps 4 --frames-every " + std::to_string(kFramesEvery) + " --no-plots");
   ASSERT_EQ(r.exitCode, 0) << r.err;
 }
 

@@ -9,9 +9,8 @@ namespace {
 
 TEST(GeoKeys, LandsatUtmDirectory) {
   // zion/landsat_b4.tif's tag 34735 and 34737, as GDAL wrote them.
-  const std::vector<double> dir = {1, 1, 0, 7, 1024, 0, 1, 1, 1025, 0, 1, 1,
-                                   1026, 34737, 33, 0, 2049, 34737, 7, 33, 2054, 0, 1, 9102,
-                                   3072, 0, 1, 32612, 3076, 0, 1, 9001};
+  const std::vector<double> dir = {1,    1,     0, 7,  1024, 0, 1, 1,    1025, 0, 1, 1,     1026, 34737, 33, 0,
+                                   2049, 34737, 7, 33, 2054, 0, 1, 9102, 3072, 0, 1, 32612, 3076, 0,     1,  9001};
   const auto keys = decodeGeoKeys(dir, {}, "UTM Zone 12, Northern Hemisphere|WGS 84|");
   ASSERT_TRUE(keys.has_value());
   EXPECT_EQ(keys->modelType, 1);
@@ -22,8 +21,8 @@ TEST(GeoKeys, LandsatUtmDirectory) {
 
 TEST(GeoKeys, GoletaDirectoryClaimsMoreKeysThanItHolds) {
   // goleta/sba_elev32_wgs84_512x512.tif: the header says 7 keys, 6 follow.
-  const std::vector<double> dir = {1, 1, 0, 7, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326,
-                                   2054, 0, 1, 9102, 4096, 0, 1, 5030, 4099, 0, 1, 9001};
+  const std::vector<double> dir = {1, 1,    0,    7, 1024, 0,    1,    2, 1025, 0,    1,    1, 2048, 0,
+                                   1, 4326, 2054, 0, 1,    9102, 4096, 0, 1,    5030, 4099, 0, 1,    9001};
   EXPECT_FALSE(decodeGeoKeys(dir, {}, "").has_value());
 }
 

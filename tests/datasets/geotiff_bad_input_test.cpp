@@ -24,8 +24,7 @@ fs::path tmpFile(const std::string& name) {
 }
 
 // Asserts failure of `kind` whose message names the file and contains `what`.
-void expectError(const Result<Raster>& r, ErrorKind kind, const fs::path& path,
-                 const std::string& what) {
+void expectError(const Result<Raster>& r, ErrorKind kind, const fs::path& path, const std::string& what) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().kind, kind) << r.error().message;
   EXPECT_NE(r.error().message.find(path.string()), std::string::npos) << r.error().message;
@@ -36,10 +35,8 @@ void expectError(const Result<Raster>& r, ErrorKind kind, const fs::path& path,
 TinyImage geoImage(uint16_t rasterType = 1) {
   TinyImage img;
   img.pixels = test::pixelBytes(std::vector<uint16_t>{1, 2, 3, 4});
-  img.extra = {test::doubles(33550, {10, 10, 0}),
-               test::doubles(33922, {0, 0, 0, 100, 50, 0}),
-               test::shorts(34735, {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, rasterType, 2048, 0, 1,
-                                    4326})};
+  img.extra = {test::doubles(33550, {10, 10, 0}), test::doubles(33922, {0, 0, 0, 100, 50, 0}),
+               test::shorts(34735, {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, rasterType, 2048, 0, 1, 4326})};
   return img;
 }
 
@@ -128,13 +125,11 @@ TEST(GeoTiffBadInput, TagPointingPastTheEndIsInvalid) {
   // Point the ModelTiepoint value (48 bytes, out of line) far past the end of the file.
   std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  const uint16_t entries = static_cast<uint16_t>(static_cast<uint8_t>(bytes[8]) |
-                                                 static_cast<uint8_t>(bytes[9]) << 8);
+  const uint16_t entries = static_cast<uint16_t>(static_cast<uint8_t>(bytes[8]) | static_cast<uint8_t>(bytes[9]) << 8);
   bool patched = false;
   for (uint16_t i = 0; i < entries; ++i) {
     const size_t e = 10 + 12u * i;
-    if (static_cast<uint8_t>(bytes[e]) == (33922 & 0xff) &&
-        static_cast<uint8_t>(bytes[e + 1]) == (33922 >> 8)) {
+    if (static_cast<uint8_t>(bytes[e]) == (33922 & 0xff) && static_cast<uint8_t>(bytes[e + 1]) == (33922 >> 8)) {
       const uint32_t far = 0x7fffff00;
       f.seekp(static_cast<std::streamoff>(e + 8));
       f.write(reinterpret_cast<const char*>(&far), 4);

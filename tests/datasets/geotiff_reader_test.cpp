@@ -24,7 +24,10 @@ MinMax minMax(const Raster& r, int channel = 0) {
   for (int row = 0; row < r.height; ++row)
     for (int col = 0; col < r.width; ++col) {
       const float v = r.at(col, row, channel);
-      if (r.isNodata(v)) { ++m.nodata; continue; }
+      if (r.isNodata(v)) {
+        ++m.nodata;
+        continue;
+      }
       m.min = std::min(m.min, v);
       m.max = std::max(m.max, v);
     }

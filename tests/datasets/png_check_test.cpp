@@ -40,7 +40,9 @@ struct Image {
     if ((colourType == 4 || colourType == 6) && c == channels() - 1) return max;
     return (x * 37u + y * 11u + static_cast<uint32_t>(c) * 71u) % (max + 1u);
   }
-  int channels() const { return colourType == 0 || colourType == 3 ? 1 : colourType == 4 ? 2 : colourType == 2 ? 3 : 4; }
+  int channels() const {
+    return colourType == 0 || colourType == 3 ? 1 : colourType == 4 ? 2 : colourType == 2 ? 3 : 4;
+  }
 };
 
 // The filtered rows (filter 0) of the pixels (x0 + i·dx, y0 + j·dy).
@@ -141,8 +143,8 @@ std::vector<Image> goodImages() {
 }
 
 std::string describe(const Image& im) {
-  return std::to_string(im.size) + "px depth " + std::to_string(im.bitDepth) + " type " + std::to_string(im.colourType) +
-         (im.interlace ? " interlaced" : "");
+  return std::to_string(im.size) + "px depth " + std::to_string(im.bitDepth) + " type " +
+         std::to_string(im.colourType) + (im.interlace ? " interlaced" : "");
 }
 
 TEST(PngCheck, EveryKindOfSoundPngPassesAndDecodes) {
@@ -185,7 +187,12 @@ TEST(PngCheck, WhatLibpngWouldPrintAboutIsRefusedNamingTheTile) {
     edit(p, i);
     cases.push_back({what, assemble(i, p)});
   };
-  with("zero width", [](Parts& p, Image&) { p.ihdr[3] = 0; p.ihdr[2] = 0; p.ihdr[1] = 0; p.ihdr[0] = 0; });
+  with("zero width", [](Parts& p, Image&) {
+    p.ihdr[3] = 0;
+    p.ihdr[2] = 0;
+    p.ihdr[1] = 0;
+    p.ihdr[0] = 0;
+  });
   with("huge height", [](Parts& p, Image&) { p.ihdr[4] = 0x80; });
   with("bit depth 3", [](Parts& p, Image&) { p.ihdr[8] = 3; });
   with("colour type 5", [](Parts& p, Image&) { p.ihdr[9] = 5; });

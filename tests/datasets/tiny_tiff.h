@@ -40,7 +40,7 @@ struct TinyImage {
   uint32_t width = 2, height = 2;
   uint16_t channels = 1;
   uint16_t bits = 16;
-  uint16_t sampleFormat = 1;  // 1 unsigned, 2 signed, 3 IEEE float
+  uint16_t sampleFormat = 1;    // 1 unsigned, 2 signed, 3 IEEE float
   std::vector<uint8_t> pixels;  // row-major, little-endian samples
   std::vector<TinyTag> extra;   // GeoTIFF tags and the like
   // Replaces ImageWidth/ImageLength in the header only (pixels stay small): a bogus size.
@@ -88,8 +88,10 @@ inline void writeTinyTiff(const std::filesystem::path& path, const TinyImage& im
     put(&t.type, 2);
     put(&t.count, 4);
     uint8_t field[4] = {0, 0, 0, 0};
-    if (t.bytes.size() <= 4) std::memcpy(field, t.bytes.data(), t.bytes.size());
-    else std::memcpy(field, &offsets[i], 4);
+    if (t.bytes.size() <= 4)
+      std::memcpy(field, t.bytes.data(), t.bytes.size());
+    else
+      std::memcpy(field, &offsets[i], 4);
     put(field, 4);
   }
   const uint32_t zero = 0;
@@ -100,8 +102,8 @@ inline void writeTinyTiff(const std::filesystem::path& path, const TinyImage& im
     if (t.bytes.size() % 2) out.push_back(0);
   }
   put(img.pixels.data(), img.pixels.size());
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(out.data()),
-                                              static_cast<std::streamsize>(out.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
 }
 
 template <typename T>

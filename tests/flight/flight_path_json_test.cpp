@@ -93,7 +93,8 @@ TEST(FlightPathJson, WrongTypeNamesTheField) {
   const std::string m = errorFor(edited(R"("alt_m": 1800)", R"("alt_m": "1800")"));
   EXPECT_HAS(m, ":5:");
   EXPECT_HAS(m, "keyframes[1].alt_m: must be a number, found a string");
-  EXPECT_HAS(errorFor(edited(R"("alt_ref": "msl")", R"("alt_ref": "sea")")), "keyframes[1].alt_ref: \"sea\" is not one of");
+  EXPECT_HAS(errorFor(edited(R"("alt_ref": "msl")", R"("alt_ref": "sea")")),
+             "keyframes[1].alt_ref: \"sea\" is not one of");
   EXPECT_HAS(errorFor("[1, 2]"), "document: must be an object, found an array");
   EXPECT_HAS(errorFor(edited(R"("keyframes": [)", R"("keyframes": [ 7, )")), "keyframes[0]: must be an object");
   EXPECT_HAS(errorFor(edited("-112.97", "1e999")), "bad.json:5:35: malformed JSON: number overflow parsing '1e999'");
@@ -127,7 +128,8 @@ TEST(FlightPathJson, LatitudeOutOfRange) {
   EXPECT_HAS(m, "paths/bad.json:5:21: keyframes[1].lat: 95.000000 is out of range [-90, 90]");
   EXPECT_HAS(errorFor(edited("-112.96", "-190")), "keyframes[2].lon: -190.000000 is out of range [-180, 180]");
   EXPECT_HAS(errorFor(edited(R"("pitch": -20)", R"("pitch": -120)")), "keyframes[0].pitch");
-  EXPECT_HAS(errorFor(edited(R"("alt_m": 30)", R"("alt_m": -3)")), "keyframes[2].alt_m: -3.0 m above the terrain is underground");
+  EXPECT_HAS(errorFor(edited(R"("alt_m": 30)", R"("alt_m": -3)")),
+             "keyframes[2].alt_m: -3.0 m above the terrain is underground");
   EXPECT_HAS(errorFor(edited(R"("radius_m": 2)", R"("radius_m": 0)")), "colliders[0].radius_m: must be a positive");
   EXPECT_HAS(errorFor(edited(R"("shape": "sphere")", R"("shape": "capsule")")), "colliders[0].length_m: missing");
 }
@@ -140,7 +142,8 @@ TEST(FlightPathJson, PathOutsideTheDataset) {
   const Status s = checkInside(p, small);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().kind, ErrorKind::InvalidInput);
-  EXPECT_HAS(s.error().message, "path leaves the dataset at keyframes[2] (37.220000, -112.960000) — dataset covers lat 37.190000");
+  EXPECT_HAS(s.error().message,
+             "path leaves the dataset at keyframes[2] (37.220000, -112.960000) — dataset covers lat 37.190000");
 }
 
 TEST(FlightPathJson, LoadNamesTheFile) {

@@ -19,9 +19,10 @@ Keyframe kf(double t, double lat, double lon, double alt, AltRef ref, double hea
 FlightPath unevenPath() {
   FlightPath p;
   p.name = "uneven";
-  p.keyframes = {kf(0, 37.20, -112.98, 2000, AltRef::Msl, 10, -10), kf(3, 37.21, -112.97, 1900, AltRef::Msl, 20, -12),
-                 kf(4, 37.2105, -112.9690, 1850, AltRef::Msl, 80, -5), kf(15, 37.25, -112.90, 1700, AltRef::Msl, 100, -30),
-                 kf(16, 37.2490, -112.8995, 1710, AltRef::Msl, 170, -20), kf(30, 37.20, -112.90, 2100, AltRef::Msl, 200, 0)};
+  p.keyframes = {
+      kf(0, 37.20, -112.98, 2000, AltRef::Msl, 10, -10),       kf(3, 37.21, -112.97, 1900, AltRef::Msl, 20, -12),
+      kf(4, 37.2105, -112.9690, 1850, AltRef::Msl, 80, -5),    kf(15, 37.25, -112.90, 1700, AltRef::Msl, 100, -30),
+      kf(16, 37.2490, -112.8995, 1710, AltRef::Msl, 170, -20), kf(30, 37.20, -112.90, 2100, AltRef::Msl, 200, 0)};
   return p;
 }
 
@@ -66,7 +67,8 @@ TEST(PathSampler, VelocityIsContinuousAcrossKeyframes) {
 
 TEST(PathSampler, HeadingCrossesSouthWithoutFlipping) {
   FlightPath p;
-  p.keyframes = {kf(0, 37.2, -113.0, 100, AltRef::Terrain, 170, 0), kf(10, 37.21, -113.0, 100, AltRef::Terrain, -170, 0),
+  p.keyframes = {kf(0, 37.2, -113.0, 100, AltRef::Terrain, 170, 0),
+                 kf(10, 37.21, -113.0, 100, AltRef::Terrain, -170, 0),
                  kf(20, 37.22, -113.0, 100, AltRef::Terrain, 160, 0)};
   const PathSampler s(p);
   // Unwrapped, the keyframes are 170 → 190 → 160: every sample stays within 20° of south
@@ -128,7 +130,10 @@ TEST(PathSampler, ForwardVectorIsEnu) {
 
 TEST(PathSampler, CollidersFollowTheirKeyframes) {
   FlightPath p = unevenPath();
-  Collider ball{"ball", Collider::Shape::Sphere, 1.5, 0.0,
+  Collider ball{"ball",
+                Collider::Shape::Sphere,
+                1.5,
+                0.0,
                 {{0, 37.20, -112.98, 1.5, AltRef::Terrain}, {10, 37.201, -112.98, 1.5, AltRef::Terrain}}};
   Collider post{"post", Collider::Shape::Capsule, 0.5, 4.0, {{0, 37.205, -112.975, 1100, AltRef::Msl}}};
   p.colliders = {ball, post};

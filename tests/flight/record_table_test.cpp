@@ -18,9 +18,13 @@ namespace {
 TEST(RecorderTable, CsvRoundTripKeepsEmptyCellsEmpty) {
   RecordTable t({{"frame", 0}, {"t_s", 6}, {"cpu_streaming_ms", 4}, {"gpu_frame_ms", 4}});
   auto& r0 = t.addRow();
-  r0[0] = 0; r0[1] = 0.0; r0[3] = 1.25;
+  r0[0] = 0;
+  r0[1] = 0.0;
+  r0[3] = 1.25;
   auto& r1 = t.addRow();
-  r1[0] = 1; r1[1] = 1.0 / 60.0; r1[3] = 2.5;
+  r1[0] = 1;
+  r1[1] = 1.0 / 60.0;
+  r1[3] = 2.5;
   const std::string csv = t.toCsv();
   EXPECT_EQ(csv, "frame,t_s,cpu_streaming_ms,gpu_frame_ms\n0,0.000000,,1.2500\n1,0.016667,,2.5000\n");
   auto back = RecordTable::parseCsv(csv, "frames.csv");
@@ -56,8 +60,8 @@ TEST(RecorderTable, PercentilesInterpolateLikeNumpy) {
 
 TEST(RecorderTable, HitchIsOverTwiceTheRunningMedian) {
   std::vector<double> ms(100, 10.0);
-  ms[50] = 20.0;   // exactly 2x: not a hitch
-  ms[70] = 20.5;   // over 2x
+  ms[50] = 20.0;  // exactly 2x: not a hitch
+  ms[70] = 20.5;  // over 2x
   ms[90] = 100.0;
   EXPECT_EQ(findHitches(ms), (std::vector<std::size_t>{70, 90}));
   // The median follows the load: after a lasting step to 30 ms, frames at 30 ms are no hitches.
@@ -78,9 +82,9 @@ TEST(RecorderTable, ColumnsAndFrameCount) {
   EXPECT_EQ(at("gpu_terrain_pass_ms"), at("gpu_frame_ms") + 2);
   EXPECT_EQ(names.front(), "frame");
   EXPECT_EQ(at("gpu_bytes"), at("stat_fragment_invocations") + 2);
-  EXPECT_EQ(at("streaming_wait_ms"), at("gpu_bytes") + 1);  // issue 5's columns follow
+  EXPECT_EQ(at("streaming_wait_ms"), at("gpu_bytes") + 1);                      // issue 5's columns follow
   EXPECT_EQ(at("terrain_roam_update_ms"), at("terrain_error_relaxation") + 1);  // issue 6's columns follow
-  EXPECT_EQ(at("plant_seed_triangles"), at("terrain_achieved_error_px") + 1);  // issue 7's columns follow
+  EXPECT_EQ(at("plant_seed_triangles"), at("terrain_achieved_error_px") + 1);   // issue 7's columns follow
   EXPECT_EQ(names.back(), "plant_triangles");
   EXPECT_EQ(frameCount(30.0, 60.0), 1801u);
   EXPECT_EQ(frameCount(2.0, 15.0), 31u);
@@ -88,9 +92,11 @@ TEST(RecorderTable, ColumnsAndFrameCount) {
 }
 
 TEST(RecorderTable, CompareRatios) {
-  const std::string a = R"({"summary_version": 1, "frames": 10, "times_ms": {"gpu_frame_ms": {"p50": 2, "p95": 4, "p99": 5, "max": 6}, "cpu_seeding_ms": null},
+  const std::string a =
+      R"({"summary_version": 1, "frames": 10, "times_ms": {"gpu_frame_ms": {"p50": 2, "p95": 4, "p99": 5, "max": 6}, "cpu_seeding_ms": null},
                             "hitches": {"count": 0}})";
-  const std::string b = R"({"summary_version": 1, "frames": 10, "times_ms": {"gpu_frame_ms": {"p50": 3, "p95": 4, "p99": 5, "max": 6}},
+  const std::string b =
+      R"({"summary_version": 1, "frames": 10, "times_ms": {"gpu_frame_ms": {"p50": 3, "p95": 4, "p99": 5, "max": 6}},
                             "hitches": {"count": 2}, "totals": {"wall_s": 1}})";
   auto rows = compareSummaries(a, "a", b, "b");
   ASSERT_TRUE(rows) << rows.error().message;
@@ -102,9 +108,9 @@ TEST(RecorderTable, CompareRatios) {
   };
   EXPECT_DOUBLE_EQ(ratio(find("frames")), 1.0);
   EXPECT_DOUBLE_EQ(ratio(find("times_ms.gpu_frame_ms.p50")), 1.5);
-  EXPECT_TRUE(std::isnan(ratio(find("hitches.count"))));           // A is 0
+  EXPECT_TRUE(std::isnan(ratio(find("hitches.count"))));                // A is 0
   EXPECT_TRUE(std::isnan(ratio(find("times_ms.cpu_seeding_ms.p50"))));  // absent
-  EXPECT_TRUE(std::isnan(find("totals.wall_s").a));                 // only in B
+  EXPECT_TRUE(std::isnan(find("totals.wall_s").a));                     // only in B
   const std::string table = formatCompareTable(*rows, "A", "B");
   EXPECT_NE(table.find("1.500"), std::string::npos) << table;
   EXPECT_FALSE(compareSummaries("{}", "a.json", b, "b"));

@@ -16,7 +16,9 @@ namespace {
 
 // Whether segments ab and cd cross (proper intersection, 2D in x/y).
 bool crosses(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) {
-  auto side = [](glm::dvec3 p, glm::dvec3 q, glm::dvec3 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+  auto side = [](glm::dvec3 p, glm::dvec3 q, glm::dvec3 r) {
+    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+  };
   return side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0;
 }
 

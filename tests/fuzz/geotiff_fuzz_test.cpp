@@ -51,8 +51,8 @@ TEST(GeoTiffFuzz, MutatedFilesAreRastersOrErrors) {
         [&] {
           auto r = datasets::readGeoTiff(file);
           if (r.ok()) {
-            EXPECT_EQ(r->samples.size(), static_cast<size_t>(r->width) * static_cast<size_t>(r->height) *
-                                             static_cast<size_t>(r->channels))
+            EXPECT_EQ(r->samples.size(),
+                      static_cast<size_t>(r->width) * static_cast<size_t>(r->height) * static_cast<size_t>(r->channels))
                 << m.what;
           } else {
             EXPECT_NE(r.error().message.find(file.string()), std::string::npos) << m.what << ": " << r.error().message;

@@ -42,12 +42,12 @@ void fuzz(const std::string& valid, const char* reader, Parse&& parse) {
   Outcomes tally;
   for (int i = 0; i < kMutations; ++i) {
     const JsonMutation m = mutateJson(valid, kSeed, static_cast<uint64_t>(i));
-    expectValueOrError([&] { return parse(m.text); }, std::string(reader) + " mutation " + std::to_string(i) + ": " + m.what,
-                       tally);
+    expectValueOrError([&] { return parse(m.text); },
+                       std::string(reader) + " mutation " + std::to_string(i) + ": " + m.what, tally);
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s: %d mutations, %d read, %d refused, %d threw, %.0f ms\n", reader, kMutations, tally.ok,
-              tally.refused, tally.threw, ms);
+  std::printf("%s: %d mutations, %d read, %d refused, %d threw, %.0f ms\n", reader, kMutations, tally.ok, tally.refused,
+              tally.threw, ms);
   EXPECT_EQ(tally.threw, 0);
   EXPECT_GT(tally.refused, kMutations / 2) << "most mutations must break the file";
   EXPECT_GT(tally.ok, 0) << "some mutations keep the file valid (a flip inside a string, a duplicate member, …)";
@@ -77,8 +77,7 @@ TEST(JsonReadersFuzz, DatasetJson) {
   meta.bytes = 123456;
   ASSERT_TRUE(datasets::writeDatasetMeta(dir, meta).ok());
   const std::string text = readWhole(dir / "dataset.json");
-  fuzz(text, "dataset.json",
-       [](const std::string& t) { return datasets::parseDatasetMeta(t, "fuzz/dataset.json"); });
+  fuzz(text, "dataset.json", [](const std::string& t) { return datasets::parseDatasetMeta(t, "fuzz/dataset.json"); });
 }
 
 TEST(JsonReadersFuzz, FlightPath) {
@@ -133,7 +132,8 @@ TEST(JsonReadersFuzz, QueryWithMutatedSpeciesIsExitZeroOrOneLine) {
   for (size_t i = 0; i < texts.size(); ++i) {
     const fs::path species = dir / ("species_" + std::to_string(i) + ".json");
     std::ofstream(species, std::ios::binary) << texts[i];
-    const auto r = runVegstream("query '" + dataset.string() + "' --lat 46.55 --lon 7.95 --species '" + species.string() + "'");
+    const auto r =
+        runVegstream("query '" + dataset.string() + "' --lat 46.55 --lon 7.95 --species '" + species.string() + "'");
     SCOPED_TRACE(species.string());
     if (r.exitCode == 0) {
       EXPECT_TRUE(nlohmann::json::accept(r.out)) << r.out;

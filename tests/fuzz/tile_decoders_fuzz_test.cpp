@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 constexpr uint64_t kSeed = 16;  // issue 16
 constexpr int kMutations = 1200;
-constexpr int kSide = 64;         // pixels: small, so a thousand decodes take well under a second
+constexpr int kSide = 64;  // pixels: small, so a thousand decodes take well under a second
 constexpr double kSpacingM = 20.0;
 
 std::vector<uint8_t> fileBytes(const fs::path& p) {
@@ -40,7 +40,8 @@ datasets::HeightTile syntheticHeights() {
   datasets::HeightTile t;
   t.size = kSide;
   for (int y = 0; y < kSide; ++y)
-    for (int x = 0; x < kSide; ++x) t.heights.push_back(static_cast<float>(terrain.heightM(x * kSpacingM, -y * kSpacingM)));
+    for (int x = 0; x < kSide; ++x)
+      t.heights.push_back(static_cast<float>(terrain.heightM(x * kSpacingM, -y * kSpacingM)));
   t.heights[5] = NAN;  // one nodata pixel: alpha 0
   return t;
 }
@@ -63,7 +64,8 @@ datasets::ColorTile syntheticColours() {
 // Nothing may be printed on stderr meanwhile: a corrupt tile is one error value, which the
 // command line prints as its one line (libpng's own "libpng error: …" lines were a second).
 template <typename Mutate, typename Decode>
-void fuzz(const fs::path& dir, const std::vector<uint8_t>& valid, const char* reader, Mutate&& mutate, Decode&& decode) {
+void fuzz(const fs::path& dir, const std::vector<uint8_t>& valid, const char* reader, Mutate&& mutate,
+          Decode&& decode) {
   ASSERT_TRUE(decode(valid).ok()) << reader << ": the unmutated tile must decode";
   const auto start = std::chrono::steady_clock::now();
   Outcomes tally;

@@ -70,8 +70,7 @@ TEST(Crs, UnsupportedCodesNameTheCode) {
     auto crs = crsFromEpsg(code);
     ASSERT_FALSE(crs.ok()) << code;
     EXPECT_EQ(crs.error().kind, ErrorKind::Unsupported);
-    EXPECT_NE(crs.error().message.find("EPSG:" + std::to_string(code) + " is not supported"),
-              std::string::npos)
+    EXPECT_NE(crs.error().message.find("EPSG:" + std::to_string(code) + " is not supported"), std::string::npos)
         << crs.error().message;
     EXPECT_NE(crs.error().message.find("4326"), std::string::npos);
   }
@@ -88,15 +87,14 @@ TEST(Crs, ParseAcceptsCommonSpellings) {
 }
 
 TEST(Crs, ParseRejectsTextWithItsName) {
-  for (const char* text : {"", "EPSG:", "WGS84", "EPSG:43a26", "EPSG:-4326", "4326.0",
-                           "EPSG:99999999999", "EPSG 4326"}) {
+  for (const char* text :
+       {"", "EPSG:", "WGS84", "EPSG:43a26", "EPSG:-4326", "4326.0", "EPSG:99999999999", "EPSG 4326"}) {
     auto crs = parseCrs(text);
     ASSERT_FALSE(crs.ok()) << text;
     EXPECT_EQ(crs.error().kind, ErrorKind::InvalidInput) << text;
     std::string quoted = "'";  // built piecewise: GCC 12 -O3 false -Wrestrict on "'" + string
     quoted.append(text).append("'");
-    EXPECT_NE(crs.error().message.find(quoted), std::string::npos)
-        << crs.error().message;
+    EXPECT_NE(crs.error().message.find(quoted), std::string::npos) << crs.error().message;
   }
   auto unsupported = parseCrs("EPSG:2056");
   ASSERT_FALSE(unsupported.ok());
@@ -105,11 +103,11 @@ TEST(Crs, ParseRejectsTextWithItsName) {
 }
 
 TEST(Crs, StandardUtmZone) {
-  EXPECT_EQ(standardUtmZone(37.3, -113.05), 12);   // Zion
-  EXPECT_EQ(standardUtmZone(-22.5, 17.1), 33);     // Namibia
-  EXPECT_EQ(standardUtmZone(60.0, 5.0), 32);       // Norway exception (would be 31)
-  EXPECT_EQ(standardUtmZone(78.0, 20.0), 33);      // Svalbard exception (would be 34)
-  EXPECT_EQ(standardUtmZone(89.0, 20.0), 33);      // beyond 84°N: still a UTM zone
+  EXPECT_EQ(standardUtmZone(37.3, -113.05), 12);  // Zion
+  EXPECT_EQ(standardUtmZone(-22.5, 17.1), 33);    // Namibia
+  EXPECT_EQ(standardUtmZone(60.0, 5.0), 32);      // Norway exception (would be 31)
+  EXPECT_EQ(standardUtmZone(78.0, 20.0), 33);     // Svalbard exception (would be 34)
+  EXPECT_EQ(standardUtmZone(89.0, 20.0), 33);     // beyond 84°N: still a UTM zone
   EXPECT_EQ(standardUtmZone(-85.0, -177.0), 1);
 }
 

@@ -21,8 +21,7 @@ inline double metresBetween(const Geodetic& a, const Geodetic& b) {
 inline Geodetic travel(const Geodetic& from, double azimuthDeg, double distanceM, double heightM) {
   Geodetic to;
   to.heightM = heightM;
-  GeographicLib::Geodesic::WGS84().Direct(from.latDeg, from.lonDeg, azimuthDeg, distanceM, to.latDeg,
-                                          to.lonDeg);
+  GeographicLib::Geodesic::WGS84().Direct(from.latDeg, from.lonDeg, azimuthDeg, distanceM, to.latDeg, to.lonDeg);
   return to;
 }
 

@@ -34,7 +34,7 @@ TEST(LocalFrame, EarthCurvatureTwentyKilometresEast) {
   // The chord's east component is N·sin(d/N): 32.7 mm short of the 20 km arc.
   EXPECT_NEAR(p.x, n * std::sin(20000.0 / n), 0.005);
   EXPECT_NEAR(p.x, 19999.967, 0.005);
-  EXPECT_NEAR(p.y, 0.0, 1.5);       // the geodesic bends south of the parallel (~0.9 m)
+  EXPECT_NEAR(p.y, 0.0, 1.5);  // the geodesic bends south of the parallel (~0.9 m)
 }
 
 TEST(LocalFrame, UpTiltsOneMilliradianPerSixKilometres) {

@@ -47,7 +47,9 @@ TEST(DeletionQueue, DestroysOnlyWhatCompletedFramesUsed) {
     bool live = true;
     explicit Probe(int* c) : counter(c) {}
     Probe(Probe&& o) noexcept : counter(o.counter) { o.live = false; }
-    ~Probe() { if (live) ++*counter; }
+    ~Probe() {
+      if (live) ++*counter;
+    }
   };
   q.defer(3, Probe(&destroyed));
   q.defer(5, Probe(&destroyed));

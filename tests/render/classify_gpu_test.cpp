@@ -45,7 +45,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
 
   constexpr uint32_t kLayers = 2;
   const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
-                                                 vegstream::testing::classifyBaseMap(2)};
+                                                  vegstream::testing::classifyBaseMap(2)};
   GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
                                       VK_FORMAT_R8G8B8A8_UNORM);
@@ -85,15 +85,18 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
     const glm::vec2 r = cluster == 0 ? veg::seedPoint(k, 0, seed) : veg::clusterCentre(k, cluster);
     const glm::vec3 hsv = veg::hsvFromLinear(colourOf(tri)(r));
     const uint32_t slot = cluster == 0 ? veg::philox_slot::kColourSpecies + seed : veg::philox_slot::kSpecies;
-    const veg::Philox2x32Out draw = veg::philox((cluster << 8) | slot, static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k));
+    const veg::Philox2x32Out draw =
+        veg::philox((cluster << 8) | slot, static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k));
     const float z = veg::u01(cluster == 0 ? draw.y : draw.x);
     const int base = veg::chooseSpecies(catalog, hsv, z).species;
     for (int axis = 0; axis < 4; ++axis)
       for (float d : {-1e-3f, 1e-3f}) {
         glm::vec3 h = hsv;
         float zz = z;
-        if (axis < 3) h[axis] = axis == 0 ? std::fmod(h[axis] + d + 1.0f, 1.0f) : std::clamp(h[axis] + d, 0.0f, 1.0f);
-        else zz = std::clamp(z + d, 0.0f, 0.999999f);
+        if (axis < 3)
+          h[axis] = axis == 0 ? std::fmod(h[axis] + d + 1.0f, 1.0f) : std::clamp(h[axis] + d, 0.0f, 1.0f);
+        else
+          zz = std::clamp(z + d, 0.0f, 0.999999f);
         if (veg::chooseSpecies(catalog, h, zz).species != base) return true;
       }
     return false;
@@ -181,10 +184,11 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   }
   EXPECT_GT(compared, 1000u);
   EXPECT_LT(worst, 1e-3) << "worst root distance (m)";
-  std::printf("classify: %zu groups (CPU), %zu (GPU), %zu CPU-only and %zu GPU-only (all precision-sensitive), "
-              "%llu plants, %u bins; roots compared %zu, worst %.2e m\n",
-              cpu.size(), groupsGpu, mismatches, gpuOnly, static_cast<unsigned long long>(plantsCpu), figures.bins,
-              compared, worst);
+  std::printf(
+      "classify: %zu groups (CPU), %zu (GPU), %zu CPU-only and %zu GPU-only (all precision-sensitive), "
+      "%llu plants, %u bins; roots compared %zu, worst %.2e m\n",
+      cpu.size(), groupsGpu, mismatches, gpuOnly, static_cast<unsigned long long>(plantsCpu), figures.bins, compared,
+      worst);
 }
 
 }  // namespace

@@ -39,10 +39,11 @@ std::vector<glm::vec4> testColours() {
   auto fromSrgb = [](glm::vec3 c) {
     return glm::vec4(veg::srgbDecode(c.r), veg::srgbDecode(c.g), veg::srgbDecode(c.b), 0.0f);
   };
-  const glm::vec3 typical[] = {{104, 120, 60}, {36, 42, 25}, {149, 101, 88}, {106, 86, 77}, {100, 88, 88},
+  const glm::vec3 typical[] = {{104, 120, 60},  {36, 42, 25},    {149, 101, 88},  {106, 86, 77}, {100, 88, 88},
                                {208, 196, 176}, {128, 128, 130}, {214, 188, 138}, {76, 91, 50}};
   for (glm::vec3 c : typical) out.push_back(fromSrgb(c / 255.0f));
-  for (const veg::TerrainType& t : veg::defaultTerrainTypes()) out.push_back(fromSrgb(veg::srgbFromHsv(t.score.reference)));
+  for (const veg::TerrainType& t : veg::defaultTerrainTypes())
+    out.push_back(fromSrgb(veg::srgbFromHsv(t.score.reference)));
   return out;
 }
 
@@ -56,15 +57,15 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   const std::vector<glm::vec4> colours = testColours();
   const auto count = static_cast<uint32_t>(colours.size());
   const TerrainDetailUniforms block = packTerrainDetail(veg::defaultTerrainTypes());
-  GpuBuffer uniforms = createBuffer(ctx, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
-                                    "check uniforms");
+  GpuBuffer uniforms =
+      createBuffer(ctx, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload, "check uniforms");
   std::memcpy(uniforms.mapped, &block, sizeof(block));
   GpuBuffer inputs = createBuffer(ctx, sizeof(glm::vec4) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                   MemoryUse::HostUpload, "check inputs");
   std::memcpy(inputs.mapped, colours.data(), sizeof(glm::vec4) * count);
   const VkDeviceSize outBytes = sizeof(glm::vec4) * 4 * count;
-  GpuBuffer outputs = createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
-                                   "check outputs");
+  GpuBuffer outputs =
+      createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "check outputs");
 
   const CheckBinding bindings[] = {{1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms.get(), sizeof(block)},
                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, inputs.get()},
@@ -80,7 +81,8 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   for (uint32_t i = 0; i < count; ++i) {
     const glm::vec3 hsv = veg::hsvFromLinear(glm::vec3(colours[i]));
     const glm::vec4* g = &gpu[4 * size_t{i}];
-    worstHsv = std::max({worstHsv, veg::hueDistance(hsv.x, g[0].x), std::abs(hsv.y - g[0].y), std::abs(hsv.z - g[0].z)});
+    worstHsv =
+        std::max({worstHsv, veg::hueDistance(hsv.x, g[0].x), std::abs(hsv.y - g[0].y), std::abs(hsv.z - g[0].z)});
     // The score of type 0 (as a logarithm: it spans many orders of magnitude), relative.
     const float log0 = veg::logColourScore(params[0], hsv);
     worstLog = std::max(worstLog, std::abs(log0 - g[0].w) / std::max(1.0f, std::abs(log0)));

@@ -44,7 +44,8 @@ TEST_F(DeviceSelection, ChoosesByCaseInsensitiveNameSubstring) {
   ASSERT_TRUE(devices.ok());
   const std::string wanted = devices->back().name;
   std::string upper = wanted.substr(0, 6);
-  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  std::transform(upper.begin(), upper.end(), upper.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   auto o = options(64, 36, 1);
   o.context.deviceName = upper;
   auto r = Renderer::create(o);

@@ -31,8 +31,8 @@ TEST_F(PhiloxGpu, ShaderMatchesTheCppBitForBit) {
 
   constexpr uint32_t count = 1000000;
   const VkDeviceSize outBytes = sizeof(uint32_t) * 6 * count;
-  GpuBuffer outputs = createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
-                                   "philox check outputs");
+  GpuBuffer outputs =
+      createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "philox check outputs");
   const CheckBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()}};
   runComputeCheck(ctx, spv_philox_check_comp, bindings, std::as_bytes(std::span(&count, 1)), count, "philox check");
   std::vector<uint32_t> gpu(6 * size_t{count});

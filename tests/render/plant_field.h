@@ -30,7 +30,8 @@ struct FieldView {
 
 // The field coloured like `referenceOf`, rendered with `plants` and without.
 inline FieldResult renderField(Renderer& r, const std::string& referenceOf, PlantStyle style,
-                               const PlantDrawOptions& plantDraw = {}, const FieldView& view = {}, float plantCount = 40.0f) {
+                               const PlantDrawOptions& plantDraw = {}, const FieldView& view = {},
+                               float plantCount = 40.0f) {
   {
     const std::array<uint8_t, 3> c = referenceColour(referenceOf);
     const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);

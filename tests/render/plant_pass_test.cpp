@@ -51,7 +51,8 @@ TEST_F(PlantPassTest, ARedRockFieldGrowsGravelAndNoBlades) {
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->setImageryLayers(1).ok());
   const FieldResult f = renderField(*r, "red gravel", PlantStyle::Plants);
-  if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR")) (void)writePng(std::string(dir) + "/gravel.png", *f.with.color);
+  if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR"))
+    (void)writePng(std::string(dir) + "/gravel.png", *f.with.color);
   ASSERT_TRUE(f.with.vegetation.has_value());
   const VegetationFigures& v = *f.with.vegetation;
   const int gravel = speciesIndex("red gravel");
@@ -112,11 +113,13 @@ TEST_F(PlantPassTest, PipelineStatisticsEqualTheAnalyticCounts) {
     EXPECT_TRUE(s.geometryInvocations == plants * segments * invocations || s.geometryInvocations == plants * segments)
         << s.geometryInvocations;
     EXPECT_EQ(s.geometryPrimitives, plants * segments * 2 * copies) << "shadows " << shadows;
-    std::printf("shadows %d, speed of light %d: %llu plants, %llu patches, %llu evaluation invocations, %llu geometry triangles\n",
-                shadows ? 1 : 0, speedOfLight ? 1 : 0, static_cast<unsigned long long>(plants),
-                static_cast<unsigned long long>(s.tessControlPatches),
-                static_cast<unsigned long long>(s.tessEvaluationInvocations),
-                static_cast<unsigned long long>(s.geometryPrimitives));
+    std::printf(
+        "shadows %d, speed of light %d: %llu plants, %llu patches, %llu evaluation invocations, %llu geometry "
+        "triangles\n",
+        shadows ? 1 : 0, speedOfLight ? 1 : 0, static_cast<unsigned long long>(plants),
+        static_cast<unsigned long long>(s.tessControlPatches),
+        static_cast<unsigned long long>(s.tessEvaluationInvocations),
+        static_cast<unsigned long long>(s.geometryPrimitives));
   }
 }
 

@@ -24,7 +24,9 @@ FrameRequest lookingAt(const glm::dvec3& position, const glm::dvec3& forward, co
   return req;
 }
 
-const uint8_t* pixel(const ColorImage& img, uint32_t x, uint32_t y) { return &img.rgba[(size_t{y} * img.width + x) * 4]; }
+const uint8_t* pixel(const ColorImage& img, uint32_t x, uint32_t y) {
+  return &img.rgba[(size_t{y} * img.width + x) * 4];
+}
 float depthAt(const DepthImage& img, uint32_t x, uint32_t y) { return img.depth[size_t{y} * img.width + x]; }
 
 class RenderTest : public GpuTest {};
@@ -63,7 +65,8 @@ TEST_F(RenderTest, SkyIsAboveTheHorizonWhereTheCameraSaysItShouldBe) {
     EXPECT_GT(p[2], p[0]) << "sky should be blue at row " << y;
   }
   // Everything below is ground, all the way down.
-  for (uint32_t y = static_cast<uint32_t>(horizon); y < kH; y += 5) EXPECT_GT(depthAt(depth, x, y), 0.0f) << "row " << y;
+  for (uint32_t y = static_cast<uint32_t>(horizon); y < kH; y += 5)
+    EXPECT_GT(depthAt(depth, x, y), 0.0f) << "row " << y;
   // The sky brightens towards the horizon and is deepest blue at the top.
   EXPECT_LT(pixel(color, x, 0)[0], pixel(color, x, static_cast<uint32_t>(horizon) - 2)[0]);
 }
@@ -115,8 +118,9 @@ TEST_F(RenderTest, MsaaResolveLeavesNoHolesAndAgreesWithSingleSample) {
   terrain::TerrainMesh mesh = flatPlane(8'000.0, 96, 0.0f);
   for (auto& v : mesh.vertices) {
     v.position.z = static_cast<float>(120.0 * std::sin(v.position.x / 300.0) * std::cos(v.position.y / 410.0));
-    v.normal = glm::normalize(glm::vec3(-0.4f * std::cos(v.position.x / 300.0f) * std::cos(v.position.y / 410.0f),
-                                        0.29f * std::sin(v.position.x / 300.0f) * std::sin(v.position.y / 410.0f), 1.0f));
+    v.normal =
+        glm::normalize(glm::vec3(-0.4f * std::cos(v.position.x / 300.0f) * std::cos(v.position.y / 410.0f),
+                                 0.29f * std::sin(v.position.x / 300.0f) * std::sin(v.position.y / 410.0f), 1.0f));
   }
   const TerrainDraw draw{&mesh};
   auto req = lookingAt({0, -3'000, 450.0}, {0, 1, -0.35}, {0, 0, 1});

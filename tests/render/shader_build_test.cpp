@@ -17,14 +17,14 @@ namespace vegstream::render::testing {
 namespace {
 
 const std::span<const uint32_t> kModules[] = {spv_sky_vert, spv_sky_frag, spv_terrain_vert, spv_terrain_frag,
-                                             spv_colour_score_check_comp};
+                                              spv_colour_score_check_comp};
 
 TEST(ShaderBuild, EveryShaderIsSpirv) {
   for (auto m : kModules) {
     ASSERT_GT(m.size(), 5u);
-    EXPECT_EQ(m[0], 0x07230203u);        // SPIR-V magic
-    EXPECT_GE(m[1], 0x00010000u);        // version 1.x
-    EXPECT_GT(m[3], 1u);                 // id bound: real code, not an empty module
+    EXPECT_EQ(m[0], 0x07230203u);  // SPIR-V magic
+    EXPECT_GE(m[1], 0x00010000u);  // version 1.x
+    EXPECT_GT(m[3], 1u);           // id bound: real code, not an empty module
   }
 }
 

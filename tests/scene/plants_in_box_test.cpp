@@ -174,8 +174,8 @@ TEST(PlantsInBox, MissingTilesComeFromTheirParentCorruptOnesAreErrors) {
   const auto corrupt = plantsInBox(dataset.string(), box, catalog, {});
   ASSERT_FALSE(corrupt.ok());
   EXPECT_EQ(corrupt.error().kind, ErrorKind::InvalidInput) << corrupt.error().message;
-  const std::string name = std::to_string(under.front().z) + "/" + std::to_string(under.front().x) + "/" +
-                           std::to_string(under.front().y);
+  const std::string name =
+      std::to_string(under.front().z) + "/" + std::to_string(under.front().x) + "/" + std::to_string(under.front().y);
   EXPECT_NE(corrupt.error().message.find(name), std::string::npos) << corrupt.error().message;
 }
 

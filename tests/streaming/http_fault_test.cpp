@@ -193,8 +193,9 @@ TEST_F(FaultServer, NotFoundAndReadTextFollowThePolicy) {
   EXPECT_EQ(results.take().at(0).attempts, 1);
   EXPECT_EQ(server_->requestsFor(tiles().at(0)), 1u);
 
-  server_->scheduleForPath("no.json", {{FaultAction::Status500}, {FaultAction::Status500}, {FaultAction::Status500},
-                                       {FaultAction::Status500}});
+  server_->scheduleForPath(
+      "no.json",
+      {{FaultAction::Status500}, {FaultAction::Status500}, {FaultAction::Status500}, {FaultAction::Status500}});
   auto failed = source->readText("no.json");
   ASSERT_FALSE(failed.ok());
   EXPECT_EQ(failed.error().kind, ErrorKind::Io);

@@ -111,7 +111,8 @@ TEST_F(LocalSource, CancelledQueuedRequestsEndCancelled) {
     gate.wait();
     inner(std::move(r));
   });
-  for (RequestId id = 1; id <= 10; ++id) source.start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
+  for (RequestId id = 1; id <= 10; ++id)
+    source.start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
   for (RequestId id = 2; id <= 10; id += 2) source.cancel(id);
   source.cancel(999);  // unknown: ignored
   release.set_value();
@@ -135,7 +136,8 @@ TEST_F(LocalSource, DestructorEndsQueuedRequestsCancelled) {
   {
     LocalTileSource source(dir(), 1, &tasks);
     source.start(100, datasetRelativePath(keys[0], meta()), a.callback());
-    for (RequestId id = 1; id <= 20; ++id) source.start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
+    for (RequestId id = 1; id <= 20; ++id)
+      source.start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
     ASSERT_TRUE(tasks.runOne());
     EXPECT_EQ(a.results.size(), 1u);
     EXPECT_EQ(tasks.pending(), 1u) << "the task posted itself again";
@@ -168,7 +170,8 @@ TEST_F(LocalSource, DestructorWaitsForTheReadUnderWay) {
     gate.wait();
     inner(std::move(r));
   });
-  for (RequestId id = 1; id <= 5; ++id) source->start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
+  for (RequestId id = 1; id <= 5; ++id)
+    source->start(id, datasetRelativePath(keys[id % keys.size()], meta()), a.callback());
   entered.get_future().wait();  // the read of 100 is under way, inside its callback
   std::thread destroyer([&source] { source.reset(); });
   release.set_value();

@@ -299,7 +299,7 @@ TEST_F(StreamerScripted, RequestsGoOutInPriorityOrderCurrentBeforeLookAhead) {
   const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
   ASSERT_GE(keys.size(), 8u);
   // Current wants with priorities 1 … 5 (listed out of order), look-ahead ones with 100, 99.
-  std::vector<TileWant> wants = {{keys[0], 3, false}, {keys[1], 5, false}, {keys[2], 1, false}, {keys[3], 4, false},
+  std::vector<TileWant> wants = {{keys[0], 3, false}, {keys[1], 5, false},  {keys[2], 1, false}, {keys[3], 4, false},
                                  {keys[4], 2, false}, {keys[5], 100, true}, {keys[6], 99, true}};
   s.update(wants, 0.0);
   auto started = source->started();
@@ -360,7 +360,8 @@ TEST_F(StreamerScripted, OkArrivingAfterCancelIsNeverResidentNorUploaded) {
   ASSERT_EQ(source->started().size(), 1u);
   s.update({}, 0.1);
   EXPECT_EQ(s.frameStats().requestsCancelled, 1u);
-  ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
+  ASSERT_TRUE(
+      source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
   source->waitDelivered();
   EXPECT_EQ(tasks.runAll(), 0u) << "no decode was started for it";
   for (int i = 0; i < 3; ++i) {
@@ -396,10 +397,12 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
   EXPECT_EQ(s.frameStats().requestsIssued, 1u);
   EXPECT_EQ(s.frameStats().retries, 1u);
   t = 2.6;
-  ASSERT_TRUE(updateUntil(s, wants, t, [&] { return s.state(k) == TileState::ResidentCpu; }, [&] {
-    source->waitDelivered();
-    tasks.runAll();
-  }));
+  ASSERT_TRUE(updateUntil(
+      s, wants, t, [&] { return s.state(k) == TileState::ResidentCpu; },
+      [&] {
+        source->waitDelivered();
+        tasks.runAll();
+      }));
   EXPECT_EQ(source->started().size(), 2u);
 }
 
@@ -410,10 +413,11 @@ TEST_F(StreamerScripted, SettleAsksAFailingCurrentWantAgainAtOnceUpToThreeTimes)
   const auto keys = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom);
   const TileKey flaky = keys[0], broken = keys[1], ahead = keys[2];
   const auto bytes = fileBytes(dir() / datasetRelativePath(flaky, meta()));
-  auto source = std::make_shared<ScriptedSource>([&](const std::string& path, int attempt) -> std::optional<FetchResult> {
-    if (path == datasetRelativePath(flaky, meta()) && attempt >= 3) return ScriptedSource::ok(bytes);
-    return ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503");
-  });
+  auto source =
+      std::make_shared<ScriptedSource>([&](const std::string& path, int attempt) -> std::optional<FetchResult> {
+        if (path == datasetRelativePath(flaky, meta()) && attempt >= 3) return ScriptedSource::ok(bytes);
+        return ScriptedSource::outcome(FetchOutcome::Failed, "HTTP 503");
+      });
   StreamingOptions o = smallOptions();  // decodes on a pool of the streamer's own
   o.failedRetryAfterS = 2.0;
   TileStreamer s(source, meta(), o, makeNullLogger());
@@ -462,7 +466,8 @@ TEST_F(StreamerScripted, SettleGivesUpAfterThirtySecondsOfTheInjectedClock) {
   EXPECT_EQ(s.state(k), TileState::Requested);
   EXPECT_EQ(s.frameStats().requestsInFlight, 1u);
   ASSERT_EQ(source->started().size(), 1u);
-  ASSERT_TRUE(source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
+  ASSERT_TRUE(
+      source->reply(source->started()[0].id, ScriptedSource::ok(fileBytes(dir() / datasetRelativePath(k, meta())))));
   clock.stepS = 0.0;  // this time the wait is not cut short, however slow the decode
   s.settle(wantsOf({k}), 0.25);
   EXPECT_EQ(s.state(k), TileState::ResidentCpu);
@@ -516,7 +521,8 @@ TEST_F(StreamerScripted, CountersAddUpUnderRandomOutcomes) {
       totals.add(s.frameStats());
       totals.expectBalanced(s.frameStats());
       ASSERT_LE(s.frameStats().bytesResidentCpu, o.cpuBudgetBytes);
-      if (frame > 2 && s.frameStats().decodesQueued == 0 && s.frameStats().requestsInFlight == source->held().size()) break;
+      if (frame > 2 && s.frameStats().decodesQueued == 0 && s.frameStats().requestsInFlight == source->held().size())
+        break;
       source->waitDelivered();
       if (frame % 2 == 0) tasks.runAll();  // decodes every other frame: some land a frame late
     }

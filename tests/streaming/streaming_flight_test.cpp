@@ -27,7 +27,7 @@ class StreamingFlight : public ZionDataset {
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
 
   std::unique_ptr<scene::Scene> open(const std::string& location, scene::StreamingMode mode, bool lookAhead,
-                                      uint64_t cpuBudget = 512ull << 20, uint64_t gpuBudget = 256ull << 20) {
+                                     uint64_t cpuBudget = 512ull << 20, uint64_t gpuBudget = 256ull << 20) {
     scene::SceneOptions o;
     o.dataset = location;
     o.mode = mode;
@@ -81,8 +81,8 @@ class StreamingFlight : public ZionDataset {
       const double t = t0 + elapsed;
       const auto before = Clock::now();
       scene.prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
-      f.slowestPrepareMs = std::max(f.slowestPrepareMs,
-                                    std::chrono::duration<double, std::milli>(Clock::now() - before).count());
+      f.slowestPrepareMs =
+          std::max(f.slowestPrepareMs, std::chrono::duration<double, std::milli>(Clock::now() - before).count());
       const scene::SceneFrameFigures& fig = scene.lastFrameFigures();
       EXPECT_EQ(fig.settleWaitMs, 0.0);
       if (elapsed > 1.0 && fig.terrain.maxLevelsCoarser > 1) ++f.coarseAfter1s;
@@ -105,7 +105,8 @@ TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBu
   uint64_t maxCpu = 0, maxGpu = 0, issued = 0, evicted = 0;
   double maxRelaxation = 1.0;
   for (double t = 0.0; t <= sampler.duration(); t += 0.5, ++frames) {
-    render::FrameRequest req = scene->prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
+    render::FrameRequest req =
+        scene->prepareFrame(sampler.sample(t, ground), t, flight::lookAheadSamples(sampler, ground, t));
     const scene::SceneFrameFigures& fig = scene->lastFrameFigures();
     ASSERT_LE(fig.streaming.bytesResidentCpu, kCpuBudget) << "t = " << t;
     ASSERT_LE(fig.streaming.bytesResidentGpu, kGpuBudget) << "t = " << t;
@@ -121,10 +122,11 @@ TEST_F(StreamingFlight, CanyonRunUnderAFewMegabytesKeepsResidentBytesWithinTheBu
       ASSERT_TRUE(frame.ok()) << frame.error().message;
     }
   }
-  std::printf("canyon-run, budget 6 MiB CPU / 3 MiB GPU: %d frames, max resident %.2f MiB CPU, %.2f MiB GPU, "
-              "%d frames with a relaxed error bound (at most x%.1f), %llu requests, %llu evictions\n",
-              frames, double(maxCpu) / (1 << 20), double(maxGpu) / (1 << 20), relaxed, maxRelaxation,
-              static_cast<unsigned long long>(issued), static_cast<unsigned long long>(evicted));
+  std::printf(
+      "canyon-run, budget 6 MiB CPU / 3 MiB GPU: %d frames, max resident %.2f MiB CPU, %.2f MiB GPU, "
+      "%d frames with a relaxed error bound (at most x%.1f), %llu requests, %llu evictions\n",
+      frames, double(maxCpu) / (1 << 20), double(maxGpu) / (1 << 20), relaxed, maxRelaxation,
+      static_cast<unsigned long long>(issued), static_cast<unsigned long long>(evicted));
   // No thrashing: the relaxed bound wants what fits, so tiles are not fetched and evicted over
   // and over — fewer requests than frames over the whole flight.
   EXPECT_LT(issued, static_cast<uint64_t>(frames));
@@ -154,10 +156,12 @@ TEST_F(StreamingFlight, LookAheadKeepsARealtimeFlightFromASlowServerWithinOneLev
     without = flyRealtime(*scene, path, kSliceS, kSliceStartS, true);
   }
   fs::remove_all(fine);
-  std::printf("canyon-run 160-185 s realtime (warm start) over a 120 ms server: look-ahead on: %d frames, %d more than one level "
-              "coarser after 1 s, %d with a fallback; off: %d frames, %d, %d\n",
-              with.frames, with.coarseAfter1s, with.fallbackFrames, without.frames, without.coarseAfter1s,
-              without.fallbackFrames);
+  std::printf(
+      "canyon-run 160-185 s realtime (warm start) over a 120 ms server: look-ahead on: %d frames, %d more than one "
+      "level "
+      "coarser after 1 s, %d with a fallback; off: %d frames, %d, %d\n",
+      with.frames, with.coarseAfter1s, with.fallbackFrames, without.frames, without.coarseAfter1s,
+      without.fallbackFrames);
   EXPECT_GT(with.frames, 300);
   EXPECT_EQ(with.coarseAfter1s, 0);
   EXPECT_GT(without.coarseAfter1s + without.fallbackFrames, with.coarseAfter1s + with.fallbackFrames)
@@ -179,8 +183,8 @@ TEST_F(StreamingFlight, ARealtimeFlightThroughAFailingServerCompletesWithEveryFa
   ASSERT_TRUE(scene);
   const RealtimeFigures f = flyRealtime(*scene, bundled("benchmark-30s"), 8.0);
   const scene::SceneFrameFigures& last = scene->lastFrameFigures();
-  std::printf("benchmark-30s 0-8 s through faults: %d frames, slowest prepare %.1f ms, %llu server requests\n", f.frames,
-              f.slowestPrepareMs, static_cast<unsigned long long>(server.totalRequests()));
+  std::printf("benchmark-30s 0-8 s through faults: %d frames, slowest prepare %.1f ms, %llu server requests\n",
+              f.frames, f.slowestPrepareMs, static_cast<unsigned long long>(server.totalRequests()));
   EXPECT_GT(f.frames, 100);
   EXPECT_LT(f.slowestPrepareMs, 1000.0);
   EXPECT_GT(server.totalRequests(), 20u);
@@ -224,8 +228,9 @@ TEST_F(StreamingFlight, FlyOverAUrlWritesFramesAndAWrongUrlIsOneMessage) {
   auto nginx = testing::NginxServer::start(dir(), testTmp("nginx-cli"));
   ASSERT_TRUE(nginx.ok()) << nginx.error().message;
   const fs::path out = testTmp("fly-url");
-  const auto ok = testing::runCommand(std::string(VEGSTREAM_EXE) + " fly " + (*nginx)->baseUrl() +
-                                      " --headless --validate --frames 2 --size 160x90 --msaa 1 --out '" + out.string() + "'");
+  const auto ok =
+      testing::runCommand(std::string(VEGSTREAM_EXE) + " fly " + (*nginx)->baseUrl() +
+                          " --headless --validate --frames 2 --size 160x90 --msaa 1 --out '" + out.string() + "'");
   ASSERT_EQ(ok.exitCode, 0) << ok.err;
   EXPECT_TRUE(fs::exists(out / "frames" / "frame_00001.png"));
   EXPECT_NE(ok.err.find((*nginx)->baseUrl()), std::string::npos) << "the source is named";

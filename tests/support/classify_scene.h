@@ -29,9 +29,9 @@ inline std::vector<uint8_t> classifyBaseMap(uint32_t seed) {
     for (uint32_t x = 0; x < kClassifyTile; ++x) {
       const uint32_t h = mix32(x * 7919u + y * 104729u + seed);
       const int n = static_cast<int>(h % 21u) - 10;
-      int r = 90, g = 115, b = 55;                        // meadow green
-      if (x > 100 && x <= 180) r = 150, g = 90, b = 70;   // red rock
-      if (x > 180) r = 210, g = 198, b = 176;             // pale sandstone
+      int r = 90, g = 115, b = 55;                       // meadow green
+      if (x > 100 && x <= 180) r = 150, g = 90, b = 70;  // red rock
+      if (x > 180) r = 210, g = 198, b = 176;            // pale sandstone
       uint8_t* p = &rgba[(size_t{y} * kClassifyTile + x) * 4];
       p[0] = static_cast<uint8_t>(std::clamp(r + n, 0, 255));
       p[1] = static_cast<uint8_t>(std::clamp(g + n, 0, 255));

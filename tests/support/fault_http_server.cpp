@@ -41,13 +41,13 @@ struct FaultHttpServer::Connection {
   int fd = -1;
   State state = State::Reading;
   std::string in;
-  std::string path;          // of the request being answered
+  std::string path;  // of the request being answered
   Fault fault;
   Clock::time_point readyAt;
   std::string out;
   size_t sent = 0;
   bool closeAfterWrite = false;
-  bool active = false;       // a request received and not yet answered
+  bool active = false;  // a request received and not yet answered
   bool closed = false;
 };
 
@@ -205,13 +205,17 @@ void FaultHttpServer::run() {
         found = true;
       }
     }
-    if (a == FaultAction::Status500) c.out = response(500, "Internal Server Error", "error\n", 6);
-    else if (a == FaultAction::Status503) c.out = response(503, "Service Unavailable", "busy\n", 5);
-    else if (a == FaultAction::NotFound || !found) c.out = response(404, "Not Found", "missing\n", 8);
+    if (a == FaultAction::Status500)
+      c.out = response(500, "Internal Server Error", "error\n", 6);
+    else if (a == FaultAction::Status503)
+      c.out = response(503, "Service Unavailable", "busy\n", 5);
+    else if (a == FaultAction::NotFound || !found)
+      c.out = response(404, "Not Found", "missing\n", 8);
     else if (a == FaultAction::Truncate) {
       c.out = response(200, "OK", body.substr(0, body.size() / 2), body.size());
       c.closeAfterWrite = true;
-    } else c.out = response(200, "OK", body, body.size());
+    } else
+      c.out = response(200, "OK", body, body.size());
     c.sent = 0;
     c.state = Connection::State::Writing;
   };

@@ -29,12 +29,12 @@
 namespace vegstream::testing {
 
 enum class FaultAction {
-  Serve,        // 200 with the file (404 when it does not exist)
+  Serve,  // 200 with the file (404 when it does not exist)
   Status500,
   Status503,
-  NotFound,     // 404 even when the file exists
-  Truncate,     // announce the whole Content-Length, send half the body, close
-  Reset,        // SO_LINGER 0 and close: the client sees a connection reset, no answer
+  NotFound,  // 404 even when the file exists
+  Truncate,  // announce the whole Content-Length, send half the body, close
+  Reset,     // SO_LINGER 0 and close: the client sees a connection reset, no answer
 };
 
 struct Fault {
@@ -59,8 +59,8 @@ class FaultHttpServer {
   uint64_t requestsFor(const std::string& path) const;
   uint64_t totalRequests() const;
   uint64_t connectionsAccepted() const;
-  int maxConcurrent() const;        // most requests being answered at one moment
-  uint64_t abandoned() const;       // requests whose client closed before the answer was complete
+  int maxConcurrent() const;   // most requests being answered at one moment
+  uint64_t abandoned() const;  // requests whose client closed before the answer was complete
   // Waits until done() — a condition on the counters above — holds, checking it again each time
   // the server changes them (no polling); false if it still does not hold after `limit`.
   bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const;

@@ -150,7 +150,8 @@ Result<std::unique_ptr<NginxServer>> NginxServer::start(const fs::path& root, co
   return makeError(ErrorKind::Io, "nginx did not come up: " + lastProblem);
 }
 
-NginxServer::NginxServer(fs::path workDir, int port, pid_t pid) : workDir_(std::move(workDir)), port_(port), pid_(pid) {}
+NginxServer::NginxServer(fs::path workDir, int port, pid_t pid)
+    : workDir_(std::move(workDir)), port_(port), pid_(pid) {}
 
 NginxServer::~NginxServer() {
   if (pid_ <= 0) return;

@@ -26,9 +26,9 @@
 namespace vegstream::testing {
 
 struct NginxLogLine {
-  std::string uri;           // "/elevation/12/758/1608.png"
+  std::string uri;  // "/elevation/12/758/1608.png"
   int status = 0;
-  uint64_t connection = 0;   // nginx's connection serial number
+  uint64_t connection = 0;  // nginx's connection serial number
   uint64_t connectionRequests = 0;
   uint64_t bytesSent = 0;
 };

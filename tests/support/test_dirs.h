@@ -119,7 +119,8 @@ inline Result<std::filesystem::path> cachedFixture(const std::string& name, cons
     ~Unlock() { ::close(fd); }  // closing releases the flock
   } unlock{lock};
   while (::flock(lock, LOCK_EX) != 0)
-    if (errno != EINTR) return makeError(ErrorKind::Io, "cannot lock " + lockPath.string() + ": " + std::strerror(errno));
+    if (errno != EINTR)
+      return makeError(ErrorKind::Io, "cannot lock " + lockPath.string() + ": " + std::strerror(errno));
   if (fs::is_directory(final)) return final;
 
   const fs::path staging = root / (id + ".staging.pid" + std::to_string(::getpid()));

@@ -43,7 +43,8 @@ class ZionResident {
       }
       return nullptr;
     });
-    frame_ = std::make_unique<geo::LocalFrame>(geo::frameAtCentre(meta_.bounds, 0.5 * (meta_.minHeightM + meta_.maxHeightM)));
+    frame_ = std::make_unique<geo::LocalFrame>(
+        geo::frameAtCentre(meta_.bounds, 0.5 * (meta_.minHeightM + meta_.maxHeightM)));
   }
 
   const datasets::DatasetMeta& meta() const { return meta_; }

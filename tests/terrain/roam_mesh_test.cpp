@@ -18,7 +18,8 @@ using test::zionResident;
 
 // Pixel-corner heights as the table sees them (mean of the four pixels around a corner).
 double cornerHeight(const datasets::HeightTile& t, int i, int j) {
-  const int x0 = std::max(i - 1, 0), x1 = std::min(i, t.size - 1), y0 = std::max(j - 1, 0), y1 = std::min(j, t.size - 1);
+  const int x0 = std::max(i - 1, 0), x1 = std::min(i, t.size - 1), y0 = std::max(j - 1, 0),
+            y1 = std::min(j, t.size - 1);
   return 0.25 * (double(t.at(x0, y0)) + t.at(x1, y0) + t.at(x0, y1) + t.at(x1, y1));
 }
 
@@ -31,8 +32,10 @@ TEST(WedgieTable, ThicknessBoundsTheSurfaceAndNests) {
   const bool swne = id.z > z.meta().minZoom && ((id.x + id.y) & 1) != 0;
   const GridPoint nw{0, 0}, ne{256, 0}, se{256, 256}, sw{0, 256};
   std::vector<std::pair<TriCorners, int>> stack;
-  if (swne) stack = {{{nw, sw, ne}, 0}, {{se, ne, sw}, 0}};
-  else stack = {{{sw, se, nw}, 0}, {{ne, nw, se}, 0}};
+  if (swne)
+    stack = {{{nw, sw, ne}, 0}, {{se, ne, sw}, 0}};
+  else
+    stack = {{{sw, se, nw}, 0}, {{ne, nw, se}, 0}};
   uint64_t checked = 0, samples = 0;
   while (!stack.empty()) {
     auto [t, level] = stack.back();
@@ -43,7 +46,8 @@ TEST(WedgieTable, ThicknessBoundsTheSurfaceAndNests) {
     const float e = table.thickness(level, centroid(t));
     ASSERT_GE(e, 0.0f) << "the centre tile of Zion has data everywhere";
     // Every pixel corner inside the triangle lies within its plane ± e.
-    const double ha = cornerHeight(tile, int(t.apex.x), int(t.apex.y)), hl = cornerHeight(tile, int(t.left.x), int(t.left.y)),
+    const double ha = cornerHeight(tile, int(t.apex.x), int(t.apex.y)),
+                 hl = cornerHeight(tile, int(t.left.x), int(t.left.y)),
                  hr = cornerHeight(tile, int(t.right.x), int(t.right.y));
     const glm::dvec2 a(t.apex.x, t.apex.y), l(t.left.x, t.left.y), r(t.right.x, t.right.y);
     const double det = (l.x - a.x) * (r.y - a.y) - (r.x - a.x) * (l.y - a.y);

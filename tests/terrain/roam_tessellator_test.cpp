@@ -93,8 +93,10 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
         const TerrainVertex& v = m.vertices[m.indices[i + size_t(k)]];
         eye[k] = view.toEye(m.origin + glm::dvec3(v.position));
         // uv inside the piece's tile
-        ASSERT_GE(v.uv.x, -1e-4f); ASSERT_LE(v.uv.x, 1.0001f);
-        ASSERT_GE(v.uv.y, -1e-4f); ASSERT_LE(v.uv.y, 1.0001f);
+        ASSERT_GE(v.uv.x, -1e-4f);
+        ASSERT_LE(v.uv.x, 1.0001f);
+        ASSERT_GE(v.uv.y, -1e-4f);
+        ASSERT_LE(v.uv.y, 1.0001f);
       }
       ++triangles;
     }
@@ -163,7 +165,7 @@ TEST(RoamTessellator, SplitsAndMergesMorphInsteadOfPopping) {
   uint64_t stillSinking = 0;
   for (uint32_t v = 0; v < m.vertexCapacity(); ++v) stillSinking += m.vertex(v).merging;
   EXPECT_GE(stillSinking, started);
-  r->update(far, pieces, 200.6);   // done: they merge
+  r->update(far, pieces, 200.6);  // done: they merge
   EXPECT_GT(r->figures().merges, 0u);
   EXPECT_EQ(m.conformityViolations(), 0u);
 }
@@ -173,7 +175,8 @@ bool drawnOver(const std::vector<TerrainMesh>& meshes, glm::dvec2 p) {
   for (const TerrainMesh& m : meshes)
     for (size_t i = 0; i < m.indices.size(); i += 3) {
       glm::dvec2 v[3];
-      for (int k = 0; k < 3; ++k) v[k] = glm::dvec2(m.origin + glm::dvec3(m.vertices[m.indices[i + size_t(k)]].position));
+      for (int k = 0; k < 3; ++k)
+        v[k] = glm::dvec2(m.origin + glm::dvec3(m.vertices[m.indices[i + size_t(k)]].position));
       auto side = [&](glm::dvec2 a, glm::dvec2 b) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
       if (side(v[0], v[1]) >= 0 && side(v[1], v[2]) >= 0 && side(v[2], v[0]) >= 0) return true;
     }

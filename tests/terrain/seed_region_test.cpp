@@ -42,7 +42,8 @@ EyeView cameraLookingAt(test::ZionResident& z, double lat, double lon, double be
 }
 
 bool centroidIn(const BintreeGrid& g, const TriCorners& t, const geo::GeoBounds& box) {
-  const glm::dvec2 c = (g.tileXY(t.apex, g.gridZoom()) + g.tileXY(t.left, g.gridZoom()) + g.tileXY(t.right, g.gridZoom())) / 3.0;
+  const glm::dvec2 c =
+      (g.tileXY(t.apex, g.gridZoom()) + g.tileXY(t.left, g.gridZoom()) + g.tileXY(t.right, g.gridZoom())) / 3.0;
   const glm::dvec2 ll = geo::tileXYToLonLat(c, g.gridZoom());
   return ll.x >= box.westDeg && ll.x < box.eastDeg && ll.y > box.southDeg && ll.y <= box.northDeg;
 }

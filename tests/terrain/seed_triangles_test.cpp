@@ -61,8 +61,8 @@ TEST(SeedTriangles, SameGroundSameTriangleFromAnyCameraAndTheyCoverTheVisibleGro
       lon = b.westDeg + (0.2 + 0.6 * u(rng)) * (b.eastDeg - b.westDeg);
     }
     const double dLat = (u(rng) - 0.5) * 160.0 / 111000.0, dLon = (u(rng) - 0.5) * 160.0 / 88000.0;
-    const EyeView view = z.camera(lat + dLat, lon + dLon, 10.0 + 80.0 * u(rng), 360.0 * u(rng), -15.0 - 30.0 * u(rng),
-                                  320.0, 180.0);
+    const EyeView view =
+        z.camera(lat + dLat, lon + dLon, 10.0 + 80.0 * u(rng), 360.0 * u(rng), -15.0 - 30.0 * u(rng), 320.0, 180.0);
     test::converge(*r, view, pieces, 30);
     std::vector<TerrainMesh> meshes;
     std::vector<SeedTriangle> seeds;

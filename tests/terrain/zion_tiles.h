@@ -40,17 +40,18 @@ class ZionTiles {
   // The import failing throws: the test that asked fails with the message.
  private:
   ZionTiles() {
-    auto dir = testing::cachedFixture("terrain-zion-z11", testing::programKey(), [](const std::filesystem::path& out) -> Status {
-      datasets::GeoTiffImportOptions options;
-      options.dem = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
-      options.out = out;
-      options.maxZoom = 11;
-      options.threads = 2;
-      datasets::NullProgress progress;
-      auto meta = datasets::importGeoTiff(options, makeNullLogger(), progress);
-      if (!meta) return meta.error();
-      return {};
-    });
+    auto dir = testing::cachedFixture(
+        "terrain-zion-z11", testing::programKey(), [](const std::filesystem::path& out) -> Status {
+          datasets::GeoTiffImportOptions options;
+          options.dem = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
+          options.out = out;
+          options.maxZoom = 11;
+          options.threads = 2;
+          datasets::NullProgress progress;
+          auto meta = datasets::importGeoTiff(options, makeNullLogger(), progress);
+          if (!meta) return meta.error();
+          return {};
+        });
     if (!dir) throw std::runtime_error("Zion import failed: " + dir.error().message);
     dir_ = *dir;
     auto meta = datasets::readDatasetMeta(dir_);

@@ -60,7 +60,8 @@ bool negativeDefinite(std::vector<double> a, int n) {
 
 double maxResidual(const std::vector<double>& phi, double k, double tilt) {
   double m = 0.0;
-  for (int n = 1; n <= static_cast<int>(phi.size()); ++n) m = std::max(m, std::abs(bladeTorqueResidual(phi, k, n, tilt)));
+  for (int n = 1; n <= static_cast<int>(phi.size()); ++n)
+    m = std::max(m, std::abs(bladeTorqueResidual(phi, k, n, tilt)));
   return m;
 }
 
@@ -75,7 +76,8 @@ TEST(BladeShape, GeneralTorqueBalanceIsEq11ForThreeSegments) {
     // The tip hinge carries half of its own segment; the root all three (weights 5/2, 3/2, 1/2).
     const double t1 = phi[0], t2 = t1 + phi[1], t3 = t2 + phi[2];
     EXPECT_NEAR(bladeTorqueResidual(phi, k, 3, 0.0), 0.5 * std::sin(t3) - k * phi[2], 1e-13);
-    EXPECT_NEAR(bladeTorqueResidual(phi, k, 1, 0.3), 2.5 * std::sin(t1) + 1.5 * std::sin(t2) + 0.5 * std::sin(t3) - k * (phi[0] - 0.3), 1e-13);
+    EXPECT_NEAR(bladeTorqueResidual(phi, k, 1, 0.3),
+                2.5 * std::sin(t1) + 1.5 * std::sin(t2) + 0.5 * std::sin(t3) - k * (phi[0] - 0.3), 1e-13);
   }
   EXPECT_TRUE(std::isnan(bladeTorqueResidual(std::vector<double>{0.1, 0.2, 0.3}, 1.0, 0, 0.0)));
   EXPECT_TRUE(std::isnan(bladeTorqueResidual(std::vector<double>{0.1, 0.2, 0.3}, 1.0, 4, 0.0)));
@@ -97,7 +99,7 @@ TEST(BladeShape, JacobianMatchesFiniteDifferences) {
 }
 
 TEST(BladeShape, CriticalStiffnessIsWhereTheStraightBladeBuckles) {
-  EXPECT_DOUBLE_EQ(criticalStiffness(1), 0.5);  // ½ sin φ = k′ φ
+  EXPECT_DOUBLE_EQ(criticalStiffness(1), 0.5);                            // ½ sin φ = k′ φ
   EXPECT_NEAR(criticalStiffness(2), (2.5 + std::sqrt(3.25)) / 2, 1e-12);  // A = [[2, ½], [½, ½]]
   double previous = 0.0;
   for (int n = 1; n <= kMaxBladeSegments; ++n) {
@@ -109,7 +111,7 @@ TEST(BladeShape, CriticalStiffnessIsWhereTheStraightBladeBuckles) {
     const double below = determinant(bladeTorqueJacobian(straight, kc * (1 - 1e-6)), n);
     const double above = determinant(bladeTorqueJacobian(straight, kc * (1 + 1e-6)), n);
     EXPECT_LT(below * above, 0.0) << n;  // one eigenvalue crosses zero at k_c
-    EXPECT_TRUE(negativeDefinite(bladeTorqueJacobian(straight, kc * (1 + 1e-6)), n)) << n;  // stable above
+    EXPECT_TRUE(negativeDefinite(bladeTorqueJacobian(straight, kc * (1 + 1e-6)), n)) << n;   // stable above
     EXPECT_FALSE(negativeDefinite(bladeTorqueJacobian(straight, kc * (1 - 1e-6)), n)) << n;  // unstable below
   }
   EXPECT_TRUE(std::isnan(criticalStiffness(0)));
@@ -188,7 +190,8 @@ TEST(BladeShape, DefaultTableIsEquilibriaAndDroopsMonotonically) {
   int lateralTurns = 0;  // sign changes of the tip's lateral increments (curl: exactly one)
   double lastLateral = 0.0, lastDelta = 0.0;
   for (int r = 0; r < rows; ++r) {  // rows go from soft to stiff
-    const double k = kDefaultShapeTableKMin * std::pow(kDefaultShapeTableKMax / kDefaultShapeTableKMin, double(r) / (rows - 1));
+    const double k =
+        kDefaultShapeTableKMin * std::pow(kDefaultShapeTableKMax / kDefaultShapeTableKMin, double(r) / (rows - 1));
     auto s = solveBladeShape(k, {n, kDefaultRootTiltRad});
     ASSERT_TRUE(s);
     EXPECT_LT(s->residual, 1e-9) << r;

@@ -215,7 +215,9 @@ TEST(PlantSeeding, SpeciesFollowTheBaseMapRegions) {
       ++key;
       t.vertices = {glm::dvec3(x0, y0, 0), glm::dvec3(x0 + 5, y0, 0), glm::dvec3(x0, y0 + 5, 0)};
       t.plantCount = 200.0f;
-      const auto worldX = [&](glm::vec2 r) { return pointOnTriangle(t.vertices[0], t.vertices[1], t.vertices[2], r).x; };
+      const auto worldX = [&](glm::vec2 r) {
+        return pointOnTriangle(t.vertices[0], t.vertices[1], t.vertices[2], r).x;
+      };
       const BaseColourAt colour = [&](glm::vec2 r) { return linearFromHsv(hsvAt(worldX(r))); };
       const uint32_t clusters = clusterCount(t.plantCount, options.clusterSize);
       std::vector<PlantCluster> groups;
@@ -223,7 +225,8 @@ TEST(PlantSeeding, SpeciesFollowTheBaseMapRegions) {
       for (uint32_t c = 1; c < clusters; ++c) {
         const double x = worldX(clusterCentre(t.key, c));
         const int zone = x < 95.0 ? 0 : (x >= 125.0 && x < 195.0 ? 1 : (x >= 205.0 ? 2 : -1));
-        const auto it = std::find_if(groups.begin(), groups.end(), [&](const PlantCluster& g) { return g.cluster == c; });
+        const auto it =
+            std::find_if(groups.begin(), groups.end(), [&](const PlantCluster& g) { return g.cluster == c; });
         const int picked = it == groups.end() ? 3 : static_cast<int>(it->species);
         if (zone >= 0) ++byZone[zone][static_cast<size_t>(picked)];
         if (x > 106.0 && x < 114.0) {  // inside the blend: grass and gravel both score
@@ -232,7 +235,8 @@ TEST(PlantSeeding, SpeciesFollowTheBaseMapRegions) {
           expectedSecond += choice.secondRatio;
           borderClusters += 1.0;
           const glm::vec3 hsv = hsvFromLinear(linearFromHsv(hsvAt(x)));
-          const int second = logColourScore(catalog.species[0].score, hsv) >= logColourScore(catalog.species[1].score, hsv) ? 1 : 0;
+          const int second =
+              logColourScore(catalog.species[0].score, hsv) >= logColourScore(catalog.species[1].score, hsv) ? 1 : 0;
           if (picked == second) observedSecond += 1.0;
         }
       }

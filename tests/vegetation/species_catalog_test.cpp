@@ -76,8 +76,11 @@ TEST(SpeciesCatalog, ReadsHsvInDegreesAndSrgb) {
 }
 
 TEST(SpeciesCatalog, BareEntriesNeedNoPlantFields) {
-  json bare = {{"name", "rock"}, {"reference", {{"h_deg", 0}, {"s", 0}, {"v", 0.5}}},
-               {"weights", {{"h", 0}, {"s", 1}, {"v", 1}}}, {"p", 2}, {"bare", true}};
+  json bare = {{"name", "rock"},
+               {"reference", {{"h_deg", 0}, {"s", 0}, {"v", 0.5}}},
+               {"weights", {{"h", 0}, {"s", 1}, {"v", 1}}},
+               {"p", 2},
+               {"bare", true}};
   json j = {{"about", "x"}, {"species", json::array({goodSpecies(), bare})}};
   auto r = parse(j);
   ASSERT_TRUE(r.ok()) << r.error().message;
@@ -96,7 +99,10 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
   const BadCase cases[] = {
       {"typo key", [](json& s) { s["hieght_m"] = 1; }, "species.json: species[0].hieght_m: unknown key"},
       {"nested typo", [](json& s) { s["weights"]["hue"] = 1; }, "species[0].weights.hue: unknown key"},
-      {"min > max", [](json& s) { s["height_m"] = {{"min", 0.3}, {"max", 0.1}}; },
+      {"min > max",
+       [](json& s) {
+         s["height_m"] = {{"min", 0.3}, {"max", 0.1}};
+       },
        "species[0].height_m.max: must be ≥ min (got 0.1 < 0.3)"},
       {"zero height", [](json& s) { s["height_m"]["min"] = 0; }, "species[0].height_m.min: must be > 0"},
       {"negative stiffness", [](json& s) { s["stiffness"]["min"] = -1; }, "species[0].stiffness.min: must be > 0"},
@@ -104,11 +110,19 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
       {"p zero", [](json& s) { s["p"] = 0; }, "species[0].p: must be > 0"},
       {"p string", [](json& s) { s["p"] = "3"; }, "species[0].p: must be a number"},
       {"negative weight", [](json& s) { s["weights"]["s"] = -0.5; }, "species[0].weights.s: must be ≥ 0"},
-      {"all weights zero", [](json& s) { s["weights"] = {{"h", 0}, {"s", 0}, {"v", 0}}; },
+      {"all weights zero",
+       [](json& s) {
+         s["weights"] = {{"h", 0}, {"s", 0}, {"v", 0}};
+       },
        "species[0].weights: must not all be 0"},
-      {"hue out of range", [](json& s) { s["reference"]["h_deg"] = 400; }, "species[0].reference.h_deg: must be in 0 … 360"},
+      {"hue out of range", [](json& s) { s["reference"]["h_deg"] = 400; },
+       "species[0].reference.h_deg: must be in 0 … 360"},
       {"s out of range", [](json& s) { s["reference"]["s"] = 1.5; }, "species[0].reference.s: must be in 0 … 1"},
-      {"bad srgb", [](json& s) { s["reference"] = {{"srgb", "#12345g"}}; }, "species[0].reference.srgb: must be a colour"},
+      {"bad srgb",
+       [](json& s) {
+         s["reference"] = {{"srgb", "#12345g"}};
+       },
+       "species[0].reference.srgb: must be a colour"},
       {"missing reference", [](json& s) { s.erase("reference"); }, "species[0].reference: is missing"},
       {"unknown kind", [](json& s) { s["kind"] = "bush"; }, "species[0].kind: must be \"grass\""},
       {"missing kind", [](json& s) { s.erase("kind"); }, "species[0].kind: is missing"},
@@ -116,7 +130,8 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
       {"negative threshold", [](json& s) { s["threshold"] = -1; }, "species[0].threshold: must be ≥ 0"},
       {"bare not bool", [](json& s) { s["bare"] = 1; }, "species[0].bare: must be true or false"},
       {"empty name", [](json& s) { s["name"] = ""; }, "species[0].name: must be a non-empty string"},
-      {"modulation too big", [](json& s) { s["colour_modulation"]["max"] = 9; }, "species[0].colour_modulation.max: must be in 0 … 4"},
+      {"modulation too big", [](json& s) { s["colour_modulation"]["max"] = 9; },
+       "species[0].colour_modulation.max: must be in 0 … 4"},
   };
   for (const BadCase& c : cases) {
     json s = goodSpecies();

@@ -70,7 +70,8 @@ TEST(SpeciesChoice, TiesKeepTheLowerIndexFirst) {
 
 // Over 10⁵ Philox draws the second best is picked with frequency s1 / (s0 + s1) (within 4σ).
 TEST(SpeciesChoice, PickFrequencyFollowsTheScoreRatio) {
-  SpeciesCatalog c{{plant("a", {0.30f, 0.5f, 0.5f}), plant("b", {0.36f, 0.5f, 0.5f}), plant("far", {0.8f, 0.9f, 0.9f})}};
+  SpeciesCatalog c{
+      {plant("a", {0.30f, 0.5f, 0.5f}), plant("b", {0.36f, 0.5f, 0.5f}), plant("far", {0.8f, 0.9f, 0.9f})}};
   for (float h : {0.31f, 0.325f, 0.335f, 0.35f}) {
     const glm::vec3 hsv{h, 0.5f, 0.5f};
     const double s0 = colourScore(c.species[0].score, hsv), s1 = colourScore(c.species[1].score, hsv);
@@ -127,10 +128,14 @@ struct BaseMap {
     const Philox2x32Out r = philox(i, 1u, 0xbeefu), r2 = philox(i, 2u, 0xbeefu);
     const glm::vec3 noise = (glm::vec3(u01(r.x), u01(r.y), u01(r2.x)) - 0.5f) * 0.04f;
     glm::vec3 c;
-    if (x < 0.95f) c = green;
-    else if (x < 1.05f) c = green + (red - green) * ((x - 0.95f) / 0.1f);  // hue: both near 0…0.25, no wrap between
-    else if (x < 2.0f) c = red;
-    else c = pale;
+    if (x < 0.95f)
+      c = green;
+    else if (x < 1.05f)
+      c = green + (red - green) * ((x - 0.95f) / 0.1f);  // hue: both near 0…0.25, no wrap between
+    else if (x < 2.0f)
+      c = red;
+    else
+      c = pale;
     c += noise;
     c.x = c.x < 0.0f ? c.x + 1.0f : c.x;
     return glm::clamp(c, glm::vec3(0.0f), glm::vec3(0.9999f, 1.0f, 1.0f));

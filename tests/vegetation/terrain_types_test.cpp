@@ -41,19 +41,19 @@ TEST(TerrainTypes, TheDefaultTableIsWellFormed) {
 
 // Colours read off the imported Zion sample (10 × 10 pixel means) and typical aerial photos.
 TEST(TerrainTypes, TypicalImageryColoursPickTheirType) {
-  EXPECT_EQ(pick(104, 120, 60), "meadow");          // a bright clearing
-  EXPECT_EQ(pick(92, 122, 52), "meadow");           // Goleta lawn
-  EXPECT_EQ(pick(36, 42, 25), "forest");            // Zion plateau forest
-  EXPECT_EQ(pick(33, 38, 25), "forest");            // forest in shadow
-  EXPECT_EQ(pick(149, 101, 88), "red rock");        // Zion red sandstone (Kolob)
-  EXPECT_EQ(pick(172, 92, 62), "red rock");         // a more saturated red wall
-  EXPECT_EQ(pick(106, 86, 77), "gravel");           // Zion desert floor
-  EXPECT_EQ(pick(78, 58, 50), "gravel");            // darker brown scree
-  EXPECT_EQ(pick(184, 177, 164), "pale sandstone"); // Zion white (upper Navajo) sandstone
-  EXPECT_EQ(pick(208, 196, 176), "pale sandstone"); // brighter still
-  EXPECT_EQ(pick(128, 128, 130), "grey rock");      // grey rock, a street
-  EXPECT_EQ(pick(90, 92, 95), "grey rock");         // darker grey: hue ignored, value down-weighted
-  EXPECT_EQ(pick(214, 188, 138), "sand");           // pale yellow sand
+  EXPECT_EQ(pick(104, 120, 60), "meadow");           // a bright clearing
+  EXPECT_EQ(pick(92, 122, 52), "meadow");            // Goleta lawn
+  EXPECT_EQ(pick(36, 42, 25), "forest");             // Zion plateau forest
+  EXPECT_EQ(pick(33, 38, 25), "forest");             // forest in shadow
+  EXPECT_EQ(pick(149, 101, 88), "red rock");         // Zion red sandstone (Kolob)
+  EXPECT_EQ(pick(172, 92, 62), "red rock");          // a more saturated red wall
+  EXPECT_EQ(pick(106, 86, 77), "gravel");            // Zion desert floor
+  EXPECT_EQ(pick(78, 58, 50), "gravel");             // darker brown scree
+  EXPECT_EQ(pick(184, 177, 164), "pale sandstone");  // Zion white (upper Navajo) sandstone
+  EXPECT_EQ(pick(208, 196, 176), "pale sandstone");  // brighter still
+  EXPECT_EQ(pick(128, 128, 130), "grey rock");       // grey rock, a street
+  EXPECT_EQ(pick(90, 92, 95), "grey rock");          // darker grey: hue ignored, value down-weighted
+  EXPECT_EQ(pick(214, 188, 138), "sand");            // pale yellow sand
 }
 
 TEST(TerrainTypes, SurfaceWeightsSumPerDetailLayer) {

@@ -84,13 +84,14 @@ TEST(ImportBadInput, TiffWithoutGeoreference) {
 
 TEST(ImportBadInput, UnsupportedCrsNamesTheCode) {
   // ProjectedCSType 2193 (NZGD2000 / New Zealand Transverse Mercator).
-  const fs::path p = tinyGeoTiff(importTmp("bad_crs_src") / "nztm.tif",
-                                 {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 2193});
+  const fs::path p =
+      tinyGeoTiff(importTmp("bad_crs_src") / "nztm.tif", {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 2193});
   expectRefused(runImport("crs", "--dem " + p.string()), p.string(), "2193");
 }
 
 TEST(ImportBadInput, DemAndImageryDoNotOverlap) {
-  const auto c = runImport("overlap", "--dem " + kSrtm + " --imagery " + samples() + "/goleta/sba_rgb_wgs84_512x512.tif");
+  const auto c =
+      runImport("overlap", "--dem " + kSrtm + " --imagery " + samples() + "/goleta/sba_rgb_wgs84_512x512.tif");
   expectRefused(c, "srtm.tif", "do not overlap");
   EXPECT_NE(c.result.err.find("sba_rgb_wgs84_512x512.tif"), std::string::npos);
 }
@@ -132,8 +133,8 @@ TEST(ImportBadInput, UnknownStretchAndCrsOptions) {
 
 TEST(ImportBadInput, ImageryBandsOnDifferentGrids) {
   const std::string z = samples() + "/zion/";
-  const auto c = runImport("bands", "--dem " + kSrtm + " --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," +
-                                        samples() + "/rmnp/rmnp-dem.tif");
+  const auto c = runImport("bands", "--dem " + kSrtm + " --imagery-bands " + z + "landsat_b4.tif," + z +
+                                        "landsat_b3.tif," + samples() + "/rmnp/rmnp-dem.tif");
   expectRefused(c, "rmnp-dem.tif", "same grid");
 }
 

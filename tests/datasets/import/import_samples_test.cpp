@@ -17,8 +17,8 @@ const std::string kGoletaRgb = samples() + "/goleta/sba_rgb_wgs84_512x512.tif";
 
 TEST(ImportSamples, GoletaWithoutDemCrsIsRefusedClearly) {
   const fs::path parent = importTmp("goleta_refused");
-  const auto r = runVegstream("import --dem " + kGoletaDem + " --imagery " + kGoletaRgb + " --out " +
-                              (parent / "g").string());
+  const auto r =
+      runVegstream("import --dem " + kGoletaDem + " --imagery " + kGoletaRgb + " --out " + (parent / "g").string());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_EQ(countLines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("sba_elev32_wgs84_512x512.tif"), std::string::npos) << r.err;
@@ -74,9 +74,9 @@ TEST(ImportSamples, RmnpDifferentExtentsAndPixelSizes) {
 
 TEST(ImportSamples, XyzFormImportsGrandCanyon) {
   const fs::path out = importTmp("grandcanyon") / "gc";
-  const auto r = runVegstream("import --xyz-elevation '" + samples() +
-                              "/grandcanyon-xyz/terrain-rgb/{z}/{x}/{y}.png' --encoding terrain-rgb --out " +
-                              out.string());
+  const auto r =
+      runVegstream("import --xyz-elevation '" + samples() +
+                   "/grandcanyon-xyz/terrain-rgb/{z}/{x}/{y}.png' --encoding terrain-rgb --out " + out.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   auto meta = readDatasetMeta(out);
   ASSERT_TRUE(meta) << meta.error().message;

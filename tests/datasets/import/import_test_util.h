@@ -66,7 +66,8 @@ class DatasetSampler {
     }
     if (!it->second) return std::nullopt;
     const int px = static_cast<int>((t.x - id.x) * n), py = static_cast<int>((t.y - id.y) * n);
-    const uint8_t* p = &it->second->rgba[(static_cast<size_t>(py) * static_cast<size_t>(n) + static_cast<size_t>(px)) * 4];
+    const uint8_t* p =
+        &it->second->rgba[(static_cast<size_t>(py) * static_cast<size_t>(n) + static_cast<size_t>(px)) * 4];
     if (p[3] == 0) return std::nullopt;
     return std::array<int, 3>{p[0], p[1], p[2]};
   }

@@ -19,19 +19,21 @@ using namespace vegstream::datasets::test;
 class ZionImport : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto dir = testing::cachedFixture("import-zion-z14-cubic", testing::vegstreamKey(), [](const fs::path& out) -> Status {
-      const std::string z = samples() + "/zion/";
-      // --max-zoom 14 (7.6 m pixels, 4× finer than the automatic zoom 12) and cubic height
-      // resampling: the height check samples the tiles bilinearly at the DEM's pixel centres, and
-      // a bilinear import's kinks leave 19 % of them beyond 0.5 m even at zoom 14 (README,
-      // "Height accuracy").
-      const auto r = testing::runVegstream(
-          "import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," + z +
-          "landsat_b2.tif --stretch p1,p99 --max-zoom 14 --height-resampling cubic --out " + out.string());
-      if (r.exitCode != 0)
-        return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
-      return {};
-    });
+    auto dir =
+        testing::cachedFixture("import-zion-z14-cubic", testing::vegstreamKey(), [](const fs::path& out) -> Status {
+          const std::string z = samples() + "/zion/";
+          // --max-zoom 14 (7.6 m pixels, 4× finer than the automatic zoom 12) and cubic height
+          // resampling: the height check samples the tiles bilinearly at the DEM's pixel centres, and
+          // a bilinear import's kinks leave 19 % of them beyond 0.5 m even at zoom 14 (README,
+          // "Height accuracy").
+          const auto r = testing::runVegstream(
+              "import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z + "landsat_b3.tif," + z +
+              "landsat_b2.tif --stretch p1,p99 --max-zoom 14 --height-resampling cubic --out " + out.string());
+          if (r.exitCode != 0)
+            return makeError(ErrorKind::Internal,
+                             "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
+          return {};
+        });
     ASSERT_TRUE(dir.ok()) << dir.error().message;
     out_ = *dir;
   }
@@ -83,7 +85,8 @@ TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
   auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta);
   const std::string z = samples() + "/zion/";
-  auto r = readGeoTiff(z + "landsat_b4.tif"), g = readGeoTiff(z + "landsat_b3.tif"), b = readGeoTiff(z + "landsat_b2.tif");
+  auto r = readGeoTiff(z + "landsat_b4.tif"), g = readGeoTiff(z + "landsat_b3.tif"),
+       b = readGeoTiff(z + "landsat_b2.tif");
   ASSERT_TRUE(r && g && b);
   // Stretch ranges as dataset.json records them (the importer's p1/p99 of each band).
   const Raster* bands[3] = {&*r, &*g, &*b};
@@ -126,7 +129,8 @@ TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
     if (!c) continue;
     ++checked;
     int worst = 0;
-    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs((*c)[static_cast<size_t>(k)] - int(std::lround(centre[k]))));
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::abs((*c)[static_cast<size_t>(k)] - int(std::lround(centre[k]))));
     good += worst <= 12;
     EXPECT_LE(worst, 12) << "Landsat pixel " << i << "," << j;
   }

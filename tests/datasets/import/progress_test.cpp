@@ -38,7 +38,10 @@ TEST(Progress, PlainLinesAndSummaryCountTilesAndBytes) {
 
 TEST(Progress, CallbackSeesDoneAndTotal) {
   uint64_t lastDone = 0, lastTotal = 0;
-  CallbackProgress p([&](uint64_t d, uint64_t t) { lastDone = d; lastTotal = t; });
+  CallbackProgress p([&](uint64_t d, uint64_t t) {
+    lastDone = d;
+    lastTotal = t;
+  });
   p.addTotal(5);
   p.tileDone(10);
   p.tileDone(10);

@@ -73,7 +73,11 @@ TEST_P(EncodingRoundTrip, TileFileKeepsHeightsAndNodataMask) {
   int backNodata = 0;
   double worst = 0.0;
   for (size_t i = 0; i < t.heights.size(); ++i) {
-    if (std::isnan(back->heights[i])) { ++backNodata; EXPECT_TRUE(std::isnan(t.heights[i])); continue; }
+    if (std::isnan(back->heights[i])) {
+      ++backNodata;
+      EXPECT_TRUE(std::isnan(t.heights[i]));
+      continue;
+    }
     worst = std::max(worst, std::abs(double(back->heights[i]) - double(t.heights[i])));
   }
   EXPECT_EQ(backNodata, nodata);
@@ -87,7 +91,10 @@ TEST(TileCodec, ColourPngIsLosslessAndJpegClose) {
   for (int y = 0; y < 256; ++y)
     for (int x = 0; x < 256; ++x) {
       uint8_t* p = &t.rgba[(size_t(y) * 256 + size_t(x)) * 4];
-      p[0] = uint8_t(x); p[1] = uint8_t(y); p[2] = 90; p[3] = 255;
+      p[0] = uint8_t(x);
+      p[1] = uint8_t(y);
+      p[2] = 90;
+      p[3] = 255;
     }
   const fs::path d = tmpDir("colour");
   ASSERT_TRUE(writeColorTile(d / "a.png", t, ImageryFormat::Png));

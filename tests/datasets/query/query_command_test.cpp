@@ -26,8 +26,9 @@ double handBilinear(double lat, double lon) {
   auto pixel = [](long gxi, long gyi) {
     const int tx = static_cast<int>(gxi / 256), ty = static_cast<int>(gyi / 256);
     const geo::TileId id{12, tx, ty};
-    auto tile = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12" / std::to_string(tx) / (std::to_string(ty) + ".png"),
-                                         id, datasets::ElevationEncoding::TerrainRgb);
+    auto tile = datasets::readHeightTile(
+        grandCanyonDir() / "terrain-rgb/12" / std::to_string(tx) / (std::to_string(ty) + ".png"), id,
+        datasets::ElevationEncoding::TerrainRgb);
     EXPECT_TRUE(tile.ok());
     return double{tile->at(static_cast<int>(gxi - tx * 256L), static_cast<int>(gyi - ty * 256L))};
   };
@@ -64,7 +65,8 @@ TEST_F(GrandCanyon, QueryMatchesHandBilinear) {
   const glm::dvec2 corner = geo::tileXYToLonLat({759.0, 1609.0}, 12);
   const glm::dvec2 inside = geo::tileXYToLonLat({759.3137, 1608.7071}, 12);
   for (const glm::dvec2& p : {corner, inside}) {
-    const auto r = runVegstream("query " + q(dir()) + " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x));
+    const auto r =
+        runVegstream("query " + q(dir()) + " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const json j = json::parse(r.out);
     const double h = j["height_m"].get<double>();

@@ -14,7 +14,9 @@
 
 namespace vegstream::testing {
 
-inline std::filesystem::path grandCanyonDir() { return std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "grandcanyon-xyz"; }
+inline std::filesystem::path grandCanyonDir() {
+  return std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "grandcanyon-xyz";
+}
 
 // `name` in the running test's own directory, not there yet.
 inline std::filesystem::path testTmp(const std::string& name) {

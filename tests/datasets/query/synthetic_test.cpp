@@ -80,7 +80,8 @@ TEST(Generate, PlausibleTerrainThatInfoAndQueryRead) {
     "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02},
     "stiffness": {"min": 1, "max": 2}, "width_m": {"min": 0.001, "max": 0.002},
     "colour_modulation": {"min": 1, "max": 1}}]})";
-  const auto custom = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + one.string() + "'");
+  const auto custom =
+      runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + one.string() + "'");
   ASSERT_EQ(custom.exitCode, 0) << custom.err;
   const json cj = json::parse(custom.out);
   EXPECT_EQ(cj["species"], "moss");
@@ -96,7 +97,8 @@ TEST(Generate, PlausibleTerrainThatInfoAndQueryRead) {
     EXPECT_NE(r.err.find(f.filename().string()), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
-  const auto badRun = runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + bad.string() + "'");
+  const auto badRun =
+      runVegstream("query '" + dir.string() + "' --lat 40.0 --lon -105.6 --species '" + bad.string() + "'");
   EXPECT_NE(badRun.err.find("species[0].wieghts: unknown key"), std::string::npos) << badRun.err;
   fs::remove_all(dir);
 }

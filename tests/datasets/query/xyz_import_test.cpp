@@ -23,8 +23,9 @@ TEST_F(GrandCanyon, DecodedHeightsWithinKnownRange) {
   for (int x : {758, 759})
     for (int y : {1608, 1609}) {
       const geo::TileId id{12, x, y};
-      auto t = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12" / std::to_string(x) / (std::to_string(y) + ".png"),
-                                        id, ElevationEncoding::TerrainRgb);
+      auto t = datasets::readHeightTile(
+          grandCanyonDir() / "terrain-rgb/12" / std::to_string(x) / (std::to_string(y) + ".png"), id,
+          ElevationEncoding::TerrainRgb);
       ASSERT_TRUE(t.ok()) << t.error().message;
       for (float h : t->heights) {
         ASSERT_FALSE(std::isnan(h));
@@ -44,7 +45,8 @@ TEST_F(GrandCanyon, DecodedHeightsWithinKnownRange) {
 // 0.9997, tile means 0.49 m apart), and each encoding carries the other's heights within 0.2 m.
 TEST_F(GrandCanyon, TerrariumAndTerrainRgbAgree) {
   const geo::TileId id{12, 759, 1608};
-  auto rgb = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12/759/1608.png", id, ElevationEncoding::TerrainRgb);
+  auto rgb =
+      datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12/759/1608.png", id, ElevationEncoding::TerrainRgb);
   auto ter = datasets::readHeightTile(grandCanyonDir() / "terrarium/12/759/1608.png", id, ElevationEncoding::Terrarium);
   ASSERT_TRUE(rgb.ok()) << rgb.error().message;
   ASSERT_TRUE(ter.ok()) << ter.error().message;
@@ -63,8 +65,9 @@ TEST_F(GrandCanyon, TerrariumAndTerrainRgbAgree) {
     // Each encoding carries the other's heights: encode in the other, decode, compare.
     const auto ca = datasets::encodeHeight(a, ElevationEncoding::Terrarium);
     const auto cb = datasets::encodeHeight(b, ElevationEncoding::TerrainRgb);
-    maxRoundTrip = std::max({maxRoundTrip, std::abs(datasets::decodeHeight(ca[0], ca[1], ca[2], ElevationEncoding::Terrarium) - a),
-                             std::abs(datasets::decodeHeight(cb[0], cb[1], cb[2], ElevationEncoding::TerrainRgb) - b)});
+    maxRoundTrip =
+        std::max({maxRoundTrip, std::abs(datasets::decodeHeight(ca[0], ca[1], ca[2], ElevationEncoding::Terrarium) - a),
+                  std::abs(datasets::decodeHeight(cb[0], cb[1], cb[2], ElevationEncoding::TerrainRgb) - b)});
   }
   std::nth_element(absDiff.begin(), absDiff.begin() + static_cast<std::ptrdiff_t>(absDiff.size() / 2), absDiff.end());
   const double correlation = sab / std::sqrt(saa * sbb);
@@ -103,8 +106,9 @@ TEST_F(GrandCanyon, LowerZoomsAreMeansOfTheirChildren) {
     const int ox = (c.x - 2 * top.x) * 128, oy = (c.y - 2 * top.y) * 128;
     for (int j = 0; j < 128; ++j)
       for (int i = 0; i < 128; ++i) {
-        const double mean = (double{child->at(2 * i, 2 * j)} + child->at(2 * i + 1, 2 * j) + child->at(2 * i, 2 * j + 1) +
-                             child->at(2 * i + 1, 2 * j + 1)) / 4.0;
+        const double mean = (double{child->at(2 * i, 2 * j)} + child->at(2 * i + 1, 2 * j) +
+                             child->at(2 * i, 2 * j + 1) + child->at(2 * i + 1, 2 * j + 1)) /
+                            4.0;
         const double p = parent->at(ox + i, oy + j);
         maxDiff = std::max(maxDiff, std::abs(p - mean));
         parentSum += p;
@@ -173,8 +177,8 @@ TEST(XyzImport, CorruptTileIsRefusedAndLeavesNothing) {
   // The same through the command line, when the import subcommand is there.
   const auto help = runVegstream("import --help");
   if (help.exitCode == 0 && help.out.find("--xyz-elevation") != std::string::npos) {
-    const auto cmd = runVegstream("import --xyz-elevation '" + o.elevationTemplate + "' --encoding terrain-rgb --out '" +
-                                  o.out.string() + "'");
+    const auto cmd = runVegstream("import --xyz-elevation '" + o.elevationTemplate +
+                                  "' --encoding terrain-rgb --out '" + o.out.string() + "'");
     EXPECT_EQ(cmd.exitCode, 2);
     EXPECT_NE(cmd.err.find("1609.png"), std::string::npos) << cmd.err;
     EXPECT_FALSE(fs::exists(o.out));
