@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""bench/gpu-measure's report: one markdown document from the recordings and bench JSON in DIR.
+
+Usage: gpu_measure_report.py DIR [FAILED_NAME ...]. Tables: the frame per recording (GPU, CPU and
+wall p50/p99, plants in the low phase), GPU ms per pass (p50/p99; empty where the device's
+per-pass times mean nothing), and every benchmark with its counters.
+"""
+import csv
+import json
+import math
+import os
+import statistics
+import sys
+
+ORDER = ["default", "no-plants", "dense", "canyon", "canyon-dense"]
+LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
+
+
+def fmt(v, digits=2):
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "—"
+    if isinstance(v, float):
+        return f"{v:.{digits}f}"
+    return str(v)
+
+
+def pct(times, column, q):
+    t = times.get(column)
+    return None if not t else t.get(q)
+
+
+def column(rows, name, low_phase=False):
+    out = []
+    for r in rows:
+        if low_phase and not (LOW_PHASE_S[0] <= float(r["t_s"]) <= LOW_PHASE_S[1]):
+            continue
+        if r.get(name, "") != "":
+            out.append(float(r[name]))
+    return out
+
+
+def median(values):
+    return statistics.median(values) if values else None
+
+
+def main():
+    d = sys.argv[1]
+    failed = sys.argv[2:]
+    recordings = [n for n in ORDER if os.path.isfile(os.path.join(d, n, "summary.json"))]
+    print("# gpu-measure report\n")
+    if failed:
+        print(f"**Failed:** {', '.join(failed)} (their logs are in the directory).\n")
+    if recordings:
+        first = json.load(open(os.path.join(d, recordings[0], "summary.json")))["recording"]
+        dev = first["device"]
+        print(f"Device: {dev['name']} ({dev['driver']}), {first['size'][0]}×{first['size'][1]}, "
+              f"MSAA {first['msaa']}, {first['fps']} fps, per-pass GPU times "
+              f"{'meaningful' if first['per_pass_gpu_times_meaningful'] else 'not meaningful (CPU rasteriser)'}.\n")
+        print("## Frames\n")
+        print("| recording | path | frames | GPU p50 / p99 ms | CPU p50 / p99 ms | wall p50 / p99 ms | "
+              "plants (low phase, median) | plant triangles (low phase) | terrain triangles (median) |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        passes = []
+        data = {}
+        for n in recordings:
+            s = json.load(open(os.path.join(d, n, "summary.json")))
+            rows = list(csv.DictReader(open(os.path.join(d, n, "frames.csv"))))
+            data[n] = (s, rows)
+            t = s["times_ms"]
+            for p in s["recording"].get("gpu_passes", []):
+                if p not in passes:
+                    passes.append(p)
+            print(f"| {n} | {s['recording']['path']['name']} | {s['frames']} | "
+                  f"{fmt(pct(t, 'gpu_frame_ms', 'p50'))} / {fmt(pct(t, 'gpu_frame_ms', 'p99'))} | "
+                  f"{fmt(pct(t, 'cpu_frame_ms', 'p50'))} / {fmt(pct(t, 'cpu_frame_ms', 'p99'))} | "
+                  f"{fmt(pct(t, 'wall_ms', 'p50'))} / {fmt(pct(t, 'wall_ms', 'p99'))} | "
+                  f"{fmt(median(column(rows, 'plants', True)), 0)} | "
+                  f"{fmt(median(column(rows, 'plant_triangles', True)), 0)} | "
+                  f"{fmt(median(column(rows, 'terrain_triangles')), 0)} |")
+        print("\n## GPU ms per pass (p50 / p99)\n")
+        print("| recording | " + " | ".join(passes) + " |")
+        print("|---|" + "---|" * len(passes))
+        for n in recordings:
+            t = data[n][0]["times_ms"]
+            cells = []
+            for p in passes:
+                c = "gpu_" + "".join(ch if ch.isalnum() else "_" for ch in p.lower()) + "_ms"
+                cells.append(f"{fmt(pct(t, c, 'p50'))} / {fmt(pct(t, c, 'p99'))}")
+            print(f"| {n} | " + " | ".join(cells) + " |")
+        print("\n## CPU ms per stage (p50 / p99)\n")
+        stages = ["cpu_streaming_ms", "cpu_terrain_ms", "cpu_seeding_ms", "cpu_record_submit_ms", "cpu_frame_ms"]
+        print("| recording | " + " | ".join(stages) + " |")
+        print("|---|" + "---|" * len(stages))
+        for n in recordings:
+            t = data[n][0]["times_ms"]
+            print(f"| {n} | " + " | ".join(f"{fmt(pct(t, c, 'p50'))} / {fmt(pct(t, c, 'p99'))}" for c in stages) + " |")
+    for bench in ("bench_plants", "bench_roam"):
+        f = os.path.join(d, bench + ".json")
+        if not os.path.isfile(f):
+            continue
+        b = json.load(open(f))
+        print(f"\n## {bench}\n")
+        print("| benchmark | real time | counters |")
+        print("|---|---|---|")
+        for r in b.get("benchmarks", []):
+            skip = {"name", "family_index", "per_family_instance_index", "run_name", "run_type", "repetitions",
+                    "repetition_index", "threads", "iterations", "real_time", "cpu_time", "time_unit"}
+            counters = ", ".join(f"{k} {fmt(v) if isinstance(v, float) else v}" for k, v in r.items() if k not in skip)
+            print(f"| {r['name']} | {fmt(r.get('real_time'))} {r.get('time_unit', '')} | {counters} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
