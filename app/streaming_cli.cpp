@@ -31,6 +31,9 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--canopy-m", o.canopyM,
                  "Tallest plant, metres: terrain culling keeps triangles whose plants can be seen")
       ->capture_default_str();
+  cmd.add_option("--terrain-detail", o.terrainDetail,
+                 "Strength of the close-up terrain detail textures, 0 (the bare imagery) … 1")
+      ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
       ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
@@ -70,6 +73,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
     return bad("--terrain-max-nodes " + std::to_string(o.terrainMaxNodes) + ": must be 1 … 100000");
   if (o.terrainMaxTriangles < 2 || o.terrainMaxTriangles > 10'000'000)
     return bad("--terrain-max-triangles " + std::to_string(o.terrainMaxTriangles) + ": must be 2 … 10000000");
+  if (!(o.terrainDetail >= 0.0 && o.terrainDetail <= 1.0))
+    return bad("--terrain-detail " + std::to_string(o.terrainDetail) + ": must be 0 … 1");
   if (!(o.canopyM >= 0.0 && o.canopyM <= 200.0))
     return bad("--canopy-m " + std::to_string(o.canopyM) + ": must be 0 … 200 metres");
   if (!(o.seedHorizonM >= 0.0 && o.seedHorizonM <= 20000.0))
@@ -102,6 +107,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrain.maxNodes = o.terrainMaxNodes;
   scene.terrain.roam.maxTriangles = static_cast<uint64_t>(o.terrainMaxTriangles);
   scene.terrain.roam.canopyM = o.canopyM;
+  scene.terrainDetail = static_cast<float>(o.terrainDetail);
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;

@@ -51,6 +51,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"terrain_max_nodes", m.streaming.terrainMaxNodes},
         {"terrain_max_triangles", m.streaming.terrainMaxTriangles},
         {"canopy_m", m.streaming.canopyM},
+        {"terrain_detail", m.streaming.terrainDetail},
         {"seed_horizon_m", m.streaming.seedHorizonM},
         {"seed_level", m.streaming.seedLevel},
         {"seed_triangle_area_m2", m.streaming.seedTriangleAreaM2}}},

@@ -57,6 +57,7 @@ struct RecordingMeta {
     int terrainMaxNodes = 0;
     uint64_t terrainMaxTriangles = 0;
     double canopyM = 0.0, seedHorizonM = 0.0;
+    double terrainDetail = 1.0;  // strength of the close-up detail textures
     int seedLevel = 0;
     double seedTriangleAreaM2 = 0.0;
   } streaming;

@@ -68,6 +68,7 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.streaming.terrainMaxNodes = so.terrain.maxNodes;
   m.streaming.terrainMaxTriangles = so.terrain.roam.maxTriangles;
   m.streaming.canopyM = so.terrain.roam.canopyM;
+  m.streaming.terrainDetail = so.terrainDetail;
   m.streaming.seedHorizonM = so.terrain.seeds.horizonM;
   m.streaming.seedLevel = info.seedLevel;
   m.streaming.seedTriangleAreaM2 = info.seedAreaM2;

@@ -130,6 +130,7 @@ render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
   render::FrameRequest req;
   req.camera = cameraFor(impl_->frame, sample);
   req.cameraHeightMsl = sample.position.heightM;
+  req.terrainDetail = impl_->options.terrainDetail;
   req.lighting = impl_->lighting;
   return req;
 }

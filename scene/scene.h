@@ -53,7 +53,8 @@ struct SceneOptions {
   streaming::StreamingOptions streaming;
   terrain::StreamedTerrainOptions terrain;
   StreamingMode mode = StreamingMode::Realtime;
-  bool lookAhead = true;  // prefetch the tiles of the poses expected next
+  bool lookAhead = true;       // prefetch the tiles of the poses expected next
+  float terrainDetail = 1.0f;  // close-up detail textures, 0 (bare imagery) … 1
   std::optional<std::filesystem::path> httpCacheDir;
   uint64_t groundMaxPixels = 1'000'000;  // the ground mosaic for path altitudes
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).

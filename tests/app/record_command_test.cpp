@@ -229,6 +229,7 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_LE(s["times_ms"]["gpu_frame_ms"]["p50"].get<double>(), s["times_ms"]["gpu_frame_ms"]["p95"].get<double>());
   EXPECT_FALSE(s["times_ms"]["cpu_streaming_ms"].is_null());
   EXPECT_EQ(s["recording"]["streaming"]["mode"], "settled");
+  EXPECT_EQ(s["recording"]["streaming"]["terrain_detail"], 1.0);
   EXPECT_EQ(s["streaming"]["fallback_frames"], 0) << "settled: every frame draws the tiles it wants";
   EXPECT_GT(s["streaming"]["requests"]["completed"].get<double>(), 0.0);
   // Every request a frame issued is accounted for by the end: resident, cancelled, failed,
@@ -383,6 +384,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_max_triangles", "{DS} {SMALL} --path {PATH} --terrain-max-triangles 1",
                   "--terrain-max-triangles"},
         BadRecord{"bad_canopy", "{DS} {SMALL} --path {PATH} --canopy-m -3", "--canopy-m"},
+        BadRecord{"bad_terrain_detail", "{DS} {SMALL} --path {PATH} --terrain-detail 1.5", "--terrain-detail"},
         BadRecord{"bad_seed_horizon", "{DS} {SMALL} --path {PATH} --seed-horizon-m 1e9", "--seed-horizon-m"},
         BadRecord{"bad_density", "{DS} {SMALL} --path {PATH} --plant-density -1", "--plant-density"},
         BadRecord{"bad_plant_max", "{DS} {SMALL} --path {PATH} --plant-max 1e7", "--plant-max"},
