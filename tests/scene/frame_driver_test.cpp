@@ -9,51 +9,29 @@
 
 #include <gtest/gtest.h>
 
-#include "datasets/progress.h"
-#include "datasets/synthetic_generator.h"
 #include "flight/path_templates.h"
 #include "scene/frame_driver.h"
 #include "scene/playback.h"
+#include "tests/scene/scene_fixture.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::scene {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path testDir(const std::string& name) {
-  const fs::path dir = fs::path(VEGSTREAM_TEST_TMP) / ("frame_driver." + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 class FrameDriverTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = testDir(info->name());
-    datasets::SyntheticOptions o;
-    o.out = dir / "dataset";
-    o.sizeKm = 3.0;
-    o.seed = 11;
-    datasets::NullProgress progress;
-    auto meta = datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
-    ASSERT_TRUE(meta.ok()) << meta.error().message;
+    dir = vegstream::testing::testOutputDir();
+    auto made = testing::syntheticDataset();
+    ASSERT_TRUE(made.ok()) << made.error().message;
+    dataset = *made;
   }
   void TearDown() override {
     for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
   }
   std::unique_ptr<Scene> open() {
-    SceneOptions o;
-    o.dataset = (dir / "dataset").string();
-    o.mode = StreamingMode::Settled;
-    o.renderer.width = 96;
-    o.renderer.height = 54;
-    o.renderer.msaa = 1;
-    o.renderer.context.validate = true;
-    o.renderer.context.validationLog = validation;
-    auto scene = Scene::open(o);
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return scene.ok() ? std::move(*scene) : nullptr;
+    return testing::openValidatedScene(dataset, {.width = 96, .height = 54}, validation);
   }
   flight::FlightPath path(const Scene& scene) {
     auto p = flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
@@ -61,7 +39,7 @@ class FrameDriverTest : public ::testing::Test {
     return p.ok() ? *p : flight::FlightPath{};
   }
 
-  fs::path dir;
+  fs::path dir, dataset;
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
 };
 

@@ -12,6 +12,7 @@
 #include "datasets/progress.h"
 #include "datasets/synthetic_generator.h"
 #include "scene/scene.h"
+#include "tests/scene/scene_fixture.h"
 #include "tests/support/test_dirs.h"
 
 namespace vegstream::scene {
@@ -19,19 +20,7 @@ using namespace vegstream::flight;
 namespace {
 namespace fs = std::filesystem;
 
-// A 3 km synthetic dataset, made once per build of this program for all its test processes.
-Result<fs::path> syntheticDataset() {
-  return testing::cachedFixture("scene-synthetic-3km", testing::programKey(), [](const fs::path& dir) -> Status {
-    datasets::SyntheticOptions o;
-    o.out = dir;
-    o.sizeKm = 3.0;
-    o.seed = 5;
-    datasets::NullProgress progress;
-    auto meta = datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
-    if (!meta.ok()) return meta.error();
-    return {};
-  });
-}
+using testing::syntheticDataset;
 
 class SceneTest : public ::testing::Test {
  protected:
@@ -43,18 +32,7 @@ class SceneTest : public ::testing::Test {
   fs::path dataset_;
   std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
   std::unique_ptr<Scene> open(StreamingMode mode = StreamingMode::Settled, uint64_t cpuBudget = 64ull << 20) {
-    SceneOptions o;
-    o.dataset = dataset_.string();
-    o.mode = mode;
-    o.streaming.cpuBudgetBytes = cpuBudget;
-    o.renderer.width = 160;
-    o.renderer.height = 90;
-    o.renderer.msaa = 1;
-    o.renderer.context.validate = true;
-    o.renderer.context.validationLog = validation;
-    auto scene = Scene::open(o);
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return scene.ok() ? std::move(*scene) : nullptr;
+    return testing::openValidatedScene(dataset_, {mode, cpuBudget}, validation);
   }
   void TearDown() override {
     for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
