@@ -6,15 +6,13 @@
 // resident: the key's own tile when the dataset has it, else its nearest ancestor that exists.
 //
 // A tile that exists but cannot be fetched or decoded is not silently replaced by its parent: it
-// becomes error(), with the decoder's message naming the tile (the streamer reports it through
-// its logger, which this class owns).
+// becomes error(), with the decoder's or the source's message naming the tile
+// (TileStreamer::failure).
 
 #include <map>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <spdlog/sinks/ringbuffer_sink.h>
 
 #include "core/result.h"
 #include "streaming/tile_streamer.h"
@@ -39,7 +37,6 @@ class SettledTiles {
  private:
   void settle(const std::vector<streaming::TileKey>& keys);
 
-  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> warnings_;
   std::unique_ptr<streaming::TileStreamer> streamer_;
   std::map<streaming::TileKey, std::shared_ptr<const streaming::ResidentTile>> known_;  // null: none there
   std::optional<Error> error_;

@@ -88,6 +88,7 @@ void TileStreamer::Impl::admit(const TileKey& key, Completion& c, double timeS) 
   e.state = TileState::ResidentCpu;
   e.tile = std::move(tile);
   e.failures = 0;
+  e.failure.reset();
   e.lastUsedFrame = frame;
   bytesCpu += e.tile->bytes;
   ++tilesCpu;
@@ -128,6 +129,7 @@ void TileStreamer::Impl::takeCompletions(double timeS, bool inRequestOrder) {
         e.failedAtS = timeS;
         ++e.failures;
         ++stats.requestsFailed;
+        e.failure = TileStreamer::Failure{c.message, false};
         log->warn("tile {} failed after {} attempt(s): {}; asking again in {} s", toString(key), c.attempts, c.message,
                   options.failedRetryAfterS);
         break;
@@ -138,6 +140,7 @@ void TileStreamer::Impl::takeCompletions(double timeS, bool inRequestOrder) {
       case Completion::Kind::DecodeFailed:
         e.state = TileState::Failed;
         ++stats.requestsFailed;
+        e.failure = TileStreamer::Failure{c.message, true};
         log->warn("tile {} cannot be decoded: {}", toString(key), c.message);
         break;
       case Completion::Kind::Decoded: admit(key, c, timeS); break;

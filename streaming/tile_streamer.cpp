@@ -78,6 +78,13 @@ TileStreamer::GpuLookup TileStreamer::findGpuResident(const TileKey& key) {
   return {e->tile, e->slot, up};
 }
 
+std::optional<TileStreamer::Failure> TileStreamer::failure(const TileKey& key) const {
+  auto it = impl_->table.find(key);
+  if (it == impl_->table.end()) return std::nullopt;
+  const TileState s = it->second.state;
+  return s == TileState::Failed || s == TileState::FailedTemporarily ? it->second.failure : std::nullopt;
+}
+
 TileState TileStreamer::state(const TileKey& key) const {
   auto it = impl_->table.find(key);
   return it == impl_->table.end() ? TileState::Unloaded : it->second.state;

@@ -30,6 +30,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/clock.h"
@@ -148,6 +149,15 @@ class TileStreamer {
   GpuLookup findGpuResident(const TileKey& key);
 
   TileState state(const TileKey& key) const;
+
+  // Why a tile in state Failed or FailedTemporarily failed (Missing tiles have none): the
+  // source's or the decoder's message, and whether the bytes arrived but could not be decoded
+  // (corrupt data) rather than not arriving (I/O). nullopt for a tile that has not failed.
+  struct Failure {
+    std::string message;
+    bool undecodable = false;
+  };
+  std::optional<Failure> failure(const TileKey& key) const;
 
   // For every current imagery want: its nearest CPU-resident ancestor-or-self that is not yet on
   // the GPU (so fallbacks can be drawn too), highest priority first, until `byteBudget` (default:

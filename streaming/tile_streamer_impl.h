@@ -40,14 +40,15 @@ inline bool isOnGpu(TileState s) { return s == TileState::Uploading || s == Tile
 
 struct Entry {
   TileState state = TileState::Unloaded;
-  RequestId request = 0;                     // Requested / Decoding
-  std::shared_ptr<const ResidentTile> tile;  // resident states
-  uint64_t lastUsedFrame = 0;                // LRU recency
-  double failedAtS = 0.0;                    // FailedTemporarily: when
-  int failures = 0;                          // failed fetches in a row
-  double firstWantedS = -1.0;                // < 0: not a current want
-  uint32_t slot = 0;                         // Uploading / ResidentGpu
-  bool blockedByBudget = false;              // current want not requested: would not fit
+  RequestId request = 0;                         // Requested / Decoding
+  std::shared_ptr<const ResidentTile> tile;      // resident states
+  uint64_t lastUsedFrame = 0;                    // LRU recency
+  double failedAtS = 0.0;                        // FailedTemporarily: when
+  int failures = 0;                              // failed fetches in a row
+  double firstWantedS = -1.0;                    // < 0: not a current want
+  uint32_t slot = 0;                             // Uploading / ResidentGpu
+  bool blockedByBudget = false;                  // current want not requested: would not fit
+  std::optional<TileStreamer::Failure> failure;  // the last failure (Failed / FailedTemporarily)
 };
 
 struct Want {

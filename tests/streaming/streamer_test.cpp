@@ -252,6 +252,7 @@ TEST_F(StreamerLocal, MissingTileFailsForGoodAndItsParentIsFound) {
   const std::vector<TileWant> wants = {{gone, 2.0, false}, {parentOf(gone), 1.0, false}};
   s.settle(wants, 0.0);
   EXPECT_EQ(s.state(gone), TileState::Failed);
+  EXPECT_FALSE(s.failure(gone)) << "a missing tile has not failed: its parent answers for it";
   EXPECT_EQ(source->counters().requestsMissing, 1u);
   const auto found = s.findResident(gone);
   ASSERT_TRUE(found.tile);
@@ -391,6 +392,9 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
   s.update(wants, 0.5);
   EXPECT_EQ(s.state(k), TileState::FailedTemporarily);
   EXPECT_EQ(s.frameStats().requestsFailed, 1u);
+  ASSERT_TRUE(s.failure(k));
+  EXPECT_NE(s.failure(k)->message.find("HTTP 503"), std::string::npos) << s.failure(k)->message;
+  EXPECT_FALSE(s.failure(k)->undecodable);
   s.update(wants, 2.4);  // 1.9 s after the failure: too early
   EXPECT_EQ(s.frameStats().requestsIssued, 0u);
   s.update(wants, 2.6);
@@ -404,6 +408,7 @@ TEST_F(StreamerScripted, FailedTemporarilyIsAskedAgainAfterTheBackOff) {
         tasks.runAll();
       }));
   EXPECT_EQ(source->started().size(), 2u);
+  EXPECT_FALSE(s.failure(k)) << "resident again: the failure is over";
 }
 
 // Settling, the streamer's time is the flight time and does not move: a current want that fails
