@@ -57,8 +57,11 @@ Status checkHeadlessOut(const FlyOptions& o) {
   return {};
 }
 
-int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, const Logger& log) {
-  if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
+// `outChecked`: checkHeadlessOut already ran, before the scene was opened (a window was not wanted).
+int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, const Logger& log,
+                bool outChecked) {
+  if (!outChecked)
+    if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
   const fs::path out = o.out;
   std::error_code ec;
   const bool earlier = fs::is_directory(out, ec) && !fs::is_empty(out, ec);
@@ -110,7 +113,7 @@ int runFly(const FlyOptions& o, const Logger& log) {
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
-  if (!windowWanted)  // checked again if a wanted window cannot be made
+  if (!windowWanted)  // before the GPU is touched; a wanted window that cannot be made checks it later
     if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());
@@ -138,7 +141,7 @@ int runFly(const FlyOptions& o, const Logger& log) {
   if (!path) return reportError(log, path.error());
   logSceneOpened(**scene, log);
   if ((*scene)->renderer().hasWindow()) return runWindow(o, **scene, *path, window.handle, log);
-  return runHeadless(o, **scene, *path, log);
+  return runHeadless(o, **scene, *path, log, !windowWanted);
 }
 
 }  // namespace vegstream::app
