@@ -46,8 +46,8 @@ void logSceneOpened(const scene::Scene& scene, const Logger& log) {
             static_cast<double>(so.streaming.cpuBudgetBytes) / (1024.0 * 1024.0),
             static_cast<double>(so.streaming.gpuBudgetBytes) / (1024.0 * 1024.0), info.loadMs);
   const render::DeviceInfo& dev = scene.renderer().device();
-  log->info("device: {} ({}, {}, Vulkan {}, MSAA {})", dev.name, dev.type, dev.driver, dev.apiVersion,
-            scene.renderer().msaa());
+  log->info("device: {} ({}, {}, Vulkan {}, MSAA {}, {} terrain shading)", dev.name, dev.type, dev.driver,
+            dev.apiVersion, scene.renderer().msaa(), render::terrainShadingName(scene.renderer().terrainShading()));
 }
 
 int recordAndReport(scene::Scene& scene, const flight::FlightPath& path, const scene::RecordingRequest& request,

@@ -34,6 +34,10 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--terrain-detail", o.terrainDetail,
                  "Strength of the close-up terrain detail textures, 0 (the bare imagery) … 1")
       ->capture_default_str();
+  cmd.add_option("--terrain-shading", o.terrainShading,
+                 "deferred: a visibility pass, then every pixel shaded in compute (fast where graphics units are "
+                 "few); forward: fragments shaded as drawn; auto: deferred where the device can")
+      ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
       ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
@@ -75,6 +79,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
     return bad("--terrain-max-triangles " + std::to_string(o.terrainMaxTriangles) + ": must be 2 … 10000000");
   if (!(o.terrainDetail >= 0.0 && o.terrainDetail <= 1.0))
     return bad("--terrain-detail " + std::to_string(o.terrainDetail) + ": must be 0 … 1");
+  if (o.terrainShading != "auto" && o.terrainShading != "forward" && o.terrainShading != "deferred")
+    return bad("--terrain-shading " + o.terrainShading + ": must be auto, forward or deferred");
   if (!(o.canopyM >= 0.0 && o.canopyM <= 200.0))
     return bad("--canopy-m " + std::to_string(o.canopyM) + ": must be 0 … 200 metres");
   if (!(o.seedHorizonM >= 0.0 && o.seedHorizonM <= 20000.0))
@@ -108,6 +114,9 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrain.roam.maxTriangles = static_cast<uint64_t>(o.terrainMaxTriangles);
   scene.terrain.roam.canopyM = o.canopyM;
   scene.terrainDetail = static_cast<float>(o.terrainDetail);
+  scene.renderer.terrainShading = o.terrainShading == "forward"    ? render::TerrainShading::Forward
+                                  : o.terrainShading == "deferred" ? render::TerrainShading::Deferred
+                                                                   : render::TerrainShading::Auto;
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;

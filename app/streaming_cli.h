@@ -25,6 +25,7 @@ struct StreamingCli {
   int terrainMaxNodes = 384;
   int64_t terrainMaxTriangles = 120000;  // ROAM leaves
   double canopyM = 30.0;                 // tallest plant, for culling
+  std::string terrainShading = "auto";  // auto | forward | deferred (render::TerrainShading)
   double terrainDetail = 1.0;            // close-up detail textures, 0 (bare imagery) … 1
   double seedHorizonM = 250.0;           // seed triangles within this distance
   std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none

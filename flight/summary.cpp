@@ -26,6 +26,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"software", m.device.software}}},
       {"size", {m.width, m.height}},
       {"msaa", m.msaa},
+      {"terrain_shading", m.terrainShading},
       {"fps", m.fps},
       {"warmup_s", m.warmupS},
       {"warmup_frames", m.warmupFrames},

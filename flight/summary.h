@@ -37,6 +37,7 @@ struct RecordingMeta {
   RecordingDevice device;
   uint32_t width = 0, height = 0;
   int msaa = 1;
+  std::string terrainShading;  // forward | deferred (what the renderer chose)
   double fps = 60.0;
   double warmupS = 0.0;
   std::size_t warmupFrames = 0;

@@ -57,6 +57,19 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
   const VkSampleCountFlags counts = p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts;
   for (int s : {1, 2, 4, 8, 16})
     if (counts & static_cast<VkSampleCountFlags>(s)) info.msaaCounts.push_back(s);
+  VkPhysicalDeviceFeatures features{};
+  vkGetPhysicalDeviceFeatures(pd, &features);
+  VkFormatProperties colour{}, ids{};
+  vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, &colour);
+  vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R32_UINT, &ids);
+  const bool storable = (colour.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+                        (ids.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+                        (ids.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
+  const VkSampleCountFlags storageCounts =
+      features.shaderStorageImageMultisample ? (p.limits.storageImageSampleCounts & counts)
+                                             : VkSampleCountFlags{VK_SAMPLE_COUNT_1_BIT};
+  for (int s : {1, 2, 4, 8})  // the shade shader handles up to 8 samples
+    if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
   return info;
 }
 
@@ -246,6 +259,7 @@ void Context::createDevice(const ContextOptions& options) {
   features.features.geometryShader = supported.geometryShader;
   features.features.sampleRateShading = supported.sampleRateShading;
   features.features.fillModeNonSolid = supported.fillModeNonSolid;
+  features.features.shaderStorageImageMultisample = supported.shaderStorageImageMultisample;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -81,6 +81,17 @@ void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
   writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, buffer, range, binding);
 }
 
+void writeStorageImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding) {
+  const VkDescriptorImageInfo ii{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w.pImageInfo = &ii;
+  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+}
+
 void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding) {
   writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer, VK_WHOLE_SIZE, binding);
 }

@@ -41,6 +41,9 @@ void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sample
 void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
                         uint32_t binding = 0);
 
+// `binding` := a storage image view, accessed in GENERAL layout.
+void writeStorageImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding);
+
 // `binding` := a whole storage buffer.
 void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding);
 

@@ -4,6 +4,10 @@
 
 namespace vegstream::render {
 
+bool DeviceInfo::supportsDeferredTerrain(int samples) const {
+  return std::find(storageMsaaCounts.begin(), storageMsaaCounts.end(), samples) != storageMsaaCounts.end();
+}
+
 bool DeviceInfo::supportsMsaa(int samples) const {
   return std::find(msaaCounts.begin(), msaaCounts.end(), samples) != msaaCounts.end();
 }

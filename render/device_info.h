@@ -15,9 +15,13 @@ struct DeviceInfo {
   std::string apiVersion;       // "1.3.230"
   std::vector<int> msaaCounts;  // sample counts usable for colour+depth targets, e.g. {1, 4}
   bool software = false;        // a CPU rasteriser (lavapipe): per-pass GPU times mean nothing
+  // Sample counts at which compute may store into the colour target (storage images; above 1
+  // only with shaderStorageImageMultisample): where deferred terrain shading can run.
+  std::vector<int> storageMsaaCounts;
 
   bool supportsMsaa(int samples) const;
   std::string msaaList() const;  // "1, 4"
+  bool supportsDeferredTerrain(int samples) const;
 };
 
 }  // namespace vegstream::render

@@ -83,7 +83,8 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  if (alsoViewAs != VK_FORMAT_UNDEFINED) ici.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
+  if (alsoViewAs != VK_FORMAT_UNDEFINED)
+    ici.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
   VkImage raw;
   vkCheck(vkCreateImage(device, &ici, nullptr, &raw), "vkCreateImage");
   out.image = Image(device, raw);
@@ -100,11 +101,17 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   vci.viewType = viewType;
   vci.format = format;
   vci.subresourceRange = {out.aspect, 0, mipLevels, 0, layers};
+  // With a second format the image may carry a usage only that format supports (storage on an
+  // sRGB target): the primary view leaves storage out.
+  VkImageViewUsageCreateInfo primaryUsage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+  primaryUsage.usage = usage & ~VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT};
+  if (alsoViewAs != VK_FORMAT_UNDEFINED) vci.pNext = &primaryUsage;
   VkImageView view;
   vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
   out.view = ImageView(device, view);
   ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view");
   if (alsoViewAs != VK_FORMAT_UNDEFINED) {
+    vci.pNext = nullptr;
     vci.format = alsoViewAs;
     vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
     out.alternateView = ImageView(device, view);
@@ -115,8 +122,8 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
 }  // namespace
 
 GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                       VkSampleCountFlagBits samples, const std::string& name) {
-  return createImage(ctx, extent, 1, format, usage, samples, VK_IMAGE_VIEW_TYPE_2D, name);
+                       VkSampleCountFlagBits samples, const std::string& name, VkFormat alsoViewAs) {
+  return createImage(ctx, extent, 1, format, usage, samples, VK_IMAGE_VIEW_TYPE_2D, name, 1, alsoViewAs);
 }
 
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,

@@ -52,8 +52,11 @@ struct GpuImage {
   VkImage get() const { return image.get(); }
 };
 
+// `alsoViewAs`: a second format the texels are viewed as (GpuImage::alternateView); the image
+// may then have usages only that format supports (e.g. storage on an sRGB target seen as UNORM).
 GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                       VkSampleCountFlagBits samples, const std::string& name);
+                       VkSampleCountFlagBits samples, const std::string& name,
+                       VkFormat alsoViewAs = VK_FORMAT_UNDEFINED);
 
 // A single-sampled colour image of `layers` array layers (each with `mipLevels` levels) with a
 // 2D-array view of all of them.

@@ -1,53 +1,89 @@
 #include "render/render_targets.h"
 
+#include <cassert>
 #include <vector>
 
 namespace vegstream::render {
+namespace {
+constexpr VkPipelineStageFlags2 kColorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+constexpr VkPipelineStageFlags2 kDepthStage =
+    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+constexpr VkAccessFlags2 kDepthAccess =
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
 
-RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples)
+// Starts a frame's use of an image: its old contents are discarded.
+void discardInto(VkCommandBuffer cmd, const GpuImage& img, VkImageLayout layout, VkPipelineStageFlags2 stage,
+                 VkAccessFlags2 access) {
+  transitionImage(cmd, img.get(), img.aspect, VK_IMAGE_LAYOUT_UNDEFINED, layout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                  0, stage, access);
+}
+
+VkRenderingAttachmentInfo attachment(const GpuImage& img, VkImageLayout layout, VkAttachmentLoadOp load) {
+  VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  info.imageView = img.view.get();
+  info.imageLayout = layout;
+  info.loadOp = load;
+  info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  return info;
+}
+}  // namespace
+
+RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain)
     : extent_(extent), samples_(samples) {
   const VkImageUsageFlags readable = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  color_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable,
-                         VK_SAMPLE_COUNT_1_BIT, "colour target");
+  // The deferred terrain's shade stores into the colour attachment: single-sample, that is color_.
+  const VkImageUsageFlags storage = deferredTerrain ? VK_IMAGE_USAGE_STORAGE_BIT : 0;
+  const VkFormat storageView = deferredTerrain ? kColorStorageFormat : VK_FORMAT_UNDEFINED;
+  color_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable |
+                         (multisampled() ? 0 : storage), VK_SAMPLE_COUNT_1_BIT, "colour target",
+                         multisampled() ? VK_FORMAT_UNDEFINED : storageView);
   depth_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
                          VK_SAMPLE_COUNT_1_BIT, "depth target");
   if (multisampled()) {
-    colorMsaa_ =
-        createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, samples, "colour target (MSAA)");
+    colorMsaa_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | storage, samples,
+                               "colour target (MSAA)", storageView);
     depthMsaa_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
                                "depth target (MSAA)");
   }
+  if (deferredTerrain)
+    visibility_ = createImage2D(ctx, extent, kVisibilityFormat,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, samples,
+                                "terrain visibility target");
 }
 
-void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
-  // Attachments start undefined each frame: everything is cleared.
-  const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  const auto depthAccess =
-      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  std::vector<const GpuImage*> colorImages{&color()}, depthImages{&depth()};
-  if (multisampled()) {
-    colorImages.push_back(&colorAttachment());
-    depthImages.push_back(&depthAttachment());
-  }
-  for (const GpuImage* img : colorImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  for (const GpuImage* img : depthImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage, depthAccess);
+void RenderTargets::setViewport(VkCommandBuffer cmd) const {
+  // Flip nothing here: the projection matrix already flips y for Vulkan.
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height),
+                            0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent_};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
 
-  VkRenderingAttachmentInfo colorInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  colorInfo.imageView = colorAttachment().view.get();
-  colorInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  colorInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  colorInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+void RenderTargets::beginRendering(VkCommandBuffer cmd, TargetStart start) const {
+  const bool load = start == TargetStart::Load;
+  assert(!load || deferredTerrain());
+  // The resolve targets (and, when cleared, the attachments) start undefined each frame.
+  if (multisampled() || !load) {
+    discardInto(cmd, color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
+    discardInto(cmd, depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+  }
+  if (multisampled() && !load) {
+    discardInto(cmd, colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
+    discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+  }
+  if (load) {  // the shade's stores, then the visibility scope's depth, become the attachments'
+    transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kColorStage, kColorAccess);
+    memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
+  }
+
+  const VkAttachmentLoadOp op = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  VkRenderingAttachmentInfo colorInfo = attachment(colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, op);
   colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-  VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depthInfo.imageView = depthAttachment().view.get();
-  depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depthInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, op);
   depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
   if (multisampled()) {
     colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
@@ -66,12 +102,36 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
   ri.pColorAttachments = &colorInfo;
   ri.pDepthAttachment = &depthInfo;
   vkCmdBeginRendering(cmd, &ri);
-  // Flip nothing here: the projection matrix already flips y for Vulkan.
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height),
-                            0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, extent_};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  setViewport(cmd);
+}
+
+void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
+  assert(deferredTerrain());
+  discardInto(cmd, visibility_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
+  discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+  VkRenderingAttachmentInfo idInfo =
+      attachment(visibility_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
+  idInfo.clearValue.color.uint32[0] = 0;  // no triangle: sky
+  VkRenderingAttachmentInfo depthInfo =
+      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
+  depthInfo.clearValue.depthStencil = {0.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent_};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &idInfo;
+  ri.pDepthAttachment = &depthInfo;
+  vkCmdBeginRendering(cmd, &ri);
+  setViewport(cmd);
+}
+
+void RenderTargets::visibilityToShade(VkCommandBuffer cmd) const {
+  transitionImage(cmd, visibility_.get(), visibility_.aspect, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_GENERAL, kColorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 }  // namespace vegstream::render

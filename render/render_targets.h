@@ -13,10 +13,20 @@ namespace vegstream::render {
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
 // Reverse-Z float depth: near → 1, far → 0, for precision from 1 m to 100 km.
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// Deferred terrain shading: per sample, 1 + the index of the triangle it sees (0: none).
+constexpr VkFormat kVisibilityFormat = VK_FORMAT_R32_UINT;
+// The colour target seen as plain bytes, so compute can store into it (sRGB formats have no
+// storage support): the shader encodes sRGB itself.
+constexpr VkFormat kColorStorageFormat = VK_FORMAT_R8G8B8A8_UNORM;
+
+// How the main rendering scope starts: from cleared targets, or from what the deferred terrain
+// left in them (colour from its shade pass, depth from its visibility pass).
+enum class TargetStart { Clear, Load };
 
 class RenderTargets {
  public:
-  RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples);
+  // `deferredTerrain`: also a visibility target and a storage view of the colour attachment.
+  RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain = false);
 
   VkExtent2D extent() const { return extent_; }
   VkSampleCountFlagBits samples() const { return samples_; }
@@ -27,15 +37,32 @@ class RenderTargets {
   const GpuImage& color() const { return color_; }  // single-sample, after resolve
   const GpuImage& depth() const { return depth_; }  // single-sample, after resolve
 
-  // Clears every target and begins dynamic rendering into them (resolving to color() and
-  // depth() when multisampled), viewport and scissor over the whole extent.
-  void beginRendering(VkCommandBuffer cmd) const;
+  bool deferredTerrain() const { return visibility_.get() != VK_NULL_HANDLE; }
+  const GpuImage& visibility() const { return visibility_; }  // attachment sample count
+  // The colour attachment as kColorStorageFormat (deferred terrain only).
+  VkImageView colorStorageView() const { return colorAttachment().alternateView.get(); }
+
+  // Begins dynamic rendering into the colour and depth attachments (resolving to color() and
+  // depth() when multisampled), viewport and scissor over the whole extent. Clear: every
+  // target is cleared. Load: the colour attachment comes from the terrain shade (GENERAL layout,
+  // written by compute) and the depth attachment from beginVisibility's scope.
+  void beginRendering(VkCommandBuffer cmd, TargetStart start = TargetStart::Clear) const;
+
+  // Deferred terrain: begins rendering into the visibility and depth attachments, both cleared
+  // (no resolve).
+  void beginVisibility(VkCommandBuffer cmd) const;
+  // After the visibility scope: the visibility target becomes readable and the colour
+  // attachment writable by compute (both GENERAL).
+  void visibilityToShade(VkCommandBuffer cmd) const;
 
  private:
+  void setViewport(VkCommandBuffer cmd) const;
+
   VkExtent2D extent_;
   VkSampleCountFlagBits samples_;
   GpuImage colorMsaa_, depthMsaa_;
   GpuImage color_, depth_;
+  GpuImage visibility_;
 };
 
 }  // namespace vegstream::render

@@ -24,6 +24,7 @@
 #include "render/swapchain.h"
 #include "render/terrain_detail.h"
 #include "render/terrain_pass.h"
+#include "render/terrain_shade_pass.h"
 #include "render/vk_check.h"
 
 namespace vegstream::render {
@@ -65,6 +66,7 @@ struct Renderer::Impl {
   DescriptorPool descriptorPool;
   std::unique_ptr<SkyPass> sky;
   std::unique_ptr<TerrainPass> terrainPass;
+  std::unique_ptr<TerrainShadePass> terrainShade;  // deferred terrain shading only
   std::unique_ptr<HudPass> hudPass;
   std::unique_ptr<ClassifyPass> classify;
   std::unique_ptr<PlantMarkerPass> markers;
@@ -74,6 +76,7 @@ struct Renderer::Impl {
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
   uint64_t completedFrame = 0;  // highest frame known finished on the GPU
   int msaa = 1;
+  TerrainShading terrainShading = TerrainShading::Forward;
 
   ~Impl() {
     if (ctx) vkDeviceWaitIdle(ctx->device());
@@ -92,7 +95,8 @@ struct Renderer::Impl {
 
 void Renderer::Impl::init(const RendererOptions& options) {
   const VkExtent2D extent{options.width, options.height};
-  targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa));
+  const bool deferred = terrainShading == TerrainShading::Deferred;
+  targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa), deferred);
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
 
   frameLayout =
@@ -141,7 +145,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
-  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa));
+  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred);
+  if (deferred) terrainShade = std::make_unique<TerrainShadePass>(*ctx, layout, *terrainPass, *targets);
   hudPass = std::make_unique<HudPass>(*ctx);
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
@@ -220,14 +225,26 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     slot.timer->endPass(cmd);
   }
 
-  targets->beginRendering(cmd);
-  slot.timer->beginPass(cmd, "sky");
-  sky->record(cmd, slot.descriptorSet);
-  slot.timer->endPass(cmd);
-  slot.timer->beginPass(cmd, "terrain");
-  slot.terrainTriangles = terrainPass->record(cmd, static_cast<int>(index % kFramesInFlight), slot.descriptorSet,
-                                              request.camera.position, request.terrain, retireBuffer);
-  slot.timer->endPass(cmd);
+  slot.terrainTriangles =
+      terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);
+  if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
+    slot.timer->beginPass(cmd, "terrain");
+    targets->beginVisibility(cmd);
+    terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
+    vkCmdEndRendering(cmd);
+    targets->visibilityToShade(cmd);
+    terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
+    slot.timer->endPass(cmd);
+    targets->beginRendering(cmd, TargetStart::Load);
+  } else {
+    targets->beginRendering(cmd);
+    slot.timer->beginPass(cmd, "sky");
+    sky->record(cmd, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain");
+    terrainPass->recordForward(cmd, slotIndex, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+  }
   if (plants && plants->style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
     if (patchMask != 0)
@@ -369,6 +386,14 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
     return makeError(ErrorKind::InvalidInput, "--msaa " + std::to_string(options.msaa) + " is not offered by " +
                                                   info.name + "; choose one of " + info.msaaList());
   impl->msaa = options.msaa;
+  const bool canDefer = info.supportsDeferredTerrain(options.msaa);
+  if (options.terrainShading == TerrainShading::Deferred && !canDefer)
+    return makeError(ErrorKind::InvalidInput, "--terrain-shading deferred is not possible on " + info.name +
+                                                  " at --msaa " + std::to_string(options.msaa) +
+                                                  ": it cannot store into a colour target of that many samples" +
+                                                  " (storage images, shaderStorageImageMultisample)");
+  impl->terrainShading = options.terrainShading == TerrainShading::Forward || !canDefer ? TerrainShading::Forward
+                                                                                        : TerrainShading::Deferred;
   try {
     impl->init(options);
   } catch (const VulkanError& e) {
@@ -381,6 +406,16 @@ const DeviceInfo& Renderer::device() const { return impl_->ctx->info(); }
 uint32_t Renderer::width() const { return impl_->targets->extent().width; }
 uint32_t Renderer::height() const { return impl_->targets->extent().height; }
 int Renderer::msaa() const { return impl_->msaa; }
+TerrainShading Renderer::terrainShading() const { return impl_->terrainShading; }
+
+const char* terrainShadingName(TerrainShading shading) {
+  switch (shading) {
+    case TerrainShading::Auto: return "auto";
+    case TerrainShading::Forward: return "forward";
+    case TerrainShading::Deferred: return "deferred";
+  }
+  return "?";
+}
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 

@@ -18,11 +18,19 @@ struct GLFWwindow;
 
 namespace vegstream::render {
 
+// How the terrain is shaded (render/terrain_pass.h). Deferred: a visibility pass, then one
+// compute dispatch shades every pixel (terrain and sky) into the colour target — needs storage
+// images at the target's sample count. Forward: the terrain's fragments are shaded as drawn.
+// Auto: deferred where the device can, else forward. The images are the same up to rounding.
+enum class TerrainShading { Auto, Forward, Deferred };
+const char* terrainShadingName(TerrainShading shading);  // "auto", "forward", "deferred"
+
 struct RendererOptions {
   ContextOptions context;
   uint32_t width = 640;
   uint32_t height = 360;
   int msaa = 4;
+  TerrainShading terrainShading = TerrainShading::Auto;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
 };
 
@@ -37,6 +45,7 @@ class Renderer {
   uint32_t width() const;
   uint32_t height() const;
   int msaa() const;
+  TerrainShading terrainShading() const;  // Forward or Deferred: what Auto resolved to
   bool hasWindow() const;
   const ValidationLog* validationLog() const;
 

@@ -1,11 +1,16 @@
 #include "render/terrain_pass.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
+#include <numeric>
 #include <string>
 
-#include <glm/vec4.hpp>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
@@ -13,26 +18,47 @@
 #include "render/vk_check.h"
 #include "shaders/terrain.frag.h"
 #include "shaders/terrain.vert.h"
+#include "shaders/terrain_vis.frag.h"
+#include "shaders/terrain_vis.vert.h"
 
 namespace vegstream::render {
 namespace {
-struct TerrainPush {  // shaders/common/terrain_push.glsl
-  glm::vec4 originFromCamera;
-  glm::vec4 imageryUv;
-  glm::vec4 previousUv;
-  glm::vec4 layers;
-};
-static_assert(sizeof(TerrainPush) == 64 && sizeof(TerrainPush) <= 128, "Vulkan guarantees 128 bytes of push constants");
 static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes of shaders/terrain.vert");
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+constexpr VkShaderStageFlags kSampledBy = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
+
+// Distance from `eye` to the axis-aligned box of a mesh's vertices (0 inside it).
+double distanceToBounds(const terrain::TerrainMesh& m, const glm::dvec3& eye) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const terrain::TerrainVertex& v : m.vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  const glm::dvec3 local = eye - m.origin;
+  const glm::dvec3 nearest = glm::clamp(local, glm::dvec3(lo), glm::dvec3(hi));
+  return glm::length(local - nearest);
+}
 
 }  // namespace
 
-TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
+std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition) {
+  std::vector<uint32_t> order;
+  std::vector<double> distance(draws.size(), 0.0);
+  for (uint32_t i = 0; i < draws.size(); ++i) {
+    if (!draws[i].mesh || draws[i].mesh->indices.empty()) continue;
+    distance[i] = distanceToBounds(*draws[i].mesh, cameraPosition);
+    order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return distance[a] < distance[b]; });
+  return order;
+}
+
+TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
+                         bool deferred)
     : ctx_(&ctx), detail_(ctx, vegetation::defaultTerrainTypes()) {
-  imageryLayout_ = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                             VK_SHADER_STAGE_FRAGMENT_BIT, "terrain imagery layout");
+  imageryLayout_ =
+      createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSampledBy, "terrain imagery layout");
   imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
   imagerySet_ = allocateDescriptorSet(ctx, imageryPool_.get(), imageryLayout_.get(), "terrain imagery set");
   sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
@@ -55,6 +81,14 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   desc.depthFormat = kDepthFormat;
   desc.layout = layout_.get();
   pipeline_ = createGraphicsPipeline(ctx, desc);
+  if (deferred) {
+    desc.name = "terrain visibility pipeline";
+    desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_terrain_vis_vert},
+                   {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_vis_frag}};
+    desc.attributes.resize(1);  // the position only
+    desc.colorFormat = kVisibilityFormat;
+    visibilityPipeline_ = createGraphicsPipeline(ctx, desc);
+  }
 
   // One layer until the scene says how many it streams, so the descriptor is always valid.
   setImageryLayers(1, [](GpuImage&&) {});
@@ -79,20 +113,20 @@ void TerrainPass::setImageryLayers(uint32_t layers, const RetireImage& retire) {
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
 }
 
-void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what,
-                                 int slot, const RetireBuffer& retire) {
+void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
+                                 const std::string& what, int slot, const RetireBuffer& retire) {
   if (buffer.buffer && buffer.size >= bytes) return;
   if (buffer.buffer) retire(std::move(buffer));
-  buffer = createBuffer(*ctx_, grownSize(bytes, 256 * 1024), usage, MemoryUse::HostUpload,
-                        std::string("terrain ") + what + " (slot " + std::to_string(slot) + ")");
+  buffer = createBuffer(*ctx_, grownSize(bytes, 256 * 1024), usage, use,
+                        "terrain " + what + " (slot " + std::to_string(slot) + ")");
 }
 
 void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
                                 const RetireBuffer& retire) {
   if (uploads.empty()) return;
   const auto s = static_cast<size_t>(slot);
-  ensureCapacity(staging_[s], kTileBytes * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "imagery staging", slot,
-                 retire);
+  ensureCapacity(staging_[s], kTileBytes * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                 "imagery staging", slot, retire);
   VkDeviceSize offset = 0;
   for (const ImageryUpload& u : uploads) {
     assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
@@ -102,33 +136,39 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
   }
 }
 
-uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
-                             std::span<const TerrainDraw> draws, const RetireBuffer& retire) {
+uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& cameraPosition,
+                              std::span<const TerrainDraw> draws, const RetireBuffer& retire) {
   const auto s = static_cast<size_t>(slot);
+  std::vector<PreparedDraw>& list = prepared_[s];
+  list.clear();
+  const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition);
   VkDeviceSize vertexBytes = 0, indexBytes = 0;
-  for (const TerrainDraw& d : draws) {
-    if (!d.mesh || d.mesh->indices.empty()) continue;
-    vertexBytes += d.mesh->vertices.size() * sizeof(terrain::TerrainVertex);
-    indexBytes += d.mesh->indices.size() * sizeof(uint32_t);
+  for (uint32_t i : order) {
+    vertexBytes += draws[i].mesh->vertices.size() * sizeof(terrain::TerrainVertex);
+    indexBytes += draws[i].mesh->indices.size() * sizeof(uint32_t);
   }
-  if (indexBytes == 0) return 0;
-  ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices", slot, retire);
-  ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", slot, retire);
-
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  const VkDescriptorSet sets[] = {frameSet, imagerySet_, detail_.set()};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets, 0, nullptr);
-  const VkBuffer vb = vertices_[s].get();
-  const VkDeviceSize zero = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
-  vkCmdBindIndexBuffer(cmd, indices_[s].get(), 0, VK_INDEX_TYPE_UINT32);
+  // The buffers exist even for a frame without terrain: the shade pass's descriptors need them.
+  vertexBytes = std::max<VkDeviceSize>(vertexBytes, sizeof(terrain::TerrainVertex));
+  indexBytes = std::max<VkDeviceSize>(indexBytes, 3 * sizeof(uint32_t));
+  constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices", slot,
+                 retire);
+  ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices", slot,
+                 retire);
+  ensureCapacity(deviceVertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
+                 "vertices (device)", slot, retire);
+  ensureCapacity(deviceIndices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
+                 "indices (device)", slot, retire);
+  ensureCapacity(pieces_[s], std::max<size_t>(order.size(), 1) * sizeof(TerrainPiece),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "pieces", slot, retire);
+  if (order.empty()) return 0;
 
   auto* vdst = static_cast<uint8_t*>(vertices_[s].mapped);
   auto* idst = static_cast<uint8_t*>(indices_[s].mapped);
+  auto* pdst = static_cast<TerrainPiece*>(pieces_[s].mapped);
   uint32_t firstVertex = 0, firstIndex = 0;
-  uint64_t triangles = 0;
-  for (const TerrainDraw& d : draws) {
-    if (!d.mesh || d.mesh->indices.empty()) continue;
+  for (uint32_t i : order) {
+    const TerrainDraw& d = draws[i];
     const terrain::TerrainMesh& m = *d.mesh;
     std::memcpy(vdst + VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex), m.vertices.data(),
                 m.vertices.size() * sizeof(terrain::TerrainVertex));
@@ -138,22 +178,69 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
     assert(valid);
+    const uint32_t triangles = static_cast<uint32_t>(m.indices.size() / 3);
     // The subtraction happens in double; only the small camera-relative offset becomes float.
-    const TerrainPush push{glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
-                           glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
-                                     valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f)};
-    vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
-    vkCmdDrawIndexed(cmd, static_cast<uint32_t>(m.indices.size()), 1, firstIndex, static_cast<int32_t>(firstVertex), 0);
+    PreparedDraw p;
+    p.push = TerrainPush{glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
+                         glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
+                                   valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f),
+                         glm::uvec4(firstIndex / 3, 0u, 0u, 0u)};
+    p.indexCount = static_cast<uint32_t>(m.indices.size());
+    p.firstIndex = firstIndex;
+    p.vertexOffset = static_cast<int32_t>(firstVertex);
+    pdst[list.size()] = TerrainPiece{p.push.originFromCamera, p.push.imageryUv, p.push.previousUv, p.push.layers,
+                                     glm::uvec4(firstIndex / 3, firstVertex, triangles, 0u)};
+    list.push_back(p);
     firstVertex += static_cast<uint32_t>(m.vertices.size());
     firstIndex += static_cast<uint32_t>(m.indices.size());
-    triangles += m.indices.size() / 3;
   }
-  return triangles;
+  const VkBufferCopy vcopy{0, 0, VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex)};
+  const VkBufferCopy icopy{0, 0, VkDeviceSize{firstIndex} * sizeof(uint32_t)};
+  vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);
+  vkCmdCopyBuffer(cmd, indices_[s].get(), deviceIndices_[s].get(), 1, &icopy);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  return firstIndex / 3;
+}
+
+void TerrainPass::recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const {
+  const auto s = static_cast<size_t>(slot);
+  if (prepared_[s].empty()) return;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  const VkDescriptorSet sets[] = {frameSet, imagerySet_, detail_.set()};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets, 0, nullptr);
+  const VkBuffer vb = deviceVertices_[s].get();
+  const VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
+  vkCmdBindIndexBuffer(cmd, deviceIndices_[s].get(), 0, VK_INDEX_TYPE_UINT32);
+  for (const PreparedDraw& d : prepared_[s]) {
+    vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(d.push), &d.push);
+    vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+  }
+}
+
+void TerrainPass::recordForward(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const {
+  recordDraws(cmd, slot, frameSet, pipeline_.get());
+}
+
+void TerrainPass::recordVisibility(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const {
+  assert(visibilityPipeline_ && "built only when deferred");
+  recordDraws(cmd, slot, frameSet, visibilityPipeline_.get());
+}
+
+TerrainGeometry TerrainPass::geometry(int slot) const {
+  const auto s = static_cast<size_t>(slot);
+  return {deviceVertices_[s].get(), deviceIndices_[s].get(), pieces_[s].get(),
+          static_cast<uint32_t>(prepared_[s].size())};
 }
 
 uint64_t TerrainPass::gpuBytes() const {
   uint64_t bytes = imagery_.bytes + detail_.gpuBytes();
-  for (size_t s = 0; s < kSlots; ++s) bytes += vertices_[s].size + indices_[s].size + staging_[s].size;
+  for (size_t s = 0; s < kSlots; ++s)
+    bytes += vertices_[s].size + indices_[s].size + staging_[s].size + pieces_[s].size + deviceVertices_[s].size +
+             deviceIndices_[s].size;
   return bytes;
 }
 

@@ -4,10 +4,20 @@
 // 256 × 256 tile per layer), with imagery fade-in driven by push constants (geomorphing is the
 // CPU's: the meshes arrive at their drawn heights).
 //
-// Geometry is copied each frame into the frame slot's host-visible vertex/index buffers: the
-// terrain changes as tiles stream in and (later) as ROAM refines, and copying a few MB is cheaper
-// than managing thousands of small buffers. Imagery arrives through a per-frame-slot staging
-// buffer (a ring of kSlots) and lands in its layer before the draws.
+// Two ways to shade it, the same colours (terrain_shading.glsl serves both):
+// - forward: the terrain pipeline shades every fragment it rasterises;
+// - deferred: the visibility pipeline writes only which triangle each sample sees, and
+//   TerrainShadePass shades every pixel in compute. On GPUs whose graphics units are few next
+//   to their compute units (NVIDIA's H100/H200 run fragment work on two of their 66 TPCs) this
+//   takes the shading off the scarce units; see render/README.md for the measurements.
+// Either way the pieces are drawn front to back (nearest bounding-box point first), so early
+// depth testing rejects most hidden fragments before they cost shading or ROP writes.
+//
+// Geometry is copied each frame into the frame slot's host-visible buffers and from there into
+// device-local ones (read by the vertex stage and, when deferred, by the shade pass): the
+// terrain changes as tiles stream in and as ROAM refines, and copying a few MB is cheaper than
+// managing thousands of small buffers. Imagery arrives through a per-frame-slot staging buffer
+// (a ring of kSlots) and lands in its layer before the draws.
 //
 // Close up, the imagery gets detail textures blended by the colour score of its colour (core
 // seed 001 §3.3; render/detail_textures.h owns them and the terrain-type table, bound as set 2),
@@ -16,6 +26,9 @@
 #include <array>
 #include <functional>
 #include <span>
+#include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "render/detail_textures.h"
 #include "render/frame_types.h"
@@ -25,11 +38,40 @@
 
 namespace vegstream::render {
 
+// Push constants of one terrain draw (shaders/common/terrain_push.glsl).
+struct TerrainPush {
+  glm::vec4 originFromCamera;
+  glm::vec4 imageryUv;
+  glm::vec4 previousUv;
+  glm::vec4 layers;
+  glm::uvec4 ids;  // x: the piece's first triangle in the frame's index buffer
+};
+static_assert(sizeof(TerrainPush) == 80, "Vulkan guarantees 128 bytes of push constants");
+
+// One drawn piece for the deferred shade (std430; Piece in shaders/common/terrain_shade.glsl).
+struct TerrainPiece {
+  glm::vec4 originFromCamera;
+  glm::vec4 imageryUv;
+  glm::vec4 previousUv;
+  glm::vec4 layers;
+  glm::uvec4 range;  // x: first triangle, y: vertex offset, z: triangles
+};
+static_assert(sizeof(TerrainPiece) == 80);
+
+// The geometry a prepared frame slot holds, for the shade pass.
+struct TerrainGeometry {
+  VkBuffer vertices = VK_NULL_HANDLE;
+  VkBuffer indices = VK_NULL_HANDLE;
+  VkBuffer pieces = VK_NULL_HANDLE;
+  uint32_t pieceCount = 0;
+};
+
 class TerrainPass {
  public:
   static constexpr int kSlots = 2;  // frames in flight
 
-  TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+  // `deferred`: also build the visibility pipeline (the device can shade in compute).
+  TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred);
 
   using RetireImage = std::function<void(GpuImage&&)>;
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
@@ -43,21 +85,38 @@ class TerrainPass {
   VkImageView imageryBytesView() const { return imagery_.alternateView.get(); }
   // The imagery array as sRGB (sampled as linear colour), for the plant pipelines.
   VkImageView imageryView() const { return imagery_.view.get(); }
+  // Sets 1 (imagery) and 2 (detail) of the terrain pipelines, for the shade pass.
+  VkDescriptorSetLayout imageryLayout() const { return imageryLayout_.get(); }
+  VkDescriptorSet imagerySet() const { return imagerySet_; }
+  const DetailTextures& detail() const { return detail_; }
 
   // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
   void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads, const RetireBuffer& retire);
 
-  // Copies the draws' geometry into slot `slot`'s buffers and records the draws (inside
-  // rendering); returns the triangles submitted.
-  uint64_t record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
-                  std::span<const TerrainDraw> draws, const RetireBuffer& retire);
+  // Outside rendering: orders the draws front to back, copies their geometry into slot `slot`'s
+  // buffers (recording the copy to device-local memory) and keeps the draw list for
+  // recordForward / recordVisibility; returns the triangles to draw.
+  uint64_t prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& cameraPosition, std::span<const TerrainDraw> draws,
+                   const RetireBuffer& retire);
+  // Inside rendering into the colour + depth targets: the prepared draws, shaded.
+  void recordForward(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const;
+  // Inside rendering into the visibility + depth targets: the prepared draws' triangle ids.
+  void recordVisibility(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const;
+  TerrainGeometry geometry(int slot) const;
 
-  // Imagery array + detail textures + geometry buffers of both slots.
+  // Imagery array + detail textures + geometry buffers of every slot.
   uint64_t gpuBytes() const;
 
  private:
-  void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const char* what, int slot,
-                      const RetireBuffer& retire);
+  struct PreparedDraw {
+    TerrainPush push;
+    uint32_t indexCount = 0;
+    uint32_t firstIndex = 0;
+    int32_t vertexOffset = 0;
+  };
+  void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
+                      const std::string& what, int slot, const RetireBuffer& retire);
+  void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
 
   const Context* ctx_;
   DetailTextures detail_;
@@ -66,10 +125,18 @@ class TerrainPass {
   VkDescriptorSet imagerySet_ = VK_NULL_HANDLE;
   Sampler sampler_;
   PipelineLayout layout_;
-  Pipeline pipeline_;
+  Pipeline pipeline_;            // forward shading
+  Pipeline visibilityPipeline_;  // deferred: triangle ids only (null when not deferred)
   GpuImage imagery_;
   uint32_t layers_ = 0;
-  std::array<GpuBuffer, kSlots> vertices_, indices_, staging_;
+  std::array<GpuBuffer, kSlots> vertices_, indices_, pieces_, staging_;  // host-visible
+  std::array<GpuBuffer, kSlots> deviceVertices_, deviceIndices_;
+  std::array<std::vector<PreparedDraw>, kSlots> prepared_;
 };
+
+// The draw order of `draws`: front to back by the distance from `cameraPosition` to each
+// mesh's bounding box (ties keep their order, so the order is deterministic); draws without
+// triangles are left out.
+std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition);
 
 }  // namespace vegstream::render

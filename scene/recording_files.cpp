@@ -42,6 +42,7 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.width = r.width();
   m.height = r.height();
   m.msaa = r.msaa();
+  m.terrainShading = render::terrainShadingName(r.terrainShading());
   m.fps = request.playback.fps;
   m.warmupS = request.playback.warmupS;
   m.warmupFrames = recording.warmupFrames;

@@ -5,4 +5,5 @@ layout(push_constant) uniform TerrainPush {
   vec4 imageryUv;         // layer uv = vertex uv · xy + zw
   vec4 previousUv;        // the same for the layer it fades from
   vec4 layers;            // x: imagery layer (−1 none), y: previous layer (−1 none), z: blend 0 previous … 1 current
+  uvec4 ids;              // x: the piece's first triangle in the frame's index buffer (visibility ids)
 } push;
