@@ -17,18 +17,21 @@ class GpuTest : public ::testing::Test {
  protected:
   std::shared_ptr<ValidationLog> validation = std::make_shared<ValidationLog>();
 
-  RendererOptions options(uint32_t width, uint32_t height, int msaa) const {
+  RendererOptions options(uint32_t width, uint32_t height, int msaa,
+                          TerrainShading shading = TerrainShading::Auto) const {
     RendererOptions o;
     o.width = width;
     o.height = height;
     o.msaa = msaa;
+    o.terrainShading = shading;
     o.context.validate = true;
     o.context.validationLog = validation;
     return o;
   }
 
-  std::unique_ptr<Renderer> makeRenderer(uint32_t width, uint32_t height, int msaa) {
-    auto r = Renderer::create(options(width, height, msaa));
+  std::unique_ptr<Renderer> makeRenderer(uint32_t width, uint32_t height, int msaa,
+                                         TerrainShading shading = TerrainShading::Auto) {
+    auto r = Renderer::create(options(width, height, msaa, shading));
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
     return r.ok() ? std::move(*r) : nullptr;
   }

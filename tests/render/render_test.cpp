@@ -154,9 +154,9 @@ TEST_F(RenderTest, MsaaResolveLeavesNoHolesAndAgreesWithSingleSample) {
 }
 
 // GPU figures come back as plain numbers: a positive frame time, and pipeline statistics that
-// count exactly the triangles submitted (terrain + the sky's one).
+// count exactly the triangles submitted (terrain + the sky's one; forward shading draws the sky).
 TEST_F(RenderTest, TimingsAndPipelineStatisticsCountTheSubmittedWork) {
-  auto r = makeRenderer(kW, kH, 1);
+  auto r = makeRenderer(kW, kH, 1, TerrainShading::Forward);
   ASSERT_TRUE(r);
   const terrain::TerrainMesh mesh = flatPlane(2'000.0, 10, 0.0f);
   const TerrainDraw draw{&mesh};

@@ -1,0 +1,164 @@
+// Deferred terrain shading (render/terrain_shade_pass.h) against forward shading: the same
+// scene through both paths gives the same image up to rounding (the shade pass runs the forward
+// fragment shader's own code on the attributes it interpolates itself), the sky included, at
+// one and four samples; the deferred frame draws no sky triangle and times no sky pass; the
+// pieces are drawn front to back.
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "gpu_test_fixture.h"
+#include "render/terrain_pass.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+constexpr uint32_t kW = 160, kH = 90;
+
+FrameRequest lookingAt(const glm::dvec3& position, const glm::dvec3& forward) {
+  FrameRequest req;
+  req.camera.position = position;
+  req.camera.forward = glm::normalize(forward);
+  req.camera.up = {0, 0, 1};
+  req.cameraHeightMsl = position.z;
+  req.readbackColor = true;
+  return req;
+}
+
+// Rolling hills with a checker imagery tile: edges against the sky, slopes for the detail
+// textures' triplanar blend, imagery colours for the colour score.
+terrain::TerrainMesh hills() {
+  terrain::TerrainMesh mesh = flatPlane(3'000.0, 64, 0.0f);
+  for (auto& v : mesh.vertices) {
+    const float x = v.position.x, y = v.position.y;
+    v.position.z = 90.0f * std::sin(x / 170.0f) * std::cos(y / 230.0f);
+    v.normal = glm::normalize(glm::vec3(-90.0f / 170.0f * std::cos(x / 170.0f) * std::cos(y / 230.0f),
+                                        90.0f / 230.0f * std::sin(x / 170.0f) * std::sin(y / 230.0f), 1.0f));
+    v.heightMsl = 1500.0f + v.position.z;
+    v.uv = {x / 3'000.0f + 0.5f, 0.5f - y / 3'000.0f};
+  }
+  return mesh;
+}
+
+std::vector<uint8_t> checkerTile() {
+  std::vector<uint8_t> rgba(size_t{kImageryTileSize} * kImageryTileSize * 4);
+  for (uint32_t y = 0; y < kImageryTileSize; ++y)
+    for (uint32_t x = 0; x < kImageryTileSize; ++x) {
+      uint8_t* p = &rgba[(size_t{y} * kImageryTileSize + x) * 4];
+      const bool green = ((x / 16) + (y / 16)) % 2 == 0;
+      p[0] = green ? 70 : 170;
+      p[1] = green ? 120 : 120;
+      p[2] = green ? 40 : 90;
+      p[3] = 255;
+    }
+  return rgba;
+}
+
+struct Comparison {
+  double meanAbs = 0.0;
+  int maxAbs = 0;
+  size_t over2 = 0;  // channel values that differ by more than 2 (of 255)
+};
+
+Comparison compare(const ColorImage& a, const ColorImage& b) {
+  Comparison c;
+  for (size_t i = 0; i < a.rgba.size(); ++i) {
+    const int d = std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+    c.meanAbs += d;
+    c.maxAbs = std::max(c.maxAbs, d);
+    c.over2 += d > 2 ? 1 : 0;
+  }
+  c.meanAbs /= static_cast<double>(a.rgba.size());
+  return c;
+}
+
+class TerrainShadingTest : public GpuTest {
+ protected:
+  ColorImage render(int msaa, TerrainShading shading, std::span<const TerrainDraw> draws) {
+    auto r = makeRenderer(kW, kH, msaa, shading);
+    EXPECT_TRUE(r);
+    if (!r) return {};
+    EXPECT_EQ(r->terrainShading(), shading);
+    EXPECT_TRUE(r->setImageryLayers(1).ok());
+    const std::vector<uint8_t> tile = checkerTile();
+    const ImageryUpload upload{0, tile.data()};
+    FrameRequest req = lookingAt({40.0, -1'400.0, 260.0}, {0.1, 1.0, -0.28});
+    req.imageryUploads = {&upload, 1};
+    req.terrain = draws;
+    auto frame = r->renderFrame(req);
+    EXPECT_TRUE(frame.ok()) << (frame.ok() ? "" : frame.error().message);
+    return frame.ok() ? *frame->color : ColorImage{};
+  }
+};
+
+TEST_F(TerrainShadingTest, DeferredAndForwardGiveTheSameImageUpToRounding) {
+  const terrain::TerrainMesh mesh = hills();
+  TerrainDraw draw{&mesh};
+  draw.imageryLayer = 0;
+  for (int msaa : {1, 4}) {
+    const ColorImage forward = render(msaa, TerrainShading::Forward, {&draw, 1});
+    const ColorImage deferred = render(msaa, TerrainShading::Deferred, {&draw, 1});
+    ASSERT_EQ(forward.rgba.size(), size_t{kW} * kH * 4);
+    ASSERT_EQ(deferred.rgba.size(), forward.rgba.size());
+    // The scene has sky, lit hills and detail: it is not one flat colour.
+    const auto [lo, hi] = std::minmax_element(forward.rgba.begin(), forward.rgba.end());
+    EXPECT_GT(*hi - *lo, 100);
+    const Comparison c = compare(forward, deferred);
+    EXPECT_LT(c.meanAbs, 0.5) << "msaa " << msaa;
+    // Rounding (sRGB encoded by the shader instead of the ROP), and derivatives taken per pixel
+    // instead of per 2 × 2 quad, move a channel by a step or two; nothing more.
+    EXPECT_LT(static_cast<double>(c.over2), 0.002 * static_cast<double>(forward.rgba.size())) << "msaa " << msaa;
+    EXPECT_LE(c.maxAbs, 24) << "msaa " << msaa;
+  }
+}
+
+TEST_F(TerrainShadingTest, WithoutTerrainTheDeferredShadeDrawsTheSky) {
+  for (int msaa : {1, 4}) {
+    const ColorImage forward = render(msaa, TerrainShading::Forward, {});
+    const ColorImage deferred = render(msaa, TerrainShading::Deferred, {});
+    ASSERT_EQ(deferred.rgba.size(), size_t{kW} * kH * 4);
+    const Comparison c = compare(forward, deferred);
+    EXPECT_LE(c.maxAbs, 2) << "msaa " << msaa;
+    EXPECT_GT(deferred.rgba[2], 100) << "a blue sky, not a cleared target";
+  }
+}
+
+TEST_F(TerrainShadingTest, TheDeferredFrameTimesOneTerrainPassAndDrawsNoSkyTriangle) {
+  auto r = makeRenderer(kW, kH, 1, TerrainShading::Deferred);
+  ASSERT_TRUE(r);
+  const terrain::TerrainMesh mesh = flatPlane(2'000.0, 10, 0.0f);
+  const TerrainDraw draw{&mesh};
+  FrameRequest req = lookingAt({0, -1'500, 300}, {0, 1, -0.3});
+  req.terrain = {&draw, 1};
+  auto frame = r->renderFrame(req);
+  ASSERT_TRUE(frame.ok());
+  EXPECT_EQ(frame->terrainTriangles, 200u);
+  ASSERT_EQ(frame->gpu.passes.size(), 1u);
+  EXPECT_EQ(frame->gpu.passes[0].pass, "terrain");
+  ASSERT_TRUE(frame->gpu.statistics.available);
+  EXPECT_EQ(frame->gpu.statistics.inputPrimitives, 200u);
+}
+
+TEST(TerrainDrawOrder, NearestPiecesComeFirstAndEmptyOnesAreLeftOut) {
+  // Four 100 m pieces along y at 0, 1, 2 and 3 km; one without triangles.
+  std::vector<terrain::TerrainMesh> meshes(5);
+  for (int i = 0; i < 4; ++i) {
+    meshes[static_cast<size_t>(i)] = flatPlane(100.0, 2, 0.0f);
+    meshes[static_cast<size_t>(i)].origin = {0.0, 1000.0 * i, 0.0};
+  }
+  std::vector<TerrainDraw> draws;
+  for (int i : {2, 0, 4, 3, 1}) draws.push_back(TerrainDraw{&meshes[static_cast<size_t>(i)]});
+  // From y = 2.9 km: piece 3 (0.05 km away), 2, then 1, then 0; draw 2 (mesh 4) is empty.
+  const std::vector<uint32_t> order = frontToBackOrder(draws, {0.0, 2'900.0, 10.0});
+  EXPECT_EQ(order, (std::vector<uint32_t>{3, 0, 4, 1}));
+  // A camera inside two boxes' footprints at once keeps their given order (ties are stable).
+  meshes[1].origin = meshes[3].origin;
+  const std::vector<uint32_t> tied = frontToBackOrder(draws, {0.0, 3'000.0, 0.0});
+  EXPECT_EQ(tied[0], 3u);
+  EXPECT_EQ(tied[1], 4u);
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing
