@@ -37,6 +37,7 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--terrain-shading", o.terrainShading,
                  "deferred: a visibility pass, then every pixel shaded in compute (fast where graphics units are "
                  "few); forward: fragments shaded as drawn; auto: deferred where the device can")
+      ->check(CLI::IsMember({"auto", "forward", "deferred"}))
       ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
       ->capture_default_str();
@@ -79,8 +80,6 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
     return bad("--terrain-max-triangles " + std::to_string(o.terrainMaxTriangles) + ": must be 2 … 10000000");
   if (!(o.terrainDetail >= 0.0 && o.terrainDetail <= 1.0))
     return bad("--terrain-detail " + std::to_string(o.terrainDetail) + ": must be 0 … 1");
-  if (o.terrainShading != "auto" && o.terrainShading != "forward" && o.terrainShading != "deferred")
-    return bad("--terrain-shading " + o.terrainShading + ": must be auto, forward or deferred");
   if (!(o.canopyM >= 0.0 && o.canopyM <= 200.0))
     return bad("--canopy-m " + std::to_string(o.canopyM) + ": must be 0 … 200 metres");
   if (!(o.seedHorizonM >= 0.0 && o.seedHorizonM <= 20000.0))

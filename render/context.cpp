@@ -59,12 +59,10 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
     if (counts & static_cast<VkSampleCountFlags>(s)) info.msaaCounts.push_back(s);
   VkPhysicalDeviceFeatures features{};
   vkGetPhysicalDeviceFeatures(pd, &features);
-  VkFormatProperties colour{}, ids{};
+  VkFormatProperties colour{};  // the colour target's storage view and the visibility target
   vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, &colour);
-  vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R32_UINT, &ids);
   const bool storable = (colour.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
-                        (ids.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
-                        (ids.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
+                        (colour.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
   const VkSampleCountFlags storageCounts =
       features.shaderStorageImageMultisample ? (p.limits.storageImageSampleCounts & counts)
                                              : VkSampleCountFlags{VK_SAMPLE_COUNT_1_BIT};

@@ -111,7 +111,7 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
   discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
   VkRenderingAttachmentInfo idInfo =
       attachment(visibility_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
-  idInfo.clearValue.color.uint32[0] = 0;  // no triangle: sky
+  idInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // id 0: no triangle, the sky
   VkRenderingAttachmentInfo depthInfo =
       attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
   depthInfo.clearValue.depthStencil = {0.0f, 0};

@@ -232,6 +232,8 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     targets->beginVisibility(cmd);
     terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
     vkCmdEndRendering(cmd);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain shade");
     targets->visibilityToShade(cmd);
     terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
     slot.timer->endPass(cmd);

@@ -1,5 +1,5 @@
 // The compute half of deferred terrain shading (render/terrain_shade_pass.h). The visibility
-// pass left, per sample, 1 + the index of the triangle it sees (0: sky). Here every pixel of
+// pass left, per sample, 1 + the index of the triangle it sees (0: sky), as four UNORM bytes. Here every pixel of
 // the frame is shaded on the GPU's compute units: for each distinct triangle among its samples,
 // the pixel-centre ray is intersected with that triangle, its attributes are interpolated with
 // the resulting barycentrics (perspective-correct by construction: the intersection is in 3D),
@@ -22,16 +22,16 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef VEGSTREAM_MULTISAMPLE
-layout(set = 3, binding = 0, r32ui) uniform readonly uimage2DMS visibility;
+layout(set = 3, binding = 0, rgba8) uniform readonly image2DMS visibility;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
-#define LOAD_ID(px, s) imageLoad(visibility, px, s).x
+#define LOAD_ID(px, s) packUnorm4x8(imageLoad(visibility, px, s))
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
 #define SAMPLES imageSamples(visibility)
 const int kMaxSamples = 8;
 #else
-layout(set = 3, binding = 0, r32ui) uniform readonly uimage2D visibility;
+layout(set = 3, binding = 0, rgba8) uniform readonly image2D visibility;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
-#define LOAD_ID(px, s) imageLoad(visibility, px).x
+#define LOAD_ID(px, s) packUnorm4x8(imageLoad(visibility, px))
 #define STORE_COLOUR(px, s, c) imageStore(target, px, c)
 #define SAMPLES 1
 const int kMaxSamples = 1;

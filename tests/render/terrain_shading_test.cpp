@@ -1,7 +1,8 @@
 // Deferred terrain shading (render/terrain_shade_pass.h) against forward shading: the same
 // scene through both paths gives the same image up to rounding (the shade pass runs the forward
 // fragment shader's own code on the attributes it interpolates itself), the sky included, at
-// one and four samples; the deferred frame draws no sky triangle and times no sky pass; the
+// one and four samples; the deferred frame draws no sky triangle and times the visibility raster
+// and the shade as two passes (no sky pass); the
 // pieces are drawn front to back.
 
 #include <algorithm>
@@ -125,7 +126,7 @@ TEST_F(TerrainShadingTest, WithoutTerrainTheDeferredShadeDrawsTheSky) {
   }
 }
 
-TEST_F(TerrainShadingTest, TheDeferredFrameTimesOneTerrainPassAndDrawsNoSkyTriangle) {
+TEST_F(TerrainShadingTest, TheDeferredFrameTimesItsTwoTerrainPassesAndDrawsNoSkyTriangle) {
   auto r = makeRenderer(kW, kH, 1, TerrainShading::Deferred);
   ASSERT_TRUE(r);
   const terrain::TerrainMesh mesh = flatPlane(2'000.0, 10, 0.0f);
@@ -135,8 +136,9 @@ TEST_F(TerrainShadingTest, TheDeferredFrameTimesOneTerrainPassAndDrawsNoSkyTrian
   auto frame = r->renderFrame(req);
   ASSERT_TRUE(frame.ok());
   EXPECT_EQ(frame->terrainTriangles, 200u);
-  ASSERT_EQ(frame->gpu.passes.size(), 1u);
-  EXPECT_EQ(frame->gpu.passes[0].pass, "terrain");
+  ASSERT_EQ(frame->gpu.passes.size(), 2u);
+  EXPECT_EQ(frame->gpu.passes[0].pass, "terrain");  // the visibility raster
+  EXPECT_EQ(frame->gpu.passes[1].pass, "terrain shade");
   ASSERT_TRUE(frame->gpu.statistics.available);
   EXPECT_EQ(frame->gpu.statistics.inputPrimitives, 200u);
 }
