@@ -96,6 +96,19 @@ void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
   writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer, VK_WHOLE_SIZE, binding);
 }
 
+Sampler createNearestClampSampler(const Context& ctx, const std::string& name) {
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_NEAREST;
+  sci.minFilter = VK_FILTER_NEAREST;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = 0.0f;
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
+  return Sampler(ctx.device(), sampler);
+}
+
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = VK_FILTER_LINEAR;

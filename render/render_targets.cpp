@@ -48,7 +48,7 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
   }
   if (deferredTerrain)
     visibility_ = createImage2D(ctx, extent, kVisibilityFormat,
-                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, samples,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,
                                 "terrain visibility target");
 }
 
@@ -127,8 +127,8 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
 
 void RenderTargets::visibilityToShade(VkCommandBuffer cmd) const {
   transitionImage(cmd, visibility_.get(), visibility_.aspect, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_GENERAL, kColorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kColorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_UNDEFINED,
                   VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

@@ -53,8 +53,8 @@ class RenderTargets {
   // Deferred terrain: begins rendering into the visibility and depth attachments, both cleared
   // (no resolve).
   void beginVisibility(VkCommandBuffer cmd) const;
-  // After the visibility scope: the visibility target becomes readable and the colour
-  // attachment writable by compute (both GENERAL).
+  // After the visibility scope: the visibility target becomes readable (sampled) and the colour
+  // attachment writable by compute (GENERAL).
   void visibilityToShade(VkCommandBuffer cmd) const;
 
  private:

@@ -24,20 +24,22 @@ TerrainShadePass::TerrainShadePass(const Context& ctx, VkDescriptorSetLayout fra
   assert(targets.deferredTerrain());
   const VkShaderStageFlags c = VK_SHADER_STAGE_COMPUTE_BIT;
   const VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, c, nullptr},   // visibility
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, c, nullptr},  // visibility
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // vertices
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // indices
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // pieces
       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, c, nullptr},   // colour target
   };
   inputsLayout_ = createLayout(ctx, bindings, "terrain shade inputs layout");
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * kSlots},
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * kSlots}};
   pool_ = createPool(ctx, sizes, kSlots, "terrain shade pool");
+  nearest_ = createNearestClampSampler(ctx, "terrain visibility sampler");
   for (int s = 0; s < kSlots; ++s) {
     inputs_[static_cast<size_t>(s)] = allocateDescriptorSet(ctx, pool_.get(), inputsLayout_.get(),
                                                             "terrain shade inputs (slot " + std::to_string(s) + ")");
-    writeStorageImage(ctx, inputs_[static_cast<size_t>(s)], targets.visibility().view.get(), 0);
+    writeSampledImage(ctx, inputs_[static_cast<size_t>(s)], nearest_.get(), targets.visibility().view.get(), 0);
     writeStorageImage(ctx, inputs_[static_cast<size_t>(s)], targets.colorStorageView(), 4);
   }
   const VkPushConstantRange push{c, 0, sizeof(ShadePush)};

@@ -37,6 +37,7 @@ class TerrainShadePass {
   const Context* ctx_;
   DescriptorSetLayout inputsLayout_;
   DescriptorPool pool_;
+  Sampler nearest_;
   std::array<VkDescriptorSet, kSlots> inputs_{};
   PipelineLayout layout_;
   Pipeline pipeline_;

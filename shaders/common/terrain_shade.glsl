@@ -8,6 +8,9 @@
 // stored, sRGB-encoded, into the colour target itself (a storage view of it), so neither a
 // full-screen sky pass nor a composite pass writes the multisampled target through the ROPs.
 //
+// The visibility target is read as a sampled image (texelFetch), not a storage image: sampled
+// reads keep the GPU's colour compression of the multisampled target.
+//
 // Included by terrain_shade.comp (one sample per pixel) and terrain_shade_ms.comp (multisampled,
 // VEGSTREAM_MULTISAMPLE defined). Sets: 0 frame, 1 imagery, 2 detail (as the terrain pass),
 // 3 this pass's inputs.
@@ -22,16 +25,16 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef VEGSTREAM_MULTISAMPLE
-layout(set = 3, binding = 0, rgba8) uniform readonly image2DMS visibility;
+layout(set = 3, binding = 0) uniform sampler2DMS visibility;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
-#define LOAD_ID(px, s) packUnorm4x8(imageLoad(visibility, px, s))
+#define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, s))
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
-#define SAMPLES imageSamples(visibility)
+#define SAMPLES textureSamples(visibility)
 const int kMaxSamples = 8;
 #else
-layout(set = 3, binding = 0, rgba8) uniform readonly image2D visibility;
+layout(set = 3, binding = 0) uniform sampler2D visibility;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
-#define LOAD_ID(px, s) packUnorm4x8(imageLoad(visibility, px))
+#define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, 0))
 #define STORE_COLOUR(px, s, c) imageStore(target, px, c)
 #define SAMPLES 1
 const int kMaxSamples = 1;
