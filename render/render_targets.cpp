@@ -14,42 +14,56 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
   if (multisampled()) {
     colorMsaa_ =
         createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, samples, "colour target (MSAA)");
-    depthMsaa_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
+    // Sampled: the Hi-Z build reads every sample (hiz_pass.h).
+    depthMsaa_ = createImage2D(ctx, extent, kDepthFormat,
+                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,
                                "depth target (MSAA)");
   }
 }
 
-void RenderTargets::beginRendering(VkCommandBuffer cmd) const {
-  // Attachments start undefined each frame: everything is cleared.
+void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve) const {
   const auto colorStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const auto depthStage = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   const auto depthAccess =
       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  std::vector<const GpuImage*> colorImages{&color()}, depthImages{&depth()};
-  if (multisampled()) {
-    colorImages.push_back(&colorAttachment());
-    depthImages.push_back(&depthAttachment());
+  if (load == Load::Clear) {
+    // Attachments start undefined each frame: everything is cleared.
+    std::vector<const GpuImage*> colorImages{&color()}, depthImages{&depth()};
+    if (multisampled()) {
+      colorImages.push_back(&colorAttachment());
+      depthImages.push_back(&depthAttachment());
+    }
+    for (const GpuImage* img : colorImages)
+      transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    for (const GpuImage* img : depthImages)
+      transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage,
+                      depthAccess);
+  } else {
+    // The previous scope's attachment writes (and its resolve, if any) before this one's
+    // loads, draws and resolve writes.
+    memoryBarrier(cmd, colorStage | depthStage,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                  colorStage | depthStage,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | depthAccess);
   }
-  for (const GpuImage* img : colorImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, colorStage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  for (const GpuImage* img : depthImages)
-    transitionImage(cmd, img->get(), img->aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, depthStage, depthAccess);
+  const VkAttachmentLoadOp loadOp = load == Load::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
 
   VkRenderingAttachmentInfo colorInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   colorInfo.imageView = colorAttachment().view.get();
   colorInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  colorInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  colorInfo.loadOp = loadOp;
   colorInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
   VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depthInfo.imageView = depthAttachment().view.get();
   depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depthInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depthInfo.loadOp = loadOp;
   depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
-  if (multisampled()) {
+  if (multisampled() && resolve) {  // else the MSAA attachments are stored for the next scope
     colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
     colorInfo.resolveImageView = color().view.get();
     colorInfo.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;

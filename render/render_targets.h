@@ -1,6 +1,6 @@
 #pragma once
 // Offscreen colour + depth targets. With MSAA (samples > 1) the multisampled attachments are
-// resolved at the end of rendering — colour by averaging, depth by taking sample 0 — into
+// resolved at the end of the frame's last rendering scope — colour by averaging, depth by taking sample 0 — into
 // single-sample images that can be copied, presented or read back. With samples == 1 the
 // attachments are those images themselves.
 
@@ -27,9 +27,15 @@ class RenderTargets {
   const GpuImage& color() const { return color_; }  // single-sample, after resolve
   const GpuImage& depth() const { return depth_; }  // single-sample, after resolve
 
-  // Clears every target and begins dynamic rendering into them (resolving to color() and
-  // depth() when multisampled), viewport and scissor over the whole extent.
-  void beginRendering(VkCommandBuffer cmd) const;
+  // Begins dynamic rendering into the attachments, viewport and scissor over the whole extent.
+  // Load::Clear: the frame's first scope — every target (resolve targets too) starts undefined
+  // and is cleared. Load::Keep: a later scope of the same frame continues on what the previous
+  // scope stored (a barrier orders its writes first); the images must still be in their
+  // attachment layouts. `resolve` (multisampled only): resolve into color() and depth() at the
+  // end — the frame's last scope; otherwise the MSAA attachments are stored for the next one.
+  // A frame with several scopes: Clear without resolve, Keep …, the last one Keep with resolve.
+  enum class Load { Clear, Keep };
+  void beginRendering(VkCommandBuffer cmd, Load load = Load::Clear, bool resolve = true) const;
 
  private:
   VkExtent2D extent_;

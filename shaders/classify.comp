@@ -20,6 +20,9 @@ layout(set = 0, binding = 2, std430) readonly buffer Order { uint order[]; };
 layout(set = 0, binding = 3, std430) buffer Counters { uint groups[kMaxSpecies]; uint plants[kMaxSpecies]; };
 layout(set = 0, binding = 4, std430) writeonly buffer Records { PlantCluster records[]; };
 layout(set = 0, binding = 5) uniform sampler2DArray imagery;
+// Per seed triangle, 0 when the Hi-Z occlusion test found it hidden (hiz_cull.comp); read only
+// when pc.cull is 1.
+layout(set = 0, binding = 6, std430) readonly buffer Visible { uint visible[]; };
 
 layout(push_constant) uniform Push {
   uint orderFirst;     // this bin's first entry in order[]
@@ -28,6 +31,7 @@ layout(push_constant) uniform Push {
   uint clusterSize;    // C
   uint threadBase;     // for bins split over several dispatches
   uint speciesCapacity;
+  uint cull;           // 1: skip triangles with visible[t] == 0
 } pc;
 
 #include "species_choice.glsl"
@@ -72,6 +76,7 @@ void main() {
   if (id >= pc.triangleCount * pc.capacity) return;
   uint tri = order[pc.orderFirst + id / pc.capacity];
   uint item = id % pc.capacity;
+  if (pc.cull != 0u && visible[tri] == 0u) return;  // hidden behind the terrain: never expanded
   SeedTriangle t = triangles[tri];
   float n = t.v0.w;
   if (t.layer < 0) return;

@@ -1,0 +1,118 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Occlusion culling of seed triangles against the Hi-Z pyramid (render/hiz_pass.h) — the
+// hierarchical Z-buffer of Greene, Kass & Miller, "Hierarchical Z-Buffer Visibility",
+// SIGGRAPH 1993: a box is hidden when its nearest depth lies behind the farthest depth of the
+// pyramid texels that cover its screen rectangle. One thread per seed triangle, before the
+// classify pass expands it: visible[t] = 0 means no cluster of t is classified or drawn.
+//
+// The bound must hold everything the triangle's plants can put on screen: the roots lie in the
+// triangle; a plant reaches at most `reach` metres from its root in any direction (the tallest
+// species, its width and lean: render/hiz_pass.cpp plantReach); its planar shadow (core seed
+// 001 §3.6, common/plant_geometry.glsl) is that geometry pushed along the sunlight onto the
+// triangle's plane, at most reach / (n·l) along ±l. Anything we are unsure of is kept.
+layout(local_size_x = 64) in;
+
+#include "frame_uniforms.glsl"
+#include "classify_layout.glsl"
+#include "philox.glsl"
+#include "seeding.glsl"
+
+layout(set = 1, binding = 0, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
+layout(set = 1, binding = 1, std430) writeonly buffer Visible { uint visible[]; };
+// tested: triangles with plants; culled: those found hidden; clustersCulled: their classify
+// work items (seeds of cluster 0 + further clusters, vegetation::classifyItems); plantsCulled:
+// Σ ceil(N) over them.
+layout(set = 1, binding = 2, std430) buffer Counters { uint tested, culled, clustersCulled, plantsCulled; };
+layout(set = 1, binding = 3, std430) readonly buffer Hiz { float hiz[]; };
+
+layout(push_constant) uniform Push {
+  uint count;        // seed triangles
+  uint clusterSize;  // C
+  float reach;       // m
+  uint shadows;      // 1: planar shadows are drawn
+  uint width, height;  // pixels of the depth target
+  uint levels;       // Hi-Z levels; level l has ceil(width / 2^(l+1)) × ceil(height / 2^(l+1)) texels
+} pc;
+
+uint levelW(uint l) { return (pc.width + (2u << l) - 1u) >> (l + 1u); }
+uint levelH(uint l) { return (pc.height + (2u << l) - 1u) >> (l + 1u); }
+uint levelOffset(uint l) {
+  uint o = 0u;
+  for (uint i = 0u; i < l; ++i) o += levelW(i) * levelH(i);
+  return o;
+}
+
+// True when the triangle's bound is certainly hidden behind this frame's terrain depth.
+bool hidden(SeedTriangle t) {
+  vec3 lo = min(t.v0.xyz, min(t.v1.xyz, t.v2.xyz)), hi = max(t.v0.xyz, max(t.v1.xyz, t.v2.xyz));
+  // Thin things are drawn at least 1.5 pixels wide (grass, gravel, flower heads: up to ~2.1
+  // pixels from their axis, common/plant_geometry.glsl metresPerPixel): 2.5 pixels at the far
+  // end of the box, in metres, on top of the plants' own reach; 0.05 m for the shadow's lift.
+  mat4 m = frame.viewProj;
+  float focal = 0.5 * frame.viewport.y * length(vec3(m[0][1], m[1][1], m[2][1]));
+  float far = sqrt(max(dot(t.v0.xyz, t.v0.xyz), max(dot(t.v1.xyz, t.v1.xyz), dot(t.v2.xyz, t.v2.xyz))));
+  float pixels = 2.5 * (far + 2.0 * pc.reach) / focal;
+  float reach = pc.reach + pixels;
+  vec3 e = vec3(reach + 0.05);
+  if (pc.shadows != 0u) {
+    vec3 n = cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz);
+    float len = length(n);
+    vec3 l = frame.sunDirection.xyz;
+    float nl = len > 0.0 ? abs(dot(n / len, l)) : 0.0;
+    // plant_geometry.glsl draws shadows only for n·l > 0.05; below 0.04 no shadow exists.
+    if (nl > 0.04) e += abs(l) * (reach / nl);
+    else if (len == 0.0) return false;  // degenerate: no plane to reason about
+  }
+  lo -= e;
+  hi += e;
+  vec2 pmin = vec2(1e30), pmax = vec2(-1e30);
+  float nearest = 0.0;  // reverse-Z: the largest depth of the box
+  for (int i = 0; i < 8; ++i) {
+    vec3 c = vec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
+    vec4 clip = frame.viewProj * vec4(c, 1.0);
+    if (clip.w <= 0.0 || clip.z >= clip.w) return false;  // reaches the near plane or behind the eye
+    vec3 ndc = clip.xyz / clip.w;
+    vec2 px = (ndc.xy * 0.5 + 0.5) * vec2(pc.width, pc.height);
+    pmin = min(pmin, px);
+    pmax = max(pmax, px);
+    nearest = max(nearest, ndc.z);
+  }
+  // Entirely off screen: the terrain's frustum culling decides that, not this test.
+  if (pmax.x < 0.0 || pmax.y < 0.0 || pmin.x >= float(pc.width) || pmin.y >= float(pc.height)) return false;
+  // Clamped to the screen: what lies outside it cannot be seen, so only the part inside counts.
+  ivec2 p0 = ivec2(floor(max(pmin, vec2(0.0))));
+  ivec2 p1 = min(ivec2(floor(pmax)), ivec2(pc.width - 1u, pc.height - 1u));
+  uint span = uint(max(p1.x - p0.x, p1.y - p0.y) + 1);
+  // The level whose texels (2^(l+1) pixels) are at least the span: the rectangle touches at most
+  // 2 × 2 of them.
+  uint l = 0u;
+  while ((2u << l) < span && l + 1u < pc.levels) ++l;
+  uvec2 t0 = uvec2(p0) >> (l + 1u), t1 = uvec2(p1) >> (l + 1u);
+  uint w = levelW(l), base = levelOffset(l);
+  float farthest = 1.0;
+  for (uint y = t0.y; y <= t1.y; ++y)
+    for (uint x = t0.x; x <= t1.x; ++x) farthest = min(farthest, hiz[base + y * w + x]);
+  // Strictly behind: a plant fragment at the same depth could still pass the depth test.
+  return nearest < farthest;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  SeedTriangle t = triangles[i];
+  float n = t.v0.w;
+  uint clusters = t.layer < 0 ? 0u : clusterCount(n, pc.clusterSize);
+  if (clusters == 0u) {  // nothing to classify: not tested
+    visible[i] = 1u;
+    return;
+  }
+  atomicAdd(tested, 1u);
+  bool h = hidden(t);
+  visible[i] = h ? 0u : 1u;
+  if (!h) return;
+  atomicAdd(culled, 1u);
+  uint seeds = uint(ceil(min(n, float(pc.clusterSize))));
+  atomicAdd(clustersCulled, seeds + clusters - 1u);
+  atomicAdd(plantsCulled, uint(ceil(n)));
+}
