@@ -16,8 +16,9 @@
 //
 // The test (shaders/hiz_cull.comp) is conservative: a triangle is culled only when the nearest
 // depth of a box holding all its plants and their planar shadows is strictly behind the
-// farthest depth of the ≤ 2 × 2 pyramid texels covering the box's screen rectangle. Boxes that
-// reach the near plane or lie wholly off screen are kept.
+// farthest depth of the pyramid texels covering the box's screen rectangle (at the finest level
+// where they are ≤ 8 × 8: Greene's 2 × 2 is too coarse along ridge crests, where a big texel also
+// holds the sky). Boxes that reach the near plane or lie wholly off screen are kept.
 //
 // Contract: recordBuild expects the depth attachment in DEPTH_ATTACHMENT_OPTIMAL, written by a
 // rendering scope that has ended, and leaves it in DEPTH_ATTACHMENT_OPTIMAL (contents kept) for

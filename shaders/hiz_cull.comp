@@ -8,9 +8,9 @@
 //
 // The bound must hold everything the triangle's plants can put on screen: the roots lie in the
 // triangle; a plant reaches at most `reach` metres from its root in any direction (the tallest
-// species, its width and lean: render/hiz_pass.cpp plantReach); its planar shadow (core seed
-// 001 §3.6, common/plant_geometry.glsl) is that geometry pushed along the sunlight onto the
-// triangle's plane, at most reach / (n·l) along ±l. Anything we are unsure of is kept.
+// species, its width and lean: render/hiz_pass.cpp plantReach; plus the minimum on-screen
+// width); its planar shadow (core seed 001 §3.6, common/plant_geometry.glsl) is that geometry
+// projected along the sunlight onto the triangle's plane. Anything we are unsure of is kept.
 layout(local_size_x = 64) in;
 
 #include "frame_uniforms.glsl"
@@ -54,16 +54,28 @@ bool hidden(SeedTriangle t) {
   float far = sqrt(max(dot(t.v0.xyz, t.v0.xyz), max(dot(t.v1.xyz, t.v1.xyz), dot(t.v2.xyz, t.v2.xyz))));
   float pixels = 2.5 * (far + 2.0 * pc.reach) / focal;
   float reach = pc.reach + pixels;
-  vec3 e = vec3(reach + 0.05);
+  // Each plant point is root + o with |o_i| ≤ reach; its shadow is root + P o (+ 1.5 cm along
+  // n), P = I − l nᵀ / (n·l) the projection along the sunlight onto the triangle's plane, so
+  // per axis |(P o)_i| ≤ reach · Σ_j |P_ij|. On flat ground P's z row is 0: shadows stay low.
+  vec3 e = vec3(reach);
   if (pc.shadows != 0u) {
     vec3 n = cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz);
     float len = length(n);
+    if (len == 0.0) return false;  // degenerate: no plane to reason about
+    n /= len;
     vec3 l = frame.sunDirection.xyz;
-    float nl = len > 0.0 ? abs(dot(n / len, l)) : 0.0;
-    // plant_geometry.glsl draws shadows only for n·l > 0.05; below 0.04 no shadow exists.
-    if (nl > 0.04) e += abs(l) * (reach / nl);
-    else if (len == 0.0) return false;  // degenerate: no plane to reason about
+    float nl = dot(n, l);  // P is the same for −n
+    // plant_geometry.glsl draws shadows only where n·l > 0.05 (its n faces the sun's side).
+    if (abs(nl) > 0.04) {
+      vec3 q = l / nl;
+      for (int i = 0; i < 3; ++i) {
+        float row = 0.0;
+        for (int j = 0; j < 3; ++j) row += abs((i == j ? 1.0 : 0.0) - q[i] * n[j]);
+        e[i] = max(e[i], reach * row);
+      }
+    }
   }
+  e += 0.05;  // the shadow's 1.5 cm lift and float slack
   lo -= e;
   hi += e;
   vec2 pmin = vec2(1e30), pmax = vec2(-1e30);
@@ -83,12 +95,18 @@ bool hidden(SeedTriangle t) {
   // Clamped to the screen: what lies outside it cannot be seen, so only the part inside counts.
   ivec2 p0 = ivec2(floor(max(pmin, vec2(0.0))));
   ivec2 p1 = min(ivec2(floor(pmax)), ivec2(pc.width - 1u, pc.height - 1u));
-  uint span = uint(max(p1.x - p0.x, p1.y - p0.y) + 1);
-  // The level whose texels (2^(l+1) pixels) are at least the span: the rectangle touches at most
-  // 2 × 2 of them.
+  // The finest level at which the rectangle touches at most kTexels × kTexels texels. Greene's
+  // classic choice is 2 × 2; this test runs once per seed triangle (not per pixel), so it can
+  // afford up to 64 reads for a footprint 4 × tighter — which is what decides near the horizon,
+  // where a coarse texel over a ridge's crest also holds the sky (farthest depth: no culling).
+  const uint kTexels = 8u;
   uint l = 0u;
-  while ((2u << l) < span && l + 1u < pc.levels) ++l;
-  uvec2 t0 = uvec2(p0) >> (l + 1u), t1 = uvec2(p1) >> (l + 1u);
+  uvec2 t0 = uvec2(p0) >> 1u, t1 = uvec2(p1) >> 1u;
+  while ((t1.x - t0.x >= kTexels || t1.y - t0.y >= kTexels) && l + 1u < pc.levels) {
+    ++l;
+    t0 = uvec2(p0) >> (l + 1u);
+    t1 = uvec2(p1) >> (l + 1u);
+  }
   uint w = levelW(l), base = levelOffset(l);
   float farthest = 1.0;
   for (uint y = t0.y; y <= t1.y; ++y)
