@@ -77,7 +77,8 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
                         "plants", "plant_overflow", "plant_patches", "plant_triangles"})
     c.push_back({n, 0});
   // Hi-Z occlusion culling of seed triangles (render/hiz_pass.h); empty when it is off.
-  for (const char* n : {"plant_cull_tested", "plant_cull_culled", "plant_clusters_culled", "plants_culled"})
+  for (const char* n : {"plant_cull_tested", "plant_cull_culled", "plant_clusters_culled", "plant_groups_culled",
+                        "plants_culled"})
     c.push_back({n, 0});
   return c;
 }

@@ -21,7 +21,8 @@ namespace {
 static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
 constexpr uint32_t kWorkgroup = 64;  // shaders/classify.comp local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
-constexpr VkDeviceSize kCounterBytes = 2 * kSpeciesSlots * sizeof(uint32_t);
+// groups and plants per species, then the groups and plants the occlusion test dropped.
+constexpr VkDeviceSize kCounterBytes = (2 * kSpeciesSlots + 2) * sizeof(uint32_t);
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
@@ -228,6 +229,8 @@ void ClassifyPass::readFigures(int slot, VegetationFigures& f) const {
     f.plantsTotal += f.plants[i];
     if (f.groups[i] > options_.clustersPerSpecies) f.overflow = true;
   }
+  f.cullGroupsCulled = counters[2 * kSpeciesSlots];
+  f.cullGroupPlantsCulled = counters[2 * kSpeciesSlots + 1];
 }
 
 uint64_t ClassifyPass::gpuBytes() const {

@@ -83,10 +83,13 @@ struct VegetationFigures {
   bool overflow = false;  // a species' buffer was full: some groups were not drawn
   // Hi-Z occlusion culling (render/hiz_pass.h), read back with the counts; zero when it was off.
   bool occlusionCulling = false;   // the test ran this frame
-  uint64_t cullTested = 0;         // seed triangles with plants that were tested
-  uint64_t cullCulled = 0;         // of them, hidden behind the terrain: never expanded
+  uint64_t cullTested = 0;          // seed triangles with plants that were tested
+  uint64_t cullCulled = 0;          // of them, hidden for every species: never expanded
   uint64_t cullClustersCulled = 0;  // their species lookups (classify work items) skipped
   uint64_t cullPlantsCulled = 0;    // Σ ceil(N) of the culled triangles: plants never made
+  // Groups classified but dropped because their species' plants are hidden on their triangle
+  // (a ridge hides grass, not the trees of the same triangle), and the plants in them.
+  uint64_t cullGroupsCulled = 0, cullGroupPlantsCulled = 0;
 };
 
 // Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-

@@ -26,11 +26,11 @@ struct DepthPush {
 struct ReducePush {
   uint32_t srcOffset, srcW, srcH, dstOffset, dstW, dstH;
 };
-struct CullPush {
-  uint32_t count, clusterSize;
-  float reach;
-  uint32_t shadows, width, height, levels;
+struct CullPush {  // shaders/hiz_cull.comp
+  uint32_t count, clusterSize, shadows, width, height, levels, species, pad;
+  std::array<float, vegetation::kMaxSpecies> reach;
 };
+static_assert(sizeof(CullPush) == 96 && sizeof(CullPush) <= 128, "push constants: 128 bytes guaranteed");
 
 uint32_t groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
 
@@ -52,19 +52,26 @@ std::vector<HizLevel> hizLevels(VkExtent2D extent) {
   return levels;
 }
 
-float plantReach(const vegetation::SpeciesCatalog& catalog) {
+std::array<float, vegetation::kMaxSpecies> speciesReach(const vegetation::SpeciesCatalog& catalog) {
   // Blades and stems reach their height from the root (the solved shapes are unit length);
   // sideways, a blade is half its width, a stone ~1 × its size (≤ height + width), a flower
   // head 2.5 widths at the tip (3.6 at its corners), a marker (any kind: trees, and every
   // species in the markers style) 1.5 widths or 0.15 heights. 5 % more covers the shaders'
   // float maths.
-  float reach = 0.0f;
-  for (const vegetation::Species& s : catalog.species) {
+  std::array<float, vegetation::kMaxSpecies> reach;
+  reach.fill(-1.0f);
+  for (size_t i = 0; i < catalog.species.size() && i < reach.size(); ++i) {
+    const vegetation::Species& s = catalog.species[i];
     if (s.bare) continue;
     const float side = s.kind == vegetation::RendererKind::Flowers ? 3.6f * s.widthM.max : 1.5f * s.widthM.max;
-    reach = std::max(reach, s.heightM.max + std::max(side, 0.15f * s.heightM.max));
+    reach[i] = 1.05f * (s.heightM.max + std::max(side, 0.15f * s.heightM.max));
   }
-  return 1.05f * reach;
+  return reach;
+}
+
+void HizPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
+  reach_ = speciesReach(catalog);
+  speciesCount_ = static_cast<uint32_t>(std::min<size_t>(catalog.species.size(), reach_.size()));
 }
 
 HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets)
@@ -193,8 +200,8 @@ void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet
   const VkDescriptorSet sets[] = {frameSet, s.cullSet};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipelineLayout_.get(), 0, 2, sets, 0, nullptr);
   const VkExtent2D extent = targets_->extent();
-  const CullPush cp{count,        clusterSize,   reach_, shadows ? 1u : 0u, extent.width, extent.height,
-                    static_cast<uint32_t>(levels_.size())};
+  const CullPush cp{count,        clusterSize,   shadows ? 1u : 0u, extent.width, extent.height,
+                    static_cast<uint32_t>(levels_.size()), speciesCount_, 0u, reach_};
   vkCmdPushConstants(cmd, cullPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(cp), &cp);
   // One dispatch holds 65535 × 64 ≈ 4 M triangles: far more than a frame's seed triangles.
   vkCmdDispatch(cmd, std::min(groups(count, kCullGroup), 65535u), 1, 1);

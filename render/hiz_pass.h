@@ -6,7 +6,9 @@
 // Frame order (render/renderer.cpp recordPasses): rendering scope 1 draws sky + terrain and
 // ends; recordBuild reduces the depth attachment into a pyramid; the classify pass calls
 // recordCull (its CullHook) after uploading the triangles, so triangles hidden behind canyon
-// walls and ridges are never classified into plants nor drawn; scope 2 draws the plants.
+// walls and ridges are never classified into plants nor drawn (and groups of a species hidden
+// on their triangle — grass behind a ridge that does not hide trees — are dropped when
+// classified); scope 2 draws the plants.
 //
 // The pyramid is a storage buffer, not a mip-mapped image: level l has ceil(W / 2^(l+1)) ×
 // ceil(H / 2^(l+1)) texels (rounded UP, unlike Vulkan mips, so no edge pixel is lost), texel
@@ -14,8 +16,9 @@
 // screen, and holds the FARTHEST depth under them — reverse-Z (1 near, 0 far), so the minimum,
 // over every MSAA sample. Level 0 is half resolution; the last level is 1 × 1.
 //
-// The test (shaders/hiz_cull.comp) is conservative: a triangle is culled only when the nearest
-// depth of a box holding all its plants and their planar shadows is strictly behind the
+// The test (shaders/hiz_cull.comp) is conservative, per species: species s is hidden on a
+// triangle only when the nearest depth of a box holding all its plants there (and one holding
+// their planar shadows) is strictly behind the
 // farthest depth of the pyramid texels covering the box's screen rectangle (at the finest level
 // where they are ≤ 8 × 8: Greene's 2 × 2 is too coarse along ridge crests, where a big texel also
 // holds the sky). Boxes that reach the near plane or lie wholly off screen are kept.
@@ -45,9 +48,10 @@ struct HizLevel {
 // The levels of the pyramid of a `extent` depth target (level 0: half resolution, rounded up).
 std::vector<HizLevel> hizLevels(VkExtent2D extent);
 
-// How far (m) any plant of `catalog` can reach from its root in any direction: height, lean
-// and the widest thing drawn for it (the markers are 3 × the plant's width or 0.3 × its height).
-float plantReach(const vegetation::SpeciesCatalog& catalog);
+// How far (m) a plant of each species of `catalog` can reach from its root in any direction:
+// height, lean and the widest thing drawn for it (the markers are 3 × the plant's width or
+// 0.3 × its height); −1 for bare soil and unused slots.
+std::array<float, vegetation::kMaxSpecies> speciesReach(const vegetation::SpeciesCatalog& catalog);
 
 class HizPass {
  public:
@@ -56,9 +60,9 @@ class HizPass {
   // `frameLayout`: the renderer's frame-uniform set layout (set 0 of the cull kernel).
   HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets);
 
-  // The reach of the plants the bound must hold (plantReach of the frame's catalog).
-  void setPlantReach(float metres) { reach_ = metres; }
-  float plantReach() const { return reach_; }
+  // The species the bounds are made for (speciesReach); call it with the classify pass's
+  // setCatalog (the test's bit s is species s of this catalog).
+  void setCatalog(const vegetation::SpeciesCatalog& catalog);
 
   // Outside rendering, after the terrain's scope ended: depth attachment → pyramid.
   void recordBuild(VkCommandBuffer cmd);
@@ -85,7 +89,8 @@ class HizPass {
   const Context* ctx_;
   const RenderTargets* targets_;
   std::vector<HizLevel> levels_;
-  float reach_ = 1.0f;
+  std::array<float, vegetation::kMaxSpecies> reach_{};
+  uint32_t speciesCount_ = 0;
   GpuBuffer pyramid_;
   DescriptorSetLayout depthLayout_, reduceLayout_, cullLayout_;
   DescriptorPool pool_;

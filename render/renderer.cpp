@@ -150,7 +150,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
   hiz = std::make_unique<HizPass>(*ctx, layout, *targets);
-  hiz->setPlantReach(plantReach(vegetation::defaultSpeciesCatalog()));
+  hiz->setCatalog(vegetation::defaultSpeciesCatalog());
   markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
   // Species stiffness is relative to the blade's buckling stiffness k_c (the catalog's k′ = 1 is
   // the critical blade, whatever its segment count): the table spans 0.2 … 20 k_c.
@@ -439,7 +439,7 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   return guardGpu([&]() -> Status {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
     impl_->classify->setCatalog(catalog);
-    impl_->hiz->setPlantReach(plantReach(catalog));
+    impl_->hiz->setCatalog(catalog);
     return {};
   });
 }

@@ -92,7 +92,7 @@ const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", 
                                           "plant_overflow",       "plant_patches", "plant_triangles",
                                           // Issue 17's Hi-Z occlusion culling.
                                           "plant_cull_tested",    "plant_cull_culled", "plant_clusters_culled",
-                                          "plants_culled"};
+                                          "plant_groups_culled",  "plants_culled"};
 
 struct Csv {
   std::vector<std::string> header;
