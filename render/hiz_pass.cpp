@@ -193,7 +193,8 @@ void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet
     s.boundVisible = visible;
   }
   vkCmdFillBuffer(cmd, s.counters.get(), 0, kCounterBytes, 0);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  // ALL_TRANSFER: the fill counts as a clear (spec) or a copy (some validation layers).
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_.get());
