@@ -82,7 +82,7 @@ struct VegetationFigures {
   uint64_t groupsTotal = 0, plantsTotal = 0;
   bool overflow = false;  // a species' buffer was full: some groups were not drawn
   // Hi-Z occlusion culling (render/hiz_pass.h), read back with the counts; zero when it was off.
-  bool occlusionCulling = false;   // the test ran this frame
+  bool occlusionCulling = false;   // asked for this frame (the counts are 0 when there was nothing to test)
   uint64_t cullTested = 0;          // seed triangles with plants that were tested
   uint64_t cullCulled = 0;          // of them, hidden for every species: never expanded
   uint64_t cullClustersCulled = 0;  // their species lookups (classify work items) skipped
