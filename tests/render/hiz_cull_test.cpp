@@ -294,5 +294,32 @@ TEST_F(HizCullTest, KeepsThePlantsThatPeekOverALowWall) {
   std::printf("low wall: %zu samples of plants behind the wall\n", peeking);
 }
 
+// Two grasses of the same colour, one 0.2 … 0.55 m, one 3 … 4 m: behind a wall 1 m above the
+// eye the short grass is hidden but the tall grass's tips may show, so triangles stay and the
+// short grass's groups are dropped per species — and still nothing that shows is lost.
+TEST_F(HizCullTest, DropsTheHiddenSpeciesOfATriangleWhoseOtherSpeciesShows) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  vegetation::SpeciesCatalog c = grassCatalog();
+  const auto grass = std::find_if(c.species.begin(), c.species.end(), [](const auto& s) { return s.name == "grass"; });
+  ASSERT_NE(grass, c.species.end());
+  vegetation::Species tall = *grass;
+  tall.name = "tall grass";
+  tall.heightM = {3.0f, 4.0f};
+  c.species.insert(grass + 1, tall);
+  ASSERT_TRUE(r->setSpeciesCatalog(c).ok());
+  const Frames f = renderWall(*r, 3.0f);
+  expectNeverCullsAVisibleGroup(f, "two grasses, wall 1 m above the eye");
+  ASSERT_TRUE(f.on.vegetation && f.off.vegetation);
+  const VegetationFigures &on = *f.on.vegetation, &off = *f.off.vegetation;
+  EXPECT_GT(on.cullGroupsCulled, 100u) << "short grass dropped where tall grass may show";
+  EXPECT_GT(off.groups[1], 1000u) << "both grasses are picked";
+  EXPECT_GT(on.groups[1], 0u) << "the tall grass behind the wall stays";
+  std::printf("two grasses: %llu groups dropped per species (%llu plants)\n",
+              static_cast<unsigned long long>(on.cullGroupsCulled),
+              static_cast<unsigned long long>(on.cullGroupPlantsCulled));
+}
+
 }  // namespace
 }  // namespace vegstream::render::testing
