@@ -246,7 +246,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
   const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify) : 0u;
   slot.timer->beginPass(cmd, "classify");
   ClassifyPass::CullHook cull;
-  if (plants.occlusionCulling) {
+  if (plants.occlusionCulling && !plants.triangles.empty()) {
     hiz->recordBuild(cmd);
     cull = [&](VkCommandBuffer c, VkBuffer triangles, VkBuffer visible, uint32_t count) {
       hiz->recordCull(c, slotIndex, slot.descriptorSet, triangles, visible, count, plants.clusterSize,
