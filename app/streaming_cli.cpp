@@ -60,6 +60,11 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Blades have full detail within this distance, n_max / d² beyond, metres")
       ->capture_default_str();
   cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
+  cmd.add_option("--occlusion-culling", o.occlusionCulling,
+                 "on: seed triangles hidden behind the terrain (Hi-Z of its depth) are neither classified nor "
+                 "drawn; off: all are, for comparison")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
 }
 
 Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
@@ -93,6 +98,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
                std::to_string(vegetation::kMaxClusterSize));
   if (o.plantStyle != "plants" && o.plantStyle != "markers" && o.plantStyle != "hidden")
     return bad("--plant-style " + o.plantStyle + ": must be plants, markers or hidden");
+  if (o.occlusionCulling != "on" && o.occlusionCulling != "off")
+    return bad("--occlusion-culling " + o.occlusionCulling + ": must be on or off");
   if (o.plantSegments < 1 || o.plantSegments > 16)
     return bad("--plant-segments " + std::to_string(o.plantSegments) + ": must be 1 … 16");
   if (!(o.plantLodM > 0.0 && o.plantLodM <= 1000.0))
@@ -127,6 +134,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
   scene.plantDraw.shadows = !o.noPlantShadows;
+  scene.occlusionCulling = o.occlusionCulling == "on";
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
 }

@@ -39,6 +39,7 @@ struct StreamingCli {
   int plantSegments = 5;              // n_max segments per blade (eq. 4)
   double plantLodM = 4.0;             // eq. 4's distance unit
   bool noPlantShadows = false;
+  std::string occlusionCulling = "on";  // on | off: Hi-Z culling of seed triangles the terrain hides
 };
 
 // Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).

@@ -3,7 +3,9 @@
 
 Usage: gpu_measure_report.py DIR [FAILED_NAME ...]. Tables: the frame per recording (GPU, CPU and
 wall p50/p99, plants in the low phase), GPU ms per pass (p50/p99; empty where the device's
-per-pass times mean nothing), and every benchmark with its counters.
+per-pass times mean nothing), the Hi-Z occlusion culling (median per frame over the whole flight:
+seed triangles tested and culled, plants classified and culled; canyon vs canyon-no-cull is the
+comparison), and every benchmark with its counters.
 """
 import csv
 import json
@@ -12,7 +14,7 @@ import os
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "dense", "canyon", "canyon-dense"]
+ORDER = ["default", "no-plants", "dense", "canyon", "canyon-no-cull", "canyon-dense"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
@@ -87,6 +89,18 @@ def main():
                 c = "gpu_" + "".join(ch if ch.isalnum() else "_" for ch in p.lower()) + "_ms"
                 cells.append(f"{fmt(pct(t, c, 'p50'))} / {fmt(pct(t, c, 'p99'))}")
             print(f"| {n} | " + " | ".join(cells) + " |")
+        print("\n## Occlusion culling (median per frame, whole flight)\n")
+        print("| recording | seed triangles tested | culled | plants classified | plants culled | "
+              "plant triangles | GPU frame p50 ms |")
+        print("|---|---|---|---|---|---|---|")
+        for n in recordings:
+            s, rows = data[n]
+            print(f"| {n} | {fmt(median(column(rows, 'plant_cull_tested')), 0)} | "
+                  f"{fmt(median(column(rows, 'plant_cull_culled')), 0)} | "
+                  f"{fmt(median(column(rows, 'plants')), 0)} | "
+                  f"{fmt(median(column(rows, 'plants_culled')), 0)} | "
+                  f"{fmt(median(column(rows, 'plant_triangles')), 0)} | "
+                  f"{fmt(pct(s['times_ms'], 'gpu_frame_ms', 'p50'))} |")
         print("\n## CPU ms per stage (p50 / p99)\n")
         stages = ["cpu_streaming_ms", "cpu_terrain_ms", "cpu_seeding_ms", "cpu_record_submit_ms", "cpu_frame_ms"]
         print("| recording | " + " | ".join(stages) + " |")

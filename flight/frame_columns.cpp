@@ -76,6 +76,10 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   for (const char* n : {"plant_seed_triangles", "plant_bins", "plant_clusters", "plant_cluster_slots", "plant_groups",
                         "plants", "plant_overflow", "plant_patches", "plant_triangles"})
     c.push_back({n, 0});
+  // Hi-Z occlusion culling of seed triangles (render/hiz_pass.h); empty when it is off.
+  for (const char* n : {"plant_cull_tested", "plant_cull_culled", "plant_clusters_culled", "plant_groups_culled",
+                        "plants_culled"})
+    c.push_back({n, 0});
   return c;
 }
 

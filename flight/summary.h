@@ -71,6 +71,7 @@ struct RecordingMeta {
     uint32_t maxSegments = 0;    // n_max segments of a blade (eq. 4)
     double lodDistanceM = 0.0;   // eq. 4's distance unit
     bool shadows = false;
+    bool occlusionCulling = false;  // Hi-Z culling of hidden seed triangles
     std::vector<std::string> species;  // names, in catalog order
   } plants;
   bool validate = false;

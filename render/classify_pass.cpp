@@ -21,11 +21,12 @@ namespace {
 static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
 constexpr uint32_t kWorkgroup = 64;  // shaders/classify.comp local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
-constexpr VkDeviceSize kCounterBytes = 2 * kSpeciesSlots * sizeof(uint32_t);
+// groups and plants per species, then the groups and plants the occlusion test dropped.
+constexpr VkDeviceSize kCounterBytes = (2 * kSpeciesSlots + 2) * sizeof(uint32_t);
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
-  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity;
+  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull;
 };
 struct FinishPush {
   uint32_t verticesPerGroup, speciesCapacity, patchMask;
@@ -49,12 +50,13 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
       storage(2),
       storage(3),
       storage(4),
-      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      storage(6)};
   classifyLayout_ = createLayout(ctx, classifyBindings, "classify set layout");
   const VkDescriptorSetLayoutBinding finishBindings[] = {storage(0), storage(1), storage(2)};
   finishLayout_ = createLayout(ctx, finishBindings, "classify finish set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots}};
   pool_ = createPool(ctx, sizes, 2 * kSlots, "classify pool");
 
@@ -105,11 +107,18 @@ void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t or
   const std::string tag = " (slot " + std::to_string(slot) + ")";
   const VkDeviceSize triBytes = std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu);
   const VkDeviceSize orderBytes = std::max<size_t>(orderEntries, 1) * sizeof(uint32_t);
+  const VkDeviceSize visibleBytes = std::max<size_t>(triangles, 1) * sizeof(uint32_t);
   bool changed = false;
   if (!s.triangles.buffer || s.triangles.size < triBytes) {
     if (s.triangles.buffer) retire(std::move(s.triangles));
     s.triangles = createBuffer(*ctx_, grownSize(triBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
                                "classify triangles" + tag);
+    changed = true;
+  }
+  if (!s.visible.buffer || s.visible.size < visibleBytes) {
+    if (s.visible.buffer) retire(std::move(s.visible));
+    s.visible = createBuffer(*ctx_, grownSize(visibleBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
+                             "classify visible triangles" + tag);
     changed = true;
   }
   if (!s.order.buffer || s.order.size < orderBytes) {
@@ -128,12 +137,13 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery) {
   writeStorageBuffer(*ctx_, s.classifySet, s.counters.get(), 3);
   writeStorageBuffer(*ctx_, s.classifySet, s.records.get(), 4);
   writeSampledImage(*ctx_, s.classifySet, sampler_.get(), imagery, 5);
+  writeStorageBuffer(*ctx_, s.classifySet, s.visible.get(), 6);
   s.boundImagery = imagery;
 }
 
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                                        uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
-                                       uint32_t patchMask, const RetireBuffer& retire) {
+                                       uint32_t patchMask, const RetireBuffer& retire, const CullHook& cull) {
   assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
   Slot& s = slots_[size_t(slot)];
   VegetationFigures f;
@@ -152,11 +162,19 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
   if (s.boundImagery != imagery) writeSets(s, imagery);
 
+  if (cull && !triangles.empty()) {
+    // visible[] is read by the slot's previous classify dispatches (finished: its fence) and
+    // written now by the hook; the dispatches below read it.
+    cull(cmd, s.triangles.get(), s.visible.get(), static_cast<uint32_t>(triangles.size()));
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  }
+
   vkCmdFillBuffer(cmd, s.counters.get(), 0, kCounterBytes, 0);
   // The counters are cleared after the slot's previous draws read its records and indirect args.
   memoryBarrier(
       cmd,
-      VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
@@ -168,8 +186,13 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
     ++f.bins;
     const uint64_t threads = uint64_t{bin.count} * bin.capacity;
     for (uint64_t base = 0; base < threads; base += uint64_t{kMaxGroupsPerDispatch} * kWorkgroup) {
-      const ClassifyPush push{
-          bin.first, bin.count, bin.capacity, clusterSize, static_cast<uint32_t>(base), options_.clustersPerSpecies};
+      const ClassifyPush push{bin.first,
+                              bin.count,
+                              bin.capacity,
+                              clusterSize,
+                              static_cast<uint32_t>(base),
+                              options_.clustersPerSpecies,
+                              cull && !triangles.empty() ? 1u : 0u};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
       vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
@@ -206,12 +229,15 @@ void ClassifyPass::readFigures(int slot, VegetationFigures& f) const {
     f.plantsTotal += f.plants[i];
     if (f.groups[i] > options_.clustersPerSpecies) f.overflow = true;
   }
+  f.cullGroupsCulled = counters[2 * kSpeciesSlots];
+  f.cullGroupPlantsCulled = counters[2 * kSpeciesSlots + 1];
 }
 
 uint64_t ClassifyPass::gpuBytes() const {
   uint64_t bytes = species_.size;
   for (const Slot& s : slots_)
-    bytes += s.triangles.size + s.order.size + s.counters.size + s.records.size + s.indirect.size + s.figures.size;
+    bytes += s.triangles.size + s.order.size + s.counters.size + s.records.size + s.indirect.size + s.figures.size +
+             s.visible.size;
   return bytes;
 }
 

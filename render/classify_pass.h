@@ -31,6 +31,10 @@ class ClassifyPass {
  public:
   static constexpr int kSlots = 2;
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
+  // Records the occlusion test of the frame's `count` seed triangles (the slot's `triangles`
+  // buffer, uploaded): writes visible[t] (uint; 0: hidden) into `visible` with compute shaders
+  // (render/hiz_pass.h). The classify dispatches then skip hidden triangles.
+  using CullHook = std::function<void(VkCommandBuffer cmd, VkBuffer triangles, VkBuffer visible, uint32_t count)>;
 
   ClassifyPass(const Context& ctx, const ClassifyOptions& options);
 
@@ -43,10 +47,11 @@ class ClassifyPass {
   // sRGB bytes; shader-readable).
   // The indirect draws get one vertex per group (a patch) for the species in `patchMask` (bit s:
   // species s is drawn by a plant pipeline), `verticesPerGroup` for the others (markers).
+  // With `cull`, the triangles it marks hidden are not expanded (no cluster, no group, no draw).
   // Returns the CPU-side figures (the GPU's counts come from readFigures after the fence).
   VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                            uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup, uint32_t patchMask,
-                           const RetireBuffer& retire);
+                           const RetireBuffer& retire, const CullHook& cull = {});
 
   // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
   void readFigures(int slot, VegetationFigures& f) const;
@@ -65,6 +70,7 @@ class ClassifyPass {
  private:
   struct Slot {
     GpuBuffer triangles, order, counters, records, indirect, figures;
+    GpuBuffer visible;  // per triangle, written by the cull hook
     VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
     VkImageView boundImagery = VK_NULL_HANDLE;
   };

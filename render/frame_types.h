@@ -81,6 +81,15 @@ struct VegetationFigures {
   std::array<uint32_t, kSpeciesSlots> plants{};  // plants in those groups
   uint64_t groupsTotal = 0, plantsTotal = 0;
   bool overflow = false;  // a species' buffer was full: some groups were not drawn
+  // Hi-Z occlusion culling (render/hiz_pass.h), read back with the counts; zero when it was off.
+  bool occlusionCulling = false;   // asked for this frame (the counts are 0 when there was nothing to test)
+  uint64_t cullTested = 0;          // seed triangles with plants that were tested
+  uint64_t cullCulled = 0;          // of them, hidden for every species: never expanded
+  uint64_t cullClustersCulled = 0;  // their species lookups (classify work items) skipped
+  uint64_t cullPlantsCulled = 0;    // Σ ceil(N) of the culled triangles: plants never made
+  // Groups classified but dropped because their species' plants are hidden on their triangle
+  // (a ridge hides grass, not the trees of the same triangle), and the plants in them.
+  uint64_t cullGroupsCulled = 0, cullGroupPlantsCulled = 0;
 };
 
 // Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-
@@ -108,6 +117,9 @@ struct VegetationRequest {
   uint32_t clusterSize = 8;
   PlantStyle style = PlantStyle::Plants;
   PlantDrawOptions draw;
+  // Cull seed triangles hidden behind this frame's terrain depth (Hi-Z, render/hiz_pass.h)
+  // before the classify pass expands them; off: every triangle is classified.
+  bool occlusionCulling = true;
 };
 
 struct FrameRequest {

@@ -43,7 +43,9 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
   if (multisampled()) {
     colorMsaa_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | storage, samples,
                                "colour target (MSAA)", storageView);
-    depthMsaa_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
+    // Sampled: the Hi-Z build reads every sample (hiz_pass.h).
+    depthMsaa_ = createImage2D(ctx, extent, kDepthFormat,
+                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,
                                "depth target (MSAA)");
   }
   if (deferredTerrain)
@@ -61,31 +63,38 @@ void RenderTargets::setViewport(VkCommandBuffer cmd) const {
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void RenderTargets::beginRendering(VkCommandBuffer cmd, TargetStart start) const {
-  const bool load = start == TargetStart::Load;
-  assert(!load || deferredTerrain());
-  // The resolve targets (and, when cleared, the attachments) start undefined each frame.
-  if (multisampled() || !load) {
+void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve) const {
+  assert(load != Load::Shaded || deferredTerrain());
+  if (load == Load::Clear) {  // attachments and resolve targets start undefined each frame
     discardInto(cmd, color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
     discardInto(cmd, depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
-  }
-  if (multisampled() && !load) {
-    discardInto(cmd, colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
-    discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
-  }
-  if (load) {  // the shade's stores, then the visibility scope's depth, become the attachments'
+    if (multisampled()) {
+      discardInto(cmd, colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
+      discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+    }
+  } else if (load == Load::Keep) {
+    // The previous scope's attachment writes (and its resolve, if any) before this one's loads,
+    // draws and resolve writes.
+    memoryBarrier(cmd, kColorStage | kDepthStage,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                  kColorStage | kDepthStage, kColorAccess | kDepthAccess);
+  } else {  // Shaded: the shade's stores, then the visibility scope's depth, become the attachments'
+    if (multisampled()) {  // the resolve targets have not been touched this frame
+      discardInto(cmd, color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
+      discardInto(cmd, depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+    }
     transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_GENERAL,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kColorStage, kColorAccess);
     memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
   }
 
-  const VkAttachmentLoadOp op = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  const VkAttachmentLoadOp op = load == Load::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   VkRenderingAttachmentInfo colorInfo = attachment(colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, op);
   colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
   VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, op);
   depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
-  if (multisampled()) {
+  if (multisampled() && resolve) {  // else the MSAA attachments are stored for the next scope
     colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
     colorInfo.resolveImageView = color().view.get();
     colorInfo.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;

@@ -1,8 +1,8 @@
 #pragma once
 // Offscreen colour + depth targets. With MSAA (samples > 1) the multisampled attachments are
-// resolved at the end of rendering — colour by averaging, depth by taking sample 0 — into
-// single-sample images that can be copied, presented or read back. With samples == 1 the
-// attachments are those images themselves.
+// resolved at the end of the frame's last rendering scope — colour by averaging, depth by taking
+// sample 0 — into single-sample images that can be copied, presented or read back. With
+// samples == 1 the attachments are those images themselves.
 
 #include "render/gpu_resources.h"
 
@@ -21,9 +21,6 @@ constexpr VkFormat kVisibilityFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // storage support): the shader encodes sRGB itself.
 constexpr VkFormat kColorStorageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
-// How the main rendering scope starts: from cleared targets, or from what the deferred terrain
-// left in them (colour from its shade pass, depth from its visibility pass).
-enum class TargetStart { Clear, Load };
 
 class RenderTargets {
  public:
@@ -44,11 +41,18 @@ class RenderTargets {
   // The colour attachment as kColorStorageFormat (deferred terrain only).
   VkImageView colorStorageView() const { return colorAttachment().alternateView.get(); }
 
-  // Begins dynamic rendering into the colour and depth attachments (resolving to color() and
-  // depth() when multisampled), viewport and scissor over the whole extent. Clear: every
-  // target is cleared. Load: the colour attachment comes from the terrain shade (GENERAL layout,
-  // written by compute) and the depth attachment from beginVisibility's scope.
-  void beginRendering(VkCommandBuffer cmd, TargetStart start = TargetStart::Clear) const;
+  // Begins dynamic rendering into the colour and depth attachments, viewport and scissor over the
+  // whole extent.
+  // - Clear: the frame's first scope — every target (resolve targets too) starts undefined and
+  //   is cleared.
+  // - Keep: a later scope continues on what the previous scope stored (a barrier orders its
+  //   writes first); the images are still in their attachment layouts.
+  // - Shaded: the first scope after the deferred terrain — the colour attachment comes from the
+  //   shade (GENERAL layout, written by compute), the depth from beginVisibility's scope.
+  // `resolve` (multisampled only): resolve into color() and depth() at the end — the frame's last
+  // scope; otherwise the MSAA attachments are stored for the next one.
+  enum class Load { Clear, Keep, Shaded };
+  void beginRendering(VkCommandBuffer cmd, Load load = Load::Clear, bool resolve = true) const;
 
   // Deferred terrain: begins rendering into the visibility and depth attachments, both cleared
   // (no resolve).

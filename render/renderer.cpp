@@ -15,6 +15,7 @@
 #include "render/descriptors.h"
 #include "render/frame_uniforms.h"
 #include "render/gpu_timer.h"
+#include "render/hiz_pass.h"
 #include "render/hud_pass.h"
 #include "render/render_targets.h"
 #include "render/classify_pass.h"
@@ -69,6 +70,7 @@ struct Renderer::Impl {
   std::unique_ptr<TerrainShadePass> terrainShade;  // deferred terrain shading only
   std::unique_ptr<HudPass> hudPass;
   std::unique_ptr<ClassifyPass> classify;
+  std::unique_ptr<HizPass> hiz;
   std::unique_ptr<PlantMarkerPass> markers;
   std::unique_ptr<PlantPass> plantPass;
   std::array<FrameSlot, kFramesInFlight> slots;
@@ -87,6 +89,8 @@ struct Renderer::Impl {
   void waitSlot(FrameSlot& slot);
   uint64_t submit(const FrameRequest& request);
   void recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request);
+  void recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                    RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire);
   void queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex);
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
@@ -150,6 +154,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   hudPass = std::make_unique<HudPass>(*ctx);
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
+  hiz = std::make_unique<HizPass>(*ctx, layout, *targets);
+  hiz->setCatalog(vegetation::defaultSpeciesCatalog());
   markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
   // Species stiffness is relative to the blade's buckling stiffness k_c (the catalog's k′ = 1 is
   // the critical blade, whatever its segment count): the table spans 0.2 … 20 k_c.
@@ -207,26 +213,20 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   return index;
 }
 
-// The frame's passes, in order: imagery uploads, classify (compute), then in one rendering
-// scope sky, terrain and plants, and the HUD over the resolved image.
+// The frame's passes, in order: imagery uploads; rendering scope 1: sky and terrain; with
+// plants: the Hi-Z build from the terrain's depth and the classify pass (compute, culling the
+// seed triangles the terrain hides), then rendering scope 2 (loading colour and depth): the
+// plants; the HUD over the resolved image. The Hi-Z build and test count in "classify".
 void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request) {
   const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
   const int slotIndex = static_cast<int>(index % kFramesInFlight);
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
   slot.vegetation.reset();
   const VegetationRequest* plants = request.vegetation;
-  uint32_t patchMask = 0;
-  if (plants) {
-    if (plants->style == PlantStyle::Plants) patchMask = PlantPass::patchMask(*classify);
-    slot.timer->beginPass(cmd, "classify");
-    slot.vegetation =
-        classify->record(cmd, slotIndex, plants->triangles, plants->clusterSize, terrainPass->imageryBytesView(),
-                         PlantMarkerPass::verticesPerGroup(plants->clusterSize), patchMask, retireBuffer);
-    slot.timer->endPass(cmd);
-  }
 
   slot.terrainTriangles =
       terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);
+  RenderTargets::Load next = RenderTargets::Load::Keep;  // how the plants' scope starts
   if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
     slot.timer->beginPass(cmd, "terrain");
     targets->beginVisibility(cmd);
@@ -237,24 +237,23 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     targets->visibilityToShade(cmd);
     terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
     slot.timer->endPass(cmd);
-    targets->beginRendering(cmd, TargetStart::Load);
+    next = RenderTargets::Load::Shaded;
   } else {
-    targets->beginRendering(cmd);
+    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr);
     slot.timer->beginPass(cmd, "sky");
     sky->record(cmd, slot.descriptorSet);
     slot.timer->endPass(cmd);
     slot.timer->beginPass(cmd, "terrain");
     terrainPass->recordForward(cmd, slotIndex, slot.descriptorSet);
     slot.timer->endPass(cmd);
+    vkCmdEndRendering(cmd);
   }
-  if (plants && plants->style != PlantStyle::Hidden) {
-    slot.timer->beginPass(cmd, "plants");
-    if (patchMask != 0)
-      plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants->draw);
-    markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
-    slot.timer->endPass(cmd);
+  if (plants) {
+    recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
+  } else if (terrainShade) {  // no plants: one empty scope resolves the shaded targets
+    targets->beginRendering(cmd, next, /*resolve=*/true);
+    vkCmdEndRendering(cmd);
   }
-  vkCmdEndRendering(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
     slot.timer->beginPass(cmd, "hud");
     hudPass->record(
@@ -263,6 +262,37 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
         [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
     slot.timer->endPass(cmd);
   }
+}
+
+// After the terrain's scope: Hi-Z build + classify (culling hidden seed triangles when asked),
+// then the plants in a second scope that loads the terrain's colour and depth and resolves.
+void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                                  RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire) {
+  const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify) : 0u;
+  slot.timer->beginPass(cmd, "classify");
+  ClassifyPass::CullHook cull;
+  if (plants.occlusionCulling && !plants.triangles.empty()) {
+    hiz->recordBuild(cmd);
+    cull = [&](VkCommandBuffer c, VkBuffer triangles, VkBuffer visible, uint32_t count) {
+      hiz->recordCull(c, slotIndex, slot.descriptorSet, triangles, visible, count, plants.clusterSize,
+                      plants.draw.shadows && plants.style == PlantStyle::Plants);
+    };
+  }
+  slot.vegetation = classify->record(cmd, slotIndex, plants.triangles, plants.clusterSize,
+                                     terrainPass->imageryBytesView(),
+                                     PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull);
+  slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles
+  slot.timer->endPass(cmd);
+
+  targets->beginRendering(cmd, load, /*resolve=*/true);
+  if (plants.style != PlantStyle::Hidden) {
+    slot.timer->beginPass(cmd, "plants");
+    if (patchMask != 0)
+      plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants.draw);
+    markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
+    slot.timer->endPass(cmd);
+  }
+  vkCmdEndRendering(cmd);
 }
 
 void Renderer::Impl::queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex) {
@@ -340,6 +370,8 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
   r.terrainTriangles = slot.terrainTriangles;
   if (slot.vegetation) {
     classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    if (slot.vegetation->occlusionCulling && slot.vegetation->seedTriangles > 0)  // the test ran
+      hiz->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     r.vegetation = slot.vegetation;
   }
   r.gpu = slot.timer->read();
@@ -439,7 +471,8 @@ uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLay
 uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
 uint64_t Renderer::gpuBytes() const {
-  return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes();
+  return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
+         impl_->hiz->gpuBytes();
 }
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
@@ -449,6 +482,7 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   return guardGpu([&]() -> Status {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
     impl_->classify->setCatalog(catalog);
+    impl_->hiz->setCatalog(catalog);
     return {};
   });
 }

@@ -108,6 +108,12 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     // Only the plant pipelines tessellate and run geometry shaders: their statistics are these.
     r[c++] = v && stats.available ? count(stats.tessControlPatches) : kNoValue;
     r[c++] = v && stats.available ? count(stats.geometryPrimitives) : kNoValue;
+    // Hi-Z occlusion culling; empty when it did not run (off, or no plants).
+    const bool culled = v && v->occlusionCulling;
+    for (uint64_t x : {culled ? v->cullTested : 0, culled ? v->cullCulled : 0, culled ? v->cullClustersCulled : 0,
+                       culled ? v->cullGroupsCulled : 0,
+                       culled ? v->cullPlantsCulled + v->cullGroupPlantsCulled : 0})
+      r[c++] = culled ? count(x) : kNoValue;
     assert(c == r.size());
   }
   return table;

@@ -192,7 +192,8 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     stage.restart();
     seedTrianglesForGpu(m.terrain->seedTriangles(), req.camera.position, m.seeds);
     fig.seedingMs = stage.elapsedMs();
-    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantStyle, m.options.plantDraw};
+    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantStyle, m.options.plantDraw,
+                    m.options.occlusionCulling};
     req.vegetation = &m.vegetation;
     fig.seedTrianglesClassified = m.seeds.size();
   }

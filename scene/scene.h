@@ -62,6 +62,7 @@ struct SceneOptions {
   uint32_t clusterSize = 8;  // C, 1 … vegetation::kMaxClusterSize
   render::PlantStyle plantStyle = render::PlantStyle::Plants;
   render::PlantDrawOptions plantDraw;
+  bool occlusionCulling = true;  // Hi-Z culling of hidden seed triangles (render/hiz_pass.h)
   std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
   Logger logger;                                              // may be null
 };

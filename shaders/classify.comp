@@ -17,9 +17,17 @@ layout(set = 0, binding = 0, std140) uniform SpeciesBlock {
 } catalog;
 layout(set = 0, binding = 1, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Order { uint order[]; };
-layout(set = 0, binding = 3, std430) buffer Counters { uint groups[kMaxSpecies]; uint plants[kMaxSpecies]; };
+// culledGroups / culledPlants: groups dropped because their species is hidden on their triangle.
+layout(set = 0, binding = 3, std430) buffer Counters {
+  uint groups[kMaxSpecies];
+  uint plants[kMaxSpecies];
+  uint culledGroups, culledPlants;
+};
 layout(set = 0, binding = 4, std430) writeonly buffer Records { PlantCluster records[]; };
 layout(set = 0, binding = 5) uniform sampler2DArray imagery;
+// Per seed triangle, bit s set when species s's plants on it may show, 0 when none can (the Hi-Z
+// occlusion test, hiz_cull.comp); read only when pc.cull is 1.
+layout(set = 0, binding = 6, std430) readonly buffer Visible { uint visible[]; };
 
 layout(push_constant) uniform Push {
   uint orderFirst;     // this bin's first entry in order[]
@@ -28,6 +36,7 @@ layout(push_constant) uniform Push {
   uint clusterSize;    // C
   uint threadBase;     // for bins split over several dispatches
   uint speciesCapacity;
+  uint cull;           // 1: skip triangles with visible[t] == 0
 } pc;
 
 #include "species_choice.glsl"
@@ -61,6 +70,11 @@ vec3 baseHsv(SeedTriangle t, vec2 r) {
 
 void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, float sPrime, float fade) {
   uint s = uint(pick.x);
+  if (pc.cull != 0u && ((visible[tri] >> s) & 1u) == 0u) {  // this species is hidden here
+    atomicAdd(culledGroups, 1u);
+    atomicAdd(culledPlants, seedCount);
+    return;
+  }
   uint i = atomicAdd(groups[s], 1u);
   atomicAdd(plants[s], seedCount);
   if (i >= pc.speciesCapacity) return;  // counted: the figures report the overflow
@@ -72,6 +86,7 @@ void main() {
   if (id >= pc.triangleCount * pc.capacity) return;
   uint tri = order[pc.orderFirst + id / pc.capacity];
   uint item = id % pc.capacity;
+  if (pc.cull != 0u && visible[tri] == 0u) return;  // hidden behind the terrain: never expanded
   SeedTriangle t = triangles[tri];
   float n = t.v0.w;
   if (t.layer < 0) return;

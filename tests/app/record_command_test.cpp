@@ -89,7 +89,10 @@ const std::vector<std::string> kRoam = {"terrain_roam_update_ms",
 // Issue 7's classify-pass columns, after kRoam.
 const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins",    "plant_clusters",
                                           "plant_cluster_slots",  "plant_groups",  "plants",
-                                          "plant_overflow",       "plant_patches", "plant_triangles"};
+                                          "plant_overflow",       "plant_patches", "plant_triangles",
+                                          // Issue 17's Hi-Z occlusion culling.
+                                          "plant_cull_tested",    "plant_cull_culled", "plant_clusters_culled",
+                                          "plant_groups_culled",  "plants_culled"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -197,12 +200,15 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
                              "plant_seed_triangles",
                              "plant_bins",
                              "plants",
-                             "plant_overflow"})
+                             "plant_overflow",
+                             "plant_cull_tested",
+                             "plant_cull_culled"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
   EXPECT_EQ(rec["plants"]["enabled"], true);
   EXPECT_EQ(rec["plants"]["cluster_size"], 8);
+  EXPECT_EQ(rec["plants"]["occlusion_culling"], true);
   EXPECT_EQ(rec["plants"]["species_catalog"], "default");
   EXPECT_GE(rec["plants"]["species"].size(), 3u);
   EXPECT_EQ(rec["plants"]["style"], "plants");
@@ -390,6 +396,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_plant_max", "{DS} {SMALL} --path {PATH} --plant-max 1e7", "--plant-max"},
         BadRecord{"bad_cluster_size", "{DS} {SMALL} --path {PATH} --cluster-size 33", "--cluster-size"},
         BadRecord{"bad_plant_style", "{DS} {SMALL} --path {PATH} --plant-style fancy", "--plant-style"},
+        BadRecord{"bad_occlusion_culling", "{DS} {SMALL} --path {PATH} --occlusion-culling maybe",
+                  "--occlusion-culling"},
         BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
         BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
