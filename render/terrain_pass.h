@@ -18,6 +18,7 @@
 #include <span>
 
 #include "render/detail_textures.h"
+#include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
@@ -27,7 +28,7 @@ namespace vegstream::render {
 
 class TerrainPass {
  public:
-  static constexpr int kSlots = 2;  // frames in flight
+  static constexpr int kSlots = kFramesInFlight;  // frames in flight
 
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
 
@@ -52,7 +53,7 @@ class TerrainPass {
   uint64_t record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::dvec3& cameraPosition,
                   std::span<const TerrainDraw> draws, const RetireBuffer& retire);
 
-  // Imagery array + detail textures + geometry buffers of both slots.
+  // Imagery array + detail textures + geometry buffers of every slot.
   uint64_t gpuBytes() const;
 
  private:
