@@ -101,12 +101,16 @@ TEST_F(FramePipelineTest, ThreeInFlightComeBackInOrderAndMistakesAreRefused) {
   // A fourth would take the oldest frame's slot before its figures were collected.
   auto fourth = driver.submit(inputAt(4.0));
   EXPECT_FALSE(fourth.ok());
-  if (!fourth.ok()) EXPECT_EQ(fourth.error().kind, ErrorKind::Internal);
+  if (!fourth.ok()) {
+    EXPECT_EQ(fourth.error().kind, ErrorKind::Internal);
+  }
   EXPECT_FALSE(driver.run(inputAt(4.0)).ok()) << "run() is refused while frames are in flight";
   // Out of order, or an index that never was: refused, and nothing is dropped.
   auto early = driver.collect(indices[1]);
   EXPECT_FALSE(early.ok());
-  if (!early.ok()) EXPECT_NE(early.error().message.find("oldest first"), std::string::npos) << early.error().message;
+  if (!early.ok()) {
+    EXPECT_NE(early.error().message.find("oldest first"), std::string::npos) << early.error().message;
+  }
   EXPECT_FALSE(driver.collect(indices[2] + 7).ok());
   EXPECT_EQ(driver.framesInFlight(), 3u);
 
