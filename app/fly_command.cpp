@@ -77,6 +77,7 @@ int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPa
   request.out = out;
   request.playback.fps = scene::fpsForFrames(path.duration(), static_cast<std::size_t>(o.frames));
   request.playback.framesEvery = 1;
+  request.playback.framesInFlight = static_cast<std::size_t>(o.framesInFlight);
   request.plots = false;  // `vegstream report DIR` makes them
   request.pathFile = o.path;
   request.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;
@@ -96,6 +97,7 @@ int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath
               const Logger& log) {
   InteractiveOptions io;
   io.frames = o.framesGiven ? o.frames : 0;
+  io.framesInFlight = o.framesInFlight;
   io.outDir = o.out == FlyOptions{}.out ? fs::path{} : fs::path(o.out);
   io.start = flight::sampleAt(path, 0.0, scene.groundFunction());
   return runInteractiveFlight(scene, window, withEnvironment(io), log);

@@ -18,6 +18,7 @@ struct FlyOptions {
   bool framesGiven = false;  // --frames on the command line: a window closes after that many
   uint32_t width = 640, height = 360;
   int msaa = 4;
+  int framesInFlight = 3;  // --frames-in-flight: headless playback and the window alike
   std::string device;  // --device NAME (substring)
   bool validate = false;
   bool headless = false;   // never open a window, even with a display

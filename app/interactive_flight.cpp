@@ -239,7 +239,12 @@ int Session::run() {
   Stopwatch clock;
   double lastS = 0.0;
   int shown = 0;
-  std::optional<std::pair<uint64_t, bool>> inFlight;  // the frame submitted last: index, screenshot
+  // Submitted, not collected, oldest first: index, screenshot. The driver refuses more than the
+  // renderer's slots; framesInFlight may keep fewer (1: the serial loop, for comparison).
+  std::deque<std::pair<uint64_t, bool>> inFlight;
+  const std::size_t depth =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(options_.framesInFlight, 1)), 1,
+                              scene::FrameDriver::kMaxInFlight);
   while (!glfwWindowShouldClose(window_) && !(options_.frames > 0 && shown >= options_.frames)) {
     glfwPollEvents();
     WindowActions actions;
@@ -273,15 +278,23 @@ int Session::run() {
     }
     auto index = driver_.submit(input);
     if (!index) return reportError(log_, index.error());
-    // Collect the previous frame while this one renders: one frame of CPU/GPU overlap.
-    if (inFlight)
-      if (Status s = collect(inFlight->first, inFlight->second); !s) return reportError(log_, s.error());
-    inFlight = {*index, screenshotWanted_};
+    inFlight.emplace_back(*index, screenshotWanted_);
     screenshotWanted_ = false;
     ++shown;
+    // Keep depth − 1 frames drawing while the next one is prepared (acquire waits for a
+    // swapchain image; each slot has its own image-acquired semaphore, each image its own
+    // render-done one, so up to kFramesInFlight presents may be queued).
+    while (inFlight.size() >= depth) {
+      const auto [oldest, screenshot] = inFlight.front();
+      inFlight.pop_front();
+      if (Status s = collect(oldest, screenshot); !s) return reportError(log_, s.error());
+    }
   }
-  if (inFlight)
-    if (Status s = collect(inFlight->first, inFlight->second); !s) return reportError(log_, s.error());
+  while (!inFlight.empty()) {
+    const auto [oldest, screenshot] = inFlight.front();
+    inFlight.pop_front();
+    if (Status s = collect(oldest, screenshot); !s) return reportError(log_, s.error());
+  }
   if (recorder_.recording()) toggleRecording(clock.elapsedMs() / 1000.0);  // never lose a recording
   log_->info("window closed after {} frames ({:.1f} frames/s)", shown,
              shown / std::max(clock.elapsedMs() / 1000.0, 1e-3));

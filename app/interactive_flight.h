@@ -25,6 +25,10 @@ struct InteractiveOptions {
   std::optional<flight::FlightSample> start;  // first pose; default: south of the centre, looking north
   int screenshotAtFrame = 0;                  // > 0: screenshot of that frame (1-based)
   bool hud = true;
+  // Frames in flight, 1 … render::kFramesInFlight: after submitting frame n the loop collects
+  // only what exceeds framesInFlight − 1, so the CPU handles input and prepares frame n + 1 while
+  // the GPU draws n (and n − 1). The HUD shows the newest collected frame's figures.
+  int framesInFlight = 3;
 };
 
 // Fills screenshotAtFrame and hud from the environment variables above.

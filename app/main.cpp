@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   flyCmd->add_option("--size", size, "Frame size WxH")->capture_default_str();
   flyCmd->add_option("--msaa", fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")
       ->capture_default_str();
+  app::addFramesInFlightOption(*flyCmd, fly.framesInFlight);
   flyCmd->add_option("--device", fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");

@@ -12,6 +12,7 @@
 #include "app/scene_setup.h"
 #include "datasets/dataset_format.h"
 #include "flight/flight_path_json.h"
+#include "render/frame_slots.h"
 #include "streaming/open_tile_source.h"
 
 namespace vegstream::app {
@@ -24,6 +25,14 @@ bool parseFrameSize(const std::string& text, uint32_t& w, uint32_t& h) {
   w = static_cast<uint32_t>(std::stoul(m[1]));
   h = static_cast<uint32_t>(std::stoul(m[2]));
   return w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
+}
+
+void addFramesInFlightOption(CLI::App& cmd, int& framesInFlight) {
+  cmd.add_option("--frames-in-flight", framesInFlight,
+                 "Frames the CPU prepares while the GPU draws, 1 … " + std::to_string(render::kFramesInFlight) +
+                     " (1: one frame at a time, the wall time is CPU + GPU)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, render::kFramesInFlight));
 }
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
@@ -42,6 +51,7 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_option("--frames-every", o.framesEvery, "Save every K-th frame as frames/frame_NNNNN.png (0: none)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
+  addFramesInFlightOption(*cmd, o.framesInFlight);
   cmd->add_option("--warmup", o.warmupS, "Seconds of frames rendered at the start before recording")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 600.0));
@@ -90,6 +100,7 @@ int runRecord(const RecordOptions& o, const Logger& log) {
   request.playback.fps = o.fps;
   request.playback.warmupS = o.warmupS;
   request.playback.framesEvery = o.framesEvery;
+  request.playback.framesInFlight = static_cast<std::size_t>(o.framesInFlight);
   request.plots = !o.noPlots;
   request.pathFile = o.path;
   request.speciesCatalog = o.streaming.species.empty() ? "default" : o.streaming.species;

@@ -25,6 +25,7 @@ struct RecordOptions {
   int msaa = 4;
   double fps = 60.0;
   int framesEvery = 0;  // 0: no PNG frames
+  int framesInFlight = 3;  // 1 (serial, for comparison) … 3: frames prepared while the GPU draws
   double warmupS = 0.0;
   std::string device;
   bool validate = false;
@@ -33,6 +34,9 @@ struct RecordOptions {
 };
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& options);
+
+// --frames-in-flight N (1 … render::kFramesInFlight), shared by `record` and `fly`.
+void addFramesInFlightOption(CLI::App& cmd, int& framesInFlight);
 
 // Exit code: 0 done; 2 a user mistake (one message, nothing written); 1 a GPU/system failure,
 // or the recording was written but its plots could not be made (python3/matplotlib missing).

@@ -14,7 +14,7 @@ import os
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "dense", "canyon", "canyon-no-cull", "canyon-dense"]
+ORDER = ["default", "no-plants", "dense", "dense-serial", "canyon", "canyon-no-cull", "canyon-dense"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
@@ -59,9 +59,9 @@ def main():
               f"MSAA {first['msaa']}, {first['fps']} fps, per-pass GPU times "
               f"{'meaningful' if first['per_pass_gpu_times_meaningful'] else 'not meaningful (CPU rasteriser)'}.\n")
         print("## Frames\n")
-        print("| recording | path | frames | GPU p50 / p99 ms | CPU p50 / p99 ms | wall p50 / p99 ms | "
+        print("| recording | path | frames | in flight | GPU p50 / p99 ms | CPU p50 / p99 ms | wall p50 / p99 ms | "
               "plants (low phase, median) | plant triangles (low phase) | terrain triangles (median) |")
-        print("|---|---|---|---|---|---|---|---|---|")
+        print("|---|---|---|---|---|---|---|---|---|---|")
         passes = []
         data = {}
         for n in recordings:
@@ -72,7 +72,9 @@ def main():
             for p in s["recording"].get("gpu_passes", []):
                 if p not in passes:
                     passes.append(p)
+            # Recordings made before --frames-in-flight ran one frame at a time.
             print(f"| {n} | {s['recording']['path']['name']} | {s['frames']} | "
+                  f"{s['recording'].get('frames_in_flight', 1)} | "
                   f"{fmt(pct(t, 'gpu_frame_ms', 'p50'))} / {fmt(pct(t, 'gpu_frame_ms', 'p99'))} | "
                   f"{fmt(pct(t, 'cpu_frame_ms', 'p50'))} / {fmt(pct(t, 'cpu_frame_ms', 'p99'))} | "
                   f"{fmt(pct(t, 'wall_ms', 'p50'))} / {fmt(pct(t, 'wall_ms', 'p99'))} | "

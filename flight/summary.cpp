@@ -31,6 +31,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
       {"warmup_s", m.warmupS},
       {"warmup_frames", m.warmupFrames},
       {"frames_every", m.framesEvery},
+      {"frames_in_flight", m.framesInFlight},
       {"path", {{"name", m.pathName}, {"file", m.pathFile}, {"duration_s", m.pathDurationS}}},
       {"dataset",
        {{"name", m.datasetName},

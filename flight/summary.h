@@ -42,6 +42,7 @@ struct RecordingMeta {
   double warmupS = 0.0;
   std::size_t warmupFrames = 0;
   int framesEvery = 0;
+  int framesInFlight = 1;  // frames the playback kept in flight (1: serial); the wall times depend on it
   std::string pathName, pathFile;
   double pathDurationS = 0.0;
   std::string datasetName, datasetDir;

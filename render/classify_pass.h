@@ -17,6 +17,7 @@
 
 #include "render/classify_layout.h"
 #include "render/context.h"
+#include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
@@ -29,7 +30,7 @@ struct ClassifyOptions {
 
 class ClassifyPass {
  public:
-  static constexpr int kSlots = 2;
+  static constexpr int kSlots = kFramesInFlight;  // one buffer set per frame in flight
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
   // Records the occlusion test of the frame's `count` seed triangles (the slot's `triangles`
   // buffer, uploaded): writes visible[t] (uint; 0: hidden) into `visible` with compute shaders

@@ -61,8 +61,9 @@ struct TerrainDraw {
 };
 
 // Copies a tile into an imagery layer before the frame draws. `rgba` (256 × 256 × 4 bytes)
-// must stay alive until submitFrame returns. The layer must not be drawn by a frame still in
-// flight (the streamer delays slot reuse for that).
+// must stay alive until submitFrame returns. The copy waits for every earlier command on the
+// queue, so a frame still in flight that draws the layer's old tile finishes first (the
+// streamer also delays slot reuse).
 struct ImageryUpload {
   uint32_t layer = 0;
   const uint8_t* rgba = nullptr;

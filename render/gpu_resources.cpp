@@ -178,8 +178,11 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
 void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer,
                        VkDeviceSize stagingOffset) {
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+  // After every earlier command on the queue: a frame still in flight may read the layer's old
+  // tile (with three frames in flight the streamer's reuse delay alone does not order that).
   transitionImageRange(cmd, image.get(), range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkBufferImageCopy region{};
   region.bufferOffset = stagingOffset;
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};

@@ -83,7 +83,8 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
 // Records the copy of a tightly packed staging buffer (from stagingOffset) into one layer of
 // `image` (mip 0),
 // leaving it in SHADER_READ_ONLY_OPTIMAL for fragment shaders. The image's old contents are
-// discarded; the staging buffer must live until the commands complete.
+// discarded, after every earlier command on the queue (frames in flight) has read them; the
+// staging buffer must live until the commands complete.
 void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer = 0,
                        VkDeviceSize stagingOffset = 0);
 

@@ -33,6 +33,7 @@
 
 #include "render/context.h"
 #include "render/frame_types.h"
+#include "render/frame_slots.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
 #include "render/render_targets.h"
@@ -55,7 +56,7 @@ std::array<float, vegetation::kMaxSpecies> speciesReach(const vegetation::Specie
 
 class HizPass {
  public:
-  static constexpr int kSlots = 2;
+  static constexpr int kSlots = kFramesInFlight;  // one buffer set per frame in flight
 
   // `frameLayout`: the renderer's frame-uniform set layout (set 0 of the cull kernel).
   HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets);

@@ -10,13 +10,14 @@
 
 #include "render/gpu_resources.h"
 #include "render/handle.h"
+#include "render/frame_slots.h"
 #include "render/overlay_types.h"
 
 namespace vegstream::render {
 
 class HudPass {
  public:
-  static constexpr int kSlots = 2;  // one buffer set per frame in flight
+  static constexpr int kSlots = kFramesInFlight;  // one buffer set per frame in flight
 
   explicit HudPass(const Context& ctx);
 

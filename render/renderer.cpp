@@ -13,6 +13,7 @@
 #include "core/stopwatch.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
+#include "render/frame_slots.h"
 #include "render/frame_uniforms.h"
 #include "render/gpu_timer.h"
 #include "render/hiz_pass.h"
@@ -31,8 +32,10 @@
 namespace vegstream::render {
 
 namespace {
-constexpr int kFramesInFlight = 2;
+// Every per-slot resource follows the one constant (render/frame_slots.h).
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
+static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
+static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
 constexpr int kMaxPasses = 8;
 constexpr int kBladeTableSegments = 16;  // the solved shapes' resolution; blades draw ≤ 16 segments
 
@@ -171,6 +174,9 @@ void Renderer::Impl::waitSlot(FrameSlot& slot) {
   if (!slot.submitted) return;
   VkFence fence = slot.fence.get();
   vkCheck(vkWaitForFences(ctx->device(), 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  // A fence's signal covers every command submitted before it on the queue, so frame F done
+  // means every frame up to F is done, whichever slot was waited for first (waitFrame may take
+  // the frames in flight in any order): the deletion queue retires by that number.
   completedFrame = std::max(completedFrame, slot.frameIndex);
   deletions.collect(completedFrame);
 }
@@ -494,7 +500,8 @@ Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
 Result<FrameResult> Renderer::waitFrame(uint64_t index) {
   FrameSlot& slot = impl_->slots[index % kFramesInFlight];
   if (!slot.submitted || slot.frameIndex != index)
-    return makeError(ErrorKind::Internal, "frame " + std::to_string(index) + " is not one of the last two submitted");
+    return makeError(ErrorKind::Internal, "frame " + std::to_string(index) + " is not one of the last " +
+                                              std::to_string(kFramesInFlight) + " submitted");
   return guardGpu([&]() -> Result<FrameResult> { return impl_->collect(slot); });
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The renderer: the one object callers above render/ use. It owns the Vulkan context, the
-// offscreen targets, the passes and two frame slots (frames in flight), each with its command
-// buffer, fence, uniform buffer, GPU timer, read-back buffers and deletion queue.
+// offscreen targets, the passes and kFramesInFlight frame slots (render/frame_slots.h: 3), each
+// with its command buffer, fence, uniform buffer, GPU timer and read-back buffers; one deletion
+// queue retires what a frame replaced once that frame has completed.
 //
 // Contract: create() validates the size and MSAA against the device and returns an Error
 // naming the option; every GPU failure after that comes back as ErrorKind::Gpu.
@@ -11,6 +12,7 @@
 
 #include "core/result.h"
 #include "render/context_options.h"
+#include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "terrain/terrain_mesh.h"
 
@@ -60,10 +62,11 @@ class Renderer {
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
 
-  // Records and submits one frame; returns its index. Does not wait for the GPU.
+  // Records and submits one frame; returns its index. Does not wait for the GPU, except for the
+  // frame that last used the slot (index − kFramesInFlight), when it has not been waited for.
   Result<uint64_t> submitFrame(const FrameRequest& request);
-  // Waits for frame `index` (one of the last two submitted) and returns its figures and the
-  // read-backs it asked for.
+  // Waits for frame `index` (any of the last kFramesInFlight submitted, in any order) and
+  // returns its figures and the read-backs it asked for; another index is an Internal error.
   Result<FrameResult> waitFrame(uint64_t index);
   // submitFrame + waitFrame.
   Result<FrameResult> renderFrame(const FrameRequest& request);

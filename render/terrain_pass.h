@@ -31,6 +31,7 @@
 #include <glm/vec4.hpp>
 
 #include "render/detail_textures.h"
+#include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
@@ -68,7 +69,7 @@ struct TerrainGeometry {
 
 class TerrainPass {
  public:
-  static constexpr int kSlots = 2;  // frames in flight
+  static constexpr int kSlots = kFramesInFlight;  // frames in flight
 
   // `deferred`: also build the visibility pipeline (the device can shade in compute).
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred);

@@ -3,9 +3,9 @@
 
 #include "scene/frame_driver.h"
 
-#include <cassert>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace vegstream::scene {
 
@@ -22,7 +22,11 @@ double FrameRecord::cpuMs() const {
 FrameDriver::FrameDriver(Scene& scene) : scene_(scene) {}
 
 Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
-  assert(inFlight_.size() < 2 && "collect a frame before submitting a third");
+  // The renderer would reuse the oldest frame's slot and overwrite its figures before they were
+  // collected.
+  if (inFlight_.size() >= kMaxInFlight)
+    return makeError(ErrorKind::Internal, "frame driver: " + std::to_string(inFlight_.size()) +
+                                              " frames in flight already; collect one before submitting another");
   // prepare
   render::FrameRequest request = scene_.prepareFrame(input.pose, input.timeS, input.ahead);
   request.present = input.present;
@@ -53,7 +57,14 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
 }
 
 Result<FrameRecord> FrameDriver::collect(uint64_t index) {
-  assert(!inFlight_.empty() && inFlight_.front().index == index && "collect frames oldest first");
+  // Oldest first: playback's rows and the window's HUD follow frame order, and the records
+  // queue stays a queue.
+  if (inFlight_.empty() || inFlight_.front().index != index)
+    return makeError(ErrorKind::Internal,
+                     "frame driver: collect(" + std::to_string(index) + ") refused: " +
+                         (inFlight_.empty() ? std::string("no frame is in flight")
+                                            : "frames are collected oldest first, next is " +
+                                                  std::to_string(inFlight_.front().index)));
   auto result = scene_.renderer().waitFrame(index);
   FrameRecord r = std::move(inFlight_.front());
   inFlight_.pop_front();
@@ -71,6 +82,9 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
 }
 
 Result<FrameRecord> FrameDriver::run(const FrameInput& input) {
+  if (!inFlight_.empty())
+    return makeError(ErrorKind::Internal, "frame driver: run() with " + std::to_string(inFlight_.size()) +
+                                              " frames in flight; collect them first");
   auto index = submit(input);
   if (!index) return index.error();
   return collect(*index);

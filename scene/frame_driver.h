@@ -8,11 +8,20 @@
 //   submit    the renderer records and submits the frame's commands
 //   collect   waits for the GPU and gathers the figures of every stage into one FrameRecord
 //
-// submit() and collect() are separate so a window keeps one frame of CPU/GPU overlap (submit
-// frame n, then collect frame n − 1); run() is both, for fixed-step playback.
+// submit() and collect() are separate so the CPU prepares the next frames while the GPU draws
+// the earlier ones: the window and fixed-step playback (playback.h) submit frame n + 1 (and
+// n + 2) before collecting frame n, so a frame's wall time comes close to max(CPU, GPU) rather
+// than their sum. run() is both at once, the serial way.
 //
-// Contract: at most two frames are in flight (the renderer's frame slots); collect() takes the
-// index that submit() returned, oldest first. GPU failures come back as errors.
+// Pipelining changes no figure but the timings: nothing a frame's CPU stages do reads a GPU
+// result of an earlier frame (the GPU's counts and read-backs only go into that frame's record),
+// so the scene sees the same calls in the same order whatever the depth.
+//
+// Contract: at most kMaxInFlight frames are in flight (the renderer's frame slots); collect()
+// takes the index that submit() returned, oldest first. Breaking either — a submit beyond the
+// slots, a collect out of order or of an unknown frame, run() with frames in flight — is refused
+// with an ErrorKind::Internal error that changes nothing (a caller bug, testable in release
+// builds). GPU failures come back as errors.
 
 #include <cstdint>
 #include <deque>
@@ -22,6 +31,7 @@
 #include "core/result.h"
 #include "core/stopwatch.h"
 #include "flight/path_sampler.h"
+#include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "scene/scene.h"
 #include "simulation/simulation.h"
@@ -58,23 +68,29 @@ struct FrameRecord {
 
 class FrameDriver {
  public:
+  static constexpr std::size_t kMaxInFlight = render::kFramesInFlight;
+
   explicit FrameDriver(Scene& scene);
 
-  // prepare → simulate → submit. Does not wait for the GPU.
+  // prepare → simulate → submit. Does not wait for the GPU. Refused when kMaxInFlight frames
+  // are in flight (collect one first).
   Result<uint64_t> submit(const FrameInput& input);
-  // Waits for the oldest frame in flight (`index`, as submit() returned it) and returns its record.
+  // Waits for the oldest frame in flight (`index`, as submit() returned it) and returns its
+  // record. Any other index is refused (nothing is waited for or dropped).
   Result<FrameRecord> collect(uint64_t index);
-  // submit + collect.
+  // submit + collect; refused while frames are in flight.
   Result<FrameRecord> run(const FrameInput& input);
 
   std::size_t framesInFlight() const { return inFlight_.size(); }
+  // The index collect() takes next; 0 when nothing is in flight.
+  uint64_t oldestInFlight() const { return inFlight_.empty() ? 0 : inFlight_.front().index; }
   Scene& scene() { return scene_; }
 
  private:
   Scene& scene_;
   simulation::Simulation simulation_;
   std::optional<double> lastStepS_;
-  std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ 2)
+  std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ kMaxInFlight), oldest first
 };
 
 }  // namespace vegstream::scene

@@ -1,13 +1,15 @@
-// Fixed-step playback (playback.h). Per frame: sample the path, run the frame through the
-// driver, keep its record (the colour read-back, when asked for, is written as PNG and dropped);
-// the table of named columns is built once at the end, so the per-frame bookkeeping
-// (recorder_ms) stays a few hundred nanoseconds.
+// Fixed-step playback (playback.h). Per frame: sample the path, submit the frame through the
+// driver, and — once framesInFlight frames are in flight — collect the oldest and keep its record
+// (the colour read-back, when asked for, is written as PNG and dropped); the table of named
+// columns is built once at the end, so the per-frame bookkeeping (recorder_ms) stays a few
+// hundred nanoseconds.
 
 #include "scene/playback.h"
 
 #include <cassert>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 
 #include "core/process_memory.h"
 #include "core/stopwatch.h"
@@ -23,75 +25,149 @@ double fpsForFrames(double durationS, std::size_t frames) {
   return static_cast<double>(frames - 1) / durationS;
 }
 
-Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path, const PlaybackOptions& options) {
-  assert(options.fps > 0.0 && options.warmupS >= 0.0 && options.framesEvery >= 0);
-  const flight::PathSampler sampler(path);
-  const flight::GroundHeight ground = driver.scene().groundFunction();
-  const std::size_t n = flight::frameCount(sampler.duration(), options.fps);
+namespace {
 
-  Recording rec;
-  rec.warmupFrames = static_cast<std::size_t>(std::llround(options.warmupS * options.fps));
-  Stopwatch total;
-  if (rec.warmupFrames > 0) {
-    FrameInput start;
-    start.pose = sampler.sample(0.0, ground);
-    start.ahead = flight::lookAheadSamples(sampler, ground, 0.0);
-    for (std::size_t i = 0; i < rec.warmupFrames; ++i)
-      if (auto f = driver.run(start); !f) return f.error();
+// The frames of one playback, submitted ahead and collected in order.
+class Pipeline {
+ public:
+  // `total`: the frames to record (for the progress callback).
+  Pipeline(FrameDriver& driver, const flight::PathSampler& sampler, const PlaybackOptions& options, std::size_t total,
+           Recording& rec)
+      : driver_(driver), sampler_(sampler), ground_(driver.scene().groundFunction()), options_(options), total_(total),
+        rec_(rec) {}
+
+  // Submits frame `frame` at flight time t (recorded: a row of frames.csv; else warm-up),
+  // collecting the oldest first when framesInFlight are in flight.
+  Status submit(std::size_t frame, double t, bool recorded) {
+    if (pending_.size() >= options_.framesInFlight)
+      if (Status s = collectOldest(); !s) return s;
+    const bool savePng =
+        recorded && options_.framesEvery > 0 && frame % static_cast<std::size_t>(options_.framesEvery) == 0;
+    Stopwatch stage;
+    FrameInput input;
+    input.timeS = t;
+    input.pose = sampler_.sample(t, ground_);
+    input.ahead = flight::lookAheadSamples(sampler_, ground_, t);
+    input.flightMs = stage.elapsedMs();
+    input.readbackColor = savePng;
+    auto index = driver_.submit(input);
+    if (!index) return index.error();
+    // A settled frame's wait for its tiles is not frame time, whichever frame it delays.
+    excludedMs_ += driver_.scene().lastFrameFigures().settleWaitMs;
+    pending_.push_back({frame, recorded, savePng});
+    return {};
+  }
+
+  // Collects every frame still in flight.
+  Status drain() {
+    while (!pending_.empty())
+      if (Status s = collectOldest(); !s) return s;
+    return {};
+  }
+
+  // Recording starts now: the first recorded frame's wall time is counted from here.
+  void startClock() {
+    lastDoneMs_ = clock_.elapsedMs();
+    excludedMs_ = 0.0;
   }
 
   std::vector<FrameRecord> records;
   std::vector<double> wallMs, recorderMs, pngMs;
-  records.reserve(n);
-  wallMs.reserve(n);
-  recorderMs.reserve(n);
-  pngMs.reserve(n);
-  FrameTableLayout layout;
-  for (std::size_t i = 0; i < n; ++i) {
-    Stopwatch frameWatch;
-    const double t = std::min(static_cast<double>(i) / options.fps, sampler.duration());
-    const bool savePng = options.framesEvery > 0 && i % static_cast<std::size_t>(options.framesEvery) == 0;
 
-    Stopwatch stage;
-    FrameInput input;
-    input.timeS = t;
-    input.pose = sampler.sample(t, ground);
-    input.ahead = flight::lookAheadSamples(sampler, ground, t);
-    input.flightMs = stage.elapsedMs();
-    input.readbackColor = savePng;
-    auto frame = driver.run(input);
+ private:
+  struct Pending {
+    std::size_t frame;
+    bool recorded, savePng;
+  };
+
+  Status collectOldest() {
+    const Pending p = pending_.front();
+    pending_.pop_front();
+    auto frame = driver_.collect(driver_.oldestInFlight());
     if (!frame) return frame.error();
+    if (!p.recorded) return {};
+    assert(p.frame == records.size() && "frames are collected in order");
 
     Stopwatch bookkeeping;
-    if (i == 0) {
-      rec.perPassMeaningful = frame->gpu.perPassMeaningful;
-      rec.pipelineStatistics = frame->gpu.statistics.available;
-      for (const render::PassTime& p : frame->gpu.passes) rec.gpuPasses.push_back(p.pass);
+    if (records.empty()) {
+      rec_.perPassMeaningful = frame->gpu.perPassMeaningful;
+      rec_.pipelineStatistics = frame->gpu.statistics.available;
+      for (const render::PassTime& pass : frame->gpu.passes) rec_.gpuPasses.push_back(pass.pass);
     }
     std::optional<render::ColorImage> color = std::move(frame->color);
     frame->color.reset();
-    const double settleWaitMs = frame->scene.settleWaitMs;
     const double driverMs = frame->driverMs;
     records.push_back(std::move(*frame));
     recorderMs.push_back(driverMs + bookkeeping.elapsedMs());
-    wallMs.push_back(frameWatch.elapsedMs() - settleWaitMs);
+    // Completion to completion (playback.h): with frames in flight, the CPU work of the later
+    // frames and the GPU work of this one overlap inside this interval.
+    const double doneMs = clock_.elapsedMs();
+    wallMs.push_back(doneMs - lastDoneMs_ - excludedMs_);
+    lastDoneMs_ = doneMs;
+    excludedMs_ = 0.0;
 
     pngMs.push_back(flight::kNoValue);
-    if (savePng) {
+    if (p.savePng) {
       Stopwatch png;
       char name[32];
-      std::snprintf(name, sizeof(name), "frame_%05zu.png", i);
+      std::snprintf(name, sizeof(name), "frame_%05zu.png", p.frame);
       assert(color && "the renderer returns the colour read-back it was asked for");
-      if (Status s = render::writePng(options.framesDir / name, *color); !s) return s.error();
+      if (Status s = render::writePng(options_.framesDir / name, *color); !s) return s.error();
       pngMs.back() = png.elapsedMs();
-      ++rec.pngFrames;
+      excludedMs_ += pngMs.back();
+      ++rec_.pngFrames;
     }
-    if (options.progress) options.progress(i + 1, n);
+    if (options_.progress) options_.progress(records.size(), total_);
+    return {};
   }
 
+  FrameDriver& driver_;
+  const flight::PathSampler& sampler_;
+  const flight::GroundHeight ground_;
+  const PlaybackOptions& options_;
+  const std::size_t total_;
+  Recording& rec_;
+  std::deque<Pending> pending_;  // submitted, oldest first (the driver's frames in flight)
+  Stopwatch clock_;
+  double lastDoneMs_ = 0.0;
+  double excludedMs_ = 0.0;  // settled waits and PNG writing since the last completion
+};
+
+}  // namespace
+
+Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path, const PlaybackOptions& options) {
+  assert(options.fps > 0.0 && options.warmupS >= 0.0 && options.framesEvery >= 0);
+  assert(options.framesInFlight >= 1 && options.framesInFlight <= FrameDriver::kMaxInFlight);
+  assert(driver.framesInFlight() == 0 && "playback starts with no frame in flight");
+  const flight::PathSampler sampler(path);
+  const std::size_t n = flight::frameCount(sampler.duration(), options.fps);
+
+  Recording rec;
+  rec.framesInFlight = options.framesInFlight;
+  rec.warmupFrames = static_cast<std::size_t>(std::llround(options.warmupS * options.fps));
+  Stopwatch total;
+  Pipeline pipeline(driver, sampler, options, n, rec);
+  // Warm-up frames go through the same pipeline and are drained before the recording starts, so
+  // the first recorded frame finds the same (empty) pipeline whatever the warm-up.
+  for (std::size_t i = 0; i < rec.warmupFrames; ++i)
+    if (Status s = pipeline.submit(i, 0.0, false); !s) return s.error();
+  if (Status s = pipeline.drain(); !s) return s.error();
+
+  pipeline.records.reserve(n);
+  pipeline.wallMs.reserve(n);
+  pipeline.recorderMs.reserve(n);
+  pipeline.pngMs.reserve(n);
+  pipeline.startClock();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = std::min(static_cast<double>(i) / options.fps, sampler.duration());
+    if (Status s = pipeline.submit(i, t, true); !s) return s.error();
+  }
+  if (Status s = pipeline.drain(); !s) return s.error();
+
+  FrameTableLayout layout;
   layout.gpuPasses = rec.gpuPasses;
   layout.perPassMeaningful = rec.perPassMeaningful;
-  rec.table = frameTable(records, wallMs, recorderMs, pngMs, layout);
+  rec.table = frameTable(pipeline.records, pipeline.wallMs, pipeline.recorderMs, pipeline.pngMs, layout);
   rec.wallS = total.elapsedMs() / 1000.0;
   rec.peakRssBytes = peakResidentBytes();
   return rec;

@@ -5,6 +5,14 @@
 // driver — images. One FrameRecord per frame becomes one row of frames.csv (README.md
 // "Recordings" documents every column); every K-th frame can be saved as PNG.
 // Writing the recording's files is recording_files.h's.
+//
+// Pipelined: with framesInFlight = N, frame i + N − 1 is submitted (its path sampled, its scene
+// prepared, its commands recorded) before frame i is collected, so the CPU work of the next
+// frames runs while the GPU draws. The counts and images do not depend on N (frame_driver.h says
+// why); the timings do: wall_ms is the time between consecutive frame completions (frame i
+// collected and its row stored, minus frame i − 1 likewise), less the settled-streaming waits and
+// the PNG writing that fell between them; the first row also holds filling the pipeline. With
+// N = 1 that is the serial frame, path sampling to finished. The CPU stage columns stay per frame.
 
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +24,7 @@
 #include "core/result.h"
 #include "flight/flight_path.h"
 #include "flight/record_table.h"
+#include "render/frame_slots.h"
 #include "scene/frame_driver.h"
 
 namespace vegstream::scene {
@@ -23,7 +32,8 @@ namespace vegstream::scene {
 struct PlaybackOptions {
   double fps = 60.0;                // frames per second of flight time (> 0)
   double warmupS = 0.0;             // frames rendered at t = 0 before recording, not recorded
-  int framesEvery = 0;              // > 0: save frames 0, K, 2K, … as PNG
+  std::size_t framesInFlight = render::kFramesInFlight;  // 1 (serial) … kFramesInFlight
+  int framesEvery = 0;                                   // > 0: save frames 0, K, 2K, … as PNG
   std::filesystem::path framesDir;  // where frame_NNNNN.png go (framesEvery > 0)
   // Called after each recorded frame (done = frames so far); may be empty.
   std::function<void(std::size_t done, std::size_t total)> progress;
@@ -36,6 +46,7 @@ struct Recording {
   bool pipelineStatistics = false;     // the device reported pipeline statistics
   std::size_t warmupFrames = 0;
   std::size_t pngFrames = 0;
+  std::size_t framesInFlight = 1;  // PlaybackOptions::framesInFlight
   double wallS = 0.0;         // the whole recording, warm-up included
   uint64_t peakRssBytes = 0;  // the process's VmHWM after the recording; 0 if unknown
 };

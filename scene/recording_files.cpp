@@ -47,6 +47,7 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.warmupS = request.playback.warmupS;
   m.warmupFrames = recording.warmupFrames;
   m.framesEvery = request.playback.framesEvery;
+  m.framesInFlight = static_cast<int>(recording.framesInFlight);
   m.pathName = path.name;
   m.pathFile = request.pathFile.empty() ? "" : fs::absolute(request.pathFile).lexically_normal().string();
   m.pathDurationS = path.duration();

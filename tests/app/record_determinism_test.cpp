@@ -3,7 +3,8 @@
 // the imported Zion sample twice — settled streaming with look-ahead, whose prefetched tiles
 // used to land at whatever frame their I/O finished — and every count column of frames.csv
 // (all but the `*_ms` timings) and every saved PNG must be equal, byte for byte. The same
-// flight served by nginx on loopback must give what the directory gives.
+// flight served by nginx on loopback must give what the directory gives. Keeping one frame in
+// flight (--frames-in-flight 1, the serial playback) must give what three give.
 //
 // Each test works in its own directory, <VEGSTREAM_TEST_TMP>/<suite>.<test>/, so the suite can
 // run in parallel; each imports the Zion sample there (a few seconds).
@@ -55,11 +56,11 @@ fs::path importZion(const fs::path& dir) {
 
 constexpr int kFramesEvery = 10;
 
-// benchmark-30s at 160x90, 4 fps (121 frames), every 10th frame saved.
-void record(const std::string& dataset, const fs::path& out) {
-  const auto r =
-      runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" + out.string() +
-                   "' --size 160x90 --msaa 1 --fps 4 --frames-every " + std::to_string(kFramesEvery) + " --no-plots");
+// benchmark-30s at 160x90, 4 fps (121 frames), every 10th frame saved; `extra`: more options.
+void record(const std::string& dataset, const fs::path& out, const std::string& extra = "") {
+  const auto r = runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" +
+                              out.string() + "' --size 160x90 --msaa 1 --fps 4 --frames-every " +
+                              std::to_string(kFramesEvery) + " --no-plots" + extra);
   ASSERT_EQ(r.exitCode, 0) << r.err;
 }
 
@@ -150,6 +151,19 @@ TEST(RecordDeterminism, TwoRecordingsOfBenchmark30sHaveTheSameCountsAndFrames) {
   record(zion.string(), dir / "second");
   expectSameCounts(dir / "first", dir / "second");
   expectSameFrames(dir / "first", dir / "second");
+}
+
+TEST(RecordDeterminism, OneFrameInFlightGivesWhatThreeGive) {
+  const fs::path dir = testDir();
+  const fs::path zion = importZion(dir);
+  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
+  record(zion.string(), dir / "serial", " --frames-in-flight 1");
+  record(zion.string(), dir / "pipelined");  // the default: 3
+  expectSameCounts(dir / "serial", dir / "pipelined");
+  expectSameFrames(dir / "serial", dir / "pipelined");
+  // recording.json says how each was played (its wall times depend on it).
+  EXPECT_NE(readBytes(dir / "serial" / "recording.json").find("\"frames_in_flight\": 1"), std::string::npos);
+  EXPECT_NE(readBytes(dir / "pipelined" / "recording.json").find("\"frames_in_flight\": 3"), std::string::npos);
 }
 
 TEST(RecordDeterminism, ARecordingOverNginxEqualsOneFromTheDirectory) {

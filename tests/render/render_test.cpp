@@ -194,7 +194,7 @@ TEST_F(RenderTest, ChangingTheTerrainWhileFramesAreInFlightIsSafe) {
   ASSERT_TRUE(b.ok());
   auto fa = r->waitFrame(*a);
   ASSERT_TRUE(fa.ok());
-  auto c = r->submitFrame(req);  // slot of a, grows its buffers
+  auto c = r->submitFrame(req);  // the third slot: a third frame in flight
   ASSERT_TRUE(c.ok());
   auto fb = r->waitFrame(*b);
   auto fc = r->waitFrame(*c);
@@ -203,6 +203,43 @@ TEST_F(RenderTest, ChangingTheTerrainWhileFramesAreInFlightIsSafe) {
   EXPECT_EQ(fb->terrainTriangles, 2u * 200 * 200 + 32u);
   EXPECT_EQ(fc->terrainTriangles, fb->terrainTriangles);
   EXPECT_FALSE(r->waitFrame(*a + 5).ok());
+}
+
+// Three frames in flight (render/frame_slots.h), each with its own geometry, waited for in any
+// order: every frame's figures are its own; a fourth takes the first one's slot and grows its
+// buffers (retired only after that frame); a frame whose slot was taken is no longer waitable.
+TEST_F(RenderTest, ThreeFramesInFlightAreWaitedForInAnyOrder) {
+  ASSERT_EQ(kFramesInFlight, 3);
+  auto r = makeRenderer(kW / 2, kH / 2, 1);
+  ASSERT_TRUE(r);
+  const terrain::TerrainMesh small = flatPlane(2'000.0, 4, 0.0f), medium = flatPlane(2'000.0, 20, 0.0f),
+                             large = flatPlane(2'000.0, 120, 0.0f);
+  const TerrainDraw draws[3] = {{&small}, {&medium}, {&large}};
+  const uint64_t triangles[3] = {32u, 2u * 20 * 20, 2u * 120 * 120};
+  FrameRequest req = lookingAt({0, -1'500, 300}, {0, 1, -0.3}, {0, 0, 1});
+  req.readbackColor = req.readbackDepth = false;
+  uint64_t index[3] = {};
+  for (int k = 0; k < 3; ++k) {
+    req.terrain = {&draws[k], 1};
+    auto i = r->submitFrame(req);
+    ASSERT_TRUE(i.ok());
+    index[k] = *i;
+  }
+  for (int k : {2, 0}) {
+    auto f = r->waitFrame(index[k]);
+    ASSERT_TRUE(f.ok()) << f.error().message;
+    EXPECT_EQ(f->frameIndex, index[k]);
+    EXPECT_EQ(f->terrainTriangles, triangles[k]);
+  }
+  req.terrain = {&draws[2], 1};
+  auto fourth = r->submitFrame(req);  // the first frame's slot, whose buffers were small
+  ASSERT_TRUE(fourth.ok());
+  EXPECT_FALSE(r->waitFrame(index[0]).ok()) << "its slot holds the fourth frame now";
+  auto second = r->waitFrame(index[1]);
+  auto last = r->waitFrame(*fourth);
+  ASSERT_TRUE(second.ok() && last.ok());
+  EXPECT_EQ(second->terrainTriangles, triangles[1]);
+  EXPECT_EQ(last->terrainTriangles, triangles[2]);
 }
 
 // Imagery tiles land in their array layers and colour the draws that name them; a fading tile
