@@ -75,15 +75,6 @@ void RoamTessellator::beginUpdate(const EyeView& view) {
   lastUp_ = up;
 }
 
-glm::dvec3 RoamTessellator::eyeOfVertex(const EyeView& view, uint32_t v) const {
-  return view.toEye(mesh_.vertex(v).at);
-}
-
-void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
-  const RoamNode& n = mesh_.node(t);
-  for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
-}
-
 double RoamTessellator::sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
   return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).sphereDistance();
 }

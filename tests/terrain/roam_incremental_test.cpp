@@ -36,16 +36,14 @@ using Triangle = std::array<float, 10>;  // 9 coordinates and the mesh index
 std::vector<Triangle> drawn(const std::vector<TerrainMesh>& meshes) {
   std::vector<Triangle> out;
   for (size_t m = 0; m < meshes.size(); ++m) {
-    const TerrainMesh& mesh = meshes[m];
-    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    forEachTriangle(meshes[m], [&](const TerrainVertex& a, const TerrainVertex& b, const TerrainVertex& c) {
       Triangle t{};
-      for (int k = 0; k < 3; ++k) {
-        const glm::vec3 p = mesh.vertices[mesh.indices[i + size_t(k)]].position;
-        for (int c = 0; c < 3; ++c) t[size_t(3 * k + c)] = p[c];
-      }
+      const TerrainVertex* abc[3] = {&a, &b, &c};
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j) t[size_t(3 * k + j)] = abc[k]->position[j];
       t[9] = static_cast<float>(m);
       out.push_back(t);
-    }
+    });
   }
   std::sort(out.begin(), out.end());
   return out;
