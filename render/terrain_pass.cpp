@@ -27,6 +27,36 @@ static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes o
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
 
+// A mesh's vertices and indices when flattened: its own and its chunks' (terrain_mesh.h).
+struct MeshSize {
+  size_t vertices = 0, indices = 0;
+};
+MeshSize flatSize(const terrain::TerrainMesh& m) {
+  MeshSize s{m.vertices.size(), m.indices.size()};
+  for (const terrain::TerrainChunkDraw& c : m.chunks) {
+    s.vertices += c.chunk->vertices.size();
+    s.indices += c.count;
+  }
+  return s;
+}
+
+// Flattens `m` into vdst / idst (its own vertices, then each chunk's, indices rebased), so a
+// piece stays one draw. The chunks are copied every frame, like the rest of the geometry.
+void copyFlat(const terrain::TerrainMesh& m, terrain::TerrainVertex* vdst, uint32_t* idst) {
+  std::memcpy(vdst, m.vertices.data(), m.vertices.size() * sizeof(terrain::TerrainVertex));
+  std::memcpy(idst, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  auto base = static_cast<uint32_t>(m.vertices.size());
+  size_t at = m.indices.size();
+  for (const terrain::TerrainChunkDraw& c : m.chunks) {
+    const std::vector<terrain::TerrainVertex>& v = c.chunk->vertices;
+    std::memcpy(vdst + base, v.data(), v.size() * sizeof(terrain::TerrainVertex));
+    const uint32_t* src = (c.partial ? m.chunkIndices.data() : c.chunk->indices.data()) + c.first;
+    for (uint32_t i = 0; i < c.count; ++i) idst[at + i] = src[i] + base;
+    at += c.count;
+    base += static_cast<uint32_t>(v.size());
+  }
+}
+
 }  // namespace
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
@@ -107,9 +137,10 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   const auto s = static_cast<size_t>(slot);
   VkDeviceSize vertexBytes = 0, indexBytes = 0;
   for (const TerrainDraw& d : draws) {
-    if (!d.mesh || d.mesh->indices.empty()) continue;
-    vertexBytes += d.mesh->vertices.size() * sizeof(terrain::TerrainVertex);
-    indexBytes += d.mesh->indices.size() * sizeof(uint32_t);
+    if (!d.mesh || d.mesh->empty()) continue;
+    const MeshSize size = flatSize(*d.mesh);
+    vertexBytes += size.vertices * sizeof(terrain::TerrainVertex);
+    indexBytes += size.indices * sizeof(uint32_t);
   }
   if (indexBytes == 0) return 0;
   ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices", slot, retire);
@@ -128,12 +159,12 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   uint32_t firstVertex = 0, firstIndex = 0;
   uint64_t triangles = 0;
   for (const TerrainDraw& d : draws) {
-    if (!d.mesh || d.mesh->indices.empty()) continue;
+    if (!d.mesh || d.mesh->empty()) continue;
     const terrain::TerrainMesh& m = *d.mesh;
-    std::memcpy(vdst + VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex), m.vertices.data(),
-                m.vertices.size() * sizeof(terrain::TerrainVertex));
-    std::memcpy(idst + VkDeviceSize{firstIndex} * sizeof(uint32_t), m.indices.data(),
-                m.indices.size() * sizeof(uint32_t));
+    const MeshSize size = flatSize(m);
+    if (size.indices == 0) continue;
+    copyFlat(m, reinterpret_cast<terrain::TerrainVertex*>(vdst) + firstVertex,
+             reinterpret_cast<uint32_t*>(idst) + firstIndex);
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
@@ -143,10 +174,10 @@ uint64_t TerrainPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
                            glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
                                      valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f)};
     vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
-    vkCmdDrawIndexed(cmd, static_cast<uint32_t>(m.indices.size()), 1, firstIndex, static_cast<int32_t>(firstVertex), 0);
-    firstVertex += static_cast<uint32_t>(m.vertices.size());
-    firstIndex += static_cast<uint32_t>(m.indices.size());
-    triangles += m.indices.size() / 3;
+    vkCmdDrawIndexed(cmd, static_cast<uint32_t>(size.indices), 1, firstIndex, static_cast<int32_t>(firstVertex), 0);
+    firstVertex += static_cast<uint32_t>(size.vertices);
+    firstIndex += static_cast<uint32_t>(size.indices);
+    triangles += size.indices / 3;
   }
   return triangles;
 }

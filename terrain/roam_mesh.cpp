@@ -215,7 +215,7 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created
   n.mid = mid;
   ++leaves_;
   addLeaves(t, 1);  // one leaf became two
-  expire(t);  // now a diamond half; its parent is no longer one
+  expire(t);        // now a diamond half; its parent is no longer one
   if (n.parent != kNoNode) expire(n.parent);
   markDrawnChanged(t);
   nodes_[c].thickness = thicknessOf(c);

@@ -154,7 +154,7 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     chunk.sources.clear();
     chunk.thickness.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, m.origin,         &chunk.piece,
+    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, m.origin,        &chunk.piece,
                         0x80000000u | slot,   &chunk.sources,      &chunk.morphing, &chunk.thickness};
     collectChunk(w, t, sink);
     ++figures_.chunksBuilt;
