@@ -68,7 +68,7 @@ struct RoamOptions {
   bool deferPriorities = true;      // update: compute a priority only when it may have crossed a bound
   // The most leaves a drawn chunk holds: larger chunks are fewer (less work per frame, fewer
   // draws) but each change rebuilds more.
-  uint32_t chunkMaxLeaves = 256;
+  uint32_t chunkMaxLeaves = 64;
 };
 
 // The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
