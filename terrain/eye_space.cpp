@@ -35,24 +35,4 @@ EyeView EyeView::lookAlong(const glm::dvec3& position, const glm::dvec3& forward
   return v;
 }
 
-Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
-                double above) {
-  // The planes in eye space (n·q + d ≥ 0 inside): near −z − near, left x − tx·z, right −x − tx·z,
-  // bottom y − ty·z, top −y − ty·z. Written out: the traversals call this for every node.
-  const PlaneDistances da = planeDistances(view, a), db = planeDistances(view, b), dc = planeDistances(view, c);
-  const PlaneDistances nu = upComponents(view);
-  bool inside = true;
-  for (int k = 0; k < 5; ++k) {
-    // The prism's corners v + s·up for s in {−below, +above}: extremes per vertex.
-    const double s = -below * nu.d[k], t = above * nu.d[k];
-    const double lo = s < t ? s : t, hi = s > t ? s : t;
-    double mx = da.d[k] > db.d[k] ? da.d[k] : db.d[k], mn = da.d[k] < db.d[k] ? da.d[k] : db.d[k];
-    mx = mx > dc.d[k] ? mx : dc.d[k];
-    mn = mn < dc.d[k] ? mn : dc.d[k];
-    if (mx + hi < 0.0) return Cull::Outside;
-    if (mn + lo < 0.0) inside = false;
-  }
-  return inside ? Cull::Inside : Cull::Partial;
-}
-
 }  // namespace vegstream::terrain
