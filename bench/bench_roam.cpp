@@ -110,7 +110,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
     std::vector<double> frameMs, cpuMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited,
-        computed, reused, built, emitted;
+        computed, reused, built, moved, emitted;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     int compactions = 0;
     // VEGSTREAM_BENCH_CSV=DIR: one row per frame in DIR/<benchmark name>.csv (where the time goes).
@@ -153,6 +153,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
       computed.push_back(static_cast<double>(f.roam.prioritiesComputed));
       reused.push_back(static_cast<double>(f.roam.chunksReused));
       built.push_back(static_cast<double>(f.roam.chunksBuilt));
+      moved.push_back(static_cast<double>(f.roam.chunksMoved));
       emitted.push_back(static_cast<double>(f.roam.leavesEmitted));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
@@ -189,6 +190,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["computed_p50"] = percentile(computed, 0.5);
     state.counters["chunks_reused_p50"] = percentile(reused, 0.5);
     state.counters["chunks_built_p50"] = percentile(built, 0.5);
+    state.counters["chunks_moved_p50"] = percentile(moved, 0.5);
     state.counters["emitted_p50"] = percentile(emitted, 0.5);
     state.counters["emitted_p99"] = percentile(emitted, 0.99);
     state.counters["seed_tris_p50"] = percentile(seeds, 0.5);

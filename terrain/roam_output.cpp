@@ -44,7 +44,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   w.untextured = static_cast<int>(pieces.tiles().size());
   figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
   figures_.seedTriangles = figures_.seedInterpolated = 0;
-  figures_.chunksReused = figures_.chunksBuilt = figures_.leavesEmitted = 0;
+  figures_.chunksReused = figures_.chunksBuilt = figures_.chunksMoved = figures_.leavesEmitted = 0;
   figures_.seedPlants = 0.0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
@@ -162,7 +162,10 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     // Unchanged but for its morphing vertices: move them to where they are drawn now.
     const double fade = mesh_.options().fadeS;
     size_t kept = 0;
-    if (!chunk.morphing.empty()) ++chunk.mesh.version;
+    if (!chunk.morphing.empty()) {
+      ++chunk.mesh.version;
+      ++figures_.chunksMoved;
+    }
     for (const uint32_t at : chunk.morphing) {
       const RoamVertex& x = mesh_.vertex(chunk.sources[at]);
       const double h = x.drawnHeight(w.timeS, fade);

@@ -114,6 +114,7 @@ struct RoamFigures {
   double achievedErrorPx = 0.0;
   uint64_t depthLimitedLeaves = 0;             // visible leaves over the bound at the deepest level (cannot split)
   uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks handed out as cached, and rebuilt
+  uint64_t chunksMoved = 0;                    // of the reused: with vertices still morphing (a new version)
   uint64_t leavesEmitted = 0;  // output: leaves turned into vertices this frame (the rest came from chunks)
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
