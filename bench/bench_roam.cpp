@@ -106,7 +106,6 @@ void flyPath(benchmark::State& state, const char* pathName) {
     // range(1) = 0: the same work done in full every frame (no deferred priorities, no cached
     // chunks), the baseline the incremental figures are a ratio to.
     to.roam.deferPriorities = to.roam.cacheChunks = state.range(1) != 0;
-    if (const char* c = std::getenv("TMP_CHUNK")) to.roam.chunkMaxLeaves = static_cast<uint32_t>(std::atoi(c));
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
     std::vector<double> frameMs, cpuMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited,

@@ -5,8 +5,10 @@
 // CPU's: the meshes arrive at their drawn heights).
 //
 // Geometry is copied each frame into the frame slot's host-visible vertex/index buffers: the
-// terrain changes as tiles stream in and (later) as ROAM refines, and copying a few MB is cheaper
-// than managing thousands of small buffers. Imagery arrives through a per-frame-slot staging
+// terrain changes as tiles stream in and as ROAM refines, and copying a few MB is cheaper than
+// managing thousands of small buffers. A mesh's chunks (terrain_mesh.h) are flattened into its
+// piece's range (one draw per piece); their ids and versions would let a GPU-resident cache
+// upload only the changed ones, which is not done yet. Imagery arrives through a per-frame-slot staging
 // buffer (a ring of kSlots) and lands in its layer before the draws.
 //
 // Close up, the imagery gets detail textures blended by the colour score of its colour (core

@@ -142,6 +142,8 @@ class RoamTessellator {
   void update(const EyeView& view, const PieceSet& pieces, double timeS);
   // The drawn leaves, one mesh per piece (+1 at the end: leaves not yet inside a piece, drawn
   // without imagery), and the seed triangles. `meshes` is resized to pieces.tiles().size() + 1.
+  // Most leaves come as references to the drawn chunks (TerrainMesh::chunks): valid until the
+  // next update() or output().
   void output(const EyeView& view, const PieceSet& pieces, double timeS, std::vector<TerrainMesh>& meshes,
               std::vector<SeedTriangle>& seeds);
 
