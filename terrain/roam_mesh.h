@@ -142,6 +142,15 @@ class RoamMesh {
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
 
+  // The traversals are bound by fetching nodes and vertices: a node being visited asks for its
+  // children and split vertex early, so they are in cache by the time the visit needs them.
+  void prefetchChildren(uint32_t t) const {
+    const RoamNode& n = nodes_[t];
+    if (n.isLeaf()) return;
+    const char* c = reinterpret_cast<const char*>(&nodes_[n.child]);
+    for (size_t at = 0; at < 2 * sizeof(RoamNode); at += 64) __builtin_prefetch(c + at);
+    __builtin_prefetch(&vertices_[n.mid].at);
+  }
   const RoamNode& node(uint32_t i) const { return nodes_[i]; }
   RoamNode& node(uint32_t i) { return nodes_[i]; }
   const RoamVertex& vertex(uint32_t i) const { return vertices_[i]; }

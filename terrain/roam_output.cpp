@@ -60,6 +60,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   // Eye coordinates are needed while the culling or the seeds are undecided, and only then.
   assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
+  mesh_.prefetchChildren(t);
   const int level = n.path.level;
   const double e = n.cullThickness();
   if (cull != Cull::Inside) {

@@ -169,6 +169,7 @@ double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
 
 void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
   RoamNode& n = mesh_.node(t);
+  mesh_.prefetchChildren(t);
   const int level = n.path.level;
   if (cull == Cull::Partial) {
     const double e = n.cullThickness();
