@@ -8,6 +8,7 @@
 // and the drawn triangles against a full-resolution grid of the same area (every selected tile
 // drawn with 2 triangles per max-zoom pixel) as a ratio.
 
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -66,6 +67,14 @@ Zion& zion() {
 
 unsigned long long ull(uint64_t v) { return static_cast<unsigned long long>(v); }
 
+// CPU time of the calling thread (ms): the frame's work without the time the scheduler gave
+// other processes (on a shared machine a preempted frame is ~4 ms longer on the wall clock).
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -99,8 +108,8 @@ void flyPath(benchmark::State& state, const char* pathName) {
     to.roam.deferPriorities = to.roam.cacheChunks = state.range(1) != 0;
     terrain::StreamedTerrain terrain(streamer, frame, to);
     const flight::PathSampler sampler(*path);
-    std::vector<double> frameMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited, computed,
-        reused, built, emitted;
+    std::vector<double> frameMs, cpuMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited,
+        computed, reused, built, moved, emitted;
     const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
     int compactions = 0;
     // VEGSTREAM_BENCH_CSV=DIR: one row per frame in DIR/<benchmark name>.csv (where the time goes).
@@ -110,9 +119,10 @@ void flyPath(benchmark::State& state, const char* pathName) {
                                (state.range(1) != 0 ? "incremental" : "every-frame");
       csv.reset(std::fopen((fs::path(dir) / (name + ".csv")).c_str(), "w"));
       if (!csv) return state.SkipWithError("VEGSTREAM_BENCH_CSV: cannot write there");
-      std::fprintf(csv.get(),
-                   "frame,ms,update_ms,compact_ms,priorities_ms,split_ms,merge_ms,output_ms,leaves,splits,merges,"
-                   "visited,computed,chunks_reused,chunks_built,emitted,seeds,created,compacted\n");
+      std::fprintf(
+          csv.get(),
+          "frame,ms,cpu_ms,update_ms,compact_ms,priorities_ms,split_ms,merge_ms,output_ms,leaves,splits,merges,"
+          "visited,computed,chunks_reused,chunks_built,emitted,seeds,created,compacted\n");
     }
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
@@ -126,8 +136,10 @@ void flyPath(benchmark::State& state, const char* pathName) {
         if (same) break;
       }
       Stopwatch watch;
+      const double cpu0 = threadCpuMs();
       const auto pieces = terrain.pieces(t);
       frameMs.push_back(watch.elapsedMs());
+      cpuMs.push_back(threadCpuMs() - cpu0);
       const terrain::TerrainFrameFigures& f = terrain.figures();
       updateMs.push_back(f.roam.updateMs);
       outputMs.push_back(f.roam.outputMs);
@@ -140,6 +152,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
       computed.push_back(static_cast<double>(f.roam.prioritiesComputed));
       reused.push_back(static_cast<double>(f.roam.chunksReused));
       built.push_back(static_cast<double>(f.roam.chunksBuilt));
+      moved.push_back(static_cast<double>(f.roam.chunksMoved));
       emitted.push_back(static_cast<double>(f.roam.leavesEmitted));
       double gridTriangles = 0.0;
       for (const terrain::TerrainPiece& p : pieces)
@@ -148,10 +161,11 @@ void flyPath(benchmark::State& state, const char* pathName) {
       if (gridTriangles > 0.0) ratio.push_back(static_cast<double>(f.triangles) / gridTriangles);
       if (csv)
         std::fprintf(
-            csv.get(), "%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%d\n",
-            i, frameMs.back(), f.roam.updateMs, f.roam.compactMs, f.roam.prioritiesMs, f.roam.splitMs, f.roam.mergeMs,
-            f.roam.outputMs, ull(f.roam.leaves), ull(f.roam.splits), ull(f.roam.merges), ull(f.roam.nodesVisited),
-            ull(f.roam.prioritiesComputed), ull(f.roam.chunksReused), ull(f.roam.chunksBuilt),
+            csv.get(),
+            "%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%d\n", i,
+            frameMs.back(), cpuMs.back(), f.roam.updateMs, f.roam.compactMs, f.roam.prioritiesMs, f.roam.splitMs,
+            f.roam.mergeMs, f.roam.outputMs, ull(f.roam.leaves), ull(f.roam.splits), ull(f.roam.merges),
+            ull(f.roam.nodesVisited), ull(f.roam.prioritiesComputed), ull(f.roam.chunksReused), ull(f.roam.chunksBuilt),
             ull(f.roam.leavesEmitted), ull(f.roam.seedTriangles), ull(f.roam.leavesCreated), f.roam.compacted ? 1 : 0);
       compactions += f.roam.compacted ? 1 : 0;
     }
@@ -159,6 +173,9 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["ms_p50"] = percentile(frameMs, 0.5);
     state.counters["ms_p99"] = percentile(frameMs, 0.99);
     state.counters["ms_max"] = percentile(frameMs, 1.0);
+    state.counters["cpu_ms_p50"] = percentile(cpuMs, 0.5);
+    state.counters["cpu_ms_p99"] = percentile(cpuMs, 0.99);
+    state.counters["cpu_ms_max"] = percentile(cpuMs, 1.0);
     state.counters["over_4ms"] =
         static_cast<double>(std::count_if(frameMs.begin(), frameMs.end(), [](double ms) { return ms > 4.0; }));
     state.counters["compactions"] = compactions;
@@ -172,6 +189,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     state.counters["computed_p50"] = percentile(computed, 0.5);
     state.counters["chunks_reused_p50"] = percentile(reused, 0.5);
     state.counters["chunks_built_p50"] = percentile(built, 0.5);
+    state.counters["chunks_moved_p50"] = percentile(moved, 0.5);
     state.counters["emitted_p50"] = percentile(emitted, 0.5);
     state.counters["emitted_p99"] = percentile(emitted, 0.99);
     state.counters["seed_tris_p50"] = percentile(seeds, 0.5);

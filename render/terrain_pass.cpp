@@ -28,13 +28,48 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 constexpr VkShaderStageFlags kSampledBy = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
 
-// Distance from `eye` to the axis-aligned box of a mesh's vertices (0 inside it).
+// A mesh's vertices and indices when flattened: its own and its chunks' (terrain_mesh.h).
+struct MeshSize {
+  size_t vertices = 0, indices = 0;
+};
+MeshSize flatSize(const terrain::TerrainMesh& m) {
+  MeshSize s{m.vertices.size(), m.indices.size()};
+  for (const terrain::TerrainChunkDraw& c : m.chunks) {
+    s.vertices += c.chunk->vertices.size();
+    s.indices += c.count;
+  }
+  return s;
+}
+
+// Flattens `m` into vdst / idst (its own vertices, then each chunk's, indices rebased), so a
+// piece stays one draw. The chunks are copied every frame, like the rest of the geometry.
+void copyFlat(const terrain::TerrainMesh& m, terrain::TerrainVertex* vdst, uint32_t* idst) {
+  std::memcpy(vdst, m.vertices.data(), m.vertices.size() * sizeof(terrain::TerrainVertex));
+  std::memcpy(idst, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  auto base = static_cast<uint32_t>(m.vertices.size());
+  size_t at = m.indices.size();
+  for (const terrain::TerrainChunkDraw& c : m.chunks) {
+    const std::vector<terrain::TerrainVertex>& v = c.chunk->vertices;
+    std::memcpy(vdst + base, v.data(), v.size() * sizeof(terrain::TerrainVertex));
+    const uint32_t* src = (c.partial ? m.chunkIndices.data() : c.chunk->indices.data()) + c.first;
+    for (uint32_t i = 0; i < c.count; ++i) idst[at + i] = src[i] + base;
+    at += c.count;
+    base += static_cast<uint32_t>(v.size());
+  }
+}
+
+// Distance from `eye` to the axis-aligned box of a mesh's vertices, its chunks' included (0
+// inside it).
 double distanceToBounds(const terrain::TerrainMesh& m, const glm::dvec3& eye) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const terrain::TerrainVertex& v : m.vertices) {
-    lo = glm::min(lo, v.position);
-    hi = glm::max(hi, v.position);
-  }
+  const auto grow = [&](const std::vector<terrain::TerrainVertex>& vertices) {
+    for (const terrain::TerrainVertex& v : vertices) {
+      lo = glm::min(lo, v.position);
+      hi = glm::max(hi, v.position);
+    }
+  };
+  grow(m.vertices);
+  for (const terrain::TerrainChunkDraw& c : m.chunks) grow(c.chunk->vertices);
   const glm::dvec3 local = eye - m.origin;
   const glm::dvec3 nearest = glm::clamp(local, glm::dvec3(lo), glm::dvec3(hi));
   return glm::length(local - nearest);
@@ -46,7 +81,7 @@ std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const
   std::vector<uint32_t> order;
   std::vector<double> distance(draws.size(), 0.0);
   for (uint32_t i = 0; i < draws.size(); ++i) {
-    if (!draws[i].mesh || draws[i].mesh->indices.empty()) continue;
+    if (!draws[i].mesh || flatSize(*draws[i].mesh).indices == 0) continue;
     distance[i] = distanceToBounds(*draws[i].mesh, cameraPosition);
     order.push_back(i);
   }
@@ -144,8 +179,9 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition);
   VkDeviceSize vertexBytes = 0, indexBytes = 0;
   for (uint32_t i : order) {
-    vertexBytes += draws[i].mesh->vertices.size() * sizeof(terrain::TerrainVertex);
-    indexBytes += draws[i].mesh->indices.size() * sizeof(uint32_t);
+    const MeshSize size = flatSize(*draws[i].mesh);
+    vertexBytes += size.vertices * sizeof(terrain::TerrainVertex);
+    indexBytes += size.indices * sizeof(uint32_t);
   }
   // The buffers exist even for a frame without terrain: the shade pass's descriptors need them.
   vertexBytes = std::max<VkDeviceSize>(vertexBytes, sizeof(terrain::TerrainVertex));
@@ -170,29 +206,28 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   for (uint32_t i : order) {
     const TerrainDraw& d = draws[i];
     const terrain::TerrainMesh& m = *d.mesh;
-    std::memcpy(vdst + VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex), m.vertices.data(),
-                m.vertices.size() * sizeof(terrain::TerrainVertex));
-    std::memcpy(idst + VkDeviceSize{firstIndex} * sizeof(uint32_t), m.indices.data(),
-                m.indices.size() * sizeof(uint32_t));
+    const MeshSize size = flatSize(m);
+    copyFlat(m, reinterpret_cast<terrain::TerrainVertex*>(vdst) + firstVertex,
+             reinterpret_cast<uint32_t*>(idst) + firstIndex);
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
     assert(valid);
-    const uint32_t triangles = static_cast<uint32_t>(m.indices.size() / 3);
+    const auto triangles = static_cast<uint32_t>(size.indices / 3);
     // The subtraction happens in double; only the small camera-relative offset becomes float.
     PreparedDraw p;
     p.push = TerrainPush{glm::vec4(glm::vec3(m.origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
                          glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
                                    valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f),
                          glm::uvec4(firstIndex / 3, 0u, 0u, 0u)};
-    p.indexCount = static_cast<uint32_t>(m.indices.size());
+    p.indexCount = static_cast<uint32_t>(size.indices);
     p.firstIndex = firstIndex;
     p.vertexOffset = static_cast<int32_t>(firstVertex);
     pdst[list.size()] = TerrainPiece{p.push.originFromCamera, p.push.imageryUv, p.push.previousUv, p.push.layers,
                                      glm::uvec4(firstIndex / 3, firstVertex, triangles, 0u)};
     list.push_back(p);
-    firstVertex += static_cast<uint32_t>(m.vertices.size());
-    firstIndex += static_cast<uint32_t>(m.indices.size());
+    firstVertex += static_cast<uint32_t>(size.vertices);
+    firstIndex += static_cast<uint32_t>(size.indices);
   }
   const VkBufferCopy vcopy{0, 0, VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex)};
   const VkBufferCopy icopy{0, 0, VkDeviceSize{firstIndex} * sizeof(uint32_t)};

@@ -16,8 +16,10 @@
 // Geometry is copied each frame into the frame slot's host-visible buffers and from there into
 // device-local ones (read by the vertex stage and, when deferred, by the shade pass): the
 // terrain changes as tiles stream in and as ROAM refines, and copying a few MB is cheaper than
-// managing thousands of small buffers. Imagery arrives through a per-frame-slot staging buffer
-// (a ring of kSlots) and lands in its layer before the draws.
+// managing thousands of small buffers. A mesh's chunks (terrain_mesh.h) are flattened into its
+// piece's range (one draw per piece); their ids and versions would let a GPU-resident cache
+// upload only the changed ones, which is not done yet. Imagery arrives through a per-frame-slot
+// staging buffer (a ring of kSlots) and lands in its layer before the draws.
 //
 // Close up, the imagery gets detail textures blended by the colour score of its colour (core
 // seed 001 §3.3; render/detail_textures.h owns them and the terrain-type table, bound as set 2),

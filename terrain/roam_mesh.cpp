@@ -164,12 +164,17 @@ void RoamMesh::expire(uint32_t t) {
 }
 
 void RoamMesh::markDrawnChanged(uint32_t t) {
-  // A chunk may start at any node of a band and ends at the band's bottom: every node between
-  // the change and the band's top carries it.
-  ++drawnChanges_;
+  // A chunk may start at any ancestor. A node stamped in this epoch has its ancestors stamped
+  // already (every walk goes to the root or to such a node): stop there, so a resample that
+  // marks thousands of nodes costs about one walk each.
+  for (uint32_t u = t; u != kNoNode && nodes_[u].drawnStamp != drawnEpoch_; u = nodes_[u].parent)
+    nodes_[u].drawnStamp = drawnEpoch_;
+}
+
+void RoamMesh::addLeaves(uint32_t t, int delta) {
   for (uint32_t u = t; u != kNoNode; u = nodes_[u].parent) {
-    nodes_[u].drawnStamp = drawnChanges_;
-    if (nodes_[u].path.level % options_.chunkLevels == 0) break;  // the band's top
+    assert(delta > 0 || nodes_[u].leafCount > 1);
+    nodes_[u].leafCount = static_cast<uint32_t>(static_cast<int64_t>(nodes_[u].leafCount) + delta);
   }
 }
 
@@ -209,7 +214,8 @@ void RoamMesh::splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created
   n.child = c;
   n.mid = mid;
   ++leaves_;
-  expire(t);  // now a diamond half; its parent is no longer one
+  addLeaves(t, 1);  // one leaf became two
+  expire(t);        // now a diamond half; its parent is no longer one
   if (n.parent != kNoNode) expire(n.parent);
   markDrawnChanged(t);
   nodes_[c].thickness = thicknessOf(c);
@@ -327,6 +333,7 @@ void RoamMesh::mergeOne(uint32_t t) {
   n.child = kNoNode;
   n.mid = kNoNode;
   --leaves_;
+  addLeaves(t, -1);
   expire(t);  // a leaf again; its parent may have become a diamond half
   if (n.parent != kNoNode) expire(n.parent);
   markDrawnChanged(t);

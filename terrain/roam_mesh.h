@@ -75,10 +75,10 @@ struct RoamNode {
   double deadline = -std::numeric_limits<double>::infinity();
   double subtreeDeadline = -std::numeric_limits<double>::infinity();
   uint8_t seenCull = 0xFF, seenPiece = 0xFF;  // the cull and piece states the priority was computed under
-  // Drawn chunks (the tessellator's output cache) span a node's subtree down to the next level
-  // that is a multiple of RoamMeshOptions::chunkLevels (a band). drawnStamp: the mesh's change
-  // count when this node, or one below it in its band, last changed in a way that shows.
+  // Drawn chunks (the tessellator's output cache) span a node's whole subtree. drawnStamp: the
+  // mesh's drawn epoch when this node, or one below it, last changed in a way that shows.
   uint64_t drawnStamp = 0;
+  uint32_t leafCount = 1;         // leaves in the subtree (what a drawn chunk here would hold)
   uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   bool isLeaf() const { return child == kNoNode; }
   // The thickness culling uses: unknown (NaN) or no data (< 0) count as flat.
@@ -88,7 +88,6 @@ struct RoamNode {
 struct RoamMeshOptions {
   double fadeS = 0.5;        // geomorph time (s)
   double fillHeightM = 0.0;  // the height nodata vertices count as for culling (e.g. mid dataset)
-  int chunkLevels = 8;       // the bands drawn chunks span (RoamNode::drawnStamp)
 };
 
 // compact()'s renumbering: new index of every old node and vertex (kNoNode: free).
@@ -120,9 +119,11 @@ class RoamMesh {
 
   // Marks t's priority as to be computed again, and every ancestor's subtree as holding one.
   void expire(uint32_t t);
-  // Marks t as changed on screen, and its ancestors up to the top of its band.
+  // Marks t as changed on screen, and its ancestors (a drawn chunk may start at any of them).
   void markDrawnChanged(uint32_t t);
-  uint64_t drawnChanges() const { return drawnChanges_; }
+  // The drawn epoch: every change marked from now on gets a later stamp than what this
+  // returns (the output calls it once before it builds chunks).
+  uint64_t closeDrawnEpoch() { return drawnEpoch_++; }
   // The drawnChunk slots of nodes freed since the last call.
   std::vector<uint32_t> takeReleasedChunks() { return std::exchange(releasedChunks_, {}); }
 
@@ -141,6 +142,15 @@ class RoamMesh {
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
 
+  // The traversals are bound by fetching nodes and vertices: a node being visited asks for its
+  // children and split vertex early, so they are in cache by the time the visit needs them.
+  void prefetchChildren(uint32_t t) const {
+    const RoamNode& n = nodes_[t];
+    if (n.isLeaf()) return;
+    const char* c = reinterpret_cast<const char*>(&nodes_[n.child]);
+    for (size_t at = 0; at < 2 * sizeof(RoamNode); at += 64) __builtin_prefetch(c + at);
+    __builtin_prefetch(&vertices_[n.mid].at);
+  }
   const RoamNode& node(uint32_t i) const { return nodes_[i]; }
   RoamNode& node(uint32_t i) { return nodes_[i]; }
   const RoamVertex& vertex(uint32_t i) const { return vertices_[i]; }
@@ -175,6 +185,7 @@ class RoamMesh {
   void updateRadius(uint32_t t);
   void raiseThickness(uint32_t t);
   void markDiamondLeaves(uint32_t t);
+  void addLeaves(uint32_t t, int delta);  // to t's and its ancestors' leafCount
   void resampleNode(uint32_t t, const geo::TileId& tile, uint32_t lo[2], uint32_t hi[2]);
 
   BintreeGrid grid_;
@@ -192,7 +203,7 @@ class RoamMesh {
   std::vector<uint32_t> releasedChunks_;
   std::vector<RoamNode> spareNodes_;  // compact()'s scratch, kept so that it does not fault pages in again
   std::vector<RoamVertex> spareVertices_;
-  uint64_t drawnChanges_ = 0;
+  uint64_t drawnEpoch_ = 1;
   uint64_t pairsAllocated_ = 0;
 };
 

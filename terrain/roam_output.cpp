@@ -23,8 +23,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   meshes.resize(pieces.tiles().size() + 1);
   for (size_t i = 0; i < meshes.size(); ++i) {
     TerrainMesh& m = meshes[i];
-    m.vertices.clear();
-    m.indices.clear();
+    m.clear();
     if (i < pieces.tiles().size()) {
       const geo::TileId& t = pieces.tiles()[i];
       const glm::dvec2 c = geo::tileXYToLonLat({t.x + 0.5, t.y + 0.5}, t.z);
@@ -34,6 +33,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
     }
   }
   seeds.clear();
+  // Changes from here on are after every chunk this output builds.
+  chunkEpoch_ = mesh_.closeDrawnEpoch();
   Walk w;
   w.view = &view;
   w.pieces = &pieces;
@@ -43,7 +44,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   w.untextured = static_cast<int>(pieces.tiles().size());
   figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
   figures_.seedTriangles = figures_.seedInterpolated = 0;
-  figures_.chunksReused = figures_.chunksBuilt = figures_.leavesEmitted = 0;
+  figures_.chunksReused = figures_.chunksBuilt = figures_.chunksMoved = figures_.leavesEmitted = 0;
   figures_.seedPlants = 0.0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
@@ -59,6 +60,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   // Eye coordinates are needed while the culling or the seeds are undecided, and only then.
   assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
+  mesh_.prefetchChildren(t);
   const int level = n.path.level;
   const double e = n.cullThickness();
   if (cull != Cull::Inside) {
@@ -98,7 +100,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
       seeds = false;
     }
   }
-  if (options_.cacheChunks && !seeds && ps == InPiece::In && level % mesh_.options().chunkLevels == 0) {
+  if (options_.cacheChunks && !seeds && ps == InPiece::In && n.leafCount <= options_.chunkMaxLeaves) {
     drawChunk(w, t, piece, cull != Cull::Inside);
     return;
   }
@@ -139,87 +141,80 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     mesh_.node(t).drawnChunk = slot;
     chunks_[slot].root = kNoNode;
   }
-  DrawnChunk* chunk = &chunks_[slot];
-  chunk->usedFrame = outputFrame_;
-  if (chunk->root != t || mesh_.node(t).drawnStamp > chunk->builtStamp || !(chunk->piece == tile)) {
-    chunk->root = t;
-    chunk->piece = tile;
-    chunk->builtStamp = mesh_.drawnChanges();
-    chunk->vertices.clear();
-    chunk->indices.clear();
-    chunk->below.clear();
-    chunk->morphing.clear();
-    chunk->sources.clear();
-    chunk->thickness.clear();
+  DrawnChunk& chunk = chunks_[slot];
+  chunk.usedFrame = outputFrame_;
+  if (chunk.root != t || mesh_.node(t).drawnStamp > chunk.builtStamp || !(chunk.piece == tile)) {
+    chunk.root = t;
+    chunk.piece = tile;
+    chunk.builtStamp = chunkEpoch_;
+    chunk.mesh.id = nextChunkId_++;
+    chunk.mesh.version = 0;
+    chunk.mesh.vertices.clear();
+    chunk.mesh.indices.clear();
+    chunk.morphing.clear();
+    chunk.sources.clear();
+    chunk.thickness.clear();
     // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk->vertices,   &chunk->indices, m.origin,         &chunk->piece,
-                        0x80000000u | slot, &chunk->sources, &chunk->morphing, &chunk->thickness};
-    const int k = mesh_.options().chunkLevels;
-    collectChunk(w, slot, t, (mesh_.node(t).path.level / k + 1) * k, sink);
+    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, m.origin,        &chunk.piece,
+                        0x80000000u | slot,   &chunk.sources,      &chunk.morphing, &chunk.thickness};
+    collectChunk(w, t, sink);
     ++figures_.chunksBuilt;
   } else {
     // Unchanged but for its morphing vertices: move them to where they are drawn now.
     const double fade = mesh_.options().fadeS;
     size_t kept = 0;
-    for (const uint32_t at : chunk->morphing) {
-      const RoamVertex& x = mesh_.vertex(chunk->sources[at]);
+    if (!chunk.morphing.empty()) {
+      ++chunk.mesh.version;
+      ++figures_.chunksMoved;
+    }
+    for (const uint32_t at : chunk.morphing) {
+      const RoamVertex& x = mesh_.vertex(chunk.sources[at]);
       const double h = x.drawnHeight(w.timeS, fade);
-      TerrainVertex& out = chunk->vertices[at];
+      TerrainVertex& out = chunk.mesh.vertices[at];
       out.position = glm::vec3(x.position(h) - m.origin);
       out.heightMsl = static_cast<float>(h);
       if (h != x.heightM) ++figures_.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk->morphing[kept++] = at;
+      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = at;
     }
-    chunk->morphing.resize(kept);
+    chunk.morphing.resize(kept);
     ++figures_.chunksReused;
   }
-  const auto base = static_cast<uint32_t>(m.vertices.size());
-  m.vertices.insert(m.vertices.end(), chunk->vertices.begin(), chunk->vertices.end());
-  const size_t first = m.indices.size();
+  const std::vector<uint32_t>& indices = chunk.mesh.indices;
+  if (indices.empty()) return;  // no data under it
   if (!partial) {
-    m.indices.resize(first + chunk->indices.size());
-    for (size_t i = 0; i < chunk->indices.size(); ++i) m.indices[first + i] = chunk->indices[i] + base;
-  } else {
-    // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
-    // own, from its vertices' eye coordinates (each transformed once); the vertices of culled
-    // triangles stay in the mesh, unreferenced.
-    chunkEye_.resize(chunk->sources.size());
-    for (size_t i = 0; i < chunk->sources.size(); ++i) chunkEye_[i] = eyeOfVertex(*w.view, chunk->sources[i]);
-    for (size_t k = 0; k < chunk->thickness.size(); ++k) {
-      const uint32_t* tri = &chunk->indices[3 * k];
-      const double e = chunk->thickness[k];
-      if (cullWedgie(*w.view, chunkEye_[tri[0]], chunkEye_[tri[1]], chunkEye_[tri[2]], e, e + options_.canopyM) ==
-          Cull::Outside)
-        continue;
-      m.indices.insert(m.indices.end(), {tri[0] + base, tri[1] + base, tri[2] + base});
-    }
+    m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
+    figures_.drawnTriangles += indices.size() / 3;
+    return;
   }
-  figures_.drawnTriangles += (m.indices.size() - first) / 3;
-  // chunks_ may grow as the chunks below claim slots: index it afresh (this slot's list stays).
-  for (size_t i = 0; i < chunks_[slot].below.size(); ++i) {
-    const uint32_t b = chunks_[slot].below[i];
-    if (!partial) {
-      visitOutput(w, b, nullptr, Cull::Inside, InPiece::In, piece, false);
+  // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
+  // own, from its vertices' plane distances (each vertex transformed once); the vertices of
+  // culled triangles stay in the chunk, unreferenced.
+  chunkPlanes_.resize(chunk.sources.size());
+  for (size_t i = 0; i < chunk.sources.size(); ++i)
+    chunkPlanes_[i] = planeDistances(*w.view, eyeOfVertex(*w.view, chunk.sources[i]));
+  const PlaneDistances up = upComponents(*w.view);
+  const auto first = static_cast<uint32_t>(m.chunkIndices.size());
+  for (size_t k = 0; k < chunk.thickness.size(); ++k) {
+    const uint32_t* tri = &indices[3 * k];
+    const double e = chunk.thickness[k];
+    if (wedgieOutside(chunkPlanes_[tri[0]], chunkPlanes_[tri[1]], chunkPlanes_[tri[2]], up, e, e + options_.canopyM))
       continue;
-    }
-    glm::dvec3 eye[3];
-    eyeOf(*w.view, b, eye);
-    visitOutput(w, b, eye, Cull::Partial, InPiece::In, piece, false);
+    m.chunkIndices.insert(m.chunkIndices.end(), tri, tri + 3);
   }
+  const auto count = static_cast<uint32_t>(m.chunkIndices.size()) - first;
+  if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
+  figures_.drawnTriangles += count / 3;
 }
 
-void RoamTessellator::collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink) {
+void RoamTessellator::collectChunk(Walk& w, uint32_t t, const LeafSink& sink) {
+  // The subtree's leaves, depth first (the order the direct output emits them in).
   const RoamNode& n = mesh_.node(t);
   if (n.isLeaf()) {
     emitLeaf(w, t, sink);
     return;
   }
-  for (uint32_t c : {n.child, n.child + 1}) {
-    if (mesh_.node(c).path.level == bottomLevel)
-      chunks_[slot].below.push_back(c);
-    else
-      collectChunk(w, slot, c, bottomLevel, sink);
-  }
+  collectChunk(w, n.child, sink);
+  collectChunk(w, n.child + 1, sink);
 }
 
 void RoamTessellator::dropIdleChunks() {
@@ -227,7 +222,7 @@ void RoamTessellator::dropIdleChunks() {
     DrawnChunk& c = chunks_[slot];
     if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
     mesh_.node(c.root).drawnChunk = kNoNode;
-    c = DrawnChunk{};
+    c = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
     freeChunks_.push_back(slot);
   }
 }
@@ -246,7 +241,6 @@ void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
   for (DrawnChunk& c : chunks_) {
     if (c.root == kNoNode) continue;
     c.root = node(c.root);
-    for (uint32_t& b : c.below) b = node(b);
     for (uint32_t& v : c.sources) v = vertex(v);
   }
 }

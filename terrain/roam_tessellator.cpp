@@ -75,15 +75,6 @@ void RoamTessellator::beginUpdate(const EyeView& view) {
   lastUp_ = up;
 }
 
-glm::dvec3 RoamTessellator::eyeOfVertex(const EyeView& view, uint32_t v) const {
-  return view.toEye(mesh_.vertex(v).at);
-}
-
-void RoamTessellator::eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
-  const RoamNode& n = mesh_.node(t);
-  for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
-}
-
 double RoamTessellator::sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const {
   return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).sphereDistance();
 }
@@ -178,6 +169,7 @@ double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
 
 void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
   RoamNode& n = mesh_.node(t);
+  mesh_.prefetchChildren(t);
   const int level = n.path.level;
   if (cull == Cull::Partial) {
     const double e = n.cullThickness();
@@ -211,18 +203,28 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
     n.seenPiece = static_cast<uint8_t>(ps);
     mesh_.cancelMergeMorph(t);
   }
-  glm::dvec3 e0[3], e1[3];
-  if (cull != Cull::Outside) {
-    const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
-    e0[0] = m;
-    e0[1] = eye[0];
-    e0[2] = eye[1];
-    e1[0] = m;
-    e1[1] = eye[2];
-    e1[2] = eye[0];
+  // Children the deferral skips on entry (the test at the top, for a cull and piece state
+  // they inherit unchanged) need no eye coordinates: do not transform the split vertex for them.
+  auto skipped = [&](uint32_t child) {
+    const RoamNode& x = mesh_.node(child);
+    return !evaluateAll_ && cull != Cull::Partial && (ps == InPiece::In || ps == InPiece::None) &&
+           x.seenCull == static_cast<uint8_t>(cull) && x.seenPiece == static_cast<uint8_t>(ps) &&
+           x.subtreeDeadline > odometerM_;
+  };
+  if (!skipped(c) || !skipped(c + 1)) {
+    glm::dvec3 e0[3], e1[3];
+    if (cull != Cull::Outside) {
+      const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
+      e0[0] = m;
+      e0[1] = eye[0];
+      e0[2] = eye[1];
+      e1[0] = m;
+      e1[1] = eye[2];
+      e1[2] = eye[0];
+    }
+    visitPriorities(w, c, e0, cull, ps);
+    visitPriorities(w, c + 1, e1, cull, ps);
   }
-  visitPriorities(w, c, e0, cull, ps);
-  visitPriorities(w, c + 1, e1, cull, ps);
   RoamNode& after = mesh_.node(t);
   after.subtreeDeadline = std::min({after.deadline, mesh_.node(c).subtreeDeadline, mesh_.node(c + 1).subtreeDeadline});
 }

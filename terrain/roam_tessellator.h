@@ -35,6 +35,7 @@
 // Deterministic: with maxQueueMs = 0 the same inputs give the same mesh. Frame thread only.
 
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <span>
 #include <unordered_map>
@@ -65,6 +66,9 @@ struct RoamOptions {
   double canopyM = 30.0;            // the tallest plant: wedgies grow by it for culling
   bool cacheChunks = true;          // output: append unchanged drawn chunks as cached (roam_output.cpp)
   bool deferPriorities = true;      // update: compute a priority only when it may have crossed a bound
+  // The most leaves a drawn chunk holds: larger chunks are fewer (less work per frame, fewer
+  // draws) but each change rebuilds more.
+  uint32_t chunkMaxLeaves = 64;
 };
 
 // The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
@@ -109,7 +113,8 @@ struct RoamFigures {
   // when the mesh does), after the splits.
   double achievedErrorPx = 0.0;
   uint64_t depthLimitedLeaves = 0;             // visible leaves over the bound at the deepest level (cannot split)
-  uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks appended as cached, and rebuilt
+  uint64_t chunksReused = 0, chunksBuilt = 0;  // output: drawn chunks handed out as cached, and rebuilt
+  uint64_t chunksMoved = 0;                    // of the reused: with vertices still morphing (a new version)
   uint64_t leavesEmitted = 0;  // output: leaves turned into vertices this frame (the rest came from chunks)
   uint64_t seedTriangles = 0;
   uint64_t seedInterpolated = 0;  // seed triangles refined below a coarser leaf
@@ -137,6 +142,8 @@ class RoamTessellator {
   void update(const EyeView& view, const PieceSet& pieces, double timeS);
   // The drawn leaves, one mesh per piece (+1 at the end: leaves not yet inside a piece, drawn
   // without imagery), and the seed triangles. `meshes` is resized to pieces.tiles().size() + 1.
+  // Most leaves come as references to the drawn chunks (TerrainMesh::chunks): valid until the
+  // next update() or output().
   void output(const EyeView& view, const PieceSet& pieces, double timeS, std::vector<TerrainMesh>& meshes,
               std::vector<SeedTriangle>& seeds);
 
@@ -160,8 +167,12 @@ class RoamTessellator {
   double projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
   InPiece pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const;
   InPiece pieceStateOf(const PieceSet& pieces, uint32_t t) const;
-  void eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const;
-  glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const;
+  // Inline: the traversals call them for every node they descend through.
+  void eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
+    const RoamNode& n = mesh_.node(t);
+    for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
+  }
+  glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const { return view.toEye(mesh_.vertex(v).at); }
   void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
   // Where emitLeaf writes: a piece's mesh, or a drawn chunk being built.
@@ -178,7 +189,7 @@ class RoamTessellator {
   bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
   // partial: the chunk root straddles the edge of the view; its triangles are culled one by one.
   void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
-  void collectChunk(Walk& w, uint32_t slot, uint32_t t, int bottomLevel, const LeafSink& sink);
+  void collectChunk(Walk& w, uint32_t t, const LeafSink& sink);
   void releaseChunks();
   void dropIdleChunks();
   static constexpr uint64_t kChunkIdleFrames = 64;
@@ -213,20 +224,18 @@ class RoamTessellator {
     auto operator<=>(const Projection&) const = default;
   } lastProjection_;
   bool evaluateAll_ = true;  // this update computes every priority again
-  // The output cache (roam_output.cpp): a node at the top of a band (a level that is a multiple
-  // of chunkLevels), not wholly outside the view, inside one piece and beyond the seeds keeps
-  // the leaves of its band as drawn, and is appended again as long as nothing in them changed
-  // (RoamNode::drawnStamp); only its morphing vertices are moved; where it straddles the edge of
-  // the view, its triangles are culled one by one. Chunks unused for kChunkIdleFrames outputs
-  // are dropped.
+  // The output cache (roam_output.cpp): the topmost node on the way down that is inside one
+  // piece, beyond the seeds, not wholly outside the view and holds at most chunkMaxLeaves
+  // leaves keeps its subtree's leaves as drawn (a TerrainChunk handed out by reference, never
+  // copied), as long as nothing in them changed (RoamNode::drawnStamp); only its morphing
+  // vertices are moved (a new version); where it straddles the edge of the view, its triangles
+  // are culled one by one. Chunks unused for kChunkIdleFrames outputs are dropped.
   struct DrawnChunk {
     uint32_t root = kNoNode;
-    uint64_t builtStamp = 0;  // the mesh's change count when built
+    uint64_t builtStamp = 0;  // the mesh's drawn epoch when built
     uint64_t usedFrame = 0;
     geo::TileId piece{};  // positions are relative to its origin, uvs in it
-    std::vector<TerrainVertex> vertices;
-    std::vector<uint32_t> indices;
-    std::vector<uint32_t> below;  // the chunk roots chunkLevels further down: drawn on their own
+    TerrainChunk mesh;
     // Each vertex's RoamVertex (to move it while it morphs, and to cull the chunk), the vertices
     // still morphing, and each triangle's wedgie thickness: where the chunk straddles the edge of
     // the view its triangles are culled one by one (a leaf's wedgie nests in its ancestors', so
@@ -235,8 +244,10 @@ class RoamTessellator {
     std::vector<uint32_t> morphing;
     std::vector<float> thickness;
   };
-  std::vector<glm::dvec3> chunkEye_;  // drawChunk's scratch: eye coordinates of a chunk's vertices
-  std::vector<DrawnChunk> chunks_;
+  std::vector<PlaneDistances> chunkPlanes_;  // drawChunk's scratch: plane distances of a chunk's vertices
+  std::deque<DrawnChunk> chunks_;            // a deque: the TerrainChunks handed out keep their address
+  uint64_t nextChunkId_ = 1;
+  uint64_t chunkEpoch_ = 0;  // this output's (RoamMesh::closeDrawnEpoch)
   std::vector<uint32_t> freeChunks_;
   // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
   struct Stamp {

@@ -205,7 +205,7 @@ std::span<const TerrainPiece> StreamedTerrain::pieces(double timeS) {
   std::vector<int32_t> drawnPiece(tiles.size(), -1);
   for (size_t i = 0; i < tiles.size(); ++i) {
     const geo::TileId& node = tiles[i];
-    if (meshes_[i].indices.empty()) continue;
+    if (meshes_[i].empty()) continue;
     drawnPiece[i] = static_cast<int32_t>(pieces_.size());
     auto [it, isNew] = nodes_.try_emplace(node);
     NodeState& st = it->second;
@@ -224,7 +224,7 @@ std::span<const TerrainPiece> StreamedTerrain::pieces(double timeS) {
     pieces_.push_back(p);
   }
   seedImagery(tiles, drawnPiece);
-  if (!meshes_.back().indices.empty()) {  // leaves not yet inside one piece: coloured by height
+  if (!meshes_.back().empty()) {  // leaves not yet inside one piece: coloured by height
     TerrainPiece p;
     p.mesh = &meshes_.back();
     pieces_.push_back(p);

@@ -2,6 +2,13 @@
 // A drawable terrain mesh: float vertices relative to a double-precision origin in the local
 // ENU frame (the renderer adds origin − camera in double, then draws in float), 32-bit indices.
 // Layout shared with shaders/terrain.vert (checked in render/terrain_pass.cpp).
+//
+// A mesh is its own triangles plus references to chunks: blocks of triangles the producer keeps
+// across frames (ROAM's drawn chunks, roam_output.cpp) with the same origin and imagery. A chunk
+// is never copied into the mesh: it keeps an id for as long as its triangles stay the same, and
+// a version that changes when its vertices move, so a consumer that keeps chunks (the renderer,
+// on the GPU) touches only the ones that changed. A chunk drawn partly (it straddles the edge of
+// the view) lists the triangles drawn this frame in `chunkIndices`.
 
 #include <cstdint>
 #include <vector>
@@ -18,12 +25,53 @@ struct TerrainVertex {
   glm::vec2 uv;        // imagery texture coordinates
 };
 
+// Kept by its producer between frames; valid until the producer's next frame.
+struct TerrainChunk {
+  uint64_t id = 0;       // new whenever its triangles change (never reused in a process)
+  uint64_t version = 0;  // changes whenever its vertices move (the same triangles)
+  std::vector<TerrainVertex> vertices;
+  std::vector<uint32_t> indices;  // into vertices
+};
+
+struct TerrainChunkDraw {
+  const TerrainChunk* chunk = nullptr;
+  // partial: indices [first, first + count) of TerrainMesh::chunkIndices (into the chunk's
+  // vertices); otherwise [first, first + count) of the chunk's own indices (all of them).
+  bool partial = false;
+  uint32_t first = 0, count = 0;
+};
+
 struct TerrainMesh {
   glm::dvec3 origin{0.0};
   std::vector<TerrainVertex> vertices;
   std::vector<uint32_t> indices;  // triangle list, counter-clockwise seen from above
+  std::vector<TerrainChunkDraw> chunks;
+  std::vector<uint32_t> chunkIndices;  // the partly drawn chunks' triangles this frame
 
-  size_t triangleCount() const { return indices.size() / 3; }
+  size_t triangleCount() const {
+    size_t n = indices.size();
+    for (const TerrainChunkDraw& c : chunks) n += c.count;
+    return n / 3;
+  }
+  bool empty() const { return indices.empty() && chunks.empty(); }
+  void clear() {
+    vertices.clear();
+    indices.clear();
+    chunks.clear();
+    chunkIndices.clear();
+  }
 };
+
+// Calls f(a, b, c) with the vertices of every triangle of `m`: its own, then its chunks'.
+template <class F>
+void forEachTriangle(const TerrainMesh& m, F&& f) {
+  for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
+    f(m.vertices[m.indices[i]], m.vertices[m.indices[i + 1]], m.vertices[m.indices[i + 2]]);
+  for (const TerrainChunkDraw& d : m.chunks) {
+    const uint32_t* idx = (d.partial ? m.chunkIndices.data() : d.chunk->indices.data()) + d.first;
+    const std::vector<TerrainVertex>& v = d.chunk->vertices;
+    for (uint32_t i = 0; i + 2 < d.count; i += 3) f(v[idx[i]], v[idx[i + 1]], v[idx[i + 2]]);
+  }
+}
 
 }  // namespace vegstream::terrain

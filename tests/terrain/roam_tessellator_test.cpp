@@ -83,24 +83,22 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
   std::vector<SeedTriangle> seeds;
   r->output(view, pieces, 0.0, meshes, seeds);
   ASSERT_EQ(meshes.size(), pieces.tiles().size() + 1);
-  EXPECT_EQ(meshes.back().indices.size(), 0u) << "every drawn leaf fits one piece once converged";
-  uint64_t triangles = 0;
+  EXPECT_EQ(meshes.back().triangleCount(), 0u) << "every drawn leaf fits one piece once converged";
+  uint64_t triangles = 0, inChunks = 0;
   for (size_t p = 0; p < pieces.tiles().size(); ++p) {
     const TerrainMesh& m = meshes[p];
-    for (size_t i = 0; i < m.indices.size(); i += 3) {
-      glm::dvec3 eye[3];
-      for (int k = 0; k < 3; ++k) {
-        const TerrainVertex& v = m.vertices[m.indices[i + size_t(k)]];
-        eye[k] = view.toEye(m.origin + glm::dvec3(v.position));
-        // uv inside the piece's tile
-        ASSERT_GE(v.uv.x, -1e-4f);
-        ASSERT_LE(v.uv.x, 1.0001f);
-        ASSERT_GE(v.uv.y, -1e-4f);
-        ASSERT_LE(v.uv.y, 1.0001f);
+    forEachTriangle(m, [&](const TerrainVertex& a, const TerrainVertex& b, const TerrainVertex& c) {
+      for (const TerrainVertex* v : {&a, &b, &c}) {  // uv inside the piece's tile
+        EXPECT_GE(v->uv.x, -1e-4f);
+        EXPECT_LE(v->uv.x, 1.0001f);
+        EXPECT_GE(v->uv.y, -1e-4f);
+        EXPECT_LE(v->uv.y, 1.0001f);
       }
       ++triangles;
-    }
+    });
+    for (const TerrainChunkDraw& d : m.chunks) inChunks += d.count / 3;
   }
+  EXPECT_GT(inChunks, 0u) << "the cached chunks are drawn by reference";
   EXPECT_GT(triangles, 500u);
   EXPECT_EQ(triangles, r->figures().drawnTriangles);
   // The hierarchical culling emits exactly the leaves whose own wedgie (thickness + canopy) is
@@ -172,15 +170,16 @@ TEST(RoamTessellator, SplitsAndMergesMorphInsteadOfPopping) {
 
 // True when a drawn triangle contains the point (x, y) of the ENU plane.
 bool drawnOver(const std::vector<TerrainMesh>& meshes, glm::dvec2 p) {
+  bool over = false;
   for (const TerrainMesh& m : meshes)
-    for (size_t i = 0; i < m.indices.size(); i += 3) {
+    forEachTriangle(m, [&](const TerrainVertex& a, const TerrainVertex& b, const TerrainVertex& c) {
       glm::dvec2 v[3];
-      for (int k = 0; k < 3; ++k)
-        v[k] = glm::dvec2(m.origin + glm::dvec3(m.vertices[m.indices[i + size_t(k)]].position));
-      auto side = [&](glm::dvec2 a, glm::dvec2 b) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
-      if (side(v[0], v[1]) >= 0 && side(v[1], v[2]) >= 0 && side(v[2], v[0]) >= 0) return true;
-    }
-  return false;
+      const TerrainVertex* abc[3] = {&a, &b, &c};
+      for (int k = 0; k < 3; ++k) v[k] = glm::dvec2(m.origin + glm::dvec3(abc[k]->position));
+      auto side = [&](glm::dvec2 x, glm::dvec2 y) { return (y.x - x.x) * (p.y - x.y) - (y.y - x.y) * (p.x - x.x); };
+      if (side(v[0], v[1]) >= 0 && side(v[1], v[2]) >= 0 && side(v[2], v[0]) >= 0) over = true;
+    });
+  return over;
 }
 
 TEST(RoamTessellator, ATriangleWhoseCanopyPokesIntoViewIsKept) {
