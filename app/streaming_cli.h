@@ -38,6 +38,7 @@ struct StreamingCli {
   int plantSegments = 5;              // n_max segments per blade (eq. 4)
   double plantLodM = 4.0;             // eq. 4's distance unit
   bool noPlantShadows = false;
+  std::string bladePath = "auto";  // auto | tessellation | compute | mesh (render::BladePath)
 };
 
 // Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).

@@ -70,6 +70,8 @@ struct RecordingMeta {
     uint32_t maxSegments = 0;    // n_max segments of a blade (eq. 4)
     double lodDistanceM = 0.0;   // eq. 4's distance unit
     bool shadows = false;
+    std::string bladePath;           // how plants became triangles: tessellation | compute (render/README.md)
+    std::string bladePathRequested;  // --blade-path: auto | tessellation | compute
     std::vector<std::string> species;  // names, in catalog order
   } plants;
   bool validate = false;

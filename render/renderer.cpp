@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "core/stopwatch.h"
+#include "render/blade_pass.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
 #include "render/frame_uniforms.h"
@@ -51,6 +52,7 @@ struct FrameSlot {
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
   std::optional<VegetationFigures> vegetation;
+  bool bladesExpanded = false;  // the compute blade path drew this frame's plants
 };
 
 VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
@@ -69,6 +71,8 @@ struct Renderer::Impl {
   std::unique_ptr<ClassifyPass> classify;
   std::unique_ptr<PlantMarkerPass> markers;
   std::unique_ptr<PlantPass> plantPass;
+  std::unique_ptr<BladePass> blades;
+  BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
@@ -88,6 +92,11 @@ struct Renderer::Impl {
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
   FrameResult collect(FrameSlot& slot);
+  // The path a frame's plants take: the speed-of-light pipeline is a tessellation pipeline.
+  BladePath pathFor(const PlantDrawOptions& draw) const {
+    if (draw.speedOfLight) return BladePath::Tessellation;
+    return draw.path == BladePath::Auto ? bladePath : draw.path;
+  }
 };
 
 void Renderer::Impl::init(const RendererOptions& options) {
@@ -154,6 +163,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
+  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa));
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -219,6 +229,14 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
                          PlantMarkerPass::verticesPerGroup(plants->clusterSize), patchMask, retireBuffer);
     slot.timer->endPass(cmd);
   }
+  // The compute blade path expands the plants before rendering (render/blade_pass.h).
+  slot.bladesExpanded = plants && plants->style == PlantStyle::Plants && pathFor(plants->draw) == BladePath::Compute;
+  if (slot.bladesExpanded) {
+    slot.timer->beginPass(cmd, "blades");
+    blades->recordExpand(cmd, slotIndex, slot.descriptorSet, *classify, *plantPass, plants->triangles,
+                         plants->clusterSize, terrainPass->imageryView(), plants->draw, retireBuffer);
+    slot.timer->endPass(cmd);
+  }
 
   targets->beginRendering(cmd);
   slot.timer->beginPass(cmd, "sky");
@@ -230,7 +248,9 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   slot.timer->endPass(cmd);
   if (plants && plants->style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
-    if (patchMask != 0)
+    if (patchMask != 0 && slot.bladesExpanded)
+      blades->recordDraw(cmd, slotIndex, slot.descriptorSet);
+    else if (patchMask != 0)
       plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants->draw);
     markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
     slot.timer->endPass(cmd);
@@ -321,6 +341,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
   r.terrainTriangles = slot.terrainTriangles;
   if (slot.vegetation) {
     classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    if (slot.bladesExpanded) blades->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     r.vegetation = slot.vegetation;
   }
   r.gpu = slot.timer->read();
@@ -369,6 +390,14 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
     return makeError(ErrorKind::InvalidInput, "--msaa " + std::to_string(options.msaa) + " is not offered by " +
                                                   info.name + "; choose one of " + info.msaaList());
   impl->msaa = options.msaa;
+  // This build has no mesh-shader blade path (VK_EXT_mesh_shader): refused before any frame.
+  if (options.bladePath == BladePath::Mesh)
+    return makeError(ErrorKind::InvalidInput,
+                     "--blade-path mesh is not available on " + info.name +
+                         ": this build has no mesh-shader (VK_EXT_mesh_shader) blade path; use auto, compute or "
+                         "tessellation");
+  // Auto: compute, which every Vulkan device has and which keeps per-blade work off the graphics stages.
+  impl->bladePath = options.bladePath == BladePath::Tessellation ? BladePath::Tessellation : BladePath::Compute;
   try {
     impl->init(options);
   } catch (const VulkanError& e) {
@@ -381,6 +410,7 @@ const DeviceInfo& Renderer::device() const { return impl_->ctx->info(); }
 uint32_t Renderer::width() const { return impl_->targets->extent().width; }
 uint32_t Renderer::height() const { return impl_->targets->extent().height; }
 int Renderer::msaa() const { return impl_->msaa; }
+BladePath Renderer::bladePath() const { return impl_->bladePath; }
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 
@@ -402,7 +432,8 @@ uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLay
 uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
 uint64_t Renderer::gpuBytes() const {
-  return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes();
+  return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
+         impl_->blades->gpuBytes();
 }
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
@@ -417,6 +448,8 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
 }
 
 Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
+  if (request.vegetation && request.vegetation->draw.path == BladePath::Mesh)
+    return makeError(ErrorKind::Unsupported, "blade path mesh: this build has no mesh-shader blade path");
   return guardGpu([&]() -> Result<uint64_t> { return impl_->submit(request); });
 }
 

@@ -23,6 +23,9 @@ struct RendererOptions {
   uint32_t width = 640;
   uint32_t height = 360;
   int msaa = 4;
+  // How plants become triangles (frame_types.h): Auto picks Compute; Mesh is refused by create()
+  // (this build has no mesh-shader path) with an InvalidInput error naming the device.
+  BladePath bladePath = BladePath::Auto;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
 };
 
@@ -37,6 +40,8 @@ class Renderer {
   uint32_t width() const;
   uint32_t height() const;
   int msaa() const;
+  // The blade path frames use unless they ask for another: Tessellation or Compute, never Auto.
+  BladePath bladePath() const;
   bool hasWindow() const;
   const ValidationLog* validationLog() const;
 

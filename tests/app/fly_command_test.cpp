@@ -58,8 +58,8 @@ std::vector<double> column(const fs::path& recording, const std::string& name) {
 
 TEST_F(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
   const fs::path out = testOutputDir() / "out";
-  const auto r = runVegstream("fly '" + zion_ + "' --headless --validate --frames 3 --size 160x90 --msaa 1 --out '" +
-                              out.string() + "'");
+  const auto r = runVegstream("fly '" + zion_ + "' --headless --validate --frames 3 --size 160x90 --msaa 1 " +
+                              "--blade-path auto --out '" + out.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* f : {"frames/frame_00000.png", "frames/frame_00001.png", "frames/frame_00002.png", "frames.csv",
                         "recording.json", "summary.json"})
@@ -71,6 +71,7 @@ TEST_F(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
   EXPECT_EQ(rec["size"][0], 160);
   EXPECT_EQ(rec["path"]["name"], "benchmark-30s");
   EXPECT_EQ(rec["streaming"]["mode"], "settled");
+  EXPECT_EQ(rec["plants"]["blade_path"], "compute");
   EXPECT_FALSE(rec["device"]["name"].get<std::string>().empty());
   const auto summary = nlohmann::json::parse(readWhole(out / "summary.json"));
   EXPECT_EQ(summary["frames"], 3);
@@ -147,7 +148,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"size_too_large", "'{ZION}' --size 99999x90", "--size"},
                       BadInput{"msaa_three", "'{ZION}' --msaa 3", "--msaa"},
                       // lavapipe offers 1 and 4 samples only
-                      BadInput{"msaa_unoffered", "'{ZION}' --device llvmpipe --msaa 8", "--msaa 8"}),
+                      BadInput{"msaa_unoffered", "'{ZION}' --device llvmpipe --msaa 8", "--msaa 8"},
+                      // no mesh-shader blade path in this build: the line names the option, the device and why
+                      BadInput{"blade_path_mesh", "'{ZION}' --device llvmpipe --blade-path mesh",
+                               "--blade-path mesh is not available on llvmpipe"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST_F(FlyCommand, WindowModeUnderAVirtualDisplay) {

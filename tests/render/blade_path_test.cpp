@@ -1,0 +1,200 @@
+// The two blade paths (render/plant_pass.h: tessellation; render/blade_pass.h: compute) on
+// lavapipe at 320 × 180 draw the same plants: the same classify figures; the compute path writes
+// exactly the triangles the geometry stages emit (grass, gravel, flower kinds, with and without
+// shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
+// as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
+// invocations); the images differ only at blade edges; each path is deterministic; the validation
+// layers stay silent (GpuTest). RendererOptions: auto resolves to compute, mesh is refused
+// naming the option and the device.
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "plant_field.h"
+#include "render/png_writer.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+class BladePathTest : public GpuTest {};
+
+PlantDrawOptions withPath(PlantDrawOptions d, BladePath path) {
+  d.path = path;
+  return d;
+}
+
+void savePng(const std::string& name, const ColorImage& img) {
+  if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR")) (void)writePng(std::string(dir) + "/" + name, img);
+}
+
+// Pixels of the whole frame that differ by more than `threshold` in any channel.
+size_t differing(const ColorImage& a, const ColorImage& b, int threshold) {
+  return changedPixels(a, b, 0, a.height, threshold);
+}
+
+// Pixels that differ between a and b but where neither a nor b differs from `bare` (the field
+// without plants) within a 1-pixel neighbourhood: differences away from any plant pixel.
+size_t differingAwayFromPlants(const ColorImage& a, const ColorImage& b, const ColorImage& bare) {
+  auto plantAt = [&](const ColorImage& img, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = std::clamp(x + dx, 0, int(img.width) - 1), v = std::clamp(y + dy, 0, int(img.height) - 1);
+        const size_t i = (size_t(v) * img.width + size_t(u)) * 4;
+        for (int c = 0; c < 3; ++c)
+          if (std::abs(int(img.rgba[i + c]) - int(bare.rgba[i + c])) > 4) return true;
+      }
+    return false;
+  };
+  size_t n = 0;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x) {
+      const size_t i = (size_t{y} * a.width + x) * 4;
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])));
+      if (d > 4 && !plantAt(a, int(x), int(y)) && !plantAt(b, int(x), int(y))) ++n;
+    }
+  return n;
+}
+
+TEST_F(BladePathTest, BothPathsDrawTheSameGrassAndImagesDifferOnlyAtBladeEdges) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  EXPECT_EQ(r->bladePath(), BladePath::Compute) << "auto picks compute";
+  const PlantDrawOptions draw;  // the defaults: eq. 4 LOD, shadows on
+  const FieldResult tess = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Tessellation));
+  const FieldResult comp = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Compute));
+  savePng("paths_tessellation.png", *tess.with.color);
+  savePng("paths_compute.png", *comp.with.color);
+  ASSERT_TRUE(tess.with.vegetation && comp.with.vegetation);
+  const VegetationFigures &vt = *tess.with.vegetation, &vc = *comp.with.vegetation;
+  EXPECT_EQ(vt.plants, vc.plants) << "the same classify figures";
+  EXPECT_EQ(vt.groups, vc.groups);
+  EXPECT_GT(vc.plantsTotal, 20000u);
+  EXPECT_FALSE(vt.bladeCounts) << "the tessellation path has no expansion counters";
+  ASSERT_TRUE(vc.bladeCounts);
+  EXPECT_EQ(vc.bladesDropped, 0u);
+
+  const PipelineStatistics &st = tess.with.gpu.statistics, &sc = comp.with.gpu.statistics;
+  ASSERT_TRUE(st.available && sc.available);
+  // The compute path wrote exactly the triangles the geometry stages emitted.
+  EXPECT_GT(st.geometryPrimitives, vc.plantsTotal);
+  EXPECT_EQ(vc.bladeTriangles, st.geometryPrimitives);
+  // No tessellation or geometry work in the compute path; its blades are input primitives
+  // instead of one patch per group; the clipper sees the same primitives either way.
+  EXPECT_EQ(sc.tessControlPatches, 0u);
+  EXPECT_EQ(sc.tessEvaluationInvocations, 0u);
+  EXPECT_EQ(sc.geometryPrimitives, 0u);
+  EXPECT_EQ(st.tessControlPatches, vt.groupsTotal);
+  EXPECT_EQ(sc.inputPrimitives - vc.bladeTriangles, st.inputPrimitives - st.tessControlPatches);
+  EXPECT_EQ(sc.clippingInvocations, st.clippingInvocations);
+  EXPECT_GT(sc.computeInvocations, st.computeInvocations) << "the expansion runs in compute";
+  // Rasterised coverage agrees to float rounding at edges.
+  const double fragRatio = double(sc.fragmentInvocations) / double(st.fragmentInvocations);
+  EXPECT_NEAR(fragRatio, 1.0, 0.01);
+
+  // Images: the same plants in the same places, shaded alike; vertices equal up to float
+  // rounding move a few edge pixels.
+  const ColorImage &a = *tess.with.color, &b = *comp.with.color;
+  const double pixels = double(kW) * kH;
+  const size_t big = differing(a, b, 24), any = differing(a, b, 4);
+  const size_t plantPixels = changedPixels(a, *tess.without.color, 0, kH, 4);
+  std::printf("%zu plant pixels; differing pixels: %zu by > 4, %zu by > 24 (of %.0f); away from plants %zu\n",
+              plantPixels, any, big, pixels, differingAwayFromPlants(a, b, *tess.without.color));
+  ASSERT_GT(plantPixels, size_t(0.1 * pixels)) << "the grass covers the near ground";
+  EXPECT_LT(double(big), 0.02 * pixels);
+  EXPECT_GT(1.0 - double(any) / pixels, 0.95) << "share of pixels that match within 4";
+  EXPECT_EQ(differingAwayFromPlants(a, b, *tess.without.color), 0u) << "differences only at blades";
+}
+
+TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndWithoutShadows) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  for (const char* species : {"grass", "red gravel", "dry tufts"})
+    for (bool shadows : {true, false}) {
+      SCOPED_TRACE(std::string(species) + (shadows ? ", shadows" : ", no shadows"));
+      PlantDrawOptions draw;
+      draw.shadows = shadows;
+      draw.maxSegments = 4;
+      const FieldResult t = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {},
+                                        24.0f);
+      const FieldResult c =
+          renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+      ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
+      EXPECT_EQ(t.with.vegetation->plants, c.with.vegetation->plants);
+      ASSERT_GT(t.with.gpu.statistics.geometryPrimitives, 0u);
+      EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+      EXPECT_EQ(c.with.gpu.statistics.clippingInvocations, t.with.gpu.statistics.clippingInvocations);
+      EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
+      EXPECT_EQ(differingAwayFromPlants(*t.with.color, *c.with.color, *t.without.color), 0u);
+      const std::string name = std::string(species) + (shadows ? "" : "_noshadow");
+      savePng("kind_" + name + "_tessellation.png", *t.with.color);
+      savePng("kind_" + name + "_compute.png", *c.with.color);
+    }
+}
+
+TEST_F(BladePathTest, LookingDownTheComputePathWritesTheAnalyticCounts) {
+  // Every seed triangle in view, every blade at n_max segments: 2 triangles per segment per blade,
+  // doubled by the shadows; vertices 2 (n + 1) per blade, doubled too.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  PlantDrawOptions draw;
+  draw.maxSegments = 4;
+  draw.fullDetail = true;
+  draw.path = BladePath::Compute;
+  const FieldView top{{0.0, 33.0, 120.0}, {0.0, 0.0, -1.0}};
+  const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, draw, top, 24.0f);
+  ASSERT_TRUE(f.with.vegetation);
+  const VegetationFigures& v = *f.with.vegetation;
+  ASSERT_GT(v.plantsTotal, 1000u);
+  EXPECT_EQ(v.bladeTriangles, v.plantsTotal * 4 * 2 * 2);
+  EXPECT_EQ(v.bladeVertices, v.plantsTotal * 2 * (4 + 1) * 2);
+  EXPECT_EQ(f.with.gpu.statistics.inputVertices, f.without.gpu.statistics.inputVertices + 3 * v.bladeTriangles);
+}
+
+TEST_F(BladePathTest, EachPathIsDeterministic) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  for (BladePath path : {BladePath::Tessellation, BladePath::Compute}) {
+    SCOPED_TRACE(bladePathName(path));
+    const PlantDrawOptions draw = withPath({}, path);
+    const FieldResult a = renderField(*r, "grass", PlantStyle::Plants, draw);
+    const FieldResult b = renderField(*r, "grass", PlantStyle::Plants, draw);
+    ASSERT_TRUE(a.with.vegetation && b.with.vegetation);
+    EXPECT_EQ(a.with.vegetation->plants, b.with.vegetation->plants);
+    EXPECT_EQ(a.with.vegetation->bladeTriangles, b.with.vegetation->bladeTriangles);
+    EXPECT_EQ(a.with.gpu.statistics.clippingInvocations, b.with.gpu.statistics.clippingInvocations);
+    EXPECT_EQ(a.with.gpu.statistics.fragmentInvocations, b.with.gpu.statistics.fragmentInvocations);
+    // Groups (and so triangles) arrive in atomic order: equal-depth ties may resolve either way.
+    EXPECT_LT(differing(*a.with.color, *b.with.color, 24), size_t(0.002 * kW * kH));
+  }
+}
+
+TEST_F(BladePathTest, MeshIsRefusedNamingTheOptionAndTheDeviceAndAutoIsCompute) {
+  RendererOptions o = options(64, 36, 1);
+  o.bladePath = BladePath::Mesh;
+  auto refused = Renderer::create(o);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(refused.error().message.find("--blade-path mesh"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("VK_EXT_mesh_shader"), std::string::npos) << refused.error().message;
+  o.bladePath = BladePath::Tessellation;
+  auto tess = Renderer::create(o);
+  ASSERT_TRUE(tess.ok());
+  EXPECT_EQ((*tess)->bladePath(), BladePath::Tessellation);
+  EXPECT_NE(refused.error().message.find((*tess)->device().name), std::string::npos) << refused.error().message;
+  o.bladePath = BladePath::Auto;
+  auto autoPath = Renderer::create(o);
+  ASSERT_TRUE(autoPath.ok());
+  EXPECT_EQ((*autoPath)->bladePath(), BladePath::Compute);
+  EXPECT_EQ(parseBladePath("compute"), BladePath::Compute);
+  EXPECT_FALSE(parseBladePath("fancy").has_value());
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing
