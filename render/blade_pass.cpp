@@ -8,6 +8,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
@@ -54,18 +56,14 @@ constexpr VkShaderStageFlags kStages =
 
 VkDescriptorSetLayoutBinding binding(uint32_t b, VkDescriptorType type) { return {b, type, 1, kStages, nullptr}; }
 
-// Most plants the classify pass can put in a frame's groups: per triangle ⌈min(N, C)⌉ seeds of
-// cluster 0 plus C per further cluster (vegetation/plant_seeding.h).
-uint64_t plantBound(std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize) {
-  uint64_t n = 0;
-  for (const SeedTriangleGpu& t : triangles) {
-    if (t.layer < 0) continue;
-    const uint32_t items = vegetation::classifyItems(t.v0.w, clusterSize);
-    if (items == 0) continue;
-    const auto seeds = static_cast<uint32_t>(std::ceil(std::min(t.v0.w, static_cast<float>(clusterSize))));
-    n += seeds + uint64_t{items - seeds} * clusterSize;
-  }
-  return n;
+// Most plants the classify pass can put in a triangle's groups: ⌈min(N, C)⌉ seeds of cluster 0
+// plus C per further cluster (vegetation/plant_seeding.h).
+uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
+  if (t.layer < 0) return 0;
+  const uint32_t items = vegetation::classifyItems(t.v0.w, clusterSize);
+  if (items == 0) return 0;
+  const auto seeds = static_cast<uint32_t>(std::ceil(std::min(t.v0.w, static_cast<float>(clusterSize))));
+  return seeds + uint64_t{items - seeds} * clusterSize;
 }
 
 }  // namespace
@@ -119,13 +117,41 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   }
 }
 
-void BladePass::ensureCapacity(Slot& s, int slot, uint64_t plants, uint32_t maxSegments,
-                               const RetireBuffer& retire) {
-  // Per plant at most: a flower's stem strip and head, and its shadow (blades.comp plantSize).
-  const uint64_t n = maxSegments;
-  const uint64_t vertices = std::min(plants * (4 * n + 12), kMaxVertices);
-  const uint64_t indices = std::min(plants * (12 * n + 12), kMaxIndices);
-  const uint64_t records = std::min(plants, kMaxPlants);
+void BladePass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
+  maxHeightM_ = 0.0f;
+  for (const vegetation::Species& sp : catalog.species) maxHeightM_ = std::max(maxHeightM_, sp.heightM.max);
+}
+
+BladePass::Bound BladePass::bound(std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize,
+                                  const PlantDrawOptions& o) const {
+  Bound b;
+  for (const SeedTriangleGpu& t : triangles) {
+    const uint64_t plants = plantBound(t, clusterSize);
+    if (plants == 0) continue;
+    // The triangle's most segments: common/plant_lod.glsl with the tallest species' radius (a
+    // larger radius, a nearer distance, more segments) and the distance shrunk by 0.1 % so float
+    // rounding on the GPU never gives more.
+    uint64_t n = o.maxSegments;
+    if (!o.fullDetail) {
+      const glm::vec3 a(t.v0), b1(t.v1), c(t.v2), centre = (a + b1 + c) / 3.0f;
+      const double radius = std::max({glm::length(a - centre), glm::length(b1 - centre), glm::length(c - centre)}) +
+                            double(maxHeightM_);
+      const double d = std::max(double(glm::length(centre)) - radius, 0.0) / o.lodDistanceM * 0.999;
+      const double segments = std::ceil(o.maxSegments / std::pow(std::max(d, 1.0), 2.0));
+      n = static_cast<uint64_t>(std::clamp(segments, 1.0, double(o.maxSegments)));
+    }
+    // Per plant at most a flower's stem strip and head, and its shadow (blades.comp plantSize).
+    b.plants += plants;
+    b.vertices += plants * (4 * n + 12);
+    b.indices += plants * (12 * n + 12);
+  }
+  return b;
+}
+
+void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire) {
+  const uint64_t vertices = std::min(need.vertices, kMaxVertices);
+  const uint64_t indices = std::min(need.indices, kMaxIndices);
+  const uint64_t records = std::min(need.plants, kMaxPlants);
   const std::string tag = " (slot " + std::to_string(slot) + ")";
   auto grow = [&](GpuBuffer& b, uint64_t count, VkDeviceSize stride, VkBufferUsageFlags usage, const char* name) {
     const VkDeviceSize bytes = std::max<uint64_t>(count, 1) * stride;
@@ -153,7 +179,7 @@ void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   const uint32_t mask = bladeMask(classify);
   s.expanded = mask != 0 && classify.triangles(slot) != VK_NULL_HANDLE;
   if (!s.expanded) return;
-  ensureCapacity(s, slot, plantBound(triangles, clusterSize), options.maxSegments, retire);
+  ensureCapacity(s, slot, bound(triangles, clusterSize, options), retire);
 
   // The slot's previous frame has finished (the renderer waited on its fence): its sets are free.
   writeUniformBuffer(*ctx_, s.inputSet, classify.species(), sizeof(SpeciesBlock), 0);

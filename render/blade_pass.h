@@ -17,8 +17,10 @@
 // stages would emit (same plants, blades, segment counts, shadows; vertex positions equal up to
 // float rounding), plus an indexed indirect draw whose count the GPU wrote (reservation by
 // atomics); recordDraw, inside the frame's rendering scope, draws it. The buffers grow (per slot,
-// retired through the deletion queue) to the CPU's upper bound of the frame's plants, up to a
-// ceiling; a plant beyond the ceiling is dropped whole and counted (VegetationFigures::bladesDropped).
+// retired through the deletion queue) to the CPU's upper bound of the frame's vertices, indices
+// and plants (per seed triangle: its most plants × the largest plant at the triangle's most
+// eq. 4 segments), up to a ceiling; a plant beyond the ceiling is dropped whole and counted
+// (VegetationFigures::bladesDropped).
 
 #include <array>
 
@@ -36,6 +38,10 @@ class BladePass {
   using RetireBuffer = ClassifyPass::RetireBuffer;
 
   BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+
+  // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
+  // buffers are sized for); call with ClassifyPass::setCatalog.
+  void setCatalog(const vegetation::SpeciesCatalog& catalog);
 
   // Species with a blade kind (the plant pipelines' kinds): bit s set.
   static uint32_t bladeMask(const ClassifyPass& classify) { return PlantPass::patchMask(classify); }
@@ -66,9 +72,14 @@ class BladePass {
     PlantPush drawPush{};
     bool expanded = false;
   };
-  void ensureCapacity(Slot& s, int slot, uint64_t plants, uint32_t maxSegments, const RetireBuffer& retire);
+  struct Bound {
+    uint64_t plants = 0, vertices = 0, indices = 0;
+  };
+  Bound bound(std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize, const PlantDrawOptions& o) const;
+  void ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire);
 
   const Context* ctx_;
+  float maxHeightM_ = 0.0f;  // the catalog's tallest plant
   DescriptorSetLayout inputLayout_, bladeLayout_;
   DescriptorPool pool_;
   PipelineLayout layout_;

@@ -164,6 +164,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
   blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa));
+  blades->setCatalog(vegetation::defaultSpeciesCatalog());
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -443,6 +444,7 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   return guardGpu([&]() -> Status {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
     impl_->classify->setCatalog(catalog);
+    impl_->blades->setCatalog(catalog);
     return {};
   });
 }

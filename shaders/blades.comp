@@ -4,17 +4,18 @@
 // §3.5–3.6): everything the tessellation path recomputes per vertex (plant.tese) or per
 // primitive (grass.geom, gravel.geom, flowers.geom) is computed here once per plant, and the
 // plant is written out as finished triangles that blade.vert only has to fetch. One thread per
-// classified group of species pc.species, looping over the group's plants: the group's
-// frustum test and eq. 4 segment count (common/plant_lod.glsl), then per plant its parameters
-// (common/plant_params.glsl), the imagery colour under it, its vertices on the solved blade
-// shape, the kind's extrusion (tapered blade strip, camera-facing stone diamond, stem with a flower
-// head) and, when shadows are on and the sun is high enough over the seed triangle, the same
+// classified group of species pc.species for the group's frustum test and eq. 4 segment count
+// (common/plant_lod.glsl), then the workgroup's plants shared out one per thread: per plant its
+// parameters (common/plant_params.glsl), the imagery colour under it, its vertices on the solved
+// blade shape, the kind's extrusion (tapered blade strip, camera-facing stone diamond, stem with
+// a flower head) and, when shadows are on and the sun is high enough over the seed triangle, the same
 // geometry projected onto the triangle's plane (§3.6). The same plants, segments and triangles
 // as the tessellation path; the figures (blade_args.comp) count them.
 //
-// Space is reserved per workgroup (shared-memory atomics, then one global atomic per counter),
-// so the global counters see 3 atomics per 64 groups. A plant that does not fit in the buffers is
-// dropped whole and counted; indices it reserved below the capacity become degenerate triangles.
+// Space is reserved per workgroup (a prefix sum and shared-memory atomics, then one global atomic
+// per counter), so the global counters see 3 atomics per 64 groups. A plant that does not fit in
+// the buffers is dropped whole and counted; indices it reserved below the capacity become
+// degenerate triangles.
 layout(local_size_x = 64) in;
 #include "frame_uniforms.glsl"
 #include "philox.glsl"
@@ -30,7 +31,13 @@ layout(set = 2, binding = 4, std430) readonly buffer ClassifyDraws { uvec4 class
 
 const uint kGrass = 0u, kGravel = 1u, kFlowers = 2u;
 
-shared uint sVertices, sIndices, sPlants;
+const uint kGroupSize = 64u;  // render/blade_pass.cpp and blade_args.comp: one thread per group
+shared uint sPlantEnd[kGroupSize];   // inclusive prefix sum of the groups' plants in view
+shared uint sVertexAt[kGroupSize];   // each group's first vertex, index and plant record (workgroup-relative,
+shared uint sIndexAt[kGroupSize];    // then global)
+shared uint sPlantAt[kGroupSize];
+shared uint sShape[kGroupSize];      // segments n | copies << 8 | kind << 10
+shared uint sVertices, sIndices;
 shared uint sBaseVertex, sBaseIndex, sBasePlant;
 
 // Vertices and indices one copy (the plant or its shadow) of a plant of `kind` with `n` segments needs.
@@ -123,65 +130,81 @@ uint putPlant(PlantParams p, uint n, bool shadow, uint at) {
 }
 
 void main() {
+  // Phase 1, one thread per group: the frustum test, eq. 4 segments, shadow copies, kind.
+  uint lid = gl_LocalInvocationIndex;
   uint gi = gl_GlobalInvocationID.x;
-  bool inView = gi < classifyDraws[pc.species].y;
-  PlantCluster g;
-  SeedTriangle t;
-  uint n = 0u, copies = 0u, kind = 0u;
-  uvec2 size = uvec2(0u);
-  if (inView) {
-    g = records[pc.species * pc.speciesCapacity + gi];
-    t = triangles[g.triangle];
+  uint plants = 0u, n = 1u, copies = 1u, kind = 0u;
+  if (gi < classifyDraws[pc.species].y) {
+    PlantCluster g = records[pc.species * pc.speciesCapacity + gi];
+    SeedTriangle t = triangles[g.triangle];
     vec2 lod = groupLod(g, t);
-    inView = lod.x > 0.5;
     n = uint(lod.y);
     kind = catalog.species[g.species].flags.y;
     vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
-    gPlane = vec4(nrm, -dot(nrm, t.v0.xyz));
-    copies = ((pc.flags & kFlagShadows) != 0u && castsShadow(gPlane)) ? 2u : 1u;
-    size = plantSize(kind, n) * copies;
+    copies = ((pc.flags & kFlagShadows) != 0u && castsShadow(vec4(nrm, -dot(nrm, t.v0.xyz)))) ? 2u : 1u;
+    plants = lod.x > 0.5 ? g.seedCount : 0u;
   }
-  uint plants = inView ? g.seedCount : 0u;
+  uvec2 size = plantSize(kind, n) * copies;
+  sShape[lid] = n | (copies << 8u) | (kind << 10u);
 
-  // Reserve this workgroup's space: local offsets, then one global atomic per counter.
-  if (gl_LocalInvocationIndex == 0u) {
+  // Reserve the workgroup's space: an ordered prefix sum of plants (phase 2 finds a plant's
+  // group by it), shared atomics for vertices and indices, then one global atomic per counter.
+  if (lid == 0u) {
     sVertices = 0u;
     sIndices = 0u;
-    sPlants = 0u;
   }
+  sPlantEnd[lid] = plants;
   barrier();
-  uint myVertex = atomicAdd(sVertices, plants * size.x);
-  uint myIndex = atomicAdd(sIndices, plants * size.y);
-  uint myPlant = atomicAdd(sPlants, plants);
+  for (uint off = 1u; off < kGroupSize; off <<= 1u) {
+    uint v = lid >= off ? sPlantEnd[lid - off] : 0u;
+    barrier();
+    sPlantEnd[lid] += v;
+    barrier();
+  }
+  sVertexAt[lid] = atomicAdd(sVertices, plants * size.x);
+  sIndexAt[lid] = atomicAdd(sIndices, plants * size.y);
   barrier();
-  if (gl_LocalInvocationIndex == 0u) {
+  uint total = sPlantEnd[kGroupSize - 1u];
+  if (lid == 0u) {
     sBaseVertex = atomicAdd(state.reservedVertices, sVertices);
     sBaseIndex = atomicAdd(state.reservedIndices, sIndices);
-    sBasePlant = atomicAdd(state.reservedPlants, sPlants);
+    sBasePlant = atomicAdd(state.reservedPlants, total);
   }
   barrier();
-  if (plants == 0u) return;
-  myVertex += sBaseVertex;
-  myIndex += sBaseIndex;
-  myPlant += sBasePlant;
 
-  gKind = kind;
-  for (uint l = 0u; l < plants; ++l) {
-    uint vAt = myVertex + l * size.x, iAt = myIndex + l * size.y, pAt = myPlant + l;
-    if (vAt + size.x > state.vertexCapacity || iAt + size.y > state.indexCapacity || pAt >= state.plantCapacity ||
+  // Phase 2, one thread per plant: the workgroup's plants shared out over its threads, so a
+  // group of C plants is C threads' work, not one thread's loop.
+  for (uint q = lid; q < total; q += kGroupSize) {
+    uint k = 0u;  // the group: the first whose prefix end passes q
+    for (uint step = kGroupSize / 2u; step > 0u; step >>= 1u)
+      if (sPlantEnd[k + step - 1u] <= q) k += step;
+    uint first = k == 0u ? 0u : sPlantEnd[k - 1u];
+    uint l = q - first;
+    uint shape = sShape[k];
+    uint segs = shape & 0xffu, copiesK = (shape >> 8u) & 3u, kindK = shape >> 10u;
+    uvec2 sz = plantSize(kindK, segs) * copiesK;
+    uint vAt = sBaseVertex + sVertexAt[k] + l * sz.x;
+    uint iAt = sBaseIndex + sIndexAt[k] + l * sz.y;
+    uint pAt = sBasePlant + q;
+    if (vAt + sz.x > state.vertexCapacity || iAt + sz.y > state.indexCapacity || pAt >= state.plantCapacity ||
         pAt > kBladePlantMask) {
       // Does not fit: dropped whole; its indices under the capacity draw nothing.
       atomicAdd(state.droppedPlants, 1u);
-      for (uint i = iAt; i < min(iAt + size.y, state.indexCapacity); ++i) bladeIndices[i] = 0u;
+      for (uint i = iAt; i < min(iAt + sz.y, state.indexCapacity); ++i) bladeIndices[i] = 0u;
       continue;
     }
+    PlantCluster g = records[pc.species * pc.speciesCapacity + gl_WorkGroupID.x * kGroupSize + k];
+    SeedTriangle t = triangles[g.triangle];
+    vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
+    gPlane = vec4(nrm, -dot(nrm, t.v0.xyz));
     uint seed = g.firstSeed + l;
     PlantParams p = plantParams(g, t, seed);
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
     bladePlants[pAt] = BladePlant(vec4(groundColour(t, r), p.colourModulation), vec4(gPlane.xyz, p.sPrime));
-    gPlantWord = pAt | ((kind == kGravel ? 1u : 0u) << kBladeKindShift);
+    gKind = kindK;
+    gPlantWord = pAt | ((kindK == kGravel ? 1u : 0u) << kBladeKindShift);
     gVertex = vAt;
-    uint at = putPlant(p, n, false, iAt);
-    if (copies == 2u) putPlant(p, n, true, at);
+    uint at = putPlant(p, segs, false, iAt);
+    if (copiesK == 2u) putPlant(p, segs, true, at);
   }
 }

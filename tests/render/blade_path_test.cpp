@@ -156,6 +156,28 @@ TEST_F(BladePathTest, LookingDownTheComputePathWritesTheAnalyticCounts) {
   EXPECT_EQ(f.with.gpu.statistics.inputVertices, f.without.gpu.statistics.inputVertices + 3 * v.bladeTriangles);
 }
 
+TEST_F(BladePathTest, TheBuffersFollowTheFramesLodBoundAndNothingIsDropped) {
+  // The expansion's buffers are sized by the CPU's bound at each triangle's eq. 4 segments: a
+  // full-detail frame of the same field needs (and gets) more than a level-of-detail one.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  PlantDrawOptions draw = withPath({}, BladePath::Compute);
+  draw.maxSegments = 8;
+  const uint64_t before = r->gpuBytes();
+  const FieldResult lod = renderField(*r, "grass", PlantStyle::Plants, draw);
+  const uint64_t withLod = r->gpuBytes();
+  draw.fullDetail = true;
+  const FieldResult full = renderField(*r, "grass", PlantStyle::Plants, draw);
+  const uint64_t withFull = r->gpuBytes();
+  ASSERT_TRUE(lod.with.vegetation && full.with.vegetation);
+  EXPECT_EQ(lod.with.vegetation->bladesDropped, 0u);
+  EXPECT_EQ(full.with.vegetation->bladesDropped, 0u);
+  EXPECT_GT(full.with.vegetation->bladeTriangles, lod.with.vegetation->bladeTriangles);
+  EXPECT_GT(withLod, before);
+  EXPECT_GT(withFull, withLod) << "full detail needs larger buffers than eq. 4's level of detail";
+}
+
 TEST_F(BladePathTest, EachPathIsDeterministic) {
   auto r = makeRenderer(kW, kH, 4);
   ASSERT_TRUE(r);
