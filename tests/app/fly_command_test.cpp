@@ -3,7 +3,9 @@
 // silent, and replaces only an earlier recording; user mistakes end with one message, exit
 // code 2, nothing written.
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -153,6 +155,40 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"blade_path_mesh", "'{ZION}' --device llvmpipe --blade-path mesh",
                                "--blade-path mesh is not available on llvmpipe"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
+
+TEST_F(FlyCommand, BothBladePathsRecordTheSamePlantsAndTriangles) {
+  // --blade-path tessellation and compute over the same frames: the same plants and plant
+  // triangles per frame; only the compute path has the expansion pass (gpu_blades_ms).
+  const fs::path dir = testOutputDir();
+  std::map<std::string, nlohmann::json> rec;
+  for (const char* path : {"tessellation", "compute"}) {
+    const fs::path out = dir / path;
+    const auto r = runVegstream("fly '" + zion_ + "' --headless --validate --frames 3 --size 160x90 --msaa 1 " +
+                                "--blade-path " + path + " --out '" + out.string() + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
+    rec[path] = nlohmann::json::parse(readWhole(out / "recording.json"));
+    EXPECT_EQ(rec[path]["plants"]["blade_path"], path);
+    EXPECT_EQ(rec[path]["plants"]["blade_path_requested"], path);
+  }
+  const auto blades = [&](const char* p) {
+    const auto passes = rec[p]["gpu_passes"].get<std::vector<std::string>>();
+    return std::count(passes.begin(), passes.end(), "blades");
+  };
+  EXPECT_EQ(blades("compute"), 1);
+  EXPECT_EQ(blades("tessellation"), 0);
+  const auto plantsT = column(dir / "tessellation", "plants"), plantsC = column(dir / "compute", "plants");
+  const auto trisT = column(dir / "tessellation", "plant_triangles");
+  const auto trisC = column(dir / "compute", "plant_triangles");
+  ASSERT_EQ(plantsT.size(), 3u);
+  double drawn = 0.0;
+  for (size_t i = 0; i < plantsT.size(); ++i) {
+    EXPECT_EQ(plantsT[i], plantsC[i]) << "frame " << i;
+    EXPECT_EQ(trisT[i], trisC[i]) << "frame " << i;
+    drawn += trisC[i];
+  }
+  EXPECT_GT(drawn, 0.0) << "some frame drew plants";
+}
 
 TEST_F(FlyCommand, WindowModeUnderAVirtualDisplay) {
   const fs::path dir = testOutputDir();
