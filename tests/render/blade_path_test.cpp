@@ -3,7 +3,8 @@
 // exactly the triangles the geometry stages emit (grass, gravel, flower kinds, with and without
 // shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
 // as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
-// invocations); the images differ only at blade edges; each path is deterministic; the validation
+// invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
+// deterministic; the buffers follow the eq. 4 bound; the validation
 // layers stay silent (GpuTest). RendererOptions: auto resolves to compute, mesh is refused
 // naming the option and the device.
 
@@ -130,10 +131,26 @@ TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndW
       EXPECT_EQ(c.with.gpu.statistics.clippingInvocations, t.with.gpu.statistics.clippingInvocations);
       EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
       EXPECT_EQ(differingAwayFromPlants(*t.with.color, *c.with.color, *t.without.color), 0u);
+      EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "the plants are drawn";
       const std::string name = std::string(species) + (shadows ? "" : "_noshadow");
       savePng("kind_" + name + "_tessellation.png", *t.with.color);
       savePng("kind_" + name + "_compute.png", *c.with.color);
     }
+}
+
+TEST_F(BladePathTest, WithoutMsaaBothPathsTakeTheSameAlphaTest) {
+  // MSAA 1: the fragment stage's computed coverage becomes an alpha test with the same dither.
+  auto r = makeRenderer(kW, kH, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const FieldResult t = renderField(*r, "grass", PlantStyle::Plants, withPath({}, BladePath::Tessellation));
+  const FieldResult c = renderField(*r, "grass", PlantStyle::Plants, withPath({}, BladePath::Compute));
+  ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
+  EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+  EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), size_t(0.1 * kW * kH));
+  EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
+  EXPECT_EQ(differingAwayFromPlants(*t.with.color, *c.with.color, *t.without.color), 0u);
+  savePng("msaa1_compute.png", *c.with.color);
 }
 
 TEST_F(BladePathTest, LookingDownTheComputePathWritesTheAnalyticCounts) {
