@@ -16,6 +16,8 @@
 // (compute − terrain) / (speed of light − terrain) comes from one run.
 //
 //   build/release/bench/bench_plants [--benchmark_filter=…] [VEGSTREAM_DEVICE=name]
+//   (on a busy machine: --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true;
+//   the table sums every repetition)
 //   VEGSTREAM_BENCH_SIZE=1920x1080 for a real GPU
 
 #include <cstdio>
@@ -104,7 +106,7 @@ void BM_Frame(benchmark::State& state) {
   req.imageryUploads = {};
   uint64_t plantCount = 0, triangles = 0;
   CaseFigures& fig = figures()[which];
-  fig = {};
+  // Summed over every run of the case (--benchmark_repetitions, random interleaving).
   for (auto _ : state) {
     auto f = r->renderFrame(req);
     if (!f) {
