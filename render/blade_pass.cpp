@@ -47,9 +47,9 @@ constexpr VkDeviceSize kStateBytes = kDispatchOffset + kSpeciesSlots * kDispatch
 constexpr VkDeviceSize kFigureBytes = 5 * sizeof(uint32_t);
 constexpr uint32_t kFlagArgsFinish = 0x10000;  // shaders/blade_args.comp
 
-// The ceiling of one slot's buffers (a plant past it is dropped and counted): 8 M vertices
-// (256 MiB), 24 M indices (96 MiB), 4 M plant records (128 MiB).
-constexpr uint64_t kMaxVertices = uint64_t{1} << 23, kMaxIndices = 3 * kMaxVertices, kMaxPlants = uint64_t{1} << 22;
+// A plant has fewer than 3 indices per vertex (grass: 6n / (2n + 2)) and at least 4 vertices
+// (a stone): the index and plant-record ceilings follow from the vertex ceiling.
+constexpr uint64_t kIndicesPerVertex = 3, kVerticesPerPlant = 4;
 
 constexpr VkShaderStageFlags kStages =
     VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -68,8 +68,13 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 
 }  // namespace
 
-BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
-    : ctx_(&ctx) {
+BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
+                     uint32_t maxVertices)
+    : ctx_(&ctx),
+      maxVertices_(maxVertices),
+      maxIndices_(kIndicesPerVertex * maxVertices / 6 * 6),
+      maxPlants_(std::max<uint64_t>(maxVertices / kVerticesPerPlant, 1)) {
+  assert(maxVertices >= 6);
   // Set 1: the plant pipelines' inputs (shaders/common/plant_common.glsl); set 2: the blades.
   const VkDescriptorSetLayoutBinding inputs[] = {binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
                                                  binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
@@ -149,9 +154,9 @@ BladePass::Bound BladePass::bound(std::span<const SeedTriangleGpu> triangles, ui
 }
 
 void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire) {
-  const uint64_t vertices = std::min(need.vertices, kMaxVertices);
-  const uint64_t indices = std::min(need.indices, kMaxIndices);
-  const uint64_t records = std::min(need.plants, kMaxPlants);
+  const uint64_t vertices = std::min(need.vertices, maxVertices_);
+  const uint64_t indices = std::min(need.indices, maxIndices_);
+  const uint64_t records = std::min(need.plants, maxPlants_);
   const std::string tag = " (slot " + std::to_string(slot) + ")";
   auto grow = [&](GpuBuffer& b, uint64_t count, VkDeviceSize stride, VkBufferUsageFlags usage, const char* name) {
     const VkDeviceSize bytes = std::max<uint64_t>(count, 1) * stride;
@@ -165,9 +170,9 @@ void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const Retir
        "blade indices");
   // What the buffers hold (grownSize may give more than asked), within the ceiling; indices a
   // whole number of quads, so the clamped draw never splits a triangle.
-  s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size / sizeof(BladeVertexGpu), kMaxVertices));
-  s.plantCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.plants.size / sizeof(BladePlantGpu), kMaxPlants));
-  s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size / sizeof(uint32_t), kMaxIndices) / 6 * 6);
+  s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size / sizeof(BladeVertexGpu), maxVertices_));
+  s.plantCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.plants.size / sizeof(BladePlantGpu), maxPlants_));
+  s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size / sizeof(uint32_t), maxIndices_) / 6 * 6);
 }
 
 void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,

@@ -19,8 +19,9 @@
 // atomics); recordDraw, inside the frame's rendering scope, draws it. The buffers grow (per slot,
 // retired through the deletion queue) to the CPU's upper bound of the frame's vertices, indices
 // and plants (per seed triangle: its most plants × the largest plant at the triangle's most
-// eq. 4 segments), up to a ceiling; a plant beyond the ceiling is dropped whole and counted
-// (VegetationFigures::bladesDropped).
+// eq. 4 segments), up to a ceiling (RendererOptions::bladeMaxVertices); a plant beyond the
+// ceiling is dropped whole and counted (VegetationFigures::bladesDropped), the indices it had
+// reserved below the ceiling made degenerate: never a write out of bounds, never a stray triangle.
 
 #include <array>
 
@@ -37,7 +38,10 @@ class BladePass {
  public:
   using RetireBuffer = ClassifyPass::RetireBuffer;
 
-  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+  // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
+  // indices and plant records follow from it.
+  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
+            uint32_t maxVertices);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
   // buffers are sized for); call with ClassifyPass::setCatalog.
@@ -79,7 +83,8 @@ class BladePass {
   void ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire);
 
   const Context* ctx_;
-  float maxHeightM_ = 0.0f;  // the catalog's tallest plant
+  uint64_t maxVertices_, maxIndices_, maxPlants_;  // one slot's ceilings
+  float maxHeightM_ = 0.0f;                        // the catalog's tallest plant
   DescriptorSetLayout inputLayout_, bladeLayout_;
   DescriptorPool pool_;
   PipelineLayout layout_;

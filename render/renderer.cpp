@@ -163,7 +163,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
-  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa));
+  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u));
   blades->setCatalog(vegetation::defaultSpeciesCatalog());
 }
 

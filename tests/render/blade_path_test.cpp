@@ -4,7 +4,8 @@
 // shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
 // as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
 // invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
-// deterministic; the buffers follow the eq. 4 bound; the validation
+// deterministic; the buffers follow the eq. 4 bound, and plants past a ceiling are dropped whole
+// and counted; the validation
 // layers stay silent (GpuTest). RendererOptions: auto resolves to compute, mesh is refused
 // naming the option and the device.
 
@@ -193,6 +194,36 @@ TEST_F(BladePathTest, TheBuffersFollowTheFramesLodBoundAndNothingIsDropped) {
   EXPECT_GT(full.with.vegetation->bladeTriangles, lod.with.vegetation->bladeTriangles);
   EXPECT_GT(withLod, before);
   EXPECT_GT(withFull, withLod) << "full detail needs larger buffers than eq. 4's level of detail";
+}
+
+TEST_F(BladePathTest, PlantsPastTheCeilingAreDroppedWholeAndCounted) {
+  // A ceiling far under the field's needs: the expansion writes what fits, drops the rest whole
+  // (counted), and draws nothing stray — no validation message, no pixel changed away from the
+  // plants the uncapped renderer draws.
+  RendererOptions o = options(kW, kH, 4);
+  o.bladeMaxVertices = 60000;
+  auto capped = Renderer::create(o);
+  ASSERT_TRUE(capped.ok());
+  auto full = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(full);
+  for (Renderer* r : {capped->get(), full.get()}) ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const PlantDrawOptions draw = withPath({}, BladePath::Compute);
+  const FieldResult c = renderField(**capped, "grass", PlantStyle::Plants, draw);
+  const FieldResult f = renderField(*full, "grass", PlantStyle::Plants, draw);
+  ASSERT_TRUE(c.with.vegetation && f.with.vegetation);
+  const VegetationFigures &vc = *c.with.vegetation, &vf = *f.with.vegetation;
+  EXPECT_EQ(vc.plants, vf.plants) << "classified alike";
+  EXPECT_EQ(vf.bladesDropped, 0u);
+  EXPECT_GT(vc.bladesDropped, 0u);
+  EXPECT_LE(vc.bladeVertices, 60000u);
+  EXPECT_GT(vc.bladeTriangles, 0u);
+  EXPECT_LT(vc.bladeTriangles, vf.bladeTriangles);
+  // Every triangle drawn (degenerate ones included) reached the clipper: the capped frame's
+  // count is the drawn indices / 3, never more than the uncapped frame's.
+  EXPECT_LE(c.with.gpu.statistics.clippingInvocations, f.with.gpu.statistics.clippingInvocations);
+  EXPECT_EQ(differingAwayFromPlants(*c.with.color, *f.with.color, *f.without.color), 0u);
+  EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "what fits is drawn";
+  savePng("capped_compute.png", *c.with.color);
 }
 
 TEST_F(BladePathTest, EachPathIsDeterministic) {
