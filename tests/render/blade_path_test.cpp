@@ -5,9 +5,8 @@
 // as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
 // invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
 // deterministic; the buffers follow the eq. 4 bound, and plants past a ceiling are dropped whole
-// and counted; the validation
-// layers stay silent (GpuTest). RendererOptions: auto resolves to compute, mesh is refused
-// naming the option and the device.
+// and counted; the validation layers stay silent (GpuTest). RendererOptions: auto resolves to
+// compute, mesh is refused naming the option and the device.
 
 #include <algorithm>
 #include <cstdio>
