@@ -38,8 +38,8 @@ using namespace vegstream;
 using namespace vegstream::render;
 
 enum Case { kTerrain, kPlants, kPlantsNoShadows, kSpeedOfLight, kCompute, kComputeNoShadows };
-const char* kCaseNames[] = {"terrain only", "tessellation", "tessellation, no shadows", "speed of light",
-                            "compute", "compute, no shadows"};
+const char* kCaseNames[] = {"terrain only",   "tessellation", "tessellation, no shadows",
+                            "speed of light", "compute",      "compute, no shadows"};
 
 struct CaseFigures {
   double ms = 0.0;  // GPU ms summed over iterations
@@ -116,7 +116,7 @@ void BM_Frame(benchmark::State& state) {
     state.SetIterationTime(f->gpu.frameMs / 1000.0);
     if (f->vegetation) plantCount = f->vegetation->plantsTotal;
     triangles = f->vegetation && f->vegetation->bladeCounts ? f->vegetation->bladeTriangles
-                                                             : f->gpu.statistics.geometryPrimitives;
+                                                            : f->gpu.statistics.geometryPrimitives;
     fig.ms += f->gpu.frameMs;
     ++fig.iterations;
   }
@@ -142,7 +142,9 @@ BENCHMARK(BM_Frame)
 // Each case's vegetation cost (its mean GPU ms − terrain only's) against the speed of light's.
 void printRatios() {
   const auto& f = figures();
-  auto mean = [&](int c) { return f.count(c) && f.at(c).iterations ? f.at(c).ms / static_cast<double>(f.at(c).iterations) : -1.0; };
+  auto mean = [&](int c) {
+    return f.count(c) && f.at(c).iterations ? f.at(c).ms / static_cast<double>(f.at(c).iterations) : -1.0;
+  };
   const double terrain = mean(kTerrain), sol = mean(kSpeedOfLight);
   if (terrain < 0.0) return;
   std::printf("\n%-26s %10s %12s %14s %10s %12s\n", "case", "GPU ms", "veg. ms", "x speed of light", "blades",

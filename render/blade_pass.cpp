@@ -70,17 +70,14 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 
 BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
                      uint32_t maxVertices)
-    : ctx_(&ctx),
-      maxVertices_(maxVertices),
-      maxIndices_(kIndicesPerVertex * maxVertices / 6 * 6),
+    : ctx_(&ctx), maxVertices_(maxVertices), maxIndices_(kIndicesPerVertex * maxVertices / 6 * 6),
       maxPlants_(std::max<uint64_t>(maxVertices / kVerticesPerPlant, 1)) {
   assert(maxVertices >= 6);
   // Set 1: the plant pipelines' inputs (shaders/common/plant_common.glsl); set 2: the blades.
-  const VkDescriptorSetLayoutBinding inputs[] = {binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-                                                 binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-                                                 binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-                                                 binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
-                                                 binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
+  const VkDescriptorSetLayoutBinding inputs[] = {
+      binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+      binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
   inputLayout_ = createLayout(ctx, inputs, "blade input set layout");
   VkDescriptorSetLayoutBinding blades[6];
   for (uint32_t b = 0; b < 6; ++b) blades[b] = binding(b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -139,8 +136,8 @@ BladePass::Bound BladePass::bound(std::span<const SeedTriangleGpu> triangles, ui
     uint64_t n = o.maxSegments;
     if (!o.fullDetail) {
       const glm::vec3 a(t.v0), b1(t.v1), c(t.v2), centre = (a + b1 + c) / 3.0f;
-      const double radius = std::max({glm::length(a - centre), glm::length(b1 - centre), glm::length(c - centre)}) +
-                            double(maxHeightM_);
+      const double radius =
+          std::max({glm::length(a - centre), glm::length(b1 - centre), glm::length(c - centre)}) + double(maxHeightM_);
       const double d = std::max(double(glm::length(centre)) - radius, 0.0) / o.lodDistanceM * 0.999;
       const double segments = std::ceil(o.maxSegments / std::pow(std::max(d, 1.0), 2.0));
       n = static_cast<uint64_t>(std::clamp(segments, 1.0, double(o.maxSegments)));
@@ -176,9 +173,8 @@ void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const Retir
 }
 
 void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
-                             const PlantPass& plants, std::span<const SeedTriangleGpu> triangles,
-                             uint32_t clusterSize, VkImageView imagery, const PlantDrawOptions& options,
-                             const RetireBuffer& retire) {
+                             const PlantPass& plants, std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize,
+                             VkImageView imagery, const PlantDrawOptions& options, const RetireBuffer& retire) {
   assert(options.maxSegments >= 1 && options.maxSegments <= 16);
   Slot& s = slots_[size_t(slot)];
   const uint32_t mask = bladeMask(classify);

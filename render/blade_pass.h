@@ -40,8 +40,7 @@ class BladePass {
 
   // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
   // indices and plant records follow from it.
-  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-            uint32_t maxVertices);
+  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
   // buffers are sized for); call with ClassifyPass::setCatalog.

@@ -108,7 +108,7 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     // Only the plant pipelines tessellate and run geometry shaders: their statistics are these.
     r[c++] = v && stats.available ? count(stats.tessControlPatches) : kNoValue;
     // The compute blade path counts its triangles itself (no geometry stage runs).
-    r[c++] = v && v->bladeCounts ? count(v->bladeTriangles)
+    r[c++] = v && v->bladeCounts    ? count(v->bladeTriangles)
              : v && stats.available ? count(stats.geometryPrimitives)
                                     : kNoValue;
     assert(c == r.size());

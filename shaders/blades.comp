@@ -33,14 +33,14 @@ const uint kGrass = 0u, kGravel = 1u, kFlowers = 2u;
 
 const uint kGroupSize = 64u;  // render/blade_pass.cpp and blade_args.comp: one thread per group
 shared uint sPlantEnd[kGroupSize];   // inclusive prefix sum of the groups' plants in view
-shared uint sVertexAt[kGroupSize];   // each group's first vertex, index and plant record (workgroup-relative,
-shared uint sIndexAt[kGroupSize];    // then global)
-shared uint sPlantAt[kGroupSize];
+shared uint sVertexAt[kGroupSize];   // each group's first vertex and index in the workgroup's space
+shared uint sIndexAt[kGroupSize];
 shared uint sShape[kGroupSize];      // segments n | copies << 8 | kind << 10
 shared uint sVertices, sIndices;
 shared uint sBaseVertex, sBaseIndex, sBasePlant;
 
-// Vertices and indices one copy (the plant or its shadow) of a plant of `kind` with `n` segments needs.
+// Vertices and indices one copy (the plant or its shadow) of a plant of `kind` with `n`
+// segments needs.
 uvec2 plantSize(uint kind, uint n) {
   if (kind == kGravel) return uvec2(4u, 6u);
   uvec2 strip = uvec2(2u * (n + 1u), 6u * n);

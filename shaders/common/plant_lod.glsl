@@ -24,7 +24,8 @@ vec2 groupLod(PlantCluster g, SeedTriangle t) {
                  sp.heightStiffness.y;
   bool visible = sphereVisible(centre, radius);
   float d = max(length(centre) - radius, 0.0) / pc.lodDistanceM;
-  float n = (pc.flags & kFlagFullDetail) != 0u ? float(pc.maxSegments) : ceil(float(pc.maxSegments) / pow(max(d, 1.0), 2.0));
+  float n = (pc.flags & kFlagFullDetail) != 0u ? float(pc.maxSegments)
+                                                 : ceil(float(pc.maxSegments) / pow(max(d, 1.0), 2.0));
   if (sp.flags.y == 1u) n = 1.0;  // gravel: one particle per plant, no segments to bend
   return vec2(visible ? 1.0 : 0.0, clamp(n, 1.0, float(pc.maxSegments)));
 }

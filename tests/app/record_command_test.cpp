@@ -396,7 +396,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
         BadRecord{"bad_blade_path", "{DS} {SMALL} --path {PATH} --blade-path fancy", "--blade-path"},
         // this build has no mesh-shader path: refused once the device is known, before any frame
-        BadRecord{"blade_path_mesh", "{DS} {SMALL} --path {PATH} --blade-path mesh", "--blade-path mesh is not available on"},
+        BadRecord{"blade_path_mesh", "{DS} {SMALL} --path {PATH} --blade-path mesh",
+                  "--blade-path mesh is not available on"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

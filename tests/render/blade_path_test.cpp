@@ -120,10 +120,9 @@ TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndW
       PlantDrawOptions draw;
       draw.shadows = shadows;
       draw.maxSegments = 4;
-      const FieldResult t = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {},
-                                        24.0f);
-      const FieldResult c =
-          renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+      const FieldResult t =
+          renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {}, 24.0f);
+      const FieldResult c = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
       ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
       EXPECT_EQ(t.with.vegetation->plants, c.with.vegetation->plants);
       ASSERT_GT(t.with.gpu.statistics.geometryPrimitives, 0u);
