@@ -35,28 +35,32 @@ size_t differing(const ColorImage& a, const ColorImage& b, int threshold) {
   return changedPixels(a, b, 0, a.height, threshold);
 }
 
-// Pixels that differ between a and b but where neither a nor b differs from `bare` (the field
-// without plants) within a 1-pixel neighbourhood: differences away from any plant pixel.
-size_t differingAwayFromPlants(const ColorImage& a, const ColorImage& b, const ColorImage& bare) {
-  auto plantAt = [&](const ColorImage& img, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int u = std::clamp(x + dx, 0, int(img.width) - 1), v = std::clamp(y + dy, 0, int(img.height) - 1);
-        const size_t i = (size_t(v) * img.width + size_t(u)) * 4;
-        for (int c = 0; c < 3; ++c)
-          if (std::abs(int(img.rgba[i + c]) - int(bare.rgba[i + c])) > 4) return true;
-      }
-    return false;
+// Pixels `subset` changes clearly (> 10 from `bare`) where `superset` leaves the bare field as it
+// was (within 4) in the pixel and its 8 neighbours.
+size_t strayPixels(const ColorImage& subset, const ColorImage& superset, const ColorImage& bare) {
+  auto diff = [&](const ColorImage& img, int x, int y) {
+    const size_t i = (size_t(y) * img.width + size_t(x)) * 4;
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(img.rgba[i + c]) - int(bare.rgba[i + c])));
+    return d;
   };
   size_t n = 0;
-  for (uint32_t y = 0; y < a.height; ++y)
-    for (uint32_t x = 0; x < a.width; ++x) {
-      const size_t i = (size_t{y} * a.width + x) * 4;
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])));
-      if (d > 4 && !plantAt(a, int(x), int(y)) && !plantAt(b, int(x), int(y))) ++n;
+  for (int y = 0; y < int(bare.height); ++y)
+    for (int x = 0; x < int(bare.width); ++x) {
+      if (diff(subset, x, y) <= 10) continue;
+      bool plant = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          plant = plant || diff(superset, std::clamp(x + dx, 0, int(bare.width) - 1),
+                                std::clamp(y + dy, 0, int(bare.height) - 1)) > 4;
+      if (!plant) ++n;
     }
   return n;
+}
+
+// Plant pixels either frame has where the other has none nearby: blades in different places.
+size_t misplacedPlantPixels(const ColorImage& a, const ColorImage& b, const ColorImage& bare) {
+  return strayPixels(a, b, bare) + strayPixels(b, a, bare);
 }
 
 TEST_F(BladePathTest, BothPathsDrawTheSameGrassAndImagesDifferOnlyAtBladeEdges) {
@@ -102,12 +106,15 @@ TEST_F(BladePathTest, BothPathsDrawTheSameGrassAndImagesDifferOnlyAtBladeEdges) 
   const double pixels = double(kW) * kH;
   const size_t big = differing(a, b, 24), any = differing(a, b, 4);
   const size_t plantPixels = changedPixels(a, *tess.without.color, 0, kH, 4);
-  std::printf("%zu plant pixels; differing pixels: %zu by > 4, %zu by > 24 (of %.0f); away from plants %zu\n",
-              plantPixels, any, big, pixels, differingAwayFromPlants(a, b, *tess.without.color));
+  std::printf(
+      "%zu plant pixels; differing pixels: %zu by > 4, %zu by > 24 (of %.0f); plant pixels in one frame only %zu\n",
+      plantPixels, any, big, pixels, misplacedPlantPixels(a, b, *tess.without.color));
   ASSERT_GT(plantPixels, size_t(0.1 * pixels)) << "the grass covers the near ground";
   EXPECT_LT(double(big), 0.02 * pixels);
   EXPECT_GT(1.0 - double(any) / pixels, 0.95) << "share of pixels that match within 4";
-  EXPECT_EQ(differingAwayFromPlants(a, b, *tess.without.color), 0u) << "differences only at blades";
+  EXPECT_EQ(misplacedPlantPixels(a, b, *tess.without.color), 0u) << "differences only at blades";
+  EXPECT_GT(misplacedPlantPixels(a, *tess.without.color, *tess.without.color), size_t(0.03 * pixels))
+      << "the check sees plants that are not in the other frame";
 }
 
 TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndWithoutShadows) {
@@ -129,7 +136,7 @@ TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndW
       EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
       EXPECT_EQ(c.with.gpu.statistics.clippingInvocations, t.with.gpu.statistics.clippingInvocations);
       EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
-      EXPECT_EQ(differingAwayFromPlants(*t.with.color, *c.with.color, *t.without.color), 0u);
+      EXPECT_EQ(misplacedPlantPixels(*t.with.color, *c.with.color, *t.without.color), 0u);
       EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "the plants are drawn";
       const std::string name = std::string(species) + (shadows ? "" : "_noshadow");
       savePng("kind_" + name + "_tessellation.png", *t.with.color);
@@ -148,7 +155,7 @@ TEST_F(BladePathTest, WithoutMsaaBothPathsTakeTheSameAlphaTest) {
   EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
   EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), size_t(0.1 * kW * kH));
   EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
-  EXPECT_EQ(differingAwayFromPlants(*t.with.color, *c.with.color, *t.without.color), 0u);
+  EXPECT_EQ(misplacedPlantPixels(*t.with.color, *c.with.color, *t.without.color), 0u);
   savePng("msaa1_compute.png", *c.with.color);
 }
 
@@ -219,7 +226,12 @@ TEST_F(BladePathTest, PlantsPastTheCeilingAreDroppedWholeAndCounted) {
   // Every triangle drawn (degenerate ones included) reached the clipper: the capped frame's
   // count is the drawn indices / 3, never more than the uncapped frame's.
   EXPECT_LE(c.with.gpu.statistics.clippingInvocations, f.with.gpu.statistics.clippingInvocations);
-  EXPECT_EQ(differingAwayFromPlants(*c.with.color, *f.with.color, *f.without.color), 0u);
+  // The capped frame's plants are a subset of the uncapped frame's: next to nothing clearly
+  // visible where the uncapped frame has no plant pixel nearby. Not exactly nothing: where the
+  // uncapped frame's front blade happens to match the ground's colour, the capped frame may have
+  // dropped it and show the darker blade or shadow behind. A stray triangle from a bad index
+  // would cover far more than 0.1 % of the frame.
+  EXPECT_LE(double(strayPixels(*c.with.color, *f.with.color, *f.without.color)), 0.001 * kW * kH);
   EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "what fits is drawn";
   savePng("capped_compute.png", *c.with.color);
 }
