@@ -173,7 +173,9 @@ HudState Session::hudState(double now) const {
   if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;
   // Plants classified on the GPU and the triangles the species pipelines drew.
   if (last_ && last_->vegetation && last_->vegetation->gpuCounts) s.plants = last_->vegetation->plantsTotal;
-  if (last_ && last_->vegetation && last_->gpu.statistics.available)
+  if (last_ && last_->vegetation && last_->vegetation->bladeCounts)
+    s.plantTriangles = last_->vegetation->bladeTriangles;  // the compute blade path counts its own
+  else if (last_ && last_->vegetation && last_->gpu.statistics.available)
     s.plantTriangles = last_->gpu.statistics.geometryPrimitives;  // only the plant stages emit any
   const streaming::StreamingFrameStats& st = fig.streaming;
   char line[256];

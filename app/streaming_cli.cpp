@@ -65,6 +65,12 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "drawn; off: all are, for comparison")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd.add_option("--blade-path", o.bladePath,
+                 "How plants become triangles: auto (the fastest the device offers: compute), tessellation "
+                 "(tessellation + geometry shaders), compute (expanded once per plant in compute), mesh (not in "
+                 "this build)")
+      ->check(CLI::IsMember({"auto", "tessellation", "compute", "mesh"}))
+      ->capture_default_str();
 }
 
 Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
@@ -135,6 +141,10 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
   scene.plantDraw.shadows = !o.noPlantShadows;
   scene.occlusionCulling = o.occlusionCulling == "on";
+  // Checked against the device when the renderer is made (mesh: refused there, naming the device).
+  const auto bladePath = render::parseBladePath(o.bladePath);
+  if (!bladePath) return bad("--blade-path " + o.bladePath + ": must be auto, tessellation, compute or mesh");
+  scene.renderer.bladePath = *bladePath;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   return {};
 }

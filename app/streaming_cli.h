@@ -40,6 +40,7 @@ struct StreamingCli {
   double plantLodM = 4.0;             // eq. 4's distance unit
   bool noPlantShadows = false;
   std::string occlusionCulling = "on";  // on | off: Hi-Z culling of seed triangles the terrain hides
+  std::string bladePath = "auto";  // auto | tessellation | compute | mesh (render::BladePath)
 };
 
 // Adds the options to `cmd`; `withMode` adds --streaming (record only: fly is always realtime).

@@ -2,19 +2,27 @@
 // grass field (tests/support/plant_field_scene.h) at 640 × 360, MSAA 4, every blade at 5
 // segments, rendered
 //   - BM_Frame/terrain: the field without plants (what the rest of the frame costs);
-//   - BM_Frame/plants: the grass pipeline with planar shadows (the default);
-//   - BM_Frame/plants_no_shadows;
-//   - BM_Frame/speed_of_light: the same patches, blades and segments through the simplest shaders
-//     (straight lines, constant colour, no shadows).
+//   - case 1: the tessellation path (grass pipeline) with planar shadows;
+//   - case 2: the tessellation path without shadows;
+//   - case 3: the speed of light: the same patches, blades and segments through the simplest
+//     shaders (straight lines, constant colour, no shadows);
+//   - case 4: the compute blade path (render/blade_pass.h) with planar shadows: the same blades,
+//     expanded once per plant in compute and drawn by a trivial vertex stage;
+//   - case 5: the compute path without shadows (the like-for-like against the speed of light).
 // Manual time = the GPU frame time (timestamps; on lavapipe the frame total is what is
-// meaningful). Counters: plants, plant triangles, ms per million blades over the terrain-only
-// frame. The ratio plants / speed_of_light comes from one run.
+// meaningful). Counters: plants (blades), plant triangles (geometry-stage primitives, or the
+// compute path's own count). After the run, a table on stdout: each case's vegetation ms (case −
+// terrain), its ratio to the speed of light's, and millions of blades per second — the ratio
+// (compute − terrain) / (speed of light − terrain) comes from one run.
 //
 //   build/release/bench/bench_plants [--benchmark_filter=…] [VEGSTREAM_DEVICE=name]
+//   (on a busy machine: --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true;
+//   the table sums every repetition)
 //   VEGSTREAM_BENCH_SIZE=1920x1080 for a real GPU
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -29,7 +37,18 @@ namespace {
 using namespace vegstream;
 using namespace vegstream::render;
 
-enum Case { kTerrain, kPlants, kPlantsNoShadows, kSpeedOfLight };
+enum Case { kTerrain, kPlants, kPlantsNoShadows, kSpeedOfLight, kCompute, kComputeNoShadows };
+const char* kCaseNames[] = {"terrain only",   "tessellation", "tessellation, no shadows",
+                            "speed of light", "compute",      "compute, no shadows"};
+
+struct CaseFigures {
+  double ms = 0.0;  // GPU ms summed over iterations
+  uint64_t iterations = 0, plants = 0, triangles = 0;
+};
+std::map<int, CaseFigures>& figures() {
+  static std::map<int, CaseFigures> f;
+  return f;
+}
 
 Renderer* renderer() {
   static std::unique_ptr<Renderer> r = [] {
@@ -75,8 +94,9 @@ void BM_Frame(benchmark::State& state) {
   VegetationRequest plants{seeds, 8, PlantStyle::Plants, {}};
   plants.draw.maxSegments = 5;
   plants.draw.fullDetail = true;
-  plants.draw.shadows = which == kPlants;
+  plants.draw.shadows = which == kPlants || which == kCompute;
   plants.draw.speedOfLight = which == kSpeedOfLight;
+  plants.draw.path = which == kCompute || which == kComputeNoShadows ? BladePath::Compute : BladePath::Tessellation;
   if (which != kTerrain) req.vegetation = &plants;
   auto warm = r->renderFrame(req);  // uploads the tile; pipelines warm
   if (!warm) {
@@ -85,6 +105,8 @@ void BM_Frame(benchmark::State& state) {
   }
   req.imageryUploads = {};
   uint64_t plantCount = 0, triangles = 0;
+  CaseFigures& fig = figures()[which];
+  // Summed over every run of the case (--benchmark_repetitions, random interleaving).
   for (auto _ : state) {
     auto f = r->renderFrame(req);
     if (!f) {
@@ -93,8 +115,13 @@ void BM_Frame(benchmark::State& state) {
     }
     state.SetIterationTime(f->gpu.frameMs / 1000.0);
     if (f->vegetation) plantCount = f->vegetation->plantsTotal;
-    triangles = f->gpu.statistics.geometryPrimitives;
+    triangles = f->vegetation && f->vegetation->bladeCounts ? f->vegetation->bladeTriangles
+                                                            : f->gpu.statistics.geometryPrimitives;
+    fig.ms += f->gpu.frameMs;
+    ++fig.iterations;
   }
+  fig.plants = plantCount;
+  fig.triangles = triangles;
   state.counters["plants"] = static_cast<double>(plantCount);
   state.counters["plant_triangles"] = static_cast<double>(triangles);
   state.SetLabel(r->device().name);
@@ -106,8 +133,38 @@ BENCHMARK(BM_Frame)
     ->Arg(kPlants)
     ->Arg(kPlantsNoShadows)
     ->Arg(kSpeedOfLight)
+    ->Arg(kCompute)
+    ->Arg(kComputeNoShadows)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
 
+// Each case's vegetation cost (its mean GPU ms − terrain only's) against the speed of light's.
+void printRatios() {
+  const auto& f = figures();
+  auto mean = [&](int c) {
+    return f.count(c) && f.at(c).iterations ? f.at(c).ms / static_cast<double>(f.at(c).iterations) : -1.0;
+  };
+  const double terrain = mean(kTerrain), sol = mean(kSpeedOfLight);
+  if (terrain < 0.0) return;
+  std::printf("\n%-26s %10s %12s %14s %10s %12s\n", "case", "GPU ms", "veg. ms", "x speed of light", "blades",
+              "M blades/s");
+  for (const auto& [c, fig] : f) {
+    const double ms = mean(c), veg = ms - terrain;
+    const double ratio = sol > terrain && c != kTerrain ? veg / (sol - terrain) : 0.0;
+    const double rate = veg > 0.0 && c != kTerrain ? static_cast<double>(fig.plants) / veg / 1000.0 : 0.0;
+    std::printf("%-26s %10.3f %12.3f %14.2f %10llu %12.2f\n", kCaseNames[c], ms, c == kTerrain ? 0.0 : veg, ratio,
+                static_cast<unsigned long long>(fig.plants), rate);
+  }
+}
+
 }  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  printRatios();
+  return 0;
+}

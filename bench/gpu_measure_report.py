@@ -11,10 +11,11 @@ import csv
 import json
 import math
 import os
+import re
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "dense", "dense-serial", "canyon", "canyon-no-cull", "canyon-dense"]
+ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
@@ -123,7 +124,34 @@ def main():
                     "repetition_index", "threads", "iterations", "real_time", "cpu_time", "time_unit"}
             counters = ", ".join(f"{k} {fmt(v) if isinstance(v, float) else v}" for k, v in r.items() if k not in skip)
             print(f"| {r['name']} | {fmt(r.get('real_time'))} {r.get('time_unit', '')} | {counters} |")
+        if bench == "bench_plants":
+            plants_ratios(b.get("benchmarks", []))
     return 0
+
+
+def plants_ratios(benchmarks):
+    """Each bench_plants case's vegetation cost (case − terrain only) against the speed of light's,
+    and the blade rate: the figure issue 17 asks for, from one run (cases: bench/bench_plants.cpp)."""
+    names = {0: "terrain only", 1: "tessellation", 2: "tessellation, no shadows", 3: "speed of light",
+             4: "compute", 5: "compute, no shadows"}
+    ms, blades = {}, {}
+    for r in benchmarks:
+        m = re.search(r"case:(\d+)", r["name"])
+        if r.get("run_type", "iteration") != "iteration" or not m:
+            continue
+        c = int(m.group(1))
+        ms[c] = r["real_time"]
+        blades[c] = r.get("plants")
+    if 0 not in ms or 3 not in ms or ms[3] <= ms[0]:
+        return
+    print("\n| bench_plants case | vegetation ms (case − terrain) | × speed of light | M blades / s |")
+    print("|---|---|---|---|")
+    for c in sorted(ms):
+        if c == 0:
+            continue
+        veg = ms[c] - ms[0]
+        rate = (blades[c] or 0) / veg / 1000.0 if veg > 0 else None
+        print(f"| {names.get(c, c)} | {fmt(veg)} | {fmt(veg / (ms[3] - ms[0]))} | {fmt(rate)} |")
 
 
 if __name__ == "__main__":

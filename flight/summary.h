@@ -73,6 +73,8 @@ struct RecordingMeta {
     double lodDistanceM = 0.0;   // eq. 4's distance unit
     bool shadows = false;
     bool occlusionCulling = false;  // Hi-Z culling of hidden seed triangles
+    std::string bladePath;           // how plants became triangles: tessellation | compute (render/README.md)
+    std::string bladePathRequested;  // --blade-path: auto | tessellation | compute
     std::vector<std::string> species;  // names, in catalog order
   } plants;
   bool validate = false;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -91,6 +92,12 @@ struct VegetationFigures {
   // Groups classified but dropped because their species' plants are hidden on their triangle
   // (a ridge hides grass, not the trees of the same triangle), and the plants in them.
   uint64_t cullGroupsCulled = 0, cullGroupPlantsCulled = 0;
+  // The compute blade path (render/blade_pass.h), when it drew the frame: the triangles and
+  // vertices it wrote for the plant kinds (shadows included), and the plants that did not fit
+  // its buffers (not drawn; 0 unless the scene outgrew the buffers' ceiling).
+  bool bladeCounts = false;
+  uint64_t bladeTriangles = 0, bladeVertices = 0;
+  uint32_t bladesDropped = 0;
 };
 
 // Plants to classify and draw this frame (render/classify_pass.h): the seed triangles, camera-
@@ -100,6 +107,30 @@ enum class PlantStyle {
   Markers,  // one marker per plant for every species: the classification alone
   Hidden,   // classified and counted, not drawn
 };
+
+// How the plant kinds (grass, gravel, flowers) become triangles (render/README.md "Blade paths").
+enum class BladePath {
+  Auto,          // the fastest the device offers: Compute (every Vulkan device has compute)
+  Tessellation,  // vertex → tessellation → per-kind geometry shader (render/plant_pass.h)
+  Compute,       // a compute pass expands each plant once; a trivial vertex shader draws it (render/blade_pass.h)
+  Mesh,          // VK_EXT_mesh_shader: not implemented in this build (Renderer::create refuses it)
+};
+
+inline const char* bladePathName(BladePath p) {
+  switch (p) {
+    case BladePath::Auto: return "auto";
+    case BladePath::Tessellation: return "tessellation";
+    case BladePath::Compute: return "compute";
+    case BladePath::Mesh: return "mesh";
+  }
+  return "auto";
+}
+
+inline std::optional<BladePath> parseBladePath(std::string_view s) {
+  for (BladePath p : {BladePath::Auto, BladePath::Tessellation, BladePath::Compute, BladePath::Mesh})
+    if (s == bladePathName(p)) return p;
+  return std::nullopt;
+}
 
 // How the species pipelines draw (render/plant_pass.h).
 struct PlantDrawOptions {
@@ -111,6 +142,10 @@ struct PlantDrawOptions {
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry
   // front end alone costs (bench/bench_plants.cpp).
   bool speedOfLight = false;
+  // Tessellation or Compute for this frame; Auto: the renderer's (RendererOptions::bladePath).
+  // The speed-of-light pipeline is a tessellation pipeline: with speedOfLight the path is
+  // always Tessellation.
+  BladePath path = BladePath::Auto;
 };
 
 struct VegetationRequest {

@@ -7,6 +7,7 @@
 
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
+#include "render/plant_push.h"
 #include "render/render_targets.h"
 #include "render/vk_check.h"
 #include "shaders/flowers.geom.h"
@@ -23,14 +24,6 @@
 namespace vegstream::render {
 namespace {
 
-// Mirrors PlantPush in shaders/common/plant_common.glsl.
-struct PlantPush {
-  uint32_t species, speciesCapacity, maxSegments, flags;
-  float lodDistanceM, tableLogKMin, tableLogKStep;
-  uint32_t tableRows;
-};
-static_assert(sizeof(PlantPush) == 32);
-constexpr uint32_t kFlagShadows = 1, kFlagFullDetail = 4, kSamplesShift = 8;
 constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT |
                                        VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT | VK_SHADER_STAGE_GEOMETRY_BIT |
                                        VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -122,6 +115,21 @@ uint32_t PlantPass::patchMask(const ClassifyPass& classify) {
   return mask;
 }
 
+PlantPush PlantPass::pushFor(uint32_t species, const ClassifyPass& classify, const PlantDrawOptions& options) const {
+  uint32_t flags = 0;
+  if (options.shadows) flags |= kPlantFlagShadows;
+  flags |= samples_ << kPlantSamplesShift;  // the fragment stage's computed alpha-to-coverage
+  if (options.fullDetail) flags |= kPlantFlagFullDetail;
+  return PlantPush{species,
+                   classify.clustersPerSpecies(),
+                   options.maxSegments,
+                   flags,
+                   options.lodDistanceM,
+                   tableLogKMin_,
+                   tableLogKStep_,
+                   static_cast<uint32_t>(tableRows_)};
+}
+
 void PlantPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
                        VkImageView imagery, const PlantDrawOptions& options) {
   const uint32_t mask = patchMask(classify);
@@ -135,22 +143,11 @@ void PlantPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, 
   writeSampledImage(*ctx_, set, imagerySampler_.get(), imagery, 4);
   const VkDescriptorSet sets[] = {frameSet, set};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 2, sets, 0, nullptr);
-  uint32_t flags = 0;
-  if (options.shadows) flags |= kFlagShadows;
-  flags |= samples_ << kSamplesShift;  // the fragment stage's computed alpha-to-coverage
-  if (options.fullDetail) flags |= kFlagFullDetail;
   for (uint32_t s = 0; s < classify.speciesCount(); ++s) {
     if (!((mask >> s) & 1u)) continue;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                       options.speedOfLight ? speedOfLight_.get() : pipelines_[classify.kind(s)].get());
-    const PlantPush push{s,
-                         classify.clustersPerSpecies(),
-                         options.maxSegments,
-                         flags,
-                         options.lodDistanceM,
-                         tableLogKMin_,
-                         tableLogKStep_,
-                         static_cast<uint32_t>(tableRows_)};
+    const PlantPush push = pushFor(s, classify, options);
     vkCmdPushConstants(cmd, layout_.get(), kStages, 0, sizeof(push), &push);
     vkCmdDrawIndirect(cmd, classify.indirect(slot), VkDeviceSize{s} * sizeof(VkDrawIndirectCommand), 1,
                       sizeof(VkDrawIndirectCommand));

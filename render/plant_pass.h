@@ -22,6 +22,7 @@
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
+#include "render/plant_push.h"
 #include "vegetation/blade_shape.h"
 
 namespace vegstream::render {
@@ -42,6 +43,13 @@ class PlantPass {
               VkImageView imagery, const PlantDrawOptions& options);
 
   uint64_t gpuBytes() const { return table_.bytes; }
+
+  // What the compute blade path (blade_pass.h) shares with these pipelines: the push constants
+  // of species `species`, the blade-shape table and the samplers.
+  PlantPush pushFor(uint32_t species, const ClassifyPass& classify, const PlantDrawOptions& options) const;
+  VkImageView tableView() const { return table_.view.get(); }
+  VkSampler tableSampler() const { return tableSampler_.get(); }
+  VkSampler imagerySampler() const { return imagerySampler_.get(); }
 
  private:
   const Context* ctx_;

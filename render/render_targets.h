@@ -54,11 +54,12 @@ class RenderTargets {
   enum class Load { Clear, Keep, Shaded };
   void beginRendering(VkCommandBuffer cmd, Load load = Load::Clear, bool resolve = true) const;
 
-  // Deferred terrain: begins rendering into the visibility and depth attachments, both cleared
-  // (no resolve).
+  // Deferred terrain: begins rendering into the visibility and depth attachments (no resolve).
+  // Depth is cleared, the visibility target is not: the shade reads sky where depth is 0.
   void beginVisibility(VkCommandBuffer cmd) const;
-  // After the visibility scope: the visibility target becomes readable (sampled) and the colour
-  // attachment writable by compute (GENERAL).
+  // After the visibility scope: the visibility and depth targets become readable (sampled) and
+  // the colour attachment writable by compute (GENERAL). The shade returns the depth to its
+  // attachment layout.
   void visibilityToShade(VkCommandBuffer cmd) const;
 
  private:

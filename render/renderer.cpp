@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "core/stopwatch.h"
+#include "render/blade_pass.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
 #include "render/frame_slots.h"
@@ -56,6 +57,7 @@ struct FrameSlot {
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
   std::optional<VegetationFigures> vegetation;
+  bool bladesExpanded = false;  // the compute blade path drew this frame's plants
 };
 
 VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
@@ -76,6 +78,8 @@ struct Renderer::Impl {
   std::unique_ptr<HizPass> hiz;
   std::unique_ptr<PlantMarkerPass> markers;
   std::unique_ptr<PlantPass> plantPass;
+  std::unique_ptr<BladePass> blades;
+  BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;
   uint64_t nextFrame = 1;       // frame indices start at 1; 0 means "none"
@@ -98,6 +102,11 @@ struct Renderer::Impl {
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
   FrameResult collect(FrameSlot& slot);
+  // The path a frame's plants take: the speed-of-light pipeline is a tessellation pipeline.
+  BladePath pathFor(const PlantDrawOptions& draw) const {
+    if (draw.speedOfLight) return BladePath::Tessellation;
+    return draw.path == BladePath::Auto ? bladePath : draw.path;
+  }
 };
 
 void Renderer::Impl::init(const RendererOptions& options) {
@@ -168,6 +177,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
+  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u));
+  blades->setCatalog(vegetation::defaultSpeciesCatalog());
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -228,6 +239,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   const int slotIndex = static_cast<int>(index % kFramesInFlight);
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
   slot.vegetation.reset();
+  slot.bladesExpanded = false;
   const VegetationRequest* plants = request.vegetation;
 
   slot.terrainTriangles =
@@ -289,11 +301,21 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
                                      PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull);
   slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles
   slot.timer->endPass(cmd);
+  // The compute blade path expands the plants before their scope (render/blade_pass.h).
+  slot.bladesExpanded = plants.style == PlantStyle::Plants && pathFor(plants.draw) == BladePath::Compute;
+  if (slot.bladesExpanded) {
+    slot.timer->beginPass(cmd, "blades");
+    blades->recordExpand(cmd, slotIndex, slot.descriptorSet, *classify, *plantPass, plants.triangles,
+                         plants.clusterSize, terrainPass->imageryView(), plants.draw, retire);
+    slot.timer->endPass(cmd);
+  }
 
   targets->beginRendering(cmd, load, /*resolve=*/true);
   if (plants.style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
-    if (patchMask != 0)
+    if (patchMask != 0 && slot.bladesExpanded)
+      blades->recordDraw(cmd, slotIndex, slot.descriptorSet);
+    else if (patchMask != 0)
       plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants.draw);
     markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
     slot.timer->endPass(cmd);
@@ -378,6 +400,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     if (slot.vegetation->occlusionCulling && slot.vegetation->seedTriangles > 0)  // the test ran
       hiz->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    if (slot.bladesExpanded) blades->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     r.vegetation = slot.vegetation;
   }
   r.gpu = slot.timer->read();
@@ -434,6 +457,14 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
                                                   " (storage images, shaderStorageImageMultisample)");
   impl->terrainShading = options.terrainShading == TerrainShading::Forward || !canDefer ? TerrainShading::Forward
                                                                                         : TerrainShading::Deferred;
+  // This build has no mesh-shader blade path (VK_EXT_mesh_shader): refused before any frame.
+  if (options.bladePath == BladePath::Mesh)
+    return makeError(ErrorKind::InvalidInput,
+                     "--blade-path mesh is not available on " + info.name +
+                         ": this build has no mesh-shader (VK_EXT_mesh_shader) blade path; use auto, compute or "
+                         "tessellation");
+  // Auto: compute, which every Vulkan device has and which keeps per-blade work off the graphics stages.
+  impl->bladePath = options.bladePath == BladePath::Tessellation ? BladePath::Tessellation : BladePath::Compute;
   try {
     impl->init(options);
   } catch (const VulkanError& e) {
@@ -456,6 +487,7 @@ const char* terrainShadingName(TerrainShading shading) {
   }
   return "?";
 }
+BladePath Renderer::bladePath() const { return impl_->bladePath; }
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 
@@ -478,7 +510,7 @@ uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().li
 
 uint64_t Renderer::gpuBytes() const {
   return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
-         impl_->hiz->gpuBytes();
+         impl_->hiz->gpuBytes() + impl_->blades->gpuBytes();
 }
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
@@ -489,11 +521,14 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
     impl_->classify->setCatalog(catalog);
     impl_->hiz->setCatalog(catalog);
+    impl_->blades->setCatalog(catalog);
     return {};
   });
 }
 
 Result<uint64_t> Renderer::submitFrame(const FrameRequest& request) {
+  if (request.vegetation && request.vegetation->draw.path == BladePath::Mesh)
+    return makeError(ErrorKind::Unsupported, "blade path mesh: this build has no mesh-shader blade path");
   return guardGpu([&]() -> Result<uint64_t> { return impl_->submit(request); });
 }
 

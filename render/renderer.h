@@ -33,6 +33,13 @@ struct RendererOptions {
   uint32_t height = 360;
   int msaa = 4;
   TerrainShading terrainShading = TerrainShading::Auto;
+  // How plants become triangles (frame_types.h): Auto picks Compute; Mesh is refused by create()
+  // (this build has no mesh-shader path) with an InvalidInput error naming the device.
+  BladePath bladePath = BladePath::Auto;
+  // The compute blade path's ceiling per frame slot, in vertices (32 bytes each; indices 3 × and
+  // plant records ¼ × as many): buffers grow to each frame's bound up to it, and plants past it
+  // are dropped and counted (VegetationFigures::bladesDropped). Default 8 Mi (256 MiB); at least 6.
+  uint32_t bladeMaxVertices = 1u << 23;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
 };
 
@@ -48,6 +55,8 @@ class Renderer {
   uint32_t height() const;
   int msaa() const;
   TerrainShading terrainShading() const;  // Forward or Deferred: what Auto resolved to
+  // The blade path frames use unless they ask for another: Tessellation or Compute, never Auto.
+  BladePath bladePath() const;
   bool hasWindow() const;
   const ValidationLog* validationLog() const;
 

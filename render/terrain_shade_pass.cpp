@@ -29,9 +29,10 @@ TerrainShadePass::TerrainShadePass(const Context& ctx, VkDescriptorSetLayout fra
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // indices
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // pieces
       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, c, nullptr},   // colour target
+      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, c, nullptr},  // depth (0: no terrain)
   };
   inputsLayout_ = createLayout(ctx, bindings, "terrain shade inputs layout");
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots},
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * kSlots}};
   pool_ = createPool(ctx, sizes, kSlots, "terrain shade pool");
@@ -40,6 +41,7 @@ TerrainShadePass::TerrainShadePass(const Context& ctx, VkDescriptorSetLayout fra
     inputs_[static_cast<size_t>(s)] = allocateDescriptorSet(ctx, pool_.get(), inputsLayout_.get(),
                                                             "terrain shade inputs (slot " + std::to_string(s) + ")");
     writeSampledImage(ctx, inputs_[static_cast<size_t>(s)], nearest_.get(), targets.visibility().view.get(), 0);
+    writeSampledImage(ctx, inputs_[static_cast<size_t>(s)], nearest_.get(), targets.depthAttachment().view.get(), 5);
     writeStorageImage(ctx, inputs_[static_cast<size_t>(s)], targets.colorStorageView(), 4);
   }
   const VkPushConstantRange push{c, 0, sizeof(ShadePush)};
@@ -69,6 +71,14 @@ void TerrainShadePass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   const VkExtent2D e = targets.extent();
   vkCmdDispatch(cmd, (e.width + kGroupSize - 1) / kGroupSize, (e.height + kGroupSize - 1) / kGroupSize, 1);
+  // The depth goes back to being an attachment (the Hi-Z build and the plants' scope expect it so).
+  const GpuImage& depth = targets.depthAttachment();
+  transitionImage(cmd, depth.get(), depth.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
+                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
 }  // namespace vegstream::render

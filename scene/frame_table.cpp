@@ -107,7 +107,10 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
       r[c++] = v ? count(x) : kNoValue;
     // Only the plant pipelines tessellate and run geometry shaders: their statistics are these.
     r[c++] = v && stats.available ? count(stats.tessControlPatches) : kNoValue;
-    r[c++] = v && stats.available ? count(stats.geometryPrimitives) : kNoValue;
+    // The compute blade path counts its triangles itself (no geometry stage runs).
+    r[c++] = v && v->bladeCounts    ? count(v->bladeTriangles)
+             : v && stats.available ? count(stats.geometryPrimitives)
+                                    : kNoValue;
     // Hi-Z occlusion culling; empty when it did not run (off, or no plants).
     const bool culled = v && v->occlusionCulling;
     for (uint64_t x : {culled ? v->cullTested : 0, culled ? v->cullCulled : 0, culled ? v->cullClustersCulled : 0,

@@ -84,6 +84,8 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
   m.plants.shadows = so.plantDraw.shadows;
   m.plants.occlusionCulling = so.occlusionCulling;
+  m.plants.bladePath = render::bladePathName(r.bladePath());
+  m.plants.bladePathRequested = render::bladePathName(so.renderer.bladePath);
   for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
     m.plants.species.push_back(s.name);
   m.validate = so.renderer.context.validate;

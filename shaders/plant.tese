@@ -28,13 +28,10 @@ void main() {
   uint seed = g.firstSeed + l;
   PlantParams p = plantParams(g, t, seed);
   float x = gl_TessCoord.x;
-  vec3 shape = bladePoint(p.stiffness, x);
-  vec3 dir = vec3(cos(p.orientation), sin(p.orientation), 0.0);
-  vec3 up = vec3(0.0, 0.0, 1.0);
-  outPos = p.root + (dir * shape.x + up * shape.y) * p.height;
-  outSide = vec3(-dir.y, dir.x, 0.0);
-  vec3 tangent = dir * sin(shape.z) + up * cos(shape.z);
-  outNormal = normalize(cross(outSide, tangent));
+  BladeVertexFrame f = bladeVertexFrame(p, x);
+  outPos = f.pos;
+  outSide = f.side;
+  outNormal = f.normal;
   outAlong = x;
   vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
   outGround = groundColour(t, r);

@@ -12,7 +12,7 @@ import os
 import sys
 
 # GPU passes that draw or prepare vegetation; every other pass is the non-vegetation share.
-VEGETATION_PASSES = ("classify", "grass", "gravel", "trees", "plants", "vegetation", "plant_shadows")
+VEGETATION_PASSES = ("classify", "blades", "grass", "gravel", "trees", "plants", "vegetation", "plant_shadows")
 # Geometric-load columns, in legend order; those absent or empty are skipped.
 GEOMETRY_COLUMNS = (
     ("terrain_triangles", "terrain triangles submitted"),

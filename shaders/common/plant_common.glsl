@@ -56,3 +56,24 @@ vec3 bladePoint(float stiffness, float x) {
   int r1 = min(r0 + 1, int(pc.tableRows) - 1);
   return mix(bladeRow(r0, x), bladeRow(r1, x), rowF - float(r0));
 }
+
+// A point of a plant's blade at fraction x of its length (core seed 001 §2.3): on the solved
+// shape, rotated about the vertical by the plant's orientation and scaled by its height. The
+// tessellation path (plant.tese) and the compute path (blades.comp) both place vertices here.
+struct BladeVertexFrame {
+  vec3 pos;     // camera-relative
+  vec3 side;    // unit, across the blade
+  vec3 normal;  // unit, the blade's face
+};
+
+BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
+  vec3 shape = bladePoint(p.stiffness, x);
+  vec3 dir = vec3(cos(p.orientation), sin(p.orientation), 0.0);
+  vec3 up = vec3(0.0, 0.0, 1.0);
+  BladeVertexFrame f;
+  f.pos = p.root + (dir * shape.x + up * shape.y) * p.height;
+  f.side = vec3(-dir.y, dir.x, 0.0);
+  vec3 tangent = dir * sin(shape.z) + up * cos(shape.z);
+  f.normal = normalize(cross(f.side, tangent));
+  return f;
+}

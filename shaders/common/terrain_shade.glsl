@@ -1,5 +1,6 @@
 // The compute half of deferred terrain shading (render/terrain_shade_pass.h). The visibility
-// pass left, per sample, 1 + the index of the triangle it sees (0: sky), as four UNORM bytes. Here every pixel of
+// pass left, per sample, 1 + the index of the triangle it sees, as four UNORM bytes, where its
+// depth is not the far plane's 0 (elsewhere: sky, and the visibility target holds garbage). Here every pixel of
 // the frame is shaded on the GPU's compute units: for each distinct triangle among its samples,
 // the pixel-centre ray is intersected with that triangle, its attributes are interpolated with
 // the resulting barycentrics (perspective-correct by construction: the intersection is in 3D),
@@ -26,15 +27,19 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef VEGSTREAM_MULTISAMPLE
 layout(set = 3, binding = 0) uniform sampler2DMS visibility;
+layout(set = 3, binding = 5) uniform sampler2DMS depthSamples;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, s))
+#define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, s).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
 #define SAMPLES textureSamples(visibility)
 const int kMaxSamples = 8;
 #else
 layout(set = 3, binding = 0) uniform sampler2D visibility;
+layout(set = 3, binding = 5) uniform sampler2D depthSamples;
 layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, 0))
+#define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, 0).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, c)
 #define SAMPLES 1
 const int kMaxSamples = 1;
@@ -132,7 +137,9 @@ void main() {
   vec4 colours[kMaxSamples];
   int samples = min(SAMPLES, kMaxSamples);
   for (int s = 0; s < samples; ++s) {
-    ids[s] = LOAD_ID(px, s);
+    // The visibility target is not cleared (a full-screen multisampled clear costs as much as
+    // drawing it on the H200): a sample the terrain did not reach kept the far depth, 0.
+    ids[s] = LOAD_DEPTH(px, s) > 0.0 ? LOAD_ID(px, s) : 0u;
     int same = -1;  // an earlier sample that sees the same triangle (or sky): shade once per pixel
     for (int e = 0; e < s; ++e)
       if (same < 0 && ids[e] == ids[s]) same = e;

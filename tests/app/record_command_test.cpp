@@ -214,6 +214,8 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_EQ(rec["plants"]["style"], "plants");
   EXPECT_EQ(rec["plants"]["max_segments"], 5);
   EXPECT_EQ(rec["plants"]["shadows"], true);
+  EXPECT_EQ(rec["plants"]["blade_path"], "compute") << "auto picks the compute blade path";
+  EXPECT_EQ(rec["plants"]["blade_path_requested"], "auto");
   const json s = json::parse(readWhole(dir / "summary.json"));
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);
@@ -400,6 +402,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "--occlusion-culling"},
         BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
         BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
+        BadRecord{"bad_blade_path", "{DS} {SMALL} --path {PATH} --blade-path fancy", "--blade-path"},
+        // this build has no mesh-shader path: refused once the device is known, before any frame
+        BadRecord{"blade_path_mesh", "{DS} {SMALL} --path {PATH} --blade-path mesh",
+                  "--blade-path mesh is not available on"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

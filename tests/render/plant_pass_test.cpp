@@ -15,6 +15,14 @@ namespace {
 
 class PlantPassTest : public GpuTest {};
 
+// These tests are about the tessellation path (the renderer's default is the compute path,
+// tests/render/blade_path_test.cpp compares the two).
+PlantDrawOptions tessellation() {
+  PlantDrawOptions d;
+  d.path = BladePath::Tessellation;
+  return d;
+}
+
 // Share of pixels in rows [y0, y1) the plants left as they were (the bare ground's colour, within
 // 4 of 255): plants take their colour from that ground, so a small threshold.
 double unchangedShare(const FieldResult& f, uint32_t y0, uint32_t y1) {
@@ -27,7 +35,7 @@ TEST_F(PlantPassTest, GrassCoversTheNearGroundOfAGreenFieldAndLeavesTheSky) {
     auto r = makeRenderer(kW, kH, msaa);
     ASSERT_TRUE(r);
     ASSERT_TRUE(r->setImageryLayers(1).ok());
-    const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, {}, {}, 120.0f);
+    const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, tessellation(), {}, 120.0f);
     if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR")) {  // for looking at the frames
       (void)writePng(std::string(dir) + "/grass_msaa" + std::to_string(msaa) + ".png", *f.with.color);
     }
@@ -50,7 +58,7 @@ TEST_F(PlantPassTest, ARedRockFieldGrowsGravelAndNoBlades) {
   auto r = makeRenderer(kW, kH, 4);
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->setImageryLayers(1).ok());
-  const FieldResult f = renderField(*r, "red gravel", PlantStyle::Plants);
+  const FieldResult f = renderField(*r, "red gravel", PlantStyle::Plants, tessellation());
   if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR"))
     (void)writePng(std::string(dir) + "/gravel.png", *f.with.color);
   ASSERT_TRUE(f.with.vegetation.has_value());
@@ -74,7 +82,7 @@ TEST_F(PlantPassTest, DryTuftsAreDrawnByTheFlowersPipeline) {
   auto r = makeRenderer(kW, kH, 4);
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->setImageryLayers(1).ok());
-  const FieldResult f = renderField(*r, "dry tufts", PlantStyle::Plants);
+  const FieldResult f = renderField(*r, "dry tufts", PlantStyle::Plants, tessellation());
   ASSERT_TRUE(f.with.vegetation.has_value());
   const VegetationFigures& v = *f.with.vegetation;
   const int tufts = speciesIndex("dry tufts");
@@ -92,7 +100,7 @@ TEST_F(PlantPassTest, PipelineStatisticsEqualTheAnalyticCounts) {
   ASSERT_TRUE(r->setImageryLayers(1).ok());
   for (int variant = 0; variant < 3; ++variant) {
     const bool shadows = variant == 1, speedOfLight = variant == 2;
-    PlantDrawOptions draw;
+    PlantDrawOptions draw = tessellation();
     draw.maxSegments = 4;
     draw.fullDetail = true;
     draw.shadows = shadows;

@@ -1,0 +1,19 @@
+#pragma once
+// The push constants every plant pipeline shares — the tessellation path (plant_pass.h) and the
+// compute blade path (blade_pass.h): mirrors PlantPush in shaders/common/plant_common.glsl.
+
+#include <cstdint>
+
+namespace vegstream::render {
+
+struct PlantPush {
+  uint32_t species, speciesCapacity, maxSegments, flags;
+  float lodDistanceM, tableLogKMin, tableLogKStep;
+  uint32_t tableRows;
+};
+static_assert(sizeof(PlantPush) == 32);
+
+// PlantPush::flags.
+inline constexpr uint32_t kPlantFlagShadows = 1, kPlantFlagFullDetail = 4, kPlantSamplesShift = 8;
+
+}  // namespace vegstream::render

@@ -1,0 +1,280 @@
+// The two blade paths (render/plant_pass.h: tessellation; render/blade_pass.h: compute) on
+// lavapipe at 320 × 180 draw the same plants: the same classify figures; the compute path writes
+// exactly the triangles the geometry stages emit (grass, gravel, flower kinds, with and without
+// shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
+// as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
+// invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
+// deterministic; the buffers follow the eq. 4 bound, and plants past a ceiling are dropped whole
+// and counted; the validation layers stay silent (GpuTest). RendererOptions: auto resolves to
+// compute, mesh is refused naming the option and the device.
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "plant_field.h"
+#include "render/png_writer.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+class BladePathTest : public GpuTest {};
+
+PlantDrawOptions withPath(PlantDrawOptions d, BladePath path) {
+  d.path = path;
+  return d;
+}
+
+void savePng(const std::string& name, const ColorImage& img) {
+  if (const char* dir = std::getenv("VEGSTREAM_TEST_PNG_DIR")) (void)writePng(std::string(dir) + "/" + name, img);
+}
+
+// Pixels of the whole frame that differ by more than `threshold` in any channel.
+size_t differing(const ColorImage& a, const ColorImage& b, int threshold) {
+  return changedPixels(a, b, 0, a.height, threshold);
+}
+
+// Pixels `subset` changes clearly (> 10 from `bare`) where `superset` leaves the bare field as it
+// was (within 4) in the pixel and its 8 neighbours.
+size_t strayPixels(const ColorImage& subset, const ColorImage& superset, const ColorImage& bare) {
+  auto diff = [&](const ColorImage& img, int x, int y) {
+    const size_t i = (size_t(y) * img.width + size_t(x)) * 4;
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(img.rgba[i + c]) - int(bare.rgba[i + c])));
+    return d;
+  };
+  size_t n = 0;
+  for (int y = 0; y < int(bare.height); ++y)
+    for (int x = 0; x < int(bare.width); ++x) {
+      if (diff(subset, x, y) <= 10) continue;
+      bool plant = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          plant = plant || diff(superset, std::clamp(x + dx, 0, int(bare.width) - 1),
+                                std::clamp(y + dy, 0, int(bare.height) - 1)) > 4;
+      if (!plant) ++n;
+    }
+  return n;
+}
+
+// Plant pixels either frame has where the other has none nearby: blades in different places.
+size_t misplacedPlantPixels(const ColorImage& a, const ColorImage& b, const ColorImage& bare) {
+  return strayPixels(a, b, bare) + strayPixels(b, a, bare);
+}
+
+TEST_F(BladePathTest, BothPathsDrawTheSameGrassAndImagesDifferOnlyAtBladeEdges) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  EXPECT_EQ(r->bladePath(), BladePath::Compute) << "auto picks compute";
+  const PlantDrawOptions draw;  // the defaults: eq. 4 LOD, shadows on
+  const FieldResult tess = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Tessellation));
+  const FieldResult comp = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Compute));
+  savePng("paths_tessellation.png", *tess.with.color);
+  savePng("paths_compute.png", *comp.with.color);
+  ASSERT_TRUE(tess.with.vegetation && comp.with.vegetation);
+  const VegetationFigures &vt = *tess.with.vegetation, &vc = *comp.with.vegetation;
+  EXPECT_EQ(vt.plants, vc.plants) << "the same classify figures";
+  EXPECT_EQ(vt.groups, vc.groups);
+  EXPECT_GT(vc.plantsTotal, 20000u);
+  EXPECT_FALSE(vt.bladeCounts) << "the tessellation path has no expansion counters";
+  ASSERT_TRUE(vc.bladeCounts);
+  EXPECT_EQ(vc.bladesDropped, 0u);
+
+  const PipelineStatistics &st = tess.with.gpu.statistics, &sc = comp.with.gpu.statistics;
+  ASSERT_TRUE(st.available && sc.available);
+  // The compute path wrote exactly the triangles the geometry stages emitted.
+  EXPECT_GT(st.geometryPrimitives, vc.plantsTotal);
+  EXPECT_EQ(vc.bladeTriangles, st.geometryPrimitives);
+  // No tessellation or geometry work in the compute path; its blades are input primitives
+  // instead of one patch per group; the clipper sees the same primitives either way.
+  EXPECT_EQ(sc.tessControlPatches, 0u);
+  EXPECT_EQ(sc.tessEvaluationInvocations, 0u);
+  EXPECT_EQ(sc.geometryPrimitives, 0u);
+  EXPECT_EQ(st.tessControlPatches, vt.groupsTotal);
+  EXPECT_EQ(sc.inputPrimitives - vc.bladeTriangles, st.inputPrimitives - st.tessControlPatches);
+  EXPECT_EQ(sc.clippingInvocations, st.clippingInvocations);
+  EXPECT_GT(sc.computeInvocations, st.computeInvocations) << "the expansion runs in compute";
+  // Rasterised coverage agrees to float rounding at edges.
+  const double fragRatio = double(sc.fragmentInvocations) / double(st.fragmentInvocations);
+  EXPECT_NEAR(fragRatio, 1.0, 0.01);
+
+  // Images: the same plants in the same places, shaded alike; vertices equal up to float
+  // rounding move a few edge pixels.
+  const ColorImage &a = *tess.with.color, &b = *comp.with.color;
+  const double pixels = double(kW) * kH;
+  const size_t big = differing(a, b, 24), any = differing(a, b, 4);
+  const size_t plantPixels = changedPixels(a, *tess.without.color, 0, kH, 4);
+  std::printf(
+      "%zu plant pixels; differing pixels: %zu by > 4, %zu by > 24 (of %.0f); plant pixels in one frame only %zu\n",
+      plantPixels, any, big, pixels, misplacedPlantPixels(a, b, *tess.without.color));
+  ASSERT_GT(plantPixels, size_t(0.1 * pixels)) << "the grass covers the near ground";
+  EXPECT_LT(double(big), 0.02 * pixels);
+  EXPECT_GT(1.0 - double(any) / pixels, 0.95) << "share of pixels that match within 4";
+  EXPECT_EQ(misplacedPlantPixels(a, b, *tess.without.color), 0u) << "differences only at blades";
+  EXPECT_GT(misplacedPlantPixels(a, *tess.without.color, *tess.without.color), size_t(0.03 * pixels))
+      << "the check sees plants that are not in the other frame";
+}
+
+TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndWithoutShadows) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  for (const char* species : {"grass", "red gravel", "dry tufts"})
+    for (bool shadows : {true, false}) {
+      SCOPED_TRACE(std::string(species) + (shadows ? ", shadows" : ", no shadows"));
+      PlantDrawOptions draw;
+      draw.shadows = shadows;
+      draw.maxSegments = 4;
+      const FieldResult t =
+          renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {}, 24.0f);
+      const FieldResult c = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+      ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
+      EXPECT_EQ(t.with.vegetation->plants, c.with.vegetation->plants);
+      ASSERT_GT(t.with.gpu.statistics.geometryPrimitives, 0u);
+      EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+      EXPECT_EQ(c.with.gpu.statistics.clippingInvocations, t.with.gpu.statistics.clippingInvocations);
+      EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
+      EXPECT_EQ(misplacedPlantPixels(*t.with.color, *c.with.color, *t.without.color), 0u);
+      EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "the plants are drawn";
+      const std::string name = std::string(species) + (shadows ? "" : "_noshadow");
+      savePng("kind_" + name + "_tessellation.png", *t.with.color);
+      savePng("kind_" + name + "_compute.png", *c.with.color);
+    }
+}
+
+TEST_F(BladePathTest, WithoutMsaaBothPathsTakeTheSameAlphaTest) {
+  // MSAA 1: the fragment stage's computed coverage becomes an alpha test with the same dither.
+  auto r = makeRenderer(kW, kH, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const FieldResult t = renderField(*r, "grass", PlantStyle::Plants, withPath({}, BladePath::Tessellation));
+  const FieldResult c = renderField(*r, "grass", PlantStyle::Plants, withPath({}, BladePath::Compute));
+  ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
+  EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+  EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), size_t(0.1 * kW * kH));
+  EXPECT_LT(double(differing(*t.with.color, *c.with.color, 24)), 0.02 * kW * kH);
+  EXPECT_EQ(misplacedPlantPixels(*t.with.color, *c.with.color, *t.without.color), 0u);
+  savePng("msaa1_compute.png", *c.with.color);
+}
+
+TEST_F(BladePathTest, LookingDownTheComputePathWritesTheAnalyticCounts) {
+  // Every seed triangle in view, every blade at n_max segments: 2 triangles per segment per blade,
+  // doubled by the shadows; vertices 2 (n + 1) per blade, doubled too.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  PlantDrawOptions draw;
+  draw.maxSegments = 4;
+  draw.fullDetail = true;
+  draw.path = BladePath::Compute;
+  const FieldView top{{0.0, 33.0, 120.0}, {0.0, 0.0, -1.0}};
+  const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, draw, top, 24.0f);
+  ASSERT_TRUE(f.with.vegetation);
+  const VegetationFigures& v = *f.with.vegetation;
+  ASSERT_GT(v.plantsTotal, 1000u);
+  EXPECT_EQ(v.bladeTriangles, v.plantsTotal * 4 * 2 * 2);
+  EXPECT_EQ(v.bladeVertices, v.plantsTotal * 2 * (4 + 1) * 2);
+  EXPECT_EQ(f.with.gpu.statistics.inputVertices, f.without.gpu.statistics.inputVertices + 3 * v.bladeTriangles);
+}
+
+TEST_F(BladePathTest, TheBuffersFollowTheFramesLodBoundAndNothingIsDropped) {
+  // The expansion's buffers are sized by the CPU's bound at each triangle's eq. 4 segments: a
+  // full-detail frame of the same field needs (and gets) more than a level-of-detail one.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  PlantDrawOptions draw = withPath({}, BladePath::Compute);
+  draw.maxSegments = 8;
+  const uint64_t before = r->gpuBytes();
+  const FieldResult lod = renderField(*r, "grass", PlantStyle::Plants, draw);
+  const uint64_t withLod = r->gpuBytes();
+  draw.fullDetail = true;
+  const FieldResult full = renderField(*r, "grass", PlantStyle::Plants, draw);
+  const uint64_t withFull = r->gpuBytes();
+  ASSERT_TRUE(lod.with.vegetation && full.with.vegetation);
+  EXPECT_EQ(lod.with.vegetation->bladesDropped, 0u);
+  EXPECT_EQ(full.with.vegetation->bladesDropped, 0u);
+  EXPECT_GT(full.with.vegetation->bladeTriangles, lod.with.vegetation->bladeTriangles);
+  EXPECT_GT(withLod, before);
+  EXPECT_GT(withFull, withLod) << "full detail needs larger buffers than eq. 4's level of detail";
+}
+
+TEST_F(BladePathTest, PlantsPastTheCeilingAreDroppedWholeAndCounted) {
+  // A ceiling far under the field's needs: the expansion writes what fits, drops the rest whole
+  // (counted), and draws nothing stray — no validation message, no pixel changed away from the
+  // plants the uncapped renderer draws.
+  RendererOptions o = options(kW, kH, 4);
+  o.bladeMaxVertices = 60000;
+  auto capped = Renderer::create(o);
+  ASSERT_TRUE(capped.ok());
+  auto full = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(full);
+  for (Renderer* r : {capped->get(), full.get()}) ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const PlantDrawOptions draw = withPath({}, BladePath::Compute);
+  const FieldResult c = renderField(**capped, "grass", PlantStyle::Plants, draw);
+  const FieldResult f = renderField(*full, "grass", PlantStyle::Plants, draw);
+  ASSERT_TRUE(c.with.vegetation && f.with.vegetation);
+  const VegetationFigures &vc = *c.with.vegetation, &vf = *f.with.vegetation;
+  EXPECT_EQ(vc.plants, vf.plants) << "classified alike";
+  EXPECT_EQ(vf.bladesDropped, 0u);
+  EXPECT_GT(vc.bladesDropped, 0u);
+  EXPECT_LE(vc.bladeVertices, 60000u);
+  EXPECT_GT(vc.bladeTriangles, 0u);
+  EXPECT_LT(vc.bladeTriangles, vf.bladeTriangles);
+  // Every triangle drawn (degenerate ones included) reached the clipper: the capped frame's
+  // count is the drawn indices / 3, never more than the uncapped frame's.
+  EXPECT_LE(c.with.gpu.statistics.clippingInvocations, f.with.gpu.statistics.clippingInvocations);
+  // The capped frame's plants are a subset of the uncapped frame's: next to nothing clearly
+  // visible where the uncapped frame has no plant pixel nearby. Not exactly nothing: where the
+  // uncapped frame's front blade happens to match the ground's colour, the capped frame may have
+  // dropped it and show the darker blade or shadow behind. A stray triangle from a bad index
+  // would cover far more than 0.1 % of the frame.
+  EXPECT_LE(double(strayPixels(*c.with.color, *f.with.color, *f.without.color)), 0.001 * kW * kH);
+  EXPECT_GT(changedPixels(*c.with.color, *c.without.color, 0, kH, 4), 100u) << "what fits is drawn";
+  savePng("capped_compute.png", *c.with.color);
+}
+
+TEST_F(BladePathTest, EachPathIsDeterministic) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  for (BladePath path : {BladePath::Tessellation, BladePath::Compute}) {
+    SCOPED_TRACE(bladePathName(path));
+    const PlantDrawOptions draw = withPath({}, path);
+    const FieldResult a = renderField(*r, "grass", PlantStyle::Plants, draw);
+    const FieldResult b = renderField(*r, "grass", PlantStyle::Plants, draw);
+    ASSERT_TRUE(a.with.vegetation && b.with.vegetation);
+    EXPECT_EQ(a.with.vegetation->plants, b.with.vegetation->plants);
+    EXPECT_EQ(a.with.vegetation->bladeTriangles, b.with.vegetation->bladeTriangles);
+    EXPECT_EQ(a.with.gpu.statistics.clippingInvocations, b.with.gpu.statistics.clippingInvocations);
+    EXPECT_EQ(a.with.gpu.statistics.fragmentInvocations, b.with.gpu.statistics.fragmentInvocations);
+    // Groups (and so triangles) arrive in atomic order: equal-depth ties may resolve either way.
+    EXPECT_LT(differing(*a.with.color, *b.with.color, 24), size_t(0.002 * kW * kH));
+  }
+}
+
+TEST_F(BladePathTest, MeshIsRefusedNamingTheOptionAndTheDeviceAndAutoIsCompute) {
+  RendererOptions o = options(64, 36, 1);
+  o.bladePath = BladePath::Mesh;
+  auto refused = Renderer::create(o);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(refused.error().message.find("--blade-path mesh"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("VK_EXT_mesh_shader"), std::string::npos) << refused.error().message;
+  o.bladePath = BladePath::Tessellation;
+  auto tess = Renderer::create(o);
+  ASSERT_TRUE(tess.ok());
+  EXPECT_EQ((*tess)->bladePath(), BladePath::Tessellation);
+  EXPECT_NE(refused.error().message.find((*tess)->device().name), std::string::npos) << refused.error().message;
+  o.bladePath = BladePath::Auto;
+  auto autoPath = Renderer::create(o);
+  ASSERT_TRUE(autoPath.ok());
+  EXPECT_EQ((*autoPath)->bladePath(), BladePath::Compute);
+  EXPECT_EQ(parseBladePath("compute"), BladePath::Compute);
+  EXPECT_FALSE(parseBladePath("fancy").has_value());
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing
