@@ -1,0 +1,173 @@
+// What one frame records (Renderer::Impl, render/renderer_impl.h): the passes in order,
+// read-back, present and the queue submission.
+#include <cassert>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include "render/renderer_impl.h"
+
+namespace vegstream::render {
+
+// The frame's passes, in order: imagery uploads; the terrain's geometry (front to back) — then
+// deferred: the visibility scope and the shade (compute, sky included), or forward: scope 1
+// with sky and terrain; with plants: the Hi-Z build from the terrain's depth and the classify
+// pass (compute, culling the seed triangles the terrain hides), the compute blade expansion,
+// then the plants' scope (loading colour and depth, resolving); the HUD over the resolved image.
+void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request) {
+  const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
+  const int slotIndex = static_cast<int>(index % kFramesInFlight);
+  terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
+  slot.vegetation.reset();
+  slot.bladesExpanded = false;
+  const VegetationRequest* plants = request.vegetation;
+
+  slot.terrainTriangles =
+      terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);
+  RenderTargets::Load next = RenderTargets::Load::Keep;  // how the plants' scope starts
+  if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
+    slot.timer->beginPass(cmd, "terrain");
+    targets->beginVisibility(cmd);
+    terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
+    vkCmdEndRendering(cmd);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain shade");
+    targets->visibilityToShade(cmd);
+    terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
+    slot.timer->endPass(cmd);
+    next = RenderTargets::Load::Shaded;
+  } else {
+    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr);
+    slot.timer->beginPass(cmd, "sky");
+    sky->record(cmd, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain");
+    terrainPass->recordForward(cmd, slotIndex, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+    vkCmdEndRendering(cmd);
+  }
+  if (plants) {
+    recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
+  } else if (terrainShade) {  // no plants: one empty scope resolves the shaded targets
+    targets->beginRendering(cmd, next, /*resolve=*/true);
+    vkCmdEndRendering(cmd);
+  }
+  if (request.overlay) {  // over the resolved image, so read-back and present include it
+    slot.timer->beginPass(cmd, "hud");
+    hudPass->record(
+        cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->color(),
+        [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); },
+        [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
+    slot.timer->endPass(cmd);
+  }
+}
+
+// After the terrain's scope: Hi-Z build + classify (culling hidden seed triangles when asked),
+// then the plants in a second scope that loads the terrain's colour and depth and resolves.
+void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                                  RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire) {
+  const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify) : 0u;
+  slot.timer->beginPass(cmd, "classify");
+  ClassifyPass::CullHook cull;
+  if (plants.occlusionCulling && !plants.triangles.empty()) {
+    hiz->recordBuild(cmd);
+    cull = [&](VkCommandBuffer c, VkBuffer triangles, VkBuffer visible, uint32_t count) {
+      hiz->recordCull(c, slotIndex, slot.descriptorSet, triangles, visible, count, plants.clusterSize,
+                      plants.draw.shadows && plants.style == PlantStyle::Plants);
+    };
+  }
+  slot.vegetation = classify->record(cmd, slotIndex, plants.triangles, plants.clusterSize,
+                                     terrainPass->imageryBytesView(),
+                                     PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull);
+  slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles
+  slot.timer->endPass(cmd);
+  // The compute blade path expands the plants before their scope (render/blade_pass.h).
+  slot.bladesExpanded = plants.style == PlantStyle::Plants && pathFor(plants.draw) == BladePath::Compute;
+  if (slot.bladesExpanded) {
+    slot.timer->beginPass(cmd, "blades");
+    blades->recordExpand(cmd, slotIndex, slot.descriptorSet, *classify, *plantPass, plants.triangles,
+                         plants.clusterSize, terrainPass->imageryView(), plants.draw, retire);
+    slot.timer->endPass(cmd);
+  }
+
+  targets->beginRendering(cmd, load, /*resolve=*/true);
+  if (plants.style != PlantStyle::Hidden) {
+    slot.timer->beginPass(cmd, "plants");
+    if (patchMask != 0 && slot.bladesExpanded)
+      blades->recordDraw(cmd, slotIndex, slot.descriptorSet);
+    else if (patchMask != 0)
+      plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants.draw);
+    markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
+    slot.timer->endPass(cmd);
+  }
+  vkCmdEndRendering(cmd);
+}
+
+void Renderer::Impl::queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex) {
+  VkFence fence = slot.fence.get();
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = slot.cmd;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  if (imageIndex) {
+    waitInfo.semaphore = slot.imageAcquired.get();
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
+    signalInfo.semaphore = swapchain->renderDone(*imageIndex);
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.waitSemaphoreInfoCount = 1;
+    si.pWaitSemaphoreInfos = &waitInfo;
+    si.signalSemaphoreInfoCount = 1;
+    si.pSignalSemaphoreInfos = &signalInfo;
+  }
+  vkCheck(vkQueueSubmit2(ctx->queue(), 1, &si, fence), "vkQueueSubmit2");
+}
+
+void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool readColor, bool readDepth) const {
+  const VkExtent2D extent = targets->extent();
+  auto copy = [&](const GpuImage& img, VkImageLayout layout, VkPipelineStageFlags2 stage, VkAccessFlags2 access,
+                  const GpuBuffer& dst) {
+    transitionImage(cmd, img.get(), img.aspect, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, stage, access,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {img.aspect, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.get(), 1, &region);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    // Back to the layout the present blit expects.
+    transitionImage(cmd, img.get(), img.aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, stage, access);
+  };
+  if (readColor)
+    copy(targets->color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.colorReadback);
+  if (readDepth)
+    copy(targets->depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+         VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.depthReadback);
+}
+
+void Renderer::Impl::recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const {
+  const GpuImage& src = targets->color();
+  const VkImage dst = swapchain->image(imageIndex);
+  transitionImage(cmd, src.get(), src.aspect, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  transitionImage(cmd, dst, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  const VkExtent2D s = targets->extent(), d = swapchain->extent();
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {static_cast<int32_t>(s.width), static_cast<int32_t>(s.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {static_cast<int32_t>(d.width), static_cast<int32_t>(d.height), 1};
+  vkCmdBlitImage(cmd, src.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                 &blit, VK_FILTER_LINEAR);
+  transitionImage(cmd, dst, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+}
+
+}  // namespace vegstream::render
