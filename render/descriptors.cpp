@@ -96,10 +96,12 @@ void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
   writeBuffer(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer, VK_WHOLE_SIZE, binding);
 }
 
-Sampler createNearestClampSampler(const Context& ctx, const std::string& name) {
+namespace {
+// One mip level, clamped: `filter` picks bilinear (imagery, HUD atlas) or nearest (texelFetch).
+Sampler createClampSampler(const Context& ctx, VkFilter filter, const std::string& name) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_NEAREST;
-  sci.minFilter = VK_FILTER_NEAREST;
+  sci.magFilter = filter;
+  sci.minFilter = filter;
   sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sci.maxLod = 0.0f;
@@ -108,18 +110,14 @@ Sampler createNearestClampSampler(const Context& ctx, const std::string& name) {
   ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
   return Sampler(ctx.device(), sampler);
 }
+}  // namespace
+
+Sampler createNearestClampSampler(const Context& ctx, const std::string& name) {
+  return createClampSampler(ctx, VK_FILTER_NEAREST, name);
+}
 
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.maxLod = 0.0f;
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
-  return Sampler(ctx.device(), sampler);
+  return createClampSampler(ctx, VK_FILTER_LINEAR, name);
 }
 
 Sampler createLinearRepeatSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {

@@ -54,6 +54,18 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
                                 "terrain visibility target");
 }
 
+void RenderTargets::beginScope(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
+                               const VkRenderingAttachmentInfo& depth) const {
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent_};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  setViewport(cmd);
+}
+
 void RenderTargets::setViewport(VkCommandBuffer cmd) const {
   // Flip nothing here: the projection matrix already flips y for Vulkan.
   const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent_.width), static_cast<float>(extent_.height),
@@ -104,14 +116,7 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve)
     depthInfo.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   }
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent_};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &colorInfo;
-  ri.pDepthAttachment = &depthInfo;
-  vkCmdBeginRendering(cmd, &ri);
-  setViewport(cmd);
+  beginScope(cmd, colorInfo, depthInfo);
 }
 
 void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
@@ -125,14 +130,7 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
   VkRenderingAttachmentInfo depthInfo =
       attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
   depthInfo.clearValue.depthStencil = {0.0f, 0};
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent_};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &idInfo;
-  ri.pDepthAttachment = &depthInfo;
-  vkCmdBeginRendering(cmd, &ri);
-  setViewport(cmd);
+  beginScope(cmd, idInfo, depthInfo);
 }
 
 void RenderTargets::visibilityToShade(VkCommandBuffer cmd) const {

@@ -63,6 +63,9 @@ class RenderTargets {
   void visibilityToShade(VkCommandBuffer cmd) const;
 
  private:
+  // Begins rendering over the whole extent into one colour and one depth attachment.
+  void beginScope(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
+                  const VkRenderingAttachmentInfo& depth) const;
   void setViewport(VkCommandBuffer cmd) const;
 
   VkExtent2D extent_;
