@@ -123,27 +123,7 @@ terrain::TerrainMesh wall(float top) {
 
 // Seed triangles: 3 m squares from 30 m west to 30 m east and 5 … 122 m north, `plants` each.
 std::vector<SeedTriangleGpu> deepField(const glm::dvec3& camera, float plants) {
-  std::vector<SeedTriangleGpu> out;
-  uint32_t i = 0;
-  auto add = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    SeedTriangleGpu t;
-    t.v0 = glm::vec4(glm::vec3(a - camera), plants);
-    t.v1 = glm::vec4(glm::vec3(b - camera), 0.0f);
-    t.v2 = glm::vec4(glm::vec3(c - camera), 0.0f);
-    t.uv01 = glm::vec4(fieldUv(a.x, a.y), fieldUv(b.x, b.y));
-    t.uv2 = fieldUv(c.x, c.y);
-    t.keyLo = mix32(2 * i + 11);
-    t.keyHi = mix32(2 * i + 12);
-    t.layer = 0;
-    ++i;
-    out.push_back(t);
-  };
-  for (double y = 5.0; y < 120.0; y += 3.0)
-    for (double x = -30.0; x < 30.0; x += 3.0) {
-      add({x, y, 0.0}, {x + 3.0, y, 0.0}, {x, y + 3.0, 0.0});
-      add({x + 3.0, y + 3.0, 0.0}, {x, y + 3.0, 0.0}, {x + 3.0, y, 0.0});
-    }
-  return out;
+  return seedTriangles(camera, plants, 120.0);
 }
 
 struct Frames {

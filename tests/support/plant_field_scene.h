@@ -56,9 +56,9 @@ inline glm::vec2 fieldUv(double x, double y) {
   return {static_cast<float>(x / kField + 0.5), static_cast<float>(0.5 - y / kField)};
 }
 
-// The two right triangles of each 3 m square from 30 m west to 30 m east and 5 … 62 m north,
-// camera-relative.
-inline std::vector<SeedTriangleGpu> seedTriangles(const glm::dvec3& camera, float plants) {
+// The two right triangles of each 3 m square from 30 m west to 30 m east and from 5 m north to
+// the first row ending past `northM` (62 m by default), camera-relative.
+inline std::vector<SeedTriangleGpu> seedTriangles(const glm::dvec3& camera, float plants, double northM = 60.0) {
   std::vector<SeedTriangleGpu> out;
   uint32_t i = 0;
   auto add = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -74,7 +74,7 @@ inline std::vector<SeedTriangleGpu> seedTriangles(const glm::dvec3& camera, floa
     ++i;
     out.push_back(t);
   };
-  for (double y = 5.0; y < 60.0; y += 3.0)
+  for (double y = 5.0; y < northM; y += 3.0)
     for (double x = -30.0; x < 30.0; x += 3.0) {
       add({x, y, 0.0}, {x + 3.0, y, 0.0}, {x, y + 3.0, 0.0});
       add({x + 3.0, y + 3.0, 0.0}, {x, y + 3.0, 0.0}, {x + 3.0, y, 0.0});
