@@ -19,28 +19,7 @@ namespace vegstream::scene {
 namespace {
 namespace fs = std::filesystem;
 
-class FrameDriverTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir = vegstream::testing::testOutputDir();
-    auto made = testing::syntheticDataset();
-    ASSERT_TRUE(made.ok()) << made.error().message;
-    dataset = *made;
-  }
-  void TearDown() override {
-    for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
-  }
-  std::unique_ptr<Scene> open() {
-    return testing::openValidatedScene(dataset, {.width = 96, .height = 54}, validation);
-  }
-  flight::FlightPath path(const Scene& scene) {
-    auto p = flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
-    EXPECT_TRUE(p.ok()) << p.error().message;
-    return p.ok() ? *p : flight::FlightPath{};
-  }
-
-  fs::path dir, dataset;
-  std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
+class FrameDriverTest : public testing::SceneFrameTest {
 };
 
 bool isTimeColumn(const std::string& name) { return name.size() > 3 && name.substr(name.size() - 3) == "_ms"; }

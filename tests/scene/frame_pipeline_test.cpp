@@ -21,25 +21,8 @@ namespace vegstream::scene {
 namespace {
 namespace fs = std::filesystem;
 
-class FramePipelineTest : public ::testing::Test {
+class FramePipelineTest : public testing::SceneFrameTest {
  protected:
-  void SetUp() override {
-    dir = vegstream::testing::testOutputDir();
-    auto made = testing::syntheticDataset();
-    ASSERT_TRUE(made.ok()) << made.error().message;
-    dataset = *made;
-  }
-  void TearDown() override {
-    for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
-  }
-  std::unique_ptr<Scene> open() {
-    return testing::openValidatedScene(dataset, {.width = 96, .height = 54}, validation);
-  }
-  flight::FlightPath path(const Scene& scene) {
-    auto p = flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
-    EXPECT_TRUE(p.ok()) << p.error().message;
-    return p.ok() ? *p : flight::FlightPath{};
-  }
   // One playback of benchmark-30s at 1 fps (31 frames, 2 warm-up frames) keeping `depth` frames
   // in flight, every 5th frame saved under dir/frames<tag>.
   Recording play(std::size_t depth, const std::string& tag) {
@@ -60,8 +43,6 @@ class FramePipelineTest : public ::testing::Test {
     return rec.ok() ? std::move(*rec) : Recording{};
   }
 
-  fs::path dir, dataset;
-  std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
 };
 
 bool isTimeColumn(const std::string& name) { return name.size() > 3 && name.substr(name.size() - 3) == "_ms"; }

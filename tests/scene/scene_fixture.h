@@ -11,6 +11,7 @@
 
 #include "datasets/progress.h"
 #include "datasets/synthetic_generator.h"
+#include "flight/path_templates.h"
 #include "scene/scene.h"
 #include "tests/support/test_dirs.h"
 
@@ -52,5 +53,29 @@ inline std::unique_ptr<Scene> openValidatedScene(const std::filesystem::path& da
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   return scene.ok() ? std::move(*scene) : nullptr;
 }
+
+// A test that plays frames over the synthetic dataset: its own output directory, a validated
+// 96 × 54 scene, the benchmark-30s path over it; any validation message fails the test.
+class SceneFrameTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = vegstream::testing::testOutputDir();
+    auto made = syntheticDataset();
+    ASSERT_TRUE(made.ok()) << made.error().message;
+    dataset = *made;
+  }
+  void TearDown() override {
+    for (const auto& m : validation->messages()) ADD_FAILURE() << "validation: " << m;
+  }
+  std::unique_ptr<Scene> open() { return openValidatedScene(dataset, {.width = 96, .height = 54}, validation); }
+  flight::FlightPath path(const Scene& scene) {
+    auto p = flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
+    EXPECT_TRUE(p.ok()) << p.error().message;
+    return p.ok() ? *p : flight::FlightPath{};
+  }
+
+  std::filesystem::path dir, dataset;
+  std::shared_ptr<render::ValidationLog> validation = std::make_shared<render::ValidationLog>();
+};
 
 }  // namespace vegstream::scene::testing
