@@ -178,8 +178,10 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   list.clear();
   const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition);
   VkDeviceSize vertexBytes = 0, indexBytes = 0;
+  std::vector<MeshSize> sizes;  // per drawn piece, in draw order (counted once, used twice)
+  sizes.reserve(order.size());
   for (uint32_t i : order) {
-    const MeshSize size = flatSize(*draws[i].mesh);
+    const MeshSize size = sizes.emplace_back(flatSize(*draws[i].mesh));
     vertexBytes += size.vertices * sizeof(terrain::TerrainVertex);
     indexBytes += size.indices * sizeof(uint32_t);
   }
@@ -203,10 +205,10 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   auto* idst = static_cast<uint8_t*>(indices_[s].mapped);
   auto* pdst = static_cast<TerrainPiece*>(pieces_[s].mapped);
   uint32_t firstVertex = 0, firstIndex = 0;
-  for (uint32_t i : order) {
-    const TerrainDraw& d = draws[i];
+  for (size_t k = 0; k < order.size(); ++k) {
+    const TerrainDraw& d = draws[order[k]];
     const terrain::TerrainMesh& m = *d.mesh;
-    const MeshSize size = flatSize(m);
+    const MeshSize size = sizes[k];
     copyFlat(m, reinterpret_cast<terrain::TerrainVertex*>(vdst) + firstVertex,
              reinterpret_cast<uint32_t*>(idst) + firstIndex);
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
