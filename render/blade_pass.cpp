@@ -27,8 +27,9 @@ namespace {
 struct BladeVertexGpu {
   float pos[3];
   uint32_t plant;
-  float normal[3];
+  uint32_t colour[2];  // packHalf2x16 (r, g), (b, 0)
   uint32_t blade;
+  uint32_t unused;
 };
 static_assert(sizeof(BladeVertexGpu) == 32);
 struct BladePlantGpu {

@@ -7,9 +7,10 @@
 // classified group of species pc.species for the group's frustum test and eq. 4 segment count
 // (common/plant_lod.glsl), then the workgroup's plants shared out one per thread: per plant its
 // parameters (common/plant_params.glsl), the imagery colour under it, its vertices on the solved
-// blade shape, the kind's extrusion (tapered blade strip, camera-facing stone diamond, stem with
-// a flower head) and, when shadows are on and the sun is high enough over the seed triangle, the same
-// geometry projected onto the triangle's plane (§3.6). The same plants, segments and triangles
+// blade shape, lit per vertex (common/plant_lighting.glsl), the kind's extrusion (tapered blade
+// strip, camera-facing stone diamond, stem with a flower head) and, when shadows are on and the
+// sun is high enough over the seed triangle, the same geometry projected onto the triangle's
+// plane (§3.6). The same plants, segments and triangles
 // as the tessellation path; the figures (blade_args.comp) count them.
 //
 // Space is reserved per workgroup (a prefix sum and shared-memory atomics, then one global atomic
@@ -25,6 +26,8 @@ layout(local_size_x = 64) in;
 #include "plant_lod.glsl"
 #include "plant_shape.glsl"
 #include "blade_layout.glsl"
+#include "atmosphere.glsl"
+#include "plant_lighting.glsl"
 
 // Classify's indirect draws (instanceCount: the species' groups, already clamped to its buffer).
 layout(set = 2, binding = 4, std430) readonly buffer ClassifyDraws { uvec4 classifyDraws[kMaxSpecies]; };
@@ -49,14 +52,18 @@ uvec2 plantSize(uint kind, uint n) {
 
 uint gKind, gPlantWord;
 vec4 gPlane;
+vec4 gGroundMod;  // the imagery colour under the root (rgb) and the plant's colour modulation (a)
 uint gVertex;  // next vertex to write
 
 void putVertex(vec3 p, vec3 n, vec2 blade, bool shadow) {
   BladeVertex v;
   v.pos = shadow ? shadowPoint(p, gPlane) : p;
-  v.normal = shadow ? gPlane.xyz : n;
+  vec3 c = shadow ? vec3(0.0)
+                  : plantColour(p, n, blade, gGroundMod.rgb, gGroundMod.a, (gPlantWord >> kBladeKindShift) & 3u, gPlane.xyz);
+  v.colour = uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
   v.plant = gPlantWord | (shadow ? kBladeShadowBit : 0u);
   v.blade = packSnorm2x16(blade);
+  v.unused = 0u;
   bladeVertices[gVertex++] = v;
 }
 
@@ -200,7 +207,8 @@ void main() {
     uint seed = g.firstSeed + l;
     PlantParams p = plantParams(g, t, seed);
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
-    bladePlants[pAt] = BladePlant(vec4(groundColour(t, r), p.colourModulation), vec4(gPlane.xyz, p.sPrime));
+    gGroundMod = vec4(groundColour(t, r), p.colourModulation);
+    bladePlants[pAt] = BladePlant(gGroundMod, vec4(gPlane.xyz, p.sPrime));
     gKind = kindK;
     gPlantWord = pAt | ((kindK == kGravel ? 1u : 0u) << kBladeKindShift);
     gVertex = vAt;

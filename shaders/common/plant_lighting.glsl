@@ -1,0 +1,47 @@
+// The colour of a plant vertex: core seed 001_3eca9f2c7752e4fb.txt §2.4, eq. 14's ambient +
+// Lambert + Phong specular plus eq. 13's translucency I_t = I_i k_t max(−n·ω, 0) exp(α / (n·ω))
+// for light from behind the blade; coefficients from the imagery colour under the plant (the same
+// albedo the terrain pass gives that ground, so plants fade into the textured far terrain),
+// darkened towards the ground by the neighbours' occlusion (Reeves and Blau 1985; seed 004
+// §2.3's height-dependent light), then the aerial perspective of the terrain.
+//
+// Evaluated per vertex (issue 17): the geometry stages of the tessellation path and blades.comp of
+// the compute path call it, plant.frag only interpolates. A blade is a few pixels wide and its
+// 1–5 segments follow its curvature, so per-vertex lighting loses nothing visible, while per
+// fragment it was most of the plants pass on GPUs whose fragment units are few (the H200 runs
+// them on 2 of 66 TPCs). Needs frame_uniforms.glsl and atmosphere.glsl.
+
+const float kPlantImageryExposure = 1.6;  // as terrain_shading.glsl: imagery is albedo × its day's light
+const float kPlantAttenuation = 0.6;      // α of eq. 13: light absorbed crossing a blade of unit width
+
+const uint kPlantKindBlade = 0u, kPlantKindStone = 1u, kPlantKindHead = 2u;
+
+// pos: camera-relative; normal: the surface's (either side); blade.y: 0 root … 1 tip;
+// ground: the imagery colour under the root (linear); modulation: the plant's colour factor;
+// up: the ground's unit normal under the plant.
+vec3 plantColour(vec3 pos, vec3 normal, vec2 blade, vec3 ground, float modulation, uint kind, vec3 up) {
+  vec3 n = normalize(normal);
+  vec3 v = normalize(-pos);
+  if (dot(n, v) < 0.0) n = -n;  // blades are two-sided: shade the face we see
+  // A canopy of thin blades, or a bed of stones, is lit much like the ground it covers (a slope
+  // turned from the sun stays dark): bend the normal towards the ground's.
+  vec3 nLight = normalize(mix(n, up, 0.7));
+  vec3 l = frame.sunDirection.xyz;
+  float ndl = dot(nLight, l);
+  vec3 albedo = ground * kPlantImageryExposure * 0.5 * modulation;
+  if (kind == kPlantKindHead) albedo = mix(albedo, vec3(0.55, 0.45, 0.12), 0.6) * 1.6;  // flower heads: yellow
+  // Occlusion by the neighbours: dark at the root, the sunlit top of the canopy a little brighter
+  // than the bare ground (stones and heads: none).
+  float occlusion = kind != kPlantKindBlade ? 1.0 : mix(0.45, 1.1, blade.y);
+  vec3 kd = albedo * occlusion;
+  vec3 ka = kd;
+  vec3 kt = albedo * vec3(0.9, 1.0, 0.55) * occlusion;  // light through a leaf turns yellow-green
+  float ks = (kind == kPlantKindBlade ? 0.015 : 0.01) * occlusion;
+  vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.35;
+  vec3 ii = frame.sunColor.rgb;
+  vec3 r = reflect(-l, nLight);
+  vec3 lit = ia * ka + ii * (kd * max(ndl, 0.0) + ks * pow(max(dot(v, r), 0.0), 32.0));
+  float ndlFace = dot(n, l);  // translucency goes through the blade's own face
+  if (ndlFace < 0.0 && kind == kPlantKindBlade) lit += ii * kt * (-ndlFace) * exp(kPlantAttenuation / ndlFace);  // eq. 13
+  return applyAerialPerspective(lit, pos);
+}
