@@ -60,6 +60,9 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Blades have full detail within this distance, n_max / d² beyond, metres")
       ->capture_default_str();
   cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
+  cmd.add_option("--plant-shadow-m", o.plantShadowM,
+                 "Planar shadows are drawn within this distance, fading out over its last quarter, metres")
+      ->capture_default_str();
   cmd.add_option("--occlusion-culling", o.occlusionCulling,
                  "on: seed triangles hidden behind the terrain (Hi-Z of its depth) are neither classified nor "
                  "drawn; off: all are, for comparison")
@@ -110,6 +113,9 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
     return bad("--plant-segments " + std::to_string(o.plantSegments) + ": must be 1 … 16");
   if (!(o.plantLodM > 0.0 && o.plantLodM <= 1000.0))
     return bad("--plant-lod-m " + std::to_string(o.plantLodM) + ": must be more than 0 and at most 1000 metres");
+  if (!(o.plantShadowM > 0.0 && o.plantShadowM <= 10000.0))
+    return bad("--plant-shadow-m " + std::to_string(o.plantShadowM) +
+               ": must be more than 0 and at most 10000 metres");
   if (!o.species.empty()) {
     auto catalog = vegetation::loadSpeciesCatalog(o.species);
     if (!catalog) return catalog.error();
@@ -140,6 +146,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
   scene.plantDraw.shadows = !o.noPlantShadows;
+  scene.plantDraw.shadowDistanceM = static_cast<float>(o.plantShadowM);
   scene.occlusionCulling = o.occlusionCulling == "on";
   // Checked against the device when the renderer is made (mesh: refused there, naming the device).
   const auto bladePath = render::parseBladePath(o.bladePath);

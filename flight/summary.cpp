@@ -68,6 +68,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"max_segments", m.plants.maxSegments},
         {"lod_distance_m", m.plants.lodDistanceM},
         {"shadows", m.plants.shadows},
+        {"shadow_distance_m", m.plants.shadowDistanceM},
         {"occlusion_culling", m.plants.occlusionCulling},
         {"blade_path", m.plants.bladePath},
         {"blade_path_requested", m.plants.bladePathRequested}}},

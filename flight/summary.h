@@ -72,6 +72,7 @@ struct RecordingMeta {
     uint32_t maxSegments = 0;    // n_max segments of a blade (eq. 4)
     double lodDistanceM = 0.0;   // eq. 4's distance unit
     bool shadows = false;
+    double shadowDistanceM = 0.0;  // planar shadows fade out over its last quarter
     bool occlusionCulling = false;  // Hi-Z culling of hidden seed triangles
     std::string bladePath;           // how plants became triangles: tessellation | compute (render/README.md)
     std::string bladePathRequested;  // --blade-path: auto | tessellation | compute

@@ -137,6 +137,9 @@ struct PlantDrawOptions {
   uint32_t maxSegments = 5;   // n_max of eq. 4: segments of a blade at full detail (1 … 16)
   float lodDistanceM = 4.0f;  // eq. 4's distance unit: full detail within it, n_max / d² beyond
   bool shadows = true;        // the planar shadows of §3.6
+  // Shadows end here, fading out over the last quarter (shaders/common/plant_shape.glsl): far
+  // shadows are streaks 1.5 pixels wide that cost more than their plants.
+  float shadowDistanceM = 40.0f;
   bool fullDetail = false;    // every blade at n_max segments (tests, speed-of-light runs)
   // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry

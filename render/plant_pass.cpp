@@ -127,7 +127,8 @@ PlantPush PlantPass::pushFor(uint32_t species, const ClassifyPass& classify, con
                    options.lodDistanceM,
                    tableLogKMin_,
                    tableLogKStep_,
-                   static_cast<uint32_t>(tableRows_)};
+                   static_cast<uint32_t>(tableRows_),
+                   options.shadowDistanceM};
 }
 
 void PlantPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,

@@ -10,8 +10,9 @@ struct PlantPush {
   uint32_t species, speciesCapacity, maxSegments, flags;
   float lodDistanceM, tableLogKMin, tableLogKStep;
   uint32_t tableRows;
+  float shadowDistanceM;
 };
-static_assert(sizeof(PlantPush) == 32);
+static_assert(sizeof(PlantPush) == 36);
 
 // PlantPush::flags.
 inline constexpr uint32_t kPlantFlagShadows = 1, kPlantFlagFullDetail = 4, kPlantSamplesShift = 8;

@@ -9,7 +9,7 @@
 #define BLADE_ACCESS readonly
 #include "blade_layout.glsl"
 
-layout(location = 0) out vec3 gColour;
+layout(location = 0) out vec3 gColour;  // shadows: r = coverage
 layout(location = 1) out vec2 gBlade;
 layout(location = 2) flat out uint gFlags;  // bits 0–1: kind; bit 2: shadow
 

@@ -58,7 +58,8 @@ uint gVertex;  // next vertex to write
 void putVertex(vec3 p, vec3 n, vec2 blade, bool shadow) {
   BladeVertex v;
   v.pos = shadow ? shadowPoint(p, gPlane) : p;
-  vec3 c = shadow ? vec3(0.0)
+  // A shadow's colour is black: its red channel carries the shadow's coverage instead.
+  vec3 c = shadow ? vec3(shadowStrength(p), 0.0, 0.0)
                   : plantColour(p, n, blade, gGroundMod.rgb, gGroundMod.a, (gPlantWord >> kBladeKindShift) & 3u, gPlane.xyz);
   v.colour = uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
   v.plant = gPlantWord | (shadow ? kBladeShadowBit : 0u);
@@ -148,7 +149,8 @@ void main() {
     n = uint(lod.y);
     kind = catalog.species[g.species].flags.y;
     vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
-    copies = ((pc.flags & kFlagShadows) != 0u && castsShadow(vec4(nrm, -dot(nrm, t.v0.xyz)))) ? 2u : 1u;
+    copies = ((pc.flags & kFlagShadows) != 0u && castsShadow(vec4(nrm, -dot(nrm, t.v0.xyz))) &&
+              shadowsReach(seedTriangleNearestM(t))) ? 2u : 1u;
     plants = lod.x > 0.5 ? g.seedCount : 0u;
   }
   uvec2 size = plantSize(kind, n) * copies;

@@ -19,10 +19,11 @@ layout(location = 3) in float inAlong[];
 layout(location = 4) in vec3 inGround[];
 layout(location = 5) in vec4 inPlant[];
 layout(location = 6) in vec4 inPlane[];
+layout(location = 7) in float inNearest[];
 
 void main() {
   bool shadow = gl_InvocationID == 1;
-  if (shadow && ((pc.flags & kFlagShadows) == 0u || !castsShadow(inPlane[0]))) return;
+  if (shadow && ((pc.flags & kFlagShadows) == 0u || !castsShadow(inPlane[0]) || !shadowsReach(inNearest[0]))) return;
   vec4 stem = vec4(inPlant[0].y, inPlant[0].w, 0.0, 0.0);
   for (int i = 0; i < 2; ++i) {
     float halfWidth = 0.5 * max(0.5 * inPlant[i].x, metresPerPixel(length(inPos[i])));

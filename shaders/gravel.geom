@@ -19,10 +19,11 @@ layout(location = 3) in float inAlong[];
 layout(location = 4) in vec3 inGround[];
 layout(location = 5) in vec4 inPlant[];
 layout(location = 6) in vec4 inPlane[];
+layout(location = 7) in float inNearest[];
 
 void main() {
   bool shadow = gl_InvocationID == 1;
-  if (shadow && ((pc.flags & kFlagShadows) == 0u || !castsShadow(inPlane[0]))) return;
+  if (shadow && ((pc.flags & kFlagShadows) == 0u || !castsShadow(inPlane[0]) || !shadowsReach(inNearest[0]))) return;
   vec3 root = inPos[0];
   float px = 1.5 * metresPerPixel(length(root));  // at least 1.5 pixels across
   float size = max(max(inPlant[0].x, inPlant[0].z), px);

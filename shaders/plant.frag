@@ -5,7 +5,7 @@
 // blades.comp), so what is left here is coverage. The blade's alpha mask becomes the fragment's
 // MSAA sample mask (alpha-to-coverage, computed here: round(alpha · samples) samples, rotated and
 // dithered per pixel so neighbours do not repeat one pattern; without MSAA it is an alpha test
-// with the same dither); shadows are black at 35 % coverage — a screen door, no sorting. The
+// with the same dither); shadows are black at 35 % coverage (less where they fade out) — a screen door, no sorting. The
 // fixed-function alphaToCoverageEnable is not used: lavapipe (Mesa 22.3) resolves such fragments
 // to wrong, whitish colours, and a computed mask is the same on every device.
 #include "frame_uniforms.glsl"
@@ -33,7 +33,7 @@ void main() {
   uint kind = gFlags & 3u;
   float alpha = 1.0;
   if (shadow)
-    alpha = kShadowAlpha;
+    alpha = kShadowAlpha * gColour.r;  // gColour.r: the shadow's fade (plant_shape.glsl)
   else if (kind == 0u)
     alpha = 1.0 - smoothstep(0.6, 1.0, abs(gBlade.x));
   else if (kind == 2u)

@@ -19,6 +19,7 @@ layout(location = 3) out float outAlong;   // 0 at the root … 1 at the tip
 layout(location = 4) out vec3 outGround;   // the imagery colour under the root (linear)
 layout(location = 5) out vec4 outPlant;    // width (m), colour modulation, height (m), s′
 layout(location = 6) out vec4 outPlane;    // the seed triangle's plane: unit normal, offset (camera-relative)
+layout(location = 7) out float outNearest; // seedTriangleNearestM: whether its shadows are drawn
 
 void main() {
   PlantCluster g = records[pc.species * pc.speciesCapacity + group];
@@ -38,4 +39,5 @@ void main() {
   outPlant = vec4(p.width, p.colourModulation, p.height, p.sPrime);
   vec3 n = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
   outPlane = vec4(n, -dot(n, t.v0.xyz));
+  outNearest = seedTriangleNearestM(t);
 }

@@ -22,6 +22,7 @@ layout(push_constant) uniform PlantPush {
   float tableLogKMin;    // ln of the table's first stiffness
   float tableLogKStep;   // ln step between rows
   uint tableRows;
+  float shadowDistanceM; // planar shadows fade out over its last quarter (plant_shape.glsl)
 } pc;
 
 const uint kFlagShadows = 1u;
@@ -76,4 +77,12 @@ BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
   vec3 tangent = dir * sin(shape.z) + up * cos(shape.z);
   f.normal = normalize(cross(f.side, tangent));
   return f;
+}
+
+// The distance from the camera to the nearest point of the seed triangle's bounding sphere
+// (centroid, farthest vertex), 0 inside it.
+float seedTriangleNearestM(SeedTriangle t) {
+  vec3 c = (t.v0.xyz + t.v1.xyz + t.v2.xyz) / 3.0;
+  float r = sqrt(max(max(dot(t.v0.xyz - c, t.v0.xyz - c), dot(t.v1.xyz - c, t.v1.xyz - c)), dot(t.v2.xyz - c, t.v2.xyz - c)));
+  return max(length(c) - r, 0.0);
 }

@@ -4,7 +4,8 @@
 // shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
 // as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
 // invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
-// deterministic; the buffers follow the eq. 4 bound, and plants past a ceiling are dropped whole
+// deterministic; both end the planar shadows at the same distance; the buffers follow the eq. 4
+// bound, and plants past a ceiling are dropped whole
 // and counted; the validation layers stay silent (GpuTest). RendererOptions: auto resolves to
 // compute, mesh is refused naming the option and the device.
 
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "plant_field.h"
 #include "render/png_writer.h"
@@ -144,6 +146,46 @@ TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndW
     }
 }
 
+TEST_F(BladePathTest, ShadowsEndAtTheShadowDistanceOnBothPaths) {
+  // PlantDrawOptions::shadowDistanceM: a seed triangle's plants cast shadows only while its
+  // bounding sphere reaches inside the distance, decided alike on both paths (the same triangles);
+  // the shadow triangles grow with the distance, none within 1 m of a camera 2 m up, every one at
+  // 1 km (a flat field: every group casts), and shadows change pixels only when they exist.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  PlantDrawOptions draw;
+  draw.maxSegments = 4;
+  draw.shadows = false;
+  const FieldResult bare = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+  ASSERT_TRUE(bare.with.vegetation);
+  const uint64_t plantTriangles = bare.with.vegetation->bladeTriangles;
+  ASSERT_GT(plantTriangles, 0u);
+  draw.shadows = true;
+  std::vector<uint64_t> shadowTriangles;
+  for (float distance : {1.0f, 6.0f, 12.0f, 1000.0f}) {
+    SCOPED_TRACE("shadow distance " + std::to_string(distance));
+    draw.shadowDistanceM = distance;
+    const FieldResult t =
+        renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {}, 24.0f);
+    const FieldResult c = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+    ASSERT_TRUE(t.with.vegetation && c.with.vegetation);
+    EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+    EXPECT_EQ(c.with.vegetation->plants, bare.with.vegetation->plants);
+    shadowTriangles.push_back(c.with.vegetation->bladeTriangles - plantTriangles);
+    if (shadowTriangles.back() == 0) {
+      EXPECT_EQ(differing(*c.with.color, *bare.with.color, 0), 0u) << "no shadow, no change";
+    } else if (distance >= 12.0f) {  // (at 6 m the few shadows are still fading in)
+      EXPECT_GT(differing(*c.with.color, *bare.with.color, 8), 50u) << "the shadows darken the ground";
+    }
+  }
+  EXPECT_EQ(shadowTriangles[0], 0u);
+  EXPECT_LT(shadowTriangles[0], shadowTriangles[1]);
+  EXPECT_LT(shadowTriangles[1], shadowTriangles[2]);
+  EXPECT_LT(shadowTriangles[2], shadowTriangles[3]);
+  EXPECT_EQ(shadowTriangles[3], plantTriangles);
+}
+
 TEST_F(BladePathTest, WithoutMsaaBothPathsTakeTheSameAlphaTest) {
   // MSAA 1: the fragment stage's computed coverage becomes an alpha test with the same dither.
   auto r = makeRenderer(kW, kH, 1);
@@ -168,6 +210,7 @@ TEST_F(BladePathTest, LookingDownTheComputePathWritesTheAnalyticCounts) {
   PlantDrawOptions draw;
   draw.maxSegments = 4;
   draw.fullDetail = true;
+  draw.shadowDistanceM = 1000.0f;  // every plant's shadow (the field is 120 m below)
   draw.path = BladePath::Compute;
   const FieldView top{{0.0, 33.0, 120.0}, {0.0, 0.0, -1.0}};
   const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, draw, top, 24.0f);

@@ -104,6 +104,7 @@ TEST_F(PlantPassTest, PipelineStatisticsEqualTheAnalyticCounts) {
     draw.maxSegments = 4;
     draw.fullDetail = true;
     draw.shadows = shadows;
+    draw.shadowDistanceM = 1000.0f;  // every plant's shadow (the field is 120 m below)
     draw.speedOfLight = speedOfLight;  // the same blades through the simplest shaders
     const FieldView top{{0.0, 33.0, 120.0}, {0.0, 0.0, -1.0}};
     const FieldResult f = renderField(*r, "grass", PlantStyle::Plants, draw, top, 24.0f);
