@@ -1,7 +1,9 @@
 // The classify pass inside the renderer: seed triangles on a flat field coloured by one
 // imagery layer go through classification and the marker draws (render/plant_marker_pass.h).
 // A green field grows grass markers near the camera (and nothing in the sky); a red-rock field
-// grows gravel and no grass; a pale-sandstone field grows nothing. Validation stays silent.
+// grows gravel and no grass; a pale-sandstone field grows nothing; a forest-coloured field is
+// classified as trees, drawn as markers in the markers style and not at all in the plants style
+// (trees have no model yet). Validation stays silent.
 
 #include <array>
 #include <cmath>
@@ -65,6 +67,21 @@ TEST_F(PlantMarkers, ARedRockFieldGrowsGravelAndAPaleOneNothing) {
   EXPECT_EQ(pale.with.vegetation->plantsTotal, 0u);
   EXPECT_GT(pale.with.vegetation->clusters, 0u);  // seeded, then rejected as bare soil
   EXPECT_EQ(changedPixels(*pale.with.color, *pale.without.color, 0, kH), 0u);
+}
+
+TEST_F(PlantMarkers, TreesAreClassifiedButDrawnOnlyAsMarkers) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const int conifer = speciesIndex("conifer");
+  ASSERT_GE(conifer, 0);
+  const FieldResult markers = renderField(*r, "conifer", PlantStyle::Markers);
+  const FieldResult plants = renderField(*r, "conifer", PlantStyle::Plants);
+  ASSERT_TRUE(markers.with.vegetation && plants.with.vegetation);
+  EXPECT_GT(markers.with.vegetation->plants[size_t(conifer)], 0.9 * double(markers.with.vegetation->plantsTotal));
+  EXPECT_EQ(plants.with.vegetation->plants[size_t(conifer)], markers.with.vegetation->plants[size_t(conifer)]);
+  EXPECT_GT(changedPixels(*markers.with.color, *markers.without.color, 0, kH), 1000u) << "markers drawn";
+  EXPECT_EQ(changedPixels(*plants.with.color, *plants.without.color, 0, kH), 0u) << "no tree drawn as plants";
 }
 
 }  // namespace
