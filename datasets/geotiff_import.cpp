@@ -14,7 +14,7 @@
 #include "core/atomic_file.h"
 #include "datasets/dataset_finish.h"
 #include "datasets/message.h"
-#include "datasets/parallel.h"
+#include "core/parallel_for.h"
 #include "datasets/source_grid.h"
 #include "datasets/tile_codec.h"
 #include "geo/projection.h"

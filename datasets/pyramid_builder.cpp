@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "datasets/message.h"
-#include "datasets/parallel.h"
+#include "core/parallel_for.h"
 #include "datasets/tile_codec.h"
 
 namespace vegstream::datasets {

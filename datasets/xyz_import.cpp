@@ -15,7 +15,7 @@
 #include "core/atomic_file.h"
 #include "datasets/dataset_finish.h"
 #include "datasets/message.h"
-#include "datasets/parallel.h"
+#include "core/parallel_for.h"
 #include "datasets/tile_codec.h"
 #include "geo/crs.h"
 

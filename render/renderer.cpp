@@ -86,7 +86,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
-  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred);
+  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred, options.tasks);
   if (deferred) terrainShade = std::make_unique<TerrainShadePass>(*ctx, layout, *terrainPass, *targets);
   hudPass = std::make_unique<HudPass>(*ctx);
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/result.h"
+#include "core/task_runner.h"
 #include "render/context_options.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
@@ -41,6 +42,9 @@ struct RendererOptions {
   // are dropped and counted (VegetationFigures::bladesDropped). Default 8 Mi (256 MiB); at least 6.
   uint32_t bladeMaxVertices = 1u << 23;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
+  // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
+  // with the thread that submits; null: all on that thread. Must outlive the renderer.
+  TaskRunner* tasks = nullptr;
 };
 
 class Renderer {

@@ -8,10 +8,13 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/parallel_for.h"
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
@@ -75,23 +78,35 @@ double distanceToBounds(const terrain::TerrainMesh& m, const glm::dvec3& eye) {
   return glm::length(local - nearest);
 }
 
+// work(k) for k in [0, n) on `tasks` and the calling thread (all on it without a runner).
+void eachPiece(size_t n, TaskRunner* tasks, const std::function<void(size_t)>& work) {
+  const Status s = parallelFor(n, tasks ? 0 : 1, tasks, [&](size_t k) -> Status {
+    work(k);
+    return {};
+  });
+  assert(s.ok());
+  (void)s;
+}
+
 }  // namespace
 
-std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition) {
+std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition,
+                                       TaskRunner* tasks) {
   std::vector<uint32_t> order;
+  for (uint32_t i = 0; i < draws.size(); ++i)
+    if (draws[i].mesh && flatSize(*draws[i].mesh).indices > 0) order.push_back(i);
+  // The bounds read every vertex: one task per piece.
   std::vector<double> distance(draws.size(), 0.0);
-  for (uint32_t i = 0; i < draws.size(); ++i) {
-    if (!draws[i].mesh || flatSize(*draws[i].mesh).indices == 0) continue;
-    distance[i] = distanceToBounds(*draws[i].mesh, cameraPosition);
-    order.push_back(i);
-  }
+  eachPiece(order.size(), tasks, [&](size_t k) {
+    distance[order[k]] = distanceToBounds(*draws[order[k]].mesh, cameraPosition);
+  });
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return distance[a] < distance[b]; });
   return order;
 }
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                         bool deferred)
-    : ctx_(&ctx), detail_(ctx, vegetation::defaultTerrainTypes()) {
+                         bool deferred, TaskRunner* tasks)
+    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()) {
   imageryLayout_ =
       createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSampledBy, "terrain imagery layout");
   imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
@@ -176,7 +191,7 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   const auto s = static_cast<size_t>(slot);
   std::vector<PreparedDraw>& list = prepared_[s];
   list.clear();
-  const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition);
+  const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition, tasks_);
   VkDeviceSize vertexBytes = 0, indexBytes = 0;
   std::vector<MeshSize> sizes;  // per drawn piece, in draw order (counted once, used twice)
   sizes.reserve(order.size());
@@ -204,13 +219,23 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   auto* vdst = static_cast<uint8_t*>(vertices_[s].mapped);
   auto* idst = static_cast<uint8_t*>(indices_[s].mapped);
   auto* pdst = static_cast<TerrainPiece*>(pieces_[s].mapped);
+  // Each piece's range of the buffers, in draw order; then the copies, a task per piece.
+  std::vector<std::pair<uint32_t, uint32_t>> at(order.size());  // first vertex, first index
   uint32_t firstVertex = 0, firstIndex = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    at[k] = {firstVertex, firstIndex};
+    firstVertex += static_cast<uint32_t>(sizes[k].vertices);
+    firstIndex += static_cast<uint32_t>(sizes[k].indices);
+  }
+  eachPiece(order.size(), tasks_, [&](size_t k) {
+    copyFlat(*draws[order[k]].mesh, reinterpret_cast<terrain::TerrainVertex*>(vdst) + at[k].first,
+             reinterpret_cast<uint32_t*>(idst) + at[k].second);
+  });
   for (size_t k = 0; k < order.size(); ++k) {
     const TerrainDraw& d = draws[order[k]];
     const terrain::TerrainMesh& m = *d.mesh;
     const MeshSize size = sizes[k];
-    copyFlat(m, reinterpret_cast<terrain::TerrainVertex*>(vdst) + firstVertex,
-             reinterpret_cast<uint32_t*>(idst) + firstIndex);
+    std::tie(firstVertex, firstIndex) = at[k];
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
@@ -228,9 +253,9 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
     pdst[list.size()] = TerrainPiece{p.push.originFromCamera, p.push.imageryUv, p.push.previousUv, p.push.layers,
                                      glm::uvec4(firstIndex / 3, firstVertex, triangles, 0u)};
     list.push_back(p);
-    firstVertex += static_cast<uint32_t>(size.vertices);
-    firstIndex += static_cast<uint32_t>(size.indices);
   }
+  firstVertex = at.back().first + static_cast<uint32_t>(sizes.back().vertices);
+  firstIndex = at.back().second + static_cast<uint32_t>(sizes.back().indices);
   const VkBufferCopy vcopy{0, 0, VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex)};
   const VkBufferCopy icopy{0, 0, VkDeviceSize{firstIndex} * sizeof(uint32_t)};
   vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);

@@ -32,6 +32,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "core/task_runner.h"
 #include "render/detail_textures.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
@@ -73,8 +74,11 @@ class TerrainPass {
  public:
   static constexpr int kSlots = kFramesInFlight;  // frames in flight
 
-  // `deferred`: also build the visibility pipeline (the device can shade in compute).
-  TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred);
+  // `deferred`: also build the visibility pipeline (the device can shade in compute). `tasks`
+  // (may be null: all on the calling thread) shares prepare()'s per-piece work with the calling
+  // thread; it must outlive the pass.
+  TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred,
+              TaskRunner* tasks = nullptr);
 
   using RetireImage = std::function<void(GpuImage&&)>;
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
@@ -98,7 +102,9 @@ class TerrainPass {
 
   // Outside rendering: orders the draws front to back, copies their geometry into slot `slot`'s
   // buffers (recording the copy to device-local memory) and keeps the draw list for
-  // recordForward / recordVisibility; returns the triangles to draw.
+  // recordForward / recordVisibility; returns the triangles to draw. The pieces' bounds and
+  // copies run in parallel on the pass's TaskRunner and the calling thread (each piece has its
+  // own range of the buffers, so the bytes are the same whatever ran where).
   uint64_t prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& cameraPosition, std::span<const TerrainDraw> draws,
                    const RetireBuffer& retire);
   // Inside rendering into the colour + depth targets: the prepared draws, shaded.
@@ -122,6 +128,7 @@ class TerrainPass {
   void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
 
   const Context* ctx_;
+  TaskRunner* tasks_;
   DetailTextures detail_;
   DescriptorSetLayout imageryLayout_;
   DescriptorPool imageryPool_;
@@ -139,7 +146,8 @@ class TerrainPass {
 
 // The draw order of `draws`: front to back by the distance from `cameraPosition` to each
 // mesh's bounding box (ties keep their order, so the order is deterministic); draws without
-// triangles are left out.
-std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition);
+// triangles are left out. The bounds are found on `tasks` (and the calling thread) when given.
+std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition,
+                                       TaskRunner* tasks = nullptr);
 
 }  // namespace vegstream::render

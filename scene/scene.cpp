@@ -59,7 +59,9 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (!source) return source.error();
   auto meta = streaming::readMetaFrom(**source);
   if (!meta) return meta.error();
-  auto renderer = render::Renderer::create(options.renderer);
+  render::RendererOptions rendererOptions = options.renderer;
+  rendererOptions.tasks = tasks.get();
+  auto renderer = render::Renderer::create(rendererOptions);
   if (!renderer) return renderer.error();
 
   auto impl = std::make_unique<Impl>();

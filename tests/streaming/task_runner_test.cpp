@@ -1,5 +1,5 @@
 // core/task_runner.h and core/clock.h as the streaming stack uses them (ThreadPool,
-// ManualTaskRunner, ManualClock), and datasets' parallelFor over a runner: what runs where and
+// ManualTaskRunner, ManualClock), and core's parallelFor over a runner: what runs where and
 // when, the destructor's drain, long-running tasks, first error wins. Waits are on conditions.
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 
 #include "core/clock.h"
 #include "core/task_runner.h"
-#include "datasets/parallel.h"
+#include "core/parallel_for.h"
 
 namespace vegstream {
 namespace {
@@ -112,7 +112,7 @@ TEST(ManualClock, IsWhatTheTestSetsAndSteadyClockMovesForward) {
 TEST(ParallelFor, OnAManualRunnerTheCallerDoesEveryIndexOnce) {
   ManualTaskRunner tasks;
   std::vector<int> seen(50, 0);
-  const Status s = datasets::parallelFor(seen.size(), 4, &tasks, [&](size_t i) -> Status {
+  const Status s = parallelFor(seen.size(), 4, &tasks, [&](size_t i) -> Status {
     ++seen[i];
     return {};
   });
@@ -126,14 +126,14 @@ TEST(ParallelFor, OnAManualRunnerTheCallerDoesEveryIndexOnce) {
 TEST(ParallelFor, OnAPoolEveryIndexRunsOnceAndTheFirstErrorIsReturned) {
   ThreadPool pool(3);
   std::vector<std::atomic<int>> seen(500);
-  EXPECT_TRUE(datasets::parallelFor(seen.size(), 0, &pool, [&](size_t i) -> Status {
+  EXPECT_TRUE(parallelFor(seen.size(), 0, &pool, [&](size_t i) -> Status {
     seen[i].fetch_add(1);
     return {};
   }));
   for (size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i].load(), 1) << i;
 
   std::atomic<int> ran{0};
-  const Status s = datasets::parallelFor(1000, 0, &pool, [&](size_t i) -> Status {
+  const Status s = parallelFor(1000, 0, &pool, [&](size_t i) -> Status {
     ran.fetch_add(1);
     if (i == 10) return makeError(ErrorKind::InvalidInput, "tile 10 is bad");
     return {};
@@ -143,7 +143,7 @@ TEST(ParallelFor, OnAPoolEveryIndexRunsOnceAndTheFirstErrorIsReturned) {
   EXPECT_LT(ran.load(), 1000) << "the error stopped the others";
   // Without a runner: a pool made for the call.
   std::atomic<int> count{0};
-  EXPECT_TRUE(datasets::parallelFor(64, 2, [&](size_t) -> Status {
+  EXPECT_TRUE(parallelFor(64, 2, [&](size_t) -> Status {
     count.fetch_add(1);
     return {};
   }));

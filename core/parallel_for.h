@@ -4,7 +4,7 @@
 // so the loop finishes even when the runner is busy or is a test's ManualTaskRunner that never
 // runs anything. The first error stops the others from taking new indices and is returned (an
 // exception is rethrown on the calling thread). Tiles of one zoom are independent, so this is
-// all the importers need from a thread pool.
+// what the importers and the terrain pass's per-frame copies need from a thread pool.
 
 #include <cstddef>
 #include <functional>
@@ -12,7 +12,7 @@
 #include "core/result.h"
 #include "core/task_runner.h"
 
-namespace vegstream::datasets {
+namespace vegstream {
 
 int resolveThreads(int threads);  // 0 → std::thread::hardware_concurrency() (at least 1)
 
@@ -24,4 +24,4 @@ inline Status parallelFor(size_t n, int threads, const std::function<Status(size
   return parallelFor(n, threads, nullptr, work);
 }
 
-}  // namespace vegstream::datasets
+}  // namespace vegstream

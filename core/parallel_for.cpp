@@ -1,8 +1,8 @@
-// parallelFor (parallel.h): a shared atomic index over tasks of a runner plus the calling thread,
+// parallelFor (parallel_for.h): a shared atomic index over tasks of a runner plus the calling thread,
 // first error wins. The state is shared with the posted tasks, so one that starts after the
 // loop returned finds it closed and touches nothing else.
 
-#include "datasets/parallel.h"
+#include "core/parallel_for.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +13,7 @@
 #include <optional>
 #include <thread>
 
-namespace vegstream::datasets {
+namespace vegstream {
 namespace {
 
 struct Loop {
@@ -87,4 +87,4 @@ Status parallelFor(size_t n, int threads, TaskRunner* tasks, const std::function
   return {};
 }
 
-}  // namespace vegstream::datasets
+}  // namespace vegstream
