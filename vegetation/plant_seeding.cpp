@@ -53,12 +53,12 @@ Stratum clusterStratumOf(uint64_t key, uint32_t cluster) {
 glm::vec2 seedPoint(uint64_t key, uint32_t cluster, uint32_t seed) {
   assert(seed < kMaxClusterSize);
   const Philox2x32Out r = draw(key, cluster, philox_slot::kPosition + seed);
-  return reflectIntoTriangle(pointInStratum(clusterStratumOf(key, cluster), {u01(r.x), u01(r.y)}));
+  return pointInStratum(clusterStratumOf(key, cluster), {u01(r.x), u01(r.y)});
 }
 
 glm::vec2 clusterCentre(uint64_t key, uint32_t cluster) {
   const Philox2x32Out r = draw(key, cluster, philox_slot::kCentre);
-  return reflectIntoTriangle(pointInStratum(clusterStratumOf(key, cluster), {u01(r.x), u01(r.y)}));
+  return pointInStratum(clusterStratumOf(key, cluster), {u01(r.x), u01(r.y)});
 }
 
 void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex, const SpeciesCatalog& catalog,

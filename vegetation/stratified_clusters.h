@@ -18,14 +18,20 @@
 // per-level random offset. The paper picks "a randomly chosen stratum"; a bijection also
 // guarantees every stratum of a complete level exactly one cluster.
 //
-// A point (u, v) of the unit square goes onto the triangle by reflecting the half above the
-// diagonal (eq. 23–24) and the affine map p = v0 + r′1 (v1 − v0) + r′2 (v2 − v0) (eq. 25). A
-// square stratum then becomes a parallelogram (or, on the diagonal, a triangle folded onto
-// itself), not the trapezoid of eq. 3, and uniform samples of the square are uniform on the
-// triangle. v0 is the apex (the right angle), v1 left, v2 right.
+// The strata are the triangle's own: dividing each side into n parts cuts the unit triangle
+// (r′1, r′2 ≥ 0, r′1 + r′2 ≤ 1) into n² congruent triangles, n(n + 1)/2 upright and n(n − 1)/2
+// inverted. Stratum (x, y) of the n × n square is upright cell (x, y) when x + y < n, else the
+// inverted cell (n − 1 − y, n − 1 − x) — a bijection, so every stratum of a complete level holds
+// exactly one cluster and the clusters of a level cover the triangle evenly. A point of a cell
+// comes from a unit-square sample reflected into the unit triangle (eq. 23–24) and scaled into
+// the cell, then the affine map p = v0 + r′1 (v1 − v0) + r′2 (v2 − v0) (eq. 25) places it; v0 is
+// the apex (the right angle), v1 left, v2 right. (Reflecting the square's strata themselves, as
+// eq. 23–24 do for the whole square, folds stratum (x, y) onto (n − 1 − y, n − 1 − x): two
+// clusters of a level could share a piece of the triangle while another stayed empty.)
 //
 // shaders/common/seeding.glsl is the GLSL twin, integer for integer.
 
+#include <algorithm>
 #include <cassert>
 #include <cstdint>
 
@@ -63,10 +69,25 @@ inline glm::vec2 reflectIntoTriangle(glm::vec2 r) {
   return r;
 }
 
-// A point of stratum `s` at fractional position `f` ∈ [0, 1)² inside it, on the unit square.
+// The point of stratum `s` that the unit-square sample `f` ∈ [0, 1)² maps to, on the unit
+// triangle (r′1, r′2): uniform samples give uniform points of the stratum's cell.
 inline glm::vec2 pointInStratum(const Stratum& s, glm::vec2 f) {
   const float n = static_cast<float>(s.level);
-  return {(static_cast<float>(s.x) + f.x) / n, (static_cast<float>(s.y) + f.y) / n};
+  const glm::vec2 t = reflectIntoTriangle(f);
+  if (s.x + s.y < s.level)  // upright cell (x, y)
+    return {(static_cast<float>(s.x) + t.x) / n, (static_cast<float>(s.y) + t.y) / n};
+  // Inverted cell (n − 1 − y, n − 1 − x): its right angle at ((n − y) / n, (n − x) / n).
+  return {(static_cast<float>(s.level - s.y) - t.x) / n, (static_cast<float>(s.level - s.x) - t.y) / n};
+}
+
+// The cell of level n that holds point `r` of the unit triangle, as the stratum (x, y) that
+// pointInStratum maps onto it (for tests and figures).
+inline Stratum stratumAt(glm::vec2 r, uint32_t n) {
+  const float fx = r.x * static_cast<float>(n), fy = r.y * static_cast<float>(n);
+  const auto i = static_cast<uint32_t>(std::min(std::max(fx, 0.0f), static_cast<float>(n - 1)));
+  const auto j = static_cast<uint32_t>(std::min(std::max(fy, 0.0f), static_cast<float>(n - 1)));
+  if ((fx - static_cast<float>(i)) + (fy - static_cast<float>(j)) < 1.0f || i + j + 1 >= n) return {n, i, j};
+  return {n, n - 1 - j, n - 1 - i};  // inverted cell (i, j)
 }
 
 // Eq. 25, in double (the CPU reference; the GPU does it in float relative to the camera).

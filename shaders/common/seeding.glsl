@@ -59,19 +59,23 @@ uvec3 clusterStratumOf(uvec2 key, uint c) {
 
 vec2 reflectIntoTriangle(vec2 r) { return r.x + r.y >= 1.0 ? vec2(1.0 - r.y, 1.0 - r.x) : r; }
 
+// The point of stratum (level, x, y) for the unit-square sample f, on the unit triangle: upright
+// cell (x, y) when x + y < level, else the inverted cell (level − 1 − y, level − 1 − x).
 vec2 pointInStratum(uvec3 s, vec2 f) {
   float n = float(s.x);
-  return vec2((float(s.y) + f.x) / n, (float(s.z) + f.y) / n);
+  vec2 t = reflectIntoTriangle(f);
+  if (s.y + s.z < s.x) return vec2((float(s.y) + t.x) / n, (float(s.z) + t.y) / n);
+  return vec2((float(s.x - s.z) - t.x) / n, (float(s.x - s.y) - t.y) / n);
 }
 
 vec2 seedPoint(uvec2 key, uint c, uint seed) {
   uvec2 r = philoxDraw(key, c, kSlotPosition + seed);
-  return reflectIntoTriangle(pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y))));
+  return pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y)));
 }
 
 vec2 clusterCentre(uvec2 key, uint c) {
   uvec2 r = philoxDraw(key, c, kSlotCentre);
-  return reflectIntoTriangle(pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y))));
+  return pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y)));
 }
 
 float sequenceFade(float count, uint index) { return clamp(count - float(index), 0.0, 1.0); }

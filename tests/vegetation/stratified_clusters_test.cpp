@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 #include <gtest/gtest.h>
 
+#include "vegetation/plant_seeding.h"
 #include "vegetation/stratified_clusters.h"
 
 namespace vegstream::vegetation {
@@ -77,21 +78,42 @@ TEST(StratifiedClusters, ReflectionMapsTheSquareOntoTheTriangle) {
   EXPECT_DOUBLE_EQ(p.z, 0.5);
 }
 
-TEST(StratifiedClusters, AStratumBecomesACompactPieceOfTheTriangle) {
-  // Level 6, every stratum: the reflected images of its corners span at most one stratum's
-  // width in each coordinate (a parallelogram, not a strip across the triangle).
-  const uint32_t n = 6;
-  for (uint32_t x = 0; x < n; ++x)
-    for (uint32_t y = 0; y < n; ++y) {
-      glm::vec2 lo(2.0f), hi(-1.0f);
-      for (float fx : {0.001f, 0.999f})
-        for (float fy : {0.001f, 0.999f}) {
-          const glm::vec2 r = reflectIntoTriangle(pointInStratum({n, x, y}, {fx, fy}));
-          lo = glm::min(lo, r);
-          hi = glm::max(hi, r);
-        }
-      EXPECT_LE(hi.x - lo.x, 1.0f / n + 1e-6f);
-      EXPECT_LE(hi.y - lo.y, 1.0f / n + 1e-6f);
+TEST(StratifiedClusters, EachStratumIsItsOwnCellOfTheTriangle) {
+  // Levels 1 … 9, every stratum: samples anywhere in the unit square land inside the triangle,
+  // inside one cell of the level's n² (stratumAt gives back the stratum), at most 1/n across.
+  for (uint32_t n = 1; n <= 9; ++n)
+    for (uint32_t x = 0; x < n; ++x)
+      for (uint32_t y = 0; y < n; ++y) {
+        glm::vec2 lo(2.0f), hi(-1.0f);
+        for (float fx : {0.02f, 0.3f, 0.6f, 0.97f})
+          for (float fy : {0.02f, 0.3f, 0.6f, 0.97f}) {  // (no pair on a cell's edge)
+            const glm::vec2 r = pointInStratum({n, x, y}, {fx, fy});
+            EXPECT_GE(r.x, 0.0f);
+            EXPECT_GE(r.y, 0.0f);
+            EXPECT_LE(r.x + r.y, 1.0f + 1e-6f);
+            const Stratum back = stratumAt(r, n);
+            EXPECT_EQ(back.x, x) << n << " " << x << " " << y << " at " << fx << ", " << fy;
+            EXPECT_EQ(back.y, y) << n << " " << x << " " << y << " at " << fx << ", " << fy;
+            lo = glm::min(lo, r);
+            hi = glm::max(hi, r);
+          }
+        EXPECT_LE(hi.x - lo.x, 1.0f / float(n) + 1e-6f);
+        EXPECT_LE(hi.y - lo.y, 1.0f / float(n) + 1e-6f);
+      }
+}
+
+TEST(StratifiedClusters, EveryCellOfACompleteLevelHoldsExactlyOneCluster) {
+  // Issue 18's fold: reflecting square strata mapped (x, y) and (n − 1 − y, n − 1 − x) onto one
+  // piece of the triangle. Now the centres of a complete level's clusters, on many triangles,
+  // fall one into each of the level's n² cells.
+  for (uint64_t key : {1ull, 77ull, 0x9e3779b97f4a7c15ull, 123456789ull})
+    for (uint32_t n = 2; n <= 8; ++n) {
+      std::vector<int> hits(size_t(n) * n, 0);
+      for (uint32_t c = pyramidalNumber(n - 1); c < pyramidalNumber(n); ++c) {
+        const Stratum s = stratumAt(clusterCentre(key, c), n);
+        ++hits[size_t(s.y) * n + s.x];
+      }
+      for (size_t cell = 0; cell < hits.size(); ++cell) EXPECT_EQ(hits[cell], 1) << "level " << n << " cell " << cell;
     }
 }
 
