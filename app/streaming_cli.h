@@ -39,7 +39,7 @@ struct StreamingCli {
   int plantSegments = 5;              // n_max segments per blade (eq. 4)
   double plantLodM = 4.0;             // eq. 4's distance unit
   bool noPlantShadows = false;
-  double plantShadowM = 40.0;         // planar shadows within it (render::PlantDrawOptions)
+  double plantShadowM = 30.0;         // planar shadows within it (render::PlantDrawOptions)
   std::string occlusionCulling = "on";  // on | off: Hi-Z culling of seed triangles the terrain hides
   std::string bladePath = "auto";  // auto | tessellation | compute | mesh (render::BladePath)
 };

@@ -139,7 +139,7 @@ struct PlantDrawOptions {
   bool shadows = true;        // the planar shadows of §3.6
   // Shadows end here, fading out over the last quarter (shaders/common/plant_shape.glsl): far
   // shadows are streaks 1.5 pixels wide that cost more than their plants.
-  float shadowDistanceM = 40.0f;
+  float shadowDistanceM = 30.0f;
   bool fullDetail = false;    // every blade at n_max segments (tests, speed-of-light runs)
   // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry
