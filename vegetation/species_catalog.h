@@ -58,9 +58,10 @@ struct Species {
   float threshold = 0.0f;                   // score s below this → s = 0 for this species (0: no threshold)
   bool bare = false;                        // bare soil: seeds that pick it are rejected
   RendererKind kind = RendererKind::Grass;  // ignored when bare
-  // 0: blades face every way alike; 1: every blade leans away from the sun (seed 001 §2.3: "a
-  // unimodal distribution centred around the direction opposite to the sunlight"); between,
-  // the orientation spread about that direction shrinks from ±180° to 0.
+  // 0: blades face every way alike; 1: every blade leans towards the sun (seed 001 §2.3: "a
+  // unimodal distribution centered around the direction opposite to the direction of sunlight",
+  // against the light's travel: plants grow towards light); between, the orientation spread
+  // about that direction shrinks from ±180° to 0.
   float phototropism = 0.0f;
   FloatRange heightM, stiffness, widthM,
       colourModulation;  // per-plant ranges (k′ = stiffness); zero when bare and not given

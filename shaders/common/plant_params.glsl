@@ -24,13 +24,15 @@ PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
   uvec2 cm = philoxDraw(key, g.cluster, kSlotColourSpecies + seed);
   p.height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * (0.6 + 0.4 * g.sPrime) * g.fade;
   p.stiffness = mix(sp.heightStiffness.z, sp.heightStiffness.w, philoxU01(hs.y));
-  // Uniform about the vertical, or (phototropism) spread less and less about the direction away
-  // from the sun: 0 keeps the uniform angle, 1 points every blade away from the sun.
-  // (The uniform angle is vegetation::Plant::orientationRad; the sun's pull is the renderer's.)
+  // Uniform about the vertical, or (phototropism) spread less and less about the sun's azimuth:
+  // 0 keeps the uniform angle, 1 leans every blade towards the sun. Seed 001 §2.3 centres the
+  // distribution "opposite to the direction of sunlight", i.e. against the light's travel, which
+  // is towards the sun, as plants grow (positive phototropism); frame.sunDirection points to the
+  // sun. (The uniform angle is vegetation::Plant::orientationRad; the sun's pull is the renderer's.)
   p.orientation = 6.28318530718 * philoxU01(ow.x);
   if (sp.marker.w > 0.0) {
-    float antiSun = atan(-frame.sunDirection.y, -frame.sunDirection.x);
-    p.orientation = antiSun + (p.orientation - 3.14159265359) * (1.0 - sp.marker.w);
+    float towardsSun = atan(frame.sunDirection.y, frame.sunDirection.x);
+    p.orientation = towardsSun + (p.orientation - 3.14159265359) * (1.0 - sp.marker.w);
   }
   p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * g.fade;
   p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));

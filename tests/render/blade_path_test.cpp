@@ -4,7 +4,8 @@
 // shadows); the clipper sees the same primitives; the rest of the pipeline statistics differ only
 // as the paths do (patches and tessellation/geometry work against indexed triangles and vertex
 // invocations); the images differ only at blade edges, with MSAA 4 and 1; each path is
-// deterministic; both end the planar shadows at the same distance; the buffers follow the eq. 4
+// deterministic; both end the planar shadows at the same distance and lean phototropic blades
+// towards the sun; the buffers follow the eq. 4
 // bound, and plants past a ceiling are dropped whole
 // and counted; the validation layers stay silent (GpuTest). RendererOptions: auto resolves to
 // compute, mesh is refused naming the option and the device.
@@ -13,10 +14,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plant_field.h"
 #include "render/png_writer.h"
+#include "vegetation/species_catalog.h"
 
 namespace vegstream::render::testing {
 namespace {
@@ -184,6 +187,60 @@ TEST_F(BladePathTest, ShadowsEndAtTheShadowDistanceOnBothPaths) {
   EXPECT_LT(shadowTriangles[1], shadowTriangles[2]);
   EXPECT_LT(shadowTriangles[2], shadowTriangles[3]);
   EXPECT_EQ(shadowTriangles[3], plantTriangles);
+}
+
+// Plant pixels (differing from the bare field by more than 3: blades take the ground's colour)
+// whose up-right neighbour is one too, and those whose up-left one is: blades leaning right on
+// screen make more of the first.
+std::pair<size_t, size_t> diagonalPairs(const ColorImage& with, const ColorImage& bare) {
+  auto plant = [&](uint32_t x, uint32_t y) {
+    const size_t i = (size_t(y) * with.width + x) * 4;
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(with.rgba[i + c]) - int(bare.rgba[i + c])));
+    return d > 3;
+  };
+  size_t right = 0, left = 0;
+  for (uint32_t y = 1; y < with.height; ++y)
+    for (uint32_t x = 1; x + 1 < with.width; ++x) {
+      if (!plant(x, y)) continue;
+      right += plant(x + 1, y - 1) ? 1 : 0;
+      left += plant(x - 1, y - 1) ? 1 : 0;
+    }
+  return {right, left};
+}
+
+TEST_F(BladePathTest, PhototropicBladesLeanTowardsTheSunOnBothPaths) {
+  // Issue 18: phototropism 1 turns every grass blade towards the sun's azimuth (seed 001 §2.3;
+  // plants grow towards light). Looking north over the field with a low sun in the east, blades
+  // lean right on screen (more plant pixels continue up-right than up-left); with the sun in the
+  // west, left. No shadows, so only the blades make the pixels.
+  vegetation::SpeciesCatalog catalog = vegetation::defaultSpeciesCatalog();
+  for (vegetation::Species& sp : catalog.species)
+    if (sp.name == "grass") {
+      sp.phototropism = 1.0f;
+      sp.stiffness = {0.7f, 0.8f};  // soft (in k_c): the blades bend well over, so the lean shows
+    }
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  ASSERT_TRUE(r->setSpeciesCatalog(catalog).ok());
+  PlantDrawOptions draw;
+  draw.shadows = false;
+  for (BladePath path : {BladePath::Tessellation, BladePath::Compute}) {
+    SCOPED_TRACE(bladePathName(path));
+    FieldView east, west;
+    east.sun = {1.0, 0.0, 0.35};
+    west.sun = {-1.0, 0.0, 0.35};
+    const FieldResult e = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, path), east);
+    const FieldResult w = renderField(*r, "grass", PlantStyle::Plants, withPath(draw, path), west);
+    const auto [eRight, eLeft] = diagonalPairs(*e.with.color, *e.without.color);
+    const auto [wRight, wLeft] = diagonalPairs(*w.with.color, *w.without.color);
+    std::printf("%s: sun east %zu right / %zu left, sun west %zu right / %zu left\n", bladePathName(path), eRight,
+                eLeft, wRight, wLeft);
+    EXPECT_GT(eLeft, 100u);
+    EXPECT_GT(double(eRight), 1.3 * double(eLeft)) << "sun in the east: blades lean east (right)";
+    EXPECT_GT(double(wLeft), 1.3 * double(wRight)) << "sun in the west: blades lean west (left)";
+  }
 }
 
 TEST_F(BladePathTest, WithoutMsaaBothPathsTakeTheSameAlphaTest) {

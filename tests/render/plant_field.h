@@ -26,6 +26,7 @@ struct FieldResult {
 struct FieldView {
   glm::dvec3 position{0.0, 0.0, 2.0};
   glm::dvec3 forward{0.0, 1.0, -0.35};
+  glm::dvec3 sun = Lighting{}.sunDirection;  // towards the sun
 };
 
 // The field coloured like `referenceOf`, rendered with `plants` and without.
@@ -45,6 +46,7 @@ inline FieldResult renderField(Renderer& r, const std::string& referenceOf, Plan
     req.camera.forward = glm::normalize(view.forward);
     req.camera.up = std::abs(req.camera.forward.z) > 0.99 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
     req.cameraHeightMsl = view.position.z;
+    req.lighting.sunDirection = view.sun;
     req.readbackColor = true;
     req.terrain = {&draw, 1};
     req.imageryUploads = {&upload, 1};
