@@ -16,6 +16,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "core/stopwatch.h"
+#include "vegetation/blade_shape.h"
 #include "render/blade_pass.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
@@ -42,7 +43,7 @@ static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame 
 static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
 static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
 inline constexpr int kMaxPasses = 8;
-inline constexpr int kBladeTableSegments = 16;  // the solved shapes' resolution; blades draw ≤ 16 segments
+inline constexpr int kBladeTableSegments = vegetation::kBladeShapeSegments;
 
 // Everything one frame in flight owns.
 struct FrameSlot {

@@ -4,6 +4,7 @@
 #include "vegetation/blade_shape.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -261,6 +262,27 @@ Result<BladeShapeTable> buildBladeShapeTable(int segments, int rows, double kMin
     }
   }
   return table;
+}
+
+double minimumRelativeStiffness() {
+  static const double value = [] {
+    const double kc = criticalStiffness(kBladeShapeSegments);
+    BladeShapeOptions o;
+    o.segments = kBladeShapeSegments;
+    const auto tipHeight = [&](double s) {
+      const Result<BladeShape> b = solveBladeShape(s * kc, o);
+      assert(b && "the default blade solves at every stiffness (blade_shape_test)");
+      return b ? b->points.back().y : 0.0;
+    };
+    double lo = 0.2, hi = 1.0;  // tip below the root at 0.2 k_c, above it at k_c
+    assert(tipHeight(lo) < 0.0 && tipHeight(hi) > 0.0);
+    while (hi - lo > 1e-4) {
+      const double mid = 0.5 * (lo + hi);
+      (tipHeight(mid) < 0.0 ? lo : hi) = mid;
+    }
+    return hi;
+  }();
+  return value;
 }
 
 }  // namespace vegstream::vegetation

@@ -45,7 +45,14 @@
 // segments has a larger k′ (k′ ∝ N³ for a given continuous blade: k_c(N)/N³ tends to the
 // elastica's self-weight buckling 1/7.837). For N = 4, k_c = 11.9: k′ ≈ 1–1.5 k_c gives a
 // grass-like arch (tip at (2.98, 2.57) at k_c, (1.19, 3.82) at 1.5 k_c), while k′ < 0.5 k_c hangs
-// below the root (k′ = 0.4: tip (0.33, −3.96)) — catalog stiffnesses are read on this scale.
+// below the root (k′ = 0.4: tip (0.33, −3.96)).
+//
+// Units (issue 18). Species catalogs, Plant::stiffness and the GPU give stiffness relative to
+// the buckling stiffness, s = k′ / k_c(N), which describes the same blade whatever N: the
+// renderer solves shapes at kBladeShapeSegments and multiplies by k_c there. For N = 16 the tip
+// is at (lateral, height) = (0.70, 0.66) of the length at s = 1, (0.87, 0.31) at 0.8, (0.29,
+// 0.96) at 1.5; below s ≈ 0.64 (minimumRelativeStiffness) it ends below the root, and catalogs
+// refuse such blades.
 
 #include <span>
 #include <vector>
@@ -57,6 +64,8 @@
 namespace vegstream::vegetation {
 
 inline constexpr int kMaxBladeSegments = 16;
+// The segments the renderer solves blade shapes with (its table; blades draw ≤ 16 segments).
+inline constexpr int kBladeShapeSegments = 16;
 inline constexpr double kDefaultRootTiltRad = 0.1;
 // The default table: log-spaced k′ over [0.05, 50], 64 rows: from a blade hanging down (k′ ≪ k_c)
 // to effectively rigid for 4 segments (k′ = 50 ≈ 4 k_c: tip inclination 0.14 rad against the
@@ -91,6 +100,11 @@ std::vector<double> bladeTorqueJacobian(std::span<const double> phi, double stif
 
 // λ_max(A): the buckling k′ of the straight blade (root tilt 0). NaN for segments outside 1 … 16.
 double criticalStiffness(int segments);
+
+// The relative stiffness s = k′ / k_c at which a blade of kBladeShapeSegments segments with the
+// default root tilt has its tip exactly at its root's height (≈ 0.64): softer blades end below
+// the root. Found once by bisection on solveBladeShape (to 1e-4), then remembered.
+double minimumRelativeStiffness();
 
 // The shape table the GPU samples (issue 8: stored as a texture, seed §2.3 after fig. 3): row r
 // (0 … rows − 1) is k′_r = kMin (kMax / kMin)^(r / (rows − 1)) — log spacing, because the shape

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/text_file.h"
+#include "vegetation/blade_shape.h"
 
 namespace vegstream::vegetation {
 namespace {
@@ -196,6 +197,13 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   for (const auto& r : ranges)
     if (need || obj.contains(r.key))
       if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
+  // Blades (grass, flower stems) take their shape from the stiffness: too soft, and the tip ends
+  // below the root (blade_shape.h "Units"). Gravel and trees do not bend.
+  const bool blade = out.kind == RendererKind::Grass || out.kind == RendererKind::Flowers;
+  if (need && blade && out.stiffness.min < minimumRelativeStiffness())
+    return ps.fail(path + ".stiffness.min",
+                   "relative to the buckling stiffness k_c, " + fmt(out.stiffness.min) +
+                       " bends the blade's tip below its root (at least " + fmt(minimumRelativeStiffness()) + ")");
   return true;
 }
 

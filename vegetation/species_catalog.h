@@ -21,7 +21,7 @@
 //         "bare": false,                                   optional
 //         "kind": "grass" | "gravel" | "flowers" | "tree", required unless bare
 //         "height_m": { "min": 0.15, "max": 0.5 },         > 0, min ≤ max   } required
-//         "stiffness": { "min": 0.4, "max": 0.9 },         k′ > 0           } unless bare
+//         "stiffness": { "min": 0.8, "max": 1.6 },         k′ / k_c > 0     } unless bare
 //         "width_m": { "min": 0.004, "max": 0.01 },        > 0              } (checked
 //         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
 //       }, … ] }
@@ -64,7 +64,10 @@ struct Species {
   // about that direction shrinks from ±180° to 0.
   float phototropism = 0.0f;
   FloatRange heightM, stiffness, widthM,
-      colourModulation;  // per-plant ranges (k′ = stiffness); zero when bare and not given
+      colourModulation;  // per-plant ranges; zero when bare and not given. stiffness is relative
+                         // to the buckling stiffness, k′ / k_c (blade_shape.h "Units"): grass and
+                         // flowers need min ≥ minimumRelativeStiffness() (≈ 0.64), else the tip
+                         // would end below the root
 };
 
 inline constexpr size_t kMaxSpecies = 16;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "vegetation/blade_shape.h"
+#include "vegetation/species_catalog.h"
 
 namespace vegstream::vegetation {
 namespace {
@@ -222,6 +223,35 @@ TEST(BladeShape, DefaultTableIsEquilibriaAndDroopsMonotonically) {
   }
   // From soft to stiff the tip first swings out (hanging → horizontal), then comes back in.
   EXPECT_EQ(lateralTurns, 1);
+}
+
+TEST(BladeShape, MinimumRelativeStiffnessPutsTheTipAtTheRootsHeight) {
+  // Catalog stiffness is relative to k_c (issue 18): at minimumRelativeStiffness the tip of the
+  // renderer's blade is level with its root, 1 % softer below it, 1 % stiffer above; the default
+  // grass range droops (its softest tip well below its length, its stiffest nearly upright), as
+  // the shapes of the seed's fig. 3 do.
+  const double s = minimumRelativeStiffness();
+  EXPECT_GT(s, 0.5);
+  EXPECT_LT(s, 0.8);
+  const double kc = criticalStiffness(kBladeShapeSegments);
+  BladeShapeOptions o;
+  o.segments = kBladeShapeSegments;
+  const auto tip = [&](double rel) {
+    auto b = solveBladeShape(rel * kc, o);
+    EXPECT_TRUE(b);
+    return b ? b->points.back() / double(kBladeShapeSegments) : glm::dvec2(0.0);
+  };
+  EXPECT_NEAR(tip(s).y, 0.0, 1e-3);
+  EXPECT_LT(tip(0.99 * s).y, 0.0);
+  EXPECT_GT(tip(1.01 * s).y, 0.0);
+  const FloatRange grass = [] {
+    for (const Species& sp : defaultSpeciesCatalog().species)
+      if (sp.name == "grass") return sp.stiffness;
+    return FloatRange{};
+  }();
+  EXPECT_GE(grass.min, s);
+  EXPECT_LT(tip(grass.min).y, 0.5) << "the softest grass droops";
+  EXPECT_GT(tip(grass.max).y, 0.9) << "the stiffest grass stands";
 }
 
 TEST(BladeShape, TableRowsAreLogSpacedAndEndAtTheLimits) {

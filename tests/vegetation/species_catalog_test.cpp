@@ -16,7 +16,7 @@ using nlohmann::json;
 json goodSpecies() {
   return json::parse(R"({
     "name": "grass", "reference": {"h_deg": 90, "s": 0.3, "v": 0.4}, "weights": {"h": 2, "s": 1, "v": 0.5},
-    "p": 3, "kind": "grass", "height_m": {"min": 0.2, "max": 0.5}, "stiffness": {"min": 0.3, "max": 0.9},
+    "p": 3, "kind": "grass", "height_m": {"min": 0.2, "max": 0.5}, "stiffness": {"min": 0.8, "max": 1.6},
     "width_m": {"min": 0.005, "max": 0.01}, "colour_modulation": {"min": 0.9, "max": 1.1}})");
 }
 
@@ -106,6 +106,8 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
        "species[0].height_m.max: must be ≥ min (got 0.1 < 0.3)"},
       {"zero height", [](json& s) { s["height_m"]["min"] = 0; }, "species[0].height_m.min: must be > 0"},
       {"negative stiffness", [](json& s) { s["stiffness"]["min"] = -1; }, "species[0].stiffness.min: must be > 0"},
+      {"stiffness that buries the tip", [](json& s) { s["stiffness"]["min"] = 0.4; },
+       "species[0].stiffness.min: relative to the buckling stiffness k_c, 0.4 bends the blade's tip below its root"},
       {"phototropism above 1", [](json& s) { s["phototropism"] = 1.5; }, "species[0].phototropism: must be in 0 … 1"},
       {"p zero", [](json& s) { s["p"] = 0; }, "species[0].p: must be > 0"},
       {"p string", [](json& s) { s["p"] = "3"; }, "species[0].p: must be a number"},
