@@ -56,7 +56,7 @@ struct SceneOptions {
   bool lookAhead = true;       // prefetch the tiles of the poses expected next
   float terrainDetail = 1.0f;  // close-up detail textures, 0 (bare imagery) … 1
   std::optional<std::filesystem::path> httpCacheDir;
-  uint64_t groundMaxPixels = 1'000'000;  // the ground mosaic for path altitudes
+  uint64_t groundMaxPixels = 4'000'000;  // the ground mosaic for path altitudes
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
   bool plants = true;
   uint32_t clusterSize = 8;  // C, 1 … vegetation::kMaxClusterSize

@@ -103,7 +103,7 @@ void RoamMesh::freePair(uint32_t first) {
 void RoamMesh::sampleVertex(RoamVertex& v, bool morph) { applySample(v, heights_->sample(v.grid), morph); }
 
 void RoamMesh::applySample(RoamVertex& v, const HeightSample& s, bool morph) {
-  if (morph) {
+  if (morph && shown_) {
     v.fromHeightM = v.drawnHeight(timeS_, options_.fadeS);
     v.morphStartS = timeS_;
   }
@@ -134,8 +134,10 @@ uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
   v.base = frame_.toLocal(g);
   v.up = frame_.upAt(g);
   sampleVertex(v, false);
-  v.fromHeightM = fromHeight;
-  v.morphStartS = timeS_;
+  if (shown_) {  // else: nothing drawn yet to morph from (markShown)
+    v.fromHeightM = fromHeight;
+    v.morphStartS = timeS_;
+  }
   return i;
 }
 

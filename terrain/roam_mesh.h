@@ -104,6 +104,13 @@ class RoamMesh {
   const BintreeGrid& grid() const { return grid_; }
   const RoamMeshOptions& options() const { return options_; }
   void setTime(double timeS) { timeS_ = timeS; }
+  // The mesh has been drawn (the output calls it): from then on new and resampled vertices
+  // morph. Before the first drawn frame there is nothing on screen to morph from; a morph then
+  // drew the first frames' surface at the coarse interpolation it starts from — 39 m under the
+  // Kolob plateau 2 m below a camera — while culling used the true heights, which cut holes in
+  // the view (and warm-up frames, all at the start time, never finished it).
+  void markShown() { shown_ = true; }
+  bool shown() const { return shown_; }
 
   // Splits leaf t (and its diamond partner, forcing splits of coarser neighbours first). False
   // when t or a node it would force is at the deepest level. Invalidates references to nodes.
@@ -193,6 +200,7 @@ class RoamMesh {
   ResidentHeights* heights_;
   RoamMeshOptions options_;
   double timeS_ = 0.0;
+  bool shown_ = false;  // markShown
   std::vector<RoamNode> nodes_;
   std::vector<uint32_t> freePairs_;
   std::vector<RoamVertex> vertices_;

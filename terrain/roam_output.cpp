@@ -52,6 +52,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
     visitOutput(w, r, eye, Cull::Partial, InPiece::None, -1, true);
   }
   figures_.seedTriangles = seeds.size();
+  mesh_.markShown();
   figures_.outputMs = watch.elapsedMs();
 }
 

@@ -123,12 +123,45 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
   EXPECT_GT(outside, 0u) << "the view leaves some of the mesh out";
 }
 
+TEST(RoamTessellator, TheFirstDrawnMeshIsAtItsHeightsThenSplitsMorph) {
+  // Before anything was drawn there is nothing to morph from: the first output draws every
+  // vertex at its sampled height (a morph from the coarse interpolation drew the Kolob plateau
+  // 39 m low under a camera 2 m up, and culling at the true heights cut holes in the view).
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  auto r = z.tessellator({}, {}, 0.5);
+  const EyeView eye = z.camera(37.457, -113.022, 2.0, 90.0, -12.0, 320.0, 180.0);
+  for (int i = 0; i < 3; ++i) r->update(eye, pieces, 0.0);  // warm-up frames: all at time 0
+  EXPECT_FALSE(r->mesh().shown());
+  std::vector<TerrainMesh> meshes;
+  std::vector<SeedTriangle> seeds;
+  r->output(eye, pieces, 0.0, meshes, seeds);
+  EXPECT_TRUE(r->mesh().shown());
+  EXPECT_EQ(r->figures().morphingVertices, 0u);
+  uint64_t vertices = 0;
+  for (uint32_t v = 0; v < r->mesh().vertexCapacity(); ++v) {
+    const RoamVertex& x = r->mesh().vertex(v);
+    if (!(x.heightM == x.heightM)) continue;
+    ++vertices;
+    EXPECT_EQ(x.drawnHeight(0.0, 0.5), x.heightM);
+  }
+  EXPECT_GT(vertices, 1000u);
+  // Once shown, a split's vertices morph (SplitsAndMergesMorphInsteadOfPopping).
+  const EyeView lower = z.camera(37.457, -113.022, 0.5, 90.0, -12.0, 320.0, 180.0);
+  r->update(lower, pieces, 1.0);
+  if (r->figures().splits > 0) {
+    r->output(lower, pieces, 1.0, meshes, seeds);
+    EXPECT_GT(r->figures().morphingVertices, 0u);
+  }
+}
+
 TEST(RoamTessellator, SplitsAndMergesMorphInsteadOfPopping) {
   auto& z = zionResident();
   const PieceSet pieces = z.finestPieces();
   auto r = z.tessellator({}, {}, 0.5);
   const EyeView near = z.camera(37.30, -113.05, 120.0, 45.0, -20.0, 320.0, 180.0);
   for (int i = 0; i < 40; ++i) r->update(near, pieces, 10.0 + i);  // converged, morphs long done
+  r->mesh().markShown();  // drawn: from now on changes morph
   // New vertices start on the base they split (their parent's surface) and rise over fadeS.
   const EyeView closer = z.camera(37.30, -113.05, 40.0, 45.0, -20.0, 320.0, 180.0);
   r->update(closer, pieces, 100.0);
