@@ -105,11 +105,12 @@ void growPlants(const SeedTriangleInput& triangle, std::span<const PlantCluster>
       const Philox2x32Out hs = draw(triangle.key, g.cluster, philox_slot::kHeightStiffness + s);
       const Philox2x32Out ow = draw(triangle.key, g.cluster, philox_slot::kOrientationWidth + s);
       const Philox2x32Out cm = draw(triangle.key, g.cluster, philox_slot::kColourSpecies + s);
-      // A plant of a minority species at a border is smaller: s′ near 0 (eq. 18).
-      p.heightM = mixRange(sp.heightM, u01(hs.x)) * (0.6f + 0.4f * g.sPrime);
-      p.stiffness = mixRange(sp.stiffness, u01(hs.y));
+      // A plant of a minority species at a border is smaller, thinner and softer: s′ near 0
+      // (eq. 18; species_catalog.h sPrimeFactor).
+      p.heightM = mixRange(sp.heightM, u01(hs.x)) * sPrimeFactor(kSPrimeHeightLo, g.sPrime);
+      p.stiffness = mixRange(sp.stiffness, u01(hs.y)) * sPrimeFactor(kSPrimeStiffnessLo, g.sPrime);
       p.orientationRad = kTwoPi * u01(ow.x);
-      p.widthM = mixRange(sp.widthM, u01(ow.y));
+      p.widthM = mixRange(sp.widthM, u01(ow.y)) * sPrimeFactor(kSPrimeWidthLo, g.sPrime);
       p.colourModulation = mixRange(sp.colourModulation, u01(cm.x));
       out.push_back(p);
     }

@@ -108,7 +108,7 @@ struct Plant {
   uint32_t species = 0;
   float sPrime = 0.0f;
   float fade = 1.0f;       // size factor at the end of the sequence (1 at full density)
-  float heightM = 0.0f;    // full-size height: the species range, scaled by 0.6 + 0.4 s′
+  float heightM = 0.0f;    // full-size height: the species range, scaled by s′ (sPrimeFactor)
   float stiffness = 0.0f;  // relative, k′ / k_c (blade_shape.h "Units")
   float widthM = 0.0f;
   float orientationRad = 0.0f;  // about the vertical, [0, 2π)

@@ -200,10 +200,12 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   // Blades (grass, flower stems) take their shape from the stiffness: too soft, and the tip ends
   // below the root (blade_shape.h "Units"). Gravel and trees do not bend.
   const bool blade = out.kind == RendererKind::Grass || out.kind == RendererKind::Flowers;
-  if (need && blade && out.stiffness.min < minimumRelativeStiffness())
-    return ps.fail(path + ".stiffness.min",
-                   "relative to the buckling stiffness k_c, " + fmt(out.stiffness.min) +
-                       " bends the blade's tip below its root (at least " + fmt(minimumRelativeStiffness()) + ")");
+  // The softest plant: the minimum at s′ = 0 (kSPrimeStiffnessLo).
+  const double least = minimumRelativeStiffness() / kSPrimeStiffnessLo;
+  if (need && blade && out.stiffness.min < least)
+    return ps.fail(path + ".stiffness.min", "relative to the buckling stiffness k_c, " + fmt(out.stiffness.min) +
+                                                " bends the blade's tip below its root (at least " + fmt(least) +
+                                                ": a minority plant is " + fmt(kSPrimeStiffnessLo) + " × as stiff)");
   return true;
 }
 

@@ -66,11 +66,19 @@ struct Species {
   FloatRange heightM, stiffness, widthM,
       colourModulation;  // per-plant ranges; zero when bare and not given. stiffness is relative
                          // to the buckling stiffness, k′ / k_c (blade_shape.h "Units"): grass and
-                         // flowers need min ≥ minimumRelativeStiffness() (≈ 0.64), else the tip
-                         // would end below the root
+                         // flowers need min ≥ minimumRelativeStiffness() / kSPrimeStiffnessLo
+                         // (≈ 0.75), else a minority plant's tip would end below its root
 };
 
 inline constexpr size_t kMaxSpecies = 16;
+
+// Eq. 18's s′ modulates a plant's size and stiffness (seed 001 §3.3: "to modulate certain plant
+// parameters, such as plant size or stiffness, to give a more natural appearance"): a plant of
+// the minority species at a border (s′ → 0) is smaller, thinner and softer than one where its
+// species dominates (s′ → 1). Each factor is lo + (1 − lo) s′; shaders/common/plant_params.glsl
+// holds the same numbers.
+inline constexpr float kSPrimeHeightLo = 0.6f, kSPrimeWidthLo = 0.8f, kSPrimeStiffnessLo = 0.85f;
+inline float sPrimeFactor(float lo, float sPrime) { return lo + (1.0f - lo) * sPrime; }
 
 struct SpeciesCatalog {
   std::vector<Species> species;  // 1 … kMaxSpecies, at least one not bare

@@ -1,7 +1,12 @@
-// A plant's root and parameters from the Philox slots of vegetation/plant_seeding.cpp (height
-// scaled by 0.6 + 0.4 s′ and faded, stiffness, orientation — phototropic where the species says
-// so — width, colour modulation): shared by the species pipelines and the markers. Needs
+// A plant's root and parameters from the Philox slots of vegetation/plant_seeding.cpp (height,
+// width and stiffness scaled by s′ as vegetation/species_catalog.h's sPrimeFactor, height and
+// width faded; orientation — phototropic where the species says so — and colour modulation):
+// shared by the species pipelines and the markers. Needs
 // frame_uniforms.glsl, philox.glsl, seeding.glsl, classify_layout.glsl and a `catalog` block.
+
+// vegetation/species_catalog.h: kSPrimeHeightLo, kSPrimeWidthLo, kSPrimeStiffnessLo.
+const float kSPrimeHeightLo = 0.6, kSPrimeWidthLo = 0.8, kSPrimeStiffnessLo = 0.85;
+float sPrimeFactor(float lo, float sPrime) { return lo + (1.0 - lo) * sPrime; }
 
 struct PlantParams {
   vec3 root;          // camera-relative
@@ -22,8 +27,9 @@ PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
   uvec2 hs = philoxDraw(key, g.cluster, kSlotHeightStiffness + seed);
   uvec2 ow = philoxDraw(key, g.cluster, kSlotOrientationWidth + seed);
   uvec2 cm = philoxDraw(key, g.cluster, kSlotColourSpecies + seed);
-  p.height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * (0.6 + 0.4 * g.sPrime) * g.fade;
-  p.stiffness = mix(sp.heightStiffness.z, sp.heightStiffness.w, philoxU01(hs.y));
+  p.height = mix(sp.heightStiffness.x, sp.heightStiffness.y, philoxU01(hs.x)) * sPrimeFactor(kSPrimeHeightLo, g.sPrime) *
+             g.fade;
+  p.stiffness = mix(sp.heightStiffness.z, sp.heightStiffness.w, philoxU01(hs.y)) * sPrimeFactor(kSPrimeStiffnessLo, g.sPrime);
   // Uniform about the vertical, or (phototropism) spread less and less about the sun's azimuth:
   // 0 keeps the uniform angle, 1 leans every blade towards the sun. Seed 001 §2.3 centres the
   // distribution "opposite to the direction of sunlight", i.e. against the light's travel, which
@@ -34,7 +40,7 @@ PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
     float towardsSun = atan(frame.sunDirection.y, frame.sunDirection.x);
     p.orientation = towardsSun + (p.orientation - 3.14159265359) * (1.0 - sp.marker.w);
   }
-  p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * g.fade;
+  p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * sPrimeFactor(kSPrimeWidthLo, g.sPrime) * g.fade;
   p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));
   p.sPrime = g.sPrime;
   return p;

@@ -171,12 +171,12 @@ TEST_F(Plants, SpeciesComeFromTheCatalogAndBareGroundGrowsNone) {
   // One species: every plant is it. Only bare soil: nothing grows.
   std::ofstream(tmp / "moss.json") << R"({"species": [{"name": "moss", "reference": {"srgb": "#406030"},
     "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02},
-    "stiffness": {"min": 0.7, "max": 0.8}, "width_m": {"min": 0.001, "max": 0.002},
+    "stiffness": {"min": 0.8, "max": 0.9}, "width_m": {"min": 0.001, "max": 0.002},
     "colour_modulation": {"min": 1, "max": 1}}]})";
   std::ofstream(tmp / "bare.json") << R"({"species": [
     {"name": "dust", "reference": {"srgb": "#808080"}, "weights": {"h": 0, "s": 0, "v": 1}, "p": 2, "bare": true},
     {"name": "blue moss", "reference": {"srgb": "#0000ff"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 8,
-     "threshold": 1e9, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02}, "stiffness": {"min": 0.7, "max": 0.8},
+     "threshold": 1e9, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02}, "stiffness": {"min": 0.8, "max": 0.9},
      "width_m": {"min": 0.001, "max": 0.002}, "colour_modulation": {"min": 1, "max": 1}}]})";
   const std::string box = bbox(25.0);
   const auto moss = runVegstream(plants("--bbox " + box + " --species " + q(tmp / "moss.json")));

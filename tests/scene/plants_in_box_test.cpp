@@ -84,13 +84,15 @@ TEST(PlantsInBox, AreInTheBoxOnTheGroundWithCatalogSpeciesAndRepeatable) {
     ASSERT_LT(p.species, catalog.species.size());
     const vegetation::Species& s = catalog.species[p.species];
     EXPECT_FALSE(s.bare) << "bare soil grows nothing";
-    // The species range scaled by 0.6 + 0.4 s′ (vegetation/plant_seeding.h), s′ in [0, 1].
+    // The species ranges scaled by s′ (vegetation/species_catalog.h sPrimeFactor), s′ in [0, 1].
     EXPECT_GE(p.sPrime, 0.0f);
     EXPECT_LE(p.sPrime, 1.0f);
-    EXPECT_GE(p.heightM, s.heightM.min * (0.6f + 0.4f * p.sPrime) * 0.9999f);
-    EXPECT_LE(p.heightM, s.heightM.max * (0.6f + 0.4f * p.sPrime) * 1.0001f);
-    EXPECT_GE(p.stiffness, s.stiffness.min);
-    EXPECT_LE(p.stiffness, s.stiffness.max);
+    const float hs = vegetation::sPrimeFactor(vegetation::kSPrimeHeightLo, p.sPrime);
+    const float ks = vegetation::sPrimeFactor(vegetation::kSPrimeStiffnessLo, p.sPrime);
+    EXPECT_GE(p.heightM, s.heightM.min * hs * 0.9999f);
+    EXPECT_LE(p.heightM, s.heightM.max * hs * 1.0001f);
+    EXPECT_GE(p.stiffness, s.stiffness.min * ks * 0.9999f);
+    EXPECT_LE(p.stiffness, s.stiffness.max * ks * 1.0001f);
     // The root is on the seed triangle, a plane through three height samples a few metres apart:
     // within half a metre of the dataset's bilinear ground under it (0.11 m seen).
     const auto ground = reader->heightAt(p.at.latDeg, p.at.lonDeg);

@@ -3,6 +3,7 @@
 // picked from the base colour at the plant level (§3.3).
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -139,6 +140,34 @@ SpeciesCatalog threeSpecies() {
 glm::vec3 linearFromHsv(glm::vec3 hsv) {
   const glm::vec3 s = srgbFromHsv(hsv);
   return {srgbDecode(s.r), srgbDecode(s.g), srgbDecode(s.b)};
+}
+
+TEST(PlantSeeding, SPrimeMakesMinorityPlantsSmallerThinnerAndSofter) {
+  // Eq. 18's s′ modulates size and stiffness (seed 001 §3.3): the same plant (same triangle,
+  // cluster, seed) at s′ = 0 has sPrimeFactor(lo, 0) = lo of its height, width and stiffness at
+  // s′ = 1, and half-way in between at s′ = 0.5.
+  const SpeciesCatalog catalog = threeSpecies();
+  SeedTriangleInput t;
+  t.key = 0x1234abcdull;
+  t.vertices = {glm::dvec3(0, 0, 0), glm::dvec3(6, 0, 0), glm::dvec3(0, 6, 0)};
+  t.plantCount = 40.0f;
+  auto grow = [&](float sPrime) {
+    const PlantCluster g{0, 2, 0, 8, 0, sPrime, 1.0f};
+    std::vector<Plant> out;
+    growPlants(t, std::span(&g, 1), catalog, SeedingOptions{}, out);
+    return out;
+  };
+  const std::vector<Plant> minority = grow(0.0f), half = grow(0.5f), dominant = grow(1.0f);
+  ASSERT_EQ(minority.size(), 8u);
+  ASSERT_EQ(dominant.size(), 8u);
+  for (size_t i = 0; i < minority.size(); ++i) {
+    EXPECT_EQ(minority[i].position, dominant[i].position);
+    EXPECT_FLOAT_EQ(minority[i].heightM, kSPrimeHeightLo * dominant[i].heightM);
+    EXPECT_FLOAT_EQ(minority[i].widthM, kSPrimeWidthLo * dominant[i].widthM);
+    EXPECT_FLOAT_EQ(minority[i].stiffness, kSPrimeStiffnessLo * dominant[i].stiffness);
+    EXPECT_FLOAT_EQ(half[i].heightM, 0.5f * (minority[i].heightM + dominant[i].heightM));
+    EXPECT_FLOAT_EQ(minority[i].orientationRad, dominant[i].orientationRad);
+  }
 }
 
 TEST(PlantSeeding, MorePlantsOnlyAddToTheEndOfTheSequence) {
