@@ -214,6 +214,7 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   EXPECT_EQ(rec["plants"]["style"], "plants");
   EXPECT_EQ(rec["plants"]["max_segments"], 5);
   EXPECT_EQ(rec["plants"]["shadows"], true);
+  EXPECT_EQ(rec["plants"]["shadow_distance_m"], 30.0);
   EXPECT_EQ(rec["plants"]["blade_path"], "compute") << "auto picks the compute blade path";
   EXPECT_EQ(rec["plants"]["blade_path_requested"], "auto");
   const json s = json::parse(readWhole(dir / "summary.json"));
@@ -402,6 +403,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "--occlusion-culling"},
         BadRecord{"bad_plant_segments", "{DS} {SMALL} --path {PATH} --plant-segments 0", "--plant-segments"},
         BadRecord{"bad_plant_lod", "{DS} {SMALL} --path {PATH} --plant-lod-m 0", "--plant-lod-m"},
+        BadRecord{"bad_plant_shadow", "{DS} {SMALL} --path {PATH} --plant-shadow-m 0", "--plant-shadow-m"},
         BadRecord{"bad_blade_path", "{DS} {SMALL} --path {PATH} --blade-path fancy", "--blade-path"},
         // this build has no mesh-shader path: refused once the device is known, before any frame
         BadRecord{"blade_path_mesh", "{DS} {SMALL} --path {PATH} --blade-path mesh",
