@@ -298,6 +298,7 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   s.interpolated = interpolated;
   s.corners = mesh_.grid().corners(path);
   s.piece = piece;
+  s.plantCount *= static_cast<float>(horizonFade(nearest, seeds_.horizonM));
   figures_.seedPlants += s.plantCount;
   if (interpolated) ++figures_.seedInterpolated;
   w.seeds->push_back(s);

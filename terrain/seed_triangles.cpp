@@ -6,6 +6,7 @@
 #include "core/hash.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -27,6 +28,12 @@ double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& ey
   if (nearPlane) *nearPlane = behind;
   if (behind) return o.maxPlants;
   return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]), o.maxPlants);
+}
+
+double horizonFade(double nearestM, double horizonM) {
+  assert(horizonM > 0.0);
+  const double t = std::clamp((nearestM - 0.75 * horizonM) / (0.25 * horizonM), 0.0, 1.0);
+  return 1.0 - t * t * (3.0 - 2.0 * t);
 }
 
 double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o) {

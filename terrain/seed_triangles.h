@@ -63,6 +63,12 @@ double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& ey
 // Eq. 2 from eye-space vertices (the observer is at the origin).
 double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o);
 
+// The factor on a seed triangle's plant count at distance `nearestM` (to its nearest vertex, as
+// the horizon cut is measured): 1 within ¾ of the horizon, falling smoothly to 0 at it. Plants
+// then leave at the end of their sequence, shrinking (vegetation/plant_seeding.h sequenceFade),
+// instead of a triangle's 3–10 plants vanishing together at the cut (issue 18).
+double horizonFade(double nearestM, double horizonM);
+
 // The bintree level whose triangles' ground area at latitude `latDeg` is nearest `areaM2`.
 int seedLevelFor(const BintreeGrid& grid, double latDeg, double areaM2);
 // The bintree grid of a dataset with enough levels below its pixels for seed triangles of

@@ -165,6 +165,28 @@ TEST(SeedTriangles, Eq2AgainstHandComputation) {
   EXPECT_EQ(plantCountWorld(v, close, o), 256.0);
 }
 
+TEST(SeedTriangles, PlantCountsFadeOutBeforeTheHorizon) {
+  // Issue 18's popping at the seeding horizon: the count's factor is 1 up to ¾ of the horizon,
+  // 0 at it, continuous and non-increasing between (so a triangle's plants leave one by one as
+  // the camera moves away, none at the cut), changing by at most 1.5 cm / (¼ horizon) per
+  // centimetre travelled.
+  const double h = 250.0;
+  EXPECT_EQ(horizonFade(0.0, h), 1.0);
+  EXPECT_EQ(horizonFade(0.75 * h, h), 1.0);
+  EXPECT_EQ(horizonFade(h, h), 0.0);
+  EXPECT_EQ(horizonFade(2.0 * h, h), 0.0);
+  EXPECT_NEAR(horizonFade(0.875 * h, h), 0.5, 1e-12);
+  double previous = 1.0, steepest = 0.0;
+  for (double d = 0.0; d <= h + 1.0; d += 0.01) {
+    const double f = horizonFade(d, h);
+    EXPECT_LE(f, previous);
+    steepest = std::max(steepest, previous - f);
+    previous = f;
+  }
+  // The steepest step of a smoothstep over 62.5 m, per centimetre: 1.5 × 0.01 / 62.5.
+  EXPECT_LT(steepest, 0.01 * 1.5 / (0.25 * h) + 1e-9);
+}
+
 TEST(SeedTriangles, SeedLevelFollowsTheTargetArea) {
   const BintreeGrid g(8, 14);
   const int l = seedLevelFor(g, 37.3, 24.0);
