@@ -32,10 +32,6 @@ struct BladeVertexGpu {
   uint32_t unused;
 };
 static_assert(sizeof(BladeVertexGpu) == 32);
-struct BladePlantGpu {
-  float groundMod[4], upSPrime[4];
-};
-static_assert(sizeof(BladePlantGpu) == 32);
 struct BladeStateHeader {
   VkDrawIndexedIndirectCommand draw;
   uint32_t reservedVertices, reservedIndices, reservedPlants;
@@ -80,8 +76,9 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
       binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
       binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
   inputLayout_ = createLayout(ctx, inputs, "blade input set layout");
-  VkDescriptorSetLayoutBinding blades[6];
-  for (uint32_t b = 0; b < 6; ++b) blades[b] = binding(b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  // Binding 1 (per-plant records) went with lighting per vertex: nothing reads them.
+  VkDescriptorSetLayoutBinding blades[5];
+  for (uint32_t b = 0; b < 5; ++b) blades[b] = binding(b == 0 ? 0 : b + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   bladeLayout_ = createLayout(ctx, blades, "blade set layout");
   constexpr auto slots = static_cast<uint32_t>(ClassifyPass::kSlots);
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
@@ -154,7 +151,6 @@ BladePass::Bound BladePass::bound(std::span<const SeedTriangleGpu> triangles, ui
 void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire) {
   const uint64_t vertices = std::min(need.vertices, maxVertices_);
   const uint64_t indices = std::min(need.indices, maxIndices_);
-  const uint64_t records = std::min(need.plants, maxPlants_);
   const std::string tag = " (slot " + std::to_string(slot) + ")";
   auto grow = [&](GpuBuffer& b, uint64_t count, VkDeviceSize stride, VkBufferUsageFlags usage, const char* name) {
     const VkDeviceSize bytes = std::max<uint64_t>(count, 1) * stride;
@@ -163,13 +159,13 @@ void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const Retir
     b = createBuffer(*ctx_, grownSize(bytes), usage, MemoryUse::DeviceLocal, name + tag);
   };
   grow(s.vertices, vertices, sizeof(BladeVertexGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "blade vertices");
-  grow(s.plants, records, sizeof(BladePlantGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "blade plants");
   grow(s.indices, indices, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
        "blade indices");
   // What the buffers hold (grownSize may give more than asked), within the ceiling; indices a
   // whole number of quads, so the clamped draw never splits a triangle.
   s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size / sizeof(BladeVertexGpu), maxVertices_));
-  s.plantCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.plants.size / sizeof(BladePlantGpu), maxPlants_));
+  // Plants are numbered (the vertex's plant word), not stored: the count follows the bound.
+  s.plantCapacity = static_cast<uint32_t>(std::min(need.plants, maxPlants_));
   s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size / sizeof(uint32_t), maxIndices_) / 6 * 6);
 }
 
@@ -190,7 +186,6 @@ void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   writeSampledImage(*ctx_, s.inputSet, plants.tableSampler(), plants.tableView(), 3);
   writeSampledImage(*ctx_, s.inputSet, plants.imagerySampler(), imagery, 4);
   writeStorageBuffer(*ctx_, s.bladeSet, s.vertices.get(), 0);
-  writeStorageBuffer(*ctx_, s.bladeSet, s.plants.get(), 1);
   writeStorageBuffer(*ctx_, s.bladeSet, s.indices.get(), 2);
   writeStorageBuffer(*ctx_, s.bladeSet, s.state.get(), 3);
   writeStorageBuffer(*ctx_, s.bladeSet, classify.indirect(slot), 4);
@@ -267,7 +262,7 @@ void BladePass::readFigures(int slot, VegetationFigures& f) const {
 
 uint64_t BladePass::gpuBytes() const {
   uint64_t n = 0;
-  for (const Slot& s : slots_) n += s.vertices.size + s.plants.size + s.indices.size + s.state.size;
+  for (const Slot& s : slots_) n += s.vertices.size + s.indices.size + s.state.size;
   return n;
 }
 

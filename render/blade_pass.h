@@ -39,7 +39,7 @@ class BladePass {
   using RetireBuffer = ClassifyPass::RetireBuffer;
 
   // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
-  // indices and plant records follow from it.
+  // indices and the plant count (numbered, not stored) follow from it.
   BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
@@ -69,7 +69,7 @@ class BladePass {
 
  private:
   struct Slot {
-    GpuBuffer vertices, plants, indices, state, figures;
+    GpuBuffer vertices, indices, state, figures;
     VkDescriptorSet inputSet = VK_NULL_HANDLE, bladeSet = VK_NULL_HANDLE;
     uint32_t vertexCapacity = 0, indexCapacity = 0, plantCapacity = 0;
     PlantPush drawPush{};

@@ -38,7 +38,7 @@ struct RendererOptions {
   // (this build has no mesh-shader path) with an InvalidInput error naming the device.
   BladePath bladePath = BladePath::Auto;
   // The compute blade path's ceiling per frame slot, in vertices (32 bytes each; indices 3 × and
-  // plant records ¼ × as many): buffers grow to each frame's bound up to it, and plants past it
+  // plants ¼ × as many): buffers grow to each frame's bound up to it, and plants past it
   // are dropped and counted (VegetationFigures::bladesDropped). Default 8 Mi (256 MiB); at least 6.
   uint32_t bladeMaxVertices = 1u << 23;
   GLFWwindow* window = nullptr;  // present to this window's surface when set

@@ -8,7 +8,6 @@
 #include <limits>
 #include <numeric>
 #include <string>
-#include <tuple>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -221,11 +220,11 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   auto* pdst = static_cast<TerrainPiece*>(pieces_[s].mapped);
   // Each piece's range of the buffers, in draw order; then the copies, a task per piece.
   std::vector<std::pair<uint32_t, uint32_t>> at(order.size());  // first vertex, first index
-  uint32_t firstVertex = 0, firstIndex = 0;
+  uint32_t totalVertices = 0, totalIndices = 0;
   for (size_t k = 0; k < order.size(); ++k) {
-    at[k] = {firstVertex, firstIndex};
-    firstVertex += static_cast<uint32_t>(sizes[k].vertices);
-    firstIndex += static_cast<uint32_t>(sizes[k].indices);
+    at[k] = {totalVertices, totalIndices};
+    totalVertices += static_cast<uint32_t>(sizes[k].vertices);
+    totalIndices += static_cast<uint32_t>(sizes[k].indices);
   }
   eachPiece(order.size(), tasks_, [&](size_t k) {
     copyFlat(*draws[order[k]].mesh, reinterpret_cast<terrain::TerrainVertex*>(vdst) + at[k].first,
@@ -235,7 +234,7 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
     const TerrainDraw& d = draws[order[k]];
     const terrain::TerrainMesh& m = *d.mesh;
     const MeshSize size = sizes[k];
-    std::tie(firstVertex, firstIndex) = at[k];
+    const auto [firstVertex, firstIndex] = at[k];
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
     }();
@@ -254,17 +253,15 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
                                      glm::uvec4(firstIndex / 3, firstVertex, triangles, 0u)};
     list.push_back(p);
   }
-  firstVertex = at.back().first + static_cast<uint32_t>(sizes.back().vertices);
-  firstIndex = at.back().second + static_cast<uint32_t>(sizes.back().indices);
-  const VkBufferCopy vcopy{0, 0, VkDeviceSize{firstVertex} * sizeof(terrain::TerrainVertex)};
-  const VkBufferCopy icopy{0, 0, VkDeviceSize{firstIndex} * sizeof(uint32_t)};
+  const VkBufferCopy vcopy{0, 0, VkDeviceSize{totalVertices} * sizeof(terrain::TerrainVertex)};
+  const VkBufferCopy icopy{0, 0, VkDeviceSize{totalIndices} * sizeof(uint32_t)};
   vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);
   vkCmdCopyBuffer(cmd, indices_[s].get(), deviceIndices_[s].get(), 1, &icopy);
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  return firstIndex / 3;
+  return totalIndices / 3;
 }
 
 void TerrainPass::recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const {

@@ -210,7 +210,6 @@ void main() {
     PlantParams p = plantParams(g, t, seed);
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
     gGroundMod = vec4(groundColour(t, r), p.colourModulation);
-    bladePlants[pAt] = BladePlant(gGroundMod, vec4(gPlane.xyz, p.sPrime));
     gKind = kindK;
     gPlantWord = pAt | ((kindK == kGravel ? 1u : 0u) << kBladeKindShift);
     gVertex = vAt;

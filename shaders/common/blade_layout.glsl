@@ -12,10 +12,6 @@ struct BladeVertex {
   uint unused;
 };
 
-struct BladePlant {
-  vec4 groundMod;   // rgb: the imagery colour under the root (linear); a: colour modulation
-  vec4 upSPrime;    // xyz: the seed triangle's unit normal; w: s′
-};
 
 const uint kBladePlantMask = 0x1fffffffu;
 const uint kBladeKindShift = 29u;
@@ -27,7 +23,6 @@ const uint kBladeShadowBit = 0x80000000u;
 #define BLADE_ACCESS
 #endif
 layout(set = 2, binding = 0, std430) BLADE_ACCESS buffer BladeVertices { BladeVertex bladeVertices[]; };
-layout(set = 2, binding = 1, std430) BLADE_ACCESS buffer BladePlants { BladePlant bladePlants[]; };
 layout(set = 2, binding = 2, std430) BLADE_ACCESS buffer BladeIndices { uint bladeIndices[]; };
 layout(set = 2, binding = 3, std430) BLADE_ACCESS buffer BladeState {
   uint drawIndexCount, drawInstanceCount, drawFirstIndex;  // VkDrawIndexedIndirectCommand
