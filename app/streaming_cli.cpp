@@ -39,20 +39,26 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "few); forward: fragments shaded as drawn; auto: deferred where the device can")
       ->check(CLI::IsMember({"auto", "forward", "deferred"}))
       ->capture_default_str();
-  cmd.add_option("--seed-horizon-m", o.seedHorizonM, "Seed triangles (plants) only within this distance, metres")
+  cmd.add_option("--seed-horizon-m", o.seedHorizonM,
+                 "Seed triangles (plants) only within this distance, metres (each species also stops at its "
+                 "catalog horizon_m)")
       ->capture_default_str();
   cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
   cmd.add_option("--plant-density", o.plantDensity,
-                 "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1)")
+                 "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1), pixels of a 1080-line view "
+                 "whatever the window: the level of detail that thins plants with distance; near the camera "
+                 "the catalog's density_m2 decides")
       ->capture_default_str();
-  cmd.add_option("--plant-max", o.plantMax, "Most plants per seed triangle (n_max of eq. 1)")->capture_default_str();
+  cmd.add_option("--plant-max", o.plantMax, "Most plants per seed triangle (n_max of eq. 1): a ceiling")
+      ->capture_default_str();
   cmd.add_option("--cluster-size", o.clusterSize, "Plants per cluster that share one species lookup (C)")
       ->capture_default_str();
   cmd.add_option("--species", o.species, "Species catalog (JSON, see config/species.json); default: the built-in one");
   cmd.add_flag("--no-plants", o.noPlants, "Draw the terrain only: no seeding, no classify pass");
   cmd.add_option("--plant-style", o.plantStyle,
-                 "plants: the species pipelines (grass, gravel, flowers; markers for trees); markers: one marker "
-                 "per plant, the classification alone; hidden: classified and counted, not drawn")
+                 "plants: the species pipelines (grass, gravel, flowers; trees not drawn yet); markers: one marker "
+                 "per plant, the classification alone; hidden: classified and counted, not drawn; coverage: as "
+                 "plants, in flat magenta without shadows, to measure what they cover")
       ->capture_default_str();
   cmd.add_option("--plant-segments", o.plantSegments, "Segments of a blade at full detail (n_max of eq. 4)")
       ->capture_default_str();
@@ -105,8 +111,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   if (o.clusterSize < 1 || o.clusterSize > static_cast<int>(vegetation::kMaxClusterSize))
     return bad("--cluster-size " + std::to_string(o.clusterSize) + ": must be 1 … " +
                std::to_string(vegetation::kMaxClusterSize));
-  if (o.plantStyle != "plants" && o.plantStyle != "markers" && o.plantStyle != "hidden")
-    return bad("--plant-style " + o.plantStyle + ": must be plants, markers or hidden");
+  if (o.plantStyle != "plants" && o.plantStyle != "markers" && o.plantStyle != "hidden" && o.plantStyle != "coverage")
+    return bad("--plant-style " + o.plantStyle + ": must be plants, markers, hidden or coverage");
   if (o.occlusionCulling != "on" && o.occlusionCulling != "off")
     return bad("--occlusion-culling " + o.occlusionCulling + ": must be on or off");
   if (o.plantSegments < 1 || o.plantSegments > 16)
@@ -145,7 +151,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
                                                 : render::PlantStyle::Plants;
   scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
-  scene.plantDraw.shadows = !o.noPlantShadows;
+  scene.plantDraw.flatColour = o.plantStyle == "coverage";
+  scene.plantDraw.shadows = !o.noPlantShadows && !scene.plantDraw.flatColour;
   scene.plantDraw.shadowDistanceM = static_cast<float>(o.plantShadowM);
   scene.occlusionCulling = o.occlusionCulling == "on";
   // Checked against the device when the renderer is made (mesh: refused there, naming the device).

@@ -27,11 +27,11 @@ struct StreamingCli {
   double canopyM = 30.0;                 // tallest plant, for culling
   std::string terrainShading = "auto";  // auto | forward | deferred (render::TerrainShading)
   double terrainDetail = 1.0;            // close-up detail textures, 0 (bare imagery) … 1
-  double seedHorizonM = 250.0;           // seed triangles within this distance
+  double seedHorizonM = 250.0;           // seed triangles within this distance (and each species' own)
   std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none
   // Plants (issue 7): density ρ and n_max of eq. 1, cluster size C, species catalog.
-  double plantDensity = 0.04;  // plants per pixel² of projected seed-triangle area
-  double plantMax = 256.0;     // n_max per seed triangle
+  double plantDensity = 0.1;   // ρ: plants per reference pixel² (1080 lines) of projected seed-triangle area
+  double plantMax = 16384.0;   // n_max per seed triangle: a ceiling; the catalog's densities decide
   int clusterSize = 8;
   std::string species;  // a species catalog JSON file; empty: the default
   bool noPlants = false;

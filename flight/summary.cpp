@@ -61,6 +61,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
        {{"enabled", m.plants.enabled},
         {"density_per_px2", m.plants.density},
         {"max_per_seed_triangle", m.plants.maxPerTriangle},
+        {"ground_density_m2", m.plants.groundDensityM2},
         {"cluster_size", m.plants.clusterSize},
         {"species_catalog", m.plants.speciesCatalog},
         {"species", m.plants.species},

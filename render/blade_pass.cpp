@@ -67,8 +67,14 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 
 BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
                      uint32_t maxVertices)
-    : ctx_(&ctx), maxVertices_(maxVertices), maxIndices_(kIndicesPerVertex * maxVertices / 6 * 6),
-      maxPlants_(std::max<uint64_t>(maxVertices / kVerticesPerPlant, 1)) {
+    : ctx_(&ctx),
+      // A storage buffer is bound whole: no larger than the device's maxStorageBufferRange.
+      maxVertices_(std::min<uint64_t>(maxVertices, ctx.properties().limits.maxStorageBufferRange /
+                                                       sizeof(BladeVertexGpu))),
+      maxIndices_(std::min<uint64_t>(kIndicesPerVertex * maxVertices_,
+                                     ctx.properties().limits.maxStorageBufferRange / sizeof(uint32_t)) /
+                  6 * 6),
+      maxPlants_(std::max<uint64_t>(maxVertices_ / kVerticesPerPlant, 1)) {
   assert(maxVertices >= 6);
   // Set 1: the plant pipelines' inputs (shaders/common/plant_common.glsl); set 2: the blades.
   const VkDescriptorSetLayoutBinding inputs[] = {
@@ -152,15 +158,19 @@ void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const Retir
   const uint64_t vertices = std::min(need.vertices, maxVertices_);
   const uint64_t indices = std::min(need.indices, maxIndices_);
   const std::string tag = " (slot " + std::to_string(slot) + ")";
-  auto grow = [&](GpuBuffer& b, uint64_t count, VkDeviceSize stride, VkBufferUsageFlags usage, const char* name) {
+  auto grow = [&](GpuBuffer& b, uint64_t count, uint64_t ceiling, VkDeviceSize stride, VkBufferUsageFlags usage,
+                  const char* name) {
     const VkDeviceSize bytes = std::max<uint64_t>(count, 1) * stride;
     if (b.buffer && b.size >= bytes) return;
     if (b.buffer) retire(std::move(b));
-    b = createBuffer(*ctx_, grownSize(bytes), usage, MemoryUse::DeviceLocal, name + tag);
+    // Grown ahead, but never past the ceiling (which keeps it within maxStorageBufferRange).
+    const VkDeviceSize size = std::max<VkDeviceSize>(std::min<VkDeviceSize>(grownSize(bytes), ceiling * stride), bytes);
+    b = createBuffer(*ctx_, size, usage, MemoryUse::DeviceLocal, name + tag);
   };
-  grow(s.vertices, vertices, sizeof(BladeVertexGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "blade vertices");
-  grow(s.indices, indices, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-       "blade indices");
+  grow(s.vertices, vertices, maxVertices_, sizeof(BladeVertexGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+       "blade vertices");
+  grow(s.indices, indices, maxIndices_, sizeof(uint32_t),
+       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "blade indices");
   // What the buffers hold (grownSize may give more than asked), within the ceiling; indices a
   // whole number of quads, so the clamped draw never splits a triangle.
   s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size / sizeof(BladeVertexGpu), maxVertices_));

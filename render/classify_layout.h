@@ -23,9 +23,16 @@ struct SeedTriangleGpu {
   glm::vec2 uv2{0.0f};            // uv of the right vertex
   uint32_t keyLo = 0, keyHi = 0;  // the triangle's identity (Philox key, counter word)
   int32_t layer = -1;
-  uint32_t pad[3] = {0, 0, 0};
+  float lodCount = 0.0f;  // eq. 1 / 2 (terrain::SeedTriangle): each species' own count
+  float areaM2 = 0.0f;    // vegetation::seedArea                  (vegetation::speciesPlantCount)
+  float nearestM = 0.0f;  // to the camera's nearest vertex
+  // The imagery drawn before it while it changes (terrain::SeedTriangle): plants cross-fade.
+  glm::vec4 previousUv01{0.0f};
+  glm::vec2 previousUv2{0.0f};
+  int32_t previousLayer = -1;
+  float imageryBlend = 1.0f;  // the weight of `layer`'s species (and, without a previous layer, the fade-in)
 };
-static_assert(sizeof(SeedTriangleGpu) == 96);
+static_assert(sizeof(SeedTriangleGpu) == 128);
 
 // One classified group (std430): a cluster, or one seed of cluster 0
 // (vegetation::PlantCluster).
@@ -46,8 +53,9 @@ struct SpeciesGpu {
   glm::vec4 heightStiffness{0.0f};  // height min/max (m), k′ min/max
   glm::vec4 widthColour{0.0f};      // width min/max (m), colour modulation min/max
   glm::vec4 marker{0.0f};           // linear RGB of the classification markers, w: phototropism
+  glm::vec4 ground{0.0f};           // x: plants per m², y: horizon (m)
 };
-static_assert(sizeof(SpeciesGpu) == 96);
+static_assert(sizeof(SpeciesGpu) == 112);
 
 struct SpeciesBlock {
   std::array<SpeciesGpu, vegetation::kMaxSpecies> species{};

@@ -141,6 +141,9 @@ struct PlantDrawOptions {
   // shadows are streaks 1.5 pixels wide that cost more than their plants.
   float shadowDistanceM = 30.0f;
   bool fullDetail = false;    // every blade at n_max segments (tests, speed-of-light runs)
+  // Every plant fragment flat magenta (#ff00ff, the shadows' screen door aside): where plants
+  // cover the ground, measured against a frame without plants (`--plant-style coverage`).
+  bool flatColour = false;
   // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry
   // front end alone costs (bench/bench_plants.cpp).

@@ -120,6 +120,7 @@ PlantPush PlantPass::pushFor(uint32_t species, const ClassifyPass& classify, con
   if (options.shadows) flags |= kPlantFlagShadows;
   flags |= samples_ << kPlantSamplesShift;  // the fragment stage's computed alpha-to-coverage
   if (options.fullDetail) flags |= kPlantFlagFullDetail;
+  if (options.flatColour) flags |= kPlantFlagFlatColour;
   return PlantPush{species,
                    classify.clustersPerSpecies(),
                    options.maxSegments,

@@ -15,6 +15,7 @@ struct PlantPush {
 static_assert(sizeof(PlantPush) == 36);
 
 // PlantPush::flags.
-inline constexpr uint32_t kPlantFlagShadows = 1, kPlantFlagFullDetail = 4, kPlantSamplesShift = 8;
+inline constexpr uint32_t kPlantFlagShadows = 1, kPlantFlagFlatColour = 2, kPlantFlagFullDetail = 4,
+                          kPlantSamplesShift = 8;
 
 }  // namespace vegstream::render

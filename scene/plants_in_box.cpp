@@ -101,7 +101,7 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   terrain::SeedRegionQuery query;
   query.box = box;
   query.seedLevel = terrain::seedLevelFor(grid, lat, seedOptions.targetAreaM2);
-  query.plantCount = static_cast<float>(seedOptions.maxPlants);
+  query.densityM2 = vegetation::densestGroundDensity(catalog);
   query.select = terrain::RegionSelect::Overlap;
   const uint64_t maxPlants = options.maxPlants;
   auto tooMany = [&](const std::string& howMany, uint64_t n) {
@@ -110,13 +110,14 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
                                                   "; give a smaller box or " + options.maxPlantsName + " " +
                                                   std::to_string(n));
   };
-  // A cheap bound first (triangles × n_max, no heights): a huge box is refused at once, not
-  // after growing it.
+  // A cheap bound first (triangles × their flat area × the densest species, no heights): a huge
+  // box is refused at once, not after growing it.
   const uint64_t triangles = terrain::countSeedTrianglesIn(grid, roots, query);
-  const auto upperBound = static_cast<uint64_t>(double(triangles) * seedOptions.maxPlants);
+  const double perTriangle = query.densityM2 * terrain::triangleAreaM2(grid, query.seedLevel, lat);
+  const auto upperBound = static_cast<uint64_t>(double(triangles) * perTriangle);
   if (upperBound > 4 * maxPlants)
     return tooMany("the box grows up to " + plural(upperBound, "plant") + " (" + plural(triangles, "seed triangle") +
-                       " × " + std::to_string(int(seedOptions.maxPlants)) + ")",
+                       " × " + std::to_string(int(perTriangle)) + ")",
                    upperBound);
 
   // The box's finest tiles of both layers in one settle (decoded in parallel); the rest (tiles

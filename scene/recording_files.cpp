@@ -77,9 +77,10 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.plants.enabled = so.plants;
   m.plants.density = so.terrain.seeds.density;
   m.plants.maxPerTriangle = so.terrain.seeds.maxPlants;
+  m.plants.groundDensityM2 = so.terrain.seeds.groundDensityM2;
   m.plants.clusterSize = so.clusterSize;
   m.plants.speciesCatalog = request.speciesCatalog;
-  m.plants.style = styleName(so.plantStyle);
+  m.plants.style = so.plantDraw.flatColour ? "coverage" : styleName(so.plantStyle);
   m.plants.maxSegments = so.plantDraw.maxSegments;
   m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
   m.plants.shadows = so.plantDraw.shadows;

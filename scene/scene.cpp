@@ -101,7 +101,13 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
     return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) +
                                                   ": must be 1 … " + std::to_string(vegetation::kMaxClusterSize));
-  impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, options.terrain);
+  // The catalog decides how dense plants grow and how far the farthest can be seen: the seed
+  // triangles' counts stop there (terrain/seed_triangles.h), each species at its own.
+  const vegetation::SpeciesCatalog& catalog = options.species ? *options.species : vegetation::defaultSpeciesCatalog();
+  terrain::SeedOptions& seeds = impl->options.terrain.seeds;
+  seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
+  seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));
+  impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, impl->options.terrain);
   info.seedLevel = impl->terrain->roam().seedLevel();
   info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
   info.loadMs = watch.elapsedMs();
@@ -232,6 +238,13 @@ void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm
     g.keyLo = static_cast<uint32_t>(key);
     g.keyHi = static_cast<uint32_t>(key >> 32);
     g.layer = s.imageryLayer;
+    g.lodCount = s.lodCount;
+    g.areaM2 = s.areaM2;
+    g.nearestM = s.nearestM;
+    g.previousUv01 = glm::vec4(s.previousUv[0], s.previousUv[1]);
+    g.previousUv2 = s.previousUv[2];
+    g.previousLayer = s.previousLayer;
+    g.imageryBlend = s.imageryBlend;
     out.push_back(g);
   }
 }

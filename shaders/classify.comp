@@ -62,10 +62,19 @@ vec3 imageryLinear(int layer, vec2 uv) {
   return mix(mix(a, b, fx), mix(c, d, fx), fy);
 }
 
-vec3 baseHsv(SeedTriangle t, vec2 r) {
-  vec2 uv0 = t.uv01.xy;
-  vec2 uv = uv0 + r.x * (t.uv01.zw - uv0) + r.y * (t.uv2 - uv0);
-  return hsvFromLinear(imageryLinear(t.layer, uv));
+vec3 baseHsv(vec4 uv01, vec2 uv2, int layer, vec2 r) {
+  vec2 uv0 = uv01.xy;
+  vec2 uv = uv0 + r.x * (uv01.zw - uv0) + r.y * (uv2 - uv0);
+  return hsvFromLinear(imageryLinear(layer, uv));
+}
+
+// vegetation::speciesPlantCount and speciesHorizonFade: the fade of a group of species `sp`,
+// from the species' own count on the triangle and the size factor at its horizon.
+float speciesFade(Species sp, SeedTriangle t, uint cluster, uint seed) {
+  float n = min(t.v0.w, min(t.lodCount, sp.ground.x * t.areaM2));
+  float h = sp.ground.y;
+  float f = clamp((t.nearestM - 0.75 * h) / (0.25 * h), 0.0, 1.0);
+  return plantFade(n, pc.clusterSize, cluster, seed) * (1.0 - f * f * (3.0 - 2.0 * f));
 }
 
 void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, float sPrime, float fade) {
@@ -79,6 +88,33 @@ void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, 
   atomicAdd(plants[s], seedCount);
   if (i >= pc.speciesCapacity) return;  // counted: the figures report the overflow
   records[s * pc.speciesCapacity + i] = PlantCluster(tri, cluster, firstSeed, seedCount, s, sPrime, fade, 0u);
+}
+
+// Appends group (cluster, firstSeed, seedCount) as species pick.x with weight w on its fade;
+// nothing for bare soil or a fade of 0 (beyond its species' own count, or weight 0).
+void appendPick(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint seedCount, vec2 pick, float w) {
+  if (pick.x < 0.0) return;
+  float fade = speciesFade(catalog.species[int(pick.x)], t, cluster, firstSeed) * w;
+  if (fade <= 0.0) return;
+  append(tri, cluster, firstSeed, seedCount, ivec2(pick.x, 0), pick.y, fade);
+}
+
+// The species of a group at r (eq. 16–18, z its draw): from the imagery drawn now, and while
+// that changes from the imagery before it too — the same species keeps its plants (s′ moving
+// between the two), different ones cross-fade by size (vegetation::classifyTriangle).
+void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint seedCount, vec2 r, float z) {
+  vec2 pick = chooseSpecies(baseHsv(t.uv01, t.uv2, t.layer, r), z);
+  float w = t.imageryBlend;
+  if (t.previousLayer >= 0 && w < 1.0) {
+    vec2 before = chooseSpecies(baseHsv(t.previousUv01, t.previousUv2, t.previousLayer, r), z);
+    if (before.x == pick.x) {
+      pick.y = mix(before.y, pick.y, w);
+      w = 1.0;
+    } else {
+      appendPick(tri, t, cluster, firstSeed, seedCount, before, 1.0 - w);
+    }
+  }
+  appendPick(tri, t, cluster, firstSeed, seedCount, pick, w);
 }
 
 void main() {
@@ -98,14 +134,10 @@ void main() {
   uvec2 key = uvec2(t.keyLo, t.keyHi);
   if (item < seeds) {
     float z = philoxU01(philoxDraw(key, 0u, kSlotColourSpecies + item).y);
-    vec2 pick = chooseSpecies(baseHsv(t, seedPoint(key, 0u, item)), z);
-    if (pick.x < 0.0) return;
-    append(tri, 0u, item, 1u, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, 0u, item));
+    classifyGroup(tri, t, 0u, item, 1u, seedPoint(key, 0u, item), z);
     return;
   }
   uint c = item - seeds + 1u;
   float z = philoxU01(philoxDraw(key, c, kSlotSpecies).x);
-  vec2 pick = chooseSpecies(baseHsv(t, clusterCentre(key, c)), z);
-  if (pick.x < 0.0) return;
-  append(tri, c, 0u, pc.clusterSize, ivec2(pick.x, 0), pick.y, plantFade(n, pc.clusterSize, c, 0u));
+  classifyGroup(tri, t, c, 0u, pc.clusterSize, clusterCentre(key, c), z);
 }

@@ -47,5 +47,6 @@ void main() {
   uint bits = (k >= 32u ? 0xffffffffu : (1u << k) - 1u);
   uint mask = ((bits << first) | (bits >> (samples - first))) & ((samples >= 32u ? 0xffffffffu : (1u << samples) - 1u));
   gl_SampleMask[0] = int(mask);
-  outColor = vec4(shadow ? vec3(0.0) : gColour, 1.0);
+  vec3 lit = (pc.flags & kFlagFlatColour) != 0u ? vec3(1.0, 0.0, 1.0) : gColour;
+  outColor = vec4(shadow ? vec3(0.0) : lit, 1.0);
 }

@@ -1,5 +1,6 @@
 // ROAM output traversal: drawn leaves per piece and seed triangles (roam_tessellator.h). Seed
-// 001_3eca9f2c7752e4fb.txt §3.1 (what to seed: fixed level, frustum, horizon, back faces;
+// 001_3eca9f2c7752e4fb.txt §3.1 (what to seed: fixed level, frustum, horizon — back faces too,
+// unlike the seed;
 // eye-space tricks A and B) and §2.1 (eq. 1, eq. 2).
 
 #include <algorithm>
@@ -283,14 +284,15 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   // The seeding horizon is measured to the nearest vertex (§3.1).
   const double nearest = std::min({glm::length(eye[0]), glm::length(eye[1]), glm::length(eye[2])});
   if (nearest > seeds_.horizonM) return;
-  // Back faces: the ground faces away when the camera is below its plane.
-  if (glm::dot(glm::cross(eye[1] - eye[0], eye[2] - eye[0]), eye[0]) > 0.0) return;
+  // Back faces are seeded too (unlike §3.1): plants stand up from ground that faces away — past
+  // a crest their tops show above it — and dropping a triangle's plants the moment the camera
+  // crosses its plane made them all pop at once (issue 18). The terrain's depth hides the rest,
+  // and the Hi-Z occlusion test keeps them from being classified.
   SeedTriangle s;
   s.path = path;
   const std::array<glm::dvec3, 3> e{eye[0], eye[1], eye[2]};
-  s.plantCount =
-      static_cast<float>(seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(*w.view, e, seeds_, &s.nearPlane)
-                                                                   : plantCountWorld(*w.view, e, seeds_));
+  const double lod = seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(*w.view, e, seeds_, &s.nearPlane)
+                                                                 : plantCountWorld(*w.view, e, seeds_);
   for (int i = 0; i < 3; ++i) {
     s.world[size_t(i)] = world[i];
     s.fromCamera[size_t(i)] = glm::vec3(world[i] - w.view->cameraEnu);
@@ -298,7 +300,11 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   s.interpolated = interpolated;
   s.corners = mesh_.grid().corners(path);
   s.piece = piece;
-  s.plantCount *= static_cast<float>(horizonFade(nearest, seeds_.horizonM));
+  const double area = groundArea(s.world);
+  s.lodCount = static_cast<float>(lod);
+  s.areaM2 = static_cast<float>(area);
+  s.nearestM = static_cast<float>(nearest);
+  s.plantCount = static_cast<float>(groundPlantCount(lod, area, nearest, seeds_));
   figures_.seedPlants += s.plantCount;
   if (interpolated) ++figures_.seedInterpolated;
   w.seeds->push_back(s);

@@ -97,7 +97,6 @@ SeedRegion seedTrianglesIn(const BintreeGrid& grid, const geo::TileRange& roots,
     s.path = path;
     s.corners = t;
     s.key = seedKey(path);
-    s.plantCount = query.plantCount;
     s.world = {vertexAt(t.apex), vertexAt(t.left), vertexAt(t.right)};
     for (const glm::dvec3& v : s.world) {
       if (!(v.x == v.x)) {
@@ -105,6 +104,7 @@ SeedRegion seedTrianglesIn(const BintreeGrid& grid, const geo::TileRange& roots,
         return;
       }
     }
+    s.plantCount = static_cast<float>(query.densityM2 * groundArea(s.world));
     out.triangles.push_back(s);
   });
   return out;

@@ -43,7 +43,7 @@ struct RegionSeedTriangle {
   TriCorners corners{};
   uint64_t key = 0;                   // seedKey(path)
   std::array<glm::dvec3, 3> world{};  // apex, left, right in the local ENU frame (m)
-  float plantCount = 0.0f;
+  float plantCount = 0.0f;            // N = densityM2 × the triangle's ground area
 };
 
 struct SeedRegion {
@@ -54,7 +54,7 @@ struct SeedRegion {
 struct SeedRegionQuery {
   geo::GeoBounds box;         // lon/lat (WGS 84), not across the antimeridian
   int seedLevel = 0;          // seedLevelFor(grid, …), as the tessellator uses
-  float plantCount = 256.0f;  // N of every triangle (full density: SeedOptions::maxPlants)
+  double densityM2 = 10.0;  // full density: N = densityM2 × area (SeedOptions::groundDensityM2)
   RegionSelect select = RegionSelect::Centroid;
 };
 

@@ -22,12 +22,29 @@ double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& 
   return 0.5 * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
 }
 
+namespace {
+// Reference pixels² per pixel² of this view.
+double referenceScale(const EyeView& view) {
+  assert(view.viewportHeightPx > 0.0);
+  const double s = kReferenceLinesPx / view.viewportHeightPx;
+  return s * s;
+}
+}  // namespace
+
 double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& eye, const SeedOptions& o,
                         bool* nearPlane) {
   const bool behind = std::any_of(eye.begin(), eye.end(), [&](const glm::dvec3& p) { return -p.z < view.nearM; });
   if (nearPlane) *nearPlane = behind;
   if (behind) return o.maxPlants;
-  return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]), o.maxPlants);
+  return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]) * referenceScale(view), o.maxPlants);
+}
+
+double groundArea(const std::array<glm::dvec3, 3>& v) {
+  return 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+}
+
+double groundPlantCount(double lodCount, double areaM2, double nearestM, const SeedOptions& o) {
+  return std::min(lodCount, o.groundDensityM2 * areaM2) * horizonFade(nearestM, o.horizonM);
 }
 
 double horizonFade(double nearestM, double horizonM) {
@@ -46,7 +63,7 @@ double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye
   if (d2 <= 0.0) return o.maxPlants;
   const double cosine = std::abs(glm::dot(n, v)) / std::sqrt(d2);
   const double k = view.pixelsPerRadian;
-  return std::min(o.density * area * cosine / d2 * k * k, o.maxPlants);
+  return std::min(o.density * area * cosine / d2 * k * k * referenceScale(view), o.maxPlants);
 }
 
 double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg) {

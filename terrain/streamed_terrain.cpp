@@ -161,6 +161,9 @@ void StreamedTerrain::imageryFor(TerrainPiece& p, NodeState& st, double timeS) {
   const int imageryZ = node.z - img.levelsUp;
   const auto layer = static_cast<int32_t>(img.slot);
   if (layer != st.layer || imageryZ != st.imageryZ) {
+    // Its first imagery (nothing drawn on it or its ancestors before): plants fade in. Not on
+    // the first frame, whose imagery was there before anything was shown.
+    if (st.layer < 0 && frameNumber_ > 1) st.arrivalS = timeS;
     // Fade from what was drawn, if that layer still holds the same tile.
     const bool finer = st.imageryZ >= 0 && imageryZ > st.imageryZ;
     bool previousValid = false;
@@ -182,8 +185,10 @@ void StreamedTerrain::imageryFor(TerrainPiece& p, NodeState& st, double timeS) {
   if (p.imageryBlend < 1.0f && st.previousLayer >= 0) {
     p.previousLayer = st.previousLayer;
     p.previousUv = st.previousUv;
+    p.plantBlend = p.imageryBlend;
   } else {
     p.imageryBlend = 1.0f;
+    p.plantBlend = static_cast<float>(std::clamp((timeS - st.arrivalS) / options_.fadeS, 0.0, 1.0));
   }
 }
 
@@ -248,6 +253,8 @@ void StreamedTerrain::seedImagery(std::span<const geo::TileId> tiles, std::span<
   const BintreeGrid& grid = roam_->grid();
   for (SeedTriangle& s : seeds_) {
     s.imageryLayer = -1;
+    s.previousLayer = -1;
+    s.imageryBlend = 1.0f;
     if (s.piece < 0 || static_cast<size_t>(s.piece) >= tiles.size()) continue;
     const int32_t drawn = drawnPiece[size_t(s.piece)];
     if (drawn < 0 || pieces_[size_t(drawn)].imageryLayer < 0) continue;
@@ -255,11 +262,13 @@ void StreamedTerrain::seedImagery(std::span<const geo::TileId> tiles, std::span<
     const geo::TileId& tile = tiles[size_t(s.piece)];
     const GridPoint corners[3] = {s.corners.apex, s.corners.left, s.corners.right};
     for (int k = 0; k < 3; ++k) {
-      const glm::dvec2 uv = grid.tileXY(corners[k], tile.z) - glm::dvec2(tile.x, tile.y);
-      s.imageryUv[size_t(k)] =
-          glm::vec2(uv) * glm::vec2(p.imageryUv.x, p.imageryUv.y) + glm::vec2(p.imageryUv.z, p.imageryUv.w);
+      const glm::vec2 uv(grid.tileXY(corners[k], tile.z) - glm::dvec2(tile.x, tile.y));
+      s.imageryUv[size_t(k)] = uv * glm::vec2(p.imageryUv.x, p.imageryUv.y) + glm::vec2(p.imageryUv.z, p.imageryUv.w);
+      s.previousUv[size_t(k)] = uv * glm::vec2(p.previousUv.x, p.previousUv.y) + glm::vec2(p.previousUv.z, p.previousUv.w);
     }
     s.imageryLayer = p.imageryLayer;
+    s.previousLayer = p.plantBlend < 1.0f ? p.previousLayer : -1;
+    s.imageryBlend = p.plantBlend;
   }
 }
 

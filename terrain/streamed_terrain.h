@@ -61,6 +61,10 @@ struct TerrainPiece {
   int32_t previousLayer = -1;
   glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
   float imageryBlend = 1.0f;
+  // The plants' weight of this imagery (issue 18: species cross-fade with the imagery): with a
+  // previous layer, imageryBlend; without one, the fade-in after the node's first imagery
+  // arrived (0 → 1 over fadeS), so its plants grow in instead of appearing together.
+  float plantBlend = 1.0f;
 };
 
 struct TerrainFrameFigures {
@@ -108,6 +112,7 @@ class StreamedTerrain {
     int imageryZ = -1;  // the imagery drawn last frame
     uint64_t lastFrame = 0;
     double imagerySwitchS = -1e9;
+    double arrivalS = -1e9;  // when the node's first imagery arrived (after the first frame)
     int32_t previousLayer = -1;
     glm::vec4 previousUv{1.0f, 1.0f, 0.0f, 0.0f};
     int32_t layer = -1;

@@ -2,8 +2,11 @@
 // header). Operation for operation the same as shaders/classify.comp + shaders/common/seeding.glsl.
 #include "vegetation/plant_seeding.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 #include "vegetation/colour_score.h"
 #include "vegetation/philox.h"
@@ -44,6 +47,20 @@ float plantFade(float plantCount, uint32_t clusterSize, uint32_t cluster, uint32
   return sequenceFade(std::max(plantCount - c, 0.0f) / c, cluster - 1);
 }
 
+float speciesPlantCount(const Species& species, float plantCount, float lodCount, float areaM2) {
+  return std::min(plantCount, std::min(lodCount, species.densityM2 * areaM2));
+}
+
+float speciesHorizonFade(const Species& species, float nearestM) {
+  assert(species.horizonM > 0.0f);
+  const float t = std::clamp((nearestM - 0.75f * species.horizonM) / (0.25f * species.horizonM), 0.0f, 1.0f);
+  return 1.0f - t * t * (3.0f - 2.0f * t);
+}
+
+float seedArea(const std::array<glm::dvec3, 3>& v) {
+  return static_cast<float>(0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0])));
+}
+
 Stratum clusterStratumOf(uint64_t key, uint32_t cluster) {
   if (cluster == 0) return {};
   const uint32_t level = clusterLevel(cluster + 1);
@@ -62,27 +79,45 @@ glm::vec2 clusterCentre(uint64_t key, uint32_t cluster) {
 }
 
 void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex, const SpeciesCatalog& catalog,
-                      const SeedingOptions& options, const BaseColourAt& colourAt, std::vector<PlantCluster>& out) {
+                      const SeedingOptions& options, const BaseColourAt& colourAt, std::vector<PlantCluster>& out,
+                      const BaseColourAt& previousColourAt) {
   const uint32_t size = options.clusterSize;
   const uint32_t clusters = clusterCount(triangle.plantCount, size);
+  const float area = seedArea(triangle.vertices);
+  const bool crossFade = previousColourAt && triangle.imageryBlend < 1.0f;
+  // Appends the group as `pick` with weight w on its fade: nothing for bare soil or a fade of 0
+  // (beyond its species' own count).
+  auto append = [&](const SpeciesChoice& pick, float w, uint32_t c, uint32_t firstSeed, uint32_t count) {
+    if (pick.species < 0) return;
+    const Species& sp = catalog.species[size_t(pick.species)];
+    const float n = speciesPlantCount(sp, triangle.plantCount, triangle.lodCount, area);
+    const float fade = plantFade(n, size, c, firstSeed) * speciesHorizonFade(sp, triangle.nearestM) * w;
+    if (fade <= 0.0f) return;
+    out.push_back({triangleIndex, c, firstSeed, count, static_cast<uint32_t>(pick.species), pick.sPrime, fade});
+  };
+  auto group = [&](glm::vec2 r, float z, uint32_t c, uint32_t firstSeed, uint32_t count) {
+    SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(colourAt(r)), z);
+    float w = triangle.imageryBlend;
+    if (crossFade) {
+      const SpeciesChoice before = chooseSpecies(catalog, hsvFromLinear(previousColourAt(r)), z);
+      if (before.species == pick.species) {
+        pick.sPrime = before.sPrime + (pick.sPrime - before.sPrime) * w;  // GLSL mix
+        w = 1.0f;
+      } else {
+        append(before, 1.0f - w, c, firstSeed, count);
+      }
+    }
+    append(pick, w, c, firstSeed, count);
+  };
   for (uint32_t c = 0; c < clusters; ++c) {
     if (c == 0) {
       // Unclustered: each seed of cluster 0 chooses at its own root.
       const auto seeds = static_cast<uint32_t>(std::ceil(std::min(triangle.plantCount, static_cast<float>(size))));
-      for (uint32_t s = 0; s < seeds; ++s) {
-        const float z = u01(draw(triangle.key, 0, philox_slot::kColourSpecies + s).y);
-        const SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(colourAt(seedPoint(triangle.key, 0, s))), z);
-        if (pick.species < 0) continue;
-        out.push_back({triangleIndex, 0, s, 1, static_cast<uint32_t>(pick.species), pick.sPrime,
-                       plantFade(triangle.plantCount, size, 0, s)});
-      }
+      for (uint32_t s = 0; s < seeds; ++s)
+        group(seedPoint(triangle.key, 0, s), u01(draw(triangle.key, 0, philox_slot::kColourSpecies + s).y), 0, s, 1);
       continue;
     }
-    const float z = u01(draw(triangle.key, c, philox_slot::kSpecies).x);
-    const SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(colourAt(clusterCentre(triangle.key, c))), z);
-    if (pick.species < 0) continue;
-    out.push_back({triangleIndex, c, 0, size, static_cast<uint32_t>(pick.species), pick.sPrime,
-                   plantFade(triangle.plantCount, size, c, 0)});
+    group(clusterCentre(triangle.key, c), u01(draw(triangle.key, c, philox_slot::kSpecies).x), c, 0, size);
   }
 }
 

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -57,8 +58,33 @@ struct SeedingOptions {
 struct SeedTriangleInput {
   uint64_t key = 0;                      // identity of the ground (a hash of its bintree path)
   std::array<glm::dvec3, 3> vertices{};  // apex, left, right (local ENU, m)
-  float plantCount = 0.0f;               // N
+  float plantCount = 0.0f;               // N: how far the sequence goes, all species together
+  // The level of detail (eq. 1 or 2; +∞: full detail) and the distance to the camera's nearest
+  // vertex (0: at the camera), for each species' own count (speciesPlantCount).
+  float lodCount = std::numeric_limits<float>::infinity();
+  float nearestM = 0.0f;
+  // While the imagery under it changes: the new imagery's weight 0 → 1 (terrain::SeedTriangle).
+  // With a previous colour (classifyTriangle's previousColourAt) species cross-fade; without,
+  // every group's fade is scaled by it (the plants grow in as the first imagery arrives).
+  float imageryBlend = 1.0f;
 };
+
+// Each species stops its triangle's sequence at its own count (issue 18): its ground density
+// over the triangle, thinned by the same level of detail,
+//     N_s = min(N, min(lodCount, D_s · A)),
+// A the triangle's area as a float (what the GPU is given: seedArea). A cluster of species s
+// at index c is drawn with plantFade(N_s, C, c, seed) × speciesHorizonFade, so a sparse species
+// (gravel) keeps only the first of the sequence's clusters that pick it: they are stratified, so
+// its plants stay evenly spread, and they grow in and fade out by size as N_s moves, like any
+// sequence end.
+float speciesPlantCount(const Species& species, float plantCount, float lodCount, float areaM2);
+// The size factor of a species' plants at distance nearestM: 1 within ¾ of its horizon, a
+// smoothstep to 0 at it (terrain::horizonFade, in float as the GPU computes it). A size, not a
+// count: every plant shrinks by at most 6 / horizon per metre the camera moves (0.04 % per cm at
+// 150 m), where fading the count would shrink the last plant by D · A · 6 / horizon.
+float speciesHorizonFade(const Species& species, float nearestM);
+// The area the GPU is given for a triangle (float of the double area).
+float seedArea(const std::array<glm::dvec3, 3>& vertices);
 
 // The fade of the element `index` of a sequence shown up to `count`: 1 inside, the fraction at
 // the end, 0 beyond.
@@ -97,8 +123,13 @@ struct PlantCluster {
 };
 
 // The surviving groups of one triangle in sequence order (bare soil and no-score rejected).
+// `previousColourAt` (may be empty): the colour under the imagery drawn before, while
+// triangle.imageryBlend < 1. Each group then picks a species from both with the same draw: the
+// same species keeps its plants (s′ mixed by the blend), different ones both appear, the
+// previous one faded by (1 − blend), the new one by blend — a cross-fade by size, no switch.
 void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex, const SpeciesCatalog& catalog,
-                      const SeedingOptions& options, const BaseColourAt& colourAt, std::vector<PlantCluster>& out);
+                      const SeedingOptions& options, const BaseColourAt& colourAt, std::vector<PlantCluster>& out,
+                      const BaseColourAt& previousColourAt = {});
 
 // A plant with its parameters (what the species pipelines draw).
 struct Plant {

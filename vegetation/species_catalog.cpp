@@ -4,6 +4,7 @@
 // message naming the file and the field, never an exception.
 #include "vegetation/species_catalog.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <initializer_list>
@@ -145,7 +146,7 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.object(obj, path)) return false;
   if (!ps.onlyKeys(obj, path,
                    {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation", "phototropism"}))
+                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -197,6 +198,12 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   for (const auto& r : ranges)
     if (need || obj.contains(r.key))
       if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
+  if (!ps.number(obj, "density_m2", path, out.densityM2, false)) return false;
+  if (!(out.densityM2 > 0.0f && out.densityM2 <= 10000.0f))
+    return ps.fail(path + ".density_m2", "must be > 0 and ≤ 10000 plants per m² (got " + fmt(out.densityM2) + ")");
+  if (!ps.number(obj, "horizon_m", path, out.horizonM, false)) return false;
+  if (!(out.horizonM > 0.0f && out.horizonM <= 20000.0f))
+    return ps.fail(path + ".horizon_m", "must be > 0 and ≤ 20000 metres (got " + fmt(out.horizonM) + ")");
   // Blades (grass, flower stems) take their shape from the stiffness: too soft, and the tip ends
   // below the root (blade_shape.h "Units"). Gravel and trees do not bend.
   const bool blade = out.kind == RendererKind::Grass || out.kind == RendererKind::Flowers;
@@ -270,6 +277,20 @@ Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::str
   } catch (const json::exception& e) {
     return makeError(ErrorKind::InvalidInput, sourceName + ": " + jsonProblem(e));
   }
+}
+
+float densestGroundDensity(const SpeciesCatalog& catalog) {
+  float d = 0.0f;
+  for (const Species& s : catalog.species)
+    if (!s.bare) d = std::max(d, s.densityM2);
+  return d;
+}
+
+float farthestHorizon(const SpeciesCatalog& catalog) {
+  float h = 0.0f;
+  for (const Species& s : catalog.species)
+    if (!s.bare) h = std::max(h, s.horizonM);
+  return h;
 }
 
 Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file) {

@@ -24,6 +24,8 @@
 //         "stiffness": { "min": 0.8, "max": 1.6 },         k′ / k_c > 0     } unless bare
 //         "width_m": { "min": 0.004, "max": 0.01 },        > 0              } (checked
 //         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
+//         "density_m2": 150,                               optional, > 0, ≤ 10000 (default 10)
+//         "horizon_m": 150                                 optional, > 0, ≤ 20000 (default 150)
 //       }, … ] }
 //
 // Every key not listed is an error (a typo must not pass silently), and every error names the
@@ -68,6 +70,12 @@ struct Species {
                          // to the buckling stiffness, k′ / k_c (blade_shape.h "Units"): grass and
                          // flowers need min ≥ minimumRelativeStiffness() / kSPrimeStiffnessLo
                          // (≈ 0.75), else a minority plant's tip would end below its root
+  // Ground density at full detail, plants per m² of ground where this species is chosen: the
+  // most a close camera grows (issue 18). The screen-space ρ of eq. 1 thins it with distance.
+  float densityM2 = 10.0f;
+  // Plants of this species fade out (shrinking, at the end of their triangle's sequence) over
+  // the last quarter of this distance to the camera, metres; gone beyond it.
+  float horizonM = 150.0f;
 };
 
 inline constexpr size_t kMaxSpecies = 16;
@@ -83,6 +91,11 @@ inline float sPrimeFactor(float lo, float sPrime) { return lo + (1.0f - lo) * sP
 struct SpeciesCatalog {
   std::vector<Species> species;  // 1 … kMaxSpecies, at least one not bare
 };
+
+// The densest species that grows (not bare), plants per m²: how many plants a seed triangle's
+// sequence holds at full detail. And the farthest horizon of one that grows, metres.
+float densestGroundDensity(const SpeciesCatalog& catalog);
+float farthestHorizon(const SpeciesCatalog& catalog);
 
 // `sourceName` names the text in errors (a file name, "embedded default").
 Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view json, const std::string& sourceName);

@@ -11,7 +11,13 @@ struct SeedTriangle {
   vec2 uv2;
   uint keyLo, keyHi;
   int layer;
-  uint pad0, pad1, pad2;
+  float lodCount;  // eq. 1 / 2: each species' own count (speciesPlantCount)
+  float areaM2;
+  float nearestM;
+  vec4 previousUv01;  // the imagery drawn before, while it changes: plants cross-fade
+  vec2 previousUv2;
+  int previousLayer;  // −1: none (then imageryBlend is a fade-in)
+  float imageryBlend;
 };
 
 struct PlantCluster {
@@ -29,4 +35,5 @@ struct Species {
   vec4 heightStiffness;
   vec4 widthColour;
   vec4 marker;
+  vec4 ground;           // x plants per m², y horizon (m)
 };

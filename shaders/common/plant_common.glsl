@@ -26,6 +26,7 @@ layout(push_constant) uniform PlantPush {
 } pc;
 
 const uint kFlagShadows = 1u;
+const uint kFlagFlatColour = 2u;  // plant.frag: flat magenta, for coverage measures
 const uint kFlagFullDetail = 4u;
 
 #include "plant_params.glsl"

@@ -95,16 +95,18 @@ TEST(PathTemplates, UnknownTemplateListsTheKnownOnes) {
 
 TEST(BundledPaths, ParseAndStayOverZion) {
   const std::filesystem::path dir = VEGSTREAM_FLIGHT_PATHS_DIR;
-  for (const char* name : {"benchmark-30s", "canyon-run", "orbit"}) {
+  for (const char* name : {"benchmark-30s", "benchmark-30s-slickrock", "canyon-run", "orbit"}) {
     const Result<FlightPath> p = loadFlightPath(dir / (std::string(name) + ".json"));
     ASSERT_TRUE(p.ok()) << p.error().message;
     EXPECT_EQ(p->name, name);
     const Status inside = checkInside(*p, kZion);
     EXPECT_TRUE(inside.ok()) << (inside.ok() ? "" : inside.error().message);
   }
-  const Result<FlightPath> bench = loadFlightPath(dir / "benchmark-30s.json");
-  ASSERT_TRUE(bench.ok());
-  expectBenchmarkProfile(*bench, kBumpy);
+  for (const char* name : {"benchmark-30s", "benchmark-30s-slickrock"}) {
+    const Result<FlightPath> bench = loadFlightPath(dir / (std::string(name) + ".json"));
+    ASSERT_TRUE(bench.ok());
+    expectBenchmarkProfile(*bench, kBumpy);
+  }
   // The canyon run is long and fast.
   const Result<FlightPath> canyon = loadFlightPath(dir / "canyon-run.json");
   ASSERT_TRUE(canyon.ok());

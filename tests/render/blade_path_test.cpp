@@ -219,6 +219,11 @@ TEST_F(BladePathTest, PhototropicBladesLeanTowardsTheSunOnBothPaths) {
     if (sp.name == "grass") {
       sp.phototropism = 1.0f;
       sp.stiffness = {0.7f, 0.8f};  // soft (in k_c): the blades bend well over, so the lean shows
+      // Short and narrow, so neighbours rarely touch and each blade's direction is measured
+      // (independent of the shipped catalog's tuning).
+      sp.heightM = {0.2f, 0.55f};
+      sp.widthM = {0.012f, 0.03f};
+      sp.colourModulation = {0.85f, 1.15f};
     }
   auto r = makeRenderer(kW, kH, 4);
   ASSERT_TRUE(r);

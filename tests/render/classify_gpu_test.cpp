@@ -55,7 +55,8 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   for (uint32_t l = 0; l < kLayers; ++l)
     std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
 
-  const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers);
+  // Some triangles' imagery is changing: species cross-fade, and plants fade in (issue 18).
+  const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers, 9.0f, /*imageryChanges=*/true);
   const veg::SpeciesCatalog& catalog = veg::defaultSpeciesCatalog();
   constexpr uint32_t kClusterSize = 8;
   ClassifyPass pass(ctx, ClassifyOptions{1u << 14});
@@ -74,7 +75,8 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   const auto colourOf = [&](size_t i) { return vegstream::testing::classifyColour(scene.gpu[i], maps); };
   std::vector<veg::PlantCluster> cpu;
   for (size_t i = 0; i < scene.cpu.size(); ++i)
-    veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colourOf(i), cpu);
+    veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colourOf(i), cpu,
+                          vegstream::testing::classifyPreviousColour(scene.gpu[i], maps));
   // A decision the GPU may take differently: one that a change of 1e-3 in the colour (HSV) or
   // in z flips on the CPU too. The GPU's pow/log/exp are not glibc's, and the hue of a greyish
   // colour amplifies their last-bit differences; such groups are counted, everything else must
@@ -154,6 +156,14 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   for (const auto& [s, m] : cpuBySpecies) species += m.empty() ? 0 : 1;
   EXPECT_GE(species, 2u);
   EXPECT_GT(cpu.size(), 1000u);
+  // The imagery changes were exercised: groups drawn as two species at once (a cross-fade),
+  // their fades summing to what one species' would be.
+  size_t crossFading = 0;
+  for (const auto& [s, m] : cpuBySpecies)
+    for (const auto& [key, g] : m)
+      for (const auto& [s2, m2] : cpuBySpecies)
+        if (s2 > s && m2.count(key)) ++crossFading;
+  EXPECT_GT(crossFading, 20u);
 
   // Roots of every plant, GPU (seeding.glsl) against the C++ (double), for the grass buffer.
   const uint32_t grass = 0, groups = std::min(figures.groups[grass], capacity);

@@ -46,8 +46,11 @@ struct ClassifyScene {
   std::vector<vegetation::SeedTriangleInput> cpu;
 };
 
-// Right triangles of 4 m legs every `spacing` metres over the tile, layers used in turn.
-inline ClassifyScene makeClassifyScene(uint32_t layers, float spacing = 9.0f) {
+// Right triangles of 4 m legs every `spacing` metres over the tile, layers used in turn. With
+// `imageryChanges` (and 2 or more layers), every 5th triangle's imagery is changing from the
+// next layer's (a species cross-fade, blend 0.1 … 0.9) and every 7th's is fading in (no
+// previous layer, blend 0.35).
+inline ClassifyScene makeClassifyScene(uint32_t layers, float spacing = 9.0f, bool imageryChanges = false) {
   ClassifyScene s;
   uint32_t i = 0;
   for (float y = 2.0f; y < 250.0f; y += spacing)
@@ -69,6 +72,17 @@ inline ClassifyScene makeClassifyScene(uint32_t layers, float spacing = 9.0f) {
       c.key = (uint64_t{t.keyHi} << 32) | t.keyLo;
       c.vertices = {glm::dvec3(glm::vec3(t.v0)), glm::dvec3(glm::vec3(t.v1)), glm::dvec3(glm::vec3(t.v2))};
       c.plantCount = n;
+      // Full detail at the camera: each species' count is its density over the area (or N).
+      s.gpu.back().lodCount = c.lodCount;
+      s.gpu.back().areaM2 = vegetation::seedArea(c.vertices);
+      if (imageryChanges && layers >= 2 && i % 5 == 0) {
+        s.gpu.back().previousLayer = static_cast<int32_t>((i + 1) % layers);
+        s.gpu.back().previousUv01 = t.uv01;
+        s.gpu.back().previousUv2 = t.uv2;
+        c.imageryBlend = s.gpu.back().imageryBlend = 0.1f + 0.8f * static_cast<float>(mix32(i ^ 77u) % 100u) / 99.0f;
+      } else if (imageryChanges && i % 7 == 0) {
+        c.imageryBlend = s.gpu.back().imageryBlend = 0.35f;
+      }
       s.cpu.push_back(c);
     }
   return s;
@@ -81,6 +95,17 @@ inline vegetation::BaseColourAt classifyColour(const render::SeedTriangleGpu& t,
   return [texels, t](glm::vec2 r) {
     const glm::vec2 uv0(t.uv01.x, t.uv01.y), uv1(t.uv01.z, t.uv01.w);
     return vegetation::sampleImageryLinear(texels, uv0 + r.x * (uv1 - uv0) + r.y * (t.uv2 - uv0));
+  };
+}
+
+// The same for the imagery drawn before it (empty when it has none).
+inline vegetation::BaseColourAt classifyPreviousColour(const render::SeedTriangleGpu& t,
+                                                       const std::vector<std::vector<uint8_t>>& maps) {
+  if (t.previousLayer < 0) return {};
+  const vegetation::ImageryTexels texels{maps[size_t(t.previousLayer)].data(), kClassifyTile};
+  return [texels, t](glm::vec2 r) {
+    const glm::vec2 uv0(t.previousUv01.x, t.previousUv01.y), uv1(t.previousUv01.z, t.previousUv01.w);
+    return vegetation::sampleImageryLinear(texels, uv0 + r.x * (uv1 - uv0) + r.y * (t.previousUv2 - uv0));
   };
 }
 

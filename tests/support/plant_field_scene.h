@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "render/frame_types.h"
 #include "terrain/terrain_mesh.h"
 #include "vegetation/colour_score.h"
+#include "vegetation/plant_seeding.h"
 #include "vegetation/species_catalog.h"
 
 namespace vegstream::render::testing {
@@ -71,6 +73,9 @@ inline std::vector<SeedTriangleGpu> seedTriangles(const glm::dvec3& camera, floa
     t.keyLo = mix32(2 * i + 11);
     t.keyHi = mix32(2 * i + 12);
     t.layer = 0;
+    // Full detail at the camera: every species up to its density over the area (or `plants`).
+    t.lodCount = std::numeric_limits<float>::infinity();
+    t.areaM2 = vegetation::seedArea({a, b, c});
     ++i;
     out.push_back(t);
   };

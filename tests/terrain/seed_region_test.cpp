@@ -95,12 +95,12 @@ TEST(SeedRegion, SameTrianglesAndPlantsAsRoamFromAnyCameraAndZoomingInOnlyAddsPl
   const double lat = c.y + 0.1 * z.meta().bounds.heightDeg(), lon = c.x - 0.1 * z.meta().bounds.widthDeg();
   const geo::GeoBounds box = boxAround(lat, lon, 30.0);
   const int level = seedLevelFor(z.grid(), z.meta().bounds.centre().y, SeedOptions{}.targetAreaM2);
-  const float nMax = static_cast<float>(SeedOptions{}.maxPlants);
+  const float nMax = 256.0f;  // full density, the same count for both triangles
 
   SeedRegionQuery q;
   q.box = box;
   q.seedLevel = level;
-  q.plantCount = nMax;
+  q.densityM2 = 10.0;
   const SeedRegion region = seedTrianglesIn(z.grid(), z.roots(), z.frame(), z.heights(), q);
   ASSERT_EQ(region.nodataSkipped, 0u);
   // 3600 m² of triangles of about 24 m² (their area varies with the latitude of the root tiles).

@@ -147,6 +147,28 @@ TEST(SeedTriangles, Eq1AgainstHandComputation) {
   EXPECT_TRUE(nearPlane);
 }
 
+TEST(SeedTriangles, TheLevelOfDetailIsTheSameAtAnyWindowSizeAndTheGroundCapsIt) {
+  // ρ counts pixels of a 1080-line view: the same view in a 320×180 window grows the same plants
+  // (issue 18: the count "does not depend on the window's resolution").
+  const EyeView big = handView();
+  const EyeView small =
+      EyeView::lookAlong({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 2.0 * std::atan(0.54), 320.0, 180.0, 1.0);
+  SeedOptions o;
+  o.density = 0.01;
+  o.maxPlants = 1e6;
+  const std::array<glm::dvec3, 3> t{{{0, 0, -10}, {1, 0, -10}, {0, 1, -10}}};
+  EXPECT_NEAR(plantCountScreen(small, t, o), plantCountScreen(big, t, o), 1e-9);
+  EXPECT_NEAR(plantCountWorld(small, t, o), plantCountWorld(big, t, o), 1e-9);
+  // Near the camera the ground decides: N = min(lodCount, D · A) · horizon fade.
+  o.groundDensityM2 = 400.0;
+  o.horizonM = 100.0;
+  EXPECT_NEAR(groundArea(t), 0.5, 1e-12);
+  EXPECT_NEAR(groundPlantCount(50.0, 0.5, 5.0, o), 50.0, 1e-12);      // the level of detail
+  EXPECT_NEAR(groundPlantCount(5000.0, 0.5, 5.0, o), 200.0, 1e-12);   // the ground
+  EXPECT_NEAR(groundPlantCount(5000.0, 0.5, 87.5, o), 100.0, 1e-12);  // half way through the fade
+  EXPECT_EQ(groundPlantCount(5000.0, 0.5, 100.0, o), 0.0);
+}
+
 TEST(SeedTriangles, Eq2AgainstHandComputation) {
   const EyeView v = handView();
   SeedOptions o;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <span>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -226,7 +227,8 @@ TEST(PlantSeeding, MorePlantsOnlyAddToTheEndOfTheSequence) {
 
 TEST(PlantSeeding, SpeciesFollowTheBaseMapRegions) {
   // A 300 m strip: green (x < 100), a 20 m green→red blend, red (120 … 200), pale (x > 200).
-  const SpeciesCatalog catalog = threeSpecies();
+  SpeciesCatalog catalog = threeSpecies();
+  for (Species& s : catalog.species) s.densityM2 = 100.0f;  // no species stops before N = 200 (12.5 m²)
   const glm::vec3 green{0.25f, 0.5f, 0.45f}, red{0.03f, 0.45f, 0.55f}, pale{0.10f, 0.12f, 0.85f};
   auto hsvAt = [&](double x) -> glm::vec3 {
     if (x < 100.0) return green;
@@ -282,6 +284,55 @@ TEST(PlantSeeding, SpeciesFollowTheBaseMapRegions) {
   const double sigma = std::sqrt(expectedSecond);  // Poisson-binomial, at most this
   EXPECT_NEAR(observedSecond, expectedSecond, 4.0 * sigma + 1.0)
       << "border mix: " << observedSecond << " of " << borderClusters << " took the second species";
+}
+
+
+// Issue 18: each species stops the triangle's sequence at its own count — its density over the
+// triangle's area, the same level of detail, its own horizon — never beyond the triangle's N.
+TEST(PlantSeeding, EachSpeciesStopsAtItsOwnDensityLevelOfDetailAndHorizon) {
+  Species sparse;
+  sparse.densityM2 = 2.0f;
+  sparse.horizonM = 100.0f;
+  Species dense = sparse;
+  dense.densityM2 = 400.0f;
+  const float area = 24.0f, inf = std::numeric_limits<float>::infinity();
+  // Full detail at the camera: the density decides, capped by N.
+  EXPECT_FLOAT_EQ(speciesPlantCount(sparse, 9600.0f, inf, area), 48.0f);
+  EXPECT_FLOAT_EQ(speciesPlantCount(dense, 9600.0f, inf, area), 9600.0f);
+  EXPECT_FLOAT_EQ(speciesPlantCount(dense, 500.0f, inf, area), 500.0f);
+  // The level of detail thins both alike.
+  EXPECT_FLOAT_EQ(speciesPlantCount(sparse, 9600.0f, 30.0f, area), 30.0f);
+  EXPECT_FLOAT_EQ(speciesPlantCount(dense, 9600.0f, 30.0f, area), 30.0f);
+  // The horizon is a size: whole within ¾ of it, half at ⅞, none at it and beyond; moving the
+  // camera 1 cm changes every plant's size by less than 2 % of its full size (issue 18).
+  EXPECT_EQ(speciesHorizonFade(sparse, 75.0f), 1.0f);
+  EXPECT_NEAR(speciesHorizonFade(sparse, 87.5f), 0.5f, 1e-6f);
+  EXPECT_EQ(speciesHorizonFade(sparse, 100.0f), 0.0f);
+  EXPECT_EQ(speciesHorizonFade(sparse, 150.0f), 0.0f);
+  float last = speciesHorizonFade(sparse, 70.0f);
+  for (float d = 70.0f; d <= 101.0f; d += 0.01f) {
+    const float f = speciesHorizonFade(sparse, d);
+    EXPECT_LE(std::abs(f - last), 0.02f) << d;
+    last = f;
+  }
+
+  // On a triangle of grass and gravel, the gravel clusters past the gravel's own count are
+  // dropped, the grass ones kept: the gravel keeps the first of the sequence, evenly spread.
+  SpeciesCatalog catalog = threeSpecies();
+  catalog.species[0].densityM2 = 400.0f;  // grass
+  catalog.species[1].densityM2 = 4.0f;    // gravel
+  SeedTriangleInput t;
+  t.key = 0x1234567890abcdefull;
+  t.vertices = {glm::dvec3(0, 0, 0), glm::dvec3(8, 0, 0), glm::dvec3(0, 6, 0)};  // 24 m²
+  t.plantCount = 2000.0f;
+  const glm::vec3 green{0.25f, 0.5f, 0.45f}, red{0.03f, 0.45f, 0.55f};
+  const BaseColourAt colour = [&](glm::vec2 r) { return linearFromHsv(r.x < 0.5f ? green : red); };
+  std::vector<PlantCluster> groups;
+  classifyTriangle(t, 0, catalog, SeedingOptions{}, colour, groups);
+  float grass = 0.0f, gravel = 0.0f;
+  for (const PlantCluster& g : groups) (g.species == 0 ? grass : gravel) += g.fade * float(g.seedCount);
+  EXPECT_NEAR(gravel, 96.0f * 0.25f, 14.0f) << "a quarter of the first 96 plants' area is red";
+  EXPECT_GT(grass, 1000.0f);
 }
 
 }  // namespace

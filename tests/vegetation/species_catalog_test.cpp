@@ -47,6 +47,17 @@ TEST(SpeciesCatalog, TheShippedDefaultParses) {
   }
   EXPECT_GE(bare, 2);
   for (bool k : kinds) EXPECT_TRUE(k) << "every renderer kind has a species";
+  // Issue 18: a meadow is dense (hundreds of blades per m²), gravel sparse; every species that
+  // grows has its own density and horizon.
+  for (const Species& s : c.species)
+    if (s.name == "grass") {
+      EXPECT_GE(s.densityM2, 200.0f);
+      EXPECT_GE(s.horizonM, 100.0f);
+    } else if (s.kind == RendererKind::Gravel && !s.bare) {
+      EXPECT_LT(s.densityM2, 50.0f);
+    }
+  EXPECT_EQ(densestGroundDensity(c), 400.0f);
+  EXPECT_GE(farthestHorizon(c), 150.0f);
 }
 
 TEST(SpeciesCatalog, ReadsHsvInDegreesAndSrgb) {
@@ -109,6 +120,11 @@ TEST(SpeciesCatalog, EachBadInputNamesTheFileAndField) {
       {"stiffness that buries the tip", [](json& s) { s["stiffness"]["min"] = 0.4; },
        "species[0].stiffness.min: relative to the buckling stiffness k_c, 0.4 bends the blade's tip below its root"},
       {"phototropism above 1", [](json& s) { s["phototropism"] = 1.5; }, "species[0].phototropism: must be in 0 … 1"},
+      {"zero density", [](json& s) { s["density_m2"] = 0; },
+       "species[0].density_m2: must be > 0 and ≤ 10000 plants per m²"},
+      {"negative density", [](json& s) { s["density_m2"] = -3; }, "species[0].density_m2: must be > 0"},
+      {"zero horizon", [](json& s) { s["horizon_m"] = 0; }, "species[0].horizon_m: must be > 0 and ≤ 20000 metres"},
+      {"horizon string", [](json& s) { s["horizon_m"] = "far"; }, "species[0].horizon_m: must be a number"},
       {"p zero", [](json& s) { s["p"] = 0; }, "species[0].p: must be > 0"},
       {"p string", [](json& s) { s["p"] = "3"; }, "species[0].p: must be a number"},
       {"negative weight", [](json& s) { s["weights"]["s"] = -0.5; }, "species[0].weights.s: must be ≥ 0"},
