@@ -18,6 +18,7 @@
 #include "app/plants_command.h"
 #include "app/record_command.h"
 #include "app/report_command.h"
+#include "app/snapshot_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
 #include "render/context_options.h"
@@ -104,6 +105,9 @@ int main(int argc, char** argv) {
   auto* plantsCmd = app::addPlantsCommand(cli, plantsOptions);
   app::InspectOptions inspectOptions;
   auto* inspectCmd = app::addInspectCommand(cli, inspectOptions);
+  app::SnapshotOptions snapshotOptions;
+  snapshotOptions.samplesDir = VEGSTREAM_SAMPLES_DIR;
+  auto* snapshotCmd = app::addSnapshotCommand(cli, snapshotOptions);
 
   datasets::SyntheticOptions gen;
   std::string genOut, genEncoding = "terrarium";
@@ -130,6 +134,7 @@ int main(int argc, char** argv) {
     if (*queryCmd) return app::runQuery(query, log);
     if (*plantsCmd) return app::runPlants(plantsOptions, log);
     if (*inspectCmd) return app::runInspect(inspectOptions, log);
+    if (*snapshotCmd) return app::runSnapshot(snapshotOptions, log);
     if (*generateCmd) {
       auto encoding = datasets::parseElevationEncoding(genEncoding);
       if (!encoding) return app::reportError(log, encoding.error());

@@ -1,0 +1,40 @@
+#pragma once
+// One still frame at a fixed pose, taken only once the scene has settled there (`vegstream
+// snapshot`): frames are run through the frame driver at the same pose, flight time advancing
+// by the terrain's fade time (StreamedTerrainOptions::fadeS) each frame, until one frame changes
+// nothing — no tile requested, arrived or uploaded, no fallback piece, no ROAM split, merge or
+// merge morph, no vertex still morphing, the queue work not cut short — and that frame is the
+// still. Settled streaming (SceneOptions::mode) makes every frame wait for the tiles it wants,
+// so the finest tiles the view needs are drawn; advancing time by fadeS finishes the geomorphs
+// that a split starts after the first drawn frame (RoamMesh::markShown) and the imagery fades
+// of tiles that arrived a frame before. Deterministic: the same inputs give the same frames,
+// and on the same driver the same pixels.
+
+#include <cstdint>
+#include <string>
+
+#include "core/result.h"
+#include "flight/path_sampler.h"
+#include "render/frame_types.h"
+#include "scene/scene.h"
+
+namespace vegstream::app {
+
+struct SettledStill {
+  render::ColorImage image;
+  int frames = 0;          // frames run, the still included
+  bool settled = false;    // false: maxFrames ran out; the last frame is the still
+  std::string unsettled;   // what still changed in the last frame (when !settled)
+  bool plantsCounted = false;
+  uint64_t plants = 0;     // plants drawn in the still (read back from the GPU)
+  uint64_t terrainTriangles = 0;
+};
+
+// Runs frames at `pose` (the scene should stream settled) until one changes nothing, at most
+// maxFrames. GPU failures come back as errors.
+Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, int maxFrames = 40);
+
+// What a frame's figures say still changed ("" when nothing): for tests and the log.
+std::string stillChanging(const scene::SceneFrameFigures& figures);
+
+}  // namespace vegstream::app
