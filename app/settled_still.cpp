@@ -25,7 +25,8 @@ std::string stillChanging(const scene::SceneFrameFigures& f) {
   return why;
 }
 
-Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, int maxFrames) {
+Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
+                                        int maxFrames) {
   scene::FrameDriver driver(scene);
   // A step of the fade time: whatever started to morph or fade in frame i is finished in i + 1.
   const double stepS = scene.options().terrain.fadeS;
@@ -41,6 +42,7 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     // Frame 0 has nothing on screen to morph from (RoamMesh::markShown) but everything to load.
     still.unsettled = i == 0 ? std::string("the first frame") : stillChanging(frame->scene);
     still.settled = still.unsettled.empty();
+    log->debug("still frame {} at t = {:.2f} s: {}", i, input.timeS, still.settled ? "settled" : still.unsettled);
     if (frame->color) still.image = std::move(*frame->color);
     still.terrainTriangles = frame->terrainTriangles;
     still.plantsCounted = frame->vegetation && frame->vegetation->gpuCounts;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/log.h"
 #include "core/result.h"
 #include "flight/path_sampler.h"
 #include "render/frame_types.h"
@@ -31,8 +32,9 @@ struct SettledStill {
 };
 
 // Runs frames at `pose` (the scene should stream settled) until one changes nothing, at most
-// maxFrames. GPU failures come back as errors.
-Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, int maxFrames = 40);
+// maxFrames; each frame's changes are logged at debug level (-v). GPU failures come back as errors.
+Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
+                                        int maxFrames = 40);
 
 // What a frame's figures say still changed ("" when nothing): for tests and the log.
 std::string stillChanging(const scene::SceneFrameFigures& figures);

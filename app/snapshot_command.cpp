@@ -145,7 +145,7 @@ int runSnapshot(const SnapshotOptions& o, const Logger& log) {
   pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
   pose.pitchDeg = o.pitchDeg;
   pose.heightAboveGroundM = heightMsl - ground;
-  auto still = renderSettledStill(scene, pose);
+  auto still = renderSettledStill(scene, pose, log);
   if (!still) return reportError(log, still.error());
   if (!still->settled)
     log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
