@@ -150,6 +150,10 @@ int runSnapshot(const SnapshotOptions& o, const Logger& log) {
   if (!still->settled)
     log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
               still->frames, still->unsettled);
+  if (still->fallbackPieces > 0)
+    log->warn("{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
+              "--cpu-budget-mb / --gpu-budget-mb",
+              still->fallbackPieces);
   if (Status s = render::writePng(o.out, still->image); !s) return reportError(log, s.error());
 
   const render::ValidationLog* validation = scene.renderer().validationLog();
@@ -158,8 +162,10 @@ int runSnapshot(const SnapshotOptions& o, const Logger& log) {
   const std::string plants = !so.plants             ? "no plants"
                              : still->plantsCounted ? std::to_string(still->plants) + " plants drawn"
                                                     : "plants not counted on this device";
-  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({} frames to settle)",
-            o.out, width, height, pose.heightAboveGroundM, still->terrainTriangles, plants, still->frames);
+  const std::string frames = still->settled ? std::to_string(still->frames) + " frames to settle"
+                                            : "not settled after " + std::to_string(still->frames) + " frames";
+  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
+            height, pose.heightAboveGroundM, still->terrainTriangles, plants, frames);
   return validationErrors > 0 ? kExitFailure : kExitOk;
 }
 
