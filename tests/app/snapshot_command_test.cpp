@@ -122,6 +122,23 @@ TEST_F(SnapshotCommand, PlantsChangeTheStillAndRunsAreIdentical) {
   EXPECT_GT(differingPixels(ia, ibare), 320u * 180u / 20u) << "plants drawn over the clearing";
 }
 
+TEST_F(SnapshotCommand, UnderTightBudgetsItSettlesOnWhatFitsAndSaysSo) {
+  // 300 m over Zion Canyon with room for a few tiles only: the error bound relaxes frame after
+  // frame until the wants fit; the still is taken once nothing changes any more, with the pieces
+  // that stay coarser named in a warning.
+  const fs::path out = testOutputDir() / "tight.png";
+  const auto r = runVegstream("snapshot '" + zion_ +
+                              "' --lat 37.195 --lon -112.985 --alt 300 --heading 15 --pitch -12 --size 320x180 "
+                              "--validate --gpu-budget-mb 1 --cpu-budget-mb 2 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("drawn from coarser tiles"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--gpu-budget-mb"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("frames to settle"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("(2 frames to settle)"), std::string::npos) << "the bound relaxed over several frames";
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  EXPECT_EQ(readPng(out).width, 320);
+}
+
 struct BadInput {
   const char* name;
   std::string args;  // {ZION}: the dataset; {OUT}: the test's output file
