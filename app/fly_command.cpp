@@ -117,7 +117,7 @@ int runFly(const FlyOptions& o, const Logger& log) {
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
   if (!windowWanted)  // before the GPU is touched; a wanted window that cannot be made checks it later
     if (Status s = checkHeadlessOut(o); !s) return reportError(log, s.error());
-  auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
+  auto dataset = resolveDataset(o.dataset, o.samplesDir, log, true);
   if (!dataset) return reportError(log, dataset.error());
 
   std::optional<flight::FlightPath> given;

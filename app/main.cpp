@@ -18,6 +18,8 @@
 #include "app/plants_command.h"
 #include "app/record_command.h"
 #include "app/report_command.h"
+#include "app/sample_dataset.h"
+#include "app/snapshot_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
 #include "render/context_options.h"
@@ -51,12 +53,13 @@ int main(int argc, char** argv) {
   cli.add_flag("-v,--verbose", verbose, "More log output");
 
   app::FlyOptions fly;
-  fly.samplesDir = VEGSTREAM_SAMPLES_DIR;
+  fly.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
   std::string size = "640x360";
   auto* flyCmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
   flyCmd->add_option(
       "dataset", fly.dataset,
-      "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion");
+      "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion "
+      "(without it: the synthetic dataset, generated once into out/datasets/synthetic)");
   flyCmd->add_option("--path", fly.path, "Flight path JSON; default: the benchmark-30s template over the dataset");
   flyCmd->add_option("--out", fly.out, "Directory for headless frames and run.json")->capture_default_str();
   flyCmd->add_option("--frames", fly.frames, "Number of headless frames")
@@ -75,7 +78,7 @@ int main(int argc, char** argv) {
   auto* importCmd = app::addImportCommand(cli, importOptions);
 
   app::RecordOptions recordOptions;
-  recordOptions.samplesDir = VEGSTREAM_SAMPLES_DIR;
+  recordOptions.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
   auto* recordCmd = app::addRecordCommand(cli, recordOptions);
   app::ReportOptions reportOptions;
   auto* reportCmd = app::addReportCommand(cli, reportOptions);
@@ -104,6 +107,9 @@ int main(int argc, char** argv) {
   auto* plantsCmd = app::addPlantsCommand(cli, plantsOptions);
   app::InspectOptions inspectOptions;
   auto* inspectCmd = app::addInspectCommand(cli, inspectOptions);
+  app::SnapshotOptions snapshotOptions;
+  snapshotOptions.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
+  auto* snapshotCmd = app::addSnapshotCommand(cli, snapshotOptions);
 
   datasets::SyntheticOptions gen;
   std::string genOut, genEncoding = "terrarium";
@@ -130,6 +136,7 @@ int main(int argc, char** argv) {
     if (*queryCmd) return app::runQuery(query, log);
     if (*plantsCmd) return app::runPlants(plantsOptions, log);
     if (*inspectCmd) return app::runInspect(inspectOptions, log);
+    if (*snapshotCmd) return app::runSnapshot(snapshotOptions, log);
     if (*generateCmd) {
       auto encoding = datasets::parseElevationEncoding(genEncoding);
       if (!encoding) return app::reportError(log, encoding.error());

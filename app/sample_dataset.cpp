@@ -1,10 +1,20 @@
+// The default datasets: the Zion sample, or the synthetic one where it is missing (sample_dataset.h).
+
 #include "app/sample_dataset.h"
+
+#include <cstdlib>
 
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
+#include "datasets/synthetic_generator.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
+
+std::string samplesDirFromEnvironment(const std::string& compiledIn) {
+  const char* env = std::getenv("VEGSTREAM_SAMPLES_DIR");
+  return env && *env ? std::string(env) : compiledIn;
+}
 
 Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& datasetDir, const Logger& log) {
   std::error_code ec;
@@ -27,6 +37,29 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   auto meta = datasets::importGeoTiff(o, log, progress);
   if (!meta) return meta.error();
   return datasetDir;
+}
+
+Result<fs::path> ensureDefaultDataset(const fs::path& samplesDir, const fs::path& zionDir, const fs::path& syntheticDir,
+                                      const Logger& log) {
+  std::error_code ec;
+  const fs::path srtm = samplesDir / "zion" / "srtm.tif";
+  if (fs::exists(zionDir / "dataset.json", ec) || fs::exists(srtm, ec))
+    return ensureZionSample(samplesDir, zionDir, log);
+  if (fs::exists(syntheticDir / "dataset.json", ec)) {
+    log->info("the Zion sample is missing ({}): flying over the synthetic dataset in {}", srtm.string(),
+              syntheticDir.string());
+    return syntheticDir;
+  }
+  log->info("the Zion sample is missing ({}): generating the synthetic dataset (vegstream generate) once into {}",
+            srtm.string(), syntheticDir.string());
+  fs::create_directories(syntheticDir.parent_path(), ec);
+  datasets::SyntheticOptions o;  // the defaults of `vegstream generate`: 10 km around 46.55 N, 7.95 E
+  o.out = syntheticDir;
+  o.name = "synthetic";
+  datasets::NullProgress progress;
+  auto meta = datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
+  if (!meta) return meta.error();
+  return syntheticDir;
 }
 
 }  // namespace vegstream::app

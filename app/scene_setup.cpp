@@ -12,9 +12,12 @@
 
 namespace vegstream::app {
 
-Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log) {
+Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log,
+                                   bool syntheticFallback) {
   if (!given.empty()) return given;
-  auto sample = ensureZionSample(samplesDir, "out/datasets/zion", log);
+  auto sample = syntheticFallback
+                    ? ensureDefaultDataset(samplesDir, "out/datasets/zion", "out/datasets/synthetic", log)
+                    : ensureZionSample(samplesDir, "out/datasets/zion", log);
   if (!sample) return sample.error();
   return sample->string();
 }

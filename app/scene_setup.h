@@ -15,8 +15,11 @@
 
 namespace vegstream::app {
 
-// The dataset to open: `given`, or the Zion sample imported once into out/datasets/zion.
-Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log);
+// The dataset to open: `given`, or the Zion sample imported once into out/datasets/zion; with
+// `syntheticFallback` (fly), where the sample is missing, the synthetic dataset generated once
+// into out/datasets/synthetic (sample_dataset.h).
+Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log,
+                                   bool syntheticFallback = false);
 
 struct RendererCli {
   uint32_t width = 640, height = 360;

@@ -109,8 +109,12 @@ double SyntheticTerrain::heightM(double eastM, double northM) const {
 }
 
 std::array<uint8_t, 3> SyntheticTerrain::color(double eastM, double northM, double h, double slopeRad) const {
-  static constexpr Rgb kGrass{118, 148, 66}, kForest{46, 78, 38}, kMeadow{132, 138, 84}, kRock{122, 114, 104},
-      kScree{150, 144, 134}, kSnow{238, 241, 246};
+  // Chosen so that the default species catalog (config/species.json, whose references are read
+  // off muted Landsat imagery) grows what each biome is: grass on the valley and alpine meadows
+  // (olive, HSV ≈ 75–82°, 0.4, 0.45), conifers in the forest (very dark green), nothing on rock,
+  // scree and snow (greys: the bare "grey rock" entry) — `vegstream plants` shows the shares.
+  static constexpr Rgb kGrass{98, 116, 68}, kForest{34, 48, 30}, kMeadow{106, 116, 72}, kRock{112, 110, 108},
+      kScree{140, 138, 134}, kSnow{238, 241, 246};
   const double patch = fbm(eastM / 350.0, northM / 350.0, 4, seed_[0] ^ 0x5a5a5aU);  // −1 … 1
   const double detail = fbm(eastM / 40.0, northM / 40.0, 2, seed_[1] ^ 0xa5a5a5U);
   const double treeLine = 1900.0 + 120.0 * patch;

@@ -209,6 +209,18 @@ TEST(CliErrors, Inspect) {
                           "--");
 }
 
+TEST(CliErrors, Snapshot) {
+  const fs::path dir = ownDir(), out = dir / "still.png";
+  const std::string pose = "snapshot --lat 37.4 --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(out);
+  expectOneLineUserErrors({{"snapshot --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(out), "--lat"},
+                           {pose + " --bogus", "--bogus"},
+                           {pose + " --alt-ref sky", "--alt-ref"},
+                           {"snapshot --lat north --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(out), "--lat"},
+                           {pose + " a b", "b"}},
+                          "vegstream snapshot");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliErrors, Devices) {
   ownDir();
   expectOneLineUserErrors({{"devices --bogus", "--bogus"}, {"devices extra", "extra"}}, "vegstream devices");
@@ -222,7 +234,7 @@ TEST(CliErrors, NoOrUnknownSubcommand) {
 TEST(CliErrors, HelpIsPrintedAndExitsZero) {
   ownDir();
   for (const char* sub : {"", "import", "generate", "info", "query", "plants", "fly", "record", "report", "compare",
-                          "path", "inspect", "devices"}) {
+                          "path", "inspect", "snapshot", "devices"}) {
     SCOPED_TRACE(sub);
     const auto r = runVegstream(std::string(sub) + " --help");
     EXPECT_EQ(r.exitCode, 0) << r.err;

@@ -8,6 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "datasets/synthetic_generator.h"
+#include "vegetation/colour_score.h"
+#include "vegetation/species_catalog.h"
+#include "vegetation/species_choice.h"
 #include "tests/datasets/query/query_fixture.h"
 
 namespace vegstream::testing {
@@ -111,6 +114,51 @@ TEST(Generate, ColoursFollowHeightAndSlope) {
   EXPECT_NEAR(cliff[0], cliff[1], 20);  // grey rock
   EXPECT_GT(peak[2], 220);              // snow
   EXPECT_GT(peak[0], 220);
+}
+
+// The biomes grow what they are with the default species catalog (config/species.json): valley
+// floors grass, the lower slopes mostly conifers (forest), alpine meadows grass, cliffs and snow
+// nothing (a bare entry wins). Colours of a 40 × 40 grid over 10 km, per biome; the winner of eq. 17's two
+// best must also win clearly (probability ≥ 0.75) on grass and conifer ground.
+TEST(Generate, TheDefaultCatalogGrowsEachBiomesPlants) {
+  const datasets::SyntheticTerrain t(1);
+  const vegetation::SpeciesCatalog& catalog = vegetation::defaultSpeciesCatalog();
+  struct Biome {
+    const char* name;
+    double heightM, slopeRad;
+  };
+  for (const Biome& b : {Biome{"valley", 800.0, 0.05}, Biome{"lower slopes", 1200.0, 0.2},
+                         Biome{"alpine meadow", 2100.0, 0.1},
+                         Biome{"cliff", 1500.0, 1.2}, Biome{"snow", 3400.0, 0.2}}) {
+    SCOPED_TRACE(b.name);
+    std::map<std::string, int> won;
+    int clear = 0, total = 0;
+    for (int i = 0; i < 40; ++i)
+      for (int j = 0; j < 40; ++j) {
+        const auto c = t.color(-5000.0 + 250.0 * i, -5000.0 + 250.0 * j, b.heightM, b.slopeRad);
+        const auto k = vegetation::speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]));
+        ASSERT_GE(k.first, 0);
+        const auto& sp = catalog.species[static_cast<size_t>(k.first)];
+        ++won[sp.bare ? std::string("bare") : sp.name];
+        clear += k.secondRatio <= 0.25f;
+        ++total;
+      }
+    const std::string biome = b.name;
+    if (biome == "valley") {
+      EXPECT_GE(won["grass"], total * 9 / 10) << "meadows";
+      EXPECT_EQ(won["grass"] + won["conifer"], total) << "with a few forest patches";
+    } else if (biome == "lower slopes") {
+      EXPECT_GE(won["conifer"], total / 2) << "forest";
+      EXPECT_EQ(won["grass"] + won["conifer"], total) << "with clearings";
+    } else if (biome == "alpine meadow") {
+      EXPECT_GE(won["grass"], total * 95 / 100);
+    } else {
+      EXPECT_EQ(won["bare"], total);
+    }
+    if (biome != "cliff" && biome != "snow") {
+      EXPECT_GE(clear, total * 80 / 100) << "clear winners";
+    }
+  }
 }
 
 TEST(Generate, BadOptionsAreUserErrors) {

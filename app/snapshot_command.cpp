@@ -1,0 +1,172 @@
+// `vegstream snapshot` (snapshot_command.h).
+
+#include "app/snapshot_command.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <CLI/CLI.hpp>
+
+#include "app/exit_codes.h"
+#include "app/record_command.h"
+#include "app/scene_setup.h"
+#include "app/settled_still.h"
+#include "datasets/dataset_format.h"
+#include "render/png_writer.h"
+#include "streaming/open_tile_source.h"
+
+namespace vegstream::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kMinClearanceM = 0.5;  // the camera at least this far above the ground
+constexpr double kMaxAltM = 100000.0;
+constexpr double kMaxPitchDeg = 89.0;  // ±90 looks along the up axis: no heading, no view
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+Error userError(const std::string& message) { return makeError(ErrorKind::InvalidInput, message); }
+
+// --out: a .png file in an existing directory (it may exist: it is replaced when the new one is complete).
+Status checkOut(const std::string& out) {
+  const fs::path p = out;
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) return userError("--out " + out + " is a directory; give a file name ending in .png");
+  if (ext != ".png") return userError("--out " + out + ": the still is written as PNG; give a file name ending in .png");
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  if (!fs::is_directory(dir, ec)) return userError("--out " + out + ": directory " + dir.string() + " does not exist");
+  return {};
+}
+
+// The pose's numbers on their own: finite, pitch in range, altitude plausible.
+Status checkPoseNumbers(const SnapshotOptions& o) {
+  if (!std::isfinite(o.latDeg) || o.latDeg < -90.0 || o.latDeg > 90.0)
+    return userError("--lat " + num(o.latDeg) + ": must be -90 … 90 degrees");
+  if (!std::isfinite(o.lonDeg) || o.lonDeg < -180.0 || o.lonDeg > 180.0)
+    return userError("--lon " + num(o.lonDeg) + ": must be -180 … 180 degrees");
+  if (!std::isfinite(o.headingDeg)) return userError("--heading " + num(o.headingDeg) + ": must be a number of degrees");
+  if (!std::isfinite(o.pitchDeg) || std::abs(o.pitchDeg) > kMaxPitchDeg)
+    return userError("--pitch " + num(o.pitchDeg) + ": must be -89 … 89 degrees (0 level, negative looks down)");
+  if (!std::isfinite(o.altM) || o.altM > kMaxAltM)
+    return userError("--alt " + num(o.altM) + ": must be a number of metres up to 100000");
+  if (o.altRef == "ground" && o.altM < kMinClearanceM)
+    return userError("--alt " + num(o.altM) + ": the camera must be at least 0.5 m above the ground");
+  return {};
+}
+
+// The pose against the dataset's coverage, naming the option that is outside it.
+Status checkCoverage(const SnapshotOptions& o, const geo::GeoBounds& b, const std::string& dataset) {
+  const bool latOut = o.latDeg < b.southDeg || o.latDeg > b.northDeg;
+  const bool lonOut = o.lonDeg < b.westDeg || o.lonDeg > b.eastDeg;
+  if (!latOut && !lonOut) return {};
+  const std::string which = latOut && lonOut ? "--lat " + num(o.latDeg) + " --lon " + num(o.lonDeg)
+                            : latOut         ? "--lat " + num(o.latDeg)
+                                             : "--lon " + num(o.lonDeg);
+  char cover[160];
+  std::snprintf(cover, sizeof(cover), "lat %.5f … %.5f, lon %.5f … %.5f", b.southDeg, b.northDeg, b.westDeg,
+                b.eastDeg);
+  return userError(which + ": outside dataset " + dataset + ", which covers " + cover);
+}
+
+}  // namespace
+
+CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
+  auto* cmd = cli.add_subcommand("snapshot", "Render one still frame from a pose to a PNG, once streaming has settled");
+  cmd->add_option("dataset", o.dataset,
+                  "Dataset directory (vegstream import) or http(s):// URL of one; default: the Zion sample");
+  cmd->add_option("--lat", o.latDeg, "Camera latitude, degrees (WGS 84)")->required();
+  cmd->add_option("--lon", o.lonDeg, "Camera longitude, degrees (WGS 84)")->required();
+  cmd->add_option("--alt", o.altM, "Camera altitude, metres above the ground (or sea level with --alt-ref msl)")
+      ->required();
+  cmd->add_option("--alt-ref", o.altRef, "What --alt is measured from: ground or msl")
+      ->check(CLI::IsMember({"ground", "msl"}))
+      ->capture_default_str();
+  cmd->add_option("--heading", o.headingDeg, "View direction, degrees clockwise from north")->required();
+  cmd->add_option("--pitch", o.pitchDeg, "View pitch, degrees: 0 level, negative looks down (-89 … 89)")->required();
+  cmd->add_option("--out", o.out, "PNG file to write (replaced when the new one is complete)")->required();
+  cmd->add_option("--size", o.size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4, 8, 16 where the device offers them)")
+      ->capture_default_str();
+  cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
+  cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
+  addStreamingOptions(*cmd, o.streaming, false);
+  return cmd;
+}
+
+int runSnapshot(const SnapshotOptions& o, const Logger& log) {
+  uint32_t width = 0, height = 0;
+  if (!parseFrameSize(o.size, width, height))
+    return reportError(log, userError("--size " + o.size + ": expected WxH with each side 1 … 16384, e.g. 1280x720"));
+  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
+    return reportError(log, userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16"));
+  if (Status s = checkPoseNumbers(o); !s) return reportError(log, s.error());
+  if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
+
+  scene::SceneOptions so;
+  if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
+    return reportError(log, s.error());
+  so.mode = scene::StreamingMode::Settled;  // a still shows the finest tiles its view wants
+  auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
+  if (!dataset) return reportError(log, dataset.error());
+  if (!streaming::isHttpLocation(*dataset)) {  // a local dataset is checked against the pose before the GPU is touched
+    auto meta = datasets::readDatasetMeta(*dataset);
+    if (!meta) return reportError(log, meta.error());
+    if (Status s = checkCoverage(o, meta->bounds, *dataset); !s) return reportError(log, s.error());
+  }
+
+  so.dataset = *dataset;
+  applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
+  auto opened = scene::Scene::open(so);
+  if (!opened) return reportError(log, opened.error());
+  scene::Scene& scene = **opened;
+  if (Status s = checkCoverage(o, scene.info().bounds, *dataset); !s) return reportError(log, s.error());
+  const double ground = scene.groundHeight(o.latDeg, o.lonDeg);
+  if (std::isnan(ground))
+    return reportError(log, userError("--lat " + num(o.latDeg) + " --lon " + num(o.lonDeg) + ": dataset " + *dataset +
+                                      " has no elevation data there"));
+  const double heightMsl = o.altRef == "msl" ? o.altM : ground + o.altM;
+  if (heightMsl - ground < kMinClearanceM)
+    return reportError(log, userError("--alt " + num(o.altM) + " (above sea level): the camera must be at least 0.5 m "
+                                      "above the ground, which is at " + num(ground) + " m there"));
+  logSceneOpened(scene, log);
+
+  flight::FlightSample pose;
+  pose.position = {o.latDeg, o.lonDeg, heightMsl};
+  pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
+  pose.pitchDeg = o.pitchDeg;
+  pose.heightAboveGroundM = heightMsl - ground;
+  auto still = renderSettledStill(scene, pose, log);
+  if (!still) return reportError(log, still.error());
+  if (!still->settled)
+    log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
+              still->frames, still->unsettled);
+  if (still->fallbackPieces > 0)
+    log->warn("{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
+              "--cpu-budget-mb / --gpu-budget-mb",
+              still->fallbackPieces);
+  if (Status s = render::writePng(o.out, still->image); !s) return reportError(log, s.error());
+
+  const render::ValidationLog* validation = scene.renderer().validationLog();
+  const int validationErrors = validation ? validation->errors() : 0;
+  if (validationErrors > 0) log->error("validation reported {} errors", validationErrors);
+  const std::string plants = !so.plants             ? "no plants"
+                             : still->plantsCounted ? std::to_string(still->plants) + " plants drawn"
+                                                    : "plants not counted on this device";
+  const std::string frames = still->settled ? std::to_string(still->frames) + " frames to settle"
+                                            : "not settled after " + std::to_string(still->frames) + " frames";
+  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
+            height, pose.heightAboveGroundM, still->terrainTriangles, plants, frames);
+  return validationErrors > 0 ? kExitFailure : kExitOk;
+}
+
+}  // namespace vegstream::app

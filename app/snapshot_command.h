@@ -1,0 +1,48 @@
+#pragma once
+// `vegstream snapshot [DATASET] --lat L --lon L --alt A --heading H --pitch P --out F.png
+//  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [plant, streaming
+//  and terrain options of `record`]`: one still frame from a pose, as PNG.
+//
+// The pose follows flight paths (flight/flight_path.h, DESIGN.md "Flight paths"): --alt is metres
+// above the ground under the camera (the ground mosaic scripted paths are resolved against), or
+// above sea level with --alt-ref msl; heading in degrees clockwise from north, pitch in degrees
+// (0 level, negative looks down). Streaming is settled and the still is taken only once the
+// scene has settled at the pose (app/settled_still.h): the finest tiles the view wants, no
+// geomorph or imagery fade under way. Every option, the dataset and the pose are checked before
+// the GPU is touched where they can be; the PNG is written to a temporary file beside --out and
+// renamed into place when complete.
+
+#include <string>
+
+#include "app/streaming_cli.h"
+#include "core/log.h"
+
+namespace CLI {
+class App;
+}
+
+namespace vegstream::app {
+
+struct SnapshotOptions {
+  std::string dataset;     // directory or http(s) URL; empty: the Zion sample (imported once)
+  std::string samplesDir;  // where the shared sample data lives (for the default)
+  double latDeg = 0.0, lonDeg = 0.0;
+  double altM = 0.0;
+  std::string altRef = "ground";  // ground | msl
+  double headingDeg = 0.0;        // clockwise from north
+  double pitchDeg = 0.0;          // negative looks down
+  std::string out;                // F.png
+  std::string size = "1280x720";
+  int msaa = 4;
+  std::string device;
+  bool validate = false;
+  StreamingCli streaming;  // the plant, streaming and terrain options of `record` (settled)
+};
+
+CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& options);
+
+// Exit code: 0 written; 2 a user mistake (one message naming the option, nothing written);
+// 1 a GPU/system failure, or validation errors (the still is then written all the same).
+int runSnapshot(const SnapshotOptions& options, const Logger& log);
+
+}  // namespace vegstream::app
