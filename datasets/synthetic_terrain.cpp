@@ -111,9 +111,9 @@ double SyntheticTerrain::heightM(double eastM, double northM) const {
 std::array<uint8_t, 3> SyntheticTerrain::color(double eastM, double northM, double h, double slopeRad) const {
   // Chosen so that the default species catalog (config/species.json, whose references are read
   // off muted Landsat imagery) grows what each biome is: grass on the valley and alpine meadows
-  // (olive, HSV ≈ 75–82°, 0.4, 0.45), conifers in the forest (very dark green), nothing on rock,
+  // (olive, HSV ≈ 85°, 0.38, 0.4), conifers in the forest (very dark green, v 0.13), nothing on rock,
   // scree and snow (greys: the bare "grey rock" entry) — `vegstream plants` shows the shares.
-  static constexpr Rgb kGrass{98, 116, 68}, kForest{34, 48, 30}, kMeadow{106, 116, 72}, kRock{112, 110, 108},
+  static constexpr Rgb kGrass{85, 102, 63}, kForest{24, 34, 20}, kMeadow{88, 104, 66}, kRock{112, 110, 108},
       kScree{140, 138, 134}, kSnow{238, 241, 246};
   const double patch = fbm(eastM / 350.0, northM / 350.0, 4, seed_[0] ^ 0x5a5a5aU);  // −1 … 1
   const double detail = fbm(eastM / 40.0, northM / 40.0, 2, seed_[1] ^ 0xa5a5a5U);

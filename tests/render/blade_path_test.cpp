@@ -118,7 +118,8 @@ TEST_F(BladePathTest, BothPathsDrawTheSameGrassAndImagesDifferOnlyAtBladeEdges) 
   EXPECT_LT(double(big), 0.02 * pixels);
   EXPECT_GT(1.0 - double(any) / pixels, 0.95) << "share of pixels that match within 4";
   EXPECT_EQ(misplacedPlantPixels(a, b, *tess.without.color), 0u) << "differences only at blades";
-  EXPECT_GT(misplacedPlantPixels(a, *tess.without.color, *tess.without.color), size_t(0.03 * pixels))
+  // (The default grass grows on dark olive imagery, v 0.2: its blades stand out less.)
+  EXPECT_GT(misplacedPlantPixels(a, *tess.without.color, *tess.without.color), size_t(0.015 * pixels))
       << "the check sees plants that are not in the other frame";
 }
 
@@ -179,7 +180,8 @@ TEST_F(BladePathTest, ShadowsEndAtTheShadowDistanceOnBothPaths) {
     if (shadowTriangles.back() == 0) {
       EXPECT_EQ(differing(*c.with.color, *bare.with.color, 0), 0u) << "no shadow, no change";
     } else if (distance >= 12.0f) {  // (at 6 m the few shadows are still fading in)
-      EXPECT_GT(differing(*c.with.color, *bare.with.color, 8), 50u) << "the shadows darken the ground";
+      // The grass's ground is dark olive (v 0.2): a 35 % shadow takes 5–15 levels off it.
+      EXPECT_GT(differing(*c.with.color, *bare.with.color, 4), 50u) << "the shadows darken the ground";
     }
   }
   EXPECT_EQ(shadowTriangles[0], 0u);
