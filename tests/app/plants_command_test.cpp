@@ -144,7 +144,7 @@ TEST_F(Plants, CsvAndJsonAgreeInsideTheBoxAndRunsAreIdentical) {
 }
 
 TEST_F(Plants, ASubBoxGivesExactlyTheBigBoxsPlantsInIt) {
-  const std::string big = bbox(15.0), small = bbox(6.0, 4.0);
+  const std::string big = bbox(15.0), small = bbox(10.0, 4.0);
   const auto a = runVegstream(plants("--bbox " + big)), b = runVegstream(plants("--bbox " + small));
   ASSERT_EQ(a.exitCode, 0) << a.err;
   ASSERT_EQ(b.exitCode, 0) << b.err;
