@@ -15,7 +15,7 @@ import re
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense"]
+ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
