@@ -17,7 +17,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     SpeciesGpu& g = b.species[i];
     g.reference = glm::vec4(s.score.reference, s.score.p);
     g.weights = glm::vec4(s.score.weights, s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
-    g.flags = {s.bare ? 1u : 0u, static_cast<uint32_t>(s.kind), 0u, 0u};
+    g.flags = {s.bare ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
     g.marker.w = s.phototropism;
     g.ground = {s.densityM2, s.horizonM, 0.0f, 0.0f};
     g.heightStiffness = {s.heightM.min, s.heightM.max, s.stiffness.min, s.stiffness.max};

@@ -49,7 +49,7 @@ static_assert(sizeof(PlantClusterGpu) == 32);
 struct SpeciesGpu {
   glm::vec4 reference{0.0f};        // HSV, w: p
   glm::vec4 weights{0.0f};          // HSV weights, w: ln threshold (−1e30: none)
-  std::array<uint32_t, 4> flags{};  // x: bare, y: renderer kind
+  std::array<uint32_t, 4> flags{};  // x: bare, y: renderer kind, z: casts planar shadows
   glm::vec4 heightStiffness{0.0f};  // height min/max (m), k′ min/max
   glm::vec4 widthColour{0.0f};      // width min/max (m), colour modulation min/max
   glm::vec4 marker{0.0f};           // linear RGB of the classification markers, w: phototropism

@@ -150,7 +150,7 @@ void main() {
     kind = catalog.species[g.species].flags.y;
     vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
     copies = ((pc.flags & kFlagShadows) != 0u && castsShadow(vec4(nrm, -dot(nrm, t.v0.xyz))) &&
-              shadowsReach(seedTriangleNearestM(t))) ? 2u : 1u;
+              shadowsReach(shadowNearestM(g, t))) ? 2u : 1u;
     plants = lod.x > 0.5 ? g.seedCount : 0u;
   }
   uvec2 size = plantSize(kind, n) * copies;

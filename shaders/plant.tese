@@ -39,5 +39,5 @@ void main() {
   outPlant = vec4(p.width, p.colourModulation, p.height, p.sPrime);
   vec3 n = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
   outPlane = vec4(n, -dot(n, t.v0.xyz));
-  outNearest = seedTriangleNearestM(t);
+  outNearest = shadowNearestM(g, t);
 }

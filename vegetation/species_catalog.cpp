@@ -146,7 +146,7 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.object(obj, path)) return false;
   if (!ps.onlyKeys(obj, path,
                    {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m"}))
+                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -198,6 +198,10 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   for (const auto& r : ranges)
     if (need || obj.contains(r.key))
       if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
+  if (const auto sh = obj.find("shadows"); sh != obj.end()) {
+    if (!sh->is_boolean()) return ps.fail(path + ".shadows", "must be true or false");
+    out.shadows = sh->get<bool>();
+  }
   if (!ps.number(obj, "density_m2", path, out.densityM2, false)) return false;
   if (!(out.densityM2 > 0.0f && out.densityM2 <= 10000.0f))
     return ps.fail(path + ".density_m2", "must be > 0 and ≤ 10000 plants per m² (got " + fmt(out.densityM2) + ")");

@@ -25,7 +25,8 @@
 //         "width_m": { "min": 0.004, "max": 0.01 },        > 0              } (checked
 //         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
 //         "density_m2": 150,                               optional, > 0, ≤ 10000 (default 10)
-//         "horizon_m": 150                                 optional, > 0, ≤ 20000 (default 150)
+//         "horizon_m": 150,                                optional, > 0, ≤ 20000 (default 150)
+//         "shadows": true                                  optional (default true)
 //       }, … ] }
 //
 // Every key not listed is an error (a typo must not pass silently), and every error names the
@@ -76,6 +77,9 @@ struct Species {
   // Plants of this species fade out (shrinking, at the end of their triangle's sequence) over
   // the last quarter of this distance to the camera, metres; gone beyond it.
   float horizonM = 150.0f;
+  // Whether its plants cast the planar shadows of §3.6. A meadow's blades cover the ground their
+  // shadows would fall on; drawing them doubled the plants pass at eye height (issue 18).
+  bool shadows = true;
 };
 
 inline constexpr size_t kMaxSpecies = 16;

@@ -82,6 +82,13 @@ BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
 
 // The distance from the camera to the nearest point of the seed triangle's bounding sphere
 // (centroid, farthest vertex), 0 inside it.
+// seedTriangleNearestM for the shadow test (plant_shape.glsl shadowsReach): infinitely far for a
+// species that casts no planar shadows (flags.z 0: its blades cover the ground they would fall on).
+float seedTriangleNearestM(SeedTriangle t);
+float shadowNearestM(PlantCluster g, SeedTriangle t) {
+  return catalog.species[g.species].flags.z != 0u ? seedTriangleNearestM(t) : 3.0e38;
+}
+
 float seedTriangleNearestM(SeedTriangle t) {
   vec3 c = (t.v0.xyz + t.v1.xyz + t.v2.xyz) / 3.0;
   float r = sqrt(max(max(dot(t.v0.xyz - c, t.v0.xyz - c), dot(t.v1.xyz - c, t.v1.xyz - c)), dot(t.v2.xyz - c, t.v2.xyz - c)));

@@ -150,6 +150,33 @@ TEST_F(BladePathTest, ComputeTrianglesEqualTheGeometryStagesForEveryKindWithAndW
     }
 }
 
+TEST_F(BladePathTest, ASpeciesWithoutShadowsCastsNoneOnEitherPath) {
+  // config/species.json: the dense grass casts no planar shadows (its blades cover the ground),
+  // the sparse red gravel does. Shadow triangles are counted on both paths.
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  ASSERT_TRUE(r->setSpeciesCatalog(vegetation::defaultSpeciesCatalog()).ok());
+  PlantDrawOptions draw;
+  draw.maxSegments = 4;
+  for (const char* species : {"grass", "red gravel"}) {
+    SCOPED_TRACE(species);
+    draw.shadows = false;
+    const FieldResult without = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+    draw.shadows = true;
+    const FieldResult c = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Compute), {}, 24.0f);
+    const FieldResult t = renderField(*r, species, PlantStyle::Plants, withPath(draw, BladePath::Tessellation), {}, 24.0f);
+    ASSERT_TRUE(without.with.vegetation && c.with.vegetation && t.with.vegetation);
+    ASSERT_GT(without.with.vegetation->plantsTotal, 0u);
+    const uint64_t shadowTriangles = c.with.vegetation->bladeTriangles - without.with.vegetation->bladeTriangles;
+    EXPECT_EQ(c.with.vegetation->bladeTriangles, t.with.gpu.statistics.geometryPrimitives);
+    if (std::string(species) == "grass")
+      EXPECT_EQ(shadowTriangles, 0u);
+    else
+      EXPECT_GT(shadowTriangles, 0u);
+  }
+}
+
 TEST_F(BladePathTest, ShadowsEndAtTheShadowDistanceOnBothPaths) {
   // PlantDrawOptions::shadowDistanceM: a seed triangle's plants cast shadows only while its
   // bounding sphere reaches inside the distance, decided alike on both paths (the same triangles);

@@ -33,7 +33,17 @@ class GpuTest : public ::testing::Test {
                                          TerrainShading shading = TerrainShading::Auto) {
     auto r = Renderer::create(options(width, height, msaa, shading));
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
-    return r.ok() ? std::move(*r) : nullptr;
+    if (!r.ok()) return nullptr;
+    // The pipeline tests count and look at every kind's shadows; the shipped grass casts none
+    // (config/species.json "shadows": dense blades cover them).
+    EXPECT_TRUE((*r)->setSpeciesCatalog(shadowsEverywhere()).ok());
+    return std::move(*r);
+  }
+
+  static vegetation::SpeciesCatalog shadowsEverywhere() {
+    vegetation::SpeciesCatalog c = vegetation::defaultSpeciesCatalog();
+    for (vegetation::Species& s : c.species) s.shadows = true;
+    return c;
   }
 
   // A bare context (no renderer) with the validation layers reporting to this test.
