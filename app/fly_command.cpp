@@ -36,8 +36,14 @@ struct Window {
 };
 
 // The flight: the given path (read before the dataset is opened, checked against it after),
-// else the benchmark-30s template placed over the dataset.
+// else over a dataset of Zion (one that holds it: the sample, whatever its directory is called)
+// its benchmark flight over the Kolob meadow (flight/paths/benchmark-30s.json, embedded), else
+// the benchmark-30s template placed over the dataset.
 Result<flight::FlightPath> choosePath(const std::optional<flight::FlightPath>& given, const scene::Scene& scene) {
+  if (!given) {
+    auto zion = flight::parseFlightPath(flight::zionBenchmarkPathJson(), "flight/paths/benchmark-30s.json");
+    if (zion && flight::checkInside(*zion, scene.info().bounds)) return *zion;
+  }
   if (!given) return flight::makePathFromTemplate("benchmark-30s", scene.info().bounds, scene.groundFunction());
   if (Status s = flight::checkInside(*given, scene.info().bounds); !s) return s.error();
   return *given;

@@ -13,6 +13,7 @@
 //                 MSL height 400 m above the highest ground on the circle when ground is known.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/result.h"
@@ -21,6 +22,11 @@
 #include "geo/bounds.h"
 
 namespace vegstream::flight {
+
+// flight/paths/benchmark-30s.json as embedded at build time: the benchmark profile placed by
+// hand over the Zion sample's Kolob meadow (flight/README.md), which `vegstream fly` flies over
+// the Zion sample instead of the template (whose near-ground phase is bare slickrock there).
+std::string_view zionBenchmarkPathJson();
 
 // The known template names, in the order above.
 const std::vector<std::string>& templateNames();

@@ -80,7 +80,7 @@ TEST_F(FlyCommand, HeadlessDemoWritesARecordingWithValidationSilent) {
   // The three frames span the path: its start, middle and end.
   EXPECT_EQ(column(out, "t_s"), (std::vector<double>{0.0, 15.0, 30.0}));
   // Zion streamed: headless frames are settled, so every piece is drawn from its own tiles.
-  for (double v : column(out, "terrain_triangles")) EXPECT_GT(v, 1'000.0);  // ROAM at 2 px on 160 × 90
+  for (double v : column(out, "terrain_triangles")) EXPECT_GT(v, 500.0);  // ROAM at 2 px on 160 × 90 (the Kolob meadow is smooth)
   for (double v : column(out, "terrain_pieces")) EXPECT_GT(v, 2.0);
   for (double v : column(out, "terrain_fallback_pieces")) EXPECT_EQ(v, 0.0);
   for (double v : column(out, "gpu_bytes")) EXPECT_GT(v, 0.0);

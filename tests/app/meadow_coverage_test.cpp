@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,37 @@ TEST(MeadowCoverage, BladesCoverSeventyPercentOfTheGroundWithinTenMetresAtEyeHei
   // The measure itself: the top rows look 10–15° up, where no plant within the 40 m horizon
   // reaches: no magenta there.
   EXPECT_LT(top / (kTopRows * kW), 0.01);
+}
+
+}  // namespace
+}  // namespace vegstream
+
+namespace vegstream {
+namespace {
+
+// Issue 18's demo: `vegstream fly` over the Zion sample flies the benchmark profile over the
+// Kolob meadow (flight/paths/benchmark-30s.json, embedded), not the template's slickrock.
+TEST(ZionDemo, FlyOverTheZionSampleFliesTheKolobMeadow) {
+  const fs::path zion = zionDataset();
+  const fs::path out = testing::testOutputDir() / "fly";
+  fs::remove_all(out);
+  const auto r = runVegstream("fly '" + zion.string() + "' --headless --frames 3 --size 160x90 --msaa 1 --out '" +
+                              out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream csv(out / "frames.csv");
+  std::string header, first, second;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, first) && std::getline(csv, second));
+  // Columns frame, t_s, lat, lon: frame 0 at t 0 s, frame 1 at t 15 s (the middle of the low phase).
+  auto field = [](const std::string& line, int k) {
+    std::stringstream ss(line);
+    std::string f;
+    for (int i = 0; i <= k; ++i) std::getline(ss, f, ',');
+    return std::stod(f);
+  };
+  EXPECT_NEAR(field(first, 2), 37.5121, 1e-3);
+  EXPECT_NEAR(field(first, 3), -112.9595, 1e-3);
+  EXPECT_NEAR(field(second, 2), 37.4816, 1e-3) << "15 m over the meadow at 15 s";
+  EXPECT_NEAR(field(second, 3), -112.9595, 1e-3);
 }
 
 }  // namespace
