@@ -86,10 +86,16 @@ float speciesHorizonFade(const Species& species, float nearestM);
 // The area the GPU is given for a triangle (float of the double area).
 float seedArea(const std::array<glm::dvec3, 3>& vertices);
 
-// The fade of the element `index` of a sequence shown up to `count`: 1 inside, the fraction at
-// the end, 0 beyond.
+// The fade of the element `index` of a sequence shown up to `count`: 1 well inside, 0 beyond,
+// and over the last kSequenceFadeShare of the sequence (at least one element) a ramp, so the
+// end grows in over many elements instead of one: as the camera moves, count changes by about
+// count · 2 / distance per metre (eq. 1), and each element's size then by at most
+// 2 / (kSequenceFadeShare · distance) per metre — 0.4 % per centimetre at 5 m, where a one-element
+// fade grew a whole cluster per centimetre near the camera (issue 18's 2 % bound).
+inline constexpr float kSequenceFadeShare = 0.25f;
 inline float sequenceFade(float count, uint32_t index) {
-  const float f = count - static_cast<float>(index);
+  const float w = count * kSequenceFadeShare > 1.0f ? count * kSequenceFadeShare : 1.0f;
+  const float f = (count - static_cast<float>(index)) / w;
   return f <= 0.0f ? 0.0f : (f >= 1.0f ? 1.0f : f);
 }
 // Clusters a count N touches: 0 for N ≤ 0, else 1 + ⌈max(N − C, 0) / C⌉.

@@ -78,7 +78,12 @@ vec2 clusterCentre(uvec2 key, uint c) {
   return pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y)));
 }
 
-float sequenceFade(float count, uint index) { return clamp(count - float(index), 0.0, 1.0); }
+// vegetation::sequenceFade: a ramp over the last kSequenceFadeShare of the sequence.
+const float kSequenceFadeShare = 0.25;
+float sequenceFade(float count, uint index) {
+  float w = count * kSequenceFadeShare > 1.0 ? count * kSequenceFadeShare : 1.0;
+  return clamp((count - float(index)) / w, 0.0, 1.0);
+}
 
 uint clusterCount(float plantCount, uint clusterSize) {
   if (!(plantCount > 0.0)) return 0u;

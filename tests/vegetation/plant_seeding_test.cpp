@@ -58,13 +58,13 @@ double chiSquare(const std::vector<glm::vec2>& points, int k, int* dof) {
   return chi;
 }
 
-// Every seed of the first `plants` plants of triangle `key`.
+// Every seed of the first `plants` plants of triangle `key` (the end of the sequence faded in part).
 std::vector<glm::vec2> seeds(uint64_t key, float plants, uint32_t clusterSize) {
   std::vector<glm::vec2> out;
   const uint32_t clusters = clusterCount(plants, clusterSize);
   for (uint32_t c = 0; c < clusters; ++c)
     for (uint32_t s = 0; s < clusterSize; ++s)
-      if (plantFade(plants, clusterSize, c, s) >= 1.0f) out.push_back(seedPoint(key, c, s));
+      if (plantFade(plants, clusterSize, c, s) > 0.0f) out.push_back(seedPoint(key, c, s));  // grown at all
   return out;
 }
 
