@@ -8,7 +8,8 @@
 namespace vegstream::render {
 
 DetailTextures::DetailTextures(const Context& ctx, std::span<const vegetation::TerrainType> types,
-                               const DetailSettings& settings) {
+                               const DetailSettings& settings)
+    : ctx_(&ctx), settings_(settings) {
   const VkDescriptorSetLayoutBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
@@ -36,6 +37,13 @@ DetailTextures::DetailTextures(const Context& ctx, std::span<const vegetation::T
       createBufferWithData(ctx, &block, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "terrain detail uniforms");
   writeSampledImage(ctx, set_, sampler_.get(), image_.view.get(), 0);
   writeUniformBuffer(ctx, set_, uniforms_.get(), sizeof(block), 1);
+}
+
+void DetailTextures::setTypes(std::span<const vegetation::TerrainType> types) {
+  const TerrainDetailUniforms block = packTerrainDetail(types, settings_);
+  uniforms_ = createBufferWithData(*ctx_, &block, sizeof(block), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                   "terrain detail uniforms");
+  writeUniformBuffer(*ctx_, set_, uniforms_.get(), sizeof(block), 1);
 }
 
 }  // namespace vegstream::render

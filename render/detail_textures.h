@@ -21,6 +21,9 @@ class DetailTextures {
   DetailTextures(const Context& ctx, std::span<const vegetation::TerrainType> types,
                  const DetailSettings& settings = {});
 
+  // A new type table (the species catalog changed). The GPU must be idle: the block is replaced.
+  void setTypes(std::span<const vegetation::TerrainType> types);
+
   VkDescriptorSetLayout layout() const { return layout_.get(); }
   VkDescriptorSet set() const { return set_; }
   // Texture array + uniform block.
@@ -33,6 +36,8 @@ class DetailTextures {
   Sampler sampler_;
   GpuImage image_;
   GpuBuffer uniforms_;
+  const Context* ctx_ = nullptr;
+  DetailSettings settings_;
 };
 
 }  // namespace vegstream::render

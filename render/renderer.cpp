@@ -285,6 +285,7 @@ Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   return guardGpu([&]() -> Status {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");  // frames in flight read the block
     impl_->classify->setCatalog(catalog);
+    impl_->terrainPass->setTerrainTypes(vegetation::terrainTypesOf(catalog));
     impl_->hiz->setCatalog(catalog);
     impl_->blades->setCatalog(catalog);
     return {};

@@ -41,7 +41,7 @@ static_assert(offsetof(TerrainDetailUniforms, tiling) == 16);
 static_assert(offsetof(TerrainDetailUniforms, reference) == 32);
 static_assert(offsetof(TerrainDetailUniforms, weights) == 32 + 16 * vegetation::kMaxTerrainTypes);
 static_assert(sizeof(TerrainDetailUniforms) == 32 + 32 * vegetation::kMaxTerrainTypes);
-static_assert(vegetation::kMaxTerrainTypes == 8, "shaders/common/terrain_detail.glsl declares 8");
+static_assert(vegetation::kMaxTerrainTypes == 16, "shaders/common/terrain_detail.glsl declares 16");
 
 // The block for `types` (at most kMaxTerrainTypes; more are cut off) and `settings`.
 TerrainDetailUniforms packTerrainDetail(std::span<const vegetation::TerrainType> types,

@@ -96,6 +96,8 @@ class TerrainPass {
   VkDescriptorSetLayout imageryLayout() const { return imageryLayout_.get(); }
   VkDescriptorSet imagerySet() const { return imagerySet_; }
   const DetailTextures& detail() const { return detail_; }
+  // The terrain types of a new species catalog (vegetation/terrain_types.h); the GPU must be idle.
+  void setTerrainTypes(std::span<const vegetation::TerrainType> types) { detail_.setTypes(types); }
 
   // Records the uploads (outside rendering) into `cmd` for frame slot `slot`.
   void recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads, const RetireBuffer& retire);

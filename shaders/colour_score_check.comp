@@ -11,7 +11,8 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = 2, std430) readonly buffer Inputs {
   vec4 linearRgb[];  // rgb: linear colour; a: unused
 } inputs;
-// Per colour, 4 vec4: HSV + the log score of type 0; type weights 0–3; 4–7; surface weights.
+// Per colour, 6 vec4: HSV + the log score of type 0; type weights 0–3, 4–7, 8–11, 12–15;
+// surface weights.
 layout(set = 0, binding = 3, std430) writeonly buffer Outputs {
   vec4 values[];
 } outputs;
@@ -24,8 +25,7 @@ void main() {
   vec3 hsv = hsvFromLinear(inputs.linearRgb[i].rgb);
   float w[kMaxTerrainTypes];
   terrainTypeWeights(hsv, w);
-  outputs.values[4 * i + 0] = vec4(hsv, logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, hsv));
-  outputs.values[4 * i + 1] = vec4(w[0], w[1], w[2], w[3]);
-  outputs.values[4 * i + 2] = vec4(w[4], w[5], w[6], w[7]);
-  outputs.values[4 * i + 3] = detailSurfaceWeights(hsv);
+  outputs.values[6 * i + 0] = vec4(hsv, logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, hsv));
+  for (int k = 0; k < 4; ++k) outputs.values[6 * i + 1 + k] = vec4(w[4 * k], w[4 * k + 1], w[4 * k + 2], w[4 * k + 3]);
+  outputs.values[6 * i + 5] = detailSurfaceWeights(hsv);
 }

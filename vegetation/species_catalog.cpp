@@ -146,7 +146,7 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.object(obj, path)) return false;
   if (!ps.onlyKeys(obj, path,
                    {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows"}))
+                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows", "surface"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -198,6 +198,17 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   for (const auto& r : ranges)
     if (need || obj.contains(r.key))
       if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
+  out.surface = out.bare                              ? DetailSurface::Rock
+                : out.kind == RendererKind::Tree || out.kind == RendererKind::Gravel ? DetailSurface::Gravel
+                                                                                     : DetailSurface::Grass;
+  if (const auto sf = obj.find("surface"); sf != obj.end()) {
+    static const char* kNames[] = {"grass", "rock", "gravel", "sand"};
+    const std::string v = sf->is_string() ? sf->get<std::string>() : "";
+    const auto at = std::find(std::begin(kNames), std::end(kNames), v);
+    if (at == std::end(kNames))
+      return ps.fail(path + ".surface", "must be \"grass\", \"rock\", \"gravel\" or \"sand\" (got " + sf->dump() + ")");
+    out.surface = static_cast<DetailSurface>(at - std::begin(kNames));
+  }
   if (const auto sh = obj.find("shadows"); sh != obj.end()) {
     if (!sh->is_boolean()) return ps.fail(path + ".shadows", "must be true or false");
     out.shadows = sh->get<bool>();

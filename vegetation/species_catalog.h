@@ -26,7 +26,8 @@
 //         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
 //         "density_m2": 150,                               optional, > 0, ≤ 10000 (default 10)
 //         "horizon_m": 150,                                optional, > 0, ≤ 20000 (default 150)
-//         "shadows": true                                  optional (default true)
+//         "shadows": true,                                 optional (default true)
+//         "surface": "grass" | "rock" | "gravel" | "sand"  optional (default from the kind)
 //       }, … ] }
 //
 // Every key not listed is an error (a typo must not pass silently), and every error names the
@@ -47,6 +48,13 @@ namespace vegstream::vegetation {
 // How a species is drawn (one tessellation pipeline each, DESIGN.md §3.5). JSON: "grass",
 // "gravel", "flowers", "tree". The values are what the GPU sees.
 enum class RendererKind : uint32_t { Grass = 0, Gravel = 1, Flowers = 2, Tree = 3 };
+
+// The detail pattern the terrain draws close up where this species' colour is (render/
+// detail_textures.h: one texture layer each, in this order). JSON: "grass", "rock", "gravel",
+// "sand". The catalog is the one table of ground types (issue 18): the same eq. 16 scores pick
+// the species and blend the terrain's detail.
+enum class DetailSurface : uint32_t { Grass = 0, Rock = 1, Gravel = 2, Sand = 3 };
+inline constexpr uint32_t kDetailSurfaceCount = 4;
 
 const char* rendererKindName(RendererKind kind);
 
@@ -80,6 +88,9 @@ struct Species {
   // Whether its plants cast the planar shadows of §3.6. A meadow's blades cover the ground their
   // shadows would fall on; drawing them doubled the plants pass at eye height (issue 18).
   bool shadows = true;
+  // The terrain's detail under it; by default from the kind: grass and flowers grass, trees
+  // gravel (a forest floor of litter), gravel gravel, bare soil rock.
+  DetailSurface surface = DetailSurface::Grass;
 };
 
 inline constexpr size_t kMaxSpecies = 16;

@@ -7,7 +7,7 @@
 #define TERRAIN_DETAIL_SET 2
 #endif
 
-const int kMaxTerrainTypes = 8;
+const int kMaxTerrainTypes = 16;  // one per species (vegetation/terrain_types.h)
 const int kDetailSurfaces = 4;  // vegetation::DetailSurface: grass, rock, gravel, sand
 
 layout(set = TERRAIN_DETAIL_SET, binding = 1, std140) uniform TerrainDetail {
@@ -22,7 +22,9 @@ void terrainTypeWeights(vec3 hsv, out float w[kMaxTerrainTypes]) {
   int n = int(detail.params.x);
   float top = -3.4e38;
   for (int i = 0; i < kMaxTerrainTypes; ++i) {
-    w[i] = i < n ? logColourScore(detail.reference[i].xyz, detail.weights[i].xyz, detail.reference[i].w, hsv) : 0.0;
+    // Scores raised to kTerrainBlendSharpness (vegetation/terrain_types.h): d^(−p k).
+    w[i] = i < n ? logColourScore(detail.reference[i].xyz, detail.weights[i].xyz, detail.reference[i].w * 3.0, hsv)
+                 : 0.0;
     if (i < n) top = max(top, w[i]);
   }
   float sum = 0.0;

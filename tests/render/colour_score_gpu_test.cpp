@@ -63,7 +63,7 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   GpuBuffer inputs = createBuffer(ctx, sizeof(glm::vec4) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                   MemoryUse::HostUpload, "check inputs");
   std::memcpy(inputs.mapped, colours.data(), sizeof(glm::vec4) * count);
-  const VkDeviceSize outBytes = sizeof(glm::vec4) * 4 * count;
+  const VkDeviceSize outBytes = sizeof(glm::vec4) * 6 * count;
   GpuBuffer outputs =
       createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "check outputs");
 
@@ -72,7 +72,7 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
                                    {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()}};
   runComputeCheck(ctx, spv_colour_score_check_comp, bindings, std::as_bytes(std::span(&count, 1)), count,
                   "colour score check");
-  std::vector<glm::vec4> gpu(4 * count);
+  std::vector<glm::vec4> gpu(6 * count);
   std::memcpy(gpu.data(), outputs.mapped, outBytes);
 
   const auto types = veg::defaultTerrainTypes();
@@ -80,7 +80,7 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   float worstHsv = 0.0f, worstWeight = 0.0f, worstLog = 0.0f;
   for (uint32_t i = 0; i < count; ++i) {
     const glm::vec3 hsv = veg::hsvFromLinear(glm::vec3(colours[i]));
-    const glm::vec4* g = &gpu[4 * size_t{i}];
+    const glm::vec4* g = &gpu[6 * size_t{i}];
     worstHsv =
         std::max({worstHsv, veg::hueDistance(hsv.x, g[0].x), std::abs(hsv.y - g[0].y), std::abs(hsv.z - g[0].z)});
     // The score of type 0 (as a logarithm: it spans many orders of magnitude), relative.
@@ -89,12 +89,12 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
     const std::vector<float> w = veg::terrainTypeWeights(types, hsv);
     for (size_t t = 0; t < veg::kMaxTerrainTypes; ++t) {
       const float cpu = t < w.size() ? w[t] : 0.0f;
-      const float got = t < 4 ? g[1][static_cast<int>(t)] : g[2][static_cast<int>(t - 4)];
+      const float got = g[1 + t / 4][static_cast<int>(t % 4)];
       worstWeight = std::max(worstWeight, std::abs(cpu - got));
       EXPECT_NEAR(cpu, got, 1e-4f) << "colour " << i << " type " << t;
     }
     const std::vector<float> s = veg::surfaceWeights(types, hsv);
-    for (int k = 0; k < 4; ++k) EXPECT_NEAR(s[static_cast<size_t>(k)], g[3][k], 1e-4f) << "colour " << i;
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(s[static_cast<size_t>(k)], g[5][k], 1e-4f) << "colour " << i;
   }
   EXPECT_LT(worstHsv, 1e-4f);
   EXPECT_LT(worstLog, 1e-4f);

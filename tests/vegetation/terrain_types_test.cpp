@@ -1,5 +1,6 @@
-// The default terrain-type table: sane entries, and the colour score picks the type a person
-// would for typical imagery colours of the samples (8-bit sRGB as imported).
+// The terrain types are the species catalog's (issue 18: one table): sane entries, and the colour
+// score picks the type a person would for typical imagery colours of the samples (8-bit sRGB as
+// imported).
 
 #include "vegetation/terrain_types.h"
 
@@ -20,7 +21,7 @@ TEST(TerrainTypes, TheDefaultTableIsWellFormed) {
   const auto types = defaultTerrainTypes();
   ASSERT_GE(types.size(), 4u);
   ASSERT_LE(types.size(), kMaxTerrainTypes);
-  std::set<std::string_view> names;
+  std::set<std::string> names;
   std::set<DetailSurface> surfaces;
   for (const TerrainType& t : types) {
     EXPECT_TRUE(names.insert(t.name).second) << "duplicate " << t.name;
@@ -35,20 +36,51 @@ TEST(TerrainTypes, TheDefaultTableIsWellFormed) {
     EXPECT_LT(static_cast<uint32_t>(t.surface), kDetailSurfaceCount) << t.name;
   }
   EXPECT_EQ(surfaces.size(), size_t{kDetailSurfaceCount}) << "every detail layer is used by some type";
-  for (const char* want : {"meadow", "forest", "red rock", "gravel", "pale sandstone", "grey rock"})
+  for (const char* want : {"grass", "conifer", "red gravel", "dry tufts", "pale sandstone", "grey rock", "sand"})
     EXPECT_TRUE(names.count(want)) << want;
+  // The same entries as the catalog, in its order: the species' scores and their surfaces.
+  const SpeciesCatalog& c = defaultSpeciesCatalog();
+  ASSERT_EQ(types.size(), c.species.size());
+  for (size_t i = 0; i < types.size(); ++i) {
+    EXPECT_EQ(types[i].name, c.species[i].name);
+    EXPECT_EQ(types[i].score.reference, c.species[i].score.reference);
+    EXPECT_EQ(types[i].surface, c.species[i].surface);
+  }
+}
+
+TEST(TerrainTypes, ACatalogsSurfacesFollowItsKindsUnlessGiven) {
+  const auto parsed = parseSpeciesCatalog(R"({"species": [
+    {"name": "a", "reference": {"srgb": "#406030"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass",
+     "height_m": {"min": 0.1, "max": 0.2}, "stiffness": {"min": 1, "max": 2}, "width_m": {"min": 0.01, "max": 0.02},
+     "colour_modulation": {"min": 1, "max": 1}},
+    {"name": "b", "reference": {"srgb": "#204010"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "tree",
+     "height_m": {"min": 5, "max": 9}, "stiffness": {"min": 5, "max": 9}, "width_m": {"min": 1, "max": 2},
+     "colour_modulation": {"min": 1, "max": 1}},
+    {"name": "c", "reference": {"srgb": "#808080"}, "weights": {"h": 0, "s": 1, "v": 1}, "p": 2, "bare": true},
+    {"name": "d", "reference": {"srgb": "#d0c080"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "bare": true,
+     "surface": "sand"}]})", "test");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const std::vector<TerrainType> t = terrainTypesOf(*parsed);
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0].surface, DetailSurface::Grass);
+  EXPECT_EQ(t[1].surface, DetailSurface::Gravel);
+  EXPECT_EQ(t[2].surface, DetailSurface::Rock);
+  EXPECT_EQ(t[3].surface, DetailSurface::Sand);
+  const auto bad = parseSpeciesCatalog(R"({"species": [{"name": "c", "reference": {"srgb": "#808080"},
+    "weights": {"h": 0, "s": 1, "v": 1}, "p": 2, "bare": true, "surface": "lava"}]})", "test");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("species[0].surface"), std::string::npos) << bad.error().message;
 }
 
 // Colours read off the imported Zion sample (10 × 10 pixel means) and typical aerial photos.
 TEST(TerrainTypes, TypicalImageryColoursPickTheirType) {
-  EXPECT_EQ(pick(104, 120, 60), "meadow");           // a bright clearing
-  EXPECT_EQ(pick(92, 122, 52), "meadow");            // Goleta lawn
-  EXPECT_EQ(pick(36, 42, 25), "forest");             // Zion plateau forest
-  EXPECT_EQ(pick(33, 38, 25), "forest");             // forest in shadow
-  EXPECT_EQ(pick(149, 101, 88), "red rock");         // Zion red sandstone (Kolob)
-  EXPECT_EQ(pick(172, 92, 62), "red rock");          // a more saturated red wall
-  EXPECT_EQ(pick(106, 86, 77), "gravel");            // Zion desert floor
-  EXPECT_EQ(pick(78, 58, 50), "gravel");             // darker brown scree
+  EXPECT_EQ(pick(104, 120, 60), "grass");            // a bright clearing
+  EXPECT_EQ(pick(92, 122, 52), "grass");             // Goleta lawn
+  EXPECT_EQ(pick(0x38, 0x40, 0x31), "grass");        // the Kolob meadow of the coverage test
+  EXPECT_EQ(pick(0x1c, 0x24, 0x19), "conifer");      // Zion plateau forest
+  EXPECT_EQ(pick(0x14, 0x1c, 0x0d), "conifer");      // forest in shadow
+  EXPECT_EQ(pick(149, 101, 88), "red gravel");       // Zion red sandstone (Kolob)
+  EXPECT_EQ(pick(106, 86, 77), "red gravel");        // Zion desert floor
   EXPECT_EQ(pick(184, 177, 164), "pale sandstone");  // Zion white (upper Navajo) sandstone
   EXPECT_EQ(pick(208, 196, 176), "pale sandstone");  // brighter still
   EXPECT_EQ(pick(128, 128, 130), "grey rock");       // grey rock, a street
@@ -70,13 +102,14 @@ TEST(TerrainTypes, SurfaceWeightsSumPerDetailLayer) {
     EXPECT_NEAR(sumS, 1.0f, 1e-5f);
   }
   EXPECT_GT(surfaceWeights(types, hsvFromSrgb8(104, 120, 60))[size_t(DetailSurface::Grass)], 0.6f);
-  EXPECT_GT(surfaceWeights(types, hsvFromSrgb8(149, 101, 88))[size_t(DetailSurface::Rock)], 0.6f);
+  // Red sandstone: mostly rock detail (the red gravel's slickrock), the dry tufts' gravel beside.
+  EXPECT_GT(surfaceWeights(types, hsvFromSrgb8(149, 101, 88))[size_t(DetailSurface::Rock)], 0.5f);
   // A colour halfway (in HSV) between meadow and forest has a good share of both.
-  ASSERT_EQ(types[0].name, "meadow");
-  ASSERT_EQ(types[1].name, "forest");
+  ASSERT_EQ(types[0].name, "grass");
+  ASSERT_EQ(types[1].name, "conifer");
   const auto between = terrainTypeWeights(types, 0.5f * (types[0].score.reference + types[1].score.reference));
-  EXPECT_GT(between[0], 0.25f);
-  EXPECT_GT(between[1], 0.25f);
+  EXPECT_GT(between[0], 0.1f);  // (the blend is sharpened: kTerrainBlendSharpness)
+  EXPECT_GT(between[1], 0.1f);
   EXPECT_GT(between[0] + between[1], 0.8f);
 }
 
