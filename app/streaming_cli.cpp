@@ -66,6 +66,11 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Blades have full detail within this distance, n_max / d² beyond, metres")
       ->capture_default_str();
   cmd.add_flag("--no-plant-shadows", o.noPlantShadows, "No planar shadows under the plants");
+  cmd.add_option("--plant-fades", o.plantFades,
+                 "on: plants grow in and shrink away (level of detail, horizons, imagery changes); off: they "
+                 "appear and vanish at full size, for comparison")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd.add_option("--plant-shadow-m", o.plantShadowM,
                  "Planar shadows are drawn within this distance, fading out over its last quarter, metres")
       ->capture_default_str();
@@ -152,6 +157,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.plantDraw.maxSegments = static_cast<uint32_t>(o.plantSegments);
   scene.plantDraw.lodDistanceM = static_cast<float>(o.plantLodM);
   scene.plantDraw.flatColour = o.plantStyle == "coverage";
+  scene.plantDraw.fades = o.plantFades != "off";
   scene.plantDraw.shadows = !o.noPlantShadows && !scene.plantDraw.flatColour;
   scene.plantDraw.shadowDistanceM = static_cast<float>(o.plantShadowM);
   scene.occlusionCulling = o.occlusionCulling == "on";

@@ -31,6 +31,7 @@ struct StreamingCli {
   std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none
   // Plants (issue 7): density ρ and n_max of eq. 1, cluster size C, species catalog.
   double plantDensity = 0.1;   // ρ: plants per reference pixel² (1080 lines) of projected seed-triangle area
+  std::string plantFades = "on";
   double plantMax = 16384.0;   // n_max per seed triangle: a ceiling; the catalog's densities decide
   int clusterSize = 8;
   std::string species;  // a species catalog JSON file; empty: the default

@@ -62,6 +62,7 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"density_per_px2", m.plants.density},
         {"max_per_seed_triangle", m.plants.maxPerTriangle},
         {"ground_density_m2", m.plants.groundDensityM2},
+        {"fades", m.plants.fades},
         {"cluster_size", m.plants.clusterSize},
         {"species_catalog", m.plants.speciesCatalog},
         {"species", m.plants.species},

@@ -67,6 +67,7 @@ struct RecordingMeta {
     bool enabled = false;
     double density = 0.0, maxPerTriangle = 0.0;  // ρ (per pixel² of a 1080-line view), n_max (eq. 1)
     double groundDensityM2 = 0.0;                // the densest species' plants per m²
+    bool fades = true;                           // false: --plant-fades off
     uint32_t clusterSize = 0;
     std::string speciesCatalog;  // the file, or "default"
     std::string style;           // plants | markers | hidden

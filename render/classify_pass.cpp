@@ -26,7 +26,7 @@ constexpr VkDeviceSize kCounterBytes = (2 * kSpeciesSlots + 2) * sizeof(uint32_t
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
-  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull;
+  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades;
 };
 struct FinishPush {
   uint32_t verticesPerGroup, speciesCapacity, patchMask;
@@ -192,7 +192,8 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
                               clusterSize,
                               static_cast<uint32_t>(base),
                               options_.clustersPerSpecies,
-                              cull && !triangles.empty() ? 1u : 0u};
+                              cull && !triangles.empty() ? 1u : 0u,
+                              fades_ ? 0u : 1u};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
       vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);

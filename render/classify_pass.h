@@ -42,6 +42,9 @@ class ClassifyPass {
   // The species every later frame classifies into (uploaded now; waits for nothing: call it
   // before the first frame or when no frame is in flight).
   void setCatalog(const vegetation::SpeciesCatalog& catalog);
+  // false: every group is drawn at full size or not at all — the fades by size (sequence end,
+  // species horizon, imagery cross-fade) off, for comparing what they hide (`--plant-fades off`).
+  void setFades(bool on) { fades_ = on; }
 
   // Outside rendering: uploads `triangles`, bins them and records the dispatches for slot
   // `slot`. `imagery` is the imagery array the triangles' layers index, viewed as UNORM (the
@@ -89,6 +92,7 @@ class ClassifyPass {
   PipelineLayout classifyPipelineLayout_, finishPipelineLayout_;
   Pipeline classify_, finish_;
   std::array<Slot, kSlots> slots_;
+  bool fades_ = true;
 };
 
 }  // namespace vegstream::render

@@ -68,6 +68,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
                                   RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire) {
   const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify) : 0u;
   slot.timer->beginPass(cmd, "classify");
+  classify->setFades(plants.draw.fades);
   ClassifyPass::CullHook cull;
   if (plants.occlusionCulling && !plants.triangles.empty()) {
     hiz->recordBuild(cmd);

@@ -144,6 +144,9 @@ struct PlantDrawOptions {
   // Every plant fragment flat magenta (#ff00ff, the shadows' screen door aside): where plants
   // cover the ground, measured against a frame without plants (`--plant-style coverage`).
   bool flatColour = false;
+  // false: plants appear and vanish at full size — the fades by size (a sequence's end, a
+  // species' horizon, the imagery cross-fade) off, to show what they hide (`--plant-fades off`).
+  bool fades = true;
   // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry
   // front end alone costs (bench/bench_plants.cpp).

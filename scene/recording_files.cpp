@@ -85,6 +85,7 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
   m.plants.shadows = so.plantDraw.shadows;
   m.plants.shadowDistanceM = so.plantDraw.shadowDistanceM;
+  m.plants.fades = so.plantDraw.fades;
   m.plants.occlusionCulling = so.occlusionCulling;
   m.plants.bladePath = render::bladePathName(r.bladePath());
   m.plants.bladePathRequested = render::bladePathName(so.renderer.bladePath);

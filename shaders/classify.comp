@@ -37,6 +37,7 @@ layout(push_constant) uniform Push {
   uint threadBase;     // for bins split over several dispatches
   uint speciesCapacity;
   uint cull;           // 1: skip triangles with visible[t] == 0
+  uint hardFades;      // 1: a group is drawn whole or not at all (the fades off, for comparison)
 } pc;
 
 #include "species_choice.glsl"
@@ -96,6 +97,7 @@ void appendPick(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint see
   if (pick.x < 0.0) return;
   float fade = speciesFade(catalog.species[int(pick.x)], t, cluster, firstSeed) * w;
   if (fade <= 0.0) return;
+  if (pc.hardFades != 0u) fade = 1.0;
   append(tri, cluster, firstSeed, seedCount, ivec2(pick.x, 0), pick.y, fade);
 }
 

@@ -194,6 +194,38 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   }
   EXPECT_GT(compared, 1000u);
   EXPECT_LT(worst, 1e-3) << "worst root distance (m)";
+
+  // The fades off (--plant-fades off): the same groups, every one at full size.
+  std::map<std::pair<uint32_t, GroupKey>, float> withFades;
+  for (uint32_t s = 0; s < catalog.species.size(); ++s)
+    for (uint32_t i = 0; i < std::min(figures.groups[s], capacity); ++i) {
+      const PlantClusterGpu& g = records[size_t{s} * capacity + i];
+      withFades[{s, {g.triangle, g.cluster, g.firstSeed}}] = g.fade;
+    }
+  ASSERT_TRUE(std::any_of(withFades.begin(), withFades.end(), [](const auto& e) { return e.second < 0.99f; }));
+  pass.setFades(false);
+  VegetationFigures hard;
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    hard = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize, 0,
+                       [](GpuBuffer&&) {});
+  });
+  pass.readFigures(0, hard);
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy all{0, 0, recordsHost.size};
+    vkCmdCopyBuffer(cmd, pass.records(0), recordsHost.get(), 1, &all);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  size_t hardGroups = 0;
+  for (uint32_t s = 0; s < catalog.species.size(); ++s) {
+    EXPECT_EQ(hard.groups[s], figures.groups[s]) << catalog.species[s].name;
+    for (uint32_t i = 0; i < std::min(hard.groups[s], capacity); ++i) {
+      const PlantClusterGpu& g = records[size_t{s} * capacity + i];
+      EXPECT_EQ(g.fade, 1.0f);
+      EXPECT_TRUE(withFades.count({s, {g.triangle, g.cluster, g.firstSeed}}));
+      ++hardGroups;
+    }
+  }
+  EXPECT_EQ(hardGroups, withFades.size());
   std::printf(
       "classify: %zu groups (CPU), %zu (GPU), %zu CPU-only and %zu GPU-only (all precision-sensitive), "
       "%llu plants, %u bins; roots compared %zu, worst %.2e m\n",
