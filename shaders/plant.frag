@@ -28,6 +28,17 @@ float ditherThreshold() {
   return (bayer[p.y * 4 + p.x] + 0.5) / 16.0;
 }
 
+// The blade's detail texture (core seed 001 §2.4: a texture along the blade), procedural in the
+// blade's own coordinates so it costs no fetch and looks the same at every distance: a lighter
+// midrib, darker margins and faint parallel veins across the width, the lengthwise tone left to
+// the per-vertex occlusion. 1 for stones and heads.
+float bladeDetail(uint kind) {
+  if (kind != 0u) return 1.0;
+  float ax = abs(gBlade.x);
+  return 1.0 + 0.18 * (1.0 - smoothstep(0.0, 0.2, ax)) - 0.14 * smoothstep(0.4, 0.95, ax) +
+         0.05 * cos(15.7 * gBlade.x);
+}
+
 void main() {
   bool shadow = (gFlags & 4u) != 0u;
   uint kind = gFlags & 3u;
@@ -47,6 +58,6 @@ void main() {
   uint bits = (k >= 32u ? 0xffffffffu : (1u << k) - 1u);
   uint mask = ((bits << first) | (bits >> (samples - first))) & ((samples >= 32u ? 0xffffffffu : (1u << samples) - 1u));
   gl_SampleMask[0] = int(mask);
-  vec3 lit = (pc.flags & kFlagFlatColour) != 0u ? vec3(1.0, 0.0, 1.0) : gColour;
+  vec3 lit = (pc.flags & kFlagFlatColour) != 0u ? vec3(1.0, 0.0, 1.0) : gColour * bladeDetail(kind);
   outColor = vec4(shadow ? vec3(0.0) : lit, 1.0);
 }
