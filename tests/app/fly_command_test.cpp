@@ -14,25 +14,14 @@
 #include "flight/record_table.h"
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
+#include "tests/support/zion_sample.h"
 #include "tests/support/virtual_display.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 
-// The Zion sample imported (heights + Landsat colour) by this build's vegstream, once for all
-// the test processes (cachedFixture); made on first use, never at static-initialisation time
-// (which also runs when the build lists the tests).
-Result<fs::path> zionDataset() {
-  return cachedFixture("fly-zion", vegstreamKey(), [](const fs::path& dir) -> Status {
-    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
-    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
-    if (r.exitCode != 0)
-      return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
-    return {};
-  });
-}
+Result<fs::path> zionDataset() { return zionSampleDataset(); }
 
 // Every fly test runs over the imported Zion sample: a test whose dataset could not be made fails.
 class FlyCommand : public ::testing::Test {

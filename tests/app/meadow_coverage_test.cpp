@@ -23,6 +23,7 @@
 
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
+#include "tests/support/zion_sample.h"
 
 namespace vegstream {
 namespace {
@@ -34,13 +35,7 @@ constexpr double kVerticalFovDeg = 55.0;  // render/frame_types.h CameraState
 constexpr int kW = 320, kH = 180, kTopRows = 15;
 
 fs::path zionDataset() {
-  const auto dir = testing::cachedFixture("zion-sample", testing::vegstreamKey(), [](const fs::path& out) -> Status {
-    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
-    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + out.string() + "'");
-    if (r.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream import: " + r.err);
-    return {};
-  });
+  const auto dir = testing::zionSampleDataset();
   if (!dir.ok()) {
     ADD_FAILURE() << dir.error().message;
     return "/nonexistent/zion";

@@ -15,22 +15,13 @@
 
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
+#include "tests/support/zion_sample.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 
-// The Zion sample imported by this build's vegstream, once for all the test processes.
-Result<fs::path> zionDataset() {
-  return cachedFixture("snapshot-zion", vegstreamKey(), [](const fs::path& dir) -> Status {
-    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
-    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
-    if (r.exitCode != 0)
-      return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
-    return {};
-  });
-}
+Result<fs::path> zionDataset() { return zionSampleDataset(); }
 
 // 2 m above a grassy clearing of the Kolob plateau (37.457 N, 113.022 W), looking north and a
 // little down: grass from the camera's feet to the forest.
