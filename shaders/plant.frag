@@ -28,11 +28,22 @@ float ditherThreshold() {
   return (bayer[p.y * 4 + p.x] + 0.5) / 16.0;
 }
 
+// A stone's outline in its diamond (x across, 2y − 1 up: the diamond |x| + |y| ≤ 1): a lumpy
+// disc inside it instead of the diamond's corners, so gravel reads as pebbles, not tiles.
+float pebbleEdge() {
+  vec2 q = vec2(gBlade.x, 2.0 * gBlade.y - 1.0);
+  return 0.64 + 0.06 * cos(3.0 * atan(q.y, q.x + 1e-6));
+}
+
 // The blade's detail texture (core seed 001 §2.4: a texture along the blade), procedural in the
 // blade's own coordinates so it costs no fetch and looks the same at every distance: a lighter
 // midrib, darker margins and faint parallel veins across the width, the lengthwise tone left to
 // the per-vertex occlusion. 1 for stones and heads.
 float bladeDetail(uint kind) {
+  if (kind == 1u) {  // a stone: rounded, darker towards its rim
+    vec2 q = vec2(gBlade.x, 2.0 * gBlade.y - 1.0);
+    return 1.12 - 0.35 * dot(q, q);
+  }
   if (kind != 0u) return 1.0;
   float ax = abs(gBlade.x);
   return 1.0 + 0.18 * (1.0 - smoothstep(0.0, 0.2, ax)) - 0.14 * smoothstep(0.4, 0.95, ax) +
@@ -44,11 +55,15 @@ void main() {
   uint kind = gFlags & 3u;
   float alpha = 1.0;
   if (shadow)
-    alpha = kShadowAlpha * gColour.r;  // gColour.r: the shadow's fade (plant_shape.glsl)
+    alpha = kShadowAlpha * gColour.r *  // gColour.r: the shadow's fade (plant_shape.glsl); a stone's is round too
+            (kind == 1u ? 1.0 - smoothstep(pebbleEdge() - 0.1, pebbleEdge(), length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)))
+                        : 1.0);
   else if (kind == 0u)
     alpha = 1.0 - smoothstep(0.6, 1.0, abs(gBlade.x));
   else if (kind == 2u)
     alpha = 1.0 - smoothstep(0.75, 1.0, length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)));
+  else if (kind == 1u)
+    alpha = 1.0 - smoothstep(pebbleEdge() - 0.1, pebbleEdge(), length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)));
   // Alpha to coverage: k of the n samples, k = ⌊alpha · n + dither⌋, starting at a per-pixel sample.
   uint samples = max((pc.flags >> 8) & 0xffu, 1u);
   float d = ditherThreshold();
