@@ -53,17 +53,14 @@ float bladeDetail(uint kind) {
 void main() {
   bool shadow = (gFlags & 4u) != 0u;
   uint kind = gFlags & 3u;
-  float alpha = 1.0;
-  if (shadow)
-    alpha = kShadowAlpha * gColour.r *  // gColour.r: the shadow's fade (plant_shape.glsl); a stone's is round too
-            (kind == 1u ? 1.0 - smoothstep(pebbleEdge() - 0.1, pebbleEdge(), length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)))
-                        : 1.0);
-  else if (kind == 0u)
-    alpha = 1.0 - smoothstep(0.6, 1.0, abs(gBlade.x));
-  else if (kind == 2u)
-    alpha = 1.0 - smoothstep(0.75, 1.0, length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)));
-  else if (kind == 1u)
-    alpha = 1.0 - smoothstep(pebbleEdge() - 0.1, pebbleEdge(), length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0)));
+  // The outline: a blade's soft edges, a flower head's disc, a stone's lumpy disc. A shadow is
+  // drawn at 35 % coverage (less where it fades out: gColour.r, plant_shape.glsl), a head's and
+  // a stone's in their outline (a blade's shadow is a streak a pixel or two wide: its whole quad).
+  float r = length(vec2(gBlade.x, 2.0 * gBlade.y - 1.0));
+  float shape = kind == 0u   ? 1.0 - smoothstep(0.6, 1.0, abs(gBlade.x))
+                : kind == 2u ? 1.0 - smoothstep(0.75, 1.0, r)
+                             : 1.0 - smoothstep(pebbleEdge() - 0.1, pebbleEdge(), r);
+  float alpha = shadow ? kShadowAlpha * gColour.r * (kind == 0u ? 1.0 : shape) : shape;
   // Alpha to coverage: k of the n samples, k = ⌊alpha · n + dither⌋, starting at a per-pixel sample.
   uint samples = max((pc.flags >> 8) & 0xffu, 1u);
   float d = ditherThreshold();
