@@ -145,7 +145,8 @@ struct PlantDrawOptions {
   // cover the ground, measured against a frame without plants (`--plant-style coverage`).
   bool flatColour = false;
   // false: plants appear and vanish at full size — the fades by size (a sequence's end, a
-  // species' horizon, the imagery cross-fade) off, to show what they hide (`--plant-fades off`).
+  // species' horizon, the imagery cross-fade) and the segment morph off, to show what they hide
+  // (`--plant-fades off`).
   bool fades = true;
   // The speed-of-light pipeline instead of each kind's: the same patches, blades and segments
   // with the simplest shaders (straight lines, constant colour, no shadows) — what the geometry

@@ -121,6 +121,7 @@ PlantPush PlantPass::pushFor(uint32_t species, const ClassifyPass& classify, con
   flags |= samples_ << kPlantSamplesShift;  // the fragment stage's computed alpha-to-coverage
   if (options.fullDetail) flags |= kPlantFlagFullDetail;
   if (options.flatColour) flags |= kPlantFlagFlatColour;
+  if (!options.fades) flags |= kPlantFlagHardFades;
   return PlantPush{species,
                    classify.clustersPerSpecies(),
                    options.maxSegments,

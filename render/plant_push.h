@@ -16,6 +16,6 @@ static_assert(sizeof(PlantPush) == 36);
 
 // PlantPush::flags.
 inline constexpr uint32_t kPlantFlagShadows = 1, kPlantFlagFlatColour = 2, kPlantFlagFullDetail = 4,
-                          kPlantSamplesShift = 8;
+                          kPlantSamplesShift = 8, kPlantFlagHardFades = 1u << 16;
 
 }  // namespace vegstream::render

@@ -51,6 +51,7 @@ uvec2 plantSize(uint kind, uint n) {
 }
 
 uint gKind, gPlantWord;
+float gGrown;  // groupLod's z: how far the blade's last segment has grown in
 vec4 gPlane;
 vec4 gGroundMod;  // the imagery colour under the root (rgb) and the plant's colour modulation (a)
 uint gVertex;  // next vertex to write
@@ -110,7 +111,7 @@ uint putPlant(PlantParams p, uint n, bool shadow, uint at) {
   BladeVertexFrame tip;
   for (uint j = 0u; j <= n; ++j) {
     float x = float(j) / float(n);
-    BladeVertexFrame f = bladeVertexFrame(p, x);
+    BladeVertexFrame f = morphedBladeFrame(p, j, n, gGrown);
     float halfWidth;
     if (gKind == kGrass)  // never thinner than 1.5 pixels, tapering to the tip
       halfWidth = 0.5 * max(p.width, 1.5 * metresPerPixel(length(f.pos))) * pow(1.0 - x, 0.7);
@@ -145,7 +146,7 @@ void main() {
   if (gi < classifyDraws[pc.species].y) {
     PlantCluster g = records[pc.species * pc.speciesCapacity + gi];
     SeedTriangle t = triangles[g.triangle];
-    vec2 lod = groupLod(g, t);
+    vec3 lod = groupLod(g, t);
     n = uint(lod.y);
     kind = catalog.species[g.species].flags.y;
     vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
@@ -211,6 +212,7 @@ void main() {
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
     gGroundMod = vec4(groundColour(t, r), p.colourModulation);
     gKind = kindK;
+    gGrown = groupLod(g, t).z;
     gPlantWord = pAt | ((kindK == kGravel ? 1u : 0u) << kBladeKindShift);
     gVertex = vAt;
     uint at = putPlant(p, segs, false, iAt);

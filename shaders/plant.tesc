@@ -20,7 +20,7 @@ void main() {
   group = gi;
   PlantCluster g = records[pc.species * pc.speciesCapacity + gi];
   SeedTriangle t = triangles[g.triangle];
-  vec2 lod = groupLod(g, t);
+  vec3 lod = groupLod(g, t);
   gl_TessLevelOuter[0] = lod.x > 0.5 ? float(g.seedCount) : 0.0;
   gl_TessLevelOuter[1] = lod.y;
 }

@@ -10,6 +10,7 @@ layout(isolines, equal_spacing) in;
 #include "seeding.glsl"
 #include "classify_layout.glsl"
 #include "plant_common.glsl"
+#include "plant_lod.glsl"
 
 layout(location = 0) patch in uint group;
 layout(location = 0) out vec3 outPos;      // camera-relative
@@ -28,8 +29,11 @@ void main() {
   uint l = min(uint(gl_TessCoord.y * float(lines) + 0.5), lines - 1u);
   uint seed = g.firstSeed + l;
   PlantParams p = plantParams(g, t, seed);
-  float x = gl_TessCoord.x;
-  BladeVertexFrame f = bladeVertexFrame(p, x);
+  // Vertex j of n (equal spacing: x = j / n, taken exactly as the compute path does).
+  uint n = max(uint(gl_TessLevelOuter[1] + 0.5), 1u);
+  uint j = min(uint(gl_TessCoord.x * float(n) + 0.5), n);
+  float x = float(j) / float(n);
+  BladeVertexFrame f = morphedBladeFrame(p, j, n, groupLod(g, t).z);
   outPos = f.pos;
   outSide = f.side;
   outNormal = f.normal;
@@ -37,7 +41,7 @@ void main() {
   vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
   outGround = groundColour(t, r);
   outPlant = vec4(p.width, p.colourModulation, p.height, p.sPrime);
-  vec3 n = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
-  outPlane = vec4(n, -dot(n, t.v0.xyz));
+  vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
+  outPlane = vec4(nrm, -dot(nrm, t.v0.xyz));
   outNearest = shadowNearestM(g, t);
 }

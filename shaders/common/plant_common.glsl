@@ -28,6 +28,7 @@ layout(push_constant) uniform PlantPush {
 const uint kFlagShadows = 1u;
 const uint kFlagFlatColour = 2u;  // plant.frag: flat magenta, for coverage measures
 const uint kFlagFullDetail = 4u;
+const uint kFlagHardFades = 65536u;  // --plant-fades off: segment counts step, no morph
 
 #include "plant_params.glsl"
 
@@ -77,6 +78,20 @@ BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
   f.side = vec3(-dir.y, dir.x, 0.0);
   vec3 tangent = dir * sin(shape.z) + up * cos(shape.z);
   f.normal = normalize(cross(f.side, tangent));
+  return f;
+}
+
+// Vertex j of a blade of n segments whose last segment has grown in by `grown` (groupLod's z):
+// the solved shape at x = j / n, moved towards the (n − 1)-segment polyline at the same x by
+// 1 − grown, so a blade gaining or losing a segment changes shape continuously (both blade paths).
+BladeVertexFrame morphedBladeFrame(PlantParams p, uint j, uint n, float grown) {
+  float x = float(j) / float(n);
+  BladeVertexFrame f = bladeVertexFrame(p, x);
+  if (grown >= 1.0 || n <= 1u) return f;
+  float s = x * float(n - 1u);
+  float k0 = min(floor(s), float(n - 2u));
+  vec3 a = bladeVertexFrame(p, k0 / float(n - 1u)).pos, b = bladeVertexFrame(p, (k0 + 1.0) / float(n - 1u)).pos;
+  f.pos = mix(mix(a, b, s - k0), f.pos, grown);
   return f;
 }
 

@@ -16,16 +16,24 @@ bool sphereVisible(vec3 c, float r) {
   return true;
 }
 
-// x: 1 when the group is in view, else 0; y: segments per blade (1 … n_max, a whole number).
-vec2 groupLod(PlantCluster g, SeedTriangle t) {
+// x: 1 when the group is in view, else 0; y: segments per blade (1 … n_max, a whole number);
+// z: how far the last segment has grown in, 0 … 1 (issue 18: segment counts morph instead of
+// stepping). The blade has y segments; at z = 0 its vertices lie on the (y − 1)-segment blade's
+// polyline (morphedBladeFrame, plant_common.glsl), at 1 on the solved shape.
+vec3 groupLod(PlantCluster g, SeedTriangle t) {
   Species sp = catalog.species[g.species];
   vec3 centre = (t.v0.xyz + t.v1.xyz + t.v2.xyz) / 3.0;
   float radius = max(max(length(t.v0.xyz - centre), length(t.v1.xyz - centre)), length(t.v2.xyz - centre)) +
                  sp.heightStiffness.y;
   bool visible = sphereVisible(centre, radius);
   float d = max(length(centre) - radius, 0.0) / pc.lodDistanceM;
-  float n = (pc.flags & kFlagFullDetail) != 0u ? float(pc.maxSegments)
-                                                 : ceil(float(pc.maxSegments) / pow(max(d, 1.0), 2.0));
-  if (sp.flags.y == 1u) n = 1.0;  // gravel: one particle per plant, no segments to bend
-  return vec2(visible ? 1.0 : 0.0, clamp(n, 1.0, float(pc.maxSegments)));
+  float nf = (pc.flags & kFlagFullDetail) != 0u ? float(pc.maxSegments) : float(pc.maxSegments) / pow(max(d, 1.0), 2.0);
+  float n = clamp(ceil(nf), 1.0, float(pc.maxSegments));
+  float grown = n <= 1.0 ? 1.0 : clamp(nf - (n - 1.0), 0.0, 1.0);
+  if ((pc.flags & kFlagHardFades) != 0u) grown = 1.0;
+  if (sp.flags.y == 1u) {  // gravel: one particle per plant, no segments to bend
+    n = 1.0;
+    grown = 1.0;
+  }
+  return vec3(visible ? 1.0 : 0.0, n, grown);
 }
