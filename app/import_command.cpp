@@ -89,6 +89,19 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
     g.imagery.stretch = *s;
   }
   g.imagery.maxPixels = o.maxPixels;
+  if (!o.imageryNir.empty()) {
+    datasets::NirInput nir;
+    nir.file = o.imageryNir;
+    nir.maxPixels = o.maxPixels;
+    if (!o.imageryNirCrs.empty()) {
+      auto e = epsgOption("--imagery-nir-crs", o.imageryNirCrs);
+      if (!e) return e.error();
+      nir.assumeEpsg = *e;
+    }
+    g.nir = std::move(nir);
+  } else if (!o.imageryNirCrs.empty()) {
+    return userError("--imagery-nir-crs states the CRS of --imagery-nir FILE, which was not given");
+  }
   auto enc = datasets::parseElevationEncoding(o.encoding);
   if (!enc) return enc.error();
   g.encoding = *enc;
@@ -144,6 +157,10 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--dem", o.dem, "DEM GeoTIFF (heights in metres)");
   cmd->add_option("--imagery", o.imagery, "Imagery GeoTIFF: RGB(A) or grey, any supported CRS");
   cmd->add_option("--imagery-bands", o.imageryBands, "Imagery as three single-band GeoTIFFs R.tif,G.tif,B.tif");
+  cmd->add_option("--imagery-nir", o.imageryNir,
+                  "Near-infrared GeoTIFF (one band, any supported CRS) → an NDVI layer with the imagery's red");
+  cmd->add_option("--imagery-nir-crs", o.imageryNirCrs,
+                  "The NIR file's CRS (EPSG:N) when its GeoKeys are missing or wrong");
   cmd->add_option("--stretch", o.stretch, "Colour stretch to 0…255: percentiles p1,p99 or values LO,HI");
   cmd->add_option("--height-resampling", o.heightResampling,
                   "bilinear, or cubic (Catmull-Rom: keeps the DEM's values at its pixel centres without kinks)")
@@ -187,9 +204,10 @@ int runImport(const ImportOptions& o, const Logger& log) {
     auto g = geoTiffOptions(o);
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
-    if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty())
-      meta =
-          userError("--imagery, --imagery-bands and --stretch go with --dem; use --xyz-imagery with --xyz-elevation");
+    if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty())
+      meta = userError(
+          "--imagery, --imagery-bands, --imagery-nir and --stretch go with --dem; use --xyz-imagery with "
+          "--xyz-elevation");
     else
       meta = runXyz(o, log, progress);
   }
@@ -201,12 +219,13 @@ int runImport(const ImportOptions& o, const Logger& log) {
     return 130;
   }
   if (!meta) return reportError(log, meta.error());
-  const uint64_t tiles = meta->elevationTiles + meta->imageryTiles;
+  const uint64_t tiles = meta->elevationTiles + meta->imageryTiles + meta->ndviTiles;
   const double s = progress.seconds();
+  const std::string ndvi = meta->ndvi ? ", " + std::to_string(meta->ndviTiles) + " NDVI" : std::string();
   log->info(
-      "imported {}: {} tiles ({} elevation, {} imagery), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
+      "imported {}: {} tiles ({} elevation, {} imagery{}), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
       "{:.2f} s ({:.0f} tiles/s) → {}",
-      meta->name, tiles, meta->elevationTiles, meta->imageryTiles, meta->minZoom, meta->maxZoom, meta->minHeightM,
+      meta->name, tiles, meta->elevationTiles, meta->imageryTiles, ndvi, meta->minZoom, meta->maxZoom, meta->minHeightM,
       meta->maxHeightM, static_cast<double>(meta->bytes) / 1048576.0, s, s > 0 ? static_cast<double>(tiles) / s : 0.0,
       o.out);
   return kExitOk;

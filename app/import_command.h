@@ -18,6 +18,7 @@ namespace vegstream::app {
 struct ImportOptions {
   // GeoTIFF form.
   std::string dem, imagery, imageryBands, stretch, demCrs, imageryCrs;
+  std::string imageryNir, imageryNirCrs;  // near-infrared band → the NDVI layer
   double demNodata = 0.0;
   std::string heightResampling = "bilinear";
   // XYZ form.

@@ -20,13 +20,13 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ZoomCounts {
-  uint64_t elevation = 0, imagery = 0, bytes = 0;
+  uint64_t elevation = 0, imagery = 0, ndvi = 0, bytes = 0;
 };
 
-// Tiles on disk under DIR/{elevation,imagery}/{z}/{x}/{y}.ext, per zoom.
+// Tiles on disk under DIR/{elevation,imagery,ndvi}/{z}/{x}/{y}.ext, per zoom.
 std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
   std::map<int, ZoomCounts> zooms;
-  for (const char* kind : {"elevation", "imagery"}) {
+  for (const char* kind : {"elevation", "imagery", "ndvi"}) {
     std::error_code ec;
     const fs::path root = dir / kind;
     if (!fs::is_directory(root, ec)) continue;
@@ -36,7 +36,7 @@ std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
       const std::string zText = it->path().parent_path().parent_path().filename().string();
       if (zText.empty() || zText.find_first_not_of("0123456789") != std::string::npos || zText.size() > 2) continue;
       ZoomCounts& c = zooms[std::stoi(zText)];
-      (kind[0] == 'e' ? c.elevation : c.imagery) += 1;
+      (kind[0] == 'e' ? c.elevation : kind[0] == 'i' ? c.imagery : c.ndvi) += 1;
       const auto size = it->file_size(ec);
       if (!ec) c.bytes += size;
     }
@@ -58,17 +58,30 @@ int runInfo(const InfoOptions& options, const Logger& log) {
     crsNames.insert(s.crs);
   }
   nlohmann::json perZoom = nlohmann::json::array();
-  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, bytesOnDisk = 0;
+  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, bytesOnDisk = 0;
   for (const auto& [z, c] : countTiles(reader->dir())) {
-    perZoom.push_back({{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}});
+    nlohmann::json zoom = {{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}};
+    if (m.ndvi) zoom["ndvi"] = c.ndvi;
+    perZoom.push_back(zoom);
     elevationOnDisk += c.elevation;
     imageryOnDisk += c.imagery;
+    ndviOnDisk += c.ndvi;
     bytesOnDisk += c.bytes;
   }
   if (elevationOnDisk != m.elevationTiles || imageryOnDisk != m.imageryTiles)
     log->warn("{}: dataset.json counts {} elevation and {} imagery tiles, the directory holds {} and {}",
               options.dataset, m.elevationTiles, m.imageryTiles, elevationOnDisk, imageryOnDisk);
+  if (ndviOnDisk != m.ndviTiles)
+    log->warn("{}: dataset.json counts {} NDVI tiles, the directory holds {}", options.dataset, m.ndviTiles,
+              ndviOnDisk);
 
+  nlohmann::json tiles = {{"elevation", m.elevationTiles},
+                         {"imagery", m.imageryTiles},
+                         {"per_zoom", perZoom},
+                         {"on_disk", {{"elevation", elevationOnDisk}, {"imagery", imageryOnDisk}}}};
+  // The NDVI layer (import --imagery-nir); null when the dataset has none.
+  tiles["ndvi"] = m.ndvi ? nlohmann::json(m.ndviTiles) : nlohmann::json(nullptr);
+  if (m.ndvi) tiles["on_disk"]["ndvi"] = ndviOnDisk;
   const nlohmann::json out = {
       {"name", m.name},
       {"path", fs::absolute(reader->dir()).lexically_normal().string()},
@@ -87,11 +100,7 @@ int runInfo(const InfoOptions& options, const Logger& log) {
       {"tile_size", m.tileSize},
       {"elevation_encoding", datasets::toString(m.elevationEncoding)},
       {"imagery_format", m.imagery ? nlohmann::json(datasets::toString(*m.imagery)) : nlohmann::json(nullptr)},
-      {"tiles",
-       {{"elevation", m.elevationTiles},
-        {"imagery", m.imageryTiles},
-        {"per_zoom", perZoom},
-        {"on_disk", {{"elevation", elevationOnDisk}, {"imagery", imageryOnDisk}}}}},
+      {"tiles", tiles},
       {"bytes", m.bytes},
       {"bytes_on_disk", bytesOnDisk},
       {"attribution", m.attribution}};

@@ -69,6 +69,8 @@ int runQuery(const QueryOptions& options, const Logger& log) {
   }
   auto color = reader->colorAt(options.latDeg, options.lonDeg);
   if (!color) return reportError(log, color.error());
+  auto ndvi = reader->ndviAt(options.latDeg, options.lonDeg);
+  if (!ndvi) return reportError(log, ndvi.error());
 
   nlohmann::json out = {
       {"dataset", reader->meta().name}, {"lat", options.latDeg}, {"lon", options.lonDeg}, {"height_m", *height}};
@@ -82,6 +84,11 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     out["color"] = nullptr;  // no imagery: no colour to choose a species from
     out["species"] = nullptr;
   }
+  // Four decimals: the layer's step is 1/127, so more digits would only print the float.
+  if (*ndvi)
+    out["ndvi"] = std::round(static_cast<double>(**ndvi) * 1e4) / 1e4;
+  else
+    out["ndvi"] = nullptr;  // no NDVI layer (import --imagery-nir), or none at the point
   std::cout << out.dump(2) << "\n";
   return kExitOk;
 }

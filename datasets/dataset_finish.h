@@ -22,7 +22,7 @@ int singleTileZoom(const std::vector<geo::TileId>& tiles);
 uint64_t fileBytes(const std::filesystem::path& path);
 
 // meta: maxZoom / minZoom set, the max-zoom tiles already counted in elevationTiles /
-// imageryTiles / bytes. Builds zooms maxZoom−1 … minZoom under dir, then writes dataset.json.
+// imageryTiles / ndviTiles / bytes. Builds zooms maxZoom−1 … minZoom under dir, then writes dataset.json.
 // `threads` and `tasks` as in parallelFor.
 Result<DatasetMeta> finishDataset(const std::filesystem::path& dir, DatasetMeta meta, ProgressSink& progress,
                                   int threads, int jpegQuality, TaskRunner* tasks = nullptr);

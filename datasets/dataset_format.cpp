@@ -8,7 +8,12 @@
 //     "min_height_m": 1024.0, "max_height_m": 2892.0,
 //     "elevation": { "encoding": "terrarium", "tiles": "elevation/{z}/{x}/{y}.png", "tile_count": N },
 //     "imagery":   { "format": "jpeg", "tiles": "imagery/{z}/{x}/{y}.jpg", "tile_count": N }  (or null)
+//     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
 //     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
+//
+// "ndvi" (import --imagery-nir) came after format version 1 was fixed: a dataset.json without
+// the key reads as one without an NDVI layer, so datasets written before it keep working; a key
+// that is there is checked like every other field. "ndvi8" is tile_codec.h's ndviToByte.
 
 #include "datasets/dataset_format.h"
 
@@ -26,6 +31,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr const char* kMetaFile = "dataset.json";
+constexpr const char* kNdviEncoding = "ndvi8";
 
 const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
 
@@ -141,6 +147,17 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     m.imageryTiles = static_cast<uint64_t>(count);
   }
 
+  if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null()) {
+    if (!nd->is_object()) return f.bad("ndvi", "must be an object or null");
+    std::string ndviEnc;
+    VEG_TRY_ASSIGN(ndviEnc, f.text(*nd, "encoding", "ndvi.encoding"));
+    if (ndviEnc != kNdviEncoding)
+      return f.bad("ndvi.encoding", concat("is '", ndviEnc, "'; expected ", kNdviEncoding));
+    VEG_TRY_ASSIGN(count, f.integer(*nd, "tile_count", "ndvi.tile_count", 0, INT64_MAX));
+    m.ndvi = true;
+    m.ndviTiles = static_cast<uint64_t>(count);
+  }
+
   VEG_TRY_ASSIGN(m.attribution, f.text(j, "attribution", "attribution"));
   const json* src = nullptr;
   VEG_TRY_ASSIGN(src, f.get(j, "sources", "sources"));
@@ -173,6 +190,8 @@ json toJson(const DatasetMeta& m) {
                {"tiles", concat("imagery/{z}/{x}/{y}.", imageryExtension(*m.imagery))},
                {"tile_count", m.imageryTiles}};
   }
+  json ndvi = nullptr;
+  if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};
   return json{{"format_version", m.formatVersion},
               {"name", m.name},
               {"bounds",
@@ -190,6 +209,7 @@ json toJson(const DatasetMeta& m) {
                 {"tiles", "elevation/{z}/{x}/{y}.png"},
                 {"tile_count", m.elevationTiles}}},
               {"imagery", imagery},
+              {"ndvi", ndvi},
               {"attribution", m.attribution},
               {"sources", sources},
               {"bytes", m.bytes}};
@@ -251,6 +271,10 @@ fs::path elevationTilePath(const fs::path& datasetDir, const geo::TileId& id) {
 
 fs::path imageryTilePath(const fs::path& datasetDir, const geo::TileId& id, ImageryFormat f) {
   return datasetDir / "imagery" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".", imageryExtension(f));
+}
+
+fs::path ndviTilePath(const fs::path& datasetDir, const geo::TileId& id) {
+  return datasetDir / "ndvi" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".png");
 }
 
 }  // namespace vegstream::datasets

@@ -6,6 +6,8 @@
 //   DIR/elevation/{z}/{x}/{y}.png         RGBA PNG, height in RGB (terrarium or terrain-RGB),
 //                                         alpha 0 = nodata (a mask, never a zero height)
 //   DIR/imagery/{z}/{x}/{y}.jpg|png       RGB JPEG or RGBA PNG (alpha 0 = no data)
+//   DIR/ndvi/{z}/{x}/{y}.png              optional: 8-bit grey PNG, NDVI from the near-infrared
+//                                         and red bands (tile_codec.h ndviToByte; 0 = no data)
 //
 // XYZ Web Mercator scheme, rows counted from the north, 256-pixel tiles, pixel (i, j) of a tile
 // sampled at its centre, so any static server can serve a dataset and QGIS/MapLibre read it.
@@ -55,6 +57,8 @@ struct DatasetMeta {
   std::vector<SourceInfo> sources;
   uint64_t elevationTiles = 0;
   uint64_t imageryTiles = 0;
+  bool ndvi = false;  // an NDVI layer (import --imagery-nir); false: datasets as before
+  uint64_t ndviTiles = 0;
   uint64_t bytes = 0;  // all tile files together
 };
 
@@ -67,5 +71,6 @@ Status writeDatasetMeta(const std::filesystem::path& datasetDir, const DatasetMe
 
 std::filesystem::path elevationTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
 std::filesystem::path imageryTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id, ImageryFormat f);
+std::filesystem::path ndviTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
 
 }  // namespace vegstream::datasets

@@ -112,18 +112,36 @@ Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::Til
   const Key key{id, true};
   if (const Entry* e = cached(key)) return e->color;
   Entry entry{key, nullptr, nullptr};
+  std::optional<ColorTile> tile;
+  std::error_code ec;
   if (meta_.imagery) {
     const fs::path path = imageryTilePath(dir_, id, *meta_.imagery);
-    std::error_code ec;
     if (fs::exists(path, ec)) {
-      auto tile = readColorTile(path, id);
-      if (!tile) return tile.error();
-      if (tile->size != meta_.tileSize)
+      auto t = readColorTile(path, id);
+      if (!t) return t.error();
+      if (t->size != meta_.tileSize)
         return makeError(ErrorKind::InvalidInput, fmt::format("{}: tile is {} pixels wide, dataset.json says {}",
-                                                              path.string(), tile->size, meta_.tileSize));
-      entry.color = std::make_shared<const ColorTile>(std::move(*tile));
-      ++decoded_;
+                                                              path.string(), t->size, meta_.tileSize));
+      tile = std::move(*t);
     }
+  }
+  if (meta_.ndvi) {
+    const fs::path path = ndviTilePath(dir_, id);
+    if (fs::exists(path, ec)) {
+      auto n = readNdviTile(path, id, meta_.tileSize);  // checks the size
+      if (!n) return n.error();
+      if (!tile) {
+        tile.emplace();
+        tile->id = id;
+        tile->size = meta_.tileSize;
+        tile->rgba.assign(static_cast<size_t>(meta_.tileSize) * static_cast<size_t>(meta_.tileSize) * 4, 0);
+      }
+      tile->ndvi = std::move(*n);
+    }
+  }
+  if (tile) {
+    entry.color = std::make_shared<const ColorTile>(std::move(*tile));
+    ++decoded_;
   }
   insert(entry);
   return entry.color;
@@ -192,6 +210,31 @@ Result<std::optional<Rgb8>> DatasetReader::colorAt(double latDeg, double lonDeg)
     }
   }
   return std::optional<Rgb8>{};
+}
+
+Result<std::optional<float>> DatasetReader::ndviAt(double latDeg, double lonDeg) {
+  if (!meta_.ndvi || !contains(latDeg, lonDeg)) return std::optional<float>{};
+  const int size = meta_.tileSize;
+  for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
+    const Footprint f = footprint(latDeg, lonDeg, z, size);
+    double sum = 0.0, weight = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const int dx = k & 1, dy = k >> 1;
+      const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
+      const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
+      if (!p.valid || w <= 0.0) continue;
+      auto tile = colorTile(p.tile);
+      if (!tile) return tile.error();
+      if (!*tile || (*tile)->ndvi.empty()) continue;
+      const float v = ndviFromByte((*tile)->ndvi[static_cast<size_t>(p.j) * static_cast<size_t>(size) +
+                                                 static_cast<size_t>(p.i)]);
+      if (std::isnan(v)) continue;
+      sum += w * v;
+      weight += w;
+    }
+    if (weight > 0.0) return std::optional<float>(static_cast<float>(sum / weight));
+  }
+  return std::optional<float>{};
 }
 
 }  // namespace vegstream::datasets

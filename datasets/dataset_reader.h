@@ -45,8 +45,13 @@ class DatasetReader {
 
   // Base colour (sRGB, rounded). nullopt: no imagery at the point (or the dataset has none).
   Result<std::optional<Rgb8>> colorAt(double latDeg, double lonDeg);
+  // NDVI (−1 … 1, to the encoding's step of 1/127), bilinear like colorAt over the NDVI layer.
+  // nullopt: no NDVI at the point, outside the bounds, or a dataset without the layer.
+  Result<std::optional<float>> ndviAt(double latDeg, double lonDeg);
 
-  // One decoded tile; nullptr when the dataset has no such tile.
+  // One decoded tile; nullptr when the dataset has no such tile. A colour tile carries the NDVI
+  // layer's tile in `ndvi` when the dataset has the layer (empty where that tile is missing);
+  // where only the NDVI tile exists its rgba is all "no data".
   Result<std::shared_ptr<const HeightTile>> heightTile(const geo::TileId& id);
   Result<std::shared_ptr<const ColorTile>> colorTile(const geo::TileId& id);
 

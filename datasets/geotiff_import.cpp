@@ -23,33 +23,9 @@ namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
-// A source's CRS from its GeoReference, with the file named in every message.
-Result<geo::Crs> sourceCrs(const Raster& r, const char* flag, const Logger& log) {
-  if (r.georef.epsg == 0) {
-    std::string what = r.georef.crsDescription.empty()
-                           ? std::string("no EPSG code")
-                           : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
-    return makeError(ErrorKind::Unsupported,
-                     concat(r.path, " names ", what, "; state its CRS with ", flag, " EPSG:N if you know it"));
-  }
-  auto crs = geo::crsFromEpsg(r.georef.epsg, [&](const std::string& w) { log->warn("{}: {}", r.path.string(), w); });
-  if (!crs) return makeError(crs.error().kind, concat(r.path, ": ", crs.error().message));
-  return crs;
-}
-
-bool overlaps(const geo::GeoBounds& a, const geo::GeoBounds& b) {
-  return a.westDeg < b.eastDeg && b.westDeg < a.eastDeg && a.southDeg < b.northDeg && b.southDeg < a.northDeg;
-}
-
-std::string boundsText(const geo::GeoBounds& b) {
-  char buf[160];
-  std::snprintf(buf, sizeof(buf), "lon %.4f … %.4f, lat %.4f … %.4f", b.westDeg, b.eastDeg, b.southDeg, b.northDeg);
-  return buf;
-}
-
 // What one max-zoom tile produced.
 struct TileOutcome {
-  bool elevation = false, imagery = false;
+  bool elevation = false, imagery = false, ndvi = false;
   float minH = std::numeric_limits<float>::infinity(), maxH = -std::numeric_limits<float>::infinity();
   uint64_t bytes = 0;
 };
@@ -57,6 +33,7 @@ struct TileOutcome {
 struct Sources {
   const SourceGrid& dem;
   const SourceGrid* imagery;
+  const Raster* ndvi;  // on the imagery's grid (ndvi_source.h); null: no NDVI layer
 };
 
 Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& src, const GeoTiffImportOptions& o,
@@ -101,6 +78,18 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& sr
     if (auto s = writeColorTile(p, c, o.imageryFormat, o.jpegQuality); !s) return s;
     out.bytes += fileBytes(p);
   }
+  if (!src.ndvi) return {};
+  // The same source positions as the colour: NDVI lies on the imagery's grid.
+  c.ndvi.assign(imgPx.size(), 0);
+  for (size_t i = 0; i < imgPx.size(); ++i) {
+    c.ndvi[i] = ndviToByte(sampleValue(*src.ndvi, imgPx[i]));
+    out.ndvi = out.ndvi || c.ndvi[i] != 0;
+  }
+  if (out.ndvi) {
+    const fs::path p = ndviTilePath(dir, id);
+    if (auto s = writeNdviTile(p, c); !s) return s;
+    out.bytes += fileBytes(p);
+  }
   return {};
 }
 
@@ -136,6 +125,11 @@ Status checkOutputDirectory(const fs::path& out) {
 
 Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& log, ProgressSink& progress) {
   if (auto s = checkOutputDirectory(o.out); !s) return s.error();
+  const bool withImagery = o.imagery.file || !o.imagery.bands.empty();
+  if (o.nir && !withImagery)
+    return makeError(ErrorKind::InvalidInput,
+                     concat("--imagery-nir ", o.nir->file,
+                            " needs imagery (--imagery or --imagery-bands): NDVI is computed with the imagery's red"));
 
   // DEM.
   ReadOptions ro;
@@ -148,7 +142,7 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   if (dem.channels != 1)
     return makeError(ErrorKind::InvalidInput,
                      concat(o.dem, " has ", dem.channels, " channels; a DEM has one (heights)"));
-  auto demCrs = sourceCrs(dem, "--dem-crs", log);
+  auto demCrs = rasterCrs(dem, "--dem-crs", log);
   if (!demCrs) return demCrs.error();
   uint64_t implausible = 0, validHeights = 0;
   for (float& v : dem.samples) {
@@ -167,23 +161,31 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   auto demGrid = SourceGrid::make(dem, *demCrs);
   if (!demGrid) return demGrid.error();
 
-  // Imagery.
-  const bool withImagery = o.imagery.file || !o.imagery.bands.empty();
+  // Imagery (and the NDVI on its grid).
   std::optional<PreparedImagery> imagery;
   std::optional<SourceGrid> imageryGrid;
+  std::optional<NdviRaster> ndvi;
   if (withImagery) {
-    auto prepared = prepareImagery(o.imagery, log);
+    ImageryInput imageryInput = o.imagery;
+    imageryInput.keepRawRed = o.nir.has_value();
+    auto prepared = prepareImagery(imageryInput, log);
     if (!prepared) return prepared.error();
     imagery = std::move(*prepared);
-    auto crs = sourceCrs(imagery->raster, "--imagery-crs", log);
+    auto crs = rasterCrs(imagery->raster, "--imagery-crs", log);
     if (!crs) return crs.error();
     auto grid = SourceGrid::make(imagery->raster, *crs);
     if (!grid) return grid.error();
     imageryGrid = std::move(*grid);
-    if (!overlaps(demGrid->extent(), imageryGrid->extent()))
+    if (!extentsOverlap(demGrid->extent(), imageryGrid->extent()))
       return makeError(ErrorKind::InvalidInput,
-                       concat("the DEM ", o.dem, " (", boundsText(demGrid->extent()), ") and the imagery ",
-                              imagery->raster.path, " (", boundsText(imageryGrid->extent()), ") do not overlap"));
+                       concat("the DEM ", o.dem, " (", extentText(demGrid->extent()), ") and the imagery ",
+                              imagery->raster.path, " (", extentText(imageryGrid->extent()), ") do not overlap"));
+    if (o.nir) {
+      auto n = prepareNdvi(*o.nir, *imageryGrid, imagery->rawRed, log);
+      if (!n) return n.error();
+      ndvi = std::move(*n);
+      imagery->rawRed = std::vector<float>();  // 4 bytes a pixel no longer needed (frees them)
+    }
   }
 
   // Zooms and tiles.
@@ -223,13 +225,17 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     meta.sources.push_back(
         {"imagery", paths, imageryGrid->crs().name(), concat(describe(*imageryGrid), ", ", imagery->description)});
   }
+  if (ndvi) {
+    meta.ndvi = true;
+    meta.sources.push_back({"nir", o.nir->file.string(), ndvi->nirCrs.name(), ndvi->description});
+  }
 
   Result<DatasetMeta> result = makeError(ErrorKind::Internal, "import did not run");
   Status written = writeDirectoryAtomically(o.out, [&](const fs::path& tmp) -> Status {
     progress.addTotal(tiles.size());
     progress.stage(concat("zoom ", maxZoom));
     std::vector<TileOutcome> outcomes(tiles.size());
-    const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr};
+    const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr, ndvi ? &ndvi->raster : nullptr};
     Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
       if (o.cancel && o.cancel->load())
         return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
@@ -245,6 +251,7 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
       const TileOutcome& t = outcomes[i];
       meta.bytes += t.bytes;
       if (t.imagery) ++meta.imageryTiles;
+      if (t.ndvi) ++meta.ndviTiles;
       if (!t.elevation) continue;
       ++meta.elevationTiles;
       withHeights.push_back(tiles[i]);

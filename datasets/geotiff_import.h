@@ -26,6 +26,7 @@
 #include "core/task_runner.h"
 #include "datasets/dataset_format.h"
 #include "datasets/imagery_source.h"
+#include "datasets/ndvi_source.h"
 #include "datasets/progress.h"
 
 namespace vegstream::datasets {
@@ -43,6 +44,7 @@ struct GeoTiffImportOptions {
   std::optional<int> demEpsg;       // --dem-crs: stated CRS (corrupt GeoKeys), overrides the file
   std::optional<double> demNodata;  // --dem-nodata
   ImageryInput imagery;             // neither file nor bands: no imagery
+  std::optional<NirInput> nir;      // --imagery-nir: an NDVI layer (needs imagery)
   HeightResampling heightResampling = HeightResampling::Bilinear;
 
   std::filesystem::path out;
@@ -63,8 +65,8 @@ struct GeoTiffImportOptions {
 
 // Errors name the file and the problem: as readGeoTiff, an unsupported CRS (naming the EPSG
 // code), DEM and imagery that do not overlap, a DEM without one valid height, `out` that
-// exists and is not empty or cannot be created (all InvalidInput / NotFound / Unsupported);
-// a failed tile write is Io.
+// exists and is not empty or cannot be created, a NIR file without imagery or that prepareNdvi
+// refuses (all InvalidInput / NotFound / Unsupported); a failed tile write is Io.
 Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& options, const Logger& log, ProgressSink& progress);
 
 // The first zoom whose ground resolution at latDeg is at least as fine as metresPerPixel

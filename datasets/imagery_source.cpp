@@ -124,6 +124,10 @@ Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& 
     }
   }
   if (valid == 0) return makeError(ErrorKind::InvalidInput, concat(r.path, " has no valid imagery pixel (all nodata)"));
+  if (input.keepRawRed) {
+    out.rawRed.resize(count);
+    for (size_t p = 0; p < count; ++p) out.rawRed[p] = r.samples[p * 3];
+  }
 
   std::optional<Stretch> stretch = input.stretch;
   if (!stretch && (lo < 0.0f || hi > 255.0f)) {

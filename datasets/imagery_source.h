@@ -34,6 +34,9 @@ struct ImageryInput {
   std::optional<int> assumeEpsg;              // --imagery-crs
   std::optional<Stretch> stretch;
   uint64_t maxPixels = 400'000'000;
+  // Keep the red channel's raw values (PreparedImagery::rawRed): NDVI needs the digital numbers
+  // the stretch throws away (ndvi_source.h).
+  bool keepRawRed = false;
 };
 
 struct PreparedImagery {
@@ -41,6 +44,10 @@ struct PreparedImagery {
   std::array<std::array<double, 2>, 3> ranges;  // per band: the values mapped to 0 and 255
   bool stretched = false;
   std::string description;  // for dataset.json's sources
+  // With ImageryInput::keepRawRed: channel 0 (the first of --imagery-bands, channel 0 of
+  // --imagery) as read, before the stretch, one value per pixel of `raster`, NaN = no data.
+  // Empty otherwise.
+  std::vector<float> rawRed;
 };
 
 // Errors as readGeoTiff's, plus: bands of different grids / CRSs, a band with more than one

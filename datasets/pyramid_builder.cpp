@@ -163,6 +163,52 @@ Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo
   return std::optional<ColorTile>(std::move(out));
 }
 
+// NDVI: the mean of the valid child values (decoded and re-encoded: the mean of the NDVI, not
+// of its bytes, though the encoding is linear and the two differ only by rounding).
+Result<std::optional<ColorTile>> downsampleNdvi(const fs::path& dir, const geo::TileId& parentId,
+                                                const std::set<geo::TileId>& present, const DatasetMeta& meta) {
+  std::array<std::optional<std::vector<uint8_t>>, 4> kids;
+  bool any = false;
+  const auto ids = geo::children(parentId);
+  for (size_t k = 0; k < 4; ++k) {
+    if (!present.count(ids[k])) continue;
+    auto t = readNdviTile(ndviTilePath(dir, ids[k]), ids[k], meta.tileSize);
+    if (!t) return t.error();
+    kids[k] = std::move(*t);
+    any = true;
+  }
+  if (!any) return std::optional<ColorTile>{};
+  const int size = meta.tileSize;
+  ColorTile out;
+  out.id = parentId;
+  out.size = size;
+  out.ndvi.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
+  bool valid = false;
+  for (int j = 0; j < size; ++j) {
+    for (int i = 0; i < size; ++i) {
+      const Quadrant q = quadrantOf(i, j, size);
+      const auto& kid = kids[static_cast<size_t>(q.child)];
+      if (!kid) continue;
+      double sum = 0.0;
+      int n = 0;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const float v =
+              ndviFromByte((*kid)[static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) + static_cast<size_t>(q.cx + dx)]);
+          if (std::isnan(v)) continue;
+          sum += v;
+          ++n;
+        }
+      if (!n) continue;
+      out.ndvi[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] =
+          ndviToByte(static_cast<float>(sum / n));
+      valid = true;
+    }
+  }
+  if (!valid) return std::optional<ColorTile>{};
+  return std::optional<ColorTile>(std::move(out));
+}
+
 }  // namespace
 
 Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& progress, const PyramidOptions& options) {
@@ -171,16 +217,20 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
   std::set<geo::TileId> elevation = listTiles(dir / "elevation", meta.maxZoom, ".png");
   std::set<geo::TileId> imagery;
   if (meta.imagery) imagery = listTiles(dir / "imagery", meta.maxZoom, imageryExt);
+  std::set<geo::TileId> ndvi;
+  if (meta.ndvi) ndvi = listTiles(dir / "ndvi", meta.maxZoom, ".png");
 
   for (int z = meta.maxZoom - 1; z >= meta.minZoom; --z) {
     std::set<geo::TileId> parentSet;
     for (const auto& t : elevation) parentSet.insert(geo::parent(t));
     for (const auto& t : imagery) parentSet.insert(geo::parent(t));
+    for (const auto& t : ndvi) parentSet.insert(geo::parent(t));
     const std::vector<geo::TileId> parents(parentSet.begin(), parentSet.end());
     progress.addTotal(parents.size());
     progress.stage(concat("zoom ", z));
 
-    std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0);
+    std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0),
+        wroteNdvi(parents.size(), 0);
     std::vector<uint64_t> bytes(parents.size(), 0);
     Status s = parallelFor(parents.size(), options.threads, options.tasks, [&](size_t i) -> Status {
       const geo::TileId& id = parents[i];
@@ -203,6 +253,16 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
           wroteImagery[i] = 1;
         }
       }
+      if (meta.ndvi) {
+        auto n = downsampleNdvi(dir, id, ndvi, meta);
+        if (!n) return n.error();
+        if (*n) {
+          const fs::path p = ndviTilePath(dir, id);
+          if (auto w = writeNdviTile(p, **n); !w) return w;
+          written += fileBytes(p);
+          wroteNdvi[i] = 1;
+        }
+      }
       bytes[i] = written;
       progress.tileDone(written);
       return {};
@@ -211,6 +271,7 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
 
     elevation.clear();
     imagery.clear();
+    ndvi.clear();
     for (size_t i = 0; i < parents.size(); ++i) {
       if (wroteElevation[i]) {
         elevation.insert(parents[i]);
@@ -219,6 +280,10 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
       if (wroteImagery[i]) {
         imagery.insert(parents[i]);
         ++meta.imageryTiles;
+      }
+      if (wroteNdvi[i]) {
+        ndvi.insert(parents[i]);
+        ++meta.ndviTiles;
       }
       meta.bytes += bytes[i];
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "datasets/message.h"
@@ -29,6 +30,29 @@ bool edgeClamp(double& c, int n) {
 }
 
 }  // namespace
+
+bool extentsOverlap(const geo::GeoBounds& a, const geo::GeoBounds& b) {
+  return a.westDeg < b.eastDeg && b.westDeg < a.eastDeg && a.southDeg < b.northDeg && b.southDeg < a.northDeg;
+}
+
+std::string extentText(const geo::GeoBounds& b) {
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), "lon %.4f … %.4f, lat %.4f … %.4f", b.westDeg, b.eastDeg, b.southDeg, b.northDeg);
+  return buf;
+}
+
+Result<geo::Crs> rasterCrs(const Raster& r, const char* flag, const Logger& log) {
+  if (r.georef.epsg == 0) {
+    std::string what = r.georef.crsDescription.empty()
+                           ? std::string("no EPSG code")
+                           : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
+    return makeError(ErrorKind::Unsupported,
+                     concat(r.path, " names ", what, "; state its CRS with ", flag, " EPSG:N if you know it"));
+  }
+  auto crs = geo::crsFromEpsg(r.georef.epsg, [&](const std::string& w) { log->warn("{}: {}", r.path.string(), w); });
+  if (!crs) return makeError(crs.error().kind, concat(r.path, ": ", crs.error().message));
+  return crs;
+}
 
 Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
   SourceGrid g;
@@ -192,6 +216,25 @@ bool sampleColour(const Raster& r, glm::dvec2 pixel, std::array<float, 3>& rgb) 
   if (wsum < 0.5) return false;
   for (int ch = 0; ch < 3; ++ch) rgb[static_cast<size_t>(ch)] = static_cast<float>(sum[ch] / wsum);
   return true;
+}
+
+float sampleValue(const Raster& r, glm::dvec2 pixel) {
+  double c = pixel.x, w = pixel.y;
+  if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return NAN;
+  const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
+  const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
+  const int c1 = std::min(c0 + 1, r.width - 1), r1 = std::min(r0 + 1, r.height - 1);
+  const double fx = c - c0, fy = w - r0;
+  const int cols[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
+  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  double sum = 0, wsum = 0;
+  for (int k = 0; k < 4; ++k) {
+    const float v = r.at(cols[k], rows[k]);
+    if (r.isNodata(v)) continue;
+    sum += weights[k] * v;
+    wsum += weights[k];
+  }
+  return wsum < 0.5 ? NAN : static_cast<float>(sum / wsum);
 }
 
 }  // namespace vegstream::datasets

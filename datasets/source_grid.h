@@ -7,10 +7,12 @@
 // pixel (i, j) is (i + 0.5, j + 0.5).
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "core/log.h"
 #include "core/result.h"
 #include "datasets/geotiff_reader.h"
 #include "geo/bounds.h"
@@ -18,6 +20,16 @@
 #include "geo/xyz_tiles.h"
 
 namespace vegstream::datasets {
+
+// A raster's CRS from its GeoReference (geo::crsFromEpsg), the file named in every message.
+// A file without an EPSG code is Unsupported, and the message tells the user to state one with
+// `flag` (--dem-crs, --imagery-crs, …); geo's warnings (NAD83 read as WGS 84) go to `log`.
+Result<geo::Crs> rasterCrs(const Raster& raster, const char* flag, const Logger& log);
+
+// Whether two longitude/latitude boxes share an area, and one printed for messages
+// ("lon -113.2396 … -112.8521, lat 37.1321 … 37.5129").
+bool extentsOverlap(const geo::GeoBounds& a, const geo::GeoBounds& b);
+std::string extentText(const geo::GeoBounds& b);
 
 class SourceGrid {
  public:
@@ -65,5 +77,9 @@ float sampleHeightCubic(const Raster& raster, glm::dvec2 pixel);
 // Bilinear colour of a 3-channel raster holding 0 … 255 with NaN for nodata: the weights of the
 // valid neighbours are renormalised; false (no colour) when less than half the weight is valid.
 bool sampleColour(const Raster& raster, glm::dvec2 pixel, std::array<float, 3>& rgb);
+
+// The same for a one-channel raster whose nodata is NaN or its nodata value (Raster::isNodata):
+// NaN when less than half the weight is valid.
+float sampleValue(const Raster& raster, glm::dvec2 pixel);
 
 }  // namespace vegstream::datasets

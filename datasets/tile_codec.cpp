@@ -4,6 +4,7 @@
 
 #include "datasets/tile_codec.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -86,6 +87,9 @@ Status writePixels(const fs::path& finalPath, const fs::path& tmp, const char* f
 struct Rgba8 {
   int size = 0;
   bool hadAlpha = false;
+  int channels = 0;        // as stored (before the expansion to RGBA)
+  bool eightBit = false;   // stored as 8-bit samples
+  bool png = false;
   std::vector<uint8_t> rgba;
 };
 
@@ -134,6 +138,9 @@ Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::st
   Rgba8 t;
   t.size = spec.width;
   t.hadAlpha = n == 2 || n == 4;
+  t.channels = n;
+  t.eightBit = spec.format == TypeDesc::UINT8;
+  t.png = std::strcmp(*format, "tile.png") == 0;
   t.rgba.resize(pixels * 4);
   for (size_t i = 0; i < pixels; ++i) {
     const uint8_t* s = &raw[i * static_cast<size_t>(n)];
@@ -261,6 +268,45 @@ Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::Til
   t.size = px->size;
   t.rgba = std::move(px->rgba);
   return t;
+}
+
+uint8_t ndviToByte(float ndvi) {
+  if (std::isnan(ndvi)) return 0;
+  const long v = 128 + std::lround(127.0 * std::clamp(static_cast<double>(ndvi), -2.0, 2.0));
+  return static_cast<uint8_t>(std::clamp(v, 1L, 255L));
+}
+
+float ndviFromByte(uint8_t v) { return v == 0 ? NAN : static_cast<float>(v - 128) / 127.0f; }
+
+Status writeNdviTile(const fs::path& path, const ColorTile& tile) {
+  assert(tile.size > 0 && tile.ndvi.size() == static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size));
+  return writeFileAtomically(
+      path, [&](const fs::path& tmp) { return writePixels(path, tmp, "png", tile.size, 1, tile.ndvi.data(), 0); });
+}
+
+Result<std::vector<uint8_t>> decodeNdviTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+                                            const std::string& nameForErrors, int expectedSize) {
+  (void)id;  // the bytes carry no position; kept for symmetry with the other decoders
+  auto px = decodeRgba8(bytes, nameForErrors, false);
+  if (!px) return px.error();
+  // Only the grey PNG that writeNdviTile makes: an RGB or 16-bit image would be read as some
+  // other quantity and silently give wrong NDVI.
+  if (!px->png || px->channels != 1 || !px->eightBit)
+    return invalidTile(nameForErrors, concat("is not an NDVI tile: expected a one-channel 8-bit PNG, found ",
+                                             px->png ? "a PNG" : "a JPEG/WebP", " with ", px->channels, " channel(s)",
+                                             px->eightBit ? "" : " of more than 8 bits"));
+  if (px->size != expectedSize)
+    return invalidTile(nameForErrors,
+                       concat("is ", px->size, " pixels wide; NDVI tiles are ", expectedSize, " pixels wide"));
+  std::vector<uint8_t> out(px->rgba.size() / 4);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = px->rgba[i * 4];
+  return out;
+}
+
+Result<std::vector<uint8_t>> readNdviTile(const fs::path& path, const geo::TileId& id, int expectedSize) {
+  auto bytes = readFileBytes(path);
+  if (!bytes) return bytes.error();
+  return decodeNdviTile(*bytes, id, path.string(), expectedSize);
 }
 
 Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, ElevationEncoding encoding) {

@@ -31,7 +31,16 @@ struct ColorTile {
   geo::TileId id;
   int size = kTileSize;
   std::vector<uint8_t> rgba;  // size × size × 4, sRGB, alpha 0 = no data
+  // The NDVI layer's tile over the same area (dataset_format.h): size × size bytes in the
+  // encoding of ndviToByte, 0 = no NDVI there. Empty: the dataset has no NDVI layer, or no NDVI
+  // tile here.
+  std::vector<uint8_t> ndvi;
 };
+
+// NDVI (−1 … 1) ↔ one byte: v = 128 + round(127 · ndvi), so 1 … 255 (step 1/127 ≈ 0.008), and
+// 0 means "no NDVI". ndviFromByte(0) is NaN.
+uint8_t ndviToByte(float ndvi);
+float ndviFromByte(uint8_t v);
 
 std::array<uint8_t, 3> encodeHeight(double heightM, ElevationEncoding encoding);
 double decodeHeight(uint8_t r, uint8_t g, uint8_t b, ElevationEncoding encoding);
@@ -55,5 +64,16 @@ Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::T
                                     const std::string& nameForErrors);
 Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
                                   const std::string& nameForErrors);
+
+// NDVI tiles: 8-bit greyscale PNG of size × size bytes in the ndviToByte encoding. Writing
+// takes tile.ndvi (size × size); decoding returns the size × size bytes (a PNG that is not
+// one-channel 8-bit of the tile size is InvalidInput naming `nameForErrors`). The tile size is
+// kTileSize unless a dataset.json says otherwise (its tile_size).
+Status writeNdviTile(const std::filesystem::path& path, const ColorTile& tile);
+Result<std::vector<uint8_t>> decodeNdviTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+                                            const std::string& nameForErrors, int expectedSize = kTileSize);
+// The file's bytes through decodeNdviTile; a missing file is NotFound naming it.
+Result<std::vector<uint8_t>> readNdviTile(const std::filesystem::path& path, const geo::TileId& id,
+                                          int expectedSize = kTileSize);
 
 }  // namespace vegstream::datasets

@@ -119,6 +119,49 @@ TEST_F(GrandCanyon, BadFieldInDatasetJsonIsNamed) {
   fs::remove_all(copy);
 }
 
+// A dataset without the NDVI layer (no --imagery-nir), and one written before the layer existed
+// (no "ndvi" key in dataset.json): query prints "ndvi": null and everything else as before.
+TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
+  const fs::path old = testTmp("no_ndvi_key");
+  fs::copy(dir(), old, fs::copy_options::recursive);
+  json meta;
+  {
+    std::ifstream in(old / "dataset.json");
+    meta = json::parse(in);
+  }
+  EXPECT_TRUE(meta.contains("ndvi") && meta["ndvi"].is_null());
+  meta.erase("ndvi");
+  std::ofstream(old / "dataset.json") << meta.dump(2);
+
+  const glm::dvec2 p = geo::tileXYToLonLat({759.3137, 1608.7071}, 12);
+  const std::string at = " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x);
+  const auto now = runVegstream("query " + q(dir()) + at), before = runVegstream("query " + q(old) + at);
+  ASSERT_EQ(now.exitCode, 0) << now.err;
+  ASSERT_EQ(before.exitCode, 0) << before.err;
+  const json j = json::parse(now.out);
+  EXPECT_TRUE(j.contains("ndvi") && j["ndvi"].is_null()) << now.out;
+  EXPECT_EQ(json::parse(before.out), j);
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : j.items()) keys.push_back(k);
+  EXPECT_EQ(keys, (std::vector<std::string>{"color", "dataset", "height_m", "lat", "lon", "ndvi", "species",
+                                            "species_bare", "species_candidates"}));
+  auto reader = datasets::DatasetReader::open(dir());
+  ASSERT_TRUE(reader.ok());
+  const double lat = std::stod(std::to_string(p.y)), lon = std::stod(std::to_string(p.x));
+  EXPECT_NEAR(j["height_m"].get<double>(), *reader->heightAt(lat, lon), 1e-9);
+  const auto colour = reader->colorAt(lat, lon);
+  ASSERT_TRUE(colour.ok() && colour->has_value());
+  EXPECT_EQ(j["color"]["r"].get<int>(), (**colour)[0]);
+  auto ndvi = reader->ndviAt(lat, lon);
+  ASSERT_TRUE(ndvi.ok());
+  EXPECT_FALSE(ndvi->has_value());
+
+  const auto info = runVegstream("info " + q(old));
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_TRUE(json::parse(info.out)["tiles"]["ndvi"].is_null());
+  EXPECT_EQ(info.err.find("NDVI"), std::string::npos) << info.err;  // no count mismatch warned
+}
+
 TEST(QueryCommand, MissingDatasetIsAUserError) {
   const fs::path missing = testOutputDir() / "no_such_dataset";
   for (const std::string& cmd : {"info " + q(missing), "query " + q(missing) + " --lat 1 --lon 2"}) {
