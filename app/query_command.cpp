@@ -19,10 +19,12 @@ namespace vegstream::app {
 
 namespace {
 
-// The species the colour score picks at a base colour (core seed §3.3 eq. 16–18): the best one
-// and the probabilities of the two best, deterministic (no z).
-nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c) {
-  const vegetation::SpeciesCandidates k = speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]));
+// The species the colour score picks at a base colour and NDVI (core seed §3.3 eq. 16–18, the
+// NDVI term of colour_score.h; NaN: none): the best one and the probabilities of the two best,
+// deterministic (no z).
+nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c, float ndvi) {
+  const vegetation::SpeciesCandidates k =
+      speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]), ndvi);
   nlohmann::json out;
   if (k.first < 0) {  // every species under its threshold
     out["species"] = nullptr;
@@ -79,7 +81,7 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     char hex[8];
     std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", c[0], c[1], c[2]);
     out["color"] = {{"r", c[0]}, {"g", c[1]}, {"b", c[2]}, {"hex", hex}};
-    out.update(speciesJson(*catalog, c));
+    out.update(speciesJson(*catalog, c, ndvi->value_or(NAN)));
   } else {
     out["color"] = nullptr;  // no imagery: no colour to choose a species from
     out["species"] = nullptr;

@@ -17,6 +17,8 @@
 #include "geo/crs.h"
 #include "geo/projection.h"
 #include "import_test_util.h"
+#include "vegetation/colour_score.h"
+#include "vegetation/species_choice.h"
 
 namespace vegstream::datasets {
 namespace {
@@ -140,6 +142,7 @@ TEST_F(ZionNirImport, QueryNdviMatchesGdal) {
   ASSERT_TRUE(meta);
   const std::vector<Point> points = gridPoints(meta->bounds, *gdal);
   ASSERT_GE(points.size(), 100u);
+  const vegetation::SpeciesCatalog& catalog = vegetation::defaultSpeciesCatalog();
   std::vector<double> diffs;
   for (const Point& p : points) {  // each query is a process start, ~0.25 s
     const auto r = runVegstream("query " + out_.string() + " --lat " + p.lat + " --lon " + p.lon);
@@ -150,6 +153,18 @@ TEST_F(ZionNirImport, QueryNdviMatchesGdal) {
       continue;
     }
     diffs.push_back(std::abs(j["ndvi"].get<double>() - p.gdal));
+    // The species query prints are chosen with the NDVI (vegetation::speciesCandidates).
+    const auto& c = j["color"];
+    const auto k = vegetation::speciesCandidates(
+        catalog, vegetation::hsvFromSrgb8(c["r"].get<uint8_t>(), c["g"].get<uint8_t>(), c["b"].get<uint8_t>()),
+        j["ndvi"].get<float>());
+    if (k.first < 0) {
+      EXPECT_TRUE(j["species"].is_null()) << r.out;
+    } else {
+      EXPECT_EQ(j["species"], catalog.species[static_cast<size_t>(k.first)].name) << r.out;
+      // The printed NDVI is rounded to 4 decimals; the score moves little with that.
+      EXPECT_NEAR(j["species_candidates"][0]["probability"].get<double>(), 1.0 - k.secondRatio, 2e-3) << r.out;
+    }
   }
   const Agreement a = agreement(diffs, "same grid, zoom 13");
   // Measured (121 points): median 0.0014, p95 0.005, max 0.012. The encoding's step is 1/127
