@@ -117,7 +117,8 @@ void BM_ClassifyGpu(benchmark::State& state) {
     g->ctx->submitAndWait([&](VkCommandBuffer cmd) {
       g->timer->begin(cmd);
       g->timer->beginPass(cmd, "classify");
-      f = g->pass->record(cmd, 0, s.gpu, size, g->imagery.alternateView.get(), 3 * size, 0, [](render::GpuBuffer&&) {});
+      f = g->pass->record(cmd, 0, s.gpu, size, g->imagery.alternateView.get(), g->imagery.alternateView.get(), false,
+                          3 * size, 0, [](render::GpuBuffer&&) {});
       g->timer->endPass(cmd);
       g->timer->end(cmd);
     });

@@ -19,7 +19,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     g.weights = glm::vec4(s.score.weights, s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
     g.flags = {s.bare ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
     g.marker.w = s.phototropism;
-    g.ground = {s.densityM2, s.horizonM, 0.0f, 0.0f};
+    g.ground = {s.densityM2, s.horizonM, s.score.ndviReference, s.score.ndviWeight};
     g.heightStiffness = {s.heightM.min, s.heightM.max, s.stiffness.min, s.stiffness.max};
     g.widthColour = {s.widthM.min, s.widthM.max, s.colourModulation.min, s.colourModulation.max};
     // Markers in the species' own reference colour, brightened so dark species stay visible.

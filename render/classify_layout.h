@@ -53,7 +53,7 @@ struct SpeciesGpu {
   glm::vec4 heightStiffness{0.0f};  // height min/max (m), k′ min/max
   glm::vec4 widthColour{0.0f};      // width min/max (m), colour modulation min/max
   glm::vec4 marker{0.0f};           // linear RGB of the classification markers, w: phototropism
-  glm::vec4 ground{0.0f};           // x: plants per m², y: horizon (m)
+  glm::vec4 ground{0.0f};           // x: plants per m², y: horizon (m), z: NDVI reference, w: NDVI weight
 };
 static_assert(sizeof(SpeciesGpu) == 112);
 

@@ -26,7 +26,7 @@ constexpr VkDeviceSize kCounterBytes = (2 * kSpeciesSlots + 2) * sizeof(uint32_t
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
-  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades;
+  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades, ndvi;
 };
 struct FinishPush {
   uint32_t verticesPerGroup, speciesCapacity, patchMask;
@@ -51,13 +51,14 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
       storage(3),
       storage(4),
       {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      storage(6)};
+      storage(6),
+      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   classifyLayout_ = createLayout(ctx, classifyBindings, "classify set layout");
   const VkDescriptorSetLayoutBinding finishBindings[] = {storage(0), storage(1), storage(2)};
   finishLayout_ = createLayout(ctx, finishBindings, "classify finish set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots},
-                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots}};
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots}};
   pool_ = createPool(ctx, sizes, 2 * kSlots, "classify pool");
 
   const VkPushConstantRange classifyPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ClassifyPush)};
@@ -130,7 +131,7 @@ void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t or
   if (changed) s.boundImagery = VK_NULL_HANDLE;  // rewrite the set
 }
 
-void ClassifyPass::writeSets(Slot& s, VkImageView imagery) {
+void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView ndvi) {
   writeUniformBuffer(*ctx_, s.classifySet, species_.get(), sizeof(SpeciesBlock), 0);
   writeStorageBuffer(*ctx_, s.classifySet, s.triangles.get(), 1);
   writeStorageBuffer(*ctx_, s.classifySet, s.order.get(), 2);
@@ -138,12 +139,15 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery) {
   writeStorageBuffer(*ctx_, s.classifySet, s.records.get(), 4);
   writeSampledImage(*ctx_, s.classifySet, sampler_.get(), imagery, 5);
   writeStorageBuffer(*ctx_, s.classifySet, s.visible.get(), 6);
+  writeSampledImage(*ctx_, s.classifySet, sampler_.get(), ndvi, 7);
   s.boundImagery = imagery;
+  s.boundNdvi = ndvi;
 }
 
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
-                                       uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup,
-                                       uint32_t patchMask, const RetireBuffer& retire, const CullHook& cull) {
+                                       uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
+                                       uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
+                                       const CullHook& cull) {
   assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
   Slot& s = slots_[size_t(slot)];
   VegetationFigures f;
@@ -160,7 +164,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   if (!triangles.empty()) std::memcpy(s.triangles.mapped, triangles.data(), triangles.size_bytes());
   if (!bins.order.empty()) std::memcpy(s.order.mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
-  if (s.boundImagery != imagery) writeSets(s, imagery);
+  if (s.boundImagery != imagery || s.boundNdvi != ndvi) writeSets(s, imagery, ndvi);
 
   if (cull && !triangles.empty()) {
     // visible[] is read by the slot's previous classify dispatches (finished: its fence) and
@@ -193,7 +197,8 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
                               static_cast<uint32_t>(base),
                               options_.clustersPerSpecies,
                               cull && !triangles.empty() ? 1u : 0u,
-                              fades_ ? 0u : 1u};
+                              fades_ ? 0u : 1u,
+                              hasNdvi ? 1u : 0u};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
       vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);

@@ -48,14 +48,15 @@ class ClassifyPass {
 
   // Outside rendering: uploads `triangles`, bins them and records the dispatches for slot
   // `slot`. `imagery` is the imagery array the triangles' layers index, viewed as UNORM (the
-  // sRGB bytes; shader-readable).
+  // sRGB bytes; shader-readable); `ndvi` its NDVI array, read only when `hasNdvi`.
   // The indirect draws get one vertex per group (a patch) for the species in `patchMask` (bit s:
   // species s is drawn by a plant pipeline), `verticesPerGroup` for the others (markers).
   // With `cull`, the triangles it marks hidden are not expanded (no cluster, no group, no draw).
   // Returns the CPU-side figures (the GPU's counts come from readFigures after the fence).
   VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
-                           uint32_t clusterSize, VkImageView imagery, uint32_t verticesPerGroup, uint32_t patchMask,
-                           const RetireBuffer& retire, const CullHook& cull = {});
+                           uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
+                           uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
+                           const CullHook& cull = {});
 
   // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
   void readFigures(int slot, VegetationFigures& f) const;
@@ -76,10 +77,10 @@ class ClassifyPass {
     GpuBuffer triangles, order, counters, records, indirect, figures;
     GpuBuffer visible;  // per triangle, written by the cull hook
     VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
-    VkImageView boundImagery = VK_NULL_HANDLE;
+    VkImageView boundImagery = VK_NULL_HANDLE, boundNdvi = VK_NULL_HANDLE;
   };
   void ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
-  void writeSets(Slot& s, VkImageView imagery);
+  void writeSets(Slot& s, VkImageView imagery, VkImageView ndvi);
 
   const Context* ctx_;
   ClassifyOptions options_;

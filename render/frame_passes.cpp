@@ -78,7 +78,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
     };
   }
   slot.vegetation = classify->record(cmd, slotIndex, plants.triangles, plants.clusterSize,
-                                     terrainPass->imageryBytesView(),
+                                     terrainPass->imageryBytesView(), terrainPass->ndviView(), terrainPass->hasNdvi(),
                                      PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull);
   slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles
   slot.timer->endPass(cmd);

@@ -68,6 +68,9 @@ struct TerrainDraw {
 struct ImageryUpload {
   uint32_t layer = 0;
   const uint8_t* rgba = nullptr;
+  // 256 × 256 NDVI bytes (datasets/tile_codec.h) for the layer, or null: none there. Used only
+  // when the imagery array was sized with NDVI (Renderer::setImageryLayers).
+  const uint8_t* ndvi = nullptr;
 };
 
 // What the classify pass did in one frame (render/classify_pass.h): the CPU's bin layout and the

@@ -66,7 +66,9 @@ class Renderer {
 
   // The imagery texture array gets `layers` 256 × 256 layers (FrameRequest::imageryUploads fill
   // them); waits for frames in flight. 1 … maxImageryLayers(), else an InvalidInput error.
-  Status setImageryLayers(uint32_t layers);
+  // With `ndvi` each layer also holds its tile's NDVI (ImageryUpload::ndvi), which the species
+  // choice then reads (a dataset imported with --imagery-nir).
+  Status setImageryLayers(uint32_t layers, bool ndvi = false);
   uint32_t imageryLayers() const;
   uint32_t maxImageryLayers() const;  // the device's maxImageArrayLayers
   // The species the classify pass sorts plants into (the default catalog until set); waits for

@@ -29,6 +29,7 @@ static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes o
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkShaderStageFlags kSampledBy = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
+constexpr VkDeviceSize kNdviBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize;
 
 // A mesh's vertices and indices when flattened: its own and its chunks' (terrain_mesh.h).
 struct MeshSize {
@@ -140,23 +141,29 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   }
 
   // One layer until the scene says how many it streams, so the descriptor is always valid.
-  setImageryLayers(1, [](GpuImage&&) {});
+  setImageryLayers(1, false, [](GpuImage&&) {});
 }
 
-void TerrainPass::setImageryLayers(uint32_t layers, const RetireImage& retire) {
+void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage& retire) {
   assert(layers >= 1);
   if (imagery_.image) retire(std::move(imagery_));
+  if (ndvi_.image) retire(std::move(ndvi_));
   imagery_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, layers, VK_FORMAT_R8G8B8A8_SRGB,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain imagery array", 1,
                               VK_FORMAT_R8G8B8A8_UNORM);
+  const uint32_t ndviLayers = ndvi ? layers : 1;
+  ndvi_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, ndviLayers, VK_FORMAT_R8_UNORM,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain NDVI array");
   layers_ = layers;
+  withNdvi_ = ndvi;
   // Every layer starts shader-readable (never sampled before its upload: the streamer hands out
   // a layer only with its tile), so uploads can move one layer at a time.
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    transitionImageRange(cmd, imagery_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers}, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    for (const auto& [image, count] : {std::pair{imagery_.get(), layers}, std::pair{ndvi_.get(), ndviLayers}})
+      transitionImageRange(cmd, image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, count}, VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   });
   // The caller guarantees no frame in flight uses the set (the renderer waits for idle first).
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
@@ -174,14 +181,24 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
                                 const RetireBuffer& retire) {
   if (uploads.empty()) return;
   const auto s = static_cast<size_t>(slot);
-  ensureCapacity(staging_[s], kTileBytes * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+  const VkDeviceSize perTile = kTileBytes + (withNdvi_ ? kNdviBytes : 0);
+  ensureCapacity(staging_[s], perTile * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
                  "imagery staging", slot, retire);
+  auto* staging = static_cast<uint8_t*>(staging_[s].mapped);
   VkDeviceSize offset = 0;
   for (const ImageryUpload& u : uploads) {
     assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
-    std::memcpy(static_cast<uint8_t*>(staging_[s].mapped) + offset, u.rgba, kTileBytes);
+    std::memcpy(staging + offset, u.rgba, kTileBytes);
     recordImageUpload(cmd, staging_[s], imagery_, u.layer, offset);
     offset += kTileBytes;
+    if (!withNdvi_) continue;
+    // A tile without NDVI clears the layer's (0: none), so no earlier tile's NDVI lingers.
+    if (u.ndvi)
+      std::memcpy(staging + offset, u.ndvi, kNdviBytes);
+    else
+      std::memset(staging + offset, 0, kNdviBytes);
+    recordImageUpload(cmd, staging_[s], ndvi_, u.layer, offset);
+    offset += kNdviBytes;
   }
 }
 
@@ -296,7 +313,7 @@ TerrainGeometry TerrainPass::geometry(int slot) const {
 }
 
 uint64_t TerrainPass::gpuBytes() const {
-  uint64_t bytes = imagery_.bytes + detail_.gpuBytes();
+  uint64_t bytes = imagery_.bytes + ndvi_.bytes + detail_.gpuBytes();
   for (size_t s = 0; s < kSlots; ++s)
     bytes += vertices_[s].size + indices_[s].size + staging_[s].size + pieces_[s].size + deviceVertices_[s].size +
              deviceIndices_[s].size;

@@ -51,9 +51,11 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
     const terrain::GridPoint corners[3] = {s.corners.apex, s.corners.left, s.corners.right};
     glm::vec2 uv[3];
     for (int k = 0; k < 3; ++k) uv[k] = glm::vec2(grid.tileXY(corners[k], c->id.z) - glm::dvec2(c->id.x, c->id.y));
-    const vegetation::ImageryTexels texels{c->rgba.data(), static_cast<uint32_t>(c->size)};
-    const vegetation::BaseColourAt colourAt = [&](glm::vec2 r) {
-      return vegetation::sampleImageryLinear(texels, uv[0] + r.x * (uv[1] - uv[0]) + r.y * (uv[2] - uv[0]));
+    const vegetation::ImageryTexels texels{c->rgba.data(), static_cast<uint32_t>(c->size),
+                                           c->ndvi.empty() ? nullptr : c->ndvi.data()};
+    const vegetation::BaseColourAt colourAt = [&](glm::vec2 r) -> vegetation::GroundSample {
+      const glm::vec2 at = uv[0] + r.x * (uv[1] - uv[0]) + r.y * (uv[2] - uv[0]);
+      return {vegetation::sampleImageryLinear(texels, at), vegetation::sampleImageryNdvi(texels, at)};
     };
     const vegetation::SeedTriangleInput input{s.key, s.world, s.plantCount};
     clusters.clear();

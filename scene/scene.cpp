@@ -94,7 +94,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (info.hasImagery) {
     if (info.imageryLayers == 0)
       return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
-    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers); !s) return s.error();
+    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers, meta->ndvi); !s) return s.error();
   }
   if (options.species)
     if (Status s = impl->renderer->setSpeciesCatalog(*options.species); !s) return s.error();
@@ -184,7 +184,10 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
                                                                                : std::nullopt);
   m.uploads.clear();
   for (const streaming::Upload& u : m.planned)
-    if (u.tile && u.tile->colors) m.uploads.push_back({u.slot, u.tile->colors->rgba.data()});
+    if (u.tile && u.tile->colors) {
+      const datasets::ColorTile& c = *u.tile->colors;
+      m.uploads.push_back({u.slot, c.rgba.data(), c.ndvi.empty() ? nullptr : c.ndvi.data()});
+    }
   m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
   fig.streamingMs = stage.elapsedMs() - waitMs;
   fig.settleWaitMs = waitMs;

@@ -28,6 +28,9 @@ layout(set = 0, binding = 5) uniform sampler2DArray imagery;
 // Per seed triangle, bit s set when species s's plants on it may show, 0 when none can (the Hi-Z
 // occlusion test, hiz_cull.comp); read only when pc.cull is 1.
 layout(set = 0, binding = 6, std430) readonly buffer Visible { uint visible[]; };
+// The NDVI of each imagery layer (R8 UNORM, datasets/tile_codec.h's bytes; 0 = none), read only
+// when pc.ndvi is 1 (the dataset has a near-infrared layer).
+layout(set = 0, binding = 7) uniform sampler2DArray ndviLayers;
 
 layout(push_constant) uniform Push {
   uint orderFirst;     // this bin's first entry in order[]
@@ -38,6 +41,7 @@ layout(push_constant) uniform Push {
   uint speciesCapacity;
   uint cull;           // 1: skip triangles with visible[t] == 0
   uint hardFades;      // 1: a group is drawn whole or not at all (the fades off, for comparison)
+  uint ndvi;           // 1: ndviLayers holds the imagery layers' NDVI
 } pc;
 
 #include "species_choice.glsl"
@@ -63,10 +67,32 @@ vec3 imageryLinear(int layer, vec2 uv) {
   return mix(mix(a, b, fx), mix(c, d, fx), fy);
 }
 
-vec3 baseHsv(vec4 uv01, vec2 uv2, int layer, vec2 r) {
+// vegetation::sampleImageryNdvi: bilinear over the same texels, those without NDVI dropped.
+float imageryNdvi(int layer, vec2 uv) {
+  if (pc.ndvi == 0u) return kNoNdvi;
+  const float n = 256.0;
+  float x = uv.x * n - 0.5, y = uv.y * n - 0.5;
+  float fx0 = floor(x), fy0 = floor(y);
+  int x0 = int(fx0), y0 = int(fy0);
+  float fx = x - fx0, fy = y - fy0;
+  float sum = 0.0, weight = 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      ivec2 p = clamp(ivec2(x0 + i, y0 + j), ivec2(0), ivec2(255));
+      uint b = uint(texelFetch(ndviLayers, ivec3(p, layer), 0).r * 255.0 + 0.5);
+      if (b == 0u) continue;
+      float w = (i == 1 ? fx : 1.0 - fx) * (j == 1 ? fy : 1.0 - fy);
+      sum += w * ((float(b) - 128.0) / 127.0);
+      weight += w;
+    }
+  return weight > 0.0 ? sum / weight : kNoNdvi;
+}
+
+// The base colour (HSV) and NDVI under r.
+vec4 baseGround(vec4 uv01, vec2 uv2, int layer, vec2 r) {
   vec2 uv0 = uv01.xy;
   vec2 uv = uv0 + r.x * (uv01.zw - uv0) + r.y * (uv2 - uv0);
-  return hsvFromLinear(imageryLinear(layer, uv));
+  return vec4(hsvFromLinear(imageryLinear(layer, uv)), imageryNdvi(layer, uv));
 }
 
 // vegetation::speciesPlantCount and speciesHorizonFade: the fade of a group of species `sp`,
@@ -105,10 +131,12 @@ void appendPick(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint see
 // that changes from the imagery before it too — the same species keeps its plants (s′ moving
 // between the two), different ones cross-fade by size (vegetation::classifyTriangle).
 void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint seedCount, vec2 r, float z) {
-  vec2 pick = chooseSpecies(baseHsv(t.uv01, t.uv2, t.layer, r), z);
+  vec4 now = baseGround(t.uv01, t.uv2, t.layer, r);
+  vec2 pick = chooseSpecies(now.xyz, now.w, z);
   float w = t.imageryBlend;
   if (t.previousLayer >= 0 && w < 1.0) {
-    vec2 before = chooseSpecies(baseHsv(t.previousUv01, t.previousUv2, t.previousLayer, r), z);
+    vec4 then = baseGround(t.previousUv01, t.previousUv2, t.previousLayer, r);
+    vec2 before = chooseSpecies(then.xyz, then.w, z);
     if (before.x == pick.x) {
       pick.y = mix(before.y, pick.y, w);
       w = 1.0;

@@ -32,7 +32,8 @@ void DecodePipeline::pushLocked(Completion&& c) {
   completionsCv_.notify_all();
 }
 
-void DecodePipeline::onFetched(const TileKey& key, const std::string& name, FetchResult&& result) {
+void DecodePipeline::onFetched(const TileKey& key, const std::string& name, FetchResult&& result,
+                               std::vector<uint8_t> ndviBytes, const std::string& ndviName) {
   std::lock_guard lock(mu_);
   if (closed_) return;
   if (cancelled_.erase(result.id) > 0) return;  // the frame thread no longer wants it
@@ -43,8 +44,8 @@ void DecodePipeline::onFetched(const TileKey& key, const std::string& name, Fetc
   switch (result.outcome) {
     case FetchOutcome::Ok:
       c.kind = Completion::Kind::Fetched;
-      c.bytes = result.bytes.size();
-      jobs_.push_back(Job{result.id, key, name, std::move(result.bytes)});
+      c.bytes = result.bytes.size() + ndviBytes.size();
+      jobs_.push_back(Job{result.id, key, name, std::move(result.bytes), std::move(ndviBytes), ndviName});
       if (tasks_ < maxConcurrent_) {
         ++tasks_;
         runner_.post([self = shared_from_this()] { self->drain(); });
@@ -107,10 +108,14 @@ Completion DecodePipeline::decode(Job& job) const {
       }
     } else {
       auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
-      if (t)
+      Result<std::vector<uint8_t>> ndvi = std::vector<uint8_t>{};
+      if (t && !job.ndviBytes.empty()) ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName);
+      if (t && ndvi) {
+        t->ndvi = std::move(*ndvi);
         c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());
-      else
-        c.message = t.error().message;
+      } else {
+        c.message = t ? ndvi.error().message : t.error().message;
+      }
     }
   } catch (const std::exception& e) {  // out of memory in the decoder: a failed tile, not a dead thread
     c.message = job.name + ": " + e.what();

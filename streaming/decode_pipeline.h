@@ -66,7 +66,10 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
   DecodePipeline& operator=(const DecodePipeline&) = delete;
 
   // Any thread (the source's): the result of request `id` for `key`; `name` names it in errors.
-  void onFetched(const TileKey& key, const std::string& name, FetchResult&& result);
+  // An imagery tile may come with its NDVI tile's bytes (paired_fetch.h), decoded into
+  // ColorTile::ndvi; `ndviName` names that file.
+  void onFetched(const TileKey& key, const std::string& name, FetchResult&& result,
+                 std::vector<uint8_t> ndviBytes = {}, const std::string& ndviName = {});
 
   // Frame thread.
   void cancel(RequestId id);
@@ -83,6 +86,8 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
     TileKey key;
     std::string name;
     std::vector<uint8_t> bytes;
+    std::vector<uint8_t> ndviBytes;  // empty: no NDVI
+    std::string ndviName;
   };
   void drain();  // a decode task: one job, then posted again while jobs are queued
   Completion decode(Job& job) const;

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <chrono>
 
+#include "streaming/paired_fetch.h"
 #include "streaming/tile_streamer_impl.h"
 
 namespace vegstream::streaming {
@@ -61,7 +62,10 @@ void TileStreamer::Impl::cancelRequest(RequestId id) {
   e.state = TileState::Unloaded;
   e.request = 0;
   pipeline->cancel(id);              // first: nothing about it reaches the table any more
-  if (atSource) source->cancel(id);  // then free the source's worker
+  if (atSource) {  // then free the source's worker(s)
+    source->cancel(id);
+    if (key.layer == TileLayer::Imagery && meta.ndvi) source->cancel(detail::companionId(id));
+  }
   ++stats.requestsCancelled;
   if (!wanted.contains(key)) table.erase(key);
 }
@@ -81,6 +85,11 @@ void TileStreamer::Impl::issue(const TileKey& key, Entry& e) {
   active.emplace(id, key);
   ++stats.requestsIssued;
   std::string path = datasetRelativePath(key, meta);
+  if (key.layer == TileLayer::Imagery && meta.ndvi) {
+    const std::string ndviPath = datasets::ndviTilePath({}, key.id).generic_string();
+    detail::startPairedFetch(*source, id, key, path, ndviPath, pipeline);
+    return;
+  }
   source->start(id, path, [pipe = pipeline, key, path](FetchResult&& r) { pipe->onFetched(key, path, std::move(r)); });
 }
 

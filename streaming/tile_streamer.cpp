@@ -8,6 +8,7 @@
 #include <chrono>
 #include <utility>
 
+#include "streaming/paired_fetch.h"
 #include "streaming/tile_streamer_impl.h"
 
 namespace vegstream::streaming {
@@ -34,7 +35,10 @@ TileStreamer::~TileStreamer() {
   // Stop listening first (later callbacks and tasks find the pipeline closed), then free the source.
   impl_->pipeline->stop();
   for (const auto& [id, key] : impl_->active)
-    if (impl_->table[key].state == TileState::Requested) impl_->source->cancel(id);
+    if (impl_->table[key].state == TileState::Requested) {
+      impl_->source->cancel(id);
+      if (key.layer == TileLayer::Imagery && impl_->meta.ndvi) impl_->source->cancel(detail::companionId(id));
+    }
 }
 
 const datasets::DatasetMeta& TileStreamer::meta() const { return impl_->meta; }

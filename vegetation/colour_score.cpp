@@ -64,19 +64,29 @@ float weightedHsvDistance(glm::vec3 a, glm::vec3 b, glm::vec3 w) {
   return std::sqrt(dh * dh + ds * ds + dv * dv);
 }
 
-float logColourScore(const ColourScoreParams& params, glm::vec3 hsv) {
-  const float dist = std::max(weightedHsvDistance(params.reference, hsv, params.weights), kMinColourDistance);
+float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi) {
+  const float dh = hueDistance(params.reference.x, hsv.x) * params.weights.x;
+  const float ds = (params.reference.y - hsv.y) * params.weights.y;
+  const float dv = (params.reference.z - hsv.z) * params.weights.z;
+  const float dn = hasNdvi(ndvi) ? (params.ndviReference - ndvi) * params.ndviWeight : 0.0f;
+  return std::sqrt(dh * dh + ds * ds + dv * dv + dn * dn);
+}
+
+float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi) {
+  const float dist = std::max(weightedDistance(params, hsv, ndvi), kMinColourDistance);
   return -params.p * std::log(dist);
 }
 
-float colourScore(const ColourScoreParams& params, glm::vec3 hsv) { return std::exp(logColourScore(params, hsv)); }
+float colourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi) {
+  return std::exp(logColourScore(params, hsv, ndvi));
+}
 
-void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::span<float> out) {
+void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::span<float> out, float ndvi) {
   assert(out.size() == types.size());
   if (types.empty()) return;
   float top = -INFINITY;
   for (size_t i = 0; i < types.size(); ++i) {
-    out[i] = logColourScore(types[i], hsv);
+    out[i] = logColourScore(types[i], hsv, ndvi);
     top = std::max(top, out[i]);
   }
   float sum = 0.0f;
@@ -87,18 +97,18 @@ void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::
   for (float& w : out) w /= sum;
 }
 
-std::vector<float> blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv) {
+std::vector<float> blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, float ndvi) {
   std::vector<float> out(types.size());
-  blendWeights(types, hsv, out);
+  blendWeights(types, hsv, out, ndvi);
   return out;
 }
 
-size_t bestMatch(std::span<const ColourScoreParams> types, glm::vec3 hsv) {
+size_t bestMatch(std::span<const ColourScoreParams> types, glm::vec3 hsv, float ndvi) {
   assert(!types.empty());
   size_t best = 0;
   float bestScore = -INFINITY;
   for (size_t i = 0; i < types.size(); ++i) {
-    const float s = logColourScore(types[i], hsv);
+    const float s = logColourScore(types[i], hsv, ndvi);
     if (s > bestScore) {
       bestScore = s;
       best = i;

@@ -11,6 +11,13 @@
 // apart. The distance is clamped to kMinColourDistance before the power, so a base colour equal
 // to a reference gives a large finite score instead of a division by zero.
 //
+// Near-infrared (issue 18): a dataset imported with `--imagery-nir` also has the NDVI under each
+// point, (NIR − red) / (NIR + red) in −1 … 1, and the distance gains a fourth term,
+// (n_i − n_b) · w_n,i: living plants reflect near-infrared strongly (NDVI 0.3 … 0.5 on the Zion
+// Landsat digital numbers), rock and shadowed rock do not (0.05 … 0.2), so a dark rock face stops
+// looking like dark forest. Where there is no NDVI (kNoNdvi, or NaN) the term is 0: datasets
+// without near-infrared score exactly as before.
+//
 // Blend weights over a set of types are s_i / Σ_j s_j, computed as exp(ln s_i − max ln s) /
 // Σ exp(ln s_j − max ln s): the same numbers without overflow for large p.
 //
@@ -37,7 +44,14 @@ struct ColourScoreParams {
   glm::vec3 reference{0.0f};  // HSV: x hue [0, 1), y saturation, z value
   glm::vec3 weights{1.0f};    // per channel (h, s, v), ≥ 0
   float p = 2.0f;             // exponent, > 0
+  float ndviReference = 0.0f; // the NDVI the type grows on (−1 … 1)
+  float ndviWeight = 0.0f;    // ≥ 0; 0 ignores NDVI
 };
+
+// "No NDVI here" (any value below −1.5, and NaN, means the same). The GLSL twin uses the same
+// number, because a shader cannot rely on NaN.
+inline constexpr float kNoNdvi = -2.0f;
+inline bool hasNdvi(float ndvi) { return ndvi >= -1.5f; }
 
 // Distances below this are treated as this (score (1e-4)^−p instead of infinity).
 inline constexpr float kMinColourDistance = 1e-4f;
@@ -61,18 +75,21 @@ glm::vec3 hsvFromSrgb8(uint8_t r, uint8_t g, uint8_t b);
 float hueDistance(float a, float b);
 // ‖(Δh, Δs, Δv) ⊙ weights‖ with the wrapped hue difference (not clamped).
 float weightedHsvDistance(glm::vec3 hsvA, glm::vec3 hsvB, glm::vec3 weights);
+// The same with the NDVI term when `ndvi` is present: ‖(Δh, Δs, Δv, Δn) ⊙ (w, w_n)‖.
+float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi);
 
 // ln s_i = −p · ln max(distance, kMinColourDistance): finite for every input.
-float logColourScore(const ColourScoreParams& params, glm::vec3 hsv);
+float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi = kNoNdvi);
 // s_i of eq. 16 (may be +inf in float only for extreme p; use logColourScore to compare).
-float colourScore(const ColourScoreParams& params, glm::vec3 hsv);
+float colourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 // s_i / Σ s over `types` for base colour `hsv` into `out` (same size as `types`; sums to 1).
 // Empty `types`: nothing to write.
-void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::span<float> out);
-std::vector<float> blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv);
+void blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, std::span<float> out,
+                  float ndvi = kNoNdvi);
+std::vector<float> blendWeights(std::span<const ColourScoreParams> types, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 // Index of the highest score (the first of equals); `types` must not be empty.
-size_t bestMatch(std::span<const ColourScoreParams> types, glm::vec3 hsv);
+size_t bestMatch(std::span<const ColourScoreParams> types, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 }  // namespace vegstream::vegetation

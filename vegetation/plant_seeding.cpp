@@ -96,10 +96,12 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
     out.push_back({triangleIndex, c, firstSeed, count, static_cast<uint32_t>(pick.species), pick.sPrime, fade});
   };
   auto group = [&](glm::vec2 r, float z, uint32_t c, uint32_t firstSeed, uint32_t count) {
-    SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(colourAt(r)), z);
+    const GroundSample now = colourAt(r);
+    SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(now.linear), z, now.ndvi);
     float w = triangle.imageryBlend;
     if (crossFade) {
-      const SpeciesChoice before = chooseSpecies(catalog, hsvFromLinear(previousColourAt(r)), z);
+      const GroundSample then = previousColourAt(r);
+      const SpeciesChoice before = chooseSpecies(catalog, hsvFromLinear(then.linear), z, then.ndvi);
       if (before.species == pick.species) {
         pick.sPrime = before.sPrime + (pick.sPrime - before.sPrime) * w;  // GLSL mix
         w = 1.0f;

@@ -113,8 +113,16 @@ Stratum clusterStratumOf(uint64_t key, uint32_t cluster);
 glm::vec2 seedPoint(uint64_t key, uint32_t cluster, uint32_t seed);
 glm::vec2 clusterCentre(uint64_t key, uint32_t cluster);
 
-// The base colour (linear RGB) under a point of the triangle given by (r′1, r′2).
-using BaseColourAt = std::function<glm::vec3(glm::vec2 rPrime)>;
+// What the imagery says under a point: its colour (linear RGB) and, where the dataset has a
+// near-infrared layer, its NDVI (kNoNdvi otherwise). Made from a colour alone, NDVI is absent.
+struct GroundSample {
+  GroundSample(glm::vec3 linearColour, float ndviValue = kNoNdvi) : linear(linearColour), ndvi(ndviValue) {}
+  glm::vec3 linear;
+  float ndvi;
+};
+
+// The ground under a point of the triangle given by (r′1, r′2).
+using BaseColourAt = std::function<GroundSample(glm::vec2 rPrime)>;
 
 // One classified group of plants, as the GPU appends it to its species' buffer: a whole cluster
 // (c ≥ 1) or one seed of cluster 0.

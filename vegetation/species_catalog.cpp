@@ -100,14 +100,24 @@ int hexDigit(char c) {
   return -1;
 }
 
-bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::vec3& hsv) {
+// reference.ndvi: optional, −1 … 1 (the NDVI channel of the score, colour_score.h).
+bool parseReferenceNdvi(Parser& ps, const json& r, const std::string& p, float& ndvi, bool& given) {
+  given = r.contains("ndvi");
+  if (!ps.number(r, "ndvi", p, ndvi, false)) return false;
+  if (ndvi < -1.0f || ndvi > 1.0f) return ps.fail(p + ".ndvi", "must be in −1 … 1 (got " + fmt(ndvi) + ")");
+  return true;
+}
+
+bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::vec3& hsv, float& ndvi,
+                    bool& ndviGiven) {
   const std::string p = Parser::join(path, "reference");
   const auto it = obj.find("reference");
   if (it == obj.end()) return ps.fail(p, "is missing");
   if (!ps.object(*it, p)) return false;
   const json& r = *it;
   if (r.contains("srgb")) {
-    if (!ps.onlyKeys(r, p, {"srgb"})) return ps.fail(p, "give either srgb or h_deg, s, v");
+    if (!ps.onlyKeys(r, p, {"srgb", "ndvi"})) return ps.fail(p, "give either srgb or h_deg, s, v");
+    if (!parseReferenceNdvi(ps, r, p, ndvi, ndviGiven)) return false;
     const json& s = r["srgb"];
     const std::string text = s.is_string() ? s.get<std::string>() : "";
     int v[6] = {};
@@ -118,7 +128,8 @@ bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::v
                        static_cast<uint8_t>(v[4] * 16 + v[5]));
     return true;
   }
-  if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb"})) return false;
+  if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb", "ndvi"})) return false;
+  if (!parseReferenceNdvi(ps, r, p, ndvi, ndviGiven)) return false;
   float h = 0.0f;
   if (!ps.number(r, "h_deg", p, h) || !ps.number(r, "s", p, hsv.y) || !ps.number(r, "v", p, hsv.z)) return false;
   if (h < 0.0f || h > 360.0f) return ps.fail(p + ".h_deg", "must be in 0 … 360 (got " + fmt(h) + ")");
@@ -160,15 +171,22 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
     out.bare = bare->get<bool>();
   }
 
-  if (!parseReference(ps, obj, path, out.score.reference)) return false;
+  bool ndviGiven = false;
+  if (!parseReference(ps, obj, path, out.score.reference, out.score.ndviReference, ndviGiven)) return false;
   const std::string wp = path + ".weights";
   const auto w = obj.find("weights");
   if (w == obj.end()) return ps.fail(wp, "is missing");
-  if (!ps.object(*w, wp) || !ps.onlyKeys(*w, wp, {"h", "s", "v"})) return false;
+  if (!ps.object(*w, wp) || !ps.onlyKeys(*w, wp, {"h", "s", "v", "ndvi"})) return false;
   glm::vec3& wt = out.score.weights;
-  if (!ps.number(*w, "h", wp, wt.x) || !ps.number(*w, "s", wp, wt.y) || !ps.number(*w, "v", wp, wt.z)) return false;
-  for (const auto& [k, v] : {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z}})
+  if (!ps.number(*w, "h", wp, wt.x) || !ps.number(*w, "s", wp, wt.y) || !ps.number(*w, "v", wp, wt.z) ||
+      !ps.number(*w, "ndvi", wp, out.score.ndviWeight, false))
+    return false;
+  for (const auto& [k, v] :
+       {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z}, std::pair{"ndvi", out.score.ndviWeight}})
     if (v < 0.0f) return ps.fail(wp + "." + k, "must be ≥ 0 (got " + fmt(v) + ")");
+  if (out.score.ndviWeight > 0.0f && !ndviGiven)
+    return ps.fail(path + ".reference.ndvi", "is missing: weights.ndvi is " + fmt(out.score.ndviWeight) +
+                                                 ", so the species needs the NDVI it grows on");
   if (wt.x == 0.0f && wt.y == 0.0f && wt.z == 0.0f)
     return ps.fail(wp, "must not all be 0 (the score would ignore the colour)");
   if (!ps.number(obj, "p", path, out.score.p)) return false;

@@ -15,7 +15,10 @@
 //         "about": "…free text…",                          optional
 //         "reference": { "h_deg": 86, "s": 0.3, "v": 0.33 }   HSV: hue 0 … 360°, s, v in 0 … 1
 //                   or { "srgb": "#4a5042" },              8-bit sRGB of an imagery pixel
+//           optional in either form: "ndvi": 0.4           the NDVI it grows on, −1 … 1
 //         "weights": { "h": 2, "s": 0.8, "v": 0.6 },       ≥ 0, not all 0
+//           optional: "ndvi": 2                            ≥ 0 (needs reference.ndvi); counts
+//                                                          only where the dataset has NDVI
 //         "p": 3,                                          > 0, ≤ 64
 //         "threshold": 0,                                  optional, ≥ 0 (0: none)
 //         "bare": false,                                   optional

@@ -11,11 +11,11 @@ bool passesThreshold(const Species& s, float logScore) {
   return !(s.threshold > 0.0f) || !(logScore < std::log(s.threshold));
 }
 
-SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv) {
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi) {
   SpeciesCandidates c;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const Species& s = catalog.species[i];
-    const float l = logColourScore(s.score, hsv);
+    const float l = logColourScore(s.score, hsv, ndvi);
     if (!passesThreshold(s, l)) continue;
     const int idx = static_cast<int>(i);
     // Strictly greater: of equal scores the lower index stays ahead.
@@ -34,8 +34,8 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
   return c;
 }
 
-SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z) {
-  const SpeciesCandidates c = speciesCandidates(catalog, hsv);
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi);
   SpeciesChoice out;
   if (c.first < 0) return out;  // nothing scores: rejected
   out.secondRatio = c.secondRatio;

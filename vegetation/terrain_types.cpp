@@ -26,22 +26,22 @@ std::vector<ColourScoreParams> scoreParams(std::span<const TerrainType> types) {
   return out;
 }
 
-std::vector<float> terrainTypeWeights(std::span<const TerrainType> types, glm::vec3 hsv) {
+std::vector<float> terrainTypeWeights(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi) {
   std::vector<ColourScoreParams> sharper = scoreParams(types);
   for (ColourScoreParams& p : sharper) p.p *= kTerrainBlendSharpness;  // s^k = d^(−p k)
-  return blendWeights(sharper, hsv);
+  return blendWeights(sharper, hsv, ndvi);
 }
 
-std::vector<float> surfaceWeights(std::span<const TerrainType> types, glm::vec3 hsv) {
-  const std::vector<float> w = terrainTypeWeights(types, hsv);
+std::vector<float> surfaceWeights(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi) {
+  const std::vector<float> w = terrainTypeWeights(types, hsv, ndvi);
   std::vector<float> out(kDetailSurfaceCount, 0.0f);
   for (size_t i = 0; i < types.size(); ++i) out[static_cast<size_t>(types[i].surface)] += w[i];
   return out;
 }
 
-size_t dominantTerrainType(std::span<const TerrainType> types, glm::vec3 hsv) {
+size_t dominantTerrainType(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi) {
   assert(!types.empty());
-  return bestMatch(scoreParams(types), hsv);
+  return bestMatch(scoreParams(types), hsv, ndvi);
 }
 
 }  // namespace vegstream::vegetation

@@ -41,12 +41,12 @@ std::vector<ColourScoreParams> scoreParams(std::span<const TerrainType> types);
 inline constexpr float kTerrainBlendSharpness = 3.0f;
 
 // Blend weights of `types` for base colour `hsv` (sums to 1): score^kTerrainBlendSharpness, normalised.
-std::vector<float> terrainTypeWeights(std::span<const TerrainType> types, glm::vec3 hsv);
+std::vector<float> terrainTypeWeights(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 // The detail surfaces' weights: the types' blend weights summed per surface (sums to 1).
-std::vector<float> surfaceWeights(std::span<const TerrainType> types, glm::vec3 hsv);
+std::vector<float> surfaceWeights(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 // Index of the type that scores highest for `hsv`; `types` must not be empty.
-size_t dominantTerrainType(std::span<const TerrainType> types, glm::vec3 hsv);
+size_t dominantTerrainType(std::span<const TerrainType> types, glm::vec3 hsv, float ndvi = kNoNdvi);
 
 }  // namespace vegstream::vegetation

@@ -35,5 +35,5 @@ struct Species {
   vec4 heightStiffness;
   vec4 widthColour;
   vec4 marker;
-  vec4 ground;           // x plants per m², y horizon (m)
+  vec4 ground;           // x plants per m², y horizon (m), z NDVI reference, w NDVI weight
 };

@@ -61,6 +61,19 @@ float logColourScore(vec3 reference, vec3 weights, float p, vec3 hsv) {
   return -p * log(dist);
 }
 
+// NDVI as a fourth channel (colour_score.h): ndviRefWeight = (reference, weight); an ndvi below
+// −1.5 (kNoNdvi) means none there, and the term is 0 — the same float result as without it.
+const float kNoNdvi = -2.0;
+
+float logColourScore(vec3 reference, vec3 weights, float p, vec2 ndviRefWeight, vec3 hsv, float ndvi) {
+  float dh = hueDistance(reference.x, hsv.x) * weights.x;
+  float ds = (reference.y - hsv.y) * weights.y;
+  float dv = (reference.z - hsv.z) * weights.z;
+  float dn = ndvi >= -1.5 ? (ndviRefWeight.x - ndvi) * ndviRefWeight.y : 0.0;
+  float dist = max(sqrt(dh * dh + ds * ds + dv * dv + dn * dn), kMinColourDistance);
+  return -p * log(dist);
+}
+
 float colourScore(vec3 reference, vec3 weights, float p, vec3 hsv) {
   return exp(logColourScore(reference, weights, p, hsv));
 }

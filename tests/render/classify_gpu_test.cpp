@@ -64,7 +64,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   VegetationFigures figures;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
-    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize, 0,
+    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), imagery.alternateView.get(), false, 3 * kClusterSize, 0,
                           [](GpuBuffer&&) {});
   });
   pass.readFigures(0, figures);
@@ -85,7 +85,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
     const auto [tri, cluster, seed] = key;
     const uint64_t k = scene.cpu[tri].key;
     const glm::vec2 r = cluster == 0 ? veg::seedPoint(k, 0, seed) : veg::clusterCentre(k, cluster);
-    const glm::vec3 hsv = veg::hsvFromLinear(colourOf(tri)(r));
+    const glm::vec3 hsv = veg::hsvFromLinear(colourOf(tri)(r).linear);
     const uint32_t slot = cluster == 0 ? veg::philox_slot::kColourSpecies + seed : veg::philox_slot::kSpecies;
     const veg::Philox2x32Out draw =
         veg::philox((cluster << 8) | slot, static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k));
@@ -206,7 +206,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   pass.setFades(false);
   VegetationFigures hard;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    hard = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), 3 * kClusterSize, 0,
+    hard = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), imagery.alternateView.get(), false, 3 * kClusterSize, 0,
                        [](GpuBuffer&&) {});
   });
   pass.readFigures(0, hard);
