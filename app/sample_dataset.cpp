@@ -18,8 +18,17 @@ std::string samplesDirFromEnvironment(const std::string& compiledIn) {
 
 Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& datasetDir, const Logger& log) {
   std::error_code ec;
-  if (fs::exists(datasetDir / "dataset.json", ec)) return datasetDir;
   const fs::path zion = samplesDir / "zion";
+  const bool withNir = fs::exists(zion / "landsat_b5.tif", ec);
+  if (fs::exists(datasetDir / "dataset.json", ec)) {
+    // An import made before the near-infrared layer existed is this program's own cache:
+    // imported again, so the species use NDVI (issue 18). Anything else there is left alone.
+    auto meta = datasets::readDatasetMeta(datasetDir);
+    if (!meta || meta->ndvi || !withNir || meta->name != "zion") return datasetDir;
+    log->info("{} has no near-infrared layer: importing the Zion sample again", datasetDir.string());
+    fs::remove_all(datasetDir, ec);
+    if (ec) return makeError(ErrorKind::Io, datasetDir.string() + ": cannot remove the old import: " + ec.message());
+  }
   if (!fs::exists(zion / "srtm.tif", ec))
     return makeError(
         ErrorKind::NotFound,
@@ -29,6 +38,7 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   o.dem = zion / "srtm.tif";
   o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
   o.imagery.stretch = datasets::Stretch{};  // 1st–99th percentiles
+  if (withNir) o.nir = datasets::NirInput{zion / "landsat_b5.tif"};  // NDVI for the species
   o.heightResampling = datasets::HeightResampling::Cubic;
   o.out = datasetDir;
   o.name = "zion";

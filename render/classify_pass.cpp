@@ -10,6 +10,7 @@
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/vk_check.h"
+#include "vegetation/overflow_thinning.h"
 #include "shaders/classify.comp.h"
 #include "shaders/classify_finish.comp.h"
 #include "vegetation/plant_bins.h"
@@ -22,11 +23,14 @@ static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
 constexpr uint32_t kWorkgroup = 64;  // shaders/classify.comp local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
 // groups and plants per species, then the groups and plants the occlusion test dropped.
-constexpr VkDeviceSize kCounterBytes = (2 * kSpeciesSlots + 2) * sizeof(uint32_t);
+// groups[16], plants[16], culledGroups, culledPlants, wanted[16] (classify.comp's Counters).
+constexpr VkDeviceSize kCounterBytes = (3 * kSpeciesSlots + 2) * sizeof(uint32_t);
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
   uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades, ndvi;
+  uint32_t pad[3];                            // std430: the vec4 array starts at 48
+  std::array<float, kSpeciesSlots> thinning;  // overflow thinning pressure per species
 };
 struct FinishPush {
   uint32_t verticesPerGroup, speciesCapacity, patchMask;
@@ -152,6 +156,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   Slot& s = slots_[size_t(slot)];
   VegetationFigures f;
   f.seedTriangles = static_cast<uint32_t>(triangles.size());
+  f.thinning = thinning_;
 
   std::vector<uint32_t> counts(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i)
@@ -198,7 +203,9 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
                               options_.clustersPerSpecies,
                               cull && !triangles.empty() ? 1u : 0u,
                               fades_ ? 0u : 1u,
-                              hasNdvi ? 1u : 0u};
+                              hasNdvi ? 1u : 0u,
+                              {},
+                              thinning_};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
       vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
@@ -237,6 +244,23 @@ void ClassifyPass::readFigures(int slot, VegetationFigures& f) const {
   }
   f.cullGroupsCulled = counters[2 * kSpeciesSlots];
   f.cullGroupPlantsCulled = counters[2 * kSpeciesSlots + 1];
+  for (size_t i = 0; i < kSpeciesSlots; ++i) f.wanted[i] = counters[2 * kSpeciesSlots + 2 + i];
+}
+
+void ClassifyPass::updateThinningFromSlot(int slot) {
+  if (slot < 0) {
+    thinning_.fill(0.0f);
+    return;
+  }
+  const auto* counters = static_cast<const uint32_t*>(slots_[size_t(slot)].figures.mapped);
+  for (size_t i = 0; i < kSpeciesSlots; ++i)
+    thinning_[i] = vegetation::thinningPressure(counters[2 * kSpeciesSlots + 2 + i], options_.clustersPerSpecies);
+}
+
+void ClassifyPass::updateThinning(const VegetationFigures& f) {
+  if (!f.gpuCounts) return;
+  for (size_t i = 0; i < kSpeciesSlots; ++i)
+    thinning_[i] = vegetation::thinningPressure(f.wanted[i], options_.clustersPerSpecies);
 }
 
 uint64_t ClassifyPass::gpuBytes() const {

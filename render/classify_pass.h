@@ -60,6 +60,13 @@ class ClassifyPass {
 
   // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
   void readFigures(int slot, VegetationFigures& f) const;
+  // The overflow thinning's pressure for the frames recorded from now on, from the groups a
+  // read-back frame wanted (vegetation/overflow_thinning.h); thinning() is the current one.
+  void updateThinning(const VegetationFigures& f);
+  // The same from the counts in slot `slot`'s figures (its frame done); −1: no pressure.
+  void updateThinningFromSlot(int slot);
+  void setThinning(const std::array<float, kSpeciesSlots>& pressure) { thinning_ = pressure; }
+  const std::array<float, kSpeciesSlots>& thinning() const { return thinning_; }
 
   VkBuffer records(int slot) const { return slots_[size_t(slot)].records.get(); }
   VkBuffer triangles(int slot) const { return slots_[size_t(slot)].triangles.get(); }
@@ -94,6 +101,7 @@ class ClassifyPass {
   Pipeline classify_, finish_;
   std::array<Slot, kSlots> slots_;
   bool fades_ = true;
+  std::array<float, kSpeciesSlots> thinning_{};
 };
 
 }  // namespace vegstream::render

@@ -85,6 +85,10 @@ struct VegetationFigures {
   std::array<uint32_t, kSpeciesSlots> groups{};  // groups appended per species (drawn: ≤ capacity)
   std::array<uint32_t, kSpeciesSlots> plants{};  // plants in those groups
   uint64_t groupsTotal = 0, plantsTotal = 0;
+  // Groups each species wanted before the overflow thinning (vegetation/overflow_thinning.h),
+  // and the pressure this frame thinned them with.
+  std::array<uint32_t, kSpeciesSlots> wanted{};
+  std::array<float, kSpeciesSlots> thinning{};
   bool overflow = false;  // a species' buffer was full: some groups were not drawn
   // Hi-Z occlusion culling (render/hiz_pass.h), read back with the counts; zero when it was off.
   bool occlusionCulling = false;   // asked for this frame (the counts are 0 when there was nothing to test)

@@ -122,6 +122,10 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   const uint64_t index = nextFrame++;
   FrameSlot& slot = slots[index % kFramesInFlight];
   waitSlot(slot);
+  // The overflow thinning's pressure comes from frame index − kFramesInFlight, the slot's last
+  // (done now): the same lag however many frames the caller keeps in flight, so recordings stay
+  // deterministic (none before the first frames: no pressure).
+  classify->updateThinningFromSlot(slot.submitted && slot.vegetation ? static_cast<int>(index % kFramesInFlight) : -1);
   VkFence fence = slot.fence.get();
   vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
 

@@ -22,6 +22,7 @@ layout(set = 0, binding = 3, std430) buffer Counters {
   uint groups[kMaxSpecies];
   uint plants[kMaxSpecies];
   uint culledGroups, culledPlants;
+  uint wanted[kMaxSpecies];  // groups before the overflow thinning (vegetation/overflow_thinning.h)
 };
 layout(set = 0, binding = 4, std430) writeonly buffer Records { PlantCluster records[]; };
 layout(set = 0, binding = 5) uniform sampler2DArray imagery;
@@ -42,6 +43,7 @@ layout(push_constant) uniform Push {
   uint cull;           // 1: skip triangles with visible[t] == 0
   uint hardFades;      // 1: a group is drawn whole or not at all (the fades off, for comparison)
   uint ndvi;           // 1: ndviLayers holds the imagery layers' NDVI
+  vec4 thinning[4];    // per species, the overflow thinning's pressure (0: keep every group)
 } pc;
 
 #include "species_choice.glsl"
@@ -104,6 +106,13 @@ float speciesFade(Species sp, SeedTriangle t, uint cluster, uint seed) {
   return plantFade(n, pc.clusterSize, cluster, seed) * (1.0 - f * f * (3.0 - 2.0 * f));
 }
 
+// vegetation::thinningFade.
+const float kThinningBand = 0.25;
+float thinningFade(float pressure, float priority) {
+  float edge = (1.0 + kThinningBand) * (1.0 - pressure);
+  return clamp((edge - priority) / kThinningBand, 0.0, 1.0);
+}
+
 void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, float sPrime, float fade) {
   uint s = uint(pick.x);
   if (pc.cull != 0u && ((visible[tri] >> s) & 1u) == 0u) {  // this species is hidden here
@@ -122,6 +131,12 @@ void append(uint tri, uint cluster, uint firstSeed, uint seedCount, ivec2 pick, 
 void appendPick(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint seedCount, vec2 pick, float w) {
   if (pick.x < 0.0) return;
   float fade = speciesFade(catalog.species[int(pick.x)], t, cluster, firstSeed) * w;
+  if (fade <= 0.0) return;
+  // Wanted, then thinned by its priority when the species' buffer is under pressure; the
+  // wanted count sets the next frames' pressure (ClassifyPass::updateThinning).
+  uint s = uint(pick.x);
+  atomicAdd(wanted[s], 1u);
+  fade *= thinningFade(pc.thinning[s / 4u][s % 4u], groupPriority(uvec2(t.keyLo, t.keyHi), cluster, firstSeed));
   if (fade <= 0.0) return;
   if (pc.hardFades != 0u) fade = 1.0;
   append(tri, cluster, firstSeed, seedCount, ivec2(pick.x, 0), pick.y, fade);

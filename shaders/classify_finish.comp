@@ -10,12 +10,14 @@ layout(set = 0, binding = 0, std430) readonly buffer Counters {
   uint groups[kMaxSpecies];
   uint plants[kMaxSpecies];
   uint culledGroups, culledPlants;
+  uint wanted[kMaxSpecies];
 };
 layout(set = 0, binding = 1, std430) writeonly buffer Draws { DrawIndirect draws[kMaxSpecies]; };
 layout(set = 0, binding = 2, std430) writeonly buffer Figures {
   uint figureGroups[kMaxSpecies];
   uint figurePlants[kMaxSpecies];
   uint figureCulledGroups, figureCulledPlants;
+  uint figureWanted[kMaxSpecies];
 };
 // patchMask bit s: species s is drawn by a plant pipeline (one patch vertex per group).
 layout(push_constant) uniform Push { uint verticesPerGroup; uint speciesCapacity; uint patchMask; } pc;
@@ -26,6 +28,7 @@ void main() {
   draws[s] = DrawIndirect(vertices, min(groups[s], pc.speciesCapacity), 0u, 0u);
   figureGroups[s] = groups[s];
   figurePlants[s] = plants[s];
+  figureWanted[s] = wanted[s];
   if (s == 0u) {
     figureCulledGroups = culledGroups;
     figureCulledPlants = culledPlants;

@@ -1,6 +1,7 @@
 // Plants of a seed triangle, core seed 001_3eca9f2c7752e4fb.txt §2.2, §3.3, §3.4 (see the
 // header). Operation for operation the same as shaders/classify.comp + shaders/common/seeding.glsl.
 #include "vegetation/plant_seeding.h"
+#include "vegetation/overflow_thinning.h"
 
 #include <algorithm>
 #include <cassert>
@@ -91,7 +92,8 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
     if (pick.species < 0) return;
     const Species& sp = catalog.species[size_t(pick.species)];
     const float n = speciesPlantCount(sp, triangle.plantCount, triangle.lodCount, area);
-    const float fade = plantFade(n, size, c, firstSeed) * speciesHorizonFade(sp, triangle.nearestM) * w;
+    const float fade = plantFade(n, size, c, firstSeed) * speciesHorizonFade(sp, triangle.nearestM) * w *
+                       thinningFade(options.thinning[size_t(pick.species)], groupPriority(triangle.key, c, firstSeed));
     if (fade <= 0.0f) return;
     out.push_back({triangleIndex, c, firstSeed, count, static_cast<uint32_t>(pick.species), pick.sPrime, fade});
   };

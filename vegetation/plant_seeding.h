@@ -52,6 +52,8 @@ static_assert(philox_slot::kPosition + kMaxClusterSize <= philox_slot::kHeightSt
 
 struct SeedingOptions {
   uint32_t clusterSize = 8;  // C, 1 … kMaxClusterSize
+  // Per species, the overflow thinning's pressure (overflow_thinning.h): 0 keeps every group.
+  std::array<float, kMaxSpecies> thinning{};
 };
 
 // One seed triangle as the seeding sees it (terrain/seed_triangles.h makes them).

@@ -68,6 +68,11 @@ vec2 pointInStratum(uvec3 s, vec2 f) {
   return vec2((float(s.x - s.z) - t.x) / n, (float(s.x - s.y) - t.y) / n);
 }
 
+// vegetation::groupPriority: the overflow thinning's view-independent priority of a group.
+float groupPriority(uvec2 key, uint c, uint seed) {
+  return philoxU01(philoxDraw(key, c, kSlotSpecies).y + seed * 0x9E3779B9u);
+}
+
 vec2 seedPoint(uvec2 key, uint c, uint seed) {
   uvec2 r = philoxDraw(key, c, kSlotPosition + seed);
   return pointInStratum(clusterStratumOf(key, c), vec2(philoxU01(r.x), philoxU01(r.y)));

@@ -1,6 +1,6 @@
 #pragma once
-// The Zion sample (SRTM heights + Landsat bands 4-3-2, stretched p1–p99, as the README imports
-// it) imported by this build's vegstream, once for all the test processes (cachedFixture), on
+// The Zion sample (SRTM heights + Landsat bands 4-3-2, stretched p1–p99, and band 5 for the NDVI
+// layer, as the README imports it) imported by this build's vegstream, once for all the test processes (cachedFixture), on
 // first use — never at static-initialisation time, which also runs when the build lists the
 // tests. Tests must not change it.
 
@@ -17,7 +17,8 @@ inline Result<std::filesystem::path> zionSampleDataset() {
   return cachedFixture("zion-sample", vegstreamKey(), [](const std::filesystem::path& dir) -> Status {
     const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
     const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + dir.string() + "'");
+                                "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z +
+                                "landsat_b5.tif --stretch p1,p99 --out '" + dir.string() + "'");
     if (r.exitCode != 0)
       return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
     return {};
