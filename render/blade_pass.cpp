@@ -42,7 +42,6 @@ static_assert(sizeof(BladeStateHeader) == 48);
 constexpr VkDeviceSize kDispatchOffset = 48, kDispatchStride = 16;
 constexpr VkDeviceSize kStateBytes = kDispatchOffset + kSpeciesSlots * kDispatchStride;
 constexpr VkDeviceSize kFigureBytes = 5 * sizeof(uint32_t);
-constexpr uint32_t kFlagArgsFinish = 0x10000;  // shaders/blade_args.comp
 
 // A plant has fewer than 3 indices per vertex (grass: 6n / (2n + 2)) and at least 4 vertices
 // (a stone): the index and plant-record ceilings follow from the vertex ceiling.
@@ -236,7 +235,7 @@ void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   push = plants.pushFor(mask, classify, options);
-  push.flags |= kFlagArgsFinish;
+  push.flags |= kPlantFlagArgsFinish;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, args_.get());
   vkCmdPushConstants(cmd, layout_.get(), kStages, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, 1, 1, 1);

@@ -13,7 +13,7 @@ layout(local_size_x = 16) in;
 #include "plant_common.glsl"
 #include "blade_layout.glsl"
 
-const uint kFlagArgsFinish = 0x10000u;  // render/blade_pass.cpp
+const uint kFlagArgsFinish = 0x20000u;  // render/plant_push.h kPlantFlagArgsFinish
 
 layout(set = 2, binding = 4, std430) readonly buffer ClassifyDraws { uvec4 classifyDraws[kMaxSpecies]; };
 layout(set = 2, binding = 5, std430) writeonly buffer Figures {

@@ -1,0 +1,75 @@
+// Issue 18's GPU popping check on lavapipe: between two frames whose plant level of detail
+// differs by 1 % (what a slow flight does to the plants from one frame to the next, here with
+// the view itself still, so that the camera's own motion does not move every edge), no pixel may
+// flip between ground and plant — with the fades on. The same check with `--plant-fades off`
+// must fail it, or the check sees nothing.
+//
+// The view: 10 m above a meadow of Zion's Kolob plateau, looking 25° down, 320×180, 4× MSAA,
+// validation on; `--plant-style coverage` draws every plant flat magenta, so a plant appearing
+// whole over a pixel changes it by nearly 255 in red or blue, while a plant growing or shrinking
+// by 1 % moves its edge by a fraction of a sample. A pixel "flips" when a channel changes by more
+// than 160 of 255.
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+
+#include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
+#include "tests/support/zion_sample.h"
+
+namespace vegstream {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kW = 320, kH = 180, kFlip = 160;
+
+std::vector<unsigned char> still(const fs::path& dataset, const std::string& name, const std::string& extra) {
+  const fs::path out = testing::testOutputDir() / (name + ".png");
+  const auto r = testing::runVegstream("snapshot '" + dataset.string() +
+                                       "' --lat 37.4570 --lon -113.0220 --alt 10 --heading 20 --pitch -25 --size " +
+                                       std::to_string(kW) + "x" + std::to_string(kH) +
+                                       " --validate --plant-style coverage --out '" + out.string() + "' " + extra);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  std::vector<unsigned char> rgb(size_t{kW} * kH * 3);
+  auto in = OIIO::ImageInput::open(out.string());
+  if (!in) {
+    ADD_FAILURE() << "cannot read " << out;
+    return {};
+  }
+  EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
+  return rgb;
+}
+
+// Pixels whose red, green or blue changed by more than kFlip.
+int flips(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
+  if (a.size() != b.size() || a.empty()) return -1;
+  int n = 0;
+  for (size_t p = 0; p < a.size(); p += 3) {
+    int d = 0;
+    for (size_t c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
+    n += d > kFlip ? 1 : 0;
+  }
+  return n;
+}
+
+TEST(PlantPoppingGpu, ALevelOfDetailStepFlipsNoPixelWithTheFadesAndSomeWithout) {
+  const auto dataset = testing::zionSampleDataset();
+  ASSERT_TRUE(dataset.ok()) << dataset.error().message;
+  const int on = flips(still(*dataset, "on-a", "--plant-density 0.1"), still(*dataset, "on-b", "--plant-density 0.101"));
+  const int off = flips(still(*dataset, "off-a", "--plant-density 0.1 --plant-fades off"),
+                        still(*dataset, "off-b", "--plant-density 0.101 --plant-fades off"));
+  std::printf("pixels flipped by a 1 %% level-of-detail step: %d with the fades, %d without (of %d)\n", on, off,
+              kW * kH);
+  EXPECT_GE(on, 0);
+  EXPECT_LE(on, 2) << "plants popped with the fades on";
+  EXPECT_GE(off, 5) << "without the fades the check must see pops, or it proves nothing";
+}
+
+}  // namespace
+}  // namespace vegstream
