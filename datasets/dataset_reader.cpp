@@ -53,6 +53,30 @@ PixelRef pixelRef(int64_t gx, int64_t gy, int z, int tileSize) {
   return p;
 }
 
+// Bilinear between pixel centres at zoom z: for each of the four pixels around f with a
+// weight > 0 whose tile (getTile: Result<shared_ptr<const Tile>>) exists, add(tile, p, w)
+// adds the pixel weighted by w to the caller's sum and returns whether it held data. Returns
+// the weight of those that did (the sum's divisor; 0: none did), or getTile's error.
+template <class GetTile, class Add>
+Result<double> bilinearWeight(const Footprint& f, int z, int size, GetTile&& getTile, Add&& add) {
+  double weight = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int dx = k & 1, dy = k >> 1;
+    const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
+    const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
+    if (!p.valid || w <= 0.0) continue;
+    auto tile = getTile(p.tile);
+    if (!tile) return tile.error();
+    if (!*tile) continue;
+    if (add(**tile, p, w)) weight += w;
+  }
+  return weight;
+}
+
+size_t pixelIndex(const PixelRef& p, int size) {
+  return static_cast<size_t>(p.j) * static_cast<size_t>(size) + static_cast<size_t>(p.i);
+}
+
 }  // namespace
 
 Result<DatasetReader> DatasetReader::open(const fs::path& datasetDir, size_t cachedTiles) {
@@ -150,21 +174,17 @@ Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::Til
 Result<double> DatasetReader::heightAtZoom(double latDeg, double lonDeg, int z) {
   const int size = meta_.tileSize;
   const Footprint f = footprint(latDeg, lonDeg, z, size);
-  double sum = 0.0, weight = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const int dx = k & 1, dy = k >> 1;
-    const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
-    const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
-    if (!p.valid || w <= 0.0) continue;
-    auto tile = heightTile(p.tile);
-    if (!tile) return tile.error();
-    if (!*tile) continue;
-    const float h = (*tile)->at(p.i, p.j);
-    if (std::isnan(h)) continue;
-    sum += w * h;
-    weight += w;
-  }
-  return weight > 0.0 ? sum / weight : std::nan("");
+  double sum = 0.0;
+  auto weight = bilinearWeight(
+      f, z, size, [&](const geo::TileId& id) { return heightTile(id); },
+      [&](const HeightTile& tile, const PixelRef& p, double w) {
+        const float h = tile.at(p.i, p.j);
+        if (std::isnan(h)) return false;
+        sum += w * h;
+        return true;
+      });
+  if (!weight) return weight.error();
+  return *weight > 0.0 ? sum / *weight : std::nan("");
 }
 
 Result<double> DatasetReader::heightAt(double latDeg, double lonDeg) {
@@ -187,25 +207,21 @@ Result<std::optional<Rgb8>> DatasetReader::colorAt(double latDeg, double lonDeg)
   const int size = meta_.tileSize;
   for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
     const Footprint f = footprint(latDeg, lonDeg, z, size);
-    double sum[3] = {0.0, 0.0, 0.0}, weight = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const int dx = k & 1, dy = k >> 1;
-      const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
-      const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
-      if (!p.valid || w <= 0.0) continue;
-      auto tile = colorTile(p.tile);
-      if (!tile) return tile.error();
-      if (!*tile) continue;
-      const size_t o = (static_cast<size_t>(p.j) * static_cast<size_t>(size) + static_cast<size_t>(p.i)) * 4;
-      const auto& px = (*tile)->rgba;
-      if (px[o + 3] == 0) continue;
-      for (int c = 0; c < 3; ++c) sum[c] += w * px[o + static_cast<size_t>(c)];
-      weight += w;
-    }
-    if (weight > 0.0) {
+    double sum[3] = {0.0, 0.0, 0.0};
+    auto weight = bilinearWeight(
+        f, z, size, [&](const geo::TileId& id) { return colorTile(id); },
+        [&](const ColorTile& tile, const PixelRef& p, double w) {
+          const size_t o = pixelIndex(p, size) * 4;
+          const auto& px = tile.rgba;
+          if (px[o + 3] == 0) return false;
+          for (int c = 0; c < 3; ++c) sum[c] += w * px[o + static_cast<size_t>(c)];
+          return true;
+        });
+    if (!weight) return weight.error();
+    if (*weight > 0.0) {
       Rgb8 rgb;
       for (int c = 0; c < 3; ++c)
-        rgb[static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(std::clamp(sum[c] / weight, 0.0, 255.0)));
+        rgb[static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(std::clamp(sum[c] / *weight, 0.0, 255.0)));
       return std::optional<Rgb8>(rgb);
     }
   }
@@ -217,22 +233,18 @@ Result<std::optional<float>> DatasetReader::ndviAt(double latDeg, double lonDeg)
   const int size = meta_.tileSize;
   for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
     const Footprint f = footprint(latDeg, lonDeg, z, size);
-    double sum = 0.0, weight = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const int dx = k & 1, dy = k >> 1;
-      const double w = (dx ? f.fx : 1.0 - f.fx) * (dy ? f.fy : 1.0 - f.fy);
-      const PixelRef p = pixelRef(f.x0 + dx, f.y0 + dy, z, size);
-      if (!p.valid || w <= 0.0) continue;
-      auto tile = colorTile(p.tile);
-      if (!tile) return tile.error();
-      if (!*tile || (*tile)->ndvi.empty()) continue;
-      const float v = ndviFromByte((*tile)->ndvi[static_cast<size_t>(p.j) * static_cast<size_t>(size) +
-                                                 static_cast<size_t>(p.i)]);
-      if (std::isnan(v)) continue;
-      sum += w * v;
-      weight += w;
-    }
-    if (weight > 0.0) return std::optional<float>(static_cast<float>(sum / weight));
+    double sum = 0.0;
+    auto weight = bilinearWeight(
+        f, z, size, [&](const geo::TileId& id) { return colorTile(id); },
+        [&](const ColorTile& tile, const PixelRef& p, double w) {
+          if (tile.ndvi.empty()) return false;
+          const float v = ndviFromByte(tile.ndvi[pixelIndex(p, size)]);
+          if (std::isnan(v)) return false;
+          sum += w * v;
+          return true;
+        });
+    if (!weight) return weight.error();
+    if (*weight > 0.0) return std::optional<float>(static_cast<float>(sum / *weight));
   }
   return std::optional<float>{};
 }

@@ -68,98 +68,117 @@ Quadrant quadrantOf(int i, int j, int size) {
   return {qy * 2 + qx, 2 * (i - qx * half), 2 * (j - qy * half)};
 }
 
-Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const geo::TileId& parentId,
-                                                    const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  std::array<std::optional<HeightTile>, 4> kids;
+// The ≤ 4 children of parentId (NW, NE, SW, SE) that are in `present`, each read by
+// read(childId) (a Result); nullopt when none is.
+template <class Kid, class Read>
+Result<std::optional<std::array<std::optional<Kid>, 4>>> readChildren(const geo::TileId& parentId,
+                                                                      const std::set<geo::TileId>& present,
+                                                                      Read&& read) {
+  std::array<std::optional<Kid>, 4> kids;
   bool any = false;
   const auto ids = geo::children(parentId);
-  for (int k = 0; k < 4; ++k) {
-    if (!present.count(ids[static_cast<size_t>(k)])) continue;
-    const fs::path p = elevationTilePath(dir, ids[static_cast<size_t>(k)]);
-    auto t = readHeightTile(p, ids[static_cast<size_t>(k)], meta.elevationEncoding);
+  for (size_t k = 0; k < 4; ++k) {
+    if (!present.count(ids[k])) continue;
+    auto t = read(ids[k]);
     if (!t) return t.error();
-    if (t->size != meta.tileSize)
-      return makeError(ErrorKind::InvalidInput,
-                       concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ", meta.tileSize));
-    kids[static_cast<size_t>(k)] = std::move(*t);
+    kids[k] = std::move(*t);
     any = true;
   }
-  if (!any) return std::optional<HeightTile>{};
-  const int size = meta.tileSize;
-  HeightTile out;
-  out.id = parentId;
-  out.size = size;
-  out.heights.assign(static_cast<size_t>(size) * static_cast<size_t>(size), NAN);
+  if (!any) return std::optional<std::array<std::optional<Kid>, 4>>{};
+  return std::optional<std::array<std::optional<Kid>, 4>>(std::move(kids));
+}
+
+// A child tile read from p must have the dataset's tile size.
+template <class Tile>
+Result<Tile> checkTileSize(Result<Tile> t, const fs::path& p, const DatasetMeta& meta) {
+  if (t && t->size != meta.tileSize)
+    return makeError(ErrorKind::InvalidInput,
+                     concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ", meta.tileSize));
+  return t;
+}
+
+// The 2×2 halving of ≤ 4 child tiles (size × size texels each, NW, NE, SW, SE) into their
+// parent: for parent texel `at` (row-major index), add(sum, kid, childTexel) is called on the
+// four child texels of its block and returns whether that one was valid (and added to sum);
+// where any was, put(at, sum, n) gets the sum of the n valid ones. Returns whether any
+// parent texel was put.
+template <class Sum, class Kid, class Add, class Put>
+bool meanOfValidChildren(const std::array<std::optional<Kid>, 4>& kids, int size, Add&& add, Put&& put) {
   bool valid = false;
   for (int j = 0; j < size; ++j) {
     for (int i = 0; i < size; ++i) {
       const Quadrant q = quadrantOf(i, j, size);
       const auto& kid = kids[static_cast<size_t>(q.child)];
       if (!kid) continue;
-      double sum = 0.0;
+      Sum sum{};
       int n = 0;
       for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) {
-          const float h = kid->at(q.cx + dx, q.cy + dy);
-          if (std::isfinite(h)) {
-            sum += h;
+        for (int dx = 0; dx < 2; ++dx)
+          if (add(sum, *kid,
+                  static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) + static_cast<size_t>(q.cx + dx)))
             ++n;
-          }
-        }
-      if (n) {
-        out.heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] =
-            static_cast<float>(sum / n);
-        valid = true;
-      }
+      if (!n) continue;
+      put(static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i), sum, n);
+      valid = true;
     }
   }
+  return valid;
+}
+
+Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const geo::TileId& parentId,
+                                                    const std::set<geo::TileId>& present, const DatasetMeta& meta) {
+  auto read = readChildren<HeightTile>(parentId, present, [&](const geo::TileId& id) {
+    const fs::path p = elevationTilePath(dir, id);
+    return checkTileSize(readHeightTile(p, id, meta.elevationEncoding), p, meta);
+  });
+  if (!read) return read.error();
+  if (!*read) return std::optional<HeightTile>{};
+  const auto& kids = **read;
+  const int size = meta.tileSize;
+  HeightTile out;
+  out.id = parentId;
+  out.size = size;
+  out.heights.assign(static_cast<size_t>(size) * static_cast<size_t>(size), NAN);
+  const bool valid = meanOfValidChildren<double>(
+      kids, size,
+      [](double& sum, const HeightTile& kid, size_t k) {
+        const float h = kid.heights[k];
+        if (!std::isfinite(h)) return false;
+        sum += h;
+        return true;
+      },
+      [&](size_t at, double sum, int n) { out.heights[at] = static_cast<float>(sum / n); });
   if (!valid) return std::optional<HeightTile>{};
   return std::optional<HeightTile>(std::move(out));
 }
 
 Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo::TileId& parentId,
                                                   const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  std::array<std::optional<ColorTile>, 4> kids;
-  bool any = false;
-  const auto ids = geo::children(parentId);
-  for (int k = 0; k < 4; ++k) {
-    if (!present.count(ids[static_cast<size_t>(k)])) continue;
-    const fs::path p = imageryTilePath(dir, ids[static_cast<size_t>(k)], *meta.imagery);
-    auto t = readColorTile(p, ids[static_cast<size_t>(k)]);
-    if (!t) return t.error();
-    if (t->size != meta.tileSize)
-      return makeError(ErrorKind::InvalidInput,
-                       concat("tile ", p, " is ", t->size, " pixels wide; the dataset's tiles are ", meta.tileSize));
-    kids[static_cast<size_t>(k)] = std::move(*t);
-    any = true;
-  }
-  if (!any) return std::optional<ColorTile>{};
+  auto read = readChildren<ColorTile>(parentId, present, [&](const geo::TileId& id) {
+    const fs::path p = imageryTilePath(dir, id, *meta.imagery);
+    return checkTileSize(readColorTile(p, id), p, meta);
+  });
+  if (!read) return read.error();
+  if (!*read) return std::optional<ColorTile>{};
+  const auto& kids = **read;
   const int size = meta.tileSize;
   ColorTile out;
   out.id = parentId;
   out.size = size;
   out.rgba.assign(static_cast<size_t>(size) * static_cast<size_t>(size) * 4, 0);
-  for (int j = 0; j < size; ++j) {
-    for (int i = 0; i < size; ++i) {
-      const Quadrant q = quadrantOf(i, j, size);
-      const auto& kid = kids[static_cast<size_t>(q.child)];
-      if (!kid) continue;
-      int sum[3] = {0, 0, 0}, n = 0;
-      for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) {
-          const uint8_t* px =
-              &kid->rgba[(static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) + static_cast<size_t>(q.cx + dx)) *
-                         4];
-          if (px[3] == 0) continue;
-          for (int c = 0; c < 3; ++c) sum[c] += px[c];
-          ++n;
-        }
-      if (!n) continue;
-      uint8_t* d = &out.rgba[(static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)) * 4];
-      for (int c = 0; c < 3; ++c) d[c] = static_cast<uint8_t>((sum[c] + n / 2) / n);
-      d[3] = 255;
-    }
-  }
+  meanOfValidChildren<std::array<int, 3>>(
+      kids, size,
+      [](std::array<int, 3>& sum, const ColorTile& kid, size_t k) {
+        const uint8_t* px = &kid.rgba[k * 4];
+        if (px[3] == 0) return false;
+        for (size_t c = 0; c < 3; ++c) sum[c] += px[c];
+        return true;
+      },
+      [&](size_t at, const std::array<int, 3>& sum, int n) {
+        uint8_t* d = &out.rgba[at * 4];
+        for (size_t c = 0; c < 3; ++c) d[c] = static_cast<uint8_t>((sum[c] + n / 2) / n);
+        d[3] = 255;
+      });
   return std::optional<ColorTile>(std::move(out));
 }
 
@@ -167,44 +186,26 @@ Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo
 // of its bytes, though the encoding is linear and the two differ only by rounding).
 Result<std::optional<ColorTile>> downsampleNdvi(const fs::path& dir, const geo::TileId& parentId,
                                                 const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  std::array<std::optional<std::vector<uint8_t>>, 4> kids;
-  bool any = false;
-  const auto ids = geo::children(parentId);
-  for (size_t k = 0; k < 4; ++k) {
-    if (!present.count(ids[k])) continue;
-    auto t = readNdviTile(ndviTilePath(dir, ids[k]), ids[k], meta.tileSize);
-    if (!t) return t.error();
-    kids[k] = std::move(*t);
-    any = true;
-  }
-  if (!any) return std::optional<ColorTile>{};
+  auto read = readChildren<std::vector<uint8_t>>(parentId, present, [&](const geo::TileId& id) {
+    return readNdviTile(ndviTilePath(dir, id), id, meta.tileSize);
+  });
+  if (!read) return read.error();
+  if (!*read) return std::optional<ColorTile>{};
+  const auto& kids = **read;
   const int size = meta.tileSize;
   ColorTile out;
   out.id = parentId;
   out.size = size;
   out.ndvi.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
-  bool valid = false;
-  for (int j = 0; j < size; ++j) {
-    for (int i = 0; i < size; ++i) {
-      const Quadrant q = quadrantOf(i, j, size);
-      const auto& kid = kids[static_cast<size_t>(q.child)];
-      if (!kid) continue;
-      double sum = 0.0;
-      int n = 0;
-      for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) {
-          const float v =
-              ndviFromByte((*kid)[static_cast<size_t>(q.cy + dy) * static_cast<size_t>(size) + static_cast<size_t>(q.cx + dx)]);
-          if (std::isnan(v)) continue;
-          sum += v;
-          ++n;
-        }
-      if (!n) continue;
-      out.ndvi[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)] =
-          ndviToByte(static_cast<float>(sum / n));
-      valid = true;
-    }
-  }
+  const bool valid = meanOfValidChildren<double>(
+      kids, size,
+      [](double& sum, const std::vector<uint8_t>& kid, size_t k) {
+        const float v = ndviFromByte(kid[k]);
+        if (std::isnan(v)) return false;
+        sum += v;
+        return true;
+      },
+      [&](size_t at, double sum, int n) { out.ndvi[at] = ndviToByte(static_cast<float>(sum / n)); });
   if (!valid) return std::optional<ColorTile>{};
   return std::optional<ColorTile>(std::move(out));
 }

@@ -29,6 +29,28 @@ bool edgeClamp(double& c, int n) {
   return true;
 }
 
+// Bilinear between sample centres of r around pixel, over the valid of the four samples
+// (valid(col, row)): add(col, row, weight) for each valid one; returns the weight of those
+// (0 outside the raster).
+template <class Valid, class Add>
+double bilinearOverValid(const Raster& r, glm::dvec2 pixel, Valid&& valid, Add&& add) {
+  double c = pixel.x, w = pixel.y;
+  if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return 0.0;
+  const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
+  const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
+  const int c1 = std::min(c0 + 1, r.width - 1), r1 = std::min(r0 + 1, r.height - 1);
+  const double fx = c - c0, fy = w - r0;
+  const int cols[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
+  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  double wsum = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (!valid(cols[k], rows[k])) continue;
+    add(cols[k], rows[k], weights[k]);
+    wsum += weights[k];
+  }
+  return wsum;
+}
+
 }  // namespace
 
 bool extentsOverlap(const geo::GeoBounds& a, const geo::GeoBounds& b) {
@@ -199,41 +221,22 @@ float sampleHeightCubic(const Raster& r, glm::dvec2 pixel) {
 }
 
 bool sampleColour(const Raster& r, glm::dvec2 pixel, std::array<float, 3>& rgb) {
-  double c = pixel.x, w = pixel.y;
-  if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return false;
-  const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
-  const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
-  const int c1 = std::min(c0 + 1, r.width - 1), r1 = std::min(r0 + 1, r.height - 1);
-  const double fx = c - c0, fy = w - r0;
-  const int cols[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
-  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  double sum[3] = {0, 0, 0}, wsum = 0;
-  for (int k = 0; k < 4; ++k) {
-    if (std::isnan(r.at(cols[k], rows[k], 0))) continue;
-    for (int ch = 0; ch < 3; ++ch) sum[ch] += weights[k] * r.at(cols[k], rows[k], ch);
-    wsum += weights[k];
-  }
+  double sum[3] = {0, 0, 0};
+  const double wsum = bilinearOverValid(
+      r, pixel, [&](int col, int row) { return !std::isnan(r.at(col, row, 0)); },
+      [&](int col, int row, double weight) {
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += weight * r.at(col, row, ch);
+      });
   if (wsum < 0.5) return false;
   for (int ch = 0; ch < 3; ++ch) rgb[static_cast<size_t>(ch)] = static_cast<float>(sum[ch] / wsum);
   return true;
 }
 
 float sampleValue(const Raster& r, glm::dvec2 pixel) {
-  double c = pixel.x, w = pixel.y;
-  if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return NAN;
-  const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
-  const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
-  const int c1 = std::min(c0 + 1, r.width - 1), r1 = std::min(r0 + 1, r.height - 1);
-  const double fx = c - c0, fy = w - r0;
-  const int cols[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
-  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  double sum = 0, wsum = 0;
-  for (int k = 0; k < 4; ++k) {
-    const float v = r.at(cols[k], rows[k]);
-    if (r.isNodata(v)) continue;
-    sum += weights[k] * v;
-    wsum += weights[k];
-  }
+  double sum = 0;
+  const double wsum = bilinearOverValid(
+      r, pixel, [&](int col, int row) { return !r.isNodata(r.at(col, row)); },
+      [&](int col, int row, double weight) { sum += weight * r.at(col, row); });
   return wsum < 0.5 ? NAN : static_cast<float>(sum / wsum);
 }
 

@@ -12,8 +12,6 @@
 namespace vegstream::datasets {
 namespace {
 using namespace vegstream::datasets::test;
-using vegstream::testing::CommandResult;
-using vegstream::testing::countLines;
 using vegstream::testing::runVegstream;
 
 const std::string kSrtm = samples() + "/zion/srtm.tif";
@@ -31,29 +29,8 @@ fs::path tinyGeoTiff(const fs::path& path, std::vector<uint16_t> keys, uint32_t 
 }
 const std::vector<uint16_t> kWgs84Keys = {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326};
 
-struct Case {
-  fs::path parent;  // holds --out and nothing else
-  fs::path out;
-  CommandResult result;
-};
-
-// Runs `import ARGS --out PARENT/out` in a fresh PARENT (with `before` entries made by setup).
-Case runImport(const std::string& name, const std::string& args, const std::string& outName = "out") {
-  Case c;
-  c.parent = importTmp("bad_" + name);
-  c.out = c.parent / outName;
-  c.result = runVegstream("import " + args + " --out " + c.out.string());
-  return c;
-}
-
-// The contract of every case: exit 2, one line naming `names`, nothing left at or beside --out.
-void expectRefused(const Case& c, const std::string& names, const std::string& what, int entriesBefore = 0) {
-  EXPECT_EQ(c.result.exitCode, 2) << c.result.err;
-  EXPECT_EQ(countLines(c.result.err), 1) << c.result.err;
-  EXPECT_NE(c.result.err.find(names), std::string::npos) << c.result.err;
-  EXPECT_NE(c.result.err.find(what), std::string::npos) << c.result.err;
-  EXPECT_EQ(entriesIn(c.parent), entriesBefore) << "left behind in " << c.parent;
-  EXPECT_TRUE(c.result.out.empty()) << c.result.out;
+ImportRun runImport(const std::string& name, const std::string& args, const std::string& outName = "out") {
+  return runImportIn("bad_" + name, args, outName);
 }
 
 TEST(ImportBadInput, MissingFile) {
@@ -109,7 +86,7 @@ TEST(ImportBadInput, PixelLimitIsConfigurable) {
 TEST(ImportBadInput, OutUnderARegularFile) {
   const fs::path parent = importTmp("bad_outfile");
   std::ofstream(parent / "file") << "a regular file";
-  Case c;
+  ImportRun c;
   c.parent = parent;
   c.result = runVegstream("import --dem " + kSrtm + " --out " + (parent / "file" / "x").string());
   expectRefused(c, (parent / "file" / "x").string(), "is not a directory", 1);
@@ -119,7 +96,7 @@ TEST(ImportBadInput, OutExistsAndIsNotEmpty) {
   const fs::path parent = importTmp("bad_nonempty");
   fs::create_directories(parent / "out");
   std::ofstream(parent / "out" / "keep.txt") << "mine";
-  Case c;
+  ImportRun c;
   c.parent = parent;
   c.result = runVegstream("import --dem " + kSrtm + " --out " + (parent / "out").string());
   expectRefused(c, (parent / "out").string(), "not an empty directory", 1);

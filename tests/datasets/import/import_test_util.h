@@ -3,6 +3,8 @@
 // imported dataset back through the tile codec and the geo tile maths (bilinear heights,
 // nearest colour) without depending on the query command.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -35,6 +37,38 @@ inline int entriesIn(const fs::path& dir) {
   int n = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
   return n;
+}
+
+// A refused import (the bad-input tests): `import ARGS --out PARENT/OUT` run in a fresh PARENT.
+struct ImportRun {
+  fs::path parent;  // holds --out and nothing else
+  fs::path out;
+  vegstream::testing::CommandResult result;
+};
+
+inline ImportRun runImportIn(const std::string& parentName, const std::string& args,
+                             const std::string& outName = "out") {
+  ImportRun c;
+  c.parent = importTmp(parentName);
+  c.out = c.parent / outName;
+  c.result = vegstream::testing::runVegstream("import " + args + " --out " + c.out.string());
+  return c;
+}
+
+// The contract of every bad-input case: exit 2, one line on stderr naming `names` and saying
+// `what`, nothing on stdout, and nothing left at or beside --out (PARENT holds its
+// `entriesBefore` entries made by the test's setup).
+inline void expectRefused(const ImportRun& c, const std::string& names, const std::string& what,
+                          int entriesBefore = 0) {
+  EXPECT_EQ(c.result.exitCode, 2) << c.result.err;
+  EXPECT_EQ(vegstream::testing::countLines(c.result.err), 1) << c.result.err;
+  EXPECT_NE(c.result.err.find(names), std::string::npos) << c.result.err;
+  EXPECT_NE(c.result.err.find(what), std::string::npos) << c.result.err;
+  EXPECT_EQ(entriesIn(c.parent), entriesBefore) << "left behind in " << c.parent;
+  if (entriesBefore == 0) {
+    EXPECT_FALSE(fs::exists(c.out));
+  }
+  EXPECT_TRUE(c.result.out.empty()) << c.result.out;
 }
 
 // Reads a dataset's max-zoom tiles on demand.

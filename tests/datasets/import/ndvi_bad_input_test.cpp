@@ -11,9 +11,6 @@
 namespace vegstream::datasets {
 namespace {
 using namespace vegstream::datasets::test;
-using vegstream::testing::CommandResult;
-using vegstream::testing::countLines;
-using vegstream::testing::runVegstream;
 
 const std::string kZion = samples() + "/zion/";
 const std::string kWithImagery = "--dem " + kZion + "srtm.tif --imagery-bands " + kZion + "landsat_b4.tif," + kZion +
@@ -40,29 +37,7 @@ fs::path tinyNir(const fs::path& path, const std::vector<uint16_t>& keys, uint16
   return path;
 }
 
-struct Case {
-  fs::path parent;  // holds --out and nothing else
-  fs::path out;
-  CommandResult result;
-};
-
-Case runImport(const std::string& name, const std::string& args) {
-  Case c;
-  c.parent = importTmp("nir_" + name);
-  c.out = c.parent / "out";
-  c.result = runVegstream("import " + args + " --out " + c.out.string());
-  return c;
-}
-
-void expectRefused(const Case& c, const std::string& names, const std::string& what) {
-  EXPECT_EQ(c.result.exitCode, 2) << c.result.err;
-  EXPECT_EQ(countLines(c.result.err), 1) << c.result.err;
-  EXPECT_NE(c.result.err.find(names), std::string::npos) << c.result.err;
-  EXPECT_NE(c.result.err.find(what), std::string::npos) << c.result.err;
-  EXPECT_EQ(entriesIn(c.parent), 0) << "left behind in " << c.parent;
-  EXPECT_FALSE(fs::exists(c.out));
-  EXPECT_TRUE(c.result.out.empty()) << c.result.out;
-}
+ImportRun runImport(const std::string& name, const std::string& args) { return runImportIn("nir_" + name, args); }
 
 TEST(NirBadInput, MoreThanOneBand) {
   const fs::path p = tinyNir(importTmp("nir_two_src") / "two_bands.tif", kUtm12Keys, 2);
