@@ -14,6 +14,7 @@ TerrainDetailUniforms packTerrainDetail(std::span<const vegetation::TerrainType>
     const vegetation::ColourScoreParams& s = types[i].score;
     u.reference[i] = glm::vec4(s.reference, s.p);
     u.weights[i] = glm::vec4(s.weights, static_cast<float>(types[i].surface));
+    u.ndvi[i] = glm::vec4(s.ndviReference, s.ndviWeight, 0.0f, 0.0f);
   }
   return u;
 }

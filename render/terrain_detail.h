@@ -34,13 +34,15 @@ struct TerrainDetailUniforms {
   glm::vec4 tiling;  // x: period (m), y: fine repeats per period, z: coarse repeats, w: coarse share
   glm::vec4 reference[vegetation::kMaxTerrainTypes];  // xyz: reference HSV, w: exponent p
   glm::vec4 weights[vegetation::kMaxTerrainTypes];    // xyz: channel weights, w: detail layer (surface)
+  glm::vec4 ndvi[vegetation::kMaxTerrainTypes];       // x: NDVI reference, y: NDVI weight
 };
 
 static_assert(offsetof(TerrainDetailUniforms, params) == 0);
 static_assert(offsetof(TerrainDetailUniforms, tiling) == 16);
 static_assert(offsetof(TerrainDetailUniforms, reference) == 32);
 static_assert(offsetof(TerrainDetailUniforms, weights) == 32 + 16 * vegetation::kMaxTerrainTypes);
-static_assert(sizeof(TerrainDetailUniforms) == 32 + 32 * vegetation::kMaxTerrainTypes);
+static_assert(offsetof(TerrainDetailUniforms, ndvi) == 32 + 32 * vegetation::kMaxTerrainTypes);
+static_assert(sizeof(TerrainDetailUniforms) == 32 + 48 * vegetation::kMaxTerrainTypes);
 static_assert(vegetation::kMaxTerrainTypes == 16, "shaders/common/terrain_detail.glsl declares 16");
 
 // The block for `types` (at most kMaxTerrainTypes; more are cut off) and `settings`.

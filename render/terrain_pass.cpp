@@ -107,9 +107,13 @@ std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
                          bool deferred, TaskRunner* tasks)
     : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()) {
-  imageryLayout_ =
-      createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSampledBy, "terrain imagery layout");
-  imageryPool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, "terrain imagery pool");
+  // Binding 0: the imagery array; 1: its NDVI array (terrain_shading.glsl).
+  const VkDescriptorSetLayoutBinding imageryBindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kSampledBy, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kSampledBy, nullptr}};
+  imageryLayout_ = createLayout(ctx, imageryBindings, "terrain imagery layout");
+  const VkDescriptorPoolSize imageryPoolSize[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+  imageryPool_ = createPool(ctx, imageryPoolSize, 1, "terrain imagery pool");
   imagerySet_ = allocateDescriptorSet(ctx, imageryPool_.get(), imageryLayout_.get(), "terrain imagery set");
   sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
 
@@ -159,14 +163,26 @@ void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage
   // Every layer starts shader-readable (never sampled before its upload: the streamer hands out
   // a layer only with its tile), so uploads can move one layer at a time.
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    for (const auto& [image, count] : {std::pair{imagery_.get(), layers}, std::pair{ndvi_.get(), ndviLayers}})
-      transitionImageRange(cmd, image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, count}, VK_IMAGE_LAYOUT_UNDEFINED,
-                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    transitionImageRange(cmd, imagery_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers}, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    // The NDVI array starts at 0 ("none"): the terrain samples it for every layer, and a dataset
+    // without NDVI never uploads any.
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, ndviLayers};
+    transitionImageRange(cmd, ndvi_.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const VkClearColorValue zero{};
+    vkCmdClearColorImage(cmd, ndvi_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
+    transitionImageRange(cmd, ndvi_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   });
   // The caller guarantees no frame in flight uses the set (the renderer waits for idle first).
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
+  writeSampledImage(*ctx_, imagerySet_, sampler_.get(), ndvi_.view.get(), 1);
 }
 
 void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,

@@ -15,15 +15,18 @@ layout(set = TERRAIN_DETAIL_SET, binding = 1, std140) uniform TerrainDetail {
   vec4 tiling;   // x: period (m), y: fine repeats per period, z: coarse repeats per period, w: coarse share
   vec4 reference[kMaxTerrainTypes];  // xyz: reference HSV, w: exponent p
   vec4 weights[kMaxTerrainTypes];    // xyz: channel weights, w: detail surface (texture layer)
+  vec4 ndvi[kMaxTerrainTypes];       // x: NDVI reference, y: NDVI weight (colour_score.h)
 } detail;
 
-// Blend weights of the table's types for base colour `hsv` (entries past the count are 0).
-void terrainTypeWeights(vec3 hsv, out float w[kMaxTerrainTypes]) {
+// Blend weights of the table's types for base colour `hsv` and the NDVI there (kNoNdvi: none),
+// entries past the count 0: vegetation::terrainTypeWeights, the same scores as the species.
+void terrainTypeWeights(vec3 hsv, float ndvi, out float w[kMaxTerrainTypes]) {
   int n = int(detail.params.x);
   float top = -3.4e38;
   for (int i = 0; i < kMaxTerrainTypes; ++i) {
     // Scores raised to kTerrainBlendSharpness (vegetation/terrain_types.h): d^(−p k).
-    w[i] = i < n ? logColourScore(detail.reference[i].xyz, detail.weights[i].xyz, detail.reference[i].w * 3.0, hsv)
+    w[i] = i < n ? logColourScore(detail.reference[i].xyz, detail.weights[i].xyz, detail.reference[i].w * 3.0,
+                                  detail.ndvi[i].xy, hsv, ndvi)
                  : 0.0;
     if (i < n) top = max(top, w[i]);
   }
@@ -35,11 +38,15 @@ void terrainTypeWeights(vec3 hsv, out float w[kMaxTerrainTypes]) {
   for (int i = 0; i < kMaxTerrainTypes; ++i) w[i] = sum > 0.0 ? w[i] / sum : 0.0;  // no types: all 0
 }
 
+void terrainTypeWeights(vec3 hsv, out float w[kMaxTerrainTypes]) { terrainTypeWeights(hsv, kNoNdvi, w); }
+
 // The weights summed per detail surface (x grass, y rock, z gravel, w sand).
-vec4 detailSurfaceWeights(vec3 hsv) {
+vec4 detailSurfaceWeights(vec3 hsv, float ndvi) {
   float w[kMaxTerrainTypes];
-  terrainTypeWeights(hsv, w);
+  terrainTypeWeights(hsv, ndvi, w);
   vec4 surfaces = vec4(0.0);
   for (int i = 0; i < kMaxTerrainTypes; ++i) surfaces[int(detail.weights[i].w)] += w[i];
   return surfaces;
 }
+
+vec4 detailSurfaceWeights(vec3 hsv) { return detailSurfaceWeights(hsv, kNoNdvi); }

@@ -4,6 +4,18 @@
 // terrain_detail.glsl and terrain_palette.glsl. Sets 1 (imagery) and 2 (detail) as in the
 // terrain pass.
 layout(set = 1, binding = 0) uniform sampler2DArray imagery;  // one tile per layer; sRGB: sampled as linear colour
+// Each imagery layer's NDVI (R8, datasets/tile_codec.h's bytes, 0 = none; one cleared layer when
+// the dataset has none): the detail blend scores it like the species choice does.
+layout(set = 1, binding = 1) uniform sampler2DArray ndviLayers;
+
+// The NDVI at layer uv, nearest texel (a filtered byte would blend "none" into values); kNoNdvi
+// where there is none.
+float terrainNdvi(vec2 uv, float layer) {
+  ivec3 size = textureSize(ndviLayers, 0);
+  ivec2 t = clamp(ivec2(uv * vec2(size.xy)), ivec2(0), size.xy - 1);
+  uint b = uint(texelFetch(ndviLayers, ivec3(t, min(int(layer), size.z - 1)), 0).r * 255.0 + 0.5);
+  return b == 0u ? kNoNdvi : (float(b) - 128.0) / 127.0;
+}
 layout(set = 2, binding = 0) uniform sampler2DArray detailTextures;  // one layer per detail surface; UNORM, 0.5 = neutral
 
 // Imagery is a photograph: it already holds the sun and shadows of its day. Treat it as
@@ -34,10 +46,10 @@ struct TerrainImagery {
 // — at two scales, projected triplanar so cliffs are not smeared, and faded out with distance so
 // far terrain is exactly the imagery. `world`, `dx`, `dy`: position in periods and its screen
 // derivatives.
-vec3 detailFactor(vec3 baseLinear, vec3 n, float distanceM, vec3 world, vec3 dx, vec3 dy) {
+vec3 detailFactor(vec3 baseLinear, float ndvi, vec3 n, float distanceM, vec3 world, vec3 dx, vec3 dy) {
   float fade = (1.0 - smoothstep(detail.params.y, detail.params.z, distanceM)) * detail.params.w * frame.detail.w;
   if (fade <= 0.0) return vec3(1.0);
-  vec4 surfaces = detailSurfaceWeights(hsvFromLinear(baseLinear));
+  vec4 surfaces = detailSurfaceWeights(hsvFromLinear(baseLinear), ndvi);
   vec3 planes = pow(abs(n), vec3(4.0));
   planes /= planes.x + planes.y + planes.z;  // x: the yz plane, y: xz, z: xy (flat ground)
   float fine = detail.tiling.y, coarse = detail.tiling.z, coarseShare = detail.tiling.w;
@@ -70,8 +82,10 @@ vec3 shadeTerrain(TerrainPoint p, TerrainImagery im) {
   float slope = 1.0 - clamp(n.z, 0.0, 1.0);  // 0 flat … 1 vertical
   vec3 albedo = terrainAlbedo(p.heightMsl, slope);
   vec3 base = albedo;  // the ground's colour as imaged: what the colour score reads
+  float ndvi = kNoNdvi;
   if (im.layers.x >= 0.0) {
     vec4 photo = textureLod(imagery, vec3(p.uv * im.imageryUv.xy + im.imageryUv.zw, im.layers.x), 0.0);
+    ndvi = terrainNdvi(p.uv * im.imageryUv.xy + im.imageryUv.zw, im.layers.x);
     if (im.layers.y >= 0.0 && im.layers.z < 1.0) {  // a finer tile fading in over its ancestor
       vec4 before = textureLod(imagery, vec3(p.uv * im.previousUv.xy + im.previousUv.zw, im.layers.y), 0.0);
       photo = mix(before, photo, im.layers.z);
@@ -80,7 +94,7 @@ vec3 shadeTerrain(TerrainPoint p, TerrainImagery im) {
     albedo = mix(albedo, photo.rgb * kImageryExposure * 0.5, photo.a);  // alpha 0: no imagery there
   }
   vec3 world = (frame.detail.xyz + p.offset) / detail.tiling.x;
-  albedo *= detailFactor(base, n, length(p.offset), world, p.offsetDx / detail.tiling.x, p.offsetDy / detail.tiling.x);
+  albedo *= detailFactor(base, ndvi, n, length(p.offset), world, p.offsetDx / detail.tiling.x, p.offsetDy / detail.tiling.x);
   float sun = max(dot(n, frame.sunDirection.xyz), 0.0);
   // Hemispherical sky light: full from above, half from the horizon.
   vec3 ambient = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * (0.5 + 0.5 * n.z) * 0.35;

@@ -4,6 +4,7 @@
 
 #include "vegetation/terrain_types.h"
 
+#include <cstdio>
 #include <set>
 #include <string>
 
@@ -111,6 +112,27 @@ TEST(TerrainTypes, SurfaceWeightsSumPerDetailLayer) {
   EXPECT_GT(between[0], 0.1f);  // (the blend is sharpened: kTerrainBlendSharpness)
   EXPECT_GT(between[1], 0.1f);
   EXPECT_GT(between[0] + between[1], 0.8f);
+}
+
+// The one table scores NDVI for the terrain's detail as for the species: a dark green that the
+// colour alone gives grass detail loses it where the NDVI says bare ground (rock detail comes in)
+// and gets none of the rock where the NDVI says plants; without NDVI it is scored as before.
+TEST(TerrainTypes, NdviMovesTheDetailOfADarkGreenLikeTheSpeciesChoice) {
+  const std::span<const TerrainType> types = defaultTerrainTypes();
+  const glm::vec3 darkGreen = hsvFromSrgb8(24, 30, 18);
+  const auto grass = size_t(DetailSurface::Grass);
+  const std::vector<float> none = surfaceWeights(types, darkGreen);
+  EXPECT_EQ(none, surfaceWeights(types, darkGreen, kNoNdvi));
+  const std::vector<float> rock = surfaceWeights(types, darkGreen, 0.08f);
+  const std::vector<float> plants = surfaceWeights(types, darkGreen, 0.40f);
+  const auto rockLayer = size_t(DetailSurface::Rock);
+  std::printf("dark green: rock detail %.3f without NDVI, %.3f at NDVI 0.08, %.3f at 0.40; grass %.3f / %.3f / %.3f\n",
+              none[rockLayer], rock[rockLayer], plants[rockLayer], none[grass], rock[grass], plants[grass]);
+  // Measured: grass 0.70 without NDVI, 0.06 at 0.08; rock 0.00 → 0.24.
+  EXPECT_GT(none[grass], 0.5f);
+  EXPECT_LT(rock[grass], 0.1f);
+  EXPECT_GT(rock[rockLayer], 0.2f);
+  EXPECT_LT(plants[rockLayer], 0.05f);
 }
 
 }  // namespace
