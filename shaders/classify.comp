@@ -81,10 +81,10 @@ float imageryNdvi(int layer, vec2 uv) {
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       ivec2 p = clamp(ivec2(x0 + i, y0 + j), ivec2(0), ivec2(255));
-      uint b = uint(texelFetch(ndviLayers, ivec3(p, layer), 0).r * 255.0 + 0.5);
-      if (b == 0u) continue;
+      float v = ndviOfTexel(texelFetch(ndviLayers, ivec3(p, layer), 0).r);
+      if (v == kNoNdvi) continue;
       float w = (i == 1 ? fx : 1.0 - fx) * (j == 1 ? fy : 1.0 - fy);
-      sum += w * ((float(b) - 128.0) / 127.0);
+      sum += w * v;
       weight += w;
     }
   return weight > 0.0 ? sum / weight : kNoNdvi;

@@ -65,6 +65,12 @@ float logColourScore(vec3 reference, vec3 weights, float p, vec3 hsv) {
 // −1.5 (kNoNdvi) means none there, and the term is 0 — the same float result as without it.
 const float kNoNdvi = -2.0;
 
+// An NDVI byte as an R8 UNORM texel holds it (datasets/tile_codec.h ndviFromByte: 0 = none).
+float ndviOfTexel(float unorm) {
+  uint b = uint(unorm * 255.0 + 0.5);
+  return b == 0u ? kNoNdvi : (float(b) - 128.0) / 127.0;
+}
+
 float logColourScore(vec3 reference, vec3 weights, float p, vec2 ndviRefWeight, vec3 hsv, float ndvi) {
   float dh = hueDistance(reference.x, hsv.x) * weights.x;
   float ds = (reference.y - hsv.y) * weights.y;

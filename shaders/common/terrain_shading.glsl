@@ -13,8 +13,7 @@ layout(set = 1, binding = 1) uniform sampler2DArray ndviLayers;
 float terrainNdvi(vec2 uv, float layer) {
   ivec3 size = textureSize(ndviLayers, 0);
   ivec2 t = clamp(ivec2(uv * vec2(size.xy)), ivec2(0), size.xy - 1);
-  uint b = uint(texelFetch(ndviLayers, ivec3(t, min(int(layer), size.z - 1)), 0).r * 255.0 + 0.5);
-  return b == 0u ? kNoNdvi : (float(b) - 128.0) / 127.0;
+  return ndviOfTexel(texelFetch(ndviLayers, ivec3(t, min(int(layer), size.z - 1)), 0).r);
 }
 layout(set = 2, binding = 0) uniform sampler2DArray detailTextures;  // one layer per detail surface; UNORM, 0.5 = neutral
 
