@@ -111,13 +111,14 @@ int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath
 
 }  // namespace
 
-int runFly(const FlyOptions& o, const Logger& log) {
+int runFly(FlyOptions o, const Logger& log) {
   scene::SceneOptions so;
   const bool windowWanted = !o.headless && displayAvailable();
   if (Status s = applyStreamingOptions(
           o.streaming, windowWanted ? scene::StreamingMode::Realtime : scene::StreamingMode::Settled, so);
       !s)
     return reportError(log, s.error());
+  if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;
@@ -132,6 +133,7 @@ int runFly(const FlyOptions& o, const Logger& log) {
     if (!loaded) return reportError(log, loaded.error());
     given = std::move(*loaded);
   }
+  o.simulation = resolveSimulationOptions(o.simulationCli, given ? &*given : nullptr);
 
   Window window;
   so.dataset = *dataset;

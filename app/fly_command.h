@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "app/simulation_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
@@ -23,9 +24,14 @@ struct FlyOptions {
   bool validate = false;
   bool headless = false;   // never open a window, even with a display
   StreamingCli streaming;  // --streaming default: settled headless (frames to look at), realtime in a window
+  SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  // What the simulation runs with: simulationCli over --path's wind section over the defaults
+  // (resolveSimulationOptions); filled by runFly once --path is read, before the scene opens
+  // (the default paths have no wind section).
+  simulation::SimulationOptions simulation;
 };
 
 // Returns the process exit code: 0 success, 2 user mistake, 1 anything else.
-int runFly(const FlyOptions& options, const Logger& logger);
+int runFly(FlyOptions options, const Logger& logger);
 
 }  // namespace vegstream::app

@@ -19,6 +19,7 @@
 #include "app/record_command.h"
 #include "app/report_command.h"
 #include "app/sample_dataset.h"
+#include "app/simulation_cli.h"
 #include "app/snapshot_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
   flyCmd->add_flag("--validate", fly.validate, "Turn on the Vulkan validation layers");
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
   app::addStreamingOptions(*flyCmd, fly.streaming, true);
+  app::addSimulationOptions(*flyCmd, fly.simulationCli);
 
   app::ImportOptions importOptions;
   auto* importCmd = app::addImportCommand(cli, importOptions);

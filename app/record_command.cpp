@@ -59,22 +59,25 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   cmd->add_flag("--no-plots", o.noPlots, "Write frames.csv and the JSON files only (no python3/matplotlib needed)");
   addStreamingOptions(*cmd, o.streaming, true);
+  addSimulationOptions(*cmd, o.simulationCli);
   return cmd;
 }
 
-int runRecord(const RecordOptions& o, const Logger& log) {
+int runRecord(RecordOptions o, const Logger& log) {
   auto userError = [&](const std::string& m) { return reportError(log, makeError(ErrorKind::InvalidInput, m)); };
   uint32_t width = 0, height = 0;
   if (!parseFrameSize(o.size, width, height))
     return userError("--size " + o.size + ": expected WxH with each side 1 … 16384, e.g. 640x360");
   if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
     return userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16");
+  if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   std::error_code ec;
   if (fs::exists(o.out, ec) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec)))
     return userError("--out " + o.out + " already exists and is not empty; choose another output directory");
 
   auto path = flight::loadFlightPath(o.path);
   if (!path) return reportError(log, path.error());
+  o.simulation = resolveSimulationOptions(o.simulationCli, &*path);
 
   scene::SceneOptions so;
   if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)

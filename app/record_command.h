@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "app/simulation_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
@@ -31,6 +32,10 @@ struct RecordOptions {
   bool validate = false;
   bool noPlots = false;    // skip the plots (frames.csv and the JSON files only)
   StreamingCli streaming;  // budgets, --streaming settled|realtime (default settled), look-ahead
+  SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  // What the simulation runs with: simulationCli over the path's wind section over the defaults
+  // (resolveSimulationOptions); filled by runRecord once the path is read.
+  simulation::SimulationOptions simulation;
 };
 
 CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& options);
@@ -40,7 +45,7 @@ void addFramesInFlightOption(CLI::App& cmd, int& framesInFlight);
 
 // Exit code: 0 done; 2 a user mistake (one message, nothing written); 1 a GPU/system failure,
 // or the recording was written but its plots could not be made (python3/matplotlib missing).
-int runRecord(const RecordOptions& options, const Logger& log);
+int runRecord(RecordOptions options, const Logger& log);
 
 // "WxH" → width, height, each 1 … 16384.
 bool parseFrameSize(const std::string& text, uint32_t& width, uint32_t& height);

@@ -100,16 +100,19 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   addStreamingOptions(*cmd, o.streaming, false);
+  addSimulationOptions(*cmd, o.simulationCli);
   return cmd;
 }
 
-int runSnapshot(const SnapshotOptions& o, const Logger& log) {
+int runSnapshot(SnapshotOptions o, const Logger& log) {
   uint32_t width = 0, height = 0;
   if (!parseFrameSize(o.size, width, height))
     return reportError(log, userError("--size " + o.size + ": expected WxH with each side 1 … 16384, e.g. 1280x720"));
   if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
     return reportError(log, userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16"));
   if (Status s = checkPoseNumbers(o); !s) return reportError(log, s.error());
+  if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
+  o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
   if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
 
   scene::SceneOptions so;

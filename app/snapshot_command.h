@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "app/simulation_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
@@ -37,12 +38,16 @@ struct SnapshotOptions {
   std::string device;
   bool validate = false;
   StreamingCli streaming;  // the plant, streaming and terrain options of `record` (settled)
+  SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  // What the simulation runs with: simulationCli over the defaults (a still has no flight path);
+  // filled by runSnapshot.
+  simulation::SimulationOptions simulation;
 };
 
 CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& options);
 
 // Exit code: 0 written; 2 a user mistake (one message naming the option, nothing written);
 // 1 a GPU/system failure, or validation errors (the still is then written all the same).
-int runSnapshot(const SnapshotOptions& options, const Logger& log);
+int runSnapshot(SnapshotOptions options, const Logger& log);
 
 }  // namespace vegstream::app

@@ -42,6 +42,59 @@ std::optional<PathProblem> checkPositions(const std::string& list, const std::ve
   return std::nullopt;
 }
 
+std::string shortNum(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// A wind value: finite, lo ≤ v ≤ hi ("must be ≥ 0 m/s, found -3").
+std::optional<PathProblem> checkWindValue(const std::string& field, double v, double lo, double hi,
+                                          const std::string& unit) {
+  if (!std::isfinite(v)) return PathProblem{field, "is not a finite number"};
+  if (v < lo) return PathProblem{field, "must be ≥ " + shortNum(lo) + unit + ", found " + shortNum(v)};
+  if (v > hi) return PathProblem{field, "must be ≤ " + shortNum(hi) + unit + ", found " + shortNum(v)};
+  return std::nullopt;
+}
+
+const char* typeName(WindSourceSpec::Type type) {
+  switch (type) {
+    case WindSourceSpec::Type::Fan: return "fan";
+    case WindSourceSpec::Type::Whirlwind: return "whirlwind";
+    case WindSourceSpec::Type::Rotor: return "rotor";
+  }
+  return "?";
+}
+
+std::optional<PathProblem> checkWind(const WindSection& wind) {
+  constexpr double kMaxSpeedMps = 100.0;  // simulation::kMaxWindSpeedMps (flight/ does not depend on simulation/)
+  if (wind.speedMps)
+    if (auto p = checkWindValue("wind.speed_mps", *wind.speedMps, 0.0, kMaxSpeedMps, " m/s")) return p;
+  if (wind.directionDeg && !std::isfinite(*wind.directionDeg))
+    return PathProblem{"wind.direction_deg", "is not a finite number"};
+  if (wind.gustiness)
+    if (auto p = checkWindValue("wind.gustiness", *wind.gustiness, 0.0, 1.0, "")) return p;
+  for (std::size_t i = 0; i < wind.sources.size(); ++i) {
+    const WindSourceSpec& src = wind.sources[i];
+    const std::string f = at("wind.sources", i);
+    if (src.name.empty()) return PathProblem{f + ".name", "a wind source needs a name"};
+    if (src.keyframes.empty()) return PathProblem{f + ".keyframes", "a wind source needs at least 1 keyframe"};
+    if (!(src.radiusM > 0.0) || !std::isfinite(src.radiusM))
+      return PathProblem{f + ".radius_m", "must be a positive number of metres"};
+    if (auto p = checkWindValue(f + ".strength_mps", src.strengthMps, 0.0, kMaxSpeedMps, " m/s")) return p;
+    if (src.type == WindSourceSpec::Type::Fan && !src.directionDeg)
+      return PathProblem{f + ".direction_deg",
+                         "a fan needs direction_deg (where it blows towards, degrees clockwise from north)"};
+    if (src.type != WindSourceSpec::Type::Fan && src.directionDeg)
+      return PathProblem{f + ".direction_deg",
+                         std::string("only a fan has a direction (a ") + typeName(src.type) + " blows all around)"};
+    if (src.directionDeg && !std::isfinite(*src.directionDeg))
+      return PathProblem{f + ".direction_deg", "is not a finite number"};
+    if (auto p = checkPositions(f + ".keyframes", src.keyframes)) return p;
+  }
+  return std::nullopt;
+}
+
 bool lonInside(double lon, const geo::GeoBounds& b) {
   if (!b.crossesAntimeridian()) return lon >= b.westDeg && lon <= b.eastDeg;
   return lon >= b.westDeg || lon <= b.eastDeg;
@@ -94,6 +147,8 @@ std::optional<PathProblem> findProblem(const FlightPath& path) {
       return PathProblem{f + ".length_m", "a capsule needs a positive length_m"};
     if (auto p = checkPositions(f + ".keyframes", col.keyframes)) return p;
   }
+  if (path.wind)
+    if (auto p = checkWind(*path.wind)) return p;
   return std::nullopt;
 }
 

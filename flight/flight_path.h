@@ -1,7 +1,8 @@
 #pragma once
 // A scripted flight path: camera keyframes (time, geodetic position, altitude above the
-// terrain or above sea level, heading, pitch) and optional scripted colliders (moving spheres
-// and capsules with their own keyframes) that the interaction issue pushes plants with.
+// terrain or above sea level, heading, pitch), optional scripted colliders (moving spheres
+// and capsules with their own keyframes) that the interaction issue pushes plants with, and an
+// optional wind section (issue 19: mean wind, gustiness, moving local wind sources).
 // The data model and its checks live here; JSON reading/writing is in flight_path_json.h,
 // interpolation in path_sampler.h (DESIGN.md "Flight paths").
 
@@ -47,11 +48,34 @@ struct Collider {
   std::vector<ColliderKeyframe> keyframes;  // at least one; one keyframe = a static collider
 };
 
+// A local wind source that moves along its own keyframes (positioned like a collider's centre).
+// Its own enum, so that flight/ stays independent of simulation/ (simulation::WindSourceType
+// has the same three kinds).
+struct WindSourceSpec {
+  enum class Type { Fan, Whirlwind, Rotor };
+  std::string name;
+  Type type = Type::Fan;
+  double radiusM = 1.0;                     // > 0: reach (fan: range; whirlwind, rotor: radius of the disc)
+  double strengthMps = 0.0;                 // 0 … 100: the peak wind speed it adds
+  std::optional<double> directionDeg;       // fan only (required there): where it blows TOWARDS, clockwise from north
+  std::vector<ColliderKeyframe> keyframes;  // at least one; one keyframe = a fixed source
+};
+
+// The path's "wind" section: each value absent = the simulation's default (or the command
+// line's, which wins over the path).
+struct WindSection {
+  std::optional<double> speedMps;      // mean wind, 0 … 100 m/s
+  std::optional<double> directionDeg;  // where the wind comes FROM, clockwise from north; any finite value
+  std::optional<double> gustiness;     // 0 … 1
+  std::vector<WindSourceSpec> sources;
+};
+
 struct FlightPath {
   std::string name;
   std::string description;          // free text, optional
   std::vector<Keyframe> keyframes;  // at least two, t strictly increasing, first t = 0
   std::vector<Collider> colliders;
+  std::optional<WindSection> wind;  // absent: no "wind" section
 
   // Seconds: the last keyframe's t (the first is at 0).
   double duration() const;
@@ -68,7 +92,8 @@ struct PathProblem {
 };
 
 // The first violation of the rules above (counts, time order, finite numbers, lat/lon range,
-// pitch range, non-negative terrain-relative altitudes, positive collider sizes), if any.
+// pitch range, non-negative terrain-relative altitudes, positive collider sizes, the wind
+// section's ranges and its sources' sizes, directions and keyframes), if any.
 std::optional<PathProblem> findProblem(const FlightPath& path);
 
 // findProblem as a Status: "SOURCE: FIELD: PROBLEM", ErrorKind::InvalidInput.

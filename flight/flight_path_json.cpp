@@ -91,6 +91,14 @@ struct Reader {
     return v;
   }
 
+  // An optional number without a default: absent stays absent.
+  Result<std::optional<double>> optionalNumber(const json& obj, const std::string& path, const std::string& key) const {
+    if (!obj.contains(key)) return std::optional<double>();
+    auto v = number(obj, path, key);
+    if (!v) return v.error();
+    return std::optional<double>(*v);
+  }
+
   Result<std::string> string(const json& obj, const std::string& path, const std::string& key,
                              std::optional<std::string> fallback = std::nullopt) const {
     const std::string f = child(path, key);
@@ -145,6 +153,21 @@ Result<K> readPositionKey(const Reader& r, const json& obj, const std::string& f
   return k;
 }
 
+// Reads the keyframes array of a collider or wind source (required; an empty one is findProblem's).
+Result<std::vector<ColliderKeyframe>> readObjectKeys(const Reader& r, const json& obj, const std::string& f) {
+  const json* keys = nullptr;
+  VEG_TRY_ASSIGN(keys, r.array(obj, f, "keyframes", false));
+  std::vector<ColliderKeyframe> out;
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    const std::string kf = f + ".keyframes[" + std::to_string(i) + "]";
+    if (auto e = r.onlyKnownKeys((*keys)[i], kf, {"t", "lat", "lon", "alt_m", "alt_ref"})) return *e;
+    ColliderKeyframe k;
+    VEG_TRY_ASSIGN(k, readPositionKey<ColliderKeyframe>(r, (*keys)[i], kf));
+    out.push_back(k);
+  }
+  return out;
+}
+
 Result<Collider> readCollider(const Reader& r, const json& obj, const std::string& f) {
   if (auto e = r.onlyKnownKeys(obj, f, {"name", "shape", "radius_m", "length_m", "keyframes"})) return *e;
   Collider c;
@@ -163,16 +186,60 @@ Result<Collider> readCollider(const Reader& r, const json& obj, const std::strin
   } else if (obj.contains("length_m")) {
     return r.fail(f + ".length_m", "only a capsule has a length", f + ".length_m");
   }
-  const json* keys = nullptr;
-  VEG_TRY_ASSIGN(keys, r.array(obj, f, "keyframes", false));
-  for (std::size_t i = 0; i < keys->size(); ++i) {
-    const std::string kf = f + ".keyframes[" + std::to_string(i) + "]";
-    if (auto e = r.onlyKnownKeys((*keys)[i], kf, {"t", "lat", "lon", "alt_m", "alt_ref"})) return *e;
-    ColliderKeyframe k;
-    VEG_TRY_ASSIGN(k, readPositionKey<ColliderKeyframe>(r, (*keys)[i], kf));
-    c.keyframes.push_back(k);
-  }
+  VEG_TRY_ASSIGN(c.keyframes, readObjectKeys(r, obj, f));
   return c;
+}
+
+Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const std::string& f) {
+  if (auto e = r.onlyKnownKeys(obj, f, {"name", "type", "radius_m", "strength_mps", "direction_deg", "keyframes"}))
+    return *e;
+  WindSourceSpec w;
+  VEG_TRY_ASSIGN(w.name, r.string(obj, f, "name"));
+  std::string type;
+  VEG_TRY_ASSIGN(type, r.string(obj, f, "type"));
+  if (type == "fan")
+    w.type = WindSourceSpec::Type::Fan;
+  else if (type == "whirlwind")
+    w.type = WindSourceSpec::Type::Whirlwind;
+  else if (type == "rotor")
+    w.type = WindSourceSpec::Type::Rotor;
+  else
+    return r.fail(f + ".type", "\"" + type + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"", f + ".type");
+  VEG_TRY_ASSIGN(w.radiusM, r.number(obj, f, "radius_m"));
+  VEG_TRY_ASSIGN(w.strengthMps, r.number(obj, f, "strength_mps"));
+  if (w.type == WindSourceSpec::Type::Fan) {
+    if (!obj.contains("direction_deg"))  // reported at the source, like a missing field (findProblem's words)
+      return r.fail(f + ".direction_deg",
+                    "a fan needs direction_deg (where it blows towards, degrees clockwise from north)", f);
+    double direction = 0.0;
+    VEG_TRY_ASSIGN(direction, r.number(obj, f, "direction_deg"));
+    w.directionDeg = direction;
+  } else if (obj.contains("direction_deg")) {
+    return r.fail(f + ".direction_deg", "only a fan has a direction (a " + type + " blows all around)",
+                  f + ".direction_deg");
+  }
+  VEG_TRY_ASSIGN(w.keyframes, readObjectKeys(r, obj, f));
+  return w;
+}
+
+// The optional top-level "wind" object.
+Result<std::optional<WindSection>> readWind(const Reader& r, const json& doc) {
+  const auto it = doc.find("wind");
+  if (it == doc.end()) return std::optional<WindSection>();
+  if (auto e = r.expectObject(*it, "wind")) return *e;
+  if (auto e = r.onlyKnownKeys(*it, "wind", {"speed_mps", "direction_deg", "gustiness", "sources"})) return *e;
+  WindSection wind;
+  VEG_TRY_ASSIGN(wind.speedMps, r.optionalNumber(*it, "wind", "speed_mps"));
+  VEG_TRY_ASSIGN(wind.directionDeg, r.optionalNumber(*it, "wind", "direction_deg"));
+  VEG_TRY_ASSIGN(wind.gustiness, r.optionalNumber(*it, "wind", "gustiness"));
+  const json* sources = nullptr;
+  VEG_TRY_ASSIGN(sources, r.array(*it, "wind", "sources", true));
+  for (std::size_t i = 0; i < sources->size(); ++i) {
+    WindSourceSpec w;
+    VEG_TRY_ASSIGN(w, readWindSource(r, (*sources)[i], "wind.sources[" + std::to_string(i) + "]"));
+    wind.sources.push_back(std::move(w));
+  }
+  return std::optional<WindSection>(std::move(wind));
 }
 
 std::string stemOf(const std::string& source) { return std::filesystem::path(source).stem().string(); }
@@ -198,7 +265,7 @@ Result<FlightPath> readFlightPath(const json& doc, std::string_view text, const 
   const Reader r{sourceName, positions};
   if (const auto& dup = positions.firstDuplicate()) return r.fail(*dup, "key given twice", *dup);
   if (auto e = r.expectObject(doc, "")) return *e;
-  if (auto e = r.onlyKnownKeys(doc, "", {"name", "description", "keyframes", "colliders"})) return *e;
+  if (auto e = r.onlyKnownKeys(doc, "", {"name", "description", "keyframes", "colliders", "wind"})) return *e;
 
   FlightPath path;
   VEG_TRY_ASSIGN(path.name, r.string(doc, "", "name", stemOf(sourceName)));
@@ -224,6 +291,7 @@ Result<FlightPath> readFlightPath(const json& doc, std::string_view text, const 
     VEG_TRY_ASSIGN(c, readCollider(r, (*colliders)[i], "colliders[" + std::to_string(i) + "]"));
     path.colliders.push_back(std::move(c));
   }
+  VEG_TRY_ASSIGN(path.wind, readWind(r, doc));
   if (auto p = findProblem(path)) return r.fail(p->field, p->problem, lineFieldFor(positions, p->field));
   return path;
 }
@@ -306,6 +374,39 @@ std::string flightPathToJson(const FlightPath& path) {
       out += std::string("     ]}") + (c + 1 < path.colliders.size() ? ",\n" : "\n");
     }
     out += "  ]";
+  }
+  if (path.wind) {
+    const WindSection& w = *path.wind;
+    std::string fields;
+    auto add = [&](const char* key, const std::optional<double>& v) {
+      if (v) fields += std::string(fields.empty() ? "" : ", ") + "\"" + key + "\": " + fmt(*v, 3);
+    };
+    add("speed_mps", w.speedMps);
+    add("direction_deg", w.directionDeg);
+    add("gustiness", w.gustiness);
+    out += ",\n  \"wind\": {" + fields;
+    if (!w.sources.empty()) {
+      out += std::string(fields.empty() ? "" : ",") + "\n    \"sources\": [\n";
+      for (std::size_t s = 0; s < w.sources.size(); ++s) {
+        const WindSourceSpec& src = w.sources[s];
+        const char* type = src.type == WindSourceSpec::Type::Fan         ? "\"fan\""
+                           : src.type == WindSourceSpec::Type::Whirlwind ? "\"whirlwind\""
+                                                                         : "\"rotor\"";
+        out += "      {\"name\": " + str(src.name) + ", \"type\": " + type + ", \"radius_m\": " +
+               fmt(src.radiusM, 3) + ", \"strength_mps\": " + fmt(src.strengthMps, 3) +
+               (src.directionDeg ? ", \"direction_deg\": " + fmt(*src.directionDeg, 3) : "") +
+               ",\n       \"keyframes\": [\n";
+        for (std::size_t i = 0; i < src.keyframes.size(); ++i) {
+          const ColliderKeyframe& k = src.keyframes[i];
+          out += "         {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + "}" +
+                 (i + 1 < src.keyframes.size() ? ",\n" : "\n");
+        }
+        out += std::string("       ]}") + (s + 1 < w.sources.size() ? ",\n" : "\n");
+      }
+      out += "    ]\n  }";
+    } else {
+      out += "}";
+    }
   }
   return out + "\n}\n";
 }

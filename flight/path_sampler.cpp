@@ -16,10 +16,16 @@ std::vector<TrackPoint> cameraPoints(const FlightPath& path) {
   return out;
 }
 
-std::vector<TrackPoint> colliderPoints(const Collider& c) {
+// The track of a collider's or a wind source's centre (both have ColliderKeyframes).
+PositionTrack objectTrack(const std::vector<ColliderKeyframe>& keys) {
   std::vector<TrackPoint> out;
-  for (const ColliderKeyframe& k : c.keyframes) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
-  return out;
+  for (const ColliderKeyframe& k : keys) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
+  return PositionTrack(out);
+}
+
+// Where such an object is at t: clamped to its keyframes, no clearance (it may touch the ground).
+geo::Geodetic objectCentre(const PositionTrack& track, double t, const GroundHeight& ground) {
+  return track.position(t, ground, -INFINITY);
 }
 
 std::vector<double> times(const FlightPath& path) {
@@ -59,7 +65,11 @@ PathSampler::PathSampler(const FlightPath& path)
     : camera_(cameraPoints(path)), heading_(times(path), unwrappedHeadings(path)), pitch_(times(path), pitches(path)),
       colliderShapes_(path.colliders) {
   assert(path.keyframes.size() >= 2);
-  for (const Collider& c : path.colliders) colliders_.emplace_back(colliderPoints(c));
+  for (const Collider& c : path.colliders) colliders_.push_back(objectTrack(c.keyframes));
+  if (path.wind) {
+    windSources_ = path.wind->sources;
+    for (const WindSourceSpec& w : windSources_) windTracks_.push_back(objectTrack(w.keyframes));
+  }
 }
 
 FlightSample PathSampler::sample(double t, const GroundHeight& ground) const {
@@ -85,9 +95,21 @@ ColliderSample PathSampler::collider(std::size_t i, double t, const GroundHeight
   assert(i < colliders_.size());
   const Collider& c = colliderShapes_[i];
   ColliderSample s;
-  s.centre = colliders_[i].position(t, ground, -INFINITY);
+  s.centre = objectCentre(colliders_[i], t, ground);
   s.radiusM = c.radiusM;
   s.lengthM = c.shape == Collider::Shape::Capsule ? c.lengthM : 0.0;
+  return s;
+}
+
+WindSourceSample PathSampler::windSource(std::size_t i, double t, const GroundHeight& ground) const {
+  assert(i < windTracks_.size());
+  const WindSourceSpec& w = windSources_[i];
+  WindSourceSample s;
+  s.centre = objectCentre(windTracks_[i], t, ground);
+  s.type = w.type;
+  s.radiusM = w.radiusM;
+  s.strengthMps = w.strengthMps;
+  s.directionDeg = w.directionDeg.value_or(0.0);
   return s;
 }
 

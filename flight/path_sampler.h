@@ -1,5 +1,5 @@
 #pragma once
-// The camera pose (and collider positions) of a FlightPath at any flight time: geodetic
+// The camera pose (and collider and wind-source positions) of a FlightPath at any flight time: geodetic
 // position, heading and pitch, independent of the renderer's camera type. Position follows
 // position_track.h (centripetal Catmull-Rom, C¹ in time, altitude in its own reference, never
 // below the ground). Heading is unwrapped (each step taken the short way, in (−180, 180]) and
@@ -36,6 +36,14 @@ struct ColliderSample {
   double lengthM = 0.0;
 };
 
+struct WindSourceSample {
+  geo::Geodetic centre;  // height MSL (a rotor's hub)
+  WindSourceSpec::Type type = WindSourceSpec::Type::Fan;
+  double radiusM = 0.0;
+  double strengthMps = 0.0;
+  double directionDeg = 0.0;  // fan: where it blows towards, clockwise from north; 0 when absent
+};
+
 // Built once per path (precomputes the splines); sampling is then cheap and const.
 class PathSampler {
  public:
@@ -50,6 +58,10 @@ class PathSampler {
   // Collider i at time t (clamped to its keyframes); no clearance: colliders touch the ground.
   ColliderSample collider(std::size_t i, double t, const GroundHeight& ground) const;
   std::size_t colliderCount() const { return colliders_.size(); }
+  // Wind source i of the path's wind section at time t: positioned exactly as a collider with
+  // the same keyframes would be (clamped to its keyframes, no clearance).
+  WindSourceSample windSource(std::size_t i, double t, const GroundHeight& ground) const;
+  std::size_t windSourceCount() const { return windTracks_.size(); }
   // The ENU frame that FlightSample::velocity is expressed in.
   const geo::LocalFrame& frame() const { return camera_.frame(); }
 
@@ -59,6 +71,8 @@ class PathSampler {
   MonotoneCubic pitch_;
   std::vector<PositionTrack> colliders_;
   std::vector<Collider> colliderShapes_;
+  std::vector<PositionTrack> windTracks_;
+  std::vector<WindSourceSpec> windSources_;  // type, radius, strength, direction of each track
 };
 
 // One-off convenience: builds a PathSampler and samples it once.

@@ -169,6 +169,31 @@ TEST(CliErrors, Record) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// The simulation options (app/simulation_cli.h) are checked after parsing, before the path, the
+// dataset or the GPU is touched: one line naming the option, exit 2, nothing written.
+TEST(CliErrors, SimulationOptions) {
+  const fs::path dir = ownDir(), d = dir / "no-dataset", rec = dir / "rec", frames = dir / "frames",
+                 still = dir / "still.png";
+  const std::string record = "record " + q(d) + " --path p.json --out " + q(rec);
+  const std::string fly = "fly " + q(d) + " --headless --out " + q(frames);
+  const std::string snapshot = "snapshot --lat 37.4 --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(still);
+  for (const std::string& command : {record, fly, snapshot})
+    expectOneLineUserErrors({{command + " --wind-speed 101", "--wind-speed 101: must be 0 … 100 m/s"},
+                             {command + " --wind-speed -5", "--wind-speed -5"},
+                             {command + " --gustiness -0.1", "--gustiness -0.1: must be 0 … 1"},
+                             {command + " --gustiness 1.01", "--gustiness 1.01"},
+                             {command + " --trail-budget-mb 0", "--trail-budget-mb 0: must be more than 0"},
+                             {command + " --wind-direction nan", "--wind-direction nan: must be a finite number"}},
+                            "--");
+  // Not a number at all: CLI11 refuses it while parsing.
+  expectOneLineUserErrors({{record + " --wind-speed fast", "--wind-speed"},
+                           {record + " --trail-budget-mb", "--trail-budget-mb"}},
+                          "vegstream record");
+  EXPECT_FALSE(fs::exists(rec));
+  EXPECT_FALSE(fs::exists(frames));
+  EXPECT_FALSE(fs::exists(still));
+}
+
 TEST(CliErrors, Report) {
   const fs::path dir = ownDir(), rec = dir / "no-recording";
   expectOneLineUserErrors(

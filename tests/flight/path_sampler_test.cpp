@@ -150,5 +150,46 @@ TEST(PathSampler, CollidersFollowTheirKeyframes) {
   EXPECT_DOUBLE_EQ(a.lengthM, 0.0);
 }
 
+// A wind source moves exactly as a collider with the same keyframes: one track, the same code.
+TEST(PathSampler, WindSourcesMoveLikeColliders) {
+  FlightPath p = unevenPath();
+  const std::vector<ColliderKeyframe> keys = {{0, 37.20, -112.98, 5, AltRef::Terrain},
+                                              {4, 37.203, -112.978, 1200, AltRef::Msl},
+                                              {9, 37.204, -112.972, 20, AltRef::Terrain},
+                                              {20, 37.210, -112.970, 20, AltRef::Terrain}};
+  p.colliders = {Collider{"twin", Collider::Shape::Sphere, 1.0, 0.0, keys}};
+  WindSection wind;
+  wind.sources = {WindSourceSpec{"fan", WindSourceSpec::Type::Fan, 12.0, 9.0, 90.0, keys},
+                  WindSourceSpec{"rotor", WindSourceSpec::Type::Rotor, 8.0, 14.0, std::nullopt,
+                                 {{0, 37.205, -112.975, 1100, AltRef::Msl}}}};
+  p.wind = wind;
+  ASSERT_FALSE(findProblem(p).has_value());
+  const PathSampler s(p);
+  ASSERT_EQ(s.windSourceCount(), 2u);
+  const GroundHeight bumpy = [](double lat, double lon) { return 1000.0 + 50.0 * std::sin(lat * 3000.0 + lon * 2000.0); };
+  for (double t : {0.0, 1.3, 4.0, 6.5, 9.0, 14.2, 20.0, 30.0}) {
+    SCOPED_TRACE(t);
+    const WindSourceSample w = s.windSource(0, t, bumpy);
+    const ColliderSample c = s.collider(0, t, bumpy);
+    EXPECT_DOUBLE_EQ(w.centre.latDeg, c.centre.latDeg);
+    EXPECT_DOUBLE_EQ(w.centre.lonDeg, c.centre.lonDeg);
+    EXPECT_DOUBLE_EQ(w.centre.heightM, c.centre.heightM);
+  }
+  EXPECT_NEAR(s.windSource(0, 4.0, bumpy).centre.latDeg, 37.203, 1e-9) << "at its keyframe at its time";
+  EXPECT_NEAR(s.windSource(0, 4.0, bumpy).centre.heightM, 1200.0, 1e-6) << "MSL keyframe";
+  const WindSourceSample fan = s.windSource(0, 2.0, kFlat);
+  EXPECT_EQ(fan.type, WindSourceSpec::Type::Fan);
+  EXPECT_DOUBLE_EQ(fan.radiusM, 12.0);
+  EXPECT_DOUBLE_EQ(fan.strengthMps, 9.0);
+  EXPECT_DOUBLE_EQ(fan.directionDeg, 90.0);
+  const WindSourceSample rotor = s.windSource(1, 7.0, kFlat);
+  EXPECT_EQ(rotor.type, WindSourceSpec::Type::Rotor);
+  EXPECT_DOUBLE_EQ(rotor.directionDeg, 0.0) << "no direction: 0";
+  EXPECT_NEAR(rotor.centre.heightM, 1100.0, 1e-6) << "one keyframe: fixed";
+  EXPECT_NEAR(rotor.centre.latDeg, 37.205, 1e-9);
+
+  EXPECT_EQ(PathSampler(unevenPath()).windSourceCount(), 0u) << "no wind section: no sources";
+}
+
 }  // namespace
 }  // namespace vegstream::flight

@@ -84,7 +84,7 @@ TEST(JsonReadersFuzz, FlightPath) {
   ownTestDir();
   const std::string valid = R"({
   "name": "fuzz",
-  "description": "three keyframes and a capsule",
+  "description": "three keyframes, a capsule and a wind section",
   "keyframes": [
     {"t": 0, "lat": 46.55, "lon": 7.95, "alt_m": 500, "heading": 10, "pitch": -20},
     {"t": 5, "lat": 46.56, "lon": 7.96, "alt_m": 1800, "alt_ref": "msl", "heading": 20, "pitch": -10},
@@ -93,7 +93,10 @@ TEST(JsonReadersFuzz, FlightPath) {
   "colliders": [
     {"name": "log", "shape": "capsule", "radius_m": 0.5, "length_m": 4,
      "keyframes": [{"t": 0, "lat": 46.55, "lon": 7.95, "alt_m": 1}, {"t": 9, "lat": 46.551, "lon": 7.951, "alt_m": 1}]}
-  ]
+  ],
+  "wind": {"speed_mps": 6, "direction_deg": 250, "gustiness": 0.6,
+    "sources": [{"name": "fan", "type": "fan", "radius_m": 8, "strength_mps": 14, "direction_deg": 90,
+                 "keyframes": [{"t": 0, "lat": 46.55, "lon": 7.95, "alt_m": 3, "alt_ref": "msl"}]}]}
 })";
   fuzz(valid, "flight path", [](const std::string& text) { return flight::parseFlightPath(text, "fuzz/path.json"); });
 }
