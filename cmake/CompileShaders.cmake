@@ -15,7 +15,7 @@ function(vegstream_compile_shaders target)
     add_custom_command(
       OUTPUT ${hdr}
       COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -g0
-              -I${CMAKE_CURRENT_SOURCE_DIR}/common --vn spv_${var}
+              -I${CMAKE_CURRENT_SOURCE_DIR}/common -I${PROJECT_SOURCE_DIR} --vn spv_${var}
               --depfile ${hdr}.d -o ${hdr} ${abs}
       DEPENDS ${abs}
       DEPFILE ${hdr}.d

@@ -21,6 +21,11 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   slot.vegetation.reset();
   slot.bladesExpanded = false;
   const VegetationRequest* plants = request.vegetation;
+  if (request.simulation) {  // before anything reads the wind cells or the interaction field
+    slot.timer->beginPass(cmd, "simulation");
+    simulation->record(cmd, slot.descriptorSet, *request.simulation);
+    slot.timer->endPass(cmd);
+  }
 
   slot.terrainTriangles =
       terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);

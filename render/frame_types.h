@@ -17,6 +17,10 @@
 #include "render/overlay_types.h"
 #include "terrain/terrain_mesh.h"
 
+namespace vegstream::simulation {
+struct GpuStep;
+}
+
 namespace vegstream::render {
 
 // A camera in the local ENU frame, in double precision.
@@ -194,6 +198,9 @@ struct FrameRequest {
   std::span<const ImageryUpload> imageryUploads;
   // Plants (after the terrain); null: none. The species come from Renderer::setSpeciesCatalog.
   const VegetationRequest* vegetation = nullptr;
+  // The shared simulation's step for this frame (simulation/simulation.h); must stay alive until
+  // submitFrame returns. Null: nothing moves.
+  const simulation::GpuStep* simulation = nullptr;
 };
 
 struct ColorImage {

@@ -40,13 +40,21 @@ void Renderer::Impl::init(const RendererOptions& options) {
   targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa), deferred);
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
 
-  frameLayout =
-      createSingleBindingLayout(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, "frame uniforms layout");
-  descriptorPool =
-      createSingleBindingPool(*ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight, "frame descriptor pool");
+  // Set 0 of every pass: the frame's uniforms, and the shared simulation's block, wind cells and
+  // interaction field (render/simulation_pass.h), which every plant stage may read.
+  constexpr VkShaderStageFlags kFrameStages = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
+  const VkDescriptorSetLayoutBinding frameBindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};
+  frameLayout = createLayout(*ctx, frameBindings, "frame set layout");
+  const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
+                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kFramesInFlight}};
+  descriptorPool = createPool(*ctx, frameSizes, kFramesInFlight, "frame descriptor pool");
   const VkDescriptorSetLayout layout = frameLayout.get();
 
+  simulation = std::make_unique<SimulationPass>(*ctx, layout, options.trailStoreBytes);
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
   for (int i = 0; i < kFramesInFlight; ++i) {
     FrameSlot& s = slots[static_cast<size_t>(i)];
@@ -84,6 +92,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
 
     s.descriptorSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "frame uniforms set" + tag);
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
+    simulation->writeFrameSet(s.descriptorSet, i);
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred, options.tasks);
@@ -132,6 +141,7 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   const VkExtent2D extent = targets->extent();
   const FrameUniforms u = frameUniforms(request, extent.width, extent.height);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
+  simulation->writeBlock(static_cast<int>(index % kFramesInFlight), request.simulation);
 
   std::optional<uint32_t> imageIndex;
   if (request.present && swapchain) imageIndex = swapchain->acquire(slot.imageAcquired.get());
@@ -277,9 +287,35 @@ uint32_t Renderer::imageryLayers() const { return impl_->terrainPass->imageryLay
 
 uint32_t Renderer::maxImageryLayers() const { return impl_->ctx->properties().limits.maxImageArrayLayers; }
 
+Result<Renderer::SimulationReadback> Renderer::readSimulation() {
+  try {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    const Context& ctx = *impl_->ctx;
+    const SimulationPass& sim = *impl_->simulation;
+    GpuBuffer host = createBuffer(ctx, SimulationPass::kWindCellsBytes + SimulationPass::kFieldBytes,
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "simulation read-back");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      const VkBufferCopy cells{0, 0, SimulationPass::kWindCellsBytes};
+      const VkBufferCopy field{0, SimulationPass::kWindCellsBytes, SimulationPass::kFieldBytes};
+      vkCmdCopyBuffer(cmd, sim.windCells(), host.get(), 1, &cells);
+      vkCmdCopyBuffer(cmd, sim.field(), host.get(), 1, &field);
+      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    });
+    SimulationReadback r;
+    r.windCells.resize(SimulationPass::kWindCellsBytes / sizeof(simulation::shader::WindCellGpu));
+    r.field.resize(SimulationPass::kFieldBytes / sizeof(glm::vec4));
+    const auto* bytes = static_cast<const uint8_t*>(host.mapped);
+    std::memcpy(r.windCells.data(), bytes, SimulationPass::kWindCellsBytes);
+    std::memcpy(r.field.data(), bytes + SimulationPass::kWindCellsBytes, SimulationPass::kFieldBytes);
+    return r;
+  } catch (const VulkanError& e) {
+    return makeError(ErrorKind::Internal, std::string("simulation read-back: ") + e.what());
+  }
+}
+
 uint64_t Renderer::gpuBytes() const {
   return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
-         impl_->hiz->gpuBytes() + impl_->blades->gpuBytes();
+         impl_->hiz->gpuBytes() + impl_->blades->gpuBytes() + impl_->simulation->gpuBytes();
 }
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {

@@ -15,6 +15,7 @@
 #include "render/context_options.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
+#include "simulation/shared_code.h"
 #include "terrain/terrain_mesh.h"
 
 struct GLFWwindow;
@@ -41,6 +42,8 @@ struct RendererOptions {
   // plants ¼ × as many): buffers grow to each frame's bound up to it, and plants past it
   // are dropped and counted (VegetationFigures::bladesDropped). Default 8 Mi (256 MiB); at least 6.
   uint32_t bladeMaxVertices = 1u << 23;
+  // The shared simulation's trail store (render/simulation_pass.h): SimulationOptions::trailBudgetMb.
+  uint64_t trailStoreBytes = uint64_t{16} << 20;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
   // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
   // with the thread that submits; null: all on that thread. Must outlive the renderer.
@@ -76,6 +79,14 @@ class Renderer {
   Status setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog);
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
+  // The shared simulation's GPU state as it is now (waits for the GPU to be idle): the wind cells
+  // (simulation::shader::WindCellGpu, 128 × 128, toroidal) and the interaction field (vec4 texels,
+  // tile-major: render/simulation_pass.h). For tests and inspection; every frame is finished first.
+  struct SimulationReadback {
+    std::vector<simulation::shader::WindCellGpu> windCells;
+    std::vector<glm::vec4> field;
+  };
+  Result<SimulationReadback> readSimulation();
 
   // Records and submits one frame; returns its index. Does not wait for the GPU, except for the
   // frame that last used the slot (index − kFramesInFlight), when it has not been waited for.

@@ -29,6 +29,7 @@
 #include "render/classify_pass.h"
 #include "render/plant_marker_pass.h"
 #include "render/plant_pass.h"
+#include "render/simulation_pass.h"
 #include "render/sky_pass.h"
 #include "render/swapchain.h"
 #include "render/terrain_detail.h"
@@ -42,7 +43,7 @@ namespace vegstream::render {
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
 static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
-inline constexpr int kMaxPasses = 8;
+inline constexpr int kMaxPasses = 10;
 inline constexpr int kBladeTableSegments = vegetation::kBladeShapeSegments;
 
 // Everything one frame in flight owns.
@@ -83,6 +84,7 @@ struct Renderer::Impl {
   std::unique_ptr<PlantMarkerPass> markers;
   std::unique_ptr<PlantPass> plantPass;
   std::unique_ptr<BladePass> blades;
+  std::unique_ptr<SimulationPass> simulation;
   BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;

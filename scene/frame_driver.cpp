@@ -19,7 +19,43 @@ double FrameRecord::cpuMs() const {
   return ms;
 }
 
-FrameDriver::FrameDriver(Scene& scene) : scene_(scene) {}
+FrameDriver::FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation)
+    : scene_(scene), simulation_(simulation) {}
+
+void FrameDriver::simulate(const FrameInput& input, const glm::dvec3& camera) {
+  const geo::LocalFrame& frame = scene_.frame();
+  // The ground under a point, in the local frame; where the data has none, the point's own height.
+  const auto groundZ = [&](const geo::Geodetic& g, double fallbackMsl) {
+    const double h = scene_.groundHeight(g.latDeg, g.lonDeg);
+    return frame.toLocal({g.latDeg, g.lonDeg, std::isnan(h) ? fallbackMsl : h}).z;
+  };
+  colliders_.clear();
+  for (const flight::ColliderSample& c : input.colliders) {
+    simulation::ColliderState s;
+    s.centre = frame.toLocal(c.centre);
+    s.radiusM = c.radiusM;
+    s.lengthM = c.lengthM;
+    s.groundZ = groundZ(c.centre, c.centre.heightM - 0.5 * c.lengthM - c.radiusM);
+    colliders_.push_back(s);
+  }
+  sources_.clear();
+  for (const flight::WindSourceSample& w : input.windSources) {
+    simulation::WindSourceState s;
+    s.type = w.type == flight::WindSourceSpec::Type::Fan         ? simulation::WindSourceType::Fan
+             : w.type == flight::WindSourceSpec::Type::Whirlwind ? simulation::WindSourceType::Whirlwind
+                                                                 : simulation::WindSourceType::Rotor;
+    s.position = frame.toLocal(w.centre);
+    s.groundZ = groundZ(w.centre, w.centre.heightM);
+    s.radiusM = w.radiusM;
+    s.strengthMps = w.strengthMps;
+    s.directionDeg = w.directionDeg;
+    sources_.push_back(s);
+  }
+  const double t = input.simulationTimeS.value_or(input.timeS);
+  const double dt = lastStepS_ ? t - *lastStepS_ : 0.0;
+  simulation_.step({t, dt, camera, colliders_, sources_});
+  lastStepS_ = t;
+}
 
 Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   // The renderer would reuse the oldest frame's slot and overwrite its figures before they were
@@ -34,11 +70,10 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   request.overlay = input.overlay;
 
   // simulate
-  Stopwatch simulate;
-  const double dt = lastStepS_ ? input.timeS - *lastStepS_ : 0.0;
-  simulation_.step({input.timeS, dt});
-  lastStepS_ = input.timeS;
-  const double simulationMs = simulation_.simulates() ? simulate.elapsedMs() : kNoFigure;
+  Stopwatch simulateWatch;
+  simulate(input, request.camera.position);
+  if (simulation_.simulates()) request.simulation = &simulation_.gpuStep();
+  const double simulationMs = simulation_.simulates() ? simulateWatch.elapsedMs() : kNoFigure;
 
   // submit
   auto index = scene_.renderer().submitFrame(request);
@@ -79,6 +114,21 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.color = std::move(result->color);
   r.driverMs += own.elapsedMs();
   return r;
+}
+
+Status FrameDriver::advanceSimulation(const FrameInput& input) {
+  if (!inFlight_.empty())
+    return makeError(ErrorKind::Internal, "frame driver: advanceSimulation() with " +
+                                              std::to_string(inFlight_.size()) + " frames in flight; collect them first");
+  render::FrameRequest request = scene_.cameraRequest(input.pose);
+  simulate(input, request.camera.position);
+  if (!simulation_.simulates()) return {};
+  request.simulation = &simulation_.gpuStep();
+  auto index = scene_.renderer().submitFrame(request);
+  if (!index) return index.error();
+  auto done = scene_.renderer().waitFrame(*index);
+  if (!done) return done.error();
+  return {};
 }
 
 Result<FrameRecord> FrameDriver::run(const FrameInput& input) {

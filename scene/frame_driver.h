@@ -43,6 +43,12 @@ struct FrameInput {
   flight::FlightSample pose;
   double timeS = 0.0;                       // flight time (scripted) or session time (window)
   std::vector<flight::FlightSample> ahead;  // look-ahead poses (ignored without look-ahead)
+  // The shared simulation's inputs at this instant (flight/path_sampler.h): the path's colliders
+  // and wind sources, and the simulation's own clock when it differs from timeS (a still holds
+  // its scene time while the simulation runs on: app/settled_still.h).
+  std::vector<flight::ColliderSample> colliders;
+  std::vector<flight::WindSourceSample> windSources;
+  std::optional<double> simulationTimeS;
   double flightMs = 0.0;                    // what the caller spent producing pose and ahead
   bool present = false;                     // to the window, when the renderer has one
   bool readbackColor = false;
@@ -56,7 +62,7 @@ struct FrameRecord {
   flight::FlightSample pose;
   double flightMs = 0.0;        // FrameInput::flightMs
   SceneFrameFigures scene;      // prepare: streaming, terrain, seeding
-  double simulationMs = 0.0;    // NaN while the simulation does nothing
+  double simulationMs = 0.0;    // NaN while the simulation does nothing (SimulationOptions::enabled off)
   double recordSubmitMs = 0.0;  // the renderer's own timer
   render::GpuTimings gpu;
   uint64_t terrainTriangles = 0;
@@ -70,7 +76,7 @@ class FrameDriver {
  public:
   static constexpr std::size_t kMaxInFlight = render::kFramesInFlight;
 
-  explicit FrameDriver(Scene& scene);
+  explicit FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation = {});
 
   // prepare → simulate → submit. Does not wait for the GPU. Refused when kMaxInFlight frames
   // are in flight (collect one first).
@@ -80,6 +86,11 @@ class FrameDriver {
   Result<FrameRecord> collect(uint64_t index);
   // submit + collect; refused while frames are in flight.
   Result<FrameRecord> run(const FrameInput& input);
+  // Only the simulation's step for `input` (no terrain, plants or read-back: the GPU runs the
+  // step and nothing else is drawn), waited for; refused while frames are in flight. Lets a still
+  // show the simulation S seconds in without drawing S × 60 whole frames.
+  Status advanceSimulation(const FrameInput& input);
+  const simulation::Simulation& simulation() const { return simulation_; }
 
   std::size_t framesInFlight() const { return inFlight_.size(); }
   // The index collect() takes next; 0 when nothing is in flight.
@@ -87,9 +98,14 @@ class FrameDriver {
   Scene& scene() { return scene_; }
 
  private:
+  // The simulate stage: steps the simulation for `input` with the camera at `camera` (local ENU).
+  void simulate(const FrameInput& input, const glm::dvec3& camera);
+
   Scene& scene_;
   simulation::Simulation simulation_;
   std::optional<double> lastStepS_;
+  std::vector<simulation::ColliderState> colliders_;  // the latest step's inputs (local ENU)
+  std::vector<simulation::WindSourceState> sources_;
   std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ kMaxInFlight), oldest first
 };
 

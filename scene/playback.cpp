@@ -48,6 +48,9 @@ class Pipeline {
     input.timeS = t;
     input.pose = sampler_.sample(t, ground_);
     input.ahead = flight::lookAheadSamples(sampler_, ground_, t);
+    for (std::size_t i = 0; i < sampler_.colliderCount(); ++i) input.colliders.push_back(sampler_.collider(i, t, ground_));
+    for (std::size_t i = 0; i < sampler_.windSourceCount(); ++i)
+      input.windSources.push_back(sampler_.windSource(i, t, ground_));
     input.flightMs = stage.elapsedMs();
     input.readbackColor = savePng;
     auto index = driver_.submit(input);

@@ -209,6 +209,7 @@ void main() {
     gPlane = vec4(nrm, -dot(nrm, t.v0.xyz));
     uint seed = g.firstSeed + l;
     PlantParams p = plantParams(g, t, seed);
+    plantMotion(p, kindK);
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
     gGroundMod = vec4(groundColour(t, r), p.colourModulation);
     gKind = kindK;

@@ -29,6 +29,7 @@ void main() {
   uint l = min(uint(gl_TessCoord.y * float(lines) + 0.5), lines - 1u);
   uint seed = g.firstSeed + l;
   PlantParams p = plantParams(g, t, seed);
+  plantMotion(p, catalog.species[g.species].flags.y);
   // Vertex j of n (equal spacing: x = j / n, taken exactly as the compute path does).
   uint n = max(uint(gl_TessLevelOuter[1] + 0.5), 1u);
   uint j = min(uint(gl_TessCoord.x * float(n) + 0.5), n);

@@ -9,6 +9,7 @@
 #include "philox.glsl"
 #include "seeding.glsl"
 #include "classify_layout.glsl"
+#include "simulation_fields.glsl"
 
 layout(set = 1, binding = 0, std140) uniform SpeciesBlock {
   Species species[kMaxSpecies];

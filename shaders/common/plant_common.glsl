@@ -30,6 +30,7 @@ const uint kFlagFlatColour = 2u;  // plant.frag: flat magenta, for coverage meas
 const uint kFlagFullDetail = 4u;
 const uint kFlagHardFades = 65536u;  // --plant-fades off: segment counts step, no morph
 
+#include "simulation_fields.glsl"
 #include "plant_params.glsl"
 
 // The imagery colour (linear) under a point of the triangle at (r′1, r′2).
@@ -74,11 +75,46 @@ BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
   vec3 dir = vec3(cos(p.orientation), sin(p.orientation), 0.0);
   vec3 up = vec3(0.0, 0.0, 1.0);
   BladeVertexFrame f;
-  f.pos = p.root + (dir * shape.x + up * shape.y) * p.height;
+  vec3 along = dir * shape.x + up * shape.y;  // unit length, relative to the root
   f.side = vec3(-dir.y, dir.x, 0.0);
   vec3 tangent = dir * sin(shape.z) + up * cos(shape.z);
   f.normal = normalize(cross(f.side, tangent));
+  if (p.bend.moving > 0.5) {  // the shared simulation's wind, trails and colliders
+    along = bendPoint(p.bend, p.rest, along, x);
+    f.side = bendVector(p.bend, f.side, x);
+    f.normal = bendVector(p.bend, f.normal, x);
+  }
+  f.pos = p.root + along * p.height;
   return f;
+}
+
+// The blade's rest point at fraction x, relative to the root, unit length, world-oriented.
+vec3 restAlong(PlantParams p, float x) {
+  vec3 shape = bladePoint(p.stiffness, x);
+  return vec3(cos(p.orientation), sin(p.orientation), 0.0) * shape.x + vec3(0.0, 0.0, shape.y);
+}
+
+// The shared simulation's bend of a plant of `kind` (issue 19; simulation/shared/blade_response.glsl):
+// its equilibrium under the wind grid's moments, the interaction field's flattening and the
+// frame's colliders. Gravel (kind 1) does not move; nothing moves while the simulation is off.
+void plantMotion(inout PlantParams p, uint kind) {
+  int flags = sim.counts.z;
+  if (kind == 1u || (flags & (kSimFlagWind | kSimFlagInteraction)) == 0) return;
+  for (int i = 0; i < kBladeHinges; ++i) {
+    p.rest.hinge[i] = restAlong(p, float(i) / float(kBladeHinges));
+    p.rest.centre[i] = restAlong(p, (float(i) + 0.5) / float(kBladeHinges));
+  }
+  if ((flags & kSimFlagWind) != 0) {
+    p.bend = solveBladeBend(p.rest, momentsAt(p.root), p.stiffness);
+  } else {
+    for (int i = 0; i < kBladeHinges; ++i) p.bend.hinge[i] = vec2(0.0);
+    p.bend.root = vec4(0.0, 0.0, 0.0, 1.0);
+    p.bend.moving = 1.0;
+  }
+  if ((flags & kSimFlagInteraction) != 0) {
+    vec3 tip = bendPoint(p.bend, p.rest, restAlong(p, 1.0), 1.0) * p.height;
+    p.bend.root = colliderTurn(p.root, tip, leanQuat(flattenLean(interactionAt(p.root), p.stiffness)));
+  }
 }
 
 // Vertex j of a blade of n segments whose last segment has grown in by `grown` (groupLod's z):

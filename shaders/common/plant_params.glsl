@@ -2,7 +2,8 @@
 // width and stiffness scaled by s′ as vegetation/species_catalog.h's sPrimeFactor, height and
 // width faded; orientation — phototropic where the species says so — and colour modulation):
 // shared by the species pipelines and the markers. Needs
-// frame_uniforms.glsl, philox.glsl, seeding.glsl, classify_layout.glsl and a `catalog` block.
+// frame_uniforms.glsl, philox.glsl, seeding.glsl, classify_layout.glsl, simulation_fields.glsl and a
+// `catalog` block.
 
 // vegetation/species_catalog.h: kSPrimeHeightLo, kSPrimeWidthLo, kSPrimeStiffnessLo.
 const float kSPrimeHeightLo = 0.6, kSPrimeWidthLo = 0.8, kSPrimeStiffnessLo = 0.85;
@@ -16,6 +17,10 @@ struct PlantParams {
   float width;        // m, faded
   float colourModulation;
   float sPrime;
+  // The shared simulation's bend (plant_common.glsl plantMotion; simulation/shared/blade_response.glsl):
+  // moving 0 until plantMotion sets it, and for plants that do not move (gravel, markers).
+  BladeRest rest;
+  BladeBend bend;
 };
 
 PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
@@ -43,6 +48,7 @@ PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
   p.width = mix(sp.widthColour.x, sp.widthColour.y, philoxU01(ow.y)) * sPrimeFactor(kSPrimeWidthLo, g.sPrime) * g.fade;
   p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));
   p.sPrime = g.sPrime;
+  p.bend.moving = 0.0;
   return p;
 }
 
