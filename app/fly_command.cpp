@@ -137,6 +137,7 @@ int runFly(FlyOptions o, const Logger& log) {
 
   Window window;
   so.dataset = *dataset;
+  so.simulation = o.simulation;
   applyRendererOptions({o.width, o.height, o.msaa, o.device, o.validate}, log, so);
   if (windowWanted && glfwInit() == GLFW_TRUE) {
     window.initialised = true;

@@ -91,6 +91,7 @@ int runRecord(RecordOptions o, const Logger& log) {
   }
 
   so.dataset = *dataset;
+  so.simulation = o.simulation;
   applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
   auto scene = scene::Scene::open(so);
   if (!scene) return reportError(log, scene.error());

@@ -2,6 +2,7 @@
 
 #include "app/settled_still.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "scene/frame_driver.h"
@@ -39,7 +40,7 @@ std::string stillChanging(const scene::SceneFrameFigures& f, const scene::SceneF
 }
 
 Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
-                                        int maxFrames) {
+                                        int maxFrames, double simulationTimeS) {
   scene::FrameDriver driver(scene);
   // A step of the fade time: whatever started to morph or fade in frame i is finished in i + 1.
   const double stepS = scene.options().terrain.fadeS;
@@ -49,6 +50,7 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     scene::FrameInput input;
     input.pose = pose;
     input.timeS = stepS * i;
+    input.simulationTimeS = 0.0;
     input.readbackColor = true;
     auto frame = driver.run(input);
     if (!frame) return frame.error();
@@ -64,6 +66,23 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     still.plantsCounted = frame->vegetation && frame->vegetation->gpuCounts;
     still.plants = still.plantsCounted ? frame->vegetation->plantsTotal : 0;
     if (still.settled) break;
+  }
+  if (simulationTimeS > 0.0) {
+    // The simulation's own frames at 60 per second of flight time, then the still at its time.
+    const auto steps = static_cast<int>(std::floor(simulationTimeS * 60.0));
+    scene::FrameInput input;
+    input.pose = pose;
+    input.timeS = stepS * (still.frames - 1);
+    for (int k = 1; k <= steps; ++k) {
+      input.simulationTimeS = k / 60.0;
+      if (Status s = driver.advanceSimulation(input); !s) return s.error();
+    }
+    input.simulationTimeS = simulationTimeS;
+    input.readbackColor = true;
+    auto frame = driver.run(input);
+    if (!frame) return frame.error();
+    if (frame->color) still.image = std::move(*frame->color);
+    still.plants = frame->vegetation && frame->vegetation->gpuCounts ? frame->vegetation->plantsTotal : still.plants;
   }
   if (still.image.rgba.empty()) return makeError(ErrorKind::Internal, "the renderer returned no colour read-back");
   return still;

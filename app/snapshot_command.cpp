@@ -23,6 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr double kMaxSimulationTimeS = 600.0;
+
+
 constexpr double kMinClearanceM = 0.5;  // the camera at least this far above the ground
 constexpr double kMaxAltM = 100000.0;
 constexpr double kMaxPitchDeg = 89.0;  // ±90 looks along the up axis: no heading, no view
@@ -101,6 +104,9 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   addStreamingOptions(*cmd, o.streaming, false);
   addSimulationOptions(*cmd, o.simulationCli);
+  cmd->add_option("--time", o.timeS,
+                  "Show the wind as it is S seconds into a flight held at this pose since 0 (0 … 600)")
+      ->capture_default_str();
   return cmd;
 }
 
@@ -113,6 +119,8 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (Status s = checkPoseNumbers(o); !s) return reportError(log, s.error());
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
+  if (!std::isfinite(o.timeS) || o.timeS < 0.0 || o.timeS > kMaxSimulationTimeS)
+    return reportError(log, userError("--time " + num(o.timeS) + ": must be 0 … 600 seconds"));
   if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
 
   scene::SceneOptions so;
@@ -128,6 +136,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   }
 
   so.dataset = *dataset;
+  so.simulation = o.simulation;
   applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
   auto opened = scene::Scene::open(so);
   if (!opened) return reportError(log, opened.error());
@@ -148,7 +157,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
   pose.pitchDeg = o.pitchDeg;
   pose.heightAboveGroundM = heightMsl - ground;
-  auto still = renderSettledStill(scene, pose, log);
+  auto still = renderSettledStill(scene, pose, log, 40, o.timeS);
   if (!still) return reportError(log, still.error());
   if (!still->settled)
     log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",

@@ -1,7 +1,10 @@
 #pragma once
 // `vegstream snapshot [DATASET] --lat L --lon L --alt A --heading H --pitch P --out F.png
-//  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [plant, streaming
-//  and terrain options of `record`]`: one still frame from a pose, as PNG.
+//  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [--time S] [wind,
+//  plant, streaming and terrain options of `record`]`: one still frame from a pose, as PNG.
+//
+// --time S shows the shared simulation (wind, gusts) as it is S seconds into a flight that has
+// stood at the pose since time 0: the same command always gives the same image.
 //
 // The pose follows flight paths (flight/flight_path.h, DESIGN.md "Flight paths"): --alt is metres
 // above the ground under the camera (the ground mosaic scripted paths are resolved against), or
@@ -42,6 +45,7 @@ struct SnapshotOptions {
   // What the simulation runs with: simulationCli over the defaults (a still has no flight path);
   // filled by runSnapshot.
   simulation::SimulationOptions simulation;
+  double timeS = 0.0;  // --time: the simulation as it is this many seconds into a flight held at the pose
 };
 
 CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& options);

@@ -19,6 +19,8 @@ double FrameRecord::cpuMs() const {
   return ms;
 }
 
+FrameDriver::FrameDriver(Scene& scene) : FrameDriver(scene, scene.options().simulation) {}
+
 FrameDriver::FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation)
     : scene_(scene), simulation_(simulation) {}
 

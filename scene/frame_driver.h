@@ -76,7 +76,9 @@ class FrameDriver {
  public:
   static constexpr std::size_t kMaxInFlight = render::kFramesInFlight;
 
-  explicit FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation = {});
+  // The simulation runs with the scene's SimulationOptions, or `simulation` where given.
+  explicit FrameDriver(Scene& scene);
+  FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation);
 
   // prepare → simulate → submit. Does not wait for the GPU. Refused when kMaxInFlight frames
   // are in flight (collect one first).

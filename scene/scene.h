@@ -31,6 +31,7 @@
 #include "geo/bounds.h"
 #include "geo/local_frame.h"
 #include "render/renderer.h"
+#include "simulation/simulation_options.h"
 #include "streaming/tile_streamer.h"
 #include "terrain/streamed_terrain.h"
 
@@ -64,6 +65,8 @@ struct SceneOptions {
   render::PlantDrawOptions plantDraw;
   bool occlusionCulling = true;  // Hi-Z culling of hidden seed triangles (render/hiz_pass.h)
   std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
+  // The shared simulation (wind, colliders, trails) every FrameDriver over this scene runs.
+  simulation::SimulationOptions simulation;
   Logger logger;                                              // may be null
 };
 
