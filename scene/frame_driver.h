@@ -93,6 +93,8 @@ class FrameDriver {
   // show the simulation S seconds in without drawing S × 60 whole frames.
   Status advanceSimulation(const FrameInput& input);
   const simulation::Simulation& simulation() const { return simulation_; }
+  // The wind from the next frame on (the window sets it from the HUD).
+  void setWind(const simulation::WindOptions& wind) { simulation_.setWind(wind); }
 
   std::size_t framesInFlight() const { return inFlight_.size(); }
   // The index collect() takes next; 0 when nothing is in flight.

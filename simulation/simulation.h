@@ -61,6 +61,8 @@ class Simulation {
   bool simulates() const { return options_.enabled; }
   double lastTimeS() const { return lastTimeS_; }
   const SimulationOptions& options() const { return options_; }
+  // Changes the wind from the next step on (the window's HUD); nothing else restarts.
+  void setWind(const WindOptions& wind) { options_.wind = wind; }
   // The latest step's GPU work (meaningful after a step).
   const GpuStep& gpuStep() const { return gpu_; }
   // Sub-steps run so far, and in the latest step.
