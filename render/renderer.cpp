@@ -313,6 +313,8 @@ Result<Renderer::SimulationReadback> Renderer::readSimulation() {
   }
 }
 
+uint64_t Renderer::simulationGpuBytes() const { return impl_->simulation->gpuBytes(); }
+
 uint64_t Renderer::gpuBytes() const {
   return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
          impl_->hiz->gpuBytes() + impl_->blades->gpuBytes() + impl_->simulation->gpuBytes();

@@ -87,6 +87,8 @@ class Renderer {
     std::vector<glm::vec4> field;
   };
   Result<SimulationReadback> readSimulation();
+  // The shared simulation's GPU memory: fixed at start-up, whatever the plants drawn.
+  uint64_t simulationGpuBytes() const;
 
   // Records and submits one frame; returns its index. Does not wait for the GPU, except for the
   // frame that last used the slot (index − kFramesInFlight), when it has not been waited for.

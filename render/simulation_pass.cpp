@@ -76,7 +76,7 @@ void SimulationPass::record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const
                 VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_READ_BIT |
                     VK_ACCESS_2_SHADER_WRITE_BIT);
-  if (!cleared_) {
+  if (!cleared_ || step.restarted) {  // a new simulation (a new flight, a new driver) starts from nothing
     vkCmdFillBuffer(cmd, blades_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, cells_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, field_.get(), 0, VK_WHOLE_SIZE, 0);

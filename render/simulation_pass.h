@@ -58,7 +58,7 @@ class SimulationPass {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   PipelineLayout pipelineLayout_;
   Pipeline wind_, interaction_;
-  bool cleared_ = false;  // the state buffers start as zeros (recorded with the first step)
+  bool cleared_ = false;  // the state buffers start as zeros (recorded with the first step and each restart)
 };
 
 }  // namespace vegstream::render

@@ -7,6 +7,7 @@
 
 namespace vegstream::simulation::shader {
 #include "simulation/shared/simulation_layout.glsl"
+#include "simulation/shared/grid_index.glsl"
 #include "simulation/shared/wind_field.glsl"
 #include "simulation/shared/virtual_blade.glsl"
 #include "simulation/shared/blade_response.glsl"

@@ -53,9 +53,11 @@ void Simulation::restart(double timeS) {
 }
 
 void Simulation::step(const StepInput& in) {
-  if (!started_ || in.timeS < lastTimeS_) restart(in.timeS);
+  const bool restarting = !started_ || in.timeS < lastTimeS_;
+  if (restarting) restart(in.timeS);
   lastTimeS_ = in.timeS;
   gpu_ = GpuStep{};
+  gpu_.restarted = restarting;
   if (!options_.enabled) return;
   shader::SimulationParams& p = gpu_.params;
 

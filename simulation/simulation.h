@@ -44,6 +44,7 @@ struct GpuStep {
   std::vector<TileTransfer> transfers;  // Saves first, then Restores and Clears
   bool runWind = false;                 // integrate the wind grid
   bool runInteraction = false;          // update the interaction field
+  bool restarted = false;               // the simulation (re)started: the GPU state starts over
 };
 
 // The strength (cs) a collider of radius r leaves where it presses the grass fully down: a

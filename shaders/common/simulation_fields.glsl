@@ -11,13 +11,12 @@ layout(set = 0, binding = 3, std430) readonly buffer InteractionField { vec4 fie
 
 BladeMoments windCellMoments(ivec2 cell) {
   BladeMoments m;
-  ivec2 first = sim.windCells.zw;
-  ivec2 off = cell - first;
-  if (any(lessThan(off, ivec2(0))) || any(greaterThanEqual(off, ivec2(kWindGrid)))) {
+  int at = windCellIndex(cell);
+  if (at < 0) {
     for (int i = 0; i < kBladeHinges; ++i) m.m[i] = vec2(0.0);
     return m;
   }
-  WindCellGpu c = windCells[(cell.x & (kWindGrid - 1)) + (cell.y & (kWindGrid - 1)) * kWindGrid];
+  WindCellGpu c = windCells[at];
   m.m[0] = c.moments01.xy;
   m.m[1] = c.moments01.zw;
   m.m[2] = c.moments23.xy;
@@ -40,11 +39,7 @@ BladeMoments momentsAt(vec3 p) {
 
 // The interaction texel (xy: bend direction, z: strength) under p; 0 outside the window.
 vec4 interactionAt(vec3 p) {
-  ivec2 texel = sim.fieldTexels.xy + ivec2(floor((sim.field.xy + p.xy) / kFieldCellM));
-  ivec2 tile = texel >> 5;  // kFieldTileTexels = 32 (arithmetic shift: floor for negatives)
-  ivec2 off = tile - sim.fieldTexels.zw;
-  if (any(lessThan(off, ivec2(0))) || any(greaterThanEqual(off, ivec2(kFieldWindowTiles)))) return vec4(0.0);
-  int windowTile = (tile.x & (kFieldWindowTiles - 1)) + (tile.y & (kFieldWindowTiles - 1)) * kFieldWindowTiles;
-  return fieldTexels[windowTile * kFieldTileTexels * kFieldTileTexels + (texel.y & 31) * kFieldTileTexels + (texel.x & 31)];
+  int at = fieldTexelIndex(p);
+  return at < 0 ? vec4(0.0) : fieldTexels[at];
 }
 #endif
