@@ -98,7 +98,8 @@ int runHeadless(const FlyOptions& o, scene::Scene& scene, const flight::FlightPa
 }
 
 // The window: an interactive fly camera (app/interactive_flight.h) starting at the path's
-// first pose; screenshots and recorded paths go to --out when given, else the current directory.
+// first pose, the path's colliders and wind sources moving on session time; screenshots and
+// recorded paths go to --out when given, else the current directory.
 int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath& path, GLFWwindow* window,
               const Logger& log) {
   InteractiveOptions io;
@@ -106,6 +107,7 @@ int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath
   io.framesInFlight = o.framesInFlight;
   io.outDir = o.out == FlyOptions{}.out ? fs::path{} : fs::path(o.out);
   io.start = flight::sampleAt(path, 0.0, scene.groundFunction());
+  io.path = path;
   return runInteractiveFlight(scene, window, withEnvironment(io), log);
 }
 

@@ -1,9 +1,12 @@
 #include "app/hud.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
+
+#include "app/wind_controls.h"
 
 namespace vegstream::app {
 
@@ -32,6 +35,12 @@ std::string formatCount(const std::optional<uint64_t>& count, const char* absent
 
 namespace {
 void drawGpu(const HudState& s) {
+  if (s.cpuFrameMs) {
+    if (s.cpuSimulationMs)
+      ImGui::Text("CPU frame %.2f ms  (simulation %.2f ms)", *s.cpuFrameMs, *s.cpuSimulationMs);
+    else
+      ImGui::Text("CPU frame %.2f ms", *s.cpuFrameMs);
+  }
   if (!s.gpu) {
     ImGui::TextUnformatted("GPU: waiting for the first frame");
     return;
@@ -63,6 +72,11 @@ void drawHelp() {
       {"F", "follow terrain on / off"},
       {"P", "screenshot (PNG)"},
       {"R", "start / stop recording a flight path (JSON)"},
+      {"] / [", "wind speed +/- 1 m/s (with Shift: 10 m/s)"},
+      {". / ,", "wind direction +/- 15 degrees (where it comes from)"},
+      {"' / ;", "gustiness +/- 0.1"},
+      {"Left mouse on the HUD", "drag the wind sliders"},
+      {"C", "camera collider: walking / driving / off"},
       {"H", "hide / show the HUD"},
       {"F1", "this help"},
       {"Esc", "quit"},
@@ -79,14 +93,42 @@ void drawHelp() {
   }
   ImGui::End();
 }
+
+// The wind (with sliders for the same values as the keys) and the collider that follows the
+// camera. Returns the edited wind when a slider moved.
+std::optional<simulation::WindOptions> drawSimulation(const HudState& s) {
+  if (!s.simulationOn) {
+    ImGui::TextDisabled("simulation off: nothing moves");
+    return std::nullopt;
+  }
+  ImGui::Text("wind %s", describeWind(s.wind).c_str());
+  simulation::WindOptions w = s.wind;
+  const double speedMin = 0.0, speedMax = simulation::kMaxWindSpeedMps, dirMin = 0.0, dirMax = 360.0, gustMin = 0.0,
+               gustMax = 1.0;
+  w.directionDeg = std::fmod(std::fmod(w.directionDeg, 360.0) + 360.0, 360.0);  // the slider's range
+  bool changed = false;
+  ImGui::PushItemWidth(170.0f);
+  changed |= ImGui::SliderScalar("speed (m/s)", ImGuiDataType_Double, &w.speedMps, &speedMin, &speedMax, "%.1f");
+  changed |= ImGui::SliderScalar("from (deg)", ImGuiDataType_Double, &w.directionDeg, &dirMin, &dirMax, "%.0f");
+  changed |= ImGui::SliderScalar("gustiness", ImGuiDataType_Double, &w.gustiness, &gustMin, &gustMax, "%.2f");
+  ImGui::PopItemWidth();
+  ImGui::Text("camera collider: %s  (C)", s.cameraCollider.c_str());
+  if (s.pathColliders > 0 || s.pathWindSources > 0)
+    ImGui::Text("path: %zu colliders, %zu wind sources", s.pathColliders, s.pathWindSources);
+  if (!changed) return std::nullopt;
+  return clampWind(w);
+}
 }  // namespace
 
-void drawHud(const HudState& s) {
+HudEdits drawHud(const HudState& s) {
+  HudEdits edits;
   ImGui::SetNextWindowPos(ImVec2(6.0f, 6.0f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.72f);
+  // Takes the mouse for its sliders, but never moves, scrolls or collapses (ImGui gets no wheel).
   ImGui::Begin("vegstream", nullptr,
-               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoFocusOnAppearing);
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoFocusOnAppearing);
   ImGui::Text("%s  |  %s", s.datasetName.c_str(), s.deviceName.c_str());
   const float lastMs = s.frameTimesMs.empty() ? 0.0f : s.frameTimesMs.back();
   ImGui::Text("%.1f FPS  (%.2f ms)", s.fps, static_cast<double>(lastMs));
@@ -112,12 +154,16 @@ void drawHud(const HudState& s) {
   ImGui::Text("alt %.1f m MSL  (%.1f m above ground)", s.altMslM, s.aglM);
   ImGui::Text("heading %.1f  pitch %.1f  speed %.0f m/s", s.headingDeg, s.pitchDeg, s.speedMps);
   ImGui::Text("follow terrain: %s", s.followTerrain ? "on" : "off");
+  ImGui::Separator();
+  edits.wind = drawSimulation(s);
+  ImGui::Separator();
   if (s.recording)
     ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "REC %.1f s, %zu keyframes", s.recordingS, s.recordedKeyframes);
   if (!s.message.empty()) ImGui::TextUnformatted(s.message.c_str());
   ImGui::TextDisabled("F1: help");
   ImGui::End();
   if (s.showHelp) drawHelp();
+  return edits;
 }
 
 }  // namespace vegstream::app

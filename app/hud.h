@@ -1,8 +1,9 @@
 #pragma once
 // What the interactive window shows over the terrain: frame rate and a frame-time graph, GPU
 // times (per pass only where the device's per-pass times mean something), counts, streaming
-// state, the camera's position, recording state, and the F1 help. Counts that do not exist yet
-// (vegetation) are shown as "—", never invented.
+// state, the camera's position, recording state, the shared simulation (the wind, with sliders
+// that change it, its CPU time, the camera's collider), and the F1 help. Counts that do not exist
+// yet are shown as "—", never invented.
 
 #include <cstdint>
 #include <optional>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "render/gpu_timing.h"
+#include "simulation/simulation_options.h"
 
 namespace vegstream::app {
 
@@ -31,10 +33,22 @@ struct HudState {
   std::size_t recordedKeyframes = 0;
   std::string message;  // last action's result (screenshot saved to …)
   bool showHelp = false;
+  // The shared simulation (issue 19).
+  bool simulationOn = true;  // SimulationOptions::enabled
+  simulation::WindOptions wind;
+  std::optional<double> cpuFrameMs;                    // the CPU stages of the last collected frame
+  std::optional<double> cpuSimulationMs;               // its simulation step (empty while nothing simulates)
+  std::string cameraCollider = "off";                  // camera_collider.h: off, walking, driving
+  std::size_t pathColliders = 0, pathWindSources = 0;  // the flight path's own, moving on session time
+};
+
+// What the user changed on the HUD this frame (its sliders); empty: nothing.
+struct HudEdits {
+  std::optional<simulation::WindOptions> wind;  // clamped (wind_controls.h clampWind)
 };
 
 // Lays out the HUD in the current ImGui frame (between ImGuiOverlay::begin and end).
-void drawHud(const HudState& state);
+HudEdits drawHud(const HudState& state);
 
 // "1.23 MB"-style byte counts and "—" for absent counts (exposed for tests).
 std::string formatBytes(uint64_t bytes);

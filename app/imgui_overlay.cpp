@@ -1,6 +1,7 @@
 #include "app/imgui_overlay.h"
 
 #include <atomic>
+#include <cfloat>
 #include <cstdint>
 #include <filesystem>
 
@@ -54,11 +55,14 @@ ImGuiOverlay::ImGuiOverlay() {
 
 ImGuiOverlay::~ImGuiOverlay() { ImGui::DestroyContext(context_); }
 
-void ImGuiOverlay::begin(float width, float height, double dtS) {
+void ImGuiOverlay::begin(float width, float height, double dtS, const OverlayPointer& pointer) {
   ImGui::SetCurrentContext(context_);
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(width, height);
   io.DeltaTime = dtS > 1e-6 ? static_cast<float>(dtS) : 1e-3f;
+  // ImGui 1.86 (Debian's) reads the mouse state from io each frame; -FLT_MAX is its "no mouse".
+  io.MousePos = pointer.present ? ImVec2(pointer.x, pointer.y) : ImVec2(-FLT_MAX, -FLT_MAX);
+  io.MouseDown[0] = pointer.present && pointer.leftDown;
   ImGui::NewFrame();
 }
 

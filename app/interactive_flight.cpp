@@ -9,11 +9,13 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/camera_collider.h"
 #include "app/exit_codes.h"
 #include "app/fly_camera.h"
 #include "app/hud.h"
 #include "app/imgui_overlay.h"
 #include "app/path_recorder.h"
+#include "app/wind_controls.h"
 #include "app/window_input.h"
 #include "core/stopwatch.h"
 #include "flight/flight_path.h"
@@ -58,19 +60,25 @@ class Session {
         start_(options.start ? *options.start : defaultStart(scene)),
         camera_(scene.frame(), scene.groundFunction(), scene.frame().toLocal(start_.position), start_.headingDeg,
                 start_.pitchDeg),
-        input_(window), driver_(scene), showHud_(options.hud) {}
+        input_(window), driver_(scene), collider_(options.collider), showHud_(options.hud) {
+    if (options.path &&
+        (!options.path->colliders.empty() || (options.path->wind && !options.path->wind->sources.empty())))
+      pathSampler_.emplace(*options.path);
+  }
 
   int run();
 
  private:
   void handleActions(const WindowActions& a, double now);
   void toggleRecording(double now);
+  void sayCollider(double now);
   Status collect(uint64_t index, bool screenshot);
   void say(const std::string& text, double now, bool warn = false);
   fs::path outputPath(const std::string& name) const;
   HudState hudState(double now) const;
 
   scene::FrameInput frameInput();
+  void addSimulationInputs(scene::FrameInput& input) const;
 
   scene::Scene& scene_;
   GLFWwindow* window_;
@@ -82,6 +90,8 @@ class Session {
   scene::FrameDriver driver_;
   ImGuiOverlay overlay_;
   PathRecorder recorder_;
+  std::optional<flight::PathSampler> pathSampler_;  // only when the path has colliders or wind sources
+  CameraColliderMode collider_;
   bool showHud_ = true;
   bool showHelp_ = false;
   bool screenshotWanted_ = false;
@@ -127,6 +137,15 @@ void Session::toggleRecording(double now) {
     log_->warn("`vegstream record` will refuse it: {}", inside.error().message);
 }
 
+void Session::sayCollider(double now) {
+  if (collider_ == CameraColliderMode::Off) return say("camera collider: off", now);
+  const CameraColliderShape c = cameraColliderShape(collider_);
+  char line[128];
+  std::snprintf(line, sizeof(line), "camera collider: %s (radius %.2f m, length %.1f m, %.1f m ahead)",
+                cameraColliderName(collider_), c.radiusM, c.lengthM, c.aheadM);
+  say(line, now);
+}
+
 void Session::handleActions(const WindowActions& a, double now) {
   if (a.toggleFollow) {
     camera_.setFollowTerrain(!camera_.followTerrain());
@@ -136,6 +155,15 @@ void Session::handleActions(const WindowActions& a, double now) {
   if (a.toggleHud) showHud_ = !showHud_;
   if (a.screenshot) screenshotWanted_ = true;
   if (a.toggleRecord) toggleRecording(now);
+  if (a.cycleCollider) {
+    collider_ = nextCameraColliderMode(collider_);
+    sayCollider(now);
+  }
+  if (a.wind.any()) {
+    const simulation::WindOptions wind = stepWind(driver_.simulation().options().wind, a.wind);
+    driver_.setWind(wind);
+    say("wind: " + describeWind(wind), now);
+  }
 }
 
 Status Session::collect(uint64_t index, bool screenshot) {
@@ -204,6 +232,18 @@ HudState Session::hudState(double now) const {
   s.recordedKeyframes = recorder_.keyframeCount();
   if (now < messageUntil_) s.message = message_;
   s.showHelp = showHelp_;
+  const simulation::SimulationOptions& sim = driver_.simulation().options();
+  s.simulationOn = sim.enabled;
+  s.wind = sim.wind;
+  if (last_) {
+    s.cpuFrameMs = last_->cpuMs();
+    if (std::isfinite(last_->simulationMs)) s.cpuSimulationMs = last_->simulationMs;
+  }
+  s.cameraCollider = cameraColliderName(collider_);
+  if (pathSampler_) {
+    s.pathColliders = pathSampler_->colliderCount();
+    s.pathWindSources = pathSampler_->windSourceCount();
+  }
   return s;
 }
 
@@ -231,13 +271,30 @@ scene::FrameInput Session::frameInput() {
   previousPoseS_ = nowS_;
   input.pose = now;
   input.timeS = nowS_;
+  addSimulationInputs(input);
   input.flightMs = watch.elapsedMs();
   return input;
+}
+
+// The path's colliders and wind sources at session time, as playback samples them at flight
+// time (scene/playback.cpp), and the camera's collider after them: the simulation takes the
+// first kMaxColliders, so a path that already fills them keeps its own.
+void Session::addSimulationInputs(scene::FrameInput& input) const {
+  const flight::GroundHeight ground = scene_.groundFunction();
+  if (pathSampler_) {
+    for (std::size_t i = 0; i < pathSampler_->colliderCount(); ++i)
+      input.colliders.push_back(pathSampler_->collider(i, nowS_, ground));
+    for (std::size_t i = 0; i < pathSampler_->windSourceCount(); ++i)
+      input.windSources.push_back(pathSampler_->windSource(i, nowS_, ground));
+  }
+  if (auto c = cameraCollider(collider_, scene_.frame(), ground, input.pose.position, input.pose.headingDeg))
+    input.colliders.push_back(*c);
 }
 
 int Session::run() {
   render::Renderer& renderer = scene_.renderer();
   log_->info("window open: right mouse button looks, WASD/QE fly, wheel sets speed, F1 help; Esc or closing ends it");
+  if (collider_ != CameraColliderMode::Off) sayCollider(0.0);
   Stopwatch clock;
   double lastS = 0.0;
   int shown = 0;
@@ -274,9 +331,10 @@ int Session::run() {
     input.present = true;
     input.readbackColor = screenshotWanted_;
     if (showHud_) {
-      overlay_.begin(static_cast<float>(renderer.width()), static_cast<float>(renderer.height()), dt);
-      drawHud(hudState(nowS_));
+      overlay_.begin(static_cast<float>(renderer.width()), static_cast<float>(renderer.height()), dt, input_.pointer());
+      const HudEdits edits = drawHud(hudState(nowS_));
       input.overlay = &overlay_.end();
+      if (edits.wind) driver_.setWind(*edits.wind);  // this frame's step already uses it
     }
     auto index = driver_.submit(input);
     if (!index) return reportError(log_, index.error());
@@ -308,6 +366,11 @@ InteractiveOptions withEnvironment(InteractiveOptions options) {
   if (const char* n = std::getenv("VEGSTREAM_FLY_SCREENSHOT_FRAME"); n && *n)
     options.screenshotAtFrame = std::max(0, std::atoi(n));
   if (const char* h = std::getenv("VEGSTREAM_FLY_NO_HUD"); h && *h && std::string(h) != "0") options.hud = false;
+  if (const char* c = std::getenv("VEGSTREAM_FLY_COLLIDER"); c && *c) {
+    const std::string mode = c;
+    if (mode == "walking") options.collider = CameraColliderMode::Walking;
+    if (mode == "driving") options.collider = CameraColliderMode::Driving;
+  }
   return options;
 }
 

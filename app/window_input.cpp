@@ -36,12 +36,20 @@ FlyInput WindowInput::poll(WindowActions& a) {
   a.toggleRecord = pressedOnce(GLFW_KEY_R);
   a.toggleHelp = pressedOnce(GLFW_KEY_F1);
   a.toggleHud = pressedOnce(GLFW_KEY_H);
+  a.cycleCollider = pressedOnce(GLFW_KEY_C);
+  // GLFW names keys by their place on a US keyboard, so these are the same four keys right of
+  // L and P on any layout.
+  auto steps = [&](int raise, int lower) { return (pressedOnce(raise) ? 1 : 0) - (pressedOnce(lower) ? 1 : 0); };
+  a.wind.speedSteps = steps(GLFW_KEY_RIGHT_BRACKET, GLFW_KEY_LEFT_BRACKET);
+  a.wind.directionSteps = steps(GLFW_KEY_PERIOD, GLFW_KEY_COMMA);
+  a.wind.gustinessSteps = steps(GLFW_KEY_APOSTROPHE, GLFW_KEY_SEMICOLON);
 
   FlyInput in;
   in.forward = (down(GLFW_KEY_W) ? 1.0 : 0.0) - (down(GLFW_KEY_S) ? 1.0 : 0.0);
   in.right = (down(GLFW_KEY_D) ? 1.0 : 0.0) - (down(GLFW_KEY_A) ? 1.0 : 0.0);
   in.up = (down(GLFW_KEY_E) ? 1.0 : 0.0) - (down(GLFW_KEY_Q) ? 1.0 : 0.0);
   in.fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
+  a.wind.coarse = in.fast;
   in.wheelSteps = wheel_;
   wheel_ = 0.0;
 
@@ -60,6 +68,19 @@ FlyInput WindowInput::poll(WindowActions& a) {
   looking_ = look;
   lastX_ = x;
   lastY_ = y;
+
+  // The HUD is laid out in framebuffer pixels; the cursor comes in window coordinates (they
+  // differ on HiDPI displays).
+  int ww = 0, wh = 0, fw = 0, fh = 0;
+  glfwGetWindowSize(window_, &ww, &wh);
+  glfwGetFramebufferSize(window_, &fw, &fh);
+  pointer_ = {};
+  if (!look && ww > 0 && wh > 0) {
+    pointer_.present = true;
+    pointer_.x = static_cast<float>(x * fw / ww);
+    pointer_.y = static_cast<float>(y * fh / wh);
+    pointer_.leftDown = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  }
   return in;
 }
 

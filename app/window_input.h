@@ -2,8 +2,11 @@
 // Reads the GLFW window's keyboard and mouse once per frame into FlyInput (fly_camera.h) plus
 // the one-shot actions (key presses, not holds). Mouse-look works while the right button is
 // held: the cursor is hidden and captured for that time, so the view can turn without limit.
+// Otherwise the cursor and the left button go to the HUD (its wind sliders).
 
 #include "app/fly_camera.h"
+#include "app/imgui_overlay.h"
+#include "app/wind_controls.h"
 
 struct GLFWwindow;
 
@@ -16,6 +19,8 @@ struct WindowActions {
   bool toggleRecord = false;  // R
   bool toggleHelp = false;    // F1
   bool toggleHud = false;     // H
+  bool cycleCollider = false;  // C: camera collider off → walking → driving → off
+  WindKeys wind;               // ] [ speed (Shift: ×10), . , direction, ' ; gustiness
 };
 
 class WindowInput {
@@ -27,6 +32,8 @@ class WindowInput {
 
   // After glfwPollEvents: this frame's movement/look input and actions.
   FlyInput poll(WindowActions& actions);
+  // The cursor for the HUD, as of the last poll (absent while looking around).
+  const OverlayPointer& pointer() const { return pointer_; }
 
  private:
   static void onScroll(GLFWwindow* window, double dx, double dy);
@@ -37,6 +44,7 @@ class WindowInput {
   bool looking_ = false;
   double lastX_ = 0.0, lastY_ = 0.0;
   bool wasDown_[512] = {};
+  OverlayPointer pointer_;
 };
 
 }  // namespace vegstream::app

@@ -2,6 +2,8 @@
 
 Embedded into the vegstream executable at build time and run by `vegstream report` /
 `vegstream compare` as `python3 SCRIPT report DIR` or `python3 SCRIPT compare DIR_A DIR_B OUT.png`.
+`python3 SCRIPT series DIR` prints the stacked series frame_time.png would draw for DIR's
+frames.csv, one `panel<TAB>column<TAB>legend` line each, and draws nothing (the tests read it).
 Reads frames.csv (empty cell = figure does not exist) and summary.json; writes PNGs atomically.
 Exit codes: 0 done, 3 matplotlib cannot be imported, 2 bad arguments/input, 1 anything else.
 """
@@ -11,8 +13,23 @@ import math
 import os
 import sys
 
-# GPU passes that draw or prepare vegetation; every other pass is the non-vegetation share.
+# GPU passes that draw or prepare vegetation; every other pass but the simulation's is the
+# non-vegetation share.
 VEGETATION_PASSES = ("classify", "blades", "grass", "gravel", "trees", "plants", "vegetation", "plant_shadows")
+# The shared simulation's GPU pass (issue 19: wind grid and interaction field): its own band, as
+# it moves the plants but draws nothing.
+SIMULATION_PASSES = ("simulation",)
+# The CPU stages of a frame (their sum is cpu_frame_ms), bottom first; those absent or empty
+# (cpu_simulation_ms while the simulation is off, cpu_seeding_ms without plants) are left out.
+# The simulation is purple in both panels.
+CPU_STAGES = (
+    ("cpu_flight_ms", "flight path", "tab:gray"),
+    ("cpu_streaming_ms", "streaming", "tab:orange"),
+    ("cpu_terrain_ms", "terrain (tiles, ROAM)", "tab:blue"),
+    ("cpu_seeding_ms", "seeding", "tab:green"),
+    ("cpu_simulation_ms", "simulation (wind, grass)", "tab:purple"),
+    ("cpu_record_submit_ms", "record + submit", "tab:brown"),
+)
 # Geometric-load columns, in legend order; those absent or empty are skipped.
 GEOMETRY_COLUMNS = (
     ("terrain_triangles", "terrain triangles submitted"),
@@ -92,21 +109,55 @@ def height_panel(ax, cols):
     ax.grid(alpha=0.3)
 
 
+def pass_columns(cols, passes):
+    return [c for c in cols if c.startswith("gpu_") and c[4:-3] in passes and present(cols, c)]
+
+
+def frame_time_series(cols):
+    """The stacked series of frame_time.png: {"gpu": [(column, label)], "cpu": [...]}, bottom first.
+
+    GPU: the frame less the named passes (a computed band, column "gpu_frame_ms"), the simulation
+    pass, the vegetation passes; per-pass bands only where the recording has per-pass times (empty
+    on a CPU rasteriser). CPU: every stage that exists.
+    """
+    sim, veg = pass_columns(cols, SIMULATION_PASSES), pass_columns(cols, VEGETATION_PASSES)
+    label = "non-vegetation share (terrain, sky)"
+    if not veg and not sim:
+        label = "the whole GPU frame (no per-pass times to split it)"
+    gpu = [("gpu_frame_ms", label)]
+    gpu += [(c, "simulation pass (wind, grass)") for c in sim]
+    if veg:
+        gpu.append(("+".join(veg), "vegetation passes"))
+    cpu = [(name, text) for name, text, _ in CPU_STAGES if present(cols, name)]
+    return {"gpu": gpu, "cpu": cpu}
+
+
+def column_sum(cols, names, n):
+    return [sum(0.0 if math.isnan(cols[c][i]) else cols[c][i] for c in names) for i in range(n)]
+
+
 def plot_frame_time(directory, cols, summary):
     t = cols["t_s"]
+    n = len(t)
     gpu = cols["gpu_frame_ms"]
-    veg = [c for c in cols if c.startswith("gpu_") and c[4:-3] in VEGETATION_PASSES and present(cols, c)]
-    veg_ms = [sum(0.0 if math.isnan(cols[c][i]) else cols[c][i] for c in veg) for i in range(len(t))]
-    nonveg = [max(g - v, 0.0) for g, v in zip(gpu, veg_ms)]
-    fig, (top, ax) = plt.subplots(2, 1, figsize=(10, 6), sharex=True, gridspec_kw={"height_ratios": [1, 3]})
+    series = frame_time_series(cols)
+    # The GPU bands: the named passes as measured, the rest of the frame below them.
+    bands = []
+    for column, label in series["gpu"][1:]:
+        bands.append((column_sum(cols, column.split("+"), n), label))
+    named = [sum(b[0][i] for b in bands) for i in range(n)]
+    rest = [max(g - v, 0.0) if not math.isnan(g) else math.nan for g, v in zip(gpu, named)]
+    fig, (top, ax, cpu_ax) = plt.subplots(3, 1, figsize=(10, 8), sharex=True,
+                                          gridspec_kw={"height_ratios": [1, 3, 2]})
     height_panel(top, cols)
     top.set_title(title_of(summary), fontsize=9)
-    label = "non-vegetation share (terrain, sky)"
-    if not veg:
-        label += " — the whole frame: no per-pass vegetation times"
-    ax.fill_between(t, 0, nonveg, color="tab:blue", alpha=0.25, lw=0, label=label)
-    if veg:
-        ax.fill_between(t, nonveg, gpu, color="tab:green", alpha=0.3, lw=0, label="vegetation passes")
+    colours = {"simulation pass (wind, grass)": "tab:purple", "vegetation passes": "tab:green"}
+    ax.fill_between(t, 0, rest, color="tab:blue", alpha=0.25, lw=0, label=series["gpu"][0][1])
+    base = rest
+    for values, label in bands:
+        top_of = [b + v for b, v in zip(base, values)]
+        ax.fill_between(t, base, top_of, color=colours.get(label, "tab:gray"), alpha=0.3, lw=0, label=label)
+        base = top_of
     ax.plot(t, gpu, color="tab:blue", lw=1, label="GPU frame (first to last timestamp)")
     if present(cols, "cpu_frame_ms"):
         ax.plot(t, cols["cpu_frame_ms"], color="tab:orange", lw=1, label="CPU frame (sum of the stages that exist)")
@@ -118,11 +169,22 @@ def plot_frame_time(directory, cols, summary):
     if not summary.get("recording", {}).get("per_pass_gpu_times_meaningful", True):
         fig.text(0.01, 0.01, "CPU rasteriser: per-pass GPU times are not meaningful; shares come from frame totals",
                  fontsize=8, color="0.3")
-    ax.set_xlabel("flight time (s)")
     ax.set_ylabel("frame time (ms)")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper right")
+    # The CPU stages stacked: which stage a CPU-bound frame spends its time in.
+    if series["cpu"]:
+        colour = {name: c for name, _, c in CPU_STAGES}
+        stages = [[0.0 if math.isnan(v) else v for v in cols[c]] for c, _ in series["cpu"]]
+        cpu_ax.stackplot(t, *stages, labels=[label for _, label in series["cpu"]],
+                         colors=[colour[c] for c, _ in series["cpu"]], alpha=0.5)
+        # Head room above the tallest stack for the legend.
+        cpu_ax.set_ylim(0, max(max(map(sum, zip(*stages))), 1e-3) * 1.6)
+        cpu_ax.legend(fontsize=7, loc="upper left", ncol=3)
+    cpu_ax.set_xlabel("flight time (s)")
+    cpu_ax.set_ylabel("CPU stages (ms)")
+    cpu_ax.grid(alpha=0.3)
     save(fig, os.path.join(directory, "frame_time.png"))
 
 
@@ -211,10 +273,15 @@ def main(argv):
         plot_frame_time(argv[2], cols, summary)
         plot_geometry(argv[2], cols, summary)
         plot_streaming(argv[2], cols, summary)
+    elif len(argv) == 3 and argv[1] == "series":
+        series = frame_time_series(read_frames(argv[2]))
+        for panel in ("gpu", "cpu"):
+            for column, label in series[panel]:
+                print("%s\t%s\t%s" % (panel, column, label))
     elif len(argv) == 5 and argv[1] == "compare":
         compare(argv[2], argv[3], argv[4])
     else:
-        fail("usage: recording_plots.py report DIR | compare DIR_A DIR_B OUT.png")
+        fail("usage: recording_plots.py report DIR | series DIR | compare DIR_A DIR_B OUT.png")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 // `vegstream fly` in a window under a virtual display (xvfb-run): N frames with the validation
 // layers silent, the HUD drawn into the presented image (a screenshot of the same frame with
 // and without the HUD differs in the HUD's corner and not far from it), and the screenshot a
-// PNG named by time and counter.
+// PNG named by time and counter; the shared simulation's window inputs (issue 19): the camera's
+// collider, and a path's own colliders and wind sources, in a windy flight.
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "app/path_recorder.h"
+#include "flight/flight_path_json.h"
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
 #include "tests/support/virtual_display.h"
@@ -90,6 +93,44 @@ TEST_F(InteractiveWindow, HudIsDrawnAndValidationSilent) {
   };
   EXPECT_GT(changedShare(8, 8, 120, 60), 0.5) << "the HUD darkens and writes over its panel";
   EXPECT_LT(changedShare(0, 0, 4, 180), 0.05) << "beside the panel the frame is the same";
+}
+
+// The window with the camera's collider walking (VEGSTREAM_FLY_COLLIDER, as C would set it) over
+// a path whose collider and whirlwind move on session time, in a 12 m/s gusty wind: the frames
+// run through the simulation with the validation layers silent.
+TEST_F(InteractiveWindow, CameraColliderAndPathCollidersInAWindyFlight) {
+  const fs::path pathFile = dir_ / "windy.json";
+  const auto made = runVegstream("path --dataset '" + dataset_.string() + "' --out '" + pathFile.string() + "'");
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  auto path = flight::loadFlightPath(pathFile);
+  ASSERT_TRUE(path.ok()) << path.error().message;
+  const flight::Keyframe& k = path->keyframes.front();
+  const flight::Keyframe& next = path->keyframes[1];  // inside the dataset, as the path is
+  flight::Collider ball;
+  ball.name = "ball";
+  ball.radiusM = 1.5;
+  ball.keyframes = {{0.0, k.lat, k.lon, 1.5, flight::AltRef::Terrain},
+                    {10.0, next.lat, next.lon, 1.5, flight::AltRef::Terrain}};
+  path->colliders.push_back(ball);
+  flight::WindSourceSpec whirl;
+  whirl.name = "whirl";
+  whirl.type = flight::WindSourceSpec::Type::Whirlwind;
+  whirl.radiusM = 20.0;
+  whirl.strengthMps = 15.0;
+  whirl.keyframes = {{0.0, k.lat, k.lon, 5.0, flight::AltRef::Terrain}};
+  path->wind = flight::WindSection{};
+  path->wind->sources.push_back(whirl);
+  ASSERT_TRUE(app::saveFlightPath(*path, pathFile).ok());
+
+  const auto r =
+      runCommand("cd '" + dir_.string() + "' && " + display_->environment() + "VEGSTREAM_FLY_COLLIDER=walking '" +
+                 VEGSTREAM_EXE + "' fly '" + dataset_.string() + "' --path '" + pathFile.string() +
+                 "' --wind-speed 12 --gustiness 0.8 --validate --frames 3 --size 320x180 --msaa 1");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("window closed after 3 frames"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("camera collider: walking (radius 0.35 m, length 1.1 m, 1.5 m ahead)"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("validation:"), std::string::npos) << r.err;
 }
 
 }  // namespace
