@@ -8,7 +8,10 @@
 //     shaders (straight lines, constant colour, no shadows);
 //   - case 4: the compute blade path (render/blade_pass.h) with planar shadows: the same blades,
 //     expanded once per plant in compute and drawn by a trivial vertex stage;
-//   - case 5: the compute path without shadows (the like-for-like against the speed of light).
+//   - case 5: the compute path without shadows (the like-for-like against the speed of light);
+//   - cases 6–8 (issue 19): the shared simulation with an 8 m/s gusty wind — the field alone
+//     (terrain + the simulation pass), then cases 2 and 5 with every blade solving its
+//     equilibrium under the wind: wind on against off, on both blade paths, in one run.
 // Manual time = the GPU frame time (timestamps; on lavapipe the frame total is what is
 // meaningful). Counters: plants (blades), plant triangles (geometry-stage primitives, or the
 // compute path's own count). After the run, a table on stdout: each case's vegetation ms (case −
@@ -30,6 +33,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/renderer.h"
+#include "simulation/simulation.h"
 #include "tests/support/plant_field_scene.h"
 
 namespace {
@@ -37,9 +41,12 @@ namespace {
 using namespace vegstream;
 using namespace vegstream::render;
 
-enum Case { kTerrain, kPlants, kPlantsNoShadows, kSpeedOfLight, kCompute, kComputeNoShadows };
-const char* kCaseNames[] = {"terrain only",   "tessellation", "tessellation, no shadows",
-                            "speed of light", "compute",      "compute, no shadows"};
+enum Case { kTerrain, kPlants, kPlantsNoShadows, kSpeedOfLight, kCompute, kComputeNoShadows, kTerrainWind,
+            kPlantsWind, kComputeWind };
+const char* kCaseNames[] = {"terrain only",        "tessellation",         "tessellation, no shadows",
+                            "speed of light",      "compute",              "compute, no shadows",
+                            "terrain + simulation", "tessellation, wind",   "compute, wind"};
+bool windy(Case c) { return c == kTerrainWind || c == kPlantsWind || c == kComputeWind; }
 
 struct CaseFigures {
   double ms = 0.0;  // GPU ms summed over iterations
@@ -96,8 +103,19 @@ void BM_Frame(benchmark::State& state) {
   plants.draw.fullDetail = true;
   plants.draw.shadows = which == kPlants || which == kCompute;
   plants.draw.speedOfLight = which == kSpeedOfLight;
-  plants.draw.path = which == kCompute || which == kComputeNoShadows ? BladePath::Compute : BladePath::Tessellation;
-  if (which != kTerrain) req.vegetation = &plants;
+  plants.draw.path = which == kCompute || which == kComputeNoShadows || which == kComputeWind ? BladePath::Compute
+                                                                                              : BladePath::Tessellation;
+  if (which != kTerrain && which != kTerrainWind) req.vegetation = &plants;
+  // The wind: an 8 m/s gusty westerly, stepped at 60 Hz (simulation/simulation.h).
+  simulation::Simulation sim({.wind = {.speedMps = 8.0, .directionDeg = 270.0, .gustiness = 0.7}});
+  double simTime = 0.0;
+  const auto stepWind = [&] {
+    if (!windy(which)) return;
+    sim.step({.timeS = simTime, .dtS = simTime > 0.0 ? 1.0 / 60.0 : 0.0, .camera = req.camera.position});
+    simTime += 1.0 / 60.0;
+    req.simulation = &sim.gpuStep();
+  };
+  stepWind();
   auto warm = r->renderFrame(req);  // uploads the tile; pipelines warm
   if (!warm) {
     state.SkipWithError(warm.error().message.c_str());
@@ -108,6 +126,7 @@ void BM_Frame(benchmark::State& state) {
   CaseFigures& fig = figures()[which];
   // Summed over every run of the case (--benchmark_repetitions, random interleaving).
   for (auto _ : state) {
+    stepWind();
     auto f = r->renderFrame(req);
     if (!f) {
       state.SkipWithError(f.error().message.c_str());
@@ -135,6 +154,9 @@ BENCHMARK(BM_Frame)
     ->Arg(kSpeedOfLight)
     ->Arg(kCompute)
     ->Arg(kComputeNoShadows)
+    ->Arg(kTerrainWind)
+    ->Arg(kPlantsWind)
+    ->Arg(kComputeWind)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
@@ -149,8 +171,11 @@ void printRatios() {
   if (terrain < 0.0) return;
   std::printf("\n%-26s %10s %12s %14s %10s %12s\n", "case", "GPU ms", "veg. ms", "x speed of light", "blades",
               "M blades/s");
+  // The wind cases' plants against terrain + simulation (the expansion's own cost with wind);
+  // terrain + simulation against the terrain alone (the simulation's cost).
+  const double windBase = mean(kTerrainWind) >= 0.0 ? mean(kTerrainWind) : terrain;
   for (const auto& [c, fig] : f) {
-    const double ms = mean(c), veg = ms - terrain;
+    const double ms = mean(c), veg = ms - (windy(static_cast<Case>(c)) && c != kTerrainWind ? windBase : terrain);
     const double ratio = sol > terrain && c != kTerrain ? veg / (sol - terrain) : 0.0;
     const double rate = veg > 0.0 && c != kTerrain ? static_cast<double>(fig.plants) / veg / 1000.0 : 0.0;
     std::printf("%-26s %10.3f %12.3f %14.2f %10llu %12.2f\n", kCaseNames[c], ms, c == kTerrain ? 0.0 : veg, ratio,

@@ -95,7 +95,7 @@ TEST(PathTemplates, UnknownTemplateListsTheKnownOnes) {
 
 TEST(BundledPaths, ParseAndStayOverZion) {
   const std::filesystem::path dir = VEGSTREAM_FLIGHT_PATHS_DIR;
-  for (const char* name : {"benchmark-30s", "benchmark-30s-slickrock", "canyon-run", "orbit"}) {
+  for (const char* name : {"benchmark-30s", "benchmark-30s-slickrock", "canyon-run", "orbit", "meadow-wind"}) {
     const Result<FlightPath> p = loadFlightPath(dir / (std::string(name) + ".json"));
     ASSERT_TRUE(p.ok()) << p.error().message;
     EXPECT_EQ(p->name, name);
@@ -111,6 +111,16 @@ TEST(BundledPaths, ParseAndStayOverZion) {
   const Result<FlightPath> canyon = loadFlightPath(dir / "canyon-run.json");
   ASSERT_TRUE(canyon.ok());
   EXPECT_GE(canyon->duration(), 60.0);
+  // The simulation's demo (issue 19): a vehicle, a rotor and gusts over the Kolob meadow; the
+  // camera comes back along the trail after the vehicle has gone.
+  const Result<FlightPath> meadow = loadFlightPath(dir / "meadow-wind.json");
+  ASSERT_TRUE(meadow.ok());
+  ASSERT_EQ(meadow->colliders.size(), 1u);
+  ASSERT_TRUE(meadow->wind.has_value());
+  EXPECT_EQ(meadow->wind->speedMps, 5.0);
+  ASSERT_EQ(meadow->wind->sources.size(), 1u);
+  EXPECT_EQ(meadow->wind->sources[0].type, WindSourceSpec::Type::Rotor);
+  EXPECT_GT(meadow->duration(), meadow->colliders[0].keyframes.back().t + 20.0);
 }
 
 }  // namespace
