@@ -286,3 +286,4 @@ TEST_F(SimulationGpuTest, GpuMemoryDoesNotGrowWithPlants) {
 
 }  // namespace
 }  // namespace vegstream::scene
+
