@@ -55,13 +55,15 @@ float gGrown;  // groupLod's z: how far the blade's last segment has grown in
 vec4 gPlane;
 vec4 gGroundMod;  // the imagery colour under the root (rgb) and the plant's colour modulation (a)
 uint gVertex;  // next vertex to write
+float gPressed;  // PlantParams::pressed: lit as the canopy's top
 
 void putVertex(vec3 p, vec3 n, vec2 blade, bool shadow) {
   BladeVertex v;
   v.pos = shadow ? shadowPoint(p, gPlane) : p;
   // A shadow's colour is black: its red channel carries the shadow's coverage instead.
   vec3 c = shadow ? vec3(shadowStrength(p), 0.0, 0.0)
-                  : plantColour(p, n, blade, gGroundMod.rgb, gGroundMod.a, (gPlantWord >> kBladeKindShift) & 3u, gPlane.xyz);
+                  : plantColour(p, n, vec2(blade.x, max(blade.y, gPressed)), gGroundMod.rgb, gGroundMod.a,
+                                (gPlantWord >> kBladeKindShift) & 3u, gPlane.xyz);
   v.colour = uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
   v.plant = gPlantWord | (shadow ? kBladeShadowBit : 0u);
   v.blade = packSnorm2x16(blade);
@@ -210,6 +212,7 @@ void main() {
     uint seed = g.firstSeed + l;
     PlantParams p = plantParams(g, t, seed);
     plantMotion(p, kindK);
+    gPressed = p.pressed;
     vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
     gGroundMod = vec4(groundColour(t, r), p.colourModulation);
     gKind = kindK;

@@ -18,7 +18,7 @@ layout(location = 1) out vec3 outSide;     // unit, across the blade
 layout(location = 2) out vec3 outNormal;   // unit, the blade's face
 layout(location = 3) out float outAlong;   // 0 at the root … 1 at the tip
 layout(location = 4) out vec3 outGround;   // the imagery colour under the root (linear)
-layout(location = 5) out vec4 outPlant;    // width (m), colour modulation, height (m), s′
+layout(location = 5) out vec4 outPlant;    // width (m), colour modulation, height (m), pressed 0 … 1
 layout(location = 6) out vec4 outPlane;    // the seed triangle's plane: unit normal, offset (camera-relative)
 layout(location = 7) out float outNearest; // seedTriangleNearestM: whether its shadows are drawn
 
@@ -41,7 +41,7 @@ void main() {
   outAlong = x;
   vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
   outGround = groundColour(t, r);
-  outPlant = vec4(p.width, p.colourModulation, p.height, p.sPrime);
+  outPlant = vec4(p.width, p.colourModulation, p.height, p.pressed);
   vec3 nrm = normalize(cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz));
   outPlane = vec4(nrm, -dot(nrm, t.v0.xyz));
   outNearest = shadowNearestM(g, t);

@@ -113,11 +113,12 @@ void plantMotion(inout PlantParams p, uint kind) {
   }
   if ((flags & kSimFlagInteraction) != 0) {
     vec3 tip = bendPoint(p.bend, p.rest, restAlong(p, 1.0), 1.0) * p.height;
-    vec2 flatten = flattenLean(interactionAt(p.root), p.stiffness);
-    p.bend.root = colliderTurn(p.root, tip, leanQuat(flatten));
-    // Pressed grass shows the light faces of its blades, all one way (why a trail reads from
-    // afar): brighter by up to 35 % as it lies down.
-    p.colourModulation *= 1.0 + 0.35 * length(flatten) / kMaxFlattenRad;
+    p.bend.root = colliderTurn(p.root, tip, leanQuat(flattenLean(interactionAt(p.root), p.stiffness)));
+    // Pressed grass is the top of the canopy, nothing shades it (plant_lighting.glsl's occlusion
+    // takes max(along, pressed)), and it shows its blades' light faces all one way (why a trail
+    // reads from afar): up to 20 % brighter as it lies down.
+    p.pressed = clamp(2.0 * acos(clamp(p.bend.root.w, -1.0, 1.0)) / kMaxFlattenRad, 0.0, 1.0);
+    p.colourModulation *= 1.0 + 0.2 * p.pressed;
   }
 }
 

@@ -11,11 +11,11 @@ layout(location = 2) flat out uint gFlags;  // bits 0–1: kind (0 blade, 1 ston
 #include "plant_lighting.glsl"
 #include "plant_shape.glsl"
 
-// plant: x colour modulation, y s′, z kind.
+// plant: x colour modulation, y pressed 0 … 1 (lit as the canopy's top: plantMotion), z kind.
 void emitPlantVertex(vec3 p, vec3 n, vec2 blade, vec3 ground, vec4 plant, bool shadow, vec4 plane) {
   uint kind = uint(plant.z + 0.5);
   vec3 q = shadow ? shadowPoint(p, plane) : p;
-  gColour = shadow ? vec3(shadowStrength(p), 0.0, 0.0) : plantColour(q, n, blade, ground, plant.x, kind, plane.xyz);
+  gColour = shadow ? vec3(shadowStrength(p), 0.0, 0.0) : plantColour(q, n, vec2(blade.x, max(blade.y, plant.y)), ground, plant.x, kind, plane.xyz);
   gBlade = blade;
   gFlags = kind | (shadow ? 4u : 0u);
   gl_Position = frame.viewProj * vec4(q, 1.0);

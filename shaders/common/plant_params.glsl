@@ -21,6 +21,7 @@ struct PlantParams {
   // moving 0 until plantMotion sets it, and for plants that do not move (gravel, markers).
   BladeRest rest;
   BladeBend bend;
+  float pressed;  // 0 … 1: how far the interaction field and colliders lay it down (lit as canopy top)
 };
 
 PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
@@ -49,6 +50,7 @@ PlantParams plantParams(PlantCluster g, SeedTriangle t, uint seed) {
   p.colourModulation = mix(sp.widthColour.z, sp.widthColour.w, philoxU01(cm.x));
   p.sPrime = g.sPrime;
   p.bend.moving = 0.0;
+  p.pressed = 0.0;
   return p;
 }
 
