@@ -15,7 +15,7 @@ import re
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
+ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "wind", "dense-wind", "wind-tessellation", "meadow-wind", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
@@ -133,7 +133,8 @@ def plants_ratios(benchmarks):
     """Each bench_plants case's vegetation cost (case − terrain only) against the speed of light's,
     and the blade rate: the figure issue 17 asks for, from one run (cases: bench/bench_plants.cpp)."""
     names = {0: "terrain only", 1: "tessellation", 2: "tessellation, no shadows", 3: "speed of light",
-             4: "compute", 5: "compute, no shadows"}
+             4: "compute", 5: "compute, no shadows", 6: "terrain + simulation (8 m/s wind)",
+             7: "tessellation, no shadows, wind", 8: "compute, no shadows, wind"}
     ms, blades = {}, {}
     for r in benchmarks:
         m = re.search(r"case:(\d+)", r["name"])
@@ -144,12 +145,13 @@ def plants_ratios(benchmarks):
         blades[c] = r.get("plants")
     if 0 not in ms or 3 not in ms or ms[3] <= ms[0]:
         return
-    print("\n| bench_plants case | vegetation ms (case − terrain) | × speed of light | M blades / s |")
+    print("\n| bench_plants case | vegetation ms (case − terrain; wind cases − terrain + simulation) | × speed of light | M blades / s |")
     print("|---|---|---|---|")
     for c in sorted(ms):
         if c == 0:
             continue
-        veg = ms[c] - ms[0]
+        # The wind cases' plants against terrain + simulation (case 6); case 6 against the terrain.
+        veg = ms[c] - (ms[6] if c in (7, 8) and 6 in ms else ms[0])
         rate = (blades[c] or 0) / veg / 1000.0 if veg > 0 else None
         print(f"| {names.get(c, c)} | {fmt(veg)} | {fmt(veg / (ms[3] - ms[0]))} | {fmt(rate)} |")
 
