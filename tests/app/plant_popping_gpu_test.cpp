@@ -16,8 +16,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 
+#include "tests/support/read_rgb.h"
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
 #include "tests/support/zion_sample.h"
@@ -36,14 +36,7 @@ std::vector<unsigned char> still(const fs::path& dataset, const std::string& nam
                                        " --validate --plant-style coverage --out '" + out.string() + "' " + extra);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
-  std::vector<unsigned char> rgb(size_t{kW} * kH * 3);
-  auto in = OIIO::ImageInput::open(out.string());
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << out;
-    return {};
-  }
-  EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
-  return rgb;
+  return testing::readRgb8(out, kW, kH);
 }
 
 // Pixels whose red, green or blue changed by more than kFlip.

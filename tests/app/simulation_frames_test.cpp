@@ -14,8 +14,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 
+#include "tests/support/read_rgb.h"
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
 #include "tests/support/zion_sample.h"
@@ -26,16 +26,7 @@ namespace fs = std::filesystem;
 
 constexpr int kW = 160, kH = 90;
 
-std::vector<unsigned char> readRgb(const fs::path& png) {
-  std::vector<unsigned char> rgb(size_t{kW} * kH * 3);
-  auto in = OIIO::ImageInput::open(png.string());
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << png;
-    return {};
-  }
-  EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
-  return rgb;
-}
+std::vector<unsigned char> readRgb(const fs::path& png) { return testing::readRgb8(png, kW, kH); }
 
 // Pixels whose colour changed by more than 24 (sum of the channels).
 int changed(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
