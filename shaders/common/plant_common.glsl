@@ -114,12 +114,15 @@ void plantMotion(inout PlantParams p, uint kind) {
   if ((flags & kSimFlagInteraction) != 0) {
     vec3 tip = bendPoint(p.bend, p.rest, restAlong(p, 1.0), 1.0) * p.height;
     p.bend.root = colliderTurn(p.root, tip, leanQuat(flattenLean(interactionAt(p.root), p.stiffness)));
-    // Pressed grass is the top of the canopy, nothing shades it (plant_lighting.glsl's occlusion
-    // takes max(along, pressed)), and it shows its blades' light faces all one way (why a trail
-    // reads from afar): up to 20 % brighter as it lies down.
-    p.pressed = clamp(2.0 * acos(clamp(p.bend.root.w, -1.0, 1.0)) / kMaxFlattenRad, 0.0, 1.0);
-    p.colourModulation *= 1.0 + 0.2 * p.pressed;
   }
+  // A blade laid down (by the wind, a rotor's downwash, a trail) is the top of an opened canopy:
+  // nothing shades it (plant_lighting.glsl's occlusion takes max(along, pressed)), and it shows
+  // its blades' light faces all one way (why a trail or a downwash reads from afar): up to 20 %
+  // brighter as its tip comes down to the ground.
+  vec3 rest = restAlong(p, 1.0);
+  vec3 bent = bendPoint(p.bend, p.rest, rest, 1.0);
+  p.pressed = clamp(1.0 - bent.z / max(rest.z, 0.05), 0.0, 1.0);
+  p.colourModulation *= 1.0 + 0.2 * p.pressed;
 }
 
 // Vertex j of a blade of n segments whose last segment has grown in by `grown` (groupLod's z):
