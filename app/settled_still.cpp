@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "scene/frame_driver.h"
+#include "simulation/shared_code.h"
 
 namespace vegstream::app {
 
@@ -68,13 +69,16 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     if (still.settled) break;
   }
   if (simulationTimeS > 0.0) {
-    // The simulation's own frames at 60 per second of flight time, then the still at its time.
-    const auto steps = static_cast<int>(std::floor(simulationTimeS * 60.0));
+    // The simulation's own steps, each as many fixed sub-steps as one step may run (a quarter
+    // second): the sub-steps are counted from t = 0 whatever the steps' size
+    // (simulation/simulation.h), so the state at S is the one a 60 fps flight reaches.
+    const double chunkS = double(simulation::shader::kMaxSubsteps) / simulation::shader::kSubstepsPerS;
+    const auto steps = static_cast<int>(std::floor(simulationTimeS / chunkS));
     scene::FrameInput input;
     input.pose = pose;
     input.timeS = stepS * (still.frames - 1);
     for (int k = 1; k <= steps; ++k) {
-      input.simulationTimeS = k / 60.0;
+      input.simulationTimeS = k * chunkS;
       if (Status s = driver.advanceSimulation(input); !s) return s.error();
     }
     input.simulationTimeS = simulationTimeS;

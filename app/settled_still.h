@@ -37,8 +37,9 @@ struct SettledStill {
 // Runs frames at `pose` (the scene should stream settled) until one changes nothing, at most
 // maxFrames; each frame's changes are logged at debug level (-v). GPU failures come back as errors.
 // With simulationTimeS > 0 the settle frames hold the simulation at time 0; then the simulation
-// alone (scene::FrameDriver::advanceSimulation) runs at 60 steps a second of flight time to
-// simulationTimeS, and one more frame at the settled scene is the still.
+// alone (scene::FrameDriver::advanceSimulation) runs in quarter-second steps of its fixed
+// sub-steps to simulationTimeS — the same sub-steps a 60 fps flight runs — and one more frame at
+// the settled scene is the still.
 Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
                                         int maxFrames = 40, double simulationTimeS = 0.0);
 
