@@ -20,6 +20,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr double kFlyDefaultWindMps = 4.0;       // a gentle breeze, 10 m up
+constexpr double kFlyDefaultWindFromDeg = 250.0;  // west-south-west, Utah's prevailing wind
+
+
 bool displayAvailable() {
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
@@ -136,6 +140,15 @@ int runFly(FlyOptions o, const Logger& log) {
     given = std::move(*loaded);
   }
   o.simulation = resolveSimulationOptions(o.simulationCli, given ? &*given : nullptr);
+  // `fly` is the demo: where neither the command line nor the path says what the wind does, a
+  // gentle west-south-west breeze moves the grass (record and snapshot stay calm by default, so
+  // benchmarks and stills do not change under anyone's feet).
+  const bool pathWind = given && given->wind && given->wind->speedMps;
+  if (!o.simulationCli.windSpeedMps && !pathWind) {
+    o.simulation.wind.speedMps = kFlyDefaultWindMps;
+    if (!o.simulationCli.windDirectionDeg && !(given && given->wind && given->wind->directionDeg))
+      o.simulation.wind.directionDeg = kFlyDefaultWindFromDeg;
+  }
 
   Window window;
   so.dataset = *dataset;
