@@ -166,8 +166,9 @@ void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const Retir
     const VkDeviceSize size = std::max<VkDeviceSize>(std::min<VkDeviceSize>(grownSize(bytes), ceiling * stride), bytes);
     b = createBuffer(*ctx_, size, usage, MemoryUse::DeviceLocal, name + tag);
   };
-  grow(s.vertices, vertices, maxVertices_, sizeof(BladeVertexGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-       "blade vertices");
+  // Transfer source: Renderer::readBladeVertices copies them out for the tests.
+  grow(s.vertices, vertices, maxVertices_, sizeof(BladeVertexGpu),
+       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "blade vertices");
   grow(s.indices, indices, maxIndices_, sizeof(uint32_t),
        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "blade indices");
   // What the buffers hold (grownSize may give more than asked), within the ceiling; indices a
@@ -267,6 +268,12 @@ void BladePass::readFigures(int slot, VegetationFigures& f) const {
   f.bladeVertices = std::min<uint64_t>(c[0], s.vertexCapacity);
   f.bladesDropped = c[3];
   f.bladeTriangles = c[4] / 3;
+}
+
+uint64_t BladePass::writtenVertices(int slot) const {
+  const Slot& s = slots_[size_t(slot)];
+  if (!s.expanded) return 0;
+  return std::min<uint64_t>(static_cast<const uint32_t*>(s.figures.mapped)[0], s.vertexCapacity);
 }
 
 uint64_t BladePass::gpuBytes() const {

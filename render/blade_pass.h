@@ -66,6 +66,9 @@ class BladePass {
   bool expanded(int slot) const { return slots_[size_t(slot)].expanded; }
 
   uint64_t gpuBytes() const;
+  // The slot's vertex buffer and how many vertices its last expansion wrote (after its fence).
+  VkBuffer vertexBuffer(int slot) const { return slots_[size_t(slot)].vertices.get(); }
+  uint64_t writtenVertices(int slot) const;
 
  private:
   struct Slot {

@@ -313,6 +313,29 @@ Result<Renderer::SimulationReadback> Renderer::readSimulation() {
   }
 }
 
+Result<std::vector<Renderer::BladeVertexReadback>> Renderer::readBladeVertices() {
+  static_assert(sizeof(BladeVertexReadback) == 32, "shaders/common/blade_layout.glsl BladeVertex");
+  try {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    const int slot = static_cast<int>((impl_->nextFrame - 1) % kFramesInFlight);
+    const uint64_t count = impl_->blades->writtenVertices(slot);
+    std::vector<BladeVertexReadback> out(count);
+    if (count == 0) return out;
+    const VkDeviceSize bytes = count * sizeof(BladeVertexReadback);
+    GpuBuffer host = createBuffer(*impl_->ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+                                  "blade vertex read-back");
+    impl_->ctx->submitAndWait([&](VkCommandBuffer cmd) {
+      const VkBufferCopy region{0, 0, bytes};
+      vkCmdCopyBuffer(cmd, impl_->blades->vertexBuffer(slot), host.get(), 1, &region);
+      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    });
+    std::memcpy(out.data(), host.mapped, bytes);
+    return out;
+  } catch (const VulkanError& e) {
+    return makeError(ErrorKind::Internal, std::string("blade vertex read-back: ") + e.what());
+  }
+}
+
 uint64_t Renderer::simulationGpuBytes() const { return impl_->simulation->gpuBytes(); }
 
 uint64_t Renderer::gpuBytes() const {

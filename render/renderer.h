@@ -87,6 +87,17 @@ class Renderer {
     std::vector<glm::vec4> field;
   };
   Result<SimulationReadback> readSimulation();
+  // The vertices the compute blade path wrote in the last frame (waits for the GPU to be idle):
+  // shaders/common/blade_layout.glsl's BladeVertex, in the order written. Empty when that frame
+  // did not expand blades. For tests (segment morphs, vertex positions).
+  struct BladeVertexReadback {
+    glm::vec3 pos;  // camera-relative
+    uint32_t plant; // bits 0–28 the plant record, 29–30 kind, 31 shadow
+    uint32_t colour[2];
+    uint32_t blade;  // packSnorm2x16(across, along)
+    uint32_t unused;
+  };
+  Result<std::vector<BladeVertexReadback>> readBladeVertices();
   // The shared simulation's GPU memory: fixed at start-up, whatever the plants drawn.
   uint64_t simulationGpuBytes() const;
 

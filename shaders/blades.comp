@@ -112,8 +112,8 @@ uint putPlant(PlantParams p, uint n, bool shadow, uint at) {
   // Grass blades (grass.geom) and flower stems (flowers.geom): a strip of n quads.
   BladeVertexFrame tip;
   for (uint j = 0u; j <= n; ++j) {
-    float x = float(j) / float(n);
     BladeVertexFrame f = morphedBladeFrame(p, j, n, gGrown);
+    float x = f.along;
     float halfWidth;
     if (gKind == kGrass)  // never thinner than 1.5 pixels, tapering to the tip
       halfWidth = 0.5 * max(p.width, 1.5 * metresPerPixel(length(f.pos))) * pow(1.0 - x, 0.7);

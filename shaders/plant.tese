@@ -33,12 +33,11 @@ void main() {
   // Vertex j of n (equal spacing: x = j / n, taken exactly as the compute path does).
   uint n = max(uint(gl_TessLevelOuter[1] + 0.5), 1u);
   uint j = min(uint(gl_TessCoord.x * float(n) + 0.5), n);
-  float x = float(j) / float(n);
   BladeVertexFrame f = morphedBladeFrame(p, j, n, groupLod(g, t).z);
   outPos = f.pos;
   outSide = f.side;
   outNormal = f.normal;
-  outAlong = x;
+  outAlong = f.along;
   vec2 r = seedPoint(uvec2(t.keyLo, t.keyHi), g.cluster, seed);
   outGround = groundColour(t, r);
   outPlant = vec4(p.width, p.colourModulation, p.height, p.pressed);

@@ -68,6 +68,7 @@ struct BladeVertexFrame {
   vec3 pos;     // camera-relative
   vec3 side;    // unit, across the blade
   vec3 normal;  // unit, the blade's face
+  float along;  // 0 root … 1 tip: where the vertex is along the blade (its width, its texture)
 };
 
 BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
@@ -85,6 +86,7 @@ BladeVertexFrame bladeVertexFrame(PlantParams p, float x) {
     f.normal = bendVector(p.bend, f.normal, x);
   }
   f.pos = p.root + along * p.height;
+  f.along = x;
   return f;
 }
 
@@ -125,17 +127,21 @@ void plantMotion(inout PlantParams p, uint kind) {
   p.colourModulation *= 1.0 + 0.2 * p.pressed;
 }
 
-// Vertex j of a blade of n segments whose last segment has grown in by `grown` (groupLod's z):
-// the solved shape at x = j / n, moved towards the (n − 1)-segment polyline at the same x by
-// 1 − grown, so a blade gaining or losing a segment changes shape continuously (both blade paths).
+// Vertex j of a blade of n segments whose last segment has grown in by `grown` (groupLod's z),
+// on both blade paths. At grown = 0 the blade is the (n − 1)-segment blade exactly — vertex j sits
+// on that blade's vertex min(j, n − 1), so its last segment has no length — and as it grows each
+// vertex slides (position, frame, and where it is along the blade: width and texture) to its own
+// place at x = j / n. A blade gaining or losing a segment thus changes shape continuously: no
+// corner of the coarser blade is cut at the switch (tests/render/blade_path_test.cpp
+// SegmentCountsMorphInsteadOfStepping).
 BladeVertexFrame morphedBladeFrame(PlantParams p, uint j, uint n, float grown) {
-  float x = float(j) / float(n);
-  BladeVertexFrame f = bladeVertexFrame(p, x);
+  BladeVertexFrame f = bladeVertexFrame(p, float(j) / float(n));
   if (grown >= 1.0 || n <= 1u) return f;
-  float s = x * float(n - 1u);
-  float k0 = min(floor(s), float(n - 2u));
-  vec3 a = bladeVertexFrame(p, k0 / float(n - 1u)).pos, b = bladeVertexFrame(p, (k0 + 1.0) / float(n - 1u)).pos;
-  f.pos = mix(mix(a, b, s - k0), f.pos, grown);
+  BladeVertexFrame c = bladeVertexFrame(p, float(min(j, n - 1u)) / float(n - 1u));
+  f.pos = mix(c.pos, f.pos, grown);
+  f.side = normalize(mix(c.side, f.side, grown));
+  f.normal = normalize(mix(c.normal, f.normal, grown));
+  f.along = mix(c.along, f.along, grown);
   return f;
 }
 

@@ -18,8 +18,8 @@ bool sphereVisible(vec3 c, float r) {
 
 // x: 1 when the group is in view, else 0; y: segments per blade (1 … n_max, a whole number);
 // z: how far the last segment has grown in, 0 … 1 (issue 18: segment counts morph instead of
-// stepping). The blade has y segments; at z = 0 its vertices lie on the (y − 1)-segment blade's
-// polyline (morphedBladeFrame, plant_common.glsl), at 1 on the solved shape.
+// stepping). The blade has y segments; at z = 0 it is the (y − 1)-segment blade exactly (its last
+// segment has no length: morphedBladeFrame, plant_common.glsl), at 1 on the solved shape.
 vec3 groupLod(PlantCluster g, SeedTriangle t) {
   Species sp = catalog.species[g.species];
   vec3 centre = (t.v0.xyz + t.v1.xyz + t.v2.xyz) / 3.0;

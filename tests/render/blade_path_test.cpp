@@ -11,8 +11,10 @@
 // compute, mesh is refused naming the option and the device.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -387,6 +389,105 @@ TEST_F(BladePathTest, EachPathIsDeterministic) {
     // Groups (and so triangles) arrive in atomic order: equal-depth ties may resolve either way.
     EXPECT_LT(differing(*a.with.color, *b.with.color, 24), size_t(0.002 * kW * kH));
   }
+}
+
+// Issue 18: segment counts morph. A seed triangle's eq. 4 count depends on its distance in units
+// of lodDistanceM; frames whose unit grows by 0.2 % each (the camera 0.2 % nearer each time, all
+// else equal), 16 of them, change the count of the triangles that cross a whole-number boundary. Per plant, the centre
+// line of its blade strip (the midpoints of the vertex pairs the compute path wrote, no shadows)
+// in both frames, matched by root: over the plants whose count changed, the Hausdorff distance
+// between the two centre lines. With the fades, the finer blade that has just gained a segment is
+// the coarser blade (its new segment has no length yet); with --plant-fades off it steps to the
+// finer polyline, a chord sag away.
+using CentreLines = std::map<std::array<long long, 3>, std::vector<glm::vec3>>;
+
+CentreLines centreLines(Renderer& r, const PlantDrawOptions& draw) {
+  const std::array<uint8_t, 3> c = referenceColour("grass");
+  const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
+  const ImageryUpload upload{0, tile.data()};
+  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
+  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+  TerrainDraw terrainDraw{&plane};
+  terrainDraw.imageryLayer = 0;
+  FrameRequest req;
+  req.camera.position = {0.0, 0.0, 2.0};
+  req.camera.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
+  req.camera.up = {0.0, 0.0, 1.0};
+  req.cameraHeightMsl = 2.0;
+  req.terrain = {&terrainDraw, 1};
+  req.imageryUploads = {&upload, 1};
+  const std::vector<SeedTriangleGpu> seeds = seedTriangles(req.camera.position, 40.0f);
+  VegetationRequest plants{seeds, 8, PlantStyle::Plants, draw};
+  req.vegetation = &plants;
+  EXPECT_TRUE(r.renderFrame(req).ok());
+  auto vertices = r.readBladeVertices();
+  EXPECT_TRUE(vertices.ok());
+  std::map<uint32_t, std::vector<glm::vec3>> strips;  // per plant record, in the order written
+  for (const auto& v : *vertices)
+    if ((v.plant >> 29) == 0u) strips[v.plant & 0x1fffffffu].push_back(v.pos);  // blades, not shadows
+  CentreLines lines;
+  for (const auto& [plant, strip] : strips) {
+    std::vector<glm::vec3> line;
+    for (size_t i = 0; i + 1 < strip.size(); i += 2) line.push_back(0.5f * (strip[i] + strip[i + 1]));
+    const glm::vec3 root = line.front();
+    lines[{std::llround(root.x * 1e4), std::llround(root.y * 1e4), std::llround(root.z * 1e4)}] = line;
+  }
+  return lines;
+}
+
+double pointToPolyline(const glm::vec3& p, const std::vector<glm::vec3>& line) {
+  double best = 1e30;
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const glm::vec3 ab = line[i + 1] - line[i];
+    const float t = glm::dot(ab, ab) > 0.0f ? std::clamp(glm::dot(p - line[i], ab) / glm::dot(ab, ab), 0.0f, 1.0f) : 0.0f;
+    best = std::min(best, static_cast<double>(glm::length(p - (line[i] + t * ab))));
+  }
+  return best;
+}
+
+double hausdorff(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+  double h = 0.0;
+  for (const glm::vec3& p : a) h = std::max(h, pointToPolyline(p, b));
+  for (const glm::vec3& p : b) h = std::max(h, pointToPolyline(p, a));
+  return h;
+}
+
+TEST_F(BladePathTest, SegmentCountsMorphInsteadOfStepping) {
+  auto r = makeRenderer(kW, kH, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  double worst[2] = {0.0, 0.0};
+  size_t changed[2] = {0, 0};
+  for (int fades = 0; fades < 2; ++fades) {
+    PlantDrawOptions d;
+    d.path = BladePath::Compute;
+    d.shadows = false;
+    d.maxSegments = 8;
+    d.fades = fades == 1;
+    d.lodDistanceM = 4.0f;
+    CentreLines a = centreLines(*r, d);
+    ASSERT_GT(a.size(), 100u);
+    for (int step = 1; step <= 16; ++step) {
+      d.lodDistanceM = 4.0f * std::pow(1.002f, static_cast<float>(step));
+      CentreLines b = centreLines(*r, d);
+      for (const auto& [root, line] : a) {
+        const auto other = b.find(root);
+        if (other == b.end() || other->second.size() == line.size()) continue;
+        ++changed[fades];
+        worst[fades] = std::max(worst[fades], hausdorff(line, other->second));
+      }
+      a = std::move(b);
+    }
+  }
+  std::printf("plants whose segment count changed: %zu (fades off), %zu (fades on); largest centre-line "
+              "change: %.3f mm stepping, %.3f mm morphing\n",
+              changed[0], changed[1], worst[0] * 1e3, worst[1] * 1e3);
+  EXPECT_GT(changed[0], 20u);
+  EXPECT_EQ(changed[0], changed[1]);  // the same plants change count either way
+  EXPECT_GT(worst[0], 1e-3);          // stepping moves the blade by millimetres: the check sees it
+  // The morph moves a blade in proportion to the step (its last segment grows by the step's change
+  // of eq. 4's count, here about 0.5 % of the count), stepping by the whole chord sag.
+  EXPECT_LT(worst[1], 0.05 * worst[0]);
 }
 
 TEST_F(BladePathTest, MeshIsRefusedNamingTheOptionAndTheDeviceAndAutoIsCompute) {
