@@ -490,6 +490,157 @@ TEST_F(BladePathTest, SegmentCountsMorphInsteadOfStepping) {
   EXPECT_LT(worst[1], 0.05 * worst[0]);
 }
 
+// Issue 18: no popping along a moving flight, judged per plant in world space so that the
+// camera's own motion does not count: the camera flies 2 cm a frame for 24 frames over the field,
+// whose seed triangles ask for plants by their projected area (lodCount ∝ 1 / d², as eq. 1 does),
+// so plants appear and vanish at the ends of their sequences and blades change segment count.
+// Per plant (matched by its root in the world; only plants well inside the view in both frames:
+// the frustum test adds and drops whole groups at its edges, off screen), a plant that appears or
+// vanishes between two frames is at most 2 % of the median blade's length then (the 2 % rule), and
+// a plant in both frames moves (centre-line Hausdorff distance) at most 6 % of it in a frame — the
+// plants at the ends of their sequences fade in and out within a few frames at this walking pace,
+// continuously. With --plant-fades off, plants pop in and out whole and blades step their
+// segments, or the check would prove nothing.
+struct FlightPlants {
+  std::map<std::array<long long, 3>, std::vector<glm::vec3>> lines;  // world centre lines by root (1 mm)
+  std::map<std::array<long long, 3>, std::vector<glm::vec3>> edge;   // those near the view's edges
+  // The same plant in another frame: its root within 2 mm (the GPU places roots camera-relative in
+  // float, so a root a rounding boundary away must still match).
+  const std::vector<glm::vec3>* find(const glm::vec3& root) const { return nearest(lines, root); }
+  const std::vector<glm::vec3>* findEdge(const glm::vec3& root) const { return nearest(edge, root); }
+  static const std::vector<glm::vec3>* nearest(const std::map<std::array<long long, 3>, std::vector<glm::vec3>>& lines,
+                                               const glm::vec3& root) {
+    const std::vector<glm::vec3>* best = nullptr;
+    double bestD = 2e-3;
+    const std::array<long long, 3> k{std::llround(root.x * 1e3), std::llround(root.y * 1e3), std::llround(root.z * 1e3)};
+    for (long long dx = -2; dx <= 2; ++dx)
+      for (long long dy = -2; dy <= 2; ++dy)
+        for (long long dz = -2; dz <= 2; ++dz) {
+          const auto it = lines.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == lines.end()) continue;
+          const double d = glm::length(it->second.front() - root);
+          if (d <= bestD) {
+            bestD = d;
+            best = &it->second;
+          }
+        }
+    return best;
+  }
+};
+
+FlightPlants flightFrame(Renderer& r, const PlantDrawOptions& draw, const glm::dvec3& camera) {
+  const std::array<uint8_t, 3> c = referenceColour("grass");
+  const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
+  const ImageryUpload upload{0, tile.data()};
+  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
+  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+  TerrainDraw terrainDraw{&plane};
+  terrainDraw.imageryLayer = 0;
+  FrameRequest req;
+  req.camera.position = camera;
+  req.camera.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
+  req.camera.up = {0.0, 0.0, 1.0};
+  req.cameraHeightMsl = camera.z;
+  req.terrain = {&terrainDraw, 1};
+  req.imageryUploads = {&upload, 1};
+  std::vector<SeedTriangleGpu> seeds = seedTriangles(camera, 40.0f);
+  for (SeedTriangleGpu& t : seeds) {  // eq. 1's count: the projected area falls with 1 / d²
+    const glm::vec3 centroid = (glm::vec3(t.v0) + glm::vec3(t.v1) + glm::vec3(t.v2)) / 3.0f;
+    t.lodCount = 2000.0f / std::max(glm::dot(centroid, centroid), 1.0f);
+  }
+  VegetationRequest plants{seeds, 8, PlantStyle::Plants, draw};
+  req.vegetation = &plants;
+  EXPECT_TRUE(r.renderFrame(req).ok());
+  auto vertices = r.readBladeVertices();
+  EXPECT_TRUE(vertices.ok());
+  std::map<uint32_t, std::vector<glm::vec3>> strips;
+  for (const auto& v : *vertices)
+    if ((v.plant >> 29) == 0u) strips[v.plant & 0x1fffffffu].push_back(glm::vec3(glm::dvec3(v.pos) + camera));
+  FlightPlants f;
+  // Well inside the view: the root within 80 % of the half-angles from the view axis.
+  const glm::dvec3 fwd = glm::normalize(req.camera.forward);
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, req.camera.up));
+  const glm::dvec3 up = glm::cross(right, fwd);
+  const double tanV = std::tan(0.5 * req.camera.verticalFovDeg * 3.14159265358979 / 180.0);
+  const double tanH = tanV * double(kW) / double(kH);
+  const auto inside = [&](const glm::vec3& world) {
+    const glm::dvec3 v = glm::dvec3(world) - camera;
+    const double z = glm::dot(v, fwd);
+    return z > 0.5 && std::abs(glm::dot(v, right)) < 0.8 * tanH * z && std::abs(glm::dot(v, up)) < 0.8 * tanV * z;
+  };
+  for (const auto& [plant, strip] : strips) {
+    std::vector<glm::vec3> line;
+    for (size_t i = 0; i + 1 < strip.size(); i += 2) line.push_back(0.5f * (strip[i] + strip[i + 1]));
+    const glm::vec3 root = line.front();
+    (inside(root) ? f.lines : f.edge)[{std::llround(root.x * 1e3), std::llround(root.y * 1e3), std::llround(root.z * 1e3)}] =
+        line;
+  }
+  return f;
+}
+
+float lineLength(const std::vector<glm::vec3>& line) {
+  float l = 0.0f;
+  for (size_t i = 0; i + 1 < line.size(); ++i) l += glm::length(line[i + 1] - line[i]);
+  return l;
+}
+
+TEST_F(BladePathTest, NoPlantPopsAlongAMovingFlight) {
+  auto r = makeRenderer(kW, kH, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  struct Figures {
+    size_t plants = 0, appeared = 0, popped = 0, jumped = 0;
+    double worstAppear = 0.0, worstMove = 0.0;  // fractions of the median blade length
+  } fig[2];
+  for (int fades = 0; fades < 2; ++fades) {
+    PlantDrawOptions d;
+    d.path = BladePath::Compute;
+    d.shadows = false;
+    d.maxSegments = 8;
+    d.fades = fades == 1;
+    FlightPlants before = flightFrame(*r, d, {0.0, 0.0, 2.0});
+    std::vector<float> lengths;
+    for (const auto& [root, line] : before.lines) lengths.push_back(lineLength(line));
+    ASSERT_GT(lengths.size(), 200u);
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    const double median = lengths[lengths.size() / 2];
+    Figures& f = fig[fades];
+    for (int frame = 1; frame <= 24; ++frame) {
+      FlightPlants now = flightFrame(*r, d, {0.0, 0.02 * frame, 2.0});
+      f.plants += now.lines.size();
+      auto appearOrVanish = [&](const FlightPlants& a, const FlightPlants& b) {  // in a, not in b
+        for (const auto& [root, line] : a.lines) {
+          if (b.find(line.front()) || b.findEdge(line.front())) continue;
+          ++f.appeared;
+          const double frac = lineLength(line) / median;
+          f.worstAppear = std::max(f.worstAppear, frac);
+          if (frac > 0.02) ++f.popped;
+        }
+      };
+      appearOrVanish(now, before);
+      appearOrVanish(before, now);
+      for (const auto& [root, line] : now.lines) {
+        const std::vector<glm::vec3>* old = before.find(line.front());
+        if (!old) continue;
+        const double move = hausdorff(line, *old) / median;
+        f.worstMove = std::max(f.worstMove, move);
+        if (move > 0.06) ++f.jumped;
+      }
+      before = std::move(now);
+    }
+  }
+  for (int fades = 1; fades >= 0; --fades)
+    std::printf("fades %s: %zu plant-frames, %zu appeared or vanished (largest %.3f of the median blade, %zu over "
+                "0.02), largest move %.4f (%zu over 0.06)\n",
+                fades ? "on " : "off", fig[fades].plants, fig[fades].appeared, fig[fades].worstAppear,
+                fig[fades].popped, fig[fades].worstMove, fig[fades].jumped);
+  EXPECT_GT(fig[1].appeared, 20u);  // the flight does make plants come and go
+  EXPECT_EQ(fig[1].popped, 0u);
+  EXPECT_EQ(fig[1].jumped, 0u);
+  EXPECT_GT(fig[0].popped, 20u) << "without the fades the check must see pops";
+  EXPECT_GT(fig[0].worstMove, 2.0 * fig[1].worstMove) << "without the morph blades step their segments";
+}
+
 TEST_F(BladePathTest, MeshIsRefusedNamingTheOptionAndTheDeviceAndAutoIsCompute) {
   RendererOptions o = options(64, 36, 1);
   o.bladePath = BladePath::Mesh;
