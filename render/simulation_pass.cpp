@@ -16,7 +16,7 @@ namespace {
 
 namespace sh = simulation::shader;
 static_assert(sizeof(sh::SimulationParams) ==
-              16 * (8 + 2 * sh::kMaxWindSources + 3 * sh::kMaxColliders + 64));  // std140: vec4s only
+              16 * (8 + 2 * sh::kMaxWindSources + 3 * sh::kMaxColliders + 256));  // std140: vec4s only
 static_assert(sizeof(sh::VirtualBladeGpu) == 80 && sizeof(sh::WindCellGpu) == 48);
 
 constexpr VkBufferUsageFlags kStateUse =

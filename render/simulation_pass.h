@@ -6,7 +6,7 @@
 // interaction field; shaders/common/simulation_fields.glsl).
 //
 // Memory does not grow with the plants drawn: the virtual blades (1.25 MiB), the wind cells
-// (0.75 MiB), the field (4 MiB) and the store (the trail budget) are all there is; no plant has
+// (0.75 MiB), the field (16 MiB) and the store (the trail budget) are all there is; no plant has
 // state. The state buffers are single (not per frame slot): the frame's barriers order a step's
 // writes after the previous frames' reads on the one queue.
 //

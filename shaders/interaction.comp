@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The interaction field's step (issue 19; render/simulation_pass.h): one thread per texel of the
-// 512 × 512 toroidal window (16 × 16 tiles of 32 × 32, tile-major so a tile is one contiguous range
+// 1024 × 1024 toroidal window (32 × 32 tiles of 32 × 32, tile-major so a tile is one contiguous range
 // for the trail store's copies). Each texel recovers (linearly, plus what a tile restored from the
 // trail store missed while it was away) and takes every collider's press
 // (simulation/shared/blade_response.glsl interactionStep).

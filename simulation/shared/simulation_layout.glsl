@@ -21,11 +21,12 @@
 // past the plants' 250 m horizon on every side).
 const int kWindGrid = 128;
 const float kWindCellM = 4.0f;
-// The interaction field: 0.1 m cells in 16 × 16 tiles of 32 × 32 texels (3.2 m) around the camera
-// (51.2 m); tiles that leave it with a trail go to the trail store (simulation/interaction_window.h).
+// The interaction field: 0.1 m cells in 32 × 32 tiles of 32 × 32 texels (3.2 m) around the camera
+// (102.4 m: trails show to 51 m away); tiles that leave it with a trail go to the trail store
+// (simulation/interaction_window.h).
 const int kFieldTileTexels = 32;
-const int kFieldWindowTiles = 16;
-const int kFieldSize = 512;  // kFieldTileTexels * kFieldWindowTiles
+const int kFieldWindowTiles = 32;
+const int kFieldSize = 1024;  // kFieldTileTexels * kFieldWindowTiles
 const float kFieldCellM = 0.1f;
 // Fixed sub-steps: a frame runs floor(t / kSubstepS) − (steps so far) of them, at most
 // kMaxSubsteps (a longer frame slows the simulation down rather than destabilising it).
@@ -65,7 +66,7 @@ struct SimulationParams {
   ivec4 counts;       // x: wind sources, y: colliders, z: kSimFlag* bits, w: unused
   WindSourceGpu sources[kMaxWindSources];
   ColliderGpu colliders[kMaxColliders];
-  vec4 restoredDecay[64];  // 256 window tiles: cs to take off tiles restored from the store this frame
+  vec4 restoredDecay[256];  // 1024 window tiles: cs to take off tiles restored from the store this frame
 };
 
 // The virtual blade of one wind cell: per hinge its lean ψ (xy, rad) and rate ω (zw, rad/s);

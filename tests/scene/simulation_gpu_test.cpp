@@ -280,7 +280,7 @@ TEST_F(SimulationGpuTest, GpuMemoryDoesNotGrowWithPlants) {
   EXPECT_GT(drawn, 1000u);
   EXPECT_EQ(scene->renderer().simulationGpuBytes(), before);
   // The whole of it: virtual blades, wind cells, field, the default 16 MiB store, three blocks.
-  EXPECT_EQ(before, 128u * 128u * (80u + 48u) + 512u * 512u * 16u + (16u << 20) +
+  EXPECT_EQ(before, 128u * 128u * (80u + 48u) + 1024u * 1024u * 16u + (16u << 20) +
                         render::kFramesInFlight * sizeof(sh::SimulationParams));
 }
 
