@@ -402,24 +402,7 @@ TEST_F(BladePathTest, EachPathIsDeterministic) {
 using CentreLines = std::map<std::array<long long, 3>, std::vector<glm::vec3>>;
 
 CentreLines centreLines(Renderer& r, const PlantDrawOptions& draw) {
-  const std::array<uint8_t, 3> c = referenceColour("grass");
-  const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
-  const ImageryUpload upload{0, tile.data()};
-  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
-  TerrainDraw terrainDraw{&plane};
-  terrainDraw.imageryLayer = 0;
-  FrameRequest req;
-  req.camera.position = {0.0, 0.0, 2.0};
-  req.camera.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
-  req.camera.up = {0.0, 0.0, 1.0};
-  req.cameraHeightMsl = 2.0;
-  req.terrain = {&terrainDraw, 1};
-  req.imageryUploads = {&upload, 1};
-  const std::vector<SeedTriangleGpu> seeds = seedTriangles(req.camera.position, 40.0f);
-  VegetationRequest plants{seeds, 8, PlantStyle::Plants, draw};
-  req.vegetation = &plants;
-  EXPECT_TRUE(r.renderFrame(req).ok());
+  EXPECT_TRUE(renderPlantsFrame(r, draw, {0.0, 0.0, 2.0}));
   auto vertices = r.readBladeVertices();
   EXPECT_TRUE(vertices.ok());
   std::map<uint32_t, std::vector<glm::vec3>> strips;  // per plant record, in the order written
@@ -528,28 +511,12 @@ struct FlightPlants {
 };
 
 FlightPlants flightFrame(Renderer& r, const PlantDrawOptions& draw, const glm::dvec3& camera) {
-  const std::array<uint8_t, 3> c = referenceColour("grass");
-  const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
-  const ImageryUpload upload{0, tile.data()};
-  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
-  TerrainDraw terrainDraw{&plane};
-  terrainDraw.imageryLayer = 0;
-  FrameRequest req;
-  req.camera.position = camera;
-  req.camera.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
-  req.camera.up = {0.0, 0.0, 1.0};
-  req.cameraHeightMsl = camera.z;
-  req.terrain = {&terrainDraw, 1};
-  req.imageryUploads = {&upload, 1};
-  std::vector<SeedTriangleGpu> seeds = seedTriangles(camera, 40.0f);
-  for (SeedTriangleGpu& t : seeds) {  // eq. 1's count: the projected area falls with 1 / d²
-    const glm::vec3 centroid = (glm::vec3(t.v0) + glm::vec3(t.v1) + glm::vec3(t.v2)) / 3.0f;
-    t.lodCount = 2000.0f / std::max(glm::dot(centroid, centroid), 1.0f);
-  }
-  VegetationRequest plants{seeds, 8, PlantStyle::Plants, draw};
-  req.vegetation = &plants;
-  EXPECT_TRUE(r.renderFrame(req).ok());
+  EXPECT_TRUE(renderPlantsFrame(r, draw, camera, [](std::vector<SeedTriangleGpu>& seeds) {
+    for (SeedTriangleGpu& t : seeds) {  // eq. 1's count: the projected area falls with 1 / d²
+      const glm::vec3 centroid = (glm::vec3(t.v0) + glm::vec3(t.v1) + glm::vec3(t.v2)) / 3.0f;
+      t.lodCount = 2000.0f / std::max(glm::dot(centroid, centroid), 1.0f);
+    }
+  }));
   auto vertices = r.readBladeVertices();
   EXPECT_TRUE(vertices.ok());
   std::map<uint32_t, std::vector<glm::vec3>> strips;
@@ -557,10 +524,10 @@ FlightPlants flightFrame(Renderer& r, const PlantDrawOptions& draw, const glm::d
     if ((v.plant >> 29) == 0u) strips[v.plant & 0x1fffffffu].push_back(glm::vec3(glm::dvec3(v.pos) + camera));
   FlightPlants f;
   // Well inside the view: the root within 80 % of the half-angles from the view axis.
-  const glm::dvec3 fwd = glm::normalize(req.camera.forward);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, req.camera.up));
+  const glm::dvec3 fwd = kFieldForward;
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, glm::dvec3(0.0, 0.0, 1.0)));
   const glm::dvec3 up = glm::cross(right, fwd);
-  const double tanV = std::tan(0.5 * req.camera.verticalFovDeg * 3.14159265358979 / 180.0);
+  const double tanV = std::tan(0.5 * Camera{}.verticalFovDeg * 3.14159265358979 / 180.0);
   const double tanH = tanV * double(kW) / double(kH);
   const auto inside = [&](const glm::vec3& world) {
     const glm::dvec3 v = glm::dvec3(world) - camera;

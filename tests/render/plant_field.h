@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,33 @@ inline FieldResult renderField(Renderer& r, const std::string& referenceOf, Plan
     EXPECT_TRUE(without.ok());
     return {std::move(*with), std::move(*without)};
   }
+}
+
+// The grass field with plants alone, one frame (the frame a test then reads back, e.g.
+// Renderer::readBladeVertices): the camera at `camera` looking along kFieldForward; `adjust` may
+// change the seed triangles first (their eq. 1 counts, say).
+inline const glm::dvec3 kFieldForward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
+inline bool renderPlantsFrame(Renderer& r, const PlantDrawOptions& plantDraw, const glm::dvec3& camera,
+                              const std::function<void(std::vector<SeedTriangleGpu>&)>& adjust = {}) {
+  const std::array<uint8_t, 3> c = referenceColour("grass");
+  const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
+  const ImageryUpload upload{0, tile.data()};
+  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
+  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+  TerrainDraw draw{&plane};
+  draw.imageryLayer = 0;
+  FrameRequest req;
+  req.camera.position = camera;
+  req.camera.forward = kFieldForward;
+  req.camera.up = {0.0, 0.0, 1.0};
+  req.cameraHeightMsl = camera.z;
+  req.terrain = {&draw, 1};
+  req.imageryUploads = {&upload, 1};
+  std::vector<SeedTriangleGpu> seeds = seedTriangles(camera, 40.0f);
+  if (adjust) adjust(seeds);
+  VegetationRequest plants{seeds, 8, PlantStyle::Plants, plantDraw};
+  req.vegetation = &plants;
+  return r.renderFrame(req).ok();
 }
 
 // Pixels that differ between the two frames by more than `threshold` (8-bit sRGB, any channel),
