@@ -11,6 +11,7 @@ namespace vegstream::simulation::shader {
 #include "simulation/shared/wind_field.glsl"
 #include "simulation/shared/virtual_blade.glsl"
 #include "simulation/shared/blade_response.glsl"
+#include "simulation/shared/tree_bending.glsl"
 }  // namespace vegstream::simulation::shader
 
 #undef VS_INLINE

@@ -1,0 +1,241 @@
+// vegetation/tree_model.h: the procedural tree models of issue 20 — deterministic per seed, a
+// consistent branch hierarchy (seed ../shared/seeds/002_e402409f584e6b0c.txt §4.3: every
+// vertex's branch and x, every branch starting on its parent's axis), a mesh inside the asked
+// height and crown, and a Reduced level of detail with a quarter of the triangles and the same
+// silhouette.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <set>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <gtest/gtest.h>
+
+#include "vegetation/tree_bending.h"
+#include "vegetation/tree_model.h"
+
+namespace vegstream::vegetation {
+namespace {
+
+using glm::vec3;
+
+struct Species {
+  const char* name;
+  TreeParams params;
+  float heightM, crownM;
+};
+
+TreeParams conifer(uint32_t levels) {
+  TreeParams p;
+  p.form = TreeForm::Conifer;
+  p.branchLevels = levels;
+  return p;
+}
+
+TreeParams broadleaf(uint32_t levels) {
+  TreeParams p;
+  p.form = TreeForm::Broadleaf;
+  p.branchLevels = levels;
+  p.branches = 5;
+  p.twigs = 8;
+  p.branchAngleDeg = 40.0f;
+  p.taper = 0.3f;
+  p.leafSizeM = 0.5f;
+  p.leavesPerTwig = levels == 3 ? 6 : 12;
+  return p;
+}
+
+std::vector<Species> species() {
+  return {{"conifer, 2 levels", conifer(2), 18.0f, 6.0f},
+          {"conifer, 3 levels", conifer(3), 24.0f, 7.0f},
+          {"broadleaf, 2 levels", broadleaf(2), 14.0f, 10.0f},
+          {"broadleaf, 3 levels", broadleaf(3), 12.0f, 9.0f}};
+}
+
+vec3 load(const float (&a)[3]) { return {a[0], a[1], a[2]}; }
+
+size_t triangles(const TreeMesh& mesh) { return mesh.indices.size() / 3; }
+
+// Cells of a 64 × 64 grid over [lo, hi] (x: the horizontal axis `axis`, y: height) whose
+// centres some triangle of the mesh covers, seen from the side.
+size_t silhouetteCells(const TreeMesh& mesh, int axis, float lo, float hi, float top) {
+  constexpr int kGrid = 64;
+  std::vector<char> covered(kGrid * kGrid, 0);
+  const float cellW = (hi - lo) / kGrid, cellH = top / kGrid;
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    float px[3], py[3];
+    for (int k = 0; k < 3; ++k) {
+      const TreeVertex& v = mesh.vertices[mesh.indices[i + static_cast<size_t>(k)]];
+      px[k] = (v.position[axis] - lo) / cellW - 0.5f;
+      py[k] = v.position[2] / cellH - 0.5f;
+    }
+    const float area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+    if (std::abs(area) < 1e-9f) continue;
+    const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({px[0], px[1], px[2]}))));
+    const int x1 = std::min(kGrid - 1, static_cast<int>(std::floor(std::max({px[0], px[1], px[2]}))));
+    const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({py[0], py[1], py[2]}))));
+    const int y1 = std::min(kGrid - 1, static_cast<int>(std::floor(std::max({py[0], py[1], py[2]}))));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        bool inside = true;
+        for (int k = 0; k < 3 && inside; ++k) {
+          const int n = (k + 1) % 3;
+          const float edge =
+              (px[n] - px[k]) * (static_cast<float>(y) - py[k]) - (py[n] - py[k]) * (static_cast<float>(x) - px[k]);
+          inside = edge * area >= 0.0f;
+        }
+        if (inside) covered[static_cast<size_t>(y * kGrid + x)] = 1;
+      }
+    }
+  }
+  return static_cast<size_t>(std::count(covered.begin(), covered.end(), 1));
+}
+
+TEST(TreeModel, DeterministicPerSeed) {
+  for (const Species& sp : species()) {
+    const TreeModel a = buildTreeModel(sp.params, sp.heightM, sp.crownM, 17);
+    const TreeModel b = buildTreeModel(sp.params, sp.heightM, sp.crownM, 17);
+    const TreeModel c = buildTreeModel(sp.params, sp.heightM, sp.crownM, 18);
+    for (int lod = 0; lod < 2; ++lod) {
+      ASSERT_EQ(a.lod[lod].vertices.size(), b.lod[lod].vertices.size()) << sp.name;
+      EXPECT_EQ(std::memcmp(a.lod[lod].vertices.data(), b.lod[lod].vertices.data(),
+                            a.lod[lod].vertices.size() * sizeof(TreeVertex)),
+                0)
+          << sp.name;
+      EXPECT_EQ(a.lod[lod].indices, b.lod[lod].indices) << sp.name;
+    }
+    ASSERT_EQ(a.branches.size(), b.branches.size());
+    EXPECT_EQ(std::memcmp(a.branches.data(), b.branches.data(), a.branches.size() * sizeof(TreeBranch)), 0);
+    const bool same = a.lod[0].vertices.size() == c.lod[0].vertices.size() &&
+                      std::memcmp(a.lod[0].vertices.data(), c.lod[0].vertices.data(),
+                                  a.lod[0].vertices.size() * sizeof(TreeVertex)) == 0;
+    EXPECT_FALSE(same) << sp.name;
+  }
+}
+
+TEST(TreeModel, BranchHierarchyIsConsistent) {
+  for (const Species& sp : species()) {
+    for (uint32_t seed : {1u, 2u, 99u}) {
+      const TreeModel m = buildTreeModel(sp.params, sp.heightM, sp.crownM, seed);
+      std::set<uint32_t> levels;
+      ASSERT_FALSE(m.branches.empty());
+      EXPECT_EQ(m.branches[0].parent, -1);
+      EXPECT_EQ(m.branches[0].level, 0u);
+      const BeamFit fit = fitTaperedBeam(sp.params.taper);
+      for (size_t i = 0; i < m.branches.size(); ++i) {
+        const TreeBranch& b = m.branches[i];
+        levels.insert(b.level);
+        const vec3 t = load(b.t), r = load(b.r), s = load(b.s);
+        EXPECT_NEAR(glm::length(t), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::length(r), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::dot(t, r), 0.0f, 1e-5f);
+        EXPECT_LT(glm::length(s - glm::cross(t, r)), 1e-5f);
+        EXPECT_GT(b.length, 0.0f);
+        EXPECT_NEAR(b.c2 + b.c4, 1.0f, 1e-5f);
+        EXPECT_EQ(b.c2, fit.c2);
+        EXPECT_NEAR(b.frequencyHz, 2.55f * std::pow(b.length, -0.59f), 1e-5f * b.frequencyHz);
+        EXPECT_GT(b.compliance, 0.0f);
+        EXPECT_LE(b.compliance, b.level == 0 ? 0.02f : 0.5f);
+        if (i == 0) continue;
+        ASSERT_GE(b.parent, 0);
+        ASSERT_LT(static_cast<size_t>(b.parent), i);
+        const TreeBranch& parent = m.branches[static_cast<size_t>(b.parent)];
+        EXPECT_EQ(b.level, parent.level + 1);
+        EXPECT_GE(b.parentAlong, 0.0f);
+        EXPECT_LE(b.parentAlong, 1.0f);
+        const vec3 onAxis = load(parent.origin) + load(parent.t) * (b.parentAlong * parent.length);
+        EXPECT_LT(glm::length(load(b.origin) - onAxis), 1e-3f) << sp.name << " branch " << i;
+      }
+      EXPECT_EQ(levels.size(), 1 + sp.params.branchLevels) << sp.name;
+      EXPECT_EQ(*levels.rbegin(), sp.params.branchLevels) << sp.name;
+    }
+  }
+}
+
+TEST(TreeModel, MeshIsInsideTheTreeAndWellFormed) {
+  for (const Species& sp : species()) {
+    for (uint32_t seed : {3u, 4u, 5u, 6u}) {
+      const TreeModel m = buildTreeModel(sp.params, sp.heightM, sp.crownM, seed);
+      EXPECT_EQ(m.modelHeightM, sp.heightM);
+      float radius = 0.0f;
+      for (int lod = 0; lod < 2; ++lod) {
+        const TreeMesh& mesh = m.lod[lod];
+        ASSERT_EQ(mesh.indices.size() % 3, 0u);
+        for (uint32_t index : mesh.indices) ASSERT_LT(index, mesh.vertices.size());
+        size_t cards = 0;
+        for (const TreeVertex& v : mesh.vertices) {
+          ASSERT_LT(v.branch, m.branches.size());
+          EXPECT_GE(v.along, 0.0f);
+          EXPECT_LE(v.along, 1.0f);
+          EXPECT_NEAR(glm::length(load(v.normal)), 1.0f, 1e-3f);
+          EXPECT_LE(v.position[2], 1.05f * sp.heightM) << sp.name;
+          EXPECT_GE(v.position[2], -0.05f * sp.heightM) << sp.name;
+          radius = std::max(radius, std::hypot(v.position[0], v.position[1]));
+          ASSERT_LE(v.kind, 1u);
+          if (v.kind == 0) {
+            EXPECT_EQ(v.flutter, 0.0f);
+          }
+          if (v.kind == 1) {
+            ++cards;
+            EXPECT_EQ(v.flutter, v.uv[1]);
+            EXPECT_TRUE(v.uv[0] >= 0.0f && v.uv[0] <= 1.0f && v.uv[1] >= 0.0f && v.uv[1] <= 1.0f);
+            if (lod == 1) {
+              EXPECT_EQ(m.branches[v.branch].level, 1u);
+            }
+          }
+        }
+        EXPECT_GT(cards, 0u);
+      }
+      EXPECT_FLOAT_EQ(m.crownRadiusM, radius);
+      EXPECT_LE(m.crownRadiusM, 0.5f * sp.crownM * 1.15f) << sp.name;
+      EXPECT_GE(m.crownRadiusM, 0.5f * sp.crownM * 0.7f) << sp.name;
+    }
+  }
+}
+
+// Reduced: at most a quarter of Full's triangles, the same side view within 20 % (64 × 64 cells
+// over the tree's bounding box, looking along y and along x).
+TEST(TreeModel, ReducedKeepsTheSilhouetteWithAQuarterOfTheTriangles) {
+  for (const Species& sp : species()) {
+    double worst = 0.0;
+    size_t fullTriangles = 0, reducedTriangles = 0;
+    for (uint32_t seed : {7u, 8u, 9u}) {
+      const TreeModel m = buildTreeModel(sp.params, sp.heightM, sp.crownM, seed);
+      fullTriangles = std::max(fullTriangles, triangles(m.lod[0]));
+      reducedTriangles = std::max(reducedTriangles, triangles(m.lod[1]));
+      EXPECT_LE(4 * triangles(m.lod[1]), triangles(m.lod[0])) << sp.name;
+      EXPECT_LE(triangles(m.lod[0]), 12500u) << sp.name;
+      for (int axis : {0, 1}) {
+        const float reach = 1.2f * m.crownRadiusM, top = 1.05f * sp.heightM;
+        const auto full = static_cast<double>(silhouetteCells(m.lod[0], axis, -reach, reach, top));
+        const auto reduced = static_cast<double>(silhouetteCells(m.lod[1], axis, -reach, reach, top));
+        worst = std::max(worst, std::abs(reduced - full) / full);
+        EXPECT_LT(std::abs(reduced - full), 0.2 * full) << sp.name << " seed " << seed << " axis " << axis;
+      }
+    }
+    std::printf("%s: Full %zu triangles, Reduced %zu, silhouette differs by %.1f %% at most\n", sp.name, fullTriangles,
+                reducedTriangles, 100.0 * worst);
+  }
+}
+
+TEST(TreeModel, BuildsInMilliseconds) {
+  for (const Species& sp : species()) {
+    constexpr int kModels = 20;
+    const auto start = std::chrono::steady_clock::now();
+    size_t vertices = 0;
+    for (uint32_t seed = 0; seed < kModels; ++seed)
+      vertices += buildTreeModel(sp.params, sp.heightM, sp.crownM, seed).lod[0].vertices.size();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / kModels;
+    std::printf("%s: %.2f ms per model (%zu Full vertices on average)\n", sp.name, ms, vertices / kModels);
+    EXPECT_LT(ms, 10.0) << sp.name;
+  }
+}
+
+}  // namespace
+}  // namespace vegstream::vegetation
