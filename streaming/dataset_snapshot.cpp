@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "datasets/tile_codec.h"
 #include "geo/projection.h"
@@ -97,6 +98,48 @@ Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::Datas
   };
   Status s = forEachTilePixel(mosaic, loadHeight, [&](const datasets::HeightTile& t, int px, int py, size_t i) {
     mosaic.heights[i] = t.at(px, py);
+  });
+  if (!s) return s.error();
+  return mosaic;
+}
+
+Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
+                                        const MercatorRaster& grid) {
+  if (!meta.imagery)
+    return makeError(ErrorKind::InvalidInput, source.describe() + ": the dataset has no imagery");
+  ImageryMosaic mosaic;
+  static_cast<MercatorRaster&>(mosaic) = grid;
+  mosaic.rgba.assign(pixels(grid) * 4, 0);
+  if (meta.ndvi) mosaic.ndvi.assign(pixels(grid), 0);
+  // Both layers of one tile at once: the NDVI tile lies over the imagery tile pixel for pixel.
+  auto loadImagery = [&](const geo::TileId& id) -> Result<std::optional<datasets::ColorTile>> {
+    const std::string path = datasetRelativePath({TileLayer::Imagery, id}, meta);
+    auto bytes = source.readText(path);
+    if (!bytes) {
+      if (bytes.error().kind == ErrorKind::NotFound) return std::optional<datasets::ColorTile>{};
+      return bytes.error();
+    }
+    auto t = datasets::decodeColorTile({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, id,
+                                       source.describe() + "/" + path);
+    if (!t) return t.error();
+    if (meta.ndvi) {
+      const std::string ndviPath = datasets::ndviTilePath({}, id).generic_string();
+      auto ndviBytes = source.readText(ndviPath);
+      if (ndviBytes) {
+        auto n = datasets::decodeNdviTile({reinterpret_cast<const uint8_t*>(ndviBytes->data()), ndviBytes->size()},
+                                          id, source.describe() + "/" + ndviPath, t->size);
+        if (!n) return n.error();
+        t->ndvi = std::move(*n);
+      } else if (ndviBytes.error().kind != ErrorKind::NotFound) {
+        return ndviBytes.error();
+      }
+    }
+    return std::optional<datasets::ColorTile>(std::move(*t));
+  };
+  Status s = forEachTilePixel(mosaic, loadImagery, [&](const datasets::ColorTile& t, int px, int py, size_t i) {
+    const size_t at = (static_cast<size_t>(py) * static_cast<size_t>(t.size) + static_cast<size_t>(px));
+    for (size_t c = 0; c < 4; ++c) mosaic.rgba[4 * i + c] = t.rgba[4 * at + c];
+    if (!t.ndvi.empty()) mosaic.ndvi[i] = t.ndvi[at];
   });
   if (!s) return s.error();
   return mosaic;

@@ -41,4 +41,20 @@ struct SnapshotLimits {
 Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
                                        const SnapshotLimits& limits);
 
+// The imagery (and NDVI) over the same pixels: what the trees read their species from (issue 20,
+// scene/tree_ground.h).
+struct ImageryMosaic : MercatorRaster {
+  std::vector<uint8_t> rgba;  // width × height × 4, sRGB as in the tiles, alpha 0 = no imagery
+  // width × height bytes in datasets::ndviToByte's encoding, 0 = no NDVI there; empty when the
+  // dataset has no NDVI layer.
+  std::vector<uint8_t> ndvi;
+};
+
+// The dataset's imagery tiles of `grid.zoom` mosaicked on `grid` (a loadGroundHeights result, or
+// its MercatorRaster part): pixel for pixel the same Web Mercator pixels. A missing imagery tile
+// is transparent, a missing NDVI tile 0 (no NDVI). Blocking, like loadGroundHeights. Errors:
+// InvalidInput for a dataset without imagery or a corrupt tile (named), Io from the source.
+Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
+                                        const MercatorRaster& grid);
+
 }  // namespace vegstream::streaming

@@ -100,6 +100,18 @@ int hexDigit(char c) {
   return -1;
 }
 
+// "#rrggbb" → its three bytes; false when it is not one.
+bool parseHexColour(const json& v, int (&rgb)[3]) {
+  const std::string text = v.is_string() ? v.get<std::string>() : "";
+  if (text.size() != 7 || text[0] != '#') return false;
+  for (size_t i = 0; i < 3; ++i) {
+    const int hi = hexDigit(text[1 + 2 * i]), lo = hexDigit(text[2 + 2 * i]);
+    if (hi < 0 || lo < 0) return false;
+    rgb[i] = hi * 16 + lo;
+  }
+  return true;
+}
+
 // reference.ndvi: optional, −1 … 1 (the NDVI channel of the score, colour_score.h).
 bool parseReferenceNdvi(Parser& ps, const json& r, const std::string& p, float& ndvi, bool& given) {
   given = r.contains("ndvi");
@@ -118,14 +130,9 @@ bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::v
   if (r.contains("srgb")) {
     if (!ps.onlyKeys(r, p, {"srgb", "ndvi"})) return ps.fail(p, "give either srgb or h_deg, s, v");
     if (!parseReferenceNdvi(ps, r, p, ndvi, ndviGiven)) return false;
-    const json& s = r["srgb"];
-    const std::string text = s.is_string() ? s.get<std::string>() : "";
-    int v[6] = {};
-    bool good = text.size() == 7 && text[0] == '#';
-    for (size_t i = 0; good && i < 6; ++i) good = (v[i] = hexDigit(text[i + 1])) >= 0;
-    if (!good) return ps.fail(p + ".srgb", "must be a colour \"#rrggbb\"");
-    hsv = hsvFromSrgb8(static_cast<uint8_t>(v[0] * 16 + v[1]), static_cast<uint8_t>(v[2] * 16 + v[3]),
-                       static_cast<uint8_t>(v[4] * 16 + v[5]));
+    int v[3] = {};
+    if (!parseHexColour(r["srgb"], v)) return ps.fail(p + ".srgb", "must be a colour \"#rrggbb\"");
+    hsv = hsvFromSrgb8(static_cast<uint8_t>(v[0]), static_cast<uint8_t>(v[1]), static_cast<uint8_t>(v[2]));
     return true;
   }
   if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb", "ndvi"})) return false;
@@ -137,6 +144,80 @@ bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::v
   if (hsv.z < 0.0f || hsv.z > 1.0f) return ps.fail(p + ".v", "must be in 0 … 1 (got " + fmt(hsv.z) + ")");
   hsv.x = h / 360.0f;
   if (hsv.x >= 1.0f) hsv.x -= 1.0f;  // 360° is 0°: hues live in [0, 1) like hsvFromSrgb's
+  return true;
+}
+
+// An optional whole number in [lo, hi] (default kept when absent).
+bool parseCount(Parser& ps, const json& obj, std::string_view key, const std::string& path, uint32_t& out, uint32_t lo,
+                uint32_t hi) {
+  const auto it = obj.find(key);
+  if (it == obj.end()) return true;
+  const std::string p = Parser::join(path, key);
+  if (!it->is_number_integer() && !(it->is_number_float() && std::floor(it->get<double>()) == it->get<double>()))
+    return ps.fail(p, "must be a whole number");
+  const double v = it->get<double>();
+  if (v < lo || v > hi)
+    return ps.fail(p, "must be " + std::to_string(lo) + " … " + std::to_string(hi) + " (got " + fmt(v) + ")");
+  out = static_cast<uint32_t>(v);
+  return true;
+}
+
+// An optional number in [lo, hi], or (lo, hi] when loOpen (default kept when absent).
+bool parseBounded(Parser& ps, const json& obj, std::string_view key, const std::string& path, float& out, double lo,
+                  bool loOpen, double hi, const char* what, bool required = false) {
+  if (!ps.number(obj, key, path, out, required)) return false;
+  if ((loOpen ? !(out > lo) : !(out >= lo)) || out > hi)
+    return ps.fail(Parser::join(path, key), std::string("must be ") + what + " (got " + fmt(out) + ")");
+  return true;
+}
+
+// A tree species' "tree" object (format in species_catalog.h); defaults from TreeParams.
+bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams& out) {
+  const std::string p = Parser::join(path, "tree");
+  const auto it = obj.find("tree");
+  if (it == obj.end()) return ps.fail(p, "is missing (a tree species needs its model: form, density_ha, spacing_m, …)");
+  const json& t = *it;
+  if (!ps.object(t, p) ||
+      !ps.onlyKeys(t, p,
+                   {"form", "density_ha", "spacing_m", "branch_levels", "branches", "twigs", "branch_angle_deg",
+                    "trunk_radius_m", "taper", "leaf_size_m", "leaves_per_twig", "leaf_colour", "bark_colour",
+                    "translucency"}))
+    return false;
+  const auto form = t.find("form");
+  if (form == t.end()) return ps.fail(p + ".form", "is missing (\"conifer\" or \"broadleaf\")");
+  const std::string f = form->is_string() ? form->get<std::string>() : "";
+  if (f == "conifer")
+    out.form = TreeForm::Conifer;
+  else if (f == "broadleaf")
+    out.form = TreeForm::Broadleaf;
+  else
+    return ps.fail(p + ".form", "must be \"conifer\" or \"broadleaf\" (got " + form->dump() + ")");
+  if (!parseBounded(ps, t, "density_ha", p, out.densityHa, 0.0, true, 10000.0, "> 0 and ≤ 10000 trees per hectare",
+                    true) ||
+      !parseBounded(ps, t, "spacing_m", p, out.spacingM, 0.0, true, 100.0, "> 0 and ≤ 100 metres", true))
+    return false;
+  // branch_levels: its own message above the maximum, the limit being the model's, not taste.
+  if (const auto levels = t.find("branch_levels"); levels != t.end() && levels->is_number() &&
+                                                    levels->get<double>() > kMaxBranchLevels)
+    return ps.fail(p + ".branch_levels", "more branch levels than the model supports (at most " +
+                                             std::to_string(kMaxBranchLevels) + ", got " + fmt(levels->get<double>()) +
+                                             ")");
+  if (!parseCount(ps, t, "branch_levels", p, out.branchLevels, 2, kMaxBranchLevels) ||
+      !parseCount(ps, t, "branches", p, out.branches, 3, 256) || !parseCount(ps, t, "twigs", p, out.twigs, 1, 64) ||
+      !parseCount(ps, t, "leaves_per_twig", p, out.leavesPerTwig, 1, 256) ||
+      !parseBounded(ps, t, "branch_angle_deg", p, out.branchAngleDeg, 10.0, false, 120.0, "in 10 … 120 degrees") ||
+      !parseBounded(ps, t, "trunk_radius_m", p, out.trunkRadiusM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
+      !parseBounded(ps, t, "taper", p, out.taper, 0.05, false, 1.0, "in 0.05 … 1") ||
+      !parseBounded(ps, t, "leaf_size_m", p, out.leafSizeM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
+      !parseBounded(ps, t, "translucency", p, out.translucency, 0.0, false, 1.0, "in 0 … 1"))
+    return false;
+  for (const auto& [key, linear] : {std::pair{"leaf_colour", out.leafColour}, std::pair{"bark_colour", out.barkColour}}) {
+    const auto c = t.find(key);
+    if (c == t.end()) continue;
+    int rgb[3] = {};
+    if (!parseHexColour(*c, rgb)) return ps.fail(p + "." + key, "must be a colour \"#rrggbb\" (sRGB)");
+    for (int i = 0; i < 3; ++i) linear[i] = srgbDecode(static_cast<float>(rgb[i]) / 255.0f);
+  }
   return true;
 }
 
@@ -157,7 +238,8 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
   if (!ps.object(obj, path)) return false;
   if (!ps.onlyKeys(obj, path,
                    {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows", "surface"}))
+                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows", "surface",
+                    "tree"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -231,9 +313,19 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
     if (!sh->is_boolean()) return ps.fail(path + ".shadows", "must be true or false");
     out.shadows = sh->get<bool>();
   }
-  if (!ps.number(obj, "density_m2", path, out.densityM2, false)) return false;
-  if (!(out.densityM2 > 0.0f && out.densityM2 <= 10000.0f))
-    return ps.fail(path + ".density_m2", "must be > 0 and ≤ 10000 plants per m² (got " + fmt(out.densityM2) + ")");
+  if (isTree(out)) {
+    // Trees have their own density (per hectare, on their own grid) and a horizon of kilometres.
+    if (obj.contains("density_m2"))
+      return ps.fail(path + ".density_m2", "not for trees (give tree.density_ha, trees per hectare)");
+    if (!parseTree(ps, obj, path, out.tree)) return false;
+    out.densityM2 = out.tree.densityHa / 10000.0f;
+    out.horizonM = kDefaultTreeHorizonM;
+  } else {
+    if (obj.contains("tree")) return ps.fail(path + ".tree", "only for species of kind \"tree\"");
+    if (!ps.number(obj, "density_m2", path, out.densityM2, false)) return false;
+    if (!(out.densityM2 > 0.0f && out.densityM2 <= 10000.0f))
+      return ps.fail(path + ".density_m2", "must be > 0 and ≤ 10000 plants per m² (got " + fmt(out.densityM2) + ")");
+  }
   if (!ps.number(obj, "horizon_m", path, out.horizonM, false)) return false;
   if (!(out.horizonM > 0.0f && out.horizonM <= 20000.0f))
     return ps.fail(path + ".horizon_m", "must be > 0 and ≤ 20000 metres (got " + fmt(out.horizonM) + ")");
@@ -254,6 +346,38 @@ std::string jsonProblem(const json::exception& e) {
   const std::string what = e.what();
   const auto tag = what.find("] ");
   return what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos ? what.substr(tag + 2) : what;
+}
+
+// What concerns the tree species together: each tree horizon reaches at least as far as every
+// other growing species' (issue 20: the forest outlasts the meadow), and each spacing fits the
+// placement grid the densest tree species sets (tree_placement.h: cell = 100 √(0.9 / D) m, the
+// margin between trees the largest spacing, at most 0.7 cell).
+Status checkTrees(Parser& ps, const SpeciesCatalog& catalog) {
+  const Species* farthestPlant = nullptr;
+  const Species* densest = nullptr;
+  for (const Species& s : catalog.species) {
+    if (s.bare) continue;
+    if (!isTree(s) && (!farthestPlant || s.horizonM > farthestPlant->horizonM)) farthestPlant = &s;
+    if (isTree(s) && (!densest || s.tree.densityHa > densest->tree.densityHa)) densest = &s;
+  }
+  for (size_t i = 0; i < catalog.species.size(); ++i) {
+    const Species& s = catalog.species[i];
+    if (!isTree(s)) continue;
+    const std::string path = "species[" + std::to_string(i) + "]";
+    if (farthestPlant && s.horizonM < farthestPlant->horizonM)
+      return ps.failed(path + ".horizon_m", "a tree horizon shorter than the " + farthestPlant->name + "'s (" +
+                                                fmt(farthestPlant->horizonM) + " m): got " + fmt(s.horizonM) + " m");
+    const double d = densest->tree.densityHa;
+    const double cellM = 100.0 * std::sqrt(double(kTreeCellShare) / d);
+    const double largest = kTreeSpacingPerCell * cellM;
+    if (d * std::pow(s.tree.spacingM / kTreeSpacingPerCell, 2.0) > 1e4 * kTreeCellShare)
+      return ps.failed(path + ".tree.spacing_m",
+                       fmt(s.tree.spacingM) + " m does not fit the placement grid of the densest tree species (" +
+                           densest->name + ", " + fmt(d) + " trees/ha: cells of " + fmt(cellM) +
+                           " m, at most 0.7 of a cell between trees): at most " + fmt(std::floor(largest * 100) / 100) +
+                           " m");
+  }
+  return {};
 }
 
 Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceName) {
@@ -280,6 +404,7 @@ Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceNam
     out.species.push_back(std::move(s));
   }
   if (!anyPlant) return ps.failed("species", "every entry is bare soil: at least one must grow plants");
+  if (Status s = checkTrees(ps, out); !s) return s.error();
   return out;
 }
 
@@ -315,15 +440,40 @@ Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view text, const std::str
 float densestGroundDensity(const SpeciesCatalog& catalog) {
   float d = 0.0f;
   for (const Species& s : catalog.species)
-    if (!s.bare) d = std::max(d, s.densityM2);
+    if (!s.bare && !isTree(s)) d = std::max(d, s.densityM2);
   return d;
 }
 
 float farthestHorizon(const SpeciesCatalog& catalog) {
   float h = 0.0f;
   for (const Species& s : catalog.species)
-    if (!s.bare) h = std::max(h, s.horizonM);
+    if (!s.bare && !isTree(s)) h = std::max(h, s.horizonM);
   return h;
+}
+
+float densestTreeDensityHa(const SpeciesCatalog& catalog) {
+  float d = 0.0f;
+  for (const Species& s : catalog.species)
+    if (isTree(s)) d = std::max(d, s.tree.densityHa);
+  return d;
+}
+
+float largestTreeSpacing(const SpeciesCatalog& catalog) {
+  float m = 0.0f;
+  for (const Species& s : catalog.species)
+    if (isTree(s)) m = std::max(m, s.tree.spacingM);
+  return m;
+}
+
+float farthestTreeHorizon(const SpeciesCatalog& catalog) {
+  float h = 0.0f;
+  for (const Species& s : catalog.species)
+    if (isTree(s)) h = std::max(h, s.horizonM);
+  return h;
+}
+
+bool hasTrees(const SpeciesCatalog& catalog) {
+  return std::any_of(catalog.species.begin(), catalog.species.end(), [](const Species& s) { return isTree(s); });
 }
 
 Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file) {

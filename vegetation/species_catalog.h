@@ -27,11 +27,30 @@
 //         "stiffness": { "min": 0.8, "max": 1.6 },         k′ / k_c > 0     } unless bare
 //         "width_m": { "min": 0.004, "max": 0.01 },        > 0              } (checked
 //         "colour_modulation": { "min": 0.8, "max": 1.2 }  0 … 4            }  when given)
-//         "density_m2": 150,                               optional, > 0, ≤ 10000 (default 10)
-//         "horizon_m": 150,                                optional, > 0, ≤ 20000 (default 150)
+//         "density_m2": 150,                               optional, > 0, ≤ 10000 (default 10); not for trees
+//         "horizon_m": 150,                                optional, > 0, ≤ 20000 (default 150; trees 3000,
+//                                                          and a tree's at least every other growing one's)
 //         "shadows": true,                                 optional (default true)
 //         "surface": "grass" | "rock" | "gravel" | "sand"  optional (default from the kind)
+//         "tree": { … }                                    required for kind "tree", else an error:
 //       }, … ] }
+//
+// A tree species' "tree" object (issue 20; TreeParams in tree_types.h; its trees take their height
+// from height_m and their crown width from width_m):
+//   "form": "conifer" | "broadleaf",      required
+//   "density_ha": 180,                    required, > 0, ≤ 10000: trees per hectare where it is chosen
+//   "spacing_m": 3.5,                     required, > 0: no two trees closer; with the densest tree
+//                                         species' density D: D · (spacing / 0.7)² ≤ 9000 (the
+//                                         placement grid's cells, tree_placement.h)
+//   "branch_levels": 2,                   2 … kMaxBranchLevels (3)               } optional, defaults
+//   "branches": 24, "twigs": 6,           3 … 256, 1 … 64                        } from TreeParams
+//   "branch_angle_deg": 70,               10 … 120                               }
+//   "trunk_radius_m": 0.25,               > 0, ≤ 5 (per 10 m of height)          }
+//   "taper": 0.2,                         0.05 … 1                               }
+//   "leaf_size_m": 0.6,                   > 0, ≤ 5                               }
+//   "leaves_per_twig": 8,                 1 … 256                                }
+//   "leaf_colour": "#rrggbb", "bark_colour": "#rrggbb"   sRGB, stored linear     }
+//   "translucency": 0.5                   0 … 1                                  }
 //
 // Every key not listed is an error (a typo must not pass silently), and every error names the
 // source and the field path: "species.json: species[2].height_m.max: must be ≥ min (got 0.1 < 0.3)".
@@ -45,6 +64,7 @@
 
 #include "core/result.h"
 #include "vegetation/colour_score.h"
+#include "vegetation/tree_types.h"
 
 namespace vegstream::vegetation {
 
@@ -94,7 +114,20 @@ struct Species {
   // The terrain's detail under it; by default from the kind: grass and flowers grass, trees
   // gravel (a forest floor of litter), gravel gravel, bare soil rock.
   DetailSurface surface = DetailSurface::Grass;
+  // Trees only (isTree): the model and placement parameters of the "tree" object. For a tree,
+  // densityM2 is tree.densityHa / 10⁴ (trees per m², so a plant pipeline that still counted it
+  // would grow next to none) and horizonM its tree horizon (default kDefaultTreeHorizonM).
+  TreeParams tree;
 };
+
+inline constexpr float kDefaultTreeHorizonM = 3000.0f;
+// The placement grid's cells must hold the largest spacing with room to jitter:
+// densest tree density · (spacing / kTreeSpacingPerCell)² ≤ kTreeCellShare · 10⁴ m² (tree_placement.h).
+inline constexpr double kTreeSpacingPerCell = 0.7, kTreeCellShare = 0.9;
+
+// A species that grows as a tree (not bare, kind tree): placed by tree_placement.h, not by the
+// plant seeding.
+inline bool isTree(const Species& s) { return !s.bare && s.kind == RendererKind::Tree; }
 
 inline constexpr size_t kMaxSpecies = 16;
 
@@ -110,10 +143,17 @@ struct SpeciesCatalog {
   std::vector<Species> species;  // 1 … kMaxSpecies, at least one not bare
 };
 
-// The densest species that grows (not bare), plants per m²: how many plants a seed triangle's
-// sequence holds at full detail. And the farthest horizon of one that grows, metres.
+// The densest species that grows as a plant (not bare, not a tree), plants per m²: how many
+// plants a seed triangle's sequence holds at full detail. And the farthest horizon of one, metres.
+// Trees are placed on their own grid (tree_placement.h) and count in neither.
 float densestGroundDensity(const SpeciesCatalog& catalog);
 float farthestHorizon(const SpeciesCatalog& catalog);
+// The tree species' own figures: the densest tree.densityHa (trees per ha), the largest
+// tree.spacingM (m) and the farthest tree horizon (m); 0 when the catalog has no tree.
+float densestTreeDensityHa(const SpeciesCatalog& catalog);
+float largestTreeSpacing(const SpeciesCatalog& catalog);
+float farthestTreeHorizon(const SpeciesCatalog& catalog);
+bool hasTrees(const SpeciesCatalog& catalog);
 
 // `sourceName` names the text in errors (a file name, "embedded default").
 Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view json, const std::string& sourceName);

@@ -58,6 +58,21 @@ TEST(SpeciesCatalog, TheShippedDefaultParses) {
     }
   EXPECT_EQ(densestGroundDensity(c), 400.0f);
   EXPECT_GE(farthestHorizon(c), 150.0f);
+  // Issue 20: two tree species, on their own grid and horizon; the plants' figures leave them out.
+  int trees = 0;
+  for (const Species& s : c.species)
+    if (isTree(s)) {
+      ++trees;
+      EXPECT_GE(s.horizonM, 3000.0f) << s.name;
+      EXPECT_GE(s.tree.branchLevels, 2u) << s.name;
+      EXPECT_FLOAT_EQ(s.densityM2, s.tree.densityHa / 1e4f) << s.name;
+    }
+  EXPECT_EQ(trees, 2);
+  EXPECT_EQ(farthestHorizon(c), 150.0f) << "the grass's: trees excluded";
+  EXPECT_EQ(densestTreeDensityHa(c), 180.0f);
+  EXPECT_FLOAT_EQ(largestTreeSpacing(c), 4.8f);
+  EXPECT_EQ(farthestTreeHorizon(c), 3000.0f);
+  EXPECT_TRUE(hasTrees(c));
 }
 
 TEST(SpeciesCatalog, ReadsHsvInDegreesAndSrgb) {
@@ -187,6 +202,132 @@ TEST(SpeciesCatalog, LoadNamesAMissingFile) {
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(r.error().isUserError());
   EXPECT_NE(r.error().message.find("/nonexistent/species.json"), std::string::npos) << r.error().message;
+}
+
+json goodTree() {
+  return json::parse(R"({
+    "name": "oak", "reference": {"h_deg": 100, "s": 0.4, "v": 0.3}, "weights": {"h": 2, "s": 1, "v": 1},
+    "p": 3, "kind": "tree", "height_m": {"min": 6, "max": 15}, "stiffness": {"min": 5, "max": 9},
+    "width_m": {"min": 5, "max": 12}, "colour_modulation": {"min": 0.9, "max": 1.1},
+    "tree": {"form": "broadleaf", "density_ha": 80, "spacing_m": 5}})");
+}
+
+TEST(SpeciesCatalog, ReadsATreeWithDefaultsForWhatItLeavesOut) {
+  json t = goodTree();
+  auto r = parse(json{{"species", json::array({goodSpecies(), t})}});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const Species& oak = r->species[1];
+  EXPECT_TRUE(isTree(oak));
+  EXPECT_FALSE(isTree(r->species[0]));
+  EXPECT_EQ(oak.tree.form, TreeForm::Broadleaf);
+  EXPECT_EQ(oak.tree.densityHa, 80.0f);
+  EXPECT_EQ(oak.tree.spacingM, 5.0f);
+  EXPECT_EQ(oak.horizonM, kDefaultTreeHorizonM);
+  const TreeParams defaults;
+  EXPECT_EQ(oak.tree.branchLevels, defaults.branchLevels);
+  EXPECT_EQ(oak.tree.leavesPerTwig, defaults.leavesPerTwig);
+  EXPECT_EQ(oak.tree.leafColour[1], defaults.leafColour[1]);
+
+  t["tree"]["branch_levels"] = 3;
+  t["tree"]["branches"] = 12;
+  t["tree"]["twigs"] = 4;
+  t["tree"]["branch_angle_deg"] = 50;
+  t["tree"]["trunk_radius_m"] = 0.4;
+  t["tree"]["taper"] = 0.3;
+  t["tree"]["leaf_size_m"] = 0.2;
+  t["tree"]["leaves_per_twig"] = 20;
+  t["tree"]["leaf_colour"] = "#ff8000";
+  t["tree"]["bark_colour"] = "#000000";
+  t["tree"]["translucency"] = 0.7;
+  t["tree"]["form"] = "conifer";
+  t["horizon_m"] = 5000;
+  r = parse(json{{"species", json::array({goodSpecies(), t})}});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const TreeParams& p = r->species[1].tree;
+  EXPECT_EQ(p.form, TreeForm::Conifer);
+  EXPECT_EQ(p.branchLevels, 3u);
+  EXPECT_EQ(p.branches, 12u);
+  EXPECT_EQ(p.twigs, 4u);
+  EXPECT_EQ(p.branchAngleDeg, 50.0f);
+  EXPECT_FLOAT_EQ(p.trunkRadiusM, 0.4f);
+  EXPECT_FLOAT_EQ(p.taper, 0.3f);
+  EXPECT_FLOAT_EQ(p.leafSizeM, 0.2f);
+  EXPECT_EQ(p.leavesPerTwig, 20u);
+  // sRGB → linear: 0xff → 1, 0x80 → 0.2158, 0 → 0.
+  EXPECT_FLOAT_EQ(p.leafColour[0], 1.0f);
+  EXPECT_NEAR(p.leafColour[1], 0.2158, 1e-4);
+  EXPECT_EQ(p.leafColour[2], 0.0f);
+  EXPECT_EQ(p.barkColour[0], 0.0f);
+  EXPECT_FLOAT_EQ(p.translucency, 0.7f);
+  EXPECT_EQ(r->species[1].horizonM, 5000.0f);
+  // The plants' figures leave the tree out; the trees' have it.
+  EXPECT_EQ(densestGroundDensity(*r), 10.0f);
+  EXPECT_EQ(farthestHorizon(*r), 150.0f);
+  EXPECT_EQ(farthestTreeHorizon(*r), 5000.0f);
+}
+
+TEST(SpeciesCatalog, EachBadTreeNamesTheFileAndField) {
+  const BadCase cases[] = {
+      {"no tree object", [](json& t) { t.erase("tree"); }, "species[1].tree: is missing"},
+      {"negative height", [](json& t) { t["height_m"]["min"] = -6; }, "species[1].height_m.min: must be > 0"},
+      {"inverted height",
+       [](json& t) {
+         t["height_m"] = {{"min", 15}, {"max", 6}};
+       },
+       "species[1].height_m.max: must be ≥ min (got 6 < 15)"},
+      {"zero density", [](json& t) { t["tree"]["density_ha"] = 0; },
+       "species[1].tree.density_ha: must be > 0 and ≤ 10000 trees per hectare (got 0)"},
+      {"negative density", [](json& t) { t["tree"]["density_ha"] = -80; }, "species[1].tree.density_ha: must be > 0"},
+      {"missing density", [](json& t) { t["tree"].erase("density_ha"); }, "species[1].tree.density_ha: is missing"},
+      {"missing spacing", [](json& t) { t["tree"].erase("spacing_m"); }, "species[1].tree.spacing_m: is missing"},
+      {"too many branch levels", [](json& t) { t["tree"]["branch_levels"] = 4; },
+       "species[1].tree.branch_levels: more branch levels than the model supports (at most 3"},
+      {"too few branch levels", [](json& t) { t["tree"]["branch_levels"] = 1; },
+       "species[1].tree.branch_levels: must be 2 … 3"},
+      {"fractional branches", [](json& t) { t["tree"]["branches"] = 4.5; },
+       "species[1].tree.branches: must be a whole number"},
+      {"unknown form", [](json& t) { t["tree"]["form"] = "palm"; }, "species[1].tree.form: must be \"conifer\""},
+      {"missing form", [](json& t) { t["tree"].erase("form"); }, "species[1].tree.form: is missing"},
+      {"bad leaf colour", [](json& t) { t["tree"]["leaf_colour"] = "green"; },
+       "species[1].tree.leaf_colour: must be a colour"},
+      {"tree typo", [](json& t) { t["tree"]["spacing"] = 3; }, "species[1].tree.spacing: unknown key"},
+      {"taper zero", [](json& t) { t["tree"]["taper"] = 0; }, "species[1].tree.taper: must be in 0.05 … 1"},
+      {"density_m2 on a tree", [](json& t) { t["density_m2"] = 0.01; },
+       "species[1].density_m2: not for trees (give tree.density_ha"},
+      // The conifer-like density 180 per ha sets cells of 7.07 m: at most 4.94 m between trees.
+      {"spacing too large",
+       [](json& t) {
+         t["tree"]["density_ha"] = 180;
+         t["tree"]["spacing_m"] = 6;
+       },
+       "species[1].tree.spacing_m: 6 m does not fit the placement grid"},
+      {"horizon shorter than the grass's", [](json& t) { t["horizon_m"] = 100; },
+       "species[1].horizon_m: a tree horizon shorter than the grass's (150 m)"},
+  };
+  for (const BadCase& c : cases) {
+    json t = goodTree();
+    c.edit(t);
+    const std::string m = errorOf(json{{"species", json::array({goodSpecies(), t})}});
+    EXPECT_NE(m.find(c.expected), std::string::npos) << c.what << ": " << m;
+    EXPECT_EQ(m.rfind("species.json: ", 0), 0u) << c.what << ": " << m;
+  }
+  // The largest spacing that fits is named; a tree object on grass is refused.
+  json t = goodTree();
+  t["tree"]["density_ha"] = 180;
+  t["tree"]["spacing_m"] = 6;
+  EXPECT_NE(errorOf(json{{"species", json::array({t})}}).find("at most 4.94 m"), std::string::npos);
+  json g = goodSpecies();
+  g["tree"] = goodTree()["tree"];
+  EXPECT_NE(errorOf(catalogOf(g)).find("species[0].tree: only for species of kind \"tree\""), std::string::npos);
+  // Spacing is checked against the densest tree species, not only its own density.
+  json dense = goodTree(), sparse = goodTree();
+  dense["name"] = "dense";
+  dense["tree"]["density_ha"] = 400;  // cells of 4.74 m: at most 3.32 m
+  dense["tree"]["spacing_m"] = 3;
+  sparse["tree"]["density_ha"] = 20;
+  sparse["tree"]["spacing_m"] = 5;
+  EXPECT_NE(errorOf(json{{"species", json::array({dense, sparse})}}).find("species[1].tree.spacing_m"),
+            std::string::npos);
 }
 
 }  // namespace

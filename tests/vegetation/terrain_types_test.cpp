@@ -37,7 +37,8 @@ TEST(TerrainTypes, TheDefaultTableIsWellFormed) {
     EXPECT_LT(static_cast<uint32_t>(t.surface), kDetailSurfaceCount) << t.name;
   }
   EXPECT_EQ(surfaces.size(), size_t{kDetailSurfaceCount}) << "every detail layer is used by some type";
-  for (const char* want : {"grass", "conifer", "red gravel", "dry tufts", "pale sandstone", "grey rock", "sand"})
+  for (const char* want :
+       {"grass", "conifer", "red gravel", "dry tufts", "pale sandstone", "grey rock", "sand", "broadleaf"})
     EXPECT_TRUE(names.count(want)) << want;
   // The same entries as the catalog, in its order: the species' scores and their surfaces.
   const SpeciesCatalog& c = defaultSpeciesCatalog();
@@ -56,7 +57,7 @@ TEST(TerrainTypes, ACatalogsSurfacesFollowItsKindsUnlessGiven) {
      "colour_modulation": {"min": 1, "max": 1}},
     {"name": "b", "reference": {"srgb": "#204010"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "tree",
      "height_m": {"min": 5, "max": 9}, "stiffness": {"min": 5, "max": 9}, "width_m": {"min": 1, "max": 2},
-     "colour_modulation": {"min": 1, "max": 1}},
+     "colour_modulation": {"min": 1, "max": 1}, "tree": {"form": "conifer", "density_ha": 100, "spacing_m": 3}},
     {"name": "c", "reference": {"srgb": "#808080"}, "weights": {"h": 0, "s": 1, "v": 1}, "p": 2, "bare": true},
     {"name": "d", "reference": {"srgb": "#d0c080"}, "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "bare": true,
      "surface": "sand"}]})", "test");
