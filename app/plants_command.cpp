@@ -1,5 +1,6 @@
 // `vegstream plants` (plants_command.h): parses the options, asks scene::plantsInBox (every
-// plant the full density grows in the box, scene/plants_in_box.h) and prints the rows.
+// plant the full density grows in the box, scene/plants_in_box.h) and scene::treesInBox (every
+// tree placed there, scene/trees_in_box.h) and prints the rows.
 
 #include "app/plants_command.h"
 
@@ -18,6 +19,7 @@
 #include "app/exit_codes.h"
 #include "core/atomic_file.h"
 #include "scene/plants_in_box.h"
+#include "scene/trees_in_box.h"
 #include "vegetation/plant_seeding.h"
 #include "vegetation/species_catalog.h"
 
@@ -79,17 +81,34 @@ Fields fieldsOf(const scene::BoxPlant& r) {
           fmt("%.4f", double(r.heightM)), fmt("%.5f", double(r.stiffness)), fmt("%.5f", double(r.sPrime))};
 }
 
-void writeCsv(std::ostream& out, const std::vector<scene::BoxPlant>& rows, const vegetation::SpeciesCatalog& catalog) {
+struct TreeFields {
+  std::string lat, lon, height, treeHeight, crown, sPrime;
+};
+TreeFields fieldsOf(const scene::BoxTree& t) {
+  return {fmt("%.10f", t.at.latDeg),      fmt("%.10f", t.at.lonDeg),       fmt("%.3f", t.at.heightM),
+          fmt("%.3f", double(t.heightM)), fmt("%.3f", double(t.crownM)), fmt("%.5f", double(t.sPrime))};
+}
+
+// The plants' table, then a blank line and the trees' table (its own header).
+void writeCsv(std::ostream& out, const std::vector<scene::BoxPlant>& rows, const std::vector<scene::BoxTree>& trees,
+              const vegetation::SpeciesCatalog& catalog) {
   out << "lat,lon,height_m,species,plant_height_m,stiffness,s_prime\n";
   for (const scene::BoxPlant& r : rows) {
     const Fields f = fieldsOf(r);
     out << f.lat << ',' << f.lon << ',' << f.height << ',' << catalog.species[r.species].name << ',' << f.plantHeight
         << ',' << f.stiffness << ',' << f.sPrime << '\n';
   }
+  out << "\nlat,lon,height_m,species,tree_height_m,crown_m,s_prime\n";
+  for (const scene::BoxTree& t : trees) {
+    const TreeFields f = fieldsOf(t);
+    out << f.lat << ',' << f.lon << ',' << f.height << ',' << catalog.species[t.species].name << ',' << f.treeHeight
+        << ',' << f.crown << ',' << f.sPrime << '\n';
+  }
 }
 
-void writeJson(std::ostream& out, const std::vector<scene::BoxPlant>& rows, const vegetation::SpeciesCatalog& catalog,
-               const std::string& dataset, const std::string& bboxText, int seedLevel, int clusterSize) {
+void writeJson(std::ostream& out, const std::vector<scene::BoxPlant>& rows, const std::vector<scene::BoxTree>& trees,
+               const vegetation::SpeciesCatalog& catalog, const std::string& dataset, const std::string& bboxText,
+               int seedLevel, int clusterSize) {
   // Written by hand, one plant per line: nlohmann would print the doubles with 17 digits.
   std::vector<std::string> names;
   for (const vegetation::Species& s : catalog.species) names.push_back(nlohmann::json(s.name).dump());
@@ -102,7 +121,14 @@ void writeJson(std::ostream& out, const std::vector<scene::BoxPlant>& rows, cons
         << ", \"species\": " << names[rows[i].species] << ", \"plant_height_m\": " << f.plantHeight
         << ", \"stiffness\": " << f.stiffness << ", \"s_prime\": " << f.sPrime << "}";
   }
-  out << (rows.empty() ? "]}\n" : "\n ]}\n");
+  out << (rows.empty() ? "]" : "\n ]") << ",\n \"tree_count\": " << trees.size() << ",\n \"trees\": [";
+  for (size_t i = 0; i < trees.size(); ++i) {
+    const TreeFields f = fieldsOf(trees[i]);
+    out << (i ? ",\n  " : "\n  ") << "{\"lat\": " << f.lat << ", \"lon\": " << f.lon << ", \"height_m\": " << f.height
+        << ", \"species\": " << names[trees[i].species] << ", \"tree_height_m\": " << f.treeHeight
+        << ", \"crown_m\": " << f.crown << ", \"s_prime\": " << f.sPrime << "}";
+  }
+  out << (trees.empty() ? "]}\n" : "\n ]}\n");
 }
 
 }  // namespace
@@ -116,6 +142,7 @@ CLI::App* addPlantsCommand(CLI::App& cli, PlantsOptions& o) {
   cmd->add_option("--species", o.speciesFile, "Species catalog JSON (default: the embedded config/species.json)");
   cmd->add_option("--cluster-size", o.clusterSize, "Plants per cluster C, 1 … 32")->capture_default_str();
   cmd->add_option("--max-plants", o.maxPlants, "Refuse a box that grows more plants")->capture_default_str();
+  cmd->add_option("--max-trees", o.maxTrees, "Refuse a box that holds more trees")->capture_default_str();
   return cmd;
 }
 
@@ -127,6 +154,8 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
     return reportError(log, userError("--cluster-size " + std::to_string(o.clusterSize) + ": must be 1 … 32"));
   if (o.maxPlants < 1)
     return reportError(log, userError("--max-plants " + std::to_string(o.maxPlants) + ": must be ≥ 1"));
+  if (o.maxTrees < 1)
+    return reportError(log, userError("--max-trees " + std::to_string(o.maxTrees) + ": must be ≥ 1"));
   auto box = parseBbox(o.bbox);
   if (!box) return reportError(log, box.error());
   const vegetation::SpeciesCatalog* catalog = &vegetation::defaultSpeciesCatalog();
@@ -145,16 +174,27 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
   options.maxPlantsName = "--max-plants";
   auto grown = scene::plantsInBox(o.dataset, *box, *catalog, options);
   if (!grown) return reportError(log, grown.error());
-  log->debug("plants: {} seed triangles (level {}), {} skipped for nodata, {} plants", grown->seedTriangles,
-             grown->seedLevel, grown->nodataSkipped, grown->plants.size());
+  // Trees are placed on their own grid (scene/trees_in_box.h) and listed in their own table; the
+  // plant seeding's rare tree-species plants are not listed as plants.
+  std::erase_if(grown->plants, [&](const scene::BoxPlant& p) { return vegetation::isTree(catalog->species[p.species]); });
+  scene::TreesInBoxOptions treeOptions;
+  treeOptions.maxTrees = static_cast<uint64_t>(o.maxTrees);
+  treeOptions.boxName = options.boxName;
+  treeOptions.maxTreesName = "--max-trees";
+  auto trees = scene::treesInBox(o.dataset, *box, *catalog, treeOptions);
+  if (!trees) return reportError(log, trees.error());
+  log->debug("plants: {} seed triangles (level {}), {} skipped for nodata, {} plants; {} trees ({} cells of {:.2f} m)",
+             grown->seedTriangles, grown->seedLevel, grown->nodataSkipped, grown->plants.size(), trees->trees.size(),
+             trees->cells, trees->cellM);
 
   const std::string bboxText = fmt("%.10g", box->westDeg) + ", " + fmt("%.10g", box->southDeg) + ", " +
                                fmt("%.10g", box->eastDeg) + ", " + fmt("%.10g", box->northDeg);
   auto write = [&](std::ostream& out) {
     if (o.format == "csv")
-      writeCsv(out, grown->plants, *catalog);
+      writeCsv(out, grown->plants, trees->trees, *catalog);
     else
-      writeJson(out, grown->plants, *catalog, grown->datasetName, bboxText, grown->seedLevel, o.clusterSize);
+      writeJson(out, grown->plants, trees->trees, *catalog, grown->datasetName, bboxText, grown->seedLevel,
+                o.clusterSize);
   };
   if (o.output.empty()) {
     write(std::cout);

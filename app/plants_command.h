@@ -1,7 +1,7 @@
 #pragma once
 // `vegstream plants DATASET --bbox lon0,lat0,lon1,lat1 [--format csv|json] [--output FILE]
-//  [--species FILE] [--cluster-size C] [--max-plants N]`: every plant the full density grows in
-// a lon/lat box, as CSV or JSON — the CPU reference of what a flight draws there (core seed
+//  [--species FILE] [--cluster-size C] [--max-plants N] [--max-trees N]`: every plant the full
+// density grows in a lon/lat box, and every tree placed there, as CSV or JSON — the CPU reference of what a flight draws there (core seed
 // ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2 seeding, §3.1 seed triangles, §3.3 species from
 // the imagery colour, §3.4 clusters).
 //
@@ -16,8 +16,16 @@
 //   height_m        the ground at the root (m above the dataset's datum)
 //   species         catalog name
 //   plant_height_m  full-size height, stiffness (k′), s_prime (eq. 18)
-// CSV has one header line; JSON is {"dataset", "bbox", "seed_level", "cluster_size",
-// "plant_count", "plants": [{…}, …]}.
+// Then the trees (issue 20: every tree the view-independent tree placement puts there,
+// scene/trees_in_box.h; in the tree grid's row-major cell order):
+//   lat, lon, height_m, species   as above, at the foot of the trunk
+//   tree_height_m, crown_m        the tree's height and crown width
+//   s_prime                       eq. 18
+// CSV: the plants' header and rows, one empty line, then the trees' header
+// (lat,lon,height_m,species,tree_height_m,crown_m,s_prime) and rows. JSON is {"dataset", "bbox",
+// "seed_level", "cluster_size", "plant_count", "plants": [{…}, …], "tree_count", "trees": [{…}, …]}.
+// Tree species are listed only as trees (the plant seeding's rare plants of a tree species are
+// left out of the plants).
 
 #include <cstdint>
 #include <string>
@@ -38,12 +46,14 @@ struct PlantsOptions {
   std::string speciesFile;      // empty: the embedded config/species.json
   int clusterSize = 8;          // C of §3.4, 1 … 32
   int64_t maxPlants = 5000000;  // refuse boxes that grow more
+  int64_t maxTrees = 1000000;   // refuse boxes that hold more trees
 };
 
 CLI::App* addPlantsCommand(CLI::App& cli, PlantsOptions& options);
 
-// Exit code: 0 done; 2 a user mistake (bad --bbox / --format / --cluster-size / --max-plants,
-// a box outside the dataset, a dataset without imagery, more plants than --max-plants, a bad
+// Exit code: 0 done; 2 a user mistake (bad --bbox / --format / --cluster-size / --max-plants /
+// --max-trees, a box outside the dataset, a dataset without imagery, more plants than
+// --max-plants or trees than --max-trees, a bad
 // species file, an unwritable --output: one message naming it, nothing written); 1 an I/O failure.
 int runPlants(const PlantsOptions& options, const Logger& log);
 

@@ -1,5 +1,6 @@
 // `vegstream plants` (app/plants_command.h) on a small synthetic dataset, through the real
-// executable: CSV and JSON agree, every plant is in the box, the output is deterministic, a
+// executable: CSV and JSON agree (plants, and trees in their own table), every plant and tree is
+// in the box, the output is deterministic, a
 // sub-box gives exactly the big box's plants that lie in it (view and box independence, core
 // seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2), species come from the catalog, and every
 // user mistake is one message naming the option, exit 2 and no output file.
@@ -37,12 +38,41 @@ struct Row {
   bool operator==(const Row&) const = default;
 };
 
+// The CSV's plants table (up to the empty line before the trees' table).
 std::vector<Row> parseCsv(const std::string& text) {
   std::istringstream in(text);
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "lat,lon,height_m,species,plant_height_m,stiffness,s_prime");
   std::vector<Row> rows;
+  while (std::getline(in, line) && !line.empty()) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
+    EXPECT_EQ(f.size(), 7u) << line;
+    if (f.size() != 7) break;
+    rows.push_back(
+        {std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
+  }
+  return rows;
+}
+
+struct TreeRow {
+  double lat = 0, lon = 0, height = 0, treeHeight = 0, crown = 0, sPrime = 0;
+  std::string species;
+  bool operator==(const TreeRow&) const = default;
+};
+
+// The CSV's trees table: after the plants' rows, an empty line and its own header.
+std::vector<TreeRow> parseTreesCsv(const std::string& text) {
+  const size_t at = text.find("\n\n");
+  EXPECT_NE(at, std::string::npos) << "no trees table";
+  if (at == std::string::npos) return {};
+  std::istringstream in(text.substr(at + 2));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "lat,lon,height_m,species,tree_height_m,crown_m,s_prime");
+  std::vector<TreeRow> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     std::stringstream ls(line);
@@ -196,6 +226,84 @@ TEST_F(Plants, SpeciesComeFromTheCatalogAndBareGroundGrowsNone) {
   fs::remove_all(tmp);
 }
 
+// A catalog of one tree species on the synthetic dataset's dark green and bare everything else:
+// no plants, so a box large enough for many trees stays cheap.
+void writeTreeCatalog(const fs::path& file) {
+  std::ofstream(file) << R"({"species": [
+    {"name": "meadow", "reference": {"h_deg": 88, "s": 0.28, "v": 0.2}, "weights": {"h": 2, "s": 0.5, "v": 0.8},
+     "p": 3, "bare": true},
+    {"name": "rock", "reference": {"h_deg": 0, "s": 0.04, "v": 0.42}, "weights": {"h": 0, "s": 2, "v": 0.4}, "p": 3,
+     "bare": true},
+    {"name": "pine", "reference": {"h_deg": 104, "s": 0.4, "v": 0.1}, "weights": {"h": 2.5, "s": 0.5, "v": 1.0},
+     "p": 3, "kind": "tree", "height_m": {"min": 8, "max": 22}, "stiffness": {"min": 5, "max": 12},
+     "width_m": {"min": 3, "max": 7}, "colour_modulation": {"min": 1, "max": 1},
+     "tree": {"form": "conifer", "density_ha": 180, "spacing_m": 3.5}}]})";
+}
+
+TEST_F(Plants, TreesAreListedInTheirOwnTableAlikeInCsvAndJsonAndASubBoxKeepsThem) {
+  const fs::path tmp = testTmp("plants_trees");
+  fs::create_directories(tmp);
+  writeTreeCatalog(tmp / "trees.json");
+  const std::string species = " --species " + q(tmp / "trees.json");
+  const std::string big = bbox(400.0), small = bbox(250.0, 60.0);
+  const auto a = runVegstream(plants("--bbox " + big + species));
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  EXPECT_TRUE(parseCsv(a.out).empty()) << "bare soil and trees only: no plants";
+  const std::vector<TreeRow> trees = parseTreesCsv(a.out);
+  const std::vector<double> v = numbers(big);
+  const double ha = 0.8 * 0.8 * 100.0;
+  std::printf("[ figures  ] %zu trees in %.0f ha of the synthetic dataset (%.1f per ha)\n", trees.size(), ha,
+              double(trees.size()) / ha);
+  ASSERT_GT(trees.size(), 100u);
+  for (const TreeRow& t : trees) {
+    ASSERT_EQ(t.species, "pine");
+    ASSERT_GE(t.lon, v[0]);
+    ASSERT_LT(t.lon, v[2]);
+    ASSERT_GE(t.lat, v[1]);
+    ASSERT_LT(t.lat, v[3]);
+    ASSERT_GE(t.treeHeight, 8.0 * 0.6 - 1e-3);
+    ASSERT_LE(t.treeHeight, 22.0 + 1e-3);
+    ASSERT_GE(t.crown, 3.0 * 0.8 - 1e-3);
+    ASSERT_LE(t.crown, 7.0 + 1e-3);
+  }
+  // JSON: the same trees, the same digits.
+  const auto j = runVegstream(plants("--bbox " + big + species + " --format json"));
+  ASSERT_EQ(j.exitCode, 0) << j.err;
+  const json doc = json::parse(j.out);
+  EXPECT_EQ(doc["plant_count"], 0);
+  ASSERT_EQ(doc["tree_count"].get<size_t>(), trees.size());
+  ASSERT_EQ(doc["trees"].size(), trees.size());
+  for (size_t i = 0; i < trees.size(); ++i) {
+    const json& t = doc["trees"][i];
+    ASSERT_EQ((TreeRow{t["lat"], t["lon"], t["height_m"], t["tree_height_m"], t["crown_m"], t["s_prime"], t["species"]}),
+              trees[i])
+        << i;
+  }
+  // A smaller box inside: exactly the big box's trees that lie in it (rows near its edges left out).
+  const auto b = runVegstream(plants("--bbox " + small + species));
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const std::vector<double> s = numbers(small);
+  const auto nearEdge = [&](const TreeRow& r) {
+    return std::abs(r.lon - s[0]) < 1e-9 || std::abs(r.lon - s[2]) < 1e-9 || std::abs(r.lat - s[1]) < 1e-9 ||
+           std::abs(r.lat - s[3]) < 1e-9;
+  };
+  std::vector<TreeRow> expected, got;
+  for (const TreeRow& r : trees)
+    if (r.lon >= s[0] && r.lon < s[2] && r.lat >= s[1] && r.lat < s[3] && !nearEdge(r)) expected.push_back(r);
+  for (const TreeRow& r : parseTreesCsv(b.out))
+    if (!nearEdge(r)) got.push_back(r);
+  std::printf("[ figures  ] sub-box: %zu trees, the big box's in it %zu\n", got.size(), expected.size());
+  EXPECT_GT(expected.size(), 30u);
+  ASSERT_EQ(got, expected);
+  // --max-trees binds: one message naming it, exit 2.
+  const auto limited = runVegstream(plants("--bbox " + big + species + " --max-trees 5"));
+  EXPECT_EQ(limited.exitCode, 2) << limited.err;
+  EXPECT_EQ(countLines(limited.err), 1) << limited.err;
+  EXPECT_NE(limited.err.find("--max-trees"), std::string::npos) << limited.err;
+  EXPECT_TRUE(limited.out.empty());
+  fs::remove_all(tmp);
+}
+
 TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
   const fs::path tmp = testTmp("plants_bad");
   fs::create_directories(tmp);
@@ -228,6 +336,7 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
       {plants(std::string("--bbox ") + outside + o), "bounds"},
       {"plants " + q(noImagery) + " --bbox " + box + o, "imagery"},
       {plants("--bbox " + box + " --max-plants 1000" + o), "--max-plants"},
+      {plants("--bbox " + box + " --max-trees 0" + o), "--max-trees"},
       {plants("--bbox " + box + " --format xml" + o), "--format"},
       {plants("--bbox " + box + " --cluster-size 33" + o), "--cluster-size"},
       {plants("--bbox " + box + " --species " + q(tmp / "bad_species.json") + o), "bad_species.json"},
