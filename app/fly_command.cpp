@@ -125,6 +125,9 @@ int runFly(FlyOptions o, const Logger& log) {
       !s)
     return reportError(log, s.error());
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
+  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
+    return reportError(log, s.error());
+  applyTreeOptions(o.treeCli, so);
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;

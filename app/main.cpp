@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
   flyCmd->add_flag("--headless", fly.headless, "Never open a window, even when a display exists");
   app::addStreamingOptions(*flyCmd, fly.streaming, true);
   app::addSimulationOptions(*flyCmd, fly.simulationCli);
+  app::addTreeOptions(*flyCmd, fly.treeCli);
 
   app::ImportOptions importOptions;
   auto* importCmd = app::addImportCommand(cli, importOptions);

@@ -60,6 +60,7 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_flag("--no-plots", o.noPlots, "Write frames.csv and the JSON files only (no python3/matplotlib needed)");
   addStreamingOptions(*cmd, o.streaming, true);
   addSimulationOptions(*cmd, o.simulationCli);
+  addTreeOptions(*cmd, o.treeCli);
   return cmd;
 }
 
@@ -82,6 +83,9 @@ int runRecord(RecordOptions o, const Logger& log) {
   scene::SceneOptions so;
   if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
     return reportError(log, s.error());
+  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
+    return reportError(log, s.error());
+  applyTreeOptions(o.treeCli, so);
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());
   if (!streaming::isHttpLocation(*dataset)) {  // a local dataset is checked against the path before the GPU is touched

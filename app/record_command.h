@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/simulation_cli.h"
+#include "app/tree_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
@@ -32,6 +33,7 @@ struct RecordOptions {
   bool validate = false;
   bool noPlots = false;    // skip the plots (frames.csv and the JSON files only)
   StreamingCli streaming;  // budgets, --streaming settled|realtime (default settled), look-ahead
+  TreeCli treeCli;              // --trees, --tree-horizon-m, --tree-budget-mb as given
   SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
   // What the simulation runs with: simulationCli over the path's wind section over the defaults
   // (resolveSimulationOptions); filled by runRecord once the path is read.

@@ -104,6 +104,7 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   addStreamingOptions(*cmd, o.streaming, false);
   addSimulationOptions(*cmd, o.simulationCli);
+  addTreeOptions(*cmd, o.treeCli);
   cmd->add_option("--time", o.timeS,
                   "Show the wind as it is S seconds into a flight held at this pose since 0 (0 … 600)")
       ->capture_default_str();
@@ -126,6 +127,9 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   scene::SceneOptions so;
   if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
     return reportError(log, s.error());
+  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
+    return reportError(log, s.error());
+  applyTreeOptions(o.treeCli, so);
   so.mode = scene::StreamingMode::Settled;  // a still shows the finest tiles its view wants
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());

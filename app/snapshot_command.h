@@ -18,6 +18,7 @@
 #include <string>
 
 #include "app/simulation_cli.h"
+#include "app/tree_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
 
@@ -41,6 +42,7 @@ struct SnapshotOptions {
   std::string device;
   bool validate = false;
   StreamingCli streaming;  // the plant, streaming and terrain options of `record` (settled)
+  TreeCli treeCli;              // --trees, --tree-horizon-m, --tree-budget-mb as given
   SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
   // What the simulation runs with: simulationCli over the defaults (a still has no flight path);
   // filled by runSnapshot.

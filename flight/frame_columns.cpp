@@ -80,6 +80,13 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   for (const char* n : {"plant_cull_tested", "plant_cull_culled", "plant_clusters_culled", "plant_groups_culled",
                         "plants_culled"})
     c.push_back({n, 0});
+  // Trees (issue 20, render/tree_layout.h, scene/tree_field.h); empty without trees. Per level the
+  // trees appended to its draws (a tree cross-fading between two counts in both).
+  for (const char* n : {"trees_full", "trees_reduced", "trees_impostor", "trees_dropped", "trees_classified",
+                        "tree_tiles_wanted", "tree_tiles_drawn", "tree_pages_used", "tree_page_capacity",
+                        "tree_budget_bound", "tree_gpu_bytes"})
+    c.push_back({n, 0});
+  c.push_back({"tree_placement_ms", 4});
   return c;
 }
 

@@ -20,10 +20,32 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
   slot.vegetation.reset();
   slot.bladesExpanded = false;
+  slot.treesDrawn = false;
   const VegetationRequest* plants = request.vegetation;
+  const TreeRequest* treeRequest = request.trees && trees->modelCount() > 0 ? request.trees : nullptr;
   if (request.simulation) {  // before anything reads the wind cells or the interaction field
     slot.timer->beginPass(cmd, "simulation");
     simulation->record(cmd, slot.descriptorSet, *request.simulation);
+    slot.timer->endPass(cmd);
+  }
+
+  // Trees first: classified (compute), then cast into the sun's shadow map, which the terrain,
+  // the plants and the trees themselves sample.
+  if (treeRequest) {
+    slot.timer->beginPass(cmd, "tree classify");
+    const VkExtent2D e = targets->extent();
+    const glm::dmat4 viewProj =
+        projection(request.camera, double(e.width) / double(e.height)) * viewRotation(request.camera);
+    trees->recordClassify(cmd, slotIndex, slot.descriptorSet, *treeRequest, viewProj, slot.shadows ? 40.0f : 0.0f,
+                          retireBuffer);
+    slot.timer->endPass(cmd);
+    slot.treesDrawn = true;
+  }
+  if (slot.shadows) {
+    slot.timer->beginPass(cmd, "shadow");
+    sunShadows->record(cmd, *slot.shadows, [&](VkCommandBuffer c, int, const glm::mat4& m) {
+      trees->recordShadow(c, slotIndex, slot.shadowPassSet, m);
+    });
     slot.timer->endPass(cmd);
   }
 
@@ -42,7 +64,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     slot.timer->endPass(cmd);
     next = RenderTargets::Load::Shaded;
   } else {
-    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr);
+    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr && treeRequest == nullptr);
     slot.timer->beginPass(cmd, "sky");
     sky->record(cmd, slot.descriptorSet);
     slot.timer->endPass(cmd);
@@ -51,9 +73,17 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     slot.timer->endPass(cmd);
     vkCmdEndRendering(cmd);
   }
+  if (treeRequest) {  // trees in their own scope, before the plants: they hide much of them
+    slot.timer->beginPass(cmd, "trees");
+    targets->beginRendering(cmd, next, /*resolve=*/plants == nullptr);
+    trees->recordDraw(cmd, slotIndex, slot.descriptorSet);
+    vkCmdEndRendering(cmd);
+    slot.timer->endPass(cmd);
+    next = RenderTargets::Load::Keep;
+  }
   if (plants) {
     recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
-  } else if (terrainShade) {  // no plants: one empty scope resolves the shaded targets
+  } else if (terrainShade && !treeRequest) {  // no plants: one empty scope resolves the shaded targets
     targets->beginRendering(cmd, next, /*resolve=*/true);
     vkCmdEndRendering(cmd);
   }

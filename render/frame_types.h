@@ -15,6 +15,7 @@
 #include "render/classify_layout.h"
 #include "render/gpu_timing.h"
 #include "render/overlay_types.h"
+#include "render/tree_layout.h"
 #include "terrain/terrain_mesh.h"
 
 namespace vegstream::simulation {
@@ -201,6 +202,9 @@ struct FrameRequest {
   // The shared simulation's step for this frame (simulation/simulation.h); must stay alive until
   // submitFrame returns. Null: nothing moves.
   const simulation::GpuStep* simulation = nullptr;
+  // Trees (issue 20, render/tree_layout.h): the pool's page uploads and counts, the levels of
+  // detail; the models come from Renderer::setTreeModels. Null: no trees drawn.
+  const TreeRequest* trees = nullptr;
 };
 
 struct ColorImage {
@@ -219,6 +223,7 @@ struct FrameResult {
   GpuTimings gpu;
   uint64_t terrainTriangles = 0;                // triangles submitted by the terrain pass
   std::optional<VegetationFigures> vegetation;  // when the request had plants
+  std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;
   std::optional<DepthImage> depth;
 };

@@ -8,11 +8,13 @@
 #include <glm/geometric.hpp>
 
 #include "render/frame_types.h"
+#include "render/shadow_cascades.h"
 #include "render/terrain_detail.h"
 
 namespace vegstream::render {
 
-FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height) {
+FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height,
+                            const ShadowCascades* shadows) {
   const double aspect = static_cast<double>(width) / static_cast<double>(height);
   const glm::dmat4 viewProj = projection(request.camera, aspect) * viewRotation(request.camera);
   FrameUniforms u{};
@@ -31,6 +33,11 @@ FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_
   const glm::dvec3 wrapped =
       request.camera.position - kDetailPeriodM * glm::floor(request.camera.position / kDetailPeriodM);
   u.detail = glm::vec4(glm::vec3(wrapped), std::clamp(request.terrainDetail, 0.0f, 1.0f));
+  if (shadows) {
+    for (int c = 0; c < kShadowCascades; ++c) u.shadowMatrices[c] = shadows->matrices[size_t(c)];
+    u.shadowSplits = shadows->splits;
+    u.shadowTexel = glm::vec4(shadows->texelM[0], shadows->texelM[1], shadows->texelM[2], 0.0f);
+  }
   return u;
 }
 

@@ -20,6 +20,9 @@ struct FrameUniforms {
   glm::vec4 fog;
   glm::vec4 viewport;
   glm::vec4 detail;  // xyz: camera position modulo kDetailPeriodM (render/terrain_detail.h), w: detail strength
+  glm::mat4 shadowMatrices[3];  // render/shadow_cascades.h
+  glm::vec4 shadowSplits;       // xyz: cascades' far distances, w: 1 when shadows are drawn this frame
+  glm::vec4 shadowTexel;        // xyz: cascades' texel sizes (m)
 };
 
 static_assert(offsetof(FrameUniforms, viewProj) == 0);
@@ -31,12 +34,17 @@ static_assert(offsetof(FrameUniforms, skyHorizon) == 176);
 static_assert(offsetof(FrameUniforms, fog) == 192);
 static_assert(offsetof(FrameUniforms, viewport) == 208);
 static_assert(offsetof(FrameUniforms, detail) == 224);
-static_assert(sizeof(FrameUniforms) == 240);
+static_assert(offsetof(FrameUniforms, shadowMatrices) == 240);
+static_assert(offsetof(FrameUniforms, shadowSplits) == 432);
+static_assert(sizeof(FrameUniforms) == 464);
 
 struct FrameRequest;
+struct ShadowCascades;
 
 // The frame's uniforms: everything relative to the camera, rotation-only view, for a target of
 // width × height pixels.
-FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height);
+// `shadows`: this frame's sun shadow cascades, or null (no shadow map: everything sunlit).
+FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_t height,
+                            const ShadowCascades* shadows = nullptr);
 
 }  // namespace vegstream::render

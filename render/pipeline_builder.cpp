@@ -90,16 +90,21 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
     blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     blend.alphaBlendOp = VK_BLEND_OP_ADD;
   }
+  const uint32_t attachments = desc.colorFormat == VK_FORMAT_UNDEFINED ? 0u : desc.colorAttachments;
+  const std::vector<VkPipelineColorBlendAttachmentState> blends(attachments, blend);
+  const std::vector<VkFormat> formats(attachments, desc.colorFormat);
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
-  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  cb.attachmentCount = attachments;
+  cb.pAttachments = blends.data();
+  if (desc.depthBias) rs.depthBiasEnable = VK_TRUE;
+  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                          VK_DYNAMIC_STATE_DEPTH_BIAS};
   VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dyn.dynamicStateCount = 2;
+  dyn.dynamicStateCount = desc.depthBias ? 3u : 2u;
   dyn.pDynamicStates = dynamicStates;
   VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachmentFormats = &desc.colorFormat;
+  rendering.colorAttachmentCount = attachments;
+  rendering.pColorAttachmentFormats = formats.data();
   rendering.depthAttachmentFormat = desc.depthFormat;
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};

@@ -33,6 +33,8 @@ struct GraphicsPipelineDesc {
   bool alphaBlend = false;          // straight alpha over the target (overlays); off: opaque writes
   uint32_t patchControlPoints = 0;  // > 0: tessellation (topology PATCH_LIST)
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  uint32_t colorAttachments = 1;  // > 1: that many attachments, all of colorFormat (impostor capture)
+  bool depthBias = false;         // a slope-scaled depth bias, set per draw (shadow maps)
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   VkPipelineLayout layout = VK_NULL_HANDLE;
 };

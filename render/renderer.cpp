@@ -47,14 +47,20 @@ void Renderer::Impl::init(const RendererOptions& options) {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
+      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr}};  // the sun's shadow map
   frameLayout = createLayout(*ctx, frameBindings, "frame set layout");
   const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kFramesInFlight}};
-  descriptorPool = createPool(*ctx, frameSizes, kFramesInFlight, "frame descriptor pool");
+                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kFramesInFlight},
+                                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFramesInFlight}};
+  // Twice: each slot has a second set for the shadow pass (its binding 4 a placeholder map).
+  VkDescriptorPoolSize doubled[3];
+  for (int k = 0; k < 3; ++k) doubled[k] = {frameSizes[k].type, 2 * frameSizes[k].descriptorCount};
+  descriptorPool = createPool(*ctx, doubled, 2 * kFramesInFlight, "frame descriptor pool");
   const VkDescriptorSetLayout layout = frameLayout.get();
 
   simulation = std::make_unique<SimulationPass>(*ctx, layout, options.trailStoreBytes);
+  sunShadows = std::make_unique<SunShadowPass>(*ctx, std::max(options.shadowMapSize, 64u));
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
   for (int i = 0; i < kFramesInFlight; ++i) {
     FrameSlot& s = slots[static_cast<size_t>(i)];
@@ -93,6 +99,11 @@ void Renderer::Impl::init(const RendererOptions& options) {
     s.descriptorSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "frame uniforms set" + tag);
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
     simulation->writeFrameSet(s.descriptorSet, i);
+    sunShadows->writeFrameSet(s.descriptorSet);
+    s.shadowPassSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "shadow pass frame set" + tag);
+    writeUniformBuffer(*ctx, s.shadowPassSet, s.uniforms.get(), sizeof(FrameUniforms));
+    simulation->writeFrameSet(s.shadowPassSet, i);
+    sunShadows->writeFrameSet(s.shadowPassSet, /*placeholder=*/true);
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred, options.tasks);
@@ -113,6 +124,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
   blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u));
   blades->setCatalog(vegetation::defaultSpeciesCatalog());
+  trees = std::make_unique<TreePass>(*ctx, layout, toSampleBits(msaa));
+  treeBudgetBytes = options.treeBudgetBytes;
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -139,7 +152,15 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
 
   const VkExtent2D extent = targets->extent();
-  const FrameUniforms u = frameUniforms(request, extent.width, extent.height);
+  // The trees cast into the sun's shadow map this frame (render/shadow_cascades.h).
+  slot.shadows.reset();
+  if (request.trees && request.trees->shadows && trees->modelCount() > 0 && trees->pageCapacity() > 0) {
+    ShadowSettings settings;
+    settings.mapSize = sunShadows->mapSize();
+    slot.shadows = shadowCascades(request.camera, double(extent.width) / double(extent.height),
+                                  request.lighting.sunDirection, settings);
+  }
+  const FrameUniforms u = frameUniforms(request, extent.width, extent.height, slot.shadows ? &*slot.shadows : nullptr);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   simulation->writeBlock(static_cast<int>(index % kFramesInFlight), request.simulation);
 
@@ -182,6 +203,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     if (slot.bladesExpanded) blades->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     r.vegetation = slot.vegetation;
   }
+  if (slot.treesDrawn) r.trees = trees->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
   r.gpu = slot.timer->read();
   const VkExtent2D e = targets->extent();
   const size_t pixels = size_t{e.width} * e.height;
@@ -340,7 +362,32 @@ uint64_t Renderer::simulationGpuBytes() const { return impl_->simulation->gpuByt
 
 uint64_t Renderer::gpuBytes() const {
   return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
-         impl_->hiz->gpuBytes() + impl_->blades->gpuBytes() + impl_->simulation->gpuBytes();
+         impl_->hiz->gpuBytes() + impl_->blades->gpuBytes() + impl_->simulation->gpuBytes() +
+         impl_->trees->gpuBytes() + impl_->sunShadows->gpuBytes();
+}
+
+Status Renderer::setTreeModels(std::span<const TreeModelSet> sets) {
+  return guardGpu([&]() -> Status {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    if (!impl_->trees->setModels(sets, impl_->treeBudgetBytes, impl_->slots[0].descriptorSet))
+      return makeError(ErrorKind::InvalidInput,
+                       "--tree-budget-mb " + std::to_string(impl_->treeBudgetBytes >> 20) +
+                           ": too small for the tree models and their impostors (" +
+                           std::to_string(impl_->trees->modelCount()) + " models)");
+    return {};
+  });
+}
+
+uint32_t Renderer::treePageCapacity() const { return impl_->trees->pageCapacity(); }
+uint64_t Renderer::treeGpuBytes() const { return impl_->trees->gpuBytes(); }
+
+Result<std::vector<uint8_t>> Renderer::readTreeImpostor(uint32_t model) {
+  if (!impl_->trees->impostors() || model >= impl_->trees->modelCount())
+    return makeError(ErrorKind::InvalidInput, "no tree model " + std::to_string(model));
+  return guardGpu([&]() -> Result<std::vector<uint8_t>> {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    return impl_->trees->impostors()->readAlbedo(model);
+  });
 }
 
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {

@@ -44,6 +44,11 @@ struct RendererOptions {
   uint32_t bladeMaxVertices = 1u << 23;
   // The shared simulation's trail store (render/simulation_pass.h): SimulationOptions::trailBudgetMb.
   uint64_t trailStoreBytes = uint64_t{16} << 20;
+  // The trees' GPU memory (render/tree_pass.h): models, impostor atlas, visible lists and the
+  // instance pool, which gets what the rest leaves (`--tree-budget-mb`).
+  uint64_t treeBudgetBytes = uint64_t{128} << 20;
+  // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
+  uint32_t shadowMapSize = 1024;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
   // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
   // with the thread that submits; null: all on that thread. Must outlive the renderer.
@@ -77,6 +82,16 @@ class Renderer {
   // The species the classify pass sorts plants into (the default catalog until set); waits for
   // frames in flight.
   Status setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog);
+  // The tree models (every species' variants), uploaded and captured as impostors at once; the
+  // instance pool is sized from RendererOptions::treeBudgetBytes. Waits for frames in flight.
+  // InvalidInput when the budget does not hold the models and their atlas (naming the budget).
+  Status setTreeModels(std::span<const TreeModelSet> sets);
+  // Pages of kTreePageSize trees the pool holds (0 before setTreeModels); the trees' GPU bytes.
+  uint32_t treePageCapacity() const;
+  uint64_t treeGpuBytes() const;
+  // One model's impostor atlas layer (RGBA8 albedo + coverage, kImpostorViews × kImpostorCellPx
+  // square), for tests; waits for the GPU.
+  Result<std::vector<uint8_t>> readTreeImpostor(uint32_t model);
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
   // The shared simulation's GPU state as it is now (waits for the GPU to be idle): the wind cells

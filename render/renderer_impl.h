@@ -34,7 +34,11 @@
 #include "render/swapchain.h"
 #include "render/terrain_detail.h"
 #include "render/terrain_pass.h"
+#include "render/shadow_cascades.h"
+#include "render/sun_shadow_pass.h"
 #include "render/terrain_shade_pass.h"
+#include "render/tree_impostors.h"
+#include "render/tree_pass.h"
 #include "render/vk_check.h"
 
 namespace vegstream::render {
@@ -43,7 +47,8 @@ namespace vegstream::render {
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
 static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
-inline constexpr int kMaxPasses = 10;
+inline constexpr int kMaxPasses = 12;
+static_assert(TreePass::kSlots == kFramesInFlight, "one tree block per frame slot");
 inline constexpr int kBladeTableSegments = vegetation::kBladeShapeSegments;
 
 // Everything one frame in flight owns.
@@ -54,6 +59,7 @@ struct FrameSlot {
   Semaphore imageAcquired;
   GpuBuffer uniforms;
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
+  VkDescriptorSet shadowPassSet = VK_NULL_HANDLE;  // the same, but binding 4 a placeholder: the shadow pass's own
   std::unique_ptr<GpuTimer> timer;
   GpuBuffer colorReadback, depthReadback;
   // What was submitted last in this slot.
@@ -64,6 +70,8 @@ struct FrameSlot {
   uint64_t terrainTriangles = 0;
   std::optional<VegetationFigures> vegetation;
   bool bladesExpanded = false;  // the compute blade path drew this frame's plants
+  bool treesDrawn = false;      // the tree pass classified this frame's trees
+  std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
 };
 
 inline VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
@@ -85,6 +93,9 @@ struct Renderer::Impl {
   std::unique_ptr<PlantPass> plantPass;
   std::unique_ptr<BladePass> blades;
   std::unique_ptr<SimulationPass> simulation;
+  std::unique_ptr<TreePass> trees;
+  std::unique_ptr<SunShadowPass> sunShadows;
+  uint64_t treeBudgetBytes = 0;
   BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   std::array<FrameSlot, kFramesInFlight> slots;
   DeletionQueue deletions;

@@ -113,6 +113,7 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.gpu = std::move(result->gpu);
   r.terrainTriangles = result->terrainTriangles;
   r.vegetation = result->vegetation;
+  r.trees = result->trees;
   r.color = std::move(result->color);
   r.driverMs += own.elapsedMs();
   return r;

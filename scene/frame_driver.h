@@ -67,6 +67,7 @@ struct FrameRecord {
   render::GpuTimings gpu;
   uint64_t terrainTriangles = 0;
   std::optional<render::VegetationFigures> vegetation;
+  std::optional<render::TreeFigures> trees;  // when the frame drew trees
   std::optional<render::ColorImage> color;  // when FrameInput::readbackColor
   double driverMs = 0.0;                    // the driver's own bookkeeping (copying figures)
   double cpuMs() const;                     // the CPU stages that exist: flight … record/submit

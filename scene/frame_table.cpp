@@ -117,6 +117,14 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
                        culled ? v->cullGroupsCulled : 0,
                        culled ? v->cullPlantsCulled + v->cullGroupPlantsCulled : 0})
       r[c++] = culled ? count(x) : kNoValue;
+    const auto& t = f.trees;
+    for (uint64_t x : {uint64_t{t ? t->full : 0u}, uint64_t{t ? t->reduced : 0u}, uint64_t{t ? t->impostor : 0u},
+                       uint64_t{t ? t->dropped : 0u}, uint64_t{t ? t->instances : 0u}})
+      r[c++] = t ? count(x) : kNoValue;
+    for (uint64_t x : {uint64_t{fig.treeTilesWanted}, uint64_t{fig.treeTilesDrawn}, uint64_t{fig.treePagesUsed},
+                       uint64_t{fig.treePageCapacity}, uint64_t{fig.treeBudgetBound}, fig.treeGpuBytes})
+      r[c++] = fig.trees ? count(x) : kNoValue;
+    r[c++] = fig.trees ? fig.treePlacementMs : kNoValue;
     assert(c == r.size());
   }
   return table;

@@ -11,8 +11,12 @@
 #include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
+#include "scene/tree_field.h"
+#include "scene/tree_ground.h"
 #include "terrain/snapshot_grid.h"
+#include "vegetation/philox.h"
 #include "vegetation/plant_seeding.h"
+#include "vegetation/tree_model.h"
 
 namespace vegstream::scene {
 
@@ -33,6 +37,8 @@ struct Scene::Impl {
   std::vector<streaming::Upload> planned;
   std::vector<render::SeedTriangleGpu> seeds;
   render::VegetationRequest vegetation;
+  std::unique_ptr<TreeGround> treeGround;
+  std::unique_ptr<TreeField> treeField;
   SceneFrameFigures figures;
 
   double width() const { return static_cast<double>(renderer->width()); }
@@ -42,6 +48,52 @@ struct Scene::Impl {
   }
   terrain::EyeView eyeView(const render::FrameRequest& req) const { return eyeViewFor(req.camera, width(), height()); }
 };
+
+namespace {
+
+// The catalog's tree species as models (variants each, vegetation/tree_model.h), uploaded with
+// their impostors; the ground mosaics the placement reads; the field of tiles around the camera.
+Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const streaming::SnapshotLimits& limits,
+                 const vegetation::SpeciesCatalog& catalog) {
+  Stopwatch watch;
+  const SceneTreeOptions& o = m.options.trees;
+  const uint32_t variants = std::max(o.variants, 1u);
+  std::vector<render::TreeModelSet> sets;
+  std::vector<uint32_t> firstModel(catalog.species.size(), UINT32_MAX);
+  uint32_t models = 0;
+  for (size_t s = 0; s < catalog.species.size(); ++s) {
+    const vegetation::Species& sp = catalog.species[s];
+    if (!vegetation::isTree(sp)) continue;
+    if (models + variants > render::kMaxTreeModels) break;
+    render::TreeModelSet set;
+    set.species = static_cast<uint32_t>(s);
+    set.params = sp.tree;
+    const float height = 0.5f * (sp.heightM.min + sp.heightM.max);
+    const float crown = 0.5f * (sp.widthM.min + sp.widthM.max);
+    for (uint32_t v = 0; v < variants; ++v)
+      set.variants.push_back(
+          vegetation::buildTreeModel(sp.tree, height, crown, vegetation::philox(v, static_cast<uint32_t>(s), 0x74ee5u).x));
+    firstModel[s] = models;
+    models += variants;
+    sets.push_back(std::move(set));
+  }
+  if (sets.empty()) return {};
+  auto ground = TreeGround::load(*m.source, meta, m.frame, limits);
+  if (!ground) return ground.error();
+  m.treeGround = std::make_unique<TreeGround>(std::move(*ground));
+  if (Status s = m.renderer->setTreeModels(sets); !s) return s.error();
+  TreeFieldOptions fo;
+  fo.lod = o.lod;
+  fo.lod.horizonM = static_cast<float>(o.horizonM > 0.0 ? o.horizonM : vegetation::farthestTreeHorizon(catalog));
+  fo.fades = o.fades;
+  m.treeField = std::make_unique<TreeField>(catalog, m.treeGround->at(), fo, std::move(firstModel), variants,
+                                            m.renderer->treePageCapacity());
+  m.info.treeModels = models;
+  m.info.treeSetupMs = watch.elapsedMs();
+  return {};
+}
+
+}  // namespace
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Scene::~Scene() = default;
@@ -111,6 +163,8 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, impl->options.terrain);
   info.seedLevel = impl->terrain->roam().seedLevel();
   info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
+  if (options.trees.enabled && info.hasImagery)
+    if (Status s = openTrees(*impl, *meta, limits, catalog); !s) return s.error();
   info.loadMs = watch.elapsedMs();
   log->debug("dataset {} from {}: zooms {}…{}, ground at zoom {}, {} imagery layers ({:.0f} ms)", info.datasetName,
              info.source, info.minZoom, info.maxZoom, info.groundZoom, info.imageryLayers, info.loadMs);
@@ -210,6 +264,23 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     fig.seedTrianglesClassified = m.seeds.size();
   }
 
+  if (m.treeField) {
+    const render::TreeRequest& trees =
+        m.treeField->prepare(req.camera.position, m.options.mode == StreamingMode::Settled);
+    req.trees = &trees;
+    const TreeFieldFigures& t = m.treeField->figures();
+    fig.trees = true;
+    fig.treeTilesWanted = t.tilesWanted;
+    fig.treeTilesDrawn = t.tilesDrawn;
+    fig.treePagesUsed = t.pagesUsed;
+    fig.treePageCapacity = t.pageCapacity;
+    fig.treesResident = t.treesDrawn;
+    fig.treePlacementMs = t.placementMs;
+    fig.treeBudgetBound = t.budgetBound;
+    // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
+    (m.options.mode == StreamingMode::Settled ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
+    fig.treeGpuBytes = m.renderer->treeGpuBytes();
+  }
   fig.streaming = m.streamer->frameStats();
   if (settledCounters) {  // every settle round's requests; the uploads planned after them
     const uint64_t uploadBytes = fig.streaming.uploadBytes;

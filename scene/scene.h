@@ -48,6 +48,16 @@ enum class StreamingMode {
 // "settled" / "realtime".
 const char* toString(StreamingMode mode);
 
+// Trees (issue 20): placed per world tile from the ground mosaics (scene/tree_field.h), drawn by
+// the renderer's tree pass within its budget (RendererOptions::treeBudgetBytes).
+struct SceneTreeOptions {
+  bool enabled = true;
+  double horizonM = 0.0;  // where trees end; 0: the catalog's farthest tree horizon
+  uint32_t variants = 3;  // models per species, each tree picks one by its seed
+  render::TreeLodDistances lod;  // its horizonM is set from the above
+  bool fades = true;
+};
+
 struct SceneOptions {
   std::string dataset;  // a dataset directory or an http(s):// URL of one
   render::RendererOptions renderer;
@@ -67,6 +77,7 @@ struct SceneOptions {
   std::shared_ptr<const vegetation::SpeciesCatalog> species;  // null: the default catalog
   // The shared simulation (wind, colliders, trails) every FrameDriver over this scene runs.
   simulation::SimulationOptions simulation;
+  SceneTreeOptions trees;
   Logger logger;                                              // may be null
 };
 
@@ -81,6 +92,8 @@ struct SceneInfo {
   uint64_t groundBytes = 0;    // the ground mosaic on the CPU
   int seedLevel = 0;           // the bintree level of the seed triangles
   double seedAreaM2 = 0.0;     // their ground area at the dataset's centre
+  uint32_t treeModels = 0;     // tree models built (species × variants); 0: no trees
+  double treeSetupMs = 0.0;    // building them, their impostors and the ground mosaics
   double loadMs = 0.0;
 };
 
@@ -96,6 +109,13 @@ struct SceneFrameFigures {
   uint64_t gpuBytes = 0;                 // imagery array, terrain, classify and plant buffers
   uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
   double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
+  // Trees: tiles placed and given pages this frame (scene/tree_field.h); zero without trees.
+  bool trees = false;
+  uint32_t treeTilesWanted = 0, treeTilesDrawn = 0, treePagesUsed = 0, treePageCapacity = 0;
+  uint64_t treesResident = 0;
+  double treePlacementMs = 0.0;
+  bool treeBudgetBound = false;
+  uint64_t treeGpuBytes = 0;
 };
 
 class Scene {

@@ -207,7 +207,7 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
       !parseCount(ps, t, "leaves_per_twig", p, out.leavesPerTwig, 1, 256) ||
       !parseBounded(ps, t, "branch_angle_deg", p, out.branchAngleDeg, 10.0, false, 120.0, "in 10 … 120 degrees") ||
       !parseBounded(ps, t, "trunk_radius_m", p, out.trunkRadiusM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
-      !parseBounded(ps, t, "taper", p, out.taper, 0.05, false, 1.0, "in 0.05 … 1") ||
+      !parseBounded(ps, t, "taper", p, out.taper, 0.1, false, 0.8, "in 0.1 … 0.8") ||  // the bending shape fits the beam within 1 % there
       !parseBounded(ps, t, "leaf_size_m", p, out.leafSizeM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
       !parseBounded(ps, t, "translucency", p, out.translucency, 0.0, false, 1.0, "in 0 … 1"))
     return false;

@@ -46,7 +46,7 @@
 //   "branches": 24, "twigs": 6,           3 … 256, 1 … 64                        } from TreeParams
 //   "branch_angle_deg": 70,               10 … 120                               }
 //   "trunk_radius_m": 0.25,               > 0, ≤ 5 (per 10 m of height)          }
-//   "taper": 0.2,                         0.05 … 1                               }
+//   "taper": 0.2,                         0.1 … 0.8                              }
 //   "leaf_size_m": 0.6,                   > 0, ≤ 5                               }
 //   "leaves_per_twig": 8,                 1 … 256                                }
 //   "leaf_colour": "#rrggbb", "bark_colour": "#rrggbb"   sRGB, stored linear     }

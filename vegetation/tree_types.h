@@ -29,7 +29,7 @@ struct TreeParams {
   uint32_t twigs = 6;           // level-2 branches per level-1 branch (≥ 1)
   float branchAngleDeg = 70.0f; // level-1 branch angle from the trunk axis, 10 … 120
   float trunkRadiusM = 0.25f;   // trunk radius at the ground, per 10 m of height (> 0)
-  float taper = 0.2f;           // tip radius / root radius of every branch (α of 002 eq. 4.4), 0.05 … 1
+  float taper = 0.2f;           // tip radius / root radius of every branch (α of 002 eq. 4.4), 0.1 … 0.8
   float leafSizeM = 0.6f;       // leaf or needle card length (> 0)
   uint32_t leavesPerTwig = 8;   // cards per last-level branch (≥ 1)
   float leafColour[3] = {0.09f, 0.16f, 0.06f};  // leaf albedo, linear RGB (modulated by the imagery)

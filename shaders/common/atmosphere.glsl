@@ -27,3 +27,4 @@ vec3 applyAerialPerspective(vec3 color, vec3 offset) {
   vec3 dir = normalize(offset);
   return mix(skyColor(dir), color, fogTransmittance(offset));
 }
+#include "sun_shadow.glsl"

@@ -11,4 +11,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 fog;           // x: extinction per metre at sea level, y: height falloff per metre, z: camera height (m MSL)
   vec4 viewport;      // xy: size in pixels, zw: 1 / size
   vec4 detail;        // xyz: camera position modulo the detail period (m, world-anchored tiling), w: detail strength 0 … 1
+  mat4 shadowMatrices[3];  // camera-relative → each sun shadow cascade's clip space (render/shadow_cascades.h)
+  vec4 shadowSplits;       // xyz: each cascade's far view distance (m), w: 1 when the shadow map holds this frame's casters
+  vec4 shadowTexel;        // xyz: each cascade's texel size (m)
 } frame;

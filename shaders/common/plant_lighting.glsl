@@ -40,6 +40,7 @@ vec3 plantColour(vec3 pos, vec3 normal, vec2 blade, vec3 ground, float modulatio
   vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.35;
   vec3 ii = frame.sunColor.rgb;
   vec3 r = reflect(-l, nLight);
+  ii *= sunShadow(pos, up);  // the trees' shadows (the planar ones of the blades themselves are drawn apart)
   vec3 lit = ia * ka + ii * (kd * max(ndl, 0.0) + ks * pow(max(dot(v, r), 0.0), 32.0));
   float ndlFace = dot(n, l);  // translucency goes through the blade's own face
   if (ndlFace < 0.0 && kind == kPlantKindBlade) lit += ii * kt * (-ndlFace) * exp(kPlantAttenuation / ndlFace);  // eq. 13

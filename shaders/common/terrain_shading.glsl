@@ -94,7 +94,7 @@ vec3 shadeTerrain(TerrainPoint p, TerrainImagery im) {
   }
   vec3 world = (frame.detail.xyz + p.offset) / detail.tiling.x;
   albedo *= detailFactor(base, ndvi, n, length(p.offset), world, p.offsetDx / detail.tiling.x, p.offsetDy / detail.tiling.x);
-  float sun = max(dot(n, frame.sunDirection.xyz), 0.0);
+  float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(p.offset, n);
   // Hemispherical sky light: full from above, half from the horizon.
   vec3 ambient = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * (0.5 + 0.5 * n.z) * 0.35;
   vec3 lit = albedo * (frame.sunColor.rgb * sun + ambient);

@@ -291,7 +291,7 @@ TEST(SpeciesCatalog, EachBadTreeNamesTheFileAndField) {
       {"bad leaf colour", [](json& t) { t["tree"]["leaf_colour"] = "green"; },
        "species[1].tree.leaf_colour: must be a colour"},
       {"tree typo", [](json& t) { t["tree"]["spacing"] = 3; }, "species[1].tree.spacing: unknown key"},
-      {"taper zero", [](json& t) { t["tree"]["taper"] = 0; }, "species[1].tree.taper: must be in 0.05 … 1"},
+      {"taper zero", [](json& t) { t["tree"]["taper"] = 0; }, "species[1].tree.taper: must be in 0.1 … 0.8"},
       {"density_m2 on a tree", [](json& t) { t["density_m2"] = 0.01; },
        "species[1].density_m2: not for trees (give tree.density_ha"},
       // The conifer-like density 180 per ha sets cells of 7.07 m: at most 4.94 m between trees.

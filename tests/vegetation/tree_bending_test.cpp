@@ -61,18 +61,18 @@ TEST(TreeBending, LeastSquaresFitReproducesTable41) {
   }
 }
 
-// The acceptance: the shape the shader bends with against the analytic deflection under a
-// static load, worst error over x in tip deflections. Met (< 1 %) for α = 0.1, 0.15, 0.3, 0.5;
-// NOT met for α = 0.2 (1.06 %), 0.8 (1.13 %), 1.0 (1.88 %), which are held to their measured
-// figures: with the tip fixed (c₂ + c₄ = 1) no c₂ does better (scanned below). The free-tip fit
-// (c₂ + c₄ ≠ 1 by up to 1 %) meets 1 % for every α < 1, and nothing near it does better; the
-// uniform beam (α = 1) stays at 1.62 %: the x², x⁴ basis lacks its x³ term.
+// The acceptance: the shape the models bend with (tree_model.cpp: the free-tip fit)
+// against the analytic deflection under a static load, worst error over x in tip deflections:
+// within 1 % for every taper the catalog allows (0.1 … 0.8). Outside it, refused by the catalog and
+// held to their measured figures: α = 0.05 (2.28 %), 0.9 (1.30 %), 1.0 (the uniform beam, 1.62 %:
+// the x², x⁴ basis lacks its x³ term). The tip-normalised fit (c₂ + c₄ = 1) misses 1 % at α = 0.2
+// (1.06 %) and 0.8 (1.13 %).
 TEST(TreeBending, NormalisedFitMatchesTheAnalyticBeam) {
   struct Case {
     double alpha, bound;
   };
-  for (const Case& c : {Case{0.1, 0.01}, Case{0.15, 0.01}, Case{0.2, 0.0107}, Case{0.3, 0.01}, Case{0.5, 0.01},
-                        Case{0.8, 0.0114}, Case{1.0, 0.0189}}) {
+  for (const Case& c : {Case{0.05, 0.0298}, Case{0.1, 0.01}, Case{0.15, 0.01}, Case{0.2, 0.0107}, Case{0.3, 0.01},
+                        Case{0.5, 0.01}, Case{0.8, 0.0114}, Case{0.9, 0.02}, Case{1.0, 0.0189}}) {
     const BeamFit fit = fitTaperedBeam(c.alpha);
     EXPECT_NEAR(fit.c2 + fit.c4, 1.0f, 1e-6f);
     const double error = beamFitMaxError(c.alpha, fit);
@@ -87,8 +87,9 @@ TEST(TreeBending, NormalisedFitMatchesTheAnalyticBeam) {
     // The free-tip fit: within 1 % below α = 1, the tip within 2 %, and optimal near it.
     const BeamFit free = fitTaperedBeamFreeTip(c.alpha);
     const double freeError = beamFitMaxError(c.alpha, free);
-    EXPECT_LT(freeError, c.alpha < 1.0 ? 0.01 : 0.0163) << c.alpha;
-    EXPECT_NEAR(free.c2 + free.c4, 1.0f, 0.02f) << c.alpha;
+    const bool allowed = c.alpha >= 0.1 && c.alpha <= 0.8;  // the catalog's taper range
+    EXPECT_LT(freeError, allowed ? 0.01 : (c.alpha < 0.1 ? 0.0229 : c.alpha < 1.0 ? 0.0131 : 0.0163)) << c.alpha;
+    EXPECT_NEAR(free.c2 + free.c4, 1.0f, allowed ? 0.02f : 0.03f) << c.alpha;
     double bestFree = 1e9;
     for (int i = -20; i <= 20; ++i)
       for (int j = -20; j <= 20; ++j)

@@ -126,7 +126,7 @@ TEST(TreeModel, BranchHierarchyIsConsistent) {
       ASSERT_FALSE(m.branches.empty());
       EXPECT_EQ(m.branches[0].parent, -1);
       EXPECT_EQ(m.branches[0].level, 0u);
-      const BeamFit fit = fitTaperedBeam(sp.params.taper);
+      const BeamFit fit = fitTaperedBeamFreeTip(sp.params.taper);
       for (size_t i = 0; i < m.branches.size(); ++i) {
         const TreeBranch& b = m.branches[i];
         levels.insert(b.level);
@@ -136,7 +136,7 @@ TEST(TreeModel, BranchHierarchyIsConsistent) {
         EXPECT_NEAR(glm::dot(t, r), 0.0f, 1e-5f);
         EXPECT_LT(glm::length(s - glm::cross(t, r)), 1e-5f);
         EXPECT_GT(b.length, 0.0f);
-        EXPECT_NEAR(b.c2 + b.c4, 1.0f, 1e-5f);
+        EXPECT_NEAR(b.c2 + b.c4, 1.0f, 0.02f);  // the free-tip fit: the tip within 2 %
         EXPECT_EQ(b.c2, fit.c2);
         EXPECT_NEAR(b.frequencyHz, 2.55f * std::pow(b.length, -0.59f), 1e-5f * b.frequencyHz);
         EXPECT_GT(b.compliance, 0.0f);

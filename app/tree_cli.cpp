@@ -1,0 +1,55 @@
+#include "app/tree_cli.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <CLI/CLI.hpp>
+
+namespace vegstream::app {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+constexpr double kMaxTreeHorizonM = 20000.0;  // as a species' horizon_m
+constexpr double kMaxTreeBudgetMb = 1e6;
+
+}  // namespace
+
+void addTreeOptions(CLI::App& cmd, TreeCli& out) {
+  cmd.add_option("--trees", out.trees, "Draw the catalog's trees: on or off (default on)");
+  cmd.add_option("--tree-horizon-m", out.horizonM,
+                 "How far trees are drawn, metres, at least the plants' horizon (default: the catalog's tree "
+                 "horizon, 3000 in the default catalog)");
+  cmd.add_option("--tree-budget-mb", out.budgetMb,
+                 "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "
+                 "fall back to the terrain's colour (default " +
+                     num(static_cast<double>(render::RendererOptions{}.treeBudgetBytes >> 20)) + ")");
+}
+
+Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& catalog) {
+  auto bad = [](const std::string& m) { return makeError(ErrorKind::InvalidInput, m); };
+  if (o.trees != "on" && o.trees != "off") return bad("--trees " + o.trees + ": must be on or off");
+  if (o.horizonM) {
+    const double plants = vegetation::farthestHorizon(catalog);
+    if (!(std::isfinite(*o.horizonM) && *o.horizonM <= kMaxTreeHorizonM))
+      return bad("--tree-horizon-m " + num(*o.horizonM) + ": must be a distance in metres, at most 20000");
+    if (*o.horizonM < plants)
+      return bad("--tree-horizon-m " + num(*o.horizonM) + ": shorter than the plants' horizon (" + num(plants) +
+                 " m)");
+  }
+  if (o.budgetMb && !(*o.budgetMb > 0.0 && *o.budgetMb <= kMaxTreeBudgetMb))
+    return bad("--tree-budget-mb " + num(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
+  return {};
+}
+
+void applyTreeOptions(const TreeCli& o, scene::SceneOptions& so) {
+  so.trees.enabled = o.trees == "on";
+  if (o.horizonM) so.trees.horizonM = *o.horizonM;
+  if (o.budgetMb) so.renderer.treeBudgetBytes = static_cast<uint64_t>(*o.budgetMb * 1024.0 * 1024.0);
+}
+
+}  // namespace vegstream::app

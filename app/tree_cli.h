@@ -1,0 +1,32 @@
+#pragma once
+// The tree options that `fly`, `record` and `snapshot` share (issue 20): --trees on|off,
+// --tree-horizon-m, --tree-budget-mb. One definition, so the commands spell and check them alike.
+
+#include <optional>
+#include <string>
+
+#include "core/result.h"
+#include "scene/scene.h"
+
+namespace CLI {
+class App;
+}
+
+namespace vegstream::app {
+
+struct TreeCli {
+  std::string trees = "on";                // --trees on|off
+  std::optional<double> horizonM;          // --tree-horizon-m M (default: the catalog's tree horizon)
+  std::optional<double> budgetMb;          // --tree-budget-mb MB, > 0 (default render::RendererOptions)
+};
+
+void addTreeOptions(CLI::App& cmd, TreeCli& out);
+
+// Checks the values against each other and the catalog: InvalidInput, one message naming the
+// option ("--tree-horizon-m 100: shorter than the plants' horizon (150 m)").
+Status checkTreeOptions(const TreeCli& cli, const vegetation::SpeciesCatalog& catalog);
+
+// Sets the scene's tree options (checked values).
+void applyTreeOptions(const TreeCli& cli, scene::SceneOptions& so);
+
+}  // namespace vegstream::app

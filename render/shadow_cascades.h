@@ -1,0 +1,41 @@
+#pragma once
+// Cascaded sun shadow maps (issue 20; Engel, "Cascaded Shadow Maps", ShaderX5 2006; Dimitrov,
+// "Cascaded Shadow Maps", NVIDIA 2007): the view is split by distance into kShadowCascades slices,
+// each covered by an orthographic map seen from the sun. Each cascade holds its slice's bounding
+// sphere (so its size does not change as the camera turns), and its centre is snapped to whole
+// texels in world-anchored coordinates (so the shadows do not shimmer as the camera moves).
+// Plain maths, no Vulkan: the frame uniforms carry the matrices to every pass that samples the
+// map (shaders/common/sun_shadow.glsl), the tree pass draws into it with the same matrices.
+
+#include <array>
+#include <cstdint>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace vegstream::render {
+
+struct Camera;
+
+inline constexpr int kShadowCascades = 3;
+
+struct ShadowCascades {
+  // Camera-relative position → the cascade's clip space: x, y in [−1, 1], depth 1 nearest the
+  // sun … 0 farthest (reverse-Z, as the frame).
+  std::array<glm::mat4, kShadowCascades> matrices{};
+  glm::vec4 splits{0.0f};  // xyz: each cascade's far view distance (m), w: 1 when shadows are on
+  std::array<float, kShadowCascades> texelM{};  // world size of one texel per cascade
+};
+
+struct ShadowSettings {
+  uint32_t mapSize = 1024;                                   // texels per side of each cascade
+  std::array<float, kShadowCascades> splitsM{50.0f, 250.0f, 1200.0f};  // far distances
+  float casterMarginM = 400.0f;  // how far towards the sun casters may stand outside a slice
+};
+
+// The cascades for `camera` (its position: the local ENU frame) lit from `towardsSun`.
+ShadowCascades shadowCascades(const Camera& camera, double aspect, const glm::dvec3& towardsSun,
+                              const ShadowSettings& settings);
+
+}  // namespace vegstream::render

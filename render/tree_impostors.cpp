@@ -1,0 +1,158 @@
+// Octahedral impostor capture (tree_impostors.h).
+#include "render/tree_impostors.h"
+
+#include <cassert>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "render/vk_check.h"
+
+namespace vegstream::render {
+namespace {
+
+constexpr VkFormat kAtlasFormat = VK_FORMAT_R8G8B8A8_UNORM;
+constexpr VkFormat kCaptureDepth = VK_FORMAT_D32_SFLOAT;
+
+ImageView layerView(const Context& ctx, const GpuImage& image, uint32_t layer, VkImageAspectFlags aspect) {
+  VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  ci.image = image.get();
+  ci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  ci.format = image.format;
+  ci.subresourceRange = {aspect, 0, 1, layer, 1};
+  VkImageView view = VK_NULL_HANDLE;
+  vkCheck(vkCreateImageView(ctx.device(), &ci, nullptr, &view), "vkCreateImageView(impostor layer)");
+  return ImageView(ctx.device(), view);
+}
+
+}  // namespace
+
+glm::vec3 impostorDirection(glm::vec2 uv) {
+  const glm::vec2 ab = uv * 2.0f - 1.0f;
+  const glm::vec2 p = glm::vec2(ab.x + ab.y, ab.x - ab.y) * 0.5f;
+  return glm::normalize(glm::vec3(p, 1.0f - std::abs(p.x) - std::abs(p.y)));
+}
+
+void impostorBasis(glm::vec3 d, glm::vec3& right, glm::vec3& up) {
+  const glm::vec3 r = glm::cross(glm::vec3(0.0f, 0.0f, 1.0f), d);
+  right = glm::dot(r, r) > 1e-6f ? glm::normalize(r) : glm::vec3(1.0f, 0.0f, 0.0f);
+  up = glm::cross(d, right);
+}
+
+glm::mat4 impostorCaptureMatrix(uint32_t i, uint32_t j, float centreZ, float halfExtent) {
+  const float g = static_cast<float>(kImpostorViews);
+  const glm::vec3 d = impostorDirection(glm::vec2((static_cast<float>(i) + 0.5f) / g, (static_cast<float>(j) + 0.5f) / g));
+  glm::vec3 right, up;
+  impostorBasis(d, right, up);
+  const glm::vec3 c(0.0f, 0.0f, centreZ);
+  const float inv = 1.0f / halfExtent;
+  glm::mat4 m(0.0f);  // rows: x = right, y = −up (Vulkan's y points down), z = depth towards the viewer
+  for (int k = 0; k < 3; ++k) {
+    m[k][0] = right[k] * inv;
+    m[k][1] = -up[k] * inv;
+    m[k][2] = 0.5f * d[k] * inv;
+  }
+  m[3][0] = -glm::dot(c, right) * inv;
+  m[3][1] = glm::dot(c, up) * inv;
+  m[3][2] = 0.5f - 0.5f * glm::dot(c, d) * inv;
+  m[3][3] = 1.0f;
+  return m;
+}
+
+TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorModel> models, const DrawModel& draw)
+    : ctx_(&ctx) {
+  assert(!models.empty());
+  const uint32_t side = kImpostorViews * kImpostorCellPx;
+  const VkExtent2D extent{side, side};
+  const auto layers = static_cast<uint32_t>(models.size());
+  const VkImageUsageFlags usage =
+      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  albedo_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor albedo");
+  normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth");
+  depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_SAMPLE_COUNT_1_BIT,
+                         "tree impostor capture depth");
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+    for (const GpuImage* img : {&albedo_, &normal_})
+      transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                           VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    std::vector<ImageView> views;
+    for (uint32_t layer = 0; layer < layers; ++layer) {
+      // The depth target is reused per layer: wait for the previous layer's tests.
+      transitionImage(cmd, depth_.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+      views.push_back(layerView(ctx, albedo_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
+      views.push_back(layerView(ctx, normal_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
+      VkRenderingAttachmentInfo colour[2]{};
+      for (int k = 0; k < 2; ++k) {
+        colour[k].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+        colour[k].imageView = views[views.size() - 2 + static_cast<size_t>(k)].get();
+        colour[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        colour[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        colour[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        colour[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+      }
+      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+      depth.imageView = depth_.view.get();
+      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: far
+      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+      ri.renderArea = {{0, 0}, extent};
+      ri.layerCount = 1;
+      ri.colorAttachmentCount = 2;
+      ri.pColorAttachments = colour;
+      ri.pDepthAttachment = &depth;
+      vkCmdBeginRendering(cmd, &ri);
+      for (uint32_t j = 0; j < kImpostorViews; ++j)
+        for (uint32_t i = 0; i < kImpostorViews; ++i) {
+          const float x = static_cast<float>(i * kImpostorCellPx), y = static_cast<float>(j * kImpostorCellPx);
+          const VkViewport vp{x, y, static_cast<float>(kImpostorCellPx), static_cast<float>(kImpostorCellPx), 0.0f, 1.0f};
+          const VkRect2D scissor{{static_cast<int32_t>(x), static_cast<int32_t>(y)}, {kImpostorCellPx, kImpostorCellPx}};
+          vkCmdSetViewport(cmd, 0, 1, &vp);
+          vkCmdSetScissor(cmd, 0, 1, &scissor);
+          draw(cmd, layer, impostorCaptureMatrix(i, j, models[layer].centreZ, models[layer].halfExtent));
+        }
+      vkCmdEndRendering(cmd);
+    }
+    for (const GpuImage* img : {&albedo_, &normal_})
+      transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  });
+}
+
+std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer) const {
+  const VkExtent2D e = albedo_.extent;
+  const VkDeviceSize bytes = VkDeviceSize{e.width} * e.height * 4;
+  GpuBuffer buffer = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+                                  "impostor read-back");
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1},
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                         VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};
+    region.imageExtent = {e.width, e.height, 1};
+    vkCmdCopyImageToBuffer(cmd, albedo_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
+    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1},
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  std::vector<uint8_t> out(static_cast<size_t>(bytes));
+  std::memcpy(out.data(), buffer.mapped, out.size());
+  return out;
+}
+
+}  // namespace vegstream::render

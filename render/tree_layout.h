@@ -1,0 +1,85 @@
+#pragma once
+// The trees' GPU data as plain data (issue 20): what scene/ hands the renderer (instances in pages,
+// the models) and what it gets back (TreeFigures). No Vulkan here; shaders/common/tree_layout.glsl
+// mirrors the GPU structs (std430 / std140) and the static_asserts keep the two in step.
+//
+// Trees live in a pool of pages of kTreePageSize instances on the GPU: scene/tree_field.h places
+// the trees of a world tile once (vegetation/tree_placement.h), gives the tile pages and uploads
+// them; only the per-page counts travel every frame. The classify pass (shaders/tree_classify.comp)
+// then culls every slot, picks each tree's level of detail (full model, reduced model, octahedral
+// impostor, nothing: the terrain's own colour) with dithered cross-fades between them, and appends
+// it to the indirect draws of its model (render/tree_pass.h).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vegetation/tree_model.h"
+
+namespace vegstream::render {
+
+// One tree, 32 bytes (std430). Position in the dataset's local ENU frame, float: 2 mm at 20 km
+// from the frame's origin, and trees are compared with a float camera position on the GPU.
+struct TreeInstanceGpu {
+  float position[3];  // root, m
+  uint32_t model;     // index into the models given to Renderer::setTreeModels
+  float heightM;      // this tree's height
+  float crownM;       // its crown width
+  uint32_t seed;      // Philox word: yaw, lean, branch angles, sway phases
+  float tint;         // colour factor (s′ of the species choice: a minority tree is paler)
+};
+static_assert(sizeof(TreeInstanceGpu) == 32);
+
+inline constexpr uint32_t kTreePageSize = 256;  // instances per page
+inline constexpr uint32_t kMaxTreeModels = 32;  // models in all (species × variants)
+inline constexpr uint32_t kTreeLods = 3;        // full, reduced, impostor
+
+// Copies `count` instances into page `page` before the frame draws; `instances` must stay alive
+// until submitFrame returns.
+struct TreePageUpload {
+  uint32_t page = 0;
+  uint32_t count = 0;
+  const TreeInstanceGpu* instances = nullptr;
+};
+
+// How far each level of detail reaches, in tree heights (so a tall tree keeps its model
+// farther), and where trees end. Each switch cross-fades over `fadeShare` of its distance.
+struct TreeLodDistances {
+  float fullHeights = 6.0f;      // full model up to 6 heights (90 m for a 15 m tree)
+  float reducedHeights = 20.0f;  // reduced model up to 20 heights, the impostor beyond
+  float horizonM = 3000.0f;      // impostors fade out to the terrain's own colour over the last fadeShare
+  float fadeShare = 0.15f;
+};
+
+// The trees of one frame; null in FrameRequest: none drawn.
+struct TreeRequest {
+  std::span<const TreePageUpload> uploads;
+  // Instances per page, for every page up to the highest in use (0: empty page). Must stay alive
+  // until submitFrame returns.
+  std::span<const uint32_t> pageCounts;
+  TreeLodDistances lod;
+  bool fades = true;   // false: hard switches (to show what the cross-fades hide)
+  bool shadows = true; // the trees cast into the cascaded sun shadow map
+  // Local ENU position of the camera (the instances' frame); the renderer's Camera is the same
+  // point, this gives it to the trees in their frame.
+  double cameraEnu[3] = {0.0, 0.0, 0.0};
+  float timeS = 0.0f;  // simulation time, for the sway
+};
+
+// One species' models as the scene built them (vegetation/tree_model.h): `variants` models each.
+struct TreeModelSet {
+  uint32_t species = 0;  // catalog index
+  vegetation::TreeParams params;
+  std::vector<vegetation::TreeModel> variants;
+};
+
+// What the trees did in one frame, read back after its fence.
+struct TreeFigures {
+  uint32_t pages = 0;      // pages classified
+  uint32_t instances = 0;  // trees in them
+  uint32_t full = 0, reduced = 0, impostor = 0;  // appended per level (a tree cross-fading counts in two)
+  uint32_t dropped = 0;    // appended past a list's capacity (not drawn)
+  bool gpuCounts = false;  // the counts above were read back
+};
+
+}  // namespace vegstream::render

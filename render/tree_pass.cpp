@@ -1,0 +1,459 @@
+// Trees on the GPU (tree_pass.h): models, pool, impostors, classify and draws.
+#include "render/tree_pass.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include "render/descriptors.h"
+#include "render/pipeline_builder.h"
+#include "render/render_targets.h"
+#include "render/tree_impostors.h"
+#include "shaders/tree.frag.h"
+#include "shaders/tree.vert.h"
+#include "shaders/tree_classify.comp.h"
+#include "shaders/tree_impostor.frag.h"
+#include "shaders/tree_impostor.vert.h"
+
+namespace vegstream::render {
+namespace {
+
+// shaders/common/tree_layout.glsl's TreeModelGpu and TreeBlock (std140: vec4 members only).
+struct TreeModelGpu {
+  glm::uvec4 mesh0, mesh1;
+  glm::vec4 shape, leaf, bark;
+};
+struct TreeBlock {
+  glm::vec4 camera, lod;
+  glm::vec4 frustum[6];
+  glm::uvec4 counts, capacity;
+  glm::vec4 shadow;
+  TreeModelGpu models[kMaxTreeModels];
+};
+static_assert(sizeof(TreeModelGpu) == 80);
+static_assert(offsetof(TreeBlock, counts) == 128);
+static_assert(offsetof(TreeBlock, models) == 176);
+
+// shaders/common/tree_push.glsl.
+struct TreePush {
+  glm::mat4 capture;
+  uint32_t model, lod, mode, samples;
+};
+static_assert(sizeof(TreePush) == 80);
+
+constexpr uint32_t kCounters = 8;
+constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
+constexpr VkDeviceSize kDrawCommand = 4 * sizeof(uint32_t);
+constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
+
+// Camera-relative frustum planes of a Vulkan clip space (Gribb & Hartmann), normalised.
+void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
+  const auto row = [&](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+  const glm::dvec4 planes[6] = {row(3) + row(0), row(3) - row(0), row(3) + row(1),
+                                row(3) - row(1), row(2),          row(3) - row(2)};
+  for (int p = 0; p < 6; ++p) {
+    const double len = glm::length(glm::dvec3(planes[p]));
+    out[p] = glm::vec4(planes[p] / (len > 0.0 ? len : 1.0));
+  }
+}
+
+}  // namespace
+
+TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
+    : ctx_(&ctx), samples_(samples) {
+  const VkShaderStageFlags all = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr}};
+  for (uint32_t b = 1; b <= 7; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr});
+  for (uint32_t b = 8; b <= 9; ++b)
+    bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  setLayout_ = createLayout(ctx, bindings, "tree set layout");
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots}};
+  pool_ = createPool(ctx, sizes, kSlots, "tree pool");
+  for (size_t i = 0; i < sets_.size(); ++i)
+    sets_[i] = allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "tree set (slot " + std::to_string(i) + ")");
+  sampler_ = createLinearClampSampler(ctx, "tree impostor sampler");
+  createPipelines(frameLayout);
+}
+
+TreePass::~TreePass() = default;
+
+void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
+  const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
+  const VkPushConstantRange classifyPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
+  classifyLayout_ = createPipelineLayout(*ctx_, sets, {&classifyPush, 1}, "tree classify layout");
+  classifyPipeline_ = createComputePipeline(*ctx_, classifyLayout_.get(), spv_tree_classify_comp, "tree classify");
+  const VkPushConstantRange drawPush{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TreePush)};
+  drawLayout_ = createPipelineLayout(*ctx_, sets, {&drawPush, 1}, "tree draw layout");
+
+  GraphicsPipelineDesc mesh;
+  mesh.name = "tree pipeline";
+  mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
+  mesh.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  mesh.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
+                     {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
+                     {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
+                     {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+  mesh.cullMode = VK_CULL_MODE_NONE;  // cards are seen from both sides
+  mesh.samples = samples_;
+  mesh.colorFormat = kColorFormat;
+  mesh.depthFormat = kDepthFormat;
+  mesh.layout = drawLayout_.get();
+  meshPipeline_ = createGraphicsPipeline(*ctx_, mesh);
+
+  GraphicsPipelineDesc impostor = mesh;
+  impostor.name = "tree impostor pipeline";
+  impostor.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_impostor_vert},
+                     {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_impostor_frag}};
+  impostor.bindings.clear();
+  impostor.attributes.clear();
+  impostorPipeline_ = createGraphicsPipeline(*ctx_, impostor);
+
+  // Depth only into a shadow cascade: one sample, no colour, a bias away from the sun.
+  for (GraphicsPipelineDesc* d : {&mesh, &impostor}) {
+    d->name = d == &mesh ? "tree shadow pipeline" : "tree impostor shadow pipeline";
+    d->samples = VK_SAMPLE_COUNT_1_BIT;
+    d->colorFormat = VK_FORMAT_UNDEFINED;
+    d->depthFormat = VK_FORMAT_D32_SFLOAT;
+    d->depthBias = true;
+  }
+  shadowMeshPipeline_ = createGraphicsPipeline(*ctx_, mesh);
+  shadowImpostorPipeline_ = createGraphicsPipeline(*ctx_, impostor);
+}
+
+bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet) {
+  vkDeviceWaitIdle(ctx_->device());
+  models_.clear();
+  modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
+  pageCapacity_ = 0;
+  std::vector<vegetation::TreeVertex> vertices;
+  std::vector<uint32_t> indices;
+  std::vector<vegetation::TreeBranch> branches;
+  std::vector<TreeImpostorModel> impostorModels;
+  auto* gpuModels = reinterpret_cast<TreeModelGpu*>(modelBlock_.data());
+  for (const TreeModelSet& set : sets)
+    for (const vegetation::TreeModel& model : set.variants) {
+      if (models_.size() == kMaxTreeModels) break;
+      const auto m = static_cast<uint32_t>(models_.size());
+      ModelDraw draw{};
+      for (int lod = 0; lod < 2; ++lod) {
+        draw.firstIndex[lod] = static_cast<uint32_t>(indices.size());
+        draw.indexCount[lod] = static_cast<uint32_t>(model.lod[lod].indices.size());
+        draw.vertexOffset[lod] = static_cast<uint32_t>(vertices.size());
+        indices.insert(indices.end(), model.lod[lod].indices.begin(), model.lod[lod].indices.end());
+        vertices.insert(vertices.end(), model.lod[lod].vertices.begin(), model.lod[lod].vertices.end());
+      }
+      // The impostor's square holds the model seen from any direction: its bounding sphere
+      // about the centre.
+      const float centreZ = 0.5f * model.modelHeightM;
+      float radius = 0.0f;
+      for (const auto& v : model.lod[0].vertices)
+        radius = std::max(radius, glm::length(glm::vec3(v.position[0], v.position[1], v.position[2] - centreZ)));
+      impostorModels.push_back({centreZ, 1.02f * radius});
+      TreeModelGpu& g = gpuModels[m];
+      g.mesh0 = {draw.firstIndex[0], draw.indexCount[0], draw.vertexOffset[0], static_cast<uint32_t>(branches.size())};
+      g.mesh1 = {draw.firstIndex[1], draw.indexCount[1], draw.vertexOffset[1], m};
+      g.shape = {model.modelHeightM, std::max(model.crownRadiusM, 0.1f), 1.02f * radius, centreZ};
+      g.leaf = {set.params.leafColour[0], set.params.leafColour[1], set.params.leafColour[2], set.params.translucency};
+      g.bark = {set.params.barkColour[0], set.params.barkColour[1], set.params.barkColour[2],
+                set.params.form == vegetation::TreeForm::Broadleaf ? 1.0f : 0.0f};
+      branches.insert(branches.end(), model.branches.begin(), model.branches.end());
+      models_.push_back(draw);
+    }
+  if (models_.empty()) return false;
+  const auto count = static_cast<uint32_t>(models_.size());
+
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  vertices_ = createBufferWithData(*ctx_, vertices.data(), vertices.size() * sizeof(vertices[0]),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "tree vertices");
+  indices_ = createBufferWithData(*ctx_, indices.data(), indices.size() * sizeof(uint32_t),
+                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "tree indices");
+  branches_ = createBufferWithData(*ctx_, branches.data(), branches.size() * sizeof(branches[0]), storage,
+                                   "tree branches");
+  uint64_t fixed = vertices_.size + indices_.size + branches_.size;
+  if (fixed > budgetBytes) return false;
+
+  // Visible lists: per model the trees it may draw at each level (a cross-fading tree in two).
+  capacity_ = {2048u, 8192u, 65536u};
+  const VkDeviceSize visibleBytes =
+      VkDeviceSize{count} * (capacity_[0] + capacity_[1] + capacity_[2]) * sizeof(glm::uvec4);
+  visible_ = createBuffer(*ctx_, visibleBytes, storage, MemoryUse::DeviceLocal, "tree visible lists");
+  // The draws and their per-frame template (instance counts 0, firsts at the regions).
+  std::vector<uint32_t> tmpl;
+  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
+  for (uint32_t m = 0; m < count; ++m)
+    for (int lod = 0; lod < 2; ++lod) {
+      const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
+      tmpl.insert(tmpl.end(), {models_[m].indexCount[lod], 0u, models_[m].firstIndex[lod],
+                               models_[m].vertexOffset[lod], base});
+    }
+  for (uint32_t m = 0; m < count; ++m) tmpl.insert(tmpl.end(), {6u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
+  drawTemplate_ = createBufferWithData(*ctx_, tmpl.data(), tmpl.size() * sizeof(uint32_t),
+                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "tree draw template");
+  const VkBufferUsageFlags draws =
+      storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  meshDraws_ = createBuffer(*ctx_, count * 2 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
+  impostorDraws_ = createBuffer(*ctx_, count * kDrawCommand, draws, MemoryUse::DeviceLocal, "tree impostor draws");
+  counters_ = createBuffer(*ctx_, kCounters * sizeof(uint32_t),
+                           storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           MemoryUse::DeviceLocal, "tree counters");
+
+  // The impostors, captured with the model pipeline in capture mode (2 attachments, 1 sample).
+  GraphicsPipelineDesc capture;
+  capture.name = "tree impostor capture pipeline";
+  capture.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
+  capture.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  capture.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
+                        {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
+                        {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
+                        {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+  capture.cullMode = VK_CULL_MODE_NONE;
+  capture.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  capture.colorAttachments = 2;
+  capture.depthFormat = VK_FORMAT_D32_SFLOAT;
+  capture.layout = drawLayout_.get();
+  Pipeline capturePipeline = createGraphicsPipeline(*ctx_, capture);
+
+  // Per-slot host buffers; the pool from what the budget leaves.
+  for (int s = 0; s < kSlots; ++s) {
+    uniforms_[size_t(s)] = createBuffer(*ctx_, sizeof(TreeBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                        MemoryUse::HostUpload, "tree block (slot " + std::to_string(s) + ")");
+    readback_[size_t(s)] = createBuffer(*ctx_, kCounters * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        MemoryUse::HostReadback, "tree counters read-back");
+    slotRecorded_[size_t(s)] = false;
+  }
+  fixed += visibleBytes + drawTemplate_.size + meshDraws_.size + impostorDraws_.size;
+  fixed += VkDeviceSize{count} * 2 * kImpostorViews * kImpostorCellPx * kImpostorViews * kImpostorCellPx * 4 +
+           VkDeviceSize{kImpostorViews} * kImpostorCellPx * kImpostorViews * kImpostorCellPx * 4;
+  const uint64_t pageBytes = uint64_t{kTreePageSize} * sizeof(TreeInstanceGpu) + kSlots * sizeof(uint32_t);
+  if (fixed >= budgetBytes) return false;
+  pageCapacity_ = static_cast<uint32_t>(std::min<uint64_t>((budgetBytes - fixed) / pageBytes, kMaxPages));
+  if (pageCapacity_ == 0) return false;
+  instances_ = createBuffer(*ctx_, VkDeviceSize{pageCapacity_} * kTreePageSize * sizeof(TreeInstanceGpu),
+                            storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::DeviceLocal, "tree instances");
+  for (int s = 0; s < kSlots; ++s) {
+    pageCounts_[size_t(s)] = createBuffer(*ctx_, VkDeviceSize{pageCapacity_} * sizeof(uint32_t),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                                          "tree page counts (slot " + std::to_string(s) + ")");
+    std::memset(pageCounts_[size_t(s)].mapped, 0, pageCounts_[size_t(s)].size);
+    slotPages_[size_t(s)] = 0;
+  }
+
+  // Every slot's set (the atlas bindings first need an atlas: captured below with set 0).
+  const auto writeSet = [&](size_t s) {
+    const VkDescriptorSet set = sets_[s];
+    writeUniformBuffer(*ctx_, set, uniforms_[s].get(), sizeof(TreeBlock), 0);
+    writeStorageBuffer(*ctx_, set, instances_.get(), 1);
+    writeStorageBuffer(*ctx_, set, visible_.get(), 2);
+    writeStorageBuffer(*ctx_, set, branches_.get(), 3);
+    writeStorageBuffer(*ctx_, set, pageCounts_[s].get(), 4);
+    writeStorageBuffer(*ctx_, set, meshDraws_.get(), 5);
+    writeStorageBuffer(*ctx_, set, impostorDraws_.get(), 6);
+    writeStorageBuffer(*ctx_, set, counters_.get(), 7);
+  };
+  // The capture reads the models from slot 0's block.
+  auto* block0 = static_cast<TreeBlock*>(uniforms_[0].mapped);
+  std::memset(block0, 0, sizeof(TreeBlock));
+  std::memcpy(block0->models, modelBlock_.data(), modelBlock_.size());
+  writeSet(0);
+  // A placeholder atlas for the capture's own set (the capture does not sample it).
+  GpuImage placeholder = createImageArray(*ctx_, {1, 1}, 1, VK_FORMAT_R8G8B8A8_UNORM,
+                                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                          "tree atlas placeholder");
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImageRange(cmd, placeholder.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  });
+  writeSampledImage(*ctx_, sets_[0], sampler_.get(), placeholder.view.get(), 8);
+  writeSampledImage(*ctx_, sets_[0], sampler_.get(), placeholder.view.get(), 9);
+  impostors_ = std::make_unique<TreeImpostors>(
+      *ctx_, impostorModels, [&](VkCommandBuffer cmd, uint32_t m, const glm::mat4& matrix) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, capturePipeline.get());
+        const VkDescriptorSet bound[] = {frameSet, sets_[0]};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+        const VkDeviceSize offset = 0;
+        const VkBuffer vb = vertices_.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+        const TreePush push{matrix, m, 0u, 2u, 1u};
+        vkCmdPushConstants(cmd, drawLayout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        vkCmdDrawIndexed(cmd, models_[m].indexCount[0], 1, models_[m].firstIndex[0],
+                         static_cast<int32_t>(models_[m].vertexOffset[0]), 0);
+      });
+  for (size_t s = 0; s < sets_.size(); ++s) {
+    writeSet(s);
+    writeSampledImage(*ctx_, sets_[s], sampler_.get(), impostors_->albedo().view.get(), 8);
+    writeSampledImage(*ctx_, sets_[s], sampler_.get(), impostors_->normalDepth().view.get(), 9);
+  }
+  return true;
+}
+
+uint64_t TreePass::gpuBytes() const {
+  uint64_t bytes = vertices_.size + indices_.size + branches_.size + instances_.size + visible_.size +
+                   meshDraws_.size + impostorDraws_.size + drawTemplate_.size + counters_.size;
+  for (const auto& b : pageCounts_) bytes += b.size;
+  for (const auto& b : staging_) bytes += b.size;
+  if (impostors_) bytes += impostors_->gpuBytes();
+  return bytes;
+}
+
+void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
+                              const glm::dmat4& viewProj, float shadowMarginM, const RetireBuffer& retire) {
+  const auto s = static_cast<size_t>(slot);
+  slotRecorded_[s] = false;
+  if (models_.empty() || pageCapacity_ == 0) return;
+  // Page uploads through the slot's staging buffer (its previous frame has finished).
+  VkDeviceSize uploadBytes = 0;
+  for (const TreePageUpload& u : request.uploads)
+    if (u.page < pageCapacity_) uploadBytes += VkDeviceSize{u.count} * sizeof(TreeInstanceGpu);
+  if (uploadBytes > 0) {
+    if (staging_[s].size < uploadBytes) {
+      if (staging_[s].size > 0) retire(std::move(staging_[s]));
+      staging_[s] = createBuffer(*ctx_, grownSize(uploadBytes), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 MemoryUse::HostUpload, "tree page staging");
+    }
+    std::vector<VkBufferCopy> copies;
+    VkDeviceSize at = 0;
+    for (const TreePageUpload& u : request.uploads) {
+      if (u.page >= pageCapacity_ || u.count == 0) continue;
+      const VkDeviceSize bytes = VkDeviceSize{std::min(u.count, kTreePageSize)} * sizeof(TreeInstanceGpu);
+      std::memcpy(static_cast<uint8_t*>(staging_[s].mapped) + at, u.instances, static_cast<size_t>(bytes));
+      copies.push_back({at, VkDeviceSize{u.page} * kTreePageSize * sizeof(TreeInstanceGpu), bytes});
+      at += bytes;
+    }
+    // Earlier frames' draws read the pool: their vertex stages finish before the copy writes.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdCopyBuffer(cmd, staging_[s].get(), instances_.get(), static_cast<uint32_t>(copies.size()), copies.data());
+  }
+  const auto pages = static_cast<uint32_t>(std::min<size_t>(request.pageCounts.size(), pageCapacity_));
+  auto* counts = static_cast<uint32_t*>(pageCounts_[s].mapped);
+  std::memcpy(counts, request.pageCounts.data(), pages * sizeof(uint32_t));
+  slotPages_[s] = pages;
+
+  auto* block = static_cast<TreeBlock*>(uniforms_[s].mapped);
+  block->camera = glm::vec4(static_cast<float>(request.cameraEnu[0]), static_cast<float>(request.cameraEnu[1]),
+                            static_cast<float>(request.cameraEnu[2]), request.timeS);
+  block->lod = {request.lod.fullHeights, request.lod.reducedHeights, request.lod.horizonM, request.lod.fadeShare};
+  frustumPlanes(viewProj, block->frustum);
+  block->counts = {pages * kTreePageSize, static_cast<uint32_t>(models_.size()), request.fades ? 1u : 0u,
+                   kImpostorViews};
+  block->capacity = {capacity_[0], capacity_[1], capacity_[2], 0u};
+  block->shadow = glm::vec4(shadowMarginM, 0.0f, 0.0f, 0.0f);
+  std::memcpy(block->models, modelBlock_.data(), modelBlock_.size());
+
+  // Reset the draws and counters, classify, clamp.
+  const VkBufferCopy meshCopy{0, 0, meshDraws_.size};
+  const VkBufferCopy impostorCopy{meshDraws_.size, 0, impostorDraws_.size};
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  vkCmdCopyBuffer(cmd, drawTemplate_.get(), meshDraws_.get(), 1, &meshCopy);
+  vkCmdCopyBuffer(cmd, drawTemplate_.get(), impostorDraws_.get(), 1, &impostorCopy);
+  vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipeline_.get());
+  const VkDescriptorSet bound[] = {frameSet, sets_[s]};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyLayout_.get(), 0, 2, bound, 0, nullptr);
+  uint32_t mode = 0;
+  vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(mode), &mode);
+  if (pages > 0) vkCmdDispatch(cmd, pages, 1, 1);  // 256 threads = one page per group
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  mode = 1;
+  vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(mode), &mode);
+  vkCmdDispatch(cmd, (static_cast<uint32_t>(models_.size()) + 255) / 256, 1, 1);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_COPY_BIT,
+                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                    VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy countersCopy{0, 0, kCounters * sizeof(uint32_t)};
+  vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &countersCopy);
+  hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  slotRecorded_[s] = true;
+}
+
+void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) {
+  const auto s = static_cast<size_t>(slot);
+  if (!slotRecorded_[s]) return;
+  const VkDescriptorSet bound[] = {frameSet, sets_[s]};
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+  const VkDeviceSize offset = 0;
+  const VkBuffer vb = vertices_.get();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+  for (uint32_t m = 0; m < models_.size(); ++m)
+    for (uint32_t lod = 0; lod < 2; ++lod) {
+      const TreePush push{glm::mat4(1.0f), m, lod, 0u, static_cast<uint32_t>(samples_)};
+      vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
+      vkCmdDrawIndexedIndirect(cmd, meshDraws_.get(), (m * 2 + lod) * kIndexedCommand, 1,
+                               static_cast<uint32_t>(kIndexedCommand));
+    }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, impostorPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+  for (uint32_t m = 0; m < models_.size(); ++m) {
+    const TreePush push{glm::mat4(1.0f), m, 2u, 0u, static_cast<uint32_t>(samples_)};
+    vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
+    vkCmdDrawIndirect(cmd, impostorDraws_.get(), m * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
+  }
+}
+
+void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& cascade) {
+  const auto s = static_cast<size_t>(slot);
+  if (!slotRecorded_[s]) return;
+  const VkDescriptorSet bound[] = {frameSet, sets_[s]};
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  // Reverse-Z: away from the sun is towards 0.
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowMeshPipeline_.get());
+  vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+  const VkDeviceSize offset = 0;
+  const VkBuffer vb = vertices_.get();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+  for (uint32_t m = 0; m < models_.size(); ++m)
+    for (uint32_t lod = 0; lod < 2; ++lod) {
+      const TreePush push{cascade, m, lod, 1u, 1u};
+      vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
+      vkCmdDrawIndexedIndirect(cmd, meshDraws_.get(), (m * 2 + lod) * kIndexedCommand, 1,
+                               static_cast<uint32_t>(kIndexedCommand));
+    }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
+  vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+  for (uint32_t m = 0; m < models_.size(); ++m) {
+    const TreePush push{cascade, m, 2u, 1u, 1u};
+    vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
+    vkCmdDrawIndirect(cmd, impostorDraws_.get(), m * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
+  }
+}
+
+TreeFigures TreePass::figures(int slot) const {
+  TreeFigures f;
+  const auto s = static_cast<size_t>(slot);
+  if (!slotRecorded_[s]) return f;
+  const auto* c = static_cast<const uint32_t*>(readback_[s].mapped);
+  f.pages = slotPages_[s];
+  f.instances = c[0];
+  f.full = c[1];
+  f.reduced = c[2];
+  f.impostor = c[3];
+  f.dropped = c[4];
+  f.gpuCounts = true;
+  return f;
+}
+
+}  // namespace vegstream::render

@@ -1,0 +1,92 @@
+#pragma once
+// Trees on the GPU (issue 20): the models (every species' variants, both mesh levels, one vertex,
+// index and branch buffer), the instance pool in pages (render/tree_layout.h), the octahedral
+// impostor atlas (render/tree_impostors.h), and per frame the classify dispatch
+// (shaders/tree_classify.comp: cull, level of detail, cross-fade, appends to indirect draws) and
+// the draws: per model one indexed indirect draw per mesh level and one impostor draw.
+//
+// Memory is fixed when the models are set: the pool holds as many pages as the tree budget leaves
+// after the models, the atlas and the visible lists; the scene gives tiles pages while there are
+// any (scene/tree_field.h), and far tiles without pages are simply not drawn (the terrain's own
+// colour shows there).
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "render/context.h"
+#include "render/gpu_resources.h"
+#include "render/handle.h"
+#include "render/tree_layout.h"
+
+namespace vegstream::render {
+
+class TreeImpostors;
+
+class TreePass {
+ public:
+  static constexpr int kSlots = 3;
+
+  TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+  ~TreePass();
+
+  // Uploads the models, captures their impostors and sizes the pool from `budgetBytes` (the
+  // models, atlas and lists first; what is left is pages). Waits for the GPU. Returns false when
+  // the budget does not even hold the models (then no trees are drawn). `frameSet`: any frame
+  // slot's set 0 (the capture's shaders declare it).
+  bool setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet);
+  uint32_t pageCapacity() const { return pageCapacity_; }
+  uint32_t modelCount() const { return static_cast<uint32_t>(models_.size()); }
+  uint64_t gpuBytes() const;
+
+  using RetireBuffer = std::function<void(GpuBuffer&&)>;
+  // Outside rendering: page uploads, then the classify dispatch (needs set 0's simulation block).
+  // `shadowMarginM`: trees this far outside the view still classify (they cast into it; 0 without
+  // shadows).
+  void recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
+                      const glm::dmat4& viewProj, float shadowMarginM, const RetireBuffer& retire);
+  // Inside rendering (colour target of `samples`), after recordClassify.
+  void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
+  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the same trees,
+  // depth only, through the cascade's matrix; impostors turn to the sun.
+  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& cascade);
+  // The figures of the frame last recorded in `slot`, once its fence has signalled.
+  TreeFigures figures(int slot) const;
+
+  // The impostor atlas (tests): layer per model, RGBA8 albedo + coverage.
+  const TreeImpostors* impostors() const { return impostors_.get(); }
+
+ private:
+  struct ModelDraw {
+    uint32_t firstIndex[2], indexCount[2], vertexOffset[2];
+  };
+  void createPipelines(VkDescriptorSetLayout frameLayout);
+
+  const Context* ctx_;
+  VkSampleCountFlagBits samples_;
+  DescriptorSetLayout setLayout_;
+  DescriptorPool pool_;
+  std::array<VkDescriptorSet, kSlots> sets_{};
+  PipelineLayout classifyLayout_, drawLayout_;
+  Pipeline classifyPipeline_, meshPipeline_, impostorPipeline_, shadowMeshPipeline_, shadowImpostorPipeline_;
+  Sampler sampler_;
+
+  std::vector<ModelDraw> models_;
+  GpuBuffer vertices_, indices_, branches_;
+  GpuBuffer instances_, visible_, meshDraws_, impostorDraws_, drawTemplate_, counters_;
+  std::array<GpuBuffer, kSlots> uniforms_, pageCounts_, staging_, readback_;
+  std::unique_ptr<TreeImpostors> impostors_;
+  std::vector<uint8_t> modelBlock_;  // the models' part of the TreeBlock, packed once
+  uint32_t pageCapacity_ = 0;
+  std::array<uint32_t, 3> capacity_{};  // visible entries per model and level
+  std::array<uint32_t, kSlots> slotPages_{};
+  std::array<bool, kSlots> slotRecorded_{};
+};
+
+}  // namespace vegstream::render

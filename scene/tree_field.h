@@ -1,0 +1,76 @@
+#pragma once
+// The trees around the camera (issue 20): world tiles of the tree grid's cells
+// (vegetation/tree_placement.h) within the tree horizon, placed once each — view-independent:
+// a tile's trees depend only on the ground — and given pages of the renderer's tree pool
+// (render/tree_layout.h), nearest tiles first. Budgets as cesium-native's tile loads: a tile
+// that leaves the horizon frees its pages; when the pool is full, the farthest tiles give theirs
+// to nearer ones, and the tiles left without pages are not drawn (the terrain's own colour shows
+// there; `budgetBound` says so). Settled frames place every wanted tile before drawing
+// (deterministic); realtime frames place at most `placementsPerFrame`, nearest first.
+
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/tree_layout.h"
+#include "vegetation/species_catalog.h"
+#include "vegetation/tree_placement.h"
+
+namespace vegstream::scene {
+
+struct TreeFieldOptions {
+  render::TreeLodDistances lod;  // lod.horizonM: where trees end
+  uint32_t tileCells = 48;       // a tile is tileCells × tileCells grid cells
+  uint32_t placementsPerFrame = 2;
+  bool fades = true;
+};
+
+struct TreeFieldFigures {
+  uint32_t tilesWanted = 0, tilesDrawn = 0;  // within the horizon; with pages
+  uint64_t treesDrawn = 0;                   // trees in the tiles with pages
+  uint32_t pagesUsed = 0, pageCapacity = 0;
+  uint32_t placed = 0;       // tiles placed this frame
+  double placementMs = 0.0;  // their cost
+  bool budgetBound = false;  // a wanted tile had no page: far trees fall back to the terrain's colour
+};
+
+class TreeField {
+ public:
+  // `firstModel[s]`: the renderer's first model of catalog species s, with `variants` each.
+  TreeField(const vegetation::SpeciesCatalog& catalog, vegetation::TreeGroundAt ground, const TreeFieldOptions& options,
+            std::vector<uint32_t> firstModel, uint32_t variants, uint32_t pageCapacity);
+
+  // The trees of a frame for a camera at `cameraEnu` (the local frame); valid until the next call.
+  const render::TreeRequest& prepare(const glm::dvec3& cameraEnu, bool settled);
+  const TreeFieldFigures& figures() const { return figures_; }
+  const vegetation::TreeGrid& grid() const { return grid_; }
+
+ private:
+  using TileKey = std::pair<int32_t, int32_t>;
+  struct Tile {
+    std::vector<render::TreeInstanceGpu> trees;
+    std::vector<uint32_t> pages;  // empty: not drawn
+    bool placed = false;
+  };
+  void place(const TileKey& key, Tile& tile);
+  void freePages(Tile& tile);
+
+  const vegetation::SpeciesCatalog* catalog_;
+  vegetation::TreeGroundAt ground_;
+  TreeFieldOptions options_;
+  vegetation::TreeGrid grid_;
+  std::vector<uint32_t> firstModel_;
+  uint32_t variants_;
+  std::map<TileKey, Tile> tiles_;
+  std::vector<uint32_t> freePages_;
+  std::vector<uint32_t> pageCounts_;
+  std::vector<render::TreePageUpload> uploads_;
+  render::TreeRequest request_;
+  TreeFieldFigures figures_;
+  std::vector<vegetation::PlacedTree> scratch_;
+};
+
+}  // namespace vegstream::scene

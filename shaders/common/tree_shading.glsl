@@ -1,0 +1,58 @@
+#ifndef TREE_SHADING_GLSL
+#define TREE_SHADING_GLSL
+// How tree fragments look (issue 20), shared by the models (tree.frag) and the impostors
+// (tree_impostor.frag): the cards' procedural outlines, alpha to coverage computed into the
+// sample mask (as plant.frag: the fixed-function path resolves to wrong colours on lavapipe), and
+// the lighting — ambient + Lambert for bark and the lit side of leaves, and for leaves lit from
+// behind the sun through the leaf (seed 002 §3.3: L_t, here with a constant average translucency
+// ρ_t per species instead of the measured maps and the multi-dipole). Needs frame_uniforms.glsl
+// and atmosphere.glsl.
+
+const float kTreeImageryExposure = 1.6;
+
+// A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
+// needles, narrowing to the tip; broadleaf: a clump of three leaves.
+float treeCardShape(vec2 uv, float form) {
+  if (form < 0.5) {
+    float across = abs(uv.x - 0.5) * 2.0;
+    float width = 1.0 - 0.55 * uv.y;
+    float needles = 0.5 + 0.5 * sin((uv.y * 9.0 + across * 3.0) * 6.2831853);
+    float inside = width - across;
+    return clamp(inside * 6.0, 0.0, 1.0) * mix(0.55, 1.0, needles) * smoothstep(0.0, 0.08, uv.y);
+  }
+  float a = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    float ang = 1.0 + 2.0944 * float(i);
+    vec2 c = vec2(0.5, 0.5) + 0.22 * vec2(cos(ang), sin(ang));
+    vec2 axis = normalize(c - vec2(0.5, 0.35));
+    vec2 q = uv - c;
+    vec2 e = vec2(dot(q, axis), dot(q, vec2(-axis.y, axis.x))) / vec2(0.28, 0.16);
+    a = max(a, 1.0 - dot(e, e));
+  }
+  return clamp(a * 4.0, 0.0, 1.0);
+}
+
+// k of the n samples for coverage `alpha`, rotated and dithered per pixel (plant.frag's scheme);
+// 0 when nothing covers.
+uint treeSampleMask(float alpha, uint samples, float dither) {
+  samples = max(samples, 1u);
+  uint k = min(uint(alpha * float(samples) + dither), samples);
+  if (k == 0u) return 0u;
+  uint first = uint(dither * 16.0) % samples;
+  uint bits = k >= 32u ? 0xffffffffu : (1u << k) - 1u;
+  return ((bits << first) | (bits >> (samples - first))) & (samples >= 32u ? 0xffffffffu : (1u << samples) - 1u);
+}
+
+// pos: camera-relative; n: the face's unit normal towards the viewer; leaf: a card (else bark);
+// occlusion: 0 deep in the crown … 1 at its surface.
+vec3 treeLight(vec3 pos, vec3 n, vec3 albedo, float translucency, bool leaf, float occlusion) {
+  vec3 l = frame.sunDirection.xyz;
+  float ndl = dot(n, l);
+  vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.4;
+  vec3 ii = frame.sunColor.rgb * sunShadow(pos, n);
+  vec3 kd = albedo * kTreeImageryExposure * mix(0.35, 1.0, occlusion);
+  vec3 lit = ia * kd + ii * kd * max(ndl, 0.0);
+  if (leaf && ndl < 0.0) lit += ii * kd * vec3(0.9, 1.0, 0.5) * translucency * (-ndl);  // through the leaf
+  return applyAerialPerspective(lit, pos);
+}
+#endif

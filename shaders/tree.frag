@@ -1,0 +1,55 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Tree models' fragments (issue 20): bark and leaf or needle cards (their outline procedural, in
+// the card's uv), the level-of-detail cross-fade as a dither (common/tree_layout.glsl), alpha to
+// coverage into the sample mask, and the lighting of common/tree_shading.glsl. Capture modes write
+// what the impostors keep (mode 2): albedo (darkened by the crown's occlusion) and coverage, and the
+// model-space normal and depth.
+#include "common/frame_uniforms.glsl"
+#include "common/atmosphere.glsl"
+#include "common/tree_layout.glsl"
+#include "common/tree_push.glsl"
+#include "common/tree_shading.glsl"
+
+layout(location = 0) in vec3 vPos;
+layout(location = 1) in vec3 vNormal;
+layout(location = 2) in vec2 vUv;
+layout(location = 3) flat in uint vKind;
+layout(location = 4) flat in float vThreshold;
+layout(location = 5) flat in uint vInstance;
+layout(location = 6) in float vOcclusion;
+layout(location = 7) flat in float vTint;
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outNormalDepth;  // capture only
+
+void main() {
+  // The colour path writes its own coverage; every other path covers all samples (a shader that
+  // writes gl_SampleMask on one path leaves it undefined on the others: lavapipe drops them).
+  gl_SampleMask[0] = -1;
+  TreeModelGpu m = trees.models[push.model];
+  bool leaf = vKind == 1u;
+  float alpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
+  if (push.mode >= 2u) {  // impostor capture: hard coverage, unlit
+    if (alpha < 0.5) discard;
+    vec3 n = normalize(vNormal);
+    if (!gl_FrontFacing) n = -n;
+    outColor = vec4((leaf ? m.leaf.rgb : m.bark.rgb) * mix(0.35, 1.0, vOcclusion), 1.0);
+    outNormalDepth = vec4(n * 0.5 + 0.5, gl_FragCoord.z);
+    return;
+  }
+  float dither = treeDither(gl_FragCoord.xy, vInstance);
+  if (!treeKeepsPixel(vThreshold, dither)) discard;
+  if (push.mode == 1u) {  // shadow depth
+    if (alpha < 0.5) discard;
+    outColor = vec4(0.0);
+    return;
+  }
+  uint mask = treeSampleMask(alpha, push.samples, fract(dither * 7.0 + 0.31));
+  if (mask == 0u) discard;
+  gl_SampleMask[0] = int(mask);
+  vec3 n = normalize(vNormal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 albedo = (leaf ? m.leaf.rgb : m.bark.rgb) * vTint;
+  if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
+  outColor = vec4(treeLight(vPos, n, albedo, m.leaf.w, leaf, vOcclusion), 1.0);
+}

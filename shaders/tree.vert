@@ -1,0 +1,125 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Tree models (issue 20): one instance per visible-list entry of the tree classify pass. The
+// vertex is bent through its branch hierarchy (seed 002 §4.3: every vertex carries its branch and
+// its x along it; walking up to the trunk gives each ancestor's x), each branch by its fitted
+// tapered-beam shape with the length correction (simulation/shared/tree_bending.glsl, 002 §4.4)
+// at an amplitude from the shared wind filtered at its own resonance (002 §4.5), leaves flutter;
+// positional animation only (002 §4.8's cheaper variant: the normals stay the undeformed ones).
+// Per tree, from its seed: yaw, lean, a scale to its height and crown, and each branch turned by up
+// to ±10° about its attachment — so no two trees of one model variant look alike.
+// Modes (push): 0 colour, 1 shadow depth (through push.capture), 2 impostor capture: the model
+// as built, through push.capture, no tree and no wind (render/tree_impostors.h).
+#include "common/frame_uniforms.glsl"
+#include "common/simulation_block.glsl"
+#include "simulation/shared/tree_bending.glsl"
+#include "common/tree_layout.glsl"
+#include "common/tree_push.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in uint inBranch;
+layout(location = 2) in vec3 inNormal;
+layout(location = 3) in float inAlong;
+layout(location = 4) in vec2 inUv;
+layout(location = 5) in uint inKind;
+layout(location = 6) in float inFlutter;
+
+layout(location = 0) out vec3 vPos;
+layout(location = 1) out vec3 vNormal;
+layout(location = 2) out vec2 vUv;
+layout(location = 3) flat out uint vKind;
+layout(location = 4) flat out float vThreshold;
+layout(location = 5) flat out uint vInstance;
+layout(location = 6) out float vOcclusion;
+layout(location = 7) flat out float vTint;
+
+uint hashU(uint x) {  // lowbias32 (Wellons): branch angles and phases from the tree's seed
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return x;
+}
+float hash01(uint x) { return float(hashU(x) >> 8) * (1.0 / 16777216.0); }
+
+vec3 rotateAbout(vec3 v, vec3 axis, float angle) {
+  float c = cos(angle), s = sin(angle);
+  return v * c + cross(axis, v) * s + axis * dot(axis, v) * (1.0 - c);
+}
+
+void main() {
+  TreeModelGpu m = trees.models[push.model];
+  uint firstBranch = m.mesh0.w;
+  vec3 p = inPosition;
+  vec3 n = inNormal;
+  vKind = inKind;
+  vUv = inUv;
+  vOcclusion = clamp(length(p.xy) / max(m.shape.y, 0.1), 0.0, 1.0) * 0.6 + clamp(p.z / m.shape.x, 0.0, 1.0) * 0.4;
+  if (push.mode >= 2u) {
+    vPos = p;
+    vNormal = n;
+    vThreshold = 1.0;
+    vInstance = 0u;
+    vTint = 1.0;
+    gl_Position = push.capture * vec4(p, 1.0);
+    return;
+  }
+  uvec4 entry = treeVisible[gl_InstanceIndex];
+  TreeInstanceGpu t = treeInstances[entry.x];
+  uint seed = t.seed;
+
+  // The chain from the vertex's branch up to the trunk, with the x on each.
+  uint chain[kTreeMaxChain];
+  float xs[kTreeMaxChain];
+  int depth = 0;
+  uint b = inBranch;
+  float x = inAlong;
+  for (int k = 0; k < kTreeMaxChain; ++k) {
+    chain[k] = b;
+    xs[k] = x;
+    depth = k + 1;
+    int parent = floatBitsToInt(treeBranches[firstBranch + b].link.x);
+    if (parent < 0) break;
+    x = treeBranches[firstBranch + b].link.y;
+    b = uint(parent);
+  }
+  // This tree's branch angles: each branch turned about its attachment, deepest first, so a
+  // twig turns with the branch it grows on.
+  for (int k = 0; k < depth; ++k) {
+    TreeBranchGpu br = treeBranches[firstBranch + chain[k]];
+    int parent = floatBitsToInt(br.link.x);
+    if (parent < 0) continue;
+    vec3 axis = cross(treeBranches[firstBranch + uint(parent)].tC2.xyz, br.tC2.xyz);
+    float len = length(axis);
+    if (len < 1e-3) continue;
+    float angle = (hash01(seed ^ (chain[k] * 0x9e3779b9u)) - 0.5) * 0.35;
+    p = br.originLength.xyz + rotateAbout(p - br.originLength.xyz, axis / len, angle);
+    n = rotateAbout(n, axis / len, angle);
+  }
+  // Bending in the wind, in the model's frame (the wind turned by the tree's yaw).
+  vec3 wind = treeUnrotateYaw(vec3(uintBitsToFloat(entry.z), uintBitsToFloat(entry.w), 0.0), seed);
+  float time = treeTime();
+  vec3 offset = vec3(0.0);
+  if (dot(wind, wind) > 1e-6) {
+    for (int k = 0; k < depth; ++k) {
+      TreeBranchGpu br = treeBranches[firstBranch + chain[k]];
+      float phase = hash01(seed + chain[k] * 0x632be5abu) * 6.2831853;
+      vec2 amp = branchAmplitude(wind, br.rC4.xyz, br.sFrequency.xyz, br.link.w, br.sFrequency.w, phase, time);
+      offset += branchOffset(br.tC2.xyz, br.rC4.xyz, br.sFrequency.xyz, br.originLength.w, br.tC2.w, br.rC4.w, xs[k], amp);
+    }
+    if (inKind == 1u) {
+      vec3 tangent = normalize(cross(n, abs(n.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
+      float f = treeBranches[firstBranch + inBranch].sFrequency.w * 4.0;
+      offset += leafFlutter(n, tangent, inFlutter, f, hash01(seed ^ uint(gl_VertexIndex)) * 6.2831853, length(wind), time);
+    }
+  }
+  p += offset;
+
+  float sz = t.heightM / m.shape.x;
+  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 1.6 * sz);
+  vec3 world = treeRotate(vec3(p.xy * sxy, p.z * sz), seed);
+  vec3 rel = (t.position - trees.camera.xyz) + world;
+  vNormal = treeRotate(normalize(vec3(n.xy / sxy, n.z / sz)), seed);
+  vPos = rel;
+  vThreshold = uintBitsToFloat(entry.y);
+  vInstance = entry.x;
+  vTint = t.tint;
+  gl_Position = (push.mode == 1u ? treeShadowMatrix(0u) : frame.viewProj) * vec4(rel, 1.0);
+}

@@ -1,0 +1,84 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Trees, issue 20: one thread per instance slot of the tree pool (render/tree_layout.h). Culls the
+// tree against the view, picks its level of detail by distance in tree heights — full model,
+// reduced model, octahedral impostor, then nothing (the terrain's own colour) — and appends it to
+// its model's indirect draw at that level. Inside a switch's band it is appended at both levels
+// with complementary dither thresholds (shaders/common/tree_layout.glsl treeKeepsPixel), so the
+// two split the pixels and the switch is a cross-fade; past the horizon's band it dithers out.
+// The wind at the tree comes from the shared simulation's field (simulation/shared/wind_field.glsl):
+// the same gust crosses the meadow and then the forest. mode 1 (push): clamp the draws' instance
+// counts to their regions' capacity after the appends.
+layout(local_size_x = 256) in;
+#include "common/simulation_block.glsl"
+#include "common/tree_layout.glsl"
+float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
+
+layout(set = 1, binding = 4, std430) readonly buffer PageCounts { uint pageCounts[]; };
+layout(set = 1, binding = 5, std430) buffer MeshDraws { uint meshDraws[]; };          // per model × 2: VkDrawIndexedIndirectCommand
+layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model: VkDrawIndirectCommand
+layout(set = 1, binding = 7, std430) buffer TreeCounters { uint treeCounters[]; };    // instances, full, reduced, impostor, dropped
+
+layout(push_constant) uniform Push { uint mode; } push;
+
+void append(uint model, uint lod, uint instance, float threshold, vec2 wind) {
+  uint slot = lod < 2u ? atomicAdd(meshDraws[(model * 2u + lod) * 5u + 1u], 1u)
+                       : atomicAdd(impostorDraws[model * 4u + 1u], 1u);
+  if (slot >= treeRegionCapacity(lod)) {
+    atomicAdd(treeCounters[4], 1u);
+    return;
+  }
+  treeVisible[treeRegionBase(model, lod) + slot] =
+      uvec4(instance, floatBitsToUint(threshold), floatBitsToUint(wind.x), floatBitsToUint(wind.y));
+  atomicAdd(treeCounters[1u + lod], 1u);
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (push.mode == 1u) {  // finish: no draw reads past its region
+    if (i < trees.counts.y) {
+      for (uint lod = 0u; lod < 2u; ++lod)
+        meshDraws[(i * 2u + lod) * 5u + 1u] = min(meshDraws[(i * 2u + lod) * 5u + 1u], treeRegionCapacity(lod));
+      impostorDraws[i * 4u + 1u] = min(impostorDraws[i * 4u + 1u], trees.capacity.z);
+    }
+    return;
+  }
+  if (i >= trees.counts.x) return;
+  if (i % kTreePageSize >= pageCounts[i / kTreePageSize]) return;
+  atomicAdd(treeCounters[0], 1u);
+  TreeInstanceGpu t = treeInstances[i];
+  vec3 rel = t.position - trees.camera.xyz;
+  float dist = length(rel);
+  float horizon = trees.lod.z;
+  if (dist >= horizon) return;
+  float h = max(t.heightM, 0.5);
+  vec3 centre = rel + vec3(0.0, 0.0, 0.5 * h);
+  float radius = 0.6 * max(h, t.crownM) + trees.shadow.x;
+  for (int p = 0; p < 6; ++p)
+    if (dot(trees.frustum[p].xyz, centre) + trees.frustum[p].w < -radius) return;
+
+  vec2 wind = vec2(0.0);
+  if ((sim.counts.z & kSimFlagWind) != 0) wind = windAt(t.position.xy, treeTime()).xy;
+  float d = dist / h;  // distance in tree heights
+  float a = trees.lod.x, b = trees.lod.y, share = trees.lod.w;
+  if ((trees.counts.z & kTreeFlagFades) == 0u) {
+    append(t.model, d < a ? kTreeLodFull : (d < b ? kTreeLodReduced : kTreeLodImpostor), i, 1.0, wind);
+    return;
+  }
+  if (d < a * (1.0 - share)) {
+    append(t.model, kTreeLodFull, i, 1.0, wind);
+  } else if (d < a) {
+    float f = (d - a * (1.0 - share)) / (a * share);
+    append(t.model, kTreeLodFull, i, 1.0 + f, wind);
+    append(t.model, kTreeLodReduced, i, f, wind);
+  } else if (d < b * (1.0 - share)) {
+    append(t.model, kTreeLodReduced, i, 1.0, wind);
+  } else if (d < b) {
+    float f = (d - b * (1.0 - share)) / (b * share);
+    append(t.model, kTreeLodReduced, i, 1.0 + f, wind);
+    append(t.model, kTreeLodImpostor, i, f, wind);
+  } else {
+    float keep = clamp((horizon - dist) / (horizon * share), 0.0, 1.0);
+    if (keep > 0.0) append(t.model, kTreeLodImpostor, i, keep, wind);
+  }
+}

@@ -1,0 +1,46 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Octahedral impostors' fragments (issue 20): the captured albedo and coverage, and the captured
+// model-space normal turned into the world, lit at run time like the models (common/tree_shading.glsl)
+// with the cross-fade dither and alpha to coverage of tree.frag.
+#include "common/frame_uniforms.glsl"
+#include "common/atmosphere.glsl"
+#include "common/tree_layout.glsl"
+#include "common/tree_push.glsl"
+#include "common/tree_shading.glsl"
+
+layout(set = 1, binding = 8) uniform sampler2DArray impostorAlbedo;
+layout(set = 1, binding = 9) uniform sampler2DArray impostorNormal;
+
+layout(location = 0) in vec3 vPos;
+layout(location = 1) in vec2 vUv;
+layout(location = 2) flat in uint vLayer;
+layout(location = 3) flat in float vThreshold;
+layout(location = 4) flat in uint vInstance;
+layout(location = 5) flat in vec3 vRight;
+layout(location = 6) flat in vec3 vUp;
+layout(location = 7) flat in vec3 vTowards;
+layout(location = 8) flat in float vTint;
+layout(location = 9) flat in uint vSeed;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+  gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
+  vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
+  float dither = treeDither(gl_FragCoord.xy, vInstance);
+  if (!treeKeepsPixel(vThreshold, dither)) discard;
+  if (push.mode == 1u) {
+    if (albedo.a < 0.5) discard;
+    outColor = vec4(0.0);
+    return;
+  }
+  uint mask = treeSampleMask(albedo.a, push.samples, fract(dither * 7.0 + 0.31));
+  if (mask == 0u) discard;
+  gl_SampleMask[0] = int(mask);
+  vec3 nm = texture(impostorNormal, vec3(vUv, float(vLayer))).xyz * 2.0 - 1.0;
+  vec3 n = normalize(treeRotate(nm, vSeed));
+  if (dot(n, vTowards) < 0.0) n = -n;
+  TreeModelGpu m = trees.models[push.model];
+  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * vTint;
+  outColor = vec4(treeLight(vPos, n, colour, m.leaf.w, true, 1.0), 1.0);
+}

@@ -1,0 +1,68 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): six vertices per entry of
+// the classify pass's impostor list, a quad in the basis of the captured view nearest the
+// direction the tree is seen from, scaled and turned like the tree's model (tree.vert), its top
+// swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole).
+#include "common/frame_uniforms.glsl"
+#include "common/simulation_block.glsl"
+#include "simulation/shared/tree_bending.glsl"
+#include "common/tree_layout.glsl"
+#include "common/tree_push.glsl"
+#include "common/tree_impostor.glsl"
+
+layout(location = 0) out vec3 vPos;
+layout(location = 1) out vec2 vUv;  // in the atlas (0 … 1)
+layout(location = 2) flat out uint vLayer;
+layout(location = 3) flat out float vThreshold;
+layout(location = 4) flat out uint vInstance;
+layout(location = 5) flat out vec3 vRight;  // the quad's axes and the view axis, world: for the normal
+layout(location = 6) flat out vec3 vUp;
+layout(location = 7) flat out vec3 vTowards;
+layout(location = 8) flat out float vTint;
+layout(location = 9) flat out uint vSeed;
+
+void main() {
+  uvec4 entry = treeVisible[gl_InstanceIndex];
+  TreeInstanceGpu t = treeInstances[entry.x];
+  TreeModelGpu m = trees.models[push.model];
+  uint seed = t.seed;
+  float sz = t.heightM / m.shape.x;
+  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 1.6 * sz);
+  vec3 root = t.position - trees.camera.xyz;
+  vec3 centreRel = root + vec3(0.0, 0.0, m.shape.w * sz);
+  // The direction the tree is seen from, in the model's frame; the nearest captured cell.
+  // (The shadow pass: seen from the sun, so the cascade holds the silhouette the sun sees.)
+  vec3 d = treeUnrotateYaw(push.mode == 1u ? frame.sunDirection.xyz : normalize(-centreRel), seed);
+  uint g = trees.counts.w;
+  vec2 cell = clamp(floor(treeImpostorUv(d) * float(g)), vec2(0.0), vec2(float(g) - 1.0));
+  vec3 dc = treeImpostorDirection((cell + 0.5) / float(g));
+  vec3 right, up;
+  treeImpostorBasis(dc, right, up);
+  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+  vec2 c = corners[gl_VertexIndex % 6];
+  float r = m.shape.z;
+  vec3 modelPoint = vec3(0.0, 0.0, m.shape.w) + (right * c.x + up * c.y) * r;
+  // Sway: the trunk's bend at this height.
+  vec3 wind = treeUnrotateYaw(vec3(uintBitsToFloat(entry.z), uintBitsToFloat(entry.w), 0.0), seed);
+  if (dot(wind, wind) > 1e-6) {
+    TreeBranchGpu trunk = treeBranches[m.mesh0.w];
+    vec2 amp = branchAmplitude(wind, trunk.rC4.xyz, trunk.sFrequency.xyz, trunk.link.w, trunk.sFrequency.w,
+                               float(seed & 1023u) * 0.00614, treeTime());
+    float x = clamp(modelPoint.z / trunk.originLength.w, 0.0, 1.0);
+    modelPoint += branchOffset(trunk.tC2.xyz, trunk.rC4.xyz, trunk.sFrequency.xyz, trunk.originLength.w, trunk.tC2.w,
+                               trunk.rC4.w, x, amp);
+  }
+  vec3 rel = root + treeRotate(vec3(modelPoint.xy * sxy, modelPoint.z * sz), seed);
+  vPos = rel;
+  vUv = (cell + vec2(0.5 + 0.5 * c.x, 0.5 - 0.5 * c.y)) / float(g);
+  vLayer = m.mesh1.w;
+  vThreshold = uintBitsToFloat(entry.y);
+  vInstance = entry.x;
+  vRight = treeRotate(right, seed);
+  vUp = treeRotate(up, seed);
+  vTowards = treeRotate(dc, seed);
+  vTint = t.tint;
+  vSeed = seed;
+  gl_Position = (push.mode == 1u ? treeShadowMatrix(0u) : frame.viewProj) * vec4(rel, 1.0);
+}

@@ -1,0 +1,344 @@
+// Trees on the GPU (issue 20, render/tree_pass.h): the classify pass's levels of detail against
+// the rule on the CPU, the impostor's silhouette against the model's at the switch, the 2 % rule
+// of the cross-fades, determinism, the budget. Small frames on lavapipe; validation silent.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "gpu_test_fixture.h"
+#include "render/png_writer.h"
+#include "tests/support/plant_field_scene.h"
+#include "vegetation/tree_model.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+constexpr float kTreeHeight = 15.0f, kCrown = 5.0f;
+constexpr uint32_t kImpostorViewsForTest = 512;  // render/tree_impostors.h: 8 views of 64 px
+
+// The default catalog's first tree species of that form, as one model of kTreeHeight.
+std::vector<TreeModelSet> oneModel(vegetation::TreeForm form) {
+  TreeModelSet set;
+  set.species = 0;
+  for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
+    if (vegetation::isTree(s) && s.tree.form == form) {
+      set.params = s.tree;
+      break;
+    }
+  EXPECT_EQ(set.params.form, form);
+  set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
+  return {set};
+}
+
+TreeInstanceGpu treeAt(float x, float y, uint32_t seed = 0x12345678u) {
+  TreeInstanceGpu t{};
+  t.position[0] = x;
+  t.position[1] = y;
+  t.position[2] = 0.0f;
+  t.model = 0;
+  t.heightM = kTreeHeight;
+  t.crownM = kCrown;
+  t.seed = seed;
+  t.tint = 1.0f;
+  return t;
+}
+
+class TreeRenderTest : public GpuTest {
+ protected:
+  // One frame of `trees` (uploaded into page 0 …) seen from `camera` looking at `target`.
+  FrameResult frame(Renderer& r, const std::vector<TreeInstanceGpu>& trees, const glm::dvec3& camera,
+                    const glm::dvec3& target, double fovDeg, const TreeLodDistances& lod, bool fades,
+                    bool drawTrees = true) {
+    FrameRequest req;
+    req.camera.position = camera;
+    req.camera.forward = glm::normalize(target - camera);
+    req.camera.verticalFovDeg = fovDeg;
+    req.camera.nearM = 0.5;
+    req.readbackColor = true;
+    std::vector<TreePageUpload> uploads;
+    std::vector<uint32_t> counts;
+    for (size_t first = 0; first < trees.size(); first += kTreePageSize) {
+      const auto n = static_cast<uint32_t>(std::min<size_t>(kTreePageSize, trees.size() - first));
+      uploads.push_back({static_cast<uint32_t>(counts.size()), n, trees.data() + first});
+      counts.push_back(n);
+    }
+    TreeRequest t;
+    t.uploads = uploads;
+    t.pageCounts = counts;
+    t.lod = lod;
+    t.fades = fades;
+    t.cameraEnu[0] = camera.x;
+    t.cameraEnu[1] = camera.y;
+    t.cameraEnu[2] = camera.z;
+    if (drawTrees) req.trees = &t;
+    auto result = r.renderFrame(req);
+    EXPECT_TRUE(result.ok()) << (result.ok() ? "" : result.error().message);
+    return result.ok() ? std::move(*result) : FrameResult{};
+  }
+
+    // VEGSTREAM_TREE_TEST_PNG=DIR writes the frames a test looks at (for a person to see them).
+  static void dump(const FrameResult& f, const std::string& name) {
+    const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG");
+    if (dir && f.color) (void)writePng(std::string(dir) + "/" + name + ".png", *f.color);
+  }
+
+  // Pixels of `a` that differ from the background `bg` by more than 12 in some channel.
+  static std::vector<uint8_t> mask(const ColorImage& a, const ColorImage& bg) {
+    std::vector<uint8_t> m(size_t{a.width} * a.height, 0);
+    for (size_t i = 0; i < m.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(a.rgba[i * 4 + c]) - int(bg.rgba[i * 4 + c])) > 12) m[i] = 1;
+    return m;
+  }
+};
+
+// The classify pass puts each tree at the level the rule gives for its distance in tree heights
+// (fades off: one level each), and counts what it appended.
+TEST_F(TreeRenderTest, LevelsOfDetailFollowTheDistanceRule) {
+  auto r = makeRenderer(96, 64, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
+  ASSERT_GT(r->treePageCapacity(), 0u);
+  // 600 trees on a line straight ahead, 2 … 2 400 m away: every level, and some past the horizon.
+  std::vector<TreeInstanceGpu> trees;
+  for (int i = 0; i < 600; ++i) trees.push_back(treeAt(0.0f, 2.0f + 4.0f * float(i), uint32_t(i) * 2654435761u));
+  TreeLodDistances lod;
+  lod.horizonM = 2000.0f;
+  const FrameResult f = frame(*r, trees, {0.0, -1.0, 40.0}, {0.0, 1000.0, 0.0}, 60.0, lod, /*fades=*/false);
+  ASSERT_TRUE(f.trees && f.trees->gpuCounts);
+  uint32_t full = 0, reduced = 0, impostor = 0;
+  for (const TreeInstanceGpu& t : trees) {
+    const double d = glm::length(glm::dvec3(t.position[0], t.position[1], t.position[2]) - glm::dvec3(0.0, -1.0, 40.0));
+    if (d >= lod.horizonM) continue;
+    const double h = d / kTreeHeight;
+    (h < lod.fullHeights ? full : h < lod.reducedHeights ? reduced : impostor)++;
+  }
+  std::printf("full %u / %u, reduced %u / %u, impostor %u / %u (GPU / rule)\n", f.trees->full, full, f.trees->reduced,
+              reduced, f.trees->impostor, impostor);
+  EXPECT_EQ(f.trees->instances, 600u);
+  // Trees near the view's edges may be culled: the frustum test is a sphere against the planes.
+  EXPECT_NEAR(double(f.trees->full), double(full), 2.0);
+  EXPECT_EQ(f.trees->reduced, reduced);
+  EXPECT_EQ(f.trees->impostor, impostor);
+  EXPECT_EQ(f.trees->dropped, 0u);
+}
+
+// At the switch distance the octahedral impostor covers the same pixels as the full model within
+// 5 %, for both forms. The trees are drawn at the size they have at the switch in a 1080p view of
+// 55° (about 50 pixels tall): a narrow view of a row of 12 trees (each with its own seed: yaw,
+// lean, branch angles) on a small frame.
+TEST_F(TreeRenderTest, ImpostorSilhouetteMatchesTheModelAtTheSwitch) {
+  for (auto form : {vegetation::TreeForm::Conifer, vegetation::TreeForm::Broadleaf}) {
+    auto r = makeRenderer(320, 96, 1);
+    ASSERT_TRUE(r);
+    ASSERT_TRUE(r->setTreeModels(oneModel(form)).ok());
+    const double d = TreeLodDistances{}.reducedHeights * kTreeHeight;  // the reduced → impostor switch
+    std::vector<TreeInstanceGpu> trees;
+    for (int i = 0; i < 12; ++i) trees.push_back(treeAt(float(i - 5.5) * 7.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
+    TreeLodDistances full, impostor;
+    full.fullHeights = full.reducedHeights = 1e6f;
+    full.horizonM = impostor.horizonM = 1e5f;
+    impostor.fullHeights = 1e-4f;
+    impostor.reducedHeights = 2e-4f;
+    const glm::dvec3 camera{0.0, -d, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
+    const double pixelsPerRadian = 540.0 / std::tan(27.5 * 3.14159265358979 / 180.0);  // 1080p, 55°
+    const double fov = 2.0 * std::atan(48.0 / pixelsPerRadian) * 180.0 / 3.14159265358979;
+    const FrameResult bg = frame(*r, trees, camera, target, fov, full, false, /*drawTrees=*/false);
+    const FrameResult a = frame(*r, trees, camera, target, fov, full, false);
+    const FrameResult b = frame(*r, trees, camera, target, fov, impostor, false);
+    ASSERT_TRUE(bg.color && a.color && b.color);
+    const std::string tag = form == vegetation::TreeForm::Conifer ? "conifer" : "broadleaf";
+    dump(a, "silhouette-" + tag + "-model");
+    dump(b, "silhouette-" + tag + "-impostor");
+    if (std::getenv("VEGSTREAM_TREE_TEST_PNG")) {
+      auto atlas = r->readTreeImpostor(0);
+      ASSERT_TRUE(atlas.ok());
+      const uint32_t side = kImpostorViewsForTest;
+      (void)writePng(std::string(std::getenv("VEGSTREAM_TREE_TEST_PNG")) + "/atlas-" + tag + ".png",
+                     ColorImage{side, side, *atlas});
+    }
+    ASSERT_EQ(a.trees->full, 12u);
+    ASSERT_EQ(b.trees->impostor, 12u);
+    const auto ma = mask(*a.color, *bg.color), mb = mask(*b.color, *bg.color);
+    size_t na = 0, nb = 0, both = 0;
+    for (size_t i = 0; i < ma.size(); ++i) {
+      na += ma[i];
+      nb += mb[i];
+      both += ma[i] & mb[i];
+    }
+    const double coverage = std::abs(double(nb) - double(na)) / double(na);
+    const double symmetric = double(na + nb - 2 * both) / double(na);
+    std::printf("%s: model %zu px, impostor %zu px: coverage differs by %.1f %%, %.1f %% of the pixels differ\n",
+                form == vegetation::TreeForm::Conifer ? "conifer" : "broadleaf", na, nb, 100.0 * coverage,
+                100.0 * symmetric);
+    EXPECT_GT(na, 2000u);
+    EXPECT_LT(coverage, 0.05);
+  }
+}
+
+// The 2 % rule along a slow flight: the tree's distance in tree heights steps by 0.25 % a frame
+// through each switch (full → reduced, reduced → impostor, impostor → the terrain's own colour);
+// the camera is held still and the switch distances move instead, so every change between frames
+// is the level of detail's own. With the fades no frame changes more than 2 % of the tree's
+// pixels; without them the switches are visible.
+TEST_F(TreeRenderTest, CrossFadesKeepTheTwoPercentRule) {
+  auto r = makeRenderer(128, 128, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Broadleaf)).ok());
+  const std::vector<TreeInstanceGpu> trees = {treeAt(0.0f, 0.0f)};
+  const double d = 60.0;  // the camera's distance; the tree is d / h = 4 heights away
+  const glm::dvec3 camera{0.0, -d, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
+  const double fov = 2.0 * std::atan(0.75 * kTreeHeight / d) * 180.0 / 3.14159265358979;
+  TreeLodDistances base;
+  base.horizonM = 1e5f;
+  const FrameResult bg = frame(*r, trees, camera, target, fov, base, false, false);
+  ASSERT_TRUE(bg.color);
+  const float at = float(d / kTreeHeight);
+  double worst[2] = {0.0, 0.0};
+  for (int fades = 0; fades < 2; ++fades) {
+    for (int sw = 0; sw < 3; ++sw) {
+      std::vector<uint8_t> before;
+      for (int step = -3; step <= 64; ++step) {
+        // The switch at distance `at` · s: s from 1 + share (not started) down past 1 − … (done).
+        const float s = 1.0f / (1.0f - base.fadeShare * (float(step) / 60.0f));
+        TreeLodDistances lod = base;
+        if (sw == 0) lod.fullHeights = at * s;
+        if (sw == 1) lod.fullHeights = 1e-4f, lod.reducedHeights = at * s;
+        if (sw == 2) lod.fullHeights = 1e-4f, lod.reducedHeights = 2e-4f, lod.horizonM = float(d) * s;
+        const FrameResult f = frame(*r, trees, camera, target, fov, lod, fades == 1);
+        ASSERT_TRUE(f.color);
+        std::vector<uint8_t> now = f.color->rgba;
+        if (!before.empty()) {
+          size_t changed = 0, tree = 0;
+          const auto m = mask(*f.color, *bg.color);
+          for (size_t i = 0; i < m.size(); ++i) {
+            bool differs = false;
+            for (int c = 0; c < 3; ++c) differs |= std::abs(int(now[i * 4 + c]) - int(before[i * 4 + c])) > 24;
+            bool was = false;
+            for (int c = 0; c < 3; ++c) was |= std::abs(int(before[i * 4 + c]) - int(bg.color->rgba[i * 4 + c])) > 12;
+            tree += (m[i] || was) ? 1 : 0;
+            changed += differs ? 1 : 0;
+          }
+          if (tree > 0) worst[fades] = std::max(worst[fades], double(changed) / double(tree));
+        }
+        before = std::move(now);
+      }
+    }
+  }
+  std::printf("largest change between frames: %.2f %% of the tree's pixels with fades, %.2f %% without\n",
+              100.0 * worst[1], 100.0 * worst[0]);
+  EXPECT_LE(worst[1], 0.02);
+  EXPECT_GT(worst[0], 0.10) << "without the fades the check must see the switches";
+}
+
+// A known occluder over a flat plane darkens the expected pixels: one tree, the sun low in the
+// west; the ground pixels the sun shadow darkens (against the same frame with the trees'
+// shadows off, the tree itself left out) are those whose ray towards the sun passes through the
+// tree's crown cylinder, and the ground under the crown's centre, seen along the sun, is dark.
+TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
+  auto r = makeRenderer(160, 120, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
+  const std::vector<uint8_t> tile = flatTile(150, 140, 120);
+  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
+  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+  TerrainDraw draw{&plane};
+  draw.imageryLayer = 0;
+  const ImageryUpload upload{0, tile.data()};
+  const glm::dvec3 sun = glm::normalize(glm::dvec3(-1.0, 0.0, 0.9));  // towards the sun: west, 42° up
+  const std::vector<TreeInstanceGpu> trees = {treeAt(0.0f, 0.0f)};
+  const glm::dvec3 camera{8.0, -30.0, 28.0};
+  auto render = [&](bool withTrees, bool shadows, bool upload0) {
+    FrameRequest req;
+    req.camera.position = camera;
+    req.camera.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
+    req.camera.verticalFovDeg = 60.0;
+    req.cameraHeightMsl = camera.z;
+    req.lighting.sunDirection = sun;
+    req.readbackColor = req.readbackDepth = true;
+    req.terrain = {&draw, 1};
+    if (upload0) req.imageryUploads = {&upload, 1};
+    const std::vector<TreePageUpload> uploads = {{0, 1, trees.data()}};
+    const std::vector<uint32_t> counts = {1};
+    TreeRequest t;
+    t.uploads = uploads;
+    t.pageCounts = counts;
+    t.shadows = shadows;
+    t.cameraEnu[0] = camera.x, t.cameraEnu[1] = camera.y, t.cameraEnu[2] = camera.z;
+    if (withTrees) req.trees = &t;
+    auto f = r->renderFrame(req);
+    EXPECT_TRUE(f.ok());
+    return f.ok() ? std::move(*f) : FrameResult{};
+  };
+  const FrameResult bare = render(false, false, true);
+  const FrameResult lit = render(true, false, false);
+  const FrameResult shaded = render(true, true, false);
+  ASSERT_TRUE(bare.color && lit.color && shaded.color && shaded.depth);
+  dump(lit, "shadow-off");
+  dump(shaded, "shadow-on");
+  const auto treePixels = mask(*lit.color, *bare.color);
+  // Back from a pixel to the ground: the depth's camera-relative point.
+  const double aspect = 160.0 / 120.0;
+  Camera cam;
+  cam.position = camera;
+  cam.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
+  cam.verticalFovDeg = 60.0;
+  const glm::dmat4 inv = glm::inverse(projection(cam, aspect) * viewRotation(cam));
+  size_t darkened = 0, expected = 0, ground = 0;
+  const double crownR = 0.5 * kCrown + 0.6;
+  for (uint32_t y = 0; y < 120; ++y)
+    for (uint32_t x = 0; x < 160; ++x) {
+      const size_t i = size_t{y} * 160 + x;
+      if (treePixels[i]) continue;
+      const float depth = shaded.depth->depth[i];
+      if (depth <= 0.0f) continue;  // sky
+      const glm::dvec4 clip((x + 0.5) / 80.0 - 1.0, (y + 0.5) / 60.0 - 1.0, depth, 1.0);
+      glm::dvec4 p = inv * clip;
+      const glm::dvec3 world = glm::dvec3(p) / p.w + camera;
+      if (std::abs(world.z) > 0.3) continue;  // not the ground
+      ++ground;
+      const double before = lit.color->rgba[i * 4 + 1], after = shaded.color->rgba[i * 4 + 1];
+      if (after > 0.75 * before) continue;
+      ++darkened;
+      // Does the ray towards the sun pass through the crown's cylinder (up to the tree's height)?
+      const double t = -glm::dot(glm::dvec2(world), glm::dvec2(sun)) / glm::dot(glm::dvec2(sun), glm::dvec2(sun));
+      const glm::dvec3 q = world + sun * std::max(t, 0.0);
+      if (glm::length(glm::dvec2(q)) < crownR && q.z < kTreeHeight + 0.5) ++expected;
+    }
+  std::printf("%zu ground pixels, %zu darkened by the tree's shadow, %zu of them where the crown's shadow falls\n",
+              ground, darkened, expected);
+  EXPECT_GT(darkened, 100u);
+  EXPECT_GE(double(expected), 0.95 * double(darkened));
+}
+
+// The same trees give the same image twice; a budget too small for the models is refused naming
+// the option.
+TEST_F(TreeRenderTest, SameTreesSameImageAndBudgetRefusal) {
+  auto r = makeRenderer(96, 64, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
+  std::vector<TreeInstanceGpu> trees;
+  for (int i = 0; i < 40; ++i) trees.push_back(treeAt(float(i % 8) * 6.0f - 21.0f, 20.0f + float(i / 8) * 9.0f, i));
+  const FrameResult a = frame(*r, trees, {0.0, -10.0, 12.0}, {0.0, 40.0, 4.0}, 55.0, {}, true);
+  const FrameResult b = frame(*r, trees, {0.0, -10.0, 12.0}, {0.0, 40.0, 4.0}, 55.0, {}, true);
+  ASSERT_TRUE(a.color && b.color);
+  EXPECT_EQ(a.color->rgba, b.color->rgba);
+  EXPECT_GT(a.trees->full + a.trees->reduced, 30u);
+
+  RendererOptions o = options(32, 32, 1);
+  o.treeBudgetBytes = 1 << 20;  // 1 MiB: not even the atlas
+  auto small = Renderer::create(o);
+  ASSERT_TRUE(small.ok());
+  const Status s = (*small)->setTreeModels(oneModel(vegetation::TreeForm::Conifer));
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("--tree-budget-mb"), std::string::npos) << s.error().message;
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing
