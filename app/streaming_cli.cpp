@@ -56,7 +56,7 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--species", o.species, "Species catalog (JSON, see config/species.json); default: the built-in one");
   cmd.add_flag("--no-plants", o.noPlants, "Draw the terrain only: no seeding, no classify pass");
   cmd.add_option("--plant-style", o.plantStyle,
-                 "plants: the species pipelines (grass, gravel, flowers; trees not drawn yet); markers: one marker "
+                 "plants: the species pipelines (grass, gravel, flowers; trees are drawn by the tree pass, --trees); markers: one marker "
                  "per plant, the classification alone; hidden: classified and counted, not drawn; coverage: as "
                  "plants, in flat magenta without shadows, to measure what they cover")
       ->capture_default_str();

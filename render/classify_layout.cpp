@@ -17,7 +17,9 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     SpeciesGpu& g = b.species[i];
     g.reference = glm::vec4(s.score.reference, s.score.p);
     g.weights = glm::vec4(s.score.weights, s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
-    g.flags = {s.bare ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
+    // Tree species are seeded on their own grid (vegetation/tree_placement.h): to the plants' classify
+    // pass they are bare soil (vegetation/plant_seeding.cpp rejects them alike).
+    g.flags = {(s.bare || vegetation::isTree(s)) ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
     g.marker.w = s.phototropism;
     g.ground = {s.densityM2, s.horizonM, s.score.ndviReference, s.score.ndviWeight};
     g.heightStiffness = {s.heightM.min, s.heightM.max, s.stiffness.min, s.stiffness.max};

@@ -133,10 +133,8 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
       blades->recordDraw(cmd, slotIndex, slot.descriptorSet);
     else if (patchMask != 0)
       plantPass->record(cmd, slotIndex, slot.descriptorSet, *classify, terrainPass->imageryView(), plants.draw);
-    // Tree species have no model yet (issue 20): in the plants style they are classified and
-    // counted but not drawn. Their markers, 4.6–18 m tall at grass density, hid the ground and
-    // cost the H200 10 ms a frame on canyon-run; `--plant-style markers` still draws every
-    // species' marker (patchMask is 0 then).
+    // Tree species are not plants (render/tree_pass.h draws them, classify rejects them as bare):
+    // `--plant-style markers` draws every other species' marker (patchMask is 0 then).
     if (plants.style == PlantStyle::Markers)
       markers->record(cmd, slotIndex, slot.descriptorSet, *classify, patchMask);
     slot.timer->endPass(cmd);

@@ -95,9 +95,15 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
   }
   figures_.placementMs = placing.elapsedMs();
 
-  // Pages, nearest first; a nearer tile takes the pages of the farthest that has some.
+  // Pages, nearest first; a nearer tile takes the pages of the farthest that has some. Once one
+  // tile finds none, no farther tile is drawn either (the drawn trees are always the nearest).
+  bool bound = false;
   for (size_t i = 0; i < wanted.size(); ++i) {
     Tile& tile = tiles_[wanted[i].second];
+    if (bound) {
+      freePages(tile);
+      continue;
+    }
     if (!tile.placed || tile.trees.empty() || !tile.pages.empty()) continue;
     const auto need = static_cast<uint32_t>((tile.trees.size() + render::kTreePageSize - 1) / render::kTreePageSize);
     for (size_t j = wanted.size(); j-- > i + 1 && freePages_.size() < need;) {
@@ -105,7 +111,7 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
       if (!far.pages.empty()) freePages(far);
     }
     if (freePages_.size() < need) {
-      figures_.budgetBound = true;
+      figures_.budgetBound = bound = true;
       continue;
     }
     for (uint32_t k = 0; k < need; ++k) {

@@ -97,13 +97,21 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
     if (fade <= 0.0f) return;
     out.push_back({triangleIndex, c, firstSeed, count, static_cast<uint32_t>(pick.species), pick.sPrime, fade});
   };
+  // Trees grow on their own grid (tree_placement.h): a seed that picks a tree species grows no
+  // plant, as bare soil (so the forest floor under the crowns has no grass; render/classify_layout
+  // packs tree species as bare for the GPU alike).
+  const auto choose = [&](const GroundSample& g, float z) {
+    SpeciesChoice c = chooseSpecies(catalog, hsvFromLinear(g.linear), z, g.ndvi);
+    if (c.species >= 0 && isTree(catalog.species[size_t(c.species)])) c.species = -1;
+    return c;
+  };
   auto group = [&](glm::vec2 r, float z, uint32_t c, uint32_t firstSeed, uint32_t count) {
     const GroundSample now = colourAt(r);
-    SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(now.linear), z, now.ndvi);
+    SpeciesChoice pick = choose(now, z);
     float w = triangle.imageryBlend;
     if (crossFade) {
       const GroundSample then = previousColourAt(r);
-      const SpeciesChoice before = chooseSpecies(catalog, hsvFromLinear(then.linear), z, then.ndvi);
+      const SpeciesChoice before = choose(then, z);
       if (before.species == pick.species) {
         pick.sPrime = before.sPrime + (pick.sPrime - before.sPrime) * w;  // GLSL mix
         w = 1.0f;

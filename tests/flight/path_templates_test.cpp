@@ -121,6 +121,15 @@ TEST(BundledPaths, ParseAndStayOverZion) {
   ASSERT_EQ(meadow->wind->sources.size(), 1u);
   EXPECT_EQ(meadow->wind->sources[0].type, WindSourceSpec::Type::Rotor);
   EXPECT_GT(meadow->duration(), meadow->colliders[0].keyframes.back().t + 20.0);
+  // The trees' flight (issue 20): starts above the canopy, flies low along the forest edge, in wind.
+  const Result<FlightPath> forest = loadFlightPath(dir / "kolob-forest.json");
+  ASSERT_TRUE(forest.ok()) << forest.error().message;
+  EXPECT_TRUE(checkInside(*forest, kZion).ok());
+  ASSERT_TRUE(forest->wind.has_value());
+  EXPECT_GE(forest->keyframes.front().altM, 50.0);
+  double lowest = 1e9;
+  for (const auto& k : forest->keyframes) lowest = std::min(lowest, k.altM);
+  EXPECT_LE(lowest, 8.0);
 }
 
 }  // namespace
