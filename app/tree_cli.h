@@ -16,6 +16,7 @@ namespace vegstream::app {
 
 struct TreeCli {
   std::string trees = "on";                // --trees on|off
+  std::string shadows = "on";              // --tree-shadows on|off
   std::optional<double> horizonM;          // --tree-horizon-m M (default: the catalog's tree horizon)
   std::optional<double> budgetMb;          // --tree-budget-mb MB, > 0 (default render::RendererOptions)
 };

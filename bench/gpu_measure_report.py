@@ -15,7 +15,7 @@ import re
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "wind", "dense-wind", "wind-tessellation", "meadow-wind", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
+ORDER = ["default", "no-plants", "forward", "forward-no-plants", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "wind", "dense-wind", "wind-tessellation", "meadow-wind", "kolob-forest", "kolob-forest-no-trees", "kolob-forest-no-shadows", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
@@ -104,6 +104,24 @@ def main():
                   f"{fmt(median(column(rows, 'plants_culled')), 0)} | "
                   f"{fmt(median(column(rows, 'plant_triangles')), 0)} | "
                   f"{fmt(pct(s['times_ms'], 'gpu_frame_ms', 'p50'))} |")
+        print("\n## Trees (issue 20; median per frame, whole flight)\n")
+        print("| recording | full | reduced | impostor | dropped | trees in pages | tiles drawn / wanted | "
+              "budget bound (frames) | tree GPU MB | GPU frame p50 / p99 ms |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
+        for n in recordings:
+            s, rows = data[n]
+            if not column(rows, "trees_classified"):
+                continue
+            bound = sum(1 for v in column(rows, "tree_budget_bound") if v > 0)
+            mb = median(column(rows, "tree_gpu_bytes"))
+            print(f"| {n} | {fmt(median(column(rows, 'trees_full')), 0)} | "
+                  f"{fmt(median(column(rows, 'trees_reduced')), 0)} | "
+                  f"{fmt(median(column(rows, 'trees_impostor')), 0)} | "
+                  f"{fmt(median(column(rows, 'trees_dropped')), 0)} | "
+                  f"{fmt(median(column(rows, 'trees_classified')), 0)} | "
+                  f"{fmt(median(column(rows, 'tree_tiles_drawn')), 0)} / {fmt(median(column(rows, 'tree_tiles_wanted')), 0)} | "
+                  f"{bound} | {fmt(mb / 1048576.0 if mb is not None else None, 1)} | "
+                  f"{fmt(pct(s['times_ms'], 'gpu_frame_ms', 'p50'))} / {fmt(pct(s['times_ms'], 'gpu_frame_ms', 'p99'))} |")
         print("\n## CPU ms per stage (p50 / p99)\n")
         stages = ["cpu_streaming_ms", "cpu_terrain_ms", "cpu_seeding_ms", "cpu_record_submit_ms", "cpu_frame_ms"]
         print("| recording | " + " | ".join(stages) + " |")

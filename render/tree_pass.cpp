@@ -411,7 +411,8 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
   }
 }
 
-void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& cascade) {
+void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade,
+                            const glm::mat4& matrix) {
   const auto s = static_cast<size_t>(slot);
   if (!slotRecorded_[s]) return;
   const VkDescriptorSet bound[] = {frameSet, sets_[s]};
@@ -424,18 +425,20 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   const VkBuffer vb = vertices_.get();
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
   vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+  const uint32_t firstLod = cascade >= 2 ? 1u : 0u;
   for (uint32_t m = 0; m < models_.size(); ++m)
-    for (uint32_t lod = 0; lod < 2; ++lod) {
-      const TreePush push{cascade, m, lod, 1u, 1u};
+    for (uint32_t lod = firstLod; lod < 2; ++lod) {
+      const TreePush push{matrix, m, lod, 1u, 1u};
       vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
       vkCmdDrawIndexedIndirect(cmd, meshDraws_.get(), (m * 2 + lod) * kIndexedCommand, 1,
                                static_cast<uint32_t>(kIndexedCommand));
     }
+  if (cascade == 0) return;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
   vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
   for (uint32_t m = 0; m < models_.size(); ++m) {
-    const TreePush push{cascade, m, 2u, 1u, 1u};
+    const TreePush push{matrix, m, 2u, 1u, 1u};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
     vkCmdDrawIndirect(cmd, impostorDraws_.get(), m * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
   }

@@ -54,8 +54,10 @@ class TreePass {
   // Inside rendering (colour target of `samples`), after recordClassify.
   void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
   // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the same trees,
-  // depth only, through the cascade's matrix; impostors turn to the sun.
-  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& cascade);
+  // depth only, through the cascade's matrix; impostors turn to the sun. The nearest cascade
+  // takes the models only (impostors are beyond it), the farthest the reduced models and impostors
+  // (the full models stand near the camera, their shadows in the nearer cascades).
+  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 

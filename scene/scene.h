@@ -56,6 +56,7 @@ struct SceneTreeOptions {
   uint32_t variants = 3;  // models per species, each tree picks one by its seed
   render::TreeLodDistances lod;  // its horizonM is set from the above
   bool fades = true;
+  bool shadows = true;  // the trees cast into the cascaded sun shadow map
 };
 
 struct SceneOptions {

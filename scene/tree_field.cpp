@@ -137,6 +137,7 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
   request_.pageCounts = std::span<const uint32_t>(pageCounts_.data(), highest);
   request_.lod = options_.lod;
   request_.fades = options_.fades;
+  request_.shadows = options_.shadows;
   request_.cameraEnu[0] = camera.x;
   request_.cameraEnu[1] = camera.y;
   request_.cameraEnu[2] = camera.z;

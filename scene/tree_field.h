@@ -26,6 +26,7 @@ struct TreeFieldOptions {
   uint32_t tileCells = 48;       // a tile is tileCells × tileCells grid cells
   uint32_t placementsPerFrame = 2;
   bool fades = true;
+  bool shadows = true;
 };
 
 struct TreeFieldFigures {

