@@ -36,7 +36,8 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     const VkExtent2D e = targets->extent();
     const glm::dmat4 viewProj =
         projection(request.camera, double(e.width) / double(e.height)) * viewRotation(request.camera);
-    trees->recordClassify(cmd, slotIndex, slot.descriptorSet, *treeRequest, viewProj, slot.shadows ? 40.0f : 0.0f,
+    trees->recordClassify(cmd, slotIndex, slot.descriptorSet, *treeRequest, viewProj,
+                          treeLodScale(e.height, request.camera.verticalFovDeg), slot.shadows ? 40.0f : 0.0f,
                           retireBuffer);
     slot.timer->endPass(cmd);
     slot.treesDrawn = true;

@@ -71,8 +71,12 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   albedo_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor albedo");
   normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth");
-  depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_SAMPLE_COUNT_1_BIT,
+  depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, kImpostorSamples,
                          "tree impostor capture depth");
+  msAlbedo_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
+                            "tree impostor capture albedo (multisampled)");
+  msNormal_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
+                            "tree impostor capture normal (multisampled)");
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
     for (const GpuImage* img : {&albedo_, &normal_})
@@ -80,6 +84,10 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
                            VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     std::vector<ImageView> views;
+    for (const GpuImage* img : {&msAlbedo_, &msNormal_})
+      transitionImage(cmd, img->get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     for (uint32_t layer = 0; layer < layers; ++layer) {
       // The depth target is reused per layer: wait for the previous layer's tests.
       transitionImage(cmd, depth_.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -91,10 +99,13 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
       VkRenderingAttachmentInfo colour[2]{};
       for (int k = 0; k < 2; ++k) {
         colour[k].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-        colour[k].imageView = views[views.size() - 2 + static_cast<size_t>(k)].get();
+        colour[k].imageView = (k == 0 ? msAlbedo_ : msNormal_).view.get();
         colour[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        colour[k].resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;  // coverage → alpha
+        colour[k].resolveImageView = views[views.size() - 2 + static_cast<size_t>(k)].get();
+        colour[k].resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         colour[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colour[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        colour[k].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         colour[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
       }
       VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};

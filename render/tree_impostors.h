@@ -3,7 +3,10 @@
 // themselves: per model one layer of two RGBA8 atlases of G × G cells — albedo with coverage, and
 // the model-space normal with depth — cell (i, j) seen orthographically from the hemisphere
 // direction of shaders/common/tree_impostor.glsl (treeImpostorDirection), over a square of half
-// extent `halfExtent` around the model's centre. Lit at run time (shaders/tree_impostor.frag).
+// extent `halfExtent` around the model's centre. Captured with kImpostorSamples samples per texel
+// and resolved by averaging, so a texel's alpha is the share of it the model covers (and its
+// colour and normal are premultiplied by it): the impostor then covers, on average, what the
+// model covers at any size. Lit at run time (shaders/tree_impostor.frag).
 
 #include <cstdint>
 #include <functional>
@@ -20,6 +23,7 @@ namespace vegstream::render {
 
 inline constexpr uint32_t kImpostorViews = 8;    // G: cells per side
 inline constexpr uint32_t kImpostorCellPx = 64;  // pixels per cell side
+inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_4_BIT;
 
 // The C++ twin of common/tree_impostor.glsl.
 glm::vec3 impostorDirection(glm::vec2 uv);
@@ -42,13 +46,15 @@ class TreeImpostors {
 
   const GpuImage& albedo() const { return albedo_; }
   const GpuImage& normalDepth() const { return normal_; }
-  uint64_t gpuBytes() const { return albedo_.bytes + normal_.bytes + depth_.bytes; }
+  uint64_t gpuBytes() const {
+    return albedo_.bytes + normal_.bytes + depth_.bytes + msAlbedo_.bytes + msNormal_.bytes;
+  }
   // Reads one layer's albedo atlas back (RGBA8, row-major): for tests. Waits for the GPU.
   std::vector<uint8_t> readAlbedo(uint32_t layer) const;
 
  private:
   const Context* ctx_;
-  GpuImage albedo_, normal_, depth_;
+  GpuImage albedo_, normal_, depth_, msAlbedo_, msNormal_;
 };
 
 }  // namespace vegstream::render

@@ -10,6 +10,7 @@
 // impostor, nothing: the terrain's own colour) with dithered cross-fades between them, and appends
 // it to the indirect draws of its model (render/tree_pass.h).
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,13 +44,23 @@ struct TreePageUpload {
 };
 
 // How far each level of detail reaches, in tree heights (so a tall tree keeps its model
-// farther), and where trees end. Each switch cross-fades over `fadeShare` of its distance.
+// farther), for a 1080-line view of 55°: the renderer scales both by the view's pixels per radian
+// (treeLodScale), so a tree switches at the same size on screen in any window — a 320 × 180 frame
+// draws the full model only within a sixth of the distance. Trees end at `horizonM` (metres, not
+// scaled). Each switch cross-fades over `fadeShare` of its distance.
 struct TreeLodDistances {
   float fullHeights = 6.0f;      // full model up to 6 heights (90 m for a 15 m tree)
   float reducedHeights = 20.0f;  // reduced model up to 20 heights, the impostor beyond
   float horizonM = 3000.0f;      // impostors fade out to the terrain's own colour over the last fadeShare
   float fadeShare = 0.15f;
 };
+
+// The factor the level-of-detail distances are scaled by for a view `heightPx` tall with a
+// vertical field of view of `fovDeg`: its pixels per radian over a 1080-line, 55° view's.
+inline float treeLodScale(double heightPx, double fovDeg) {
+  const double reference = 540.0 / 0.52056705055174;  // tan(27.5°)
+  return static_cast<float>(0.5 * heightPx / std::tan(0.5 * fovDeg * 3.14159265358979323846 / 180.0) / reference);
+}
 
 // The trees of one frame; null in FrameRequest: none drawn.
 struct TreeRequest {

@@ -213,6 +213,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                         {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
                         {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
   capture.cullMode = VK_CULL_MODE_NONE;
+  capture.samples = kImpostorSamples;
   capture.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
   capture.colorAttachments = 2;
   capture.depthFormat = VK_FORMAT_D32_SFLOAT;
@@ -281,7 +282,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
         const VkBuffer vb = vertices_.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
-        const TreePush push{matrix, m, 0u, 2u, 1u};
+        const TreePush push{matrix, m, 0u, 2u, static_cast<uint32_t>(kImpostorSamples)};
         vkCmdPushConstants(cmd, drawLayout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
         vkCmdDrawIndexed(cmd, models_[m].indexCount[0], 1, models_[m].firstIndex[0],
@@ -305,7 +306,8 @@ uint64_t TreePass::gpuBytes() const {
 }
 
 void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
-                              const glm::dmat4& viewProj, float shadowMarginM, const RetireBuffer& retire) {
+                              const glm::dmat4& viewProj, float lodScale, float shadowMarginM,
+                              const RetireBuffer& retire) {
   const auto s = static_cast<size_t>(slot);
   slotRecorded_[s] = false;
   if (models_.empty() || pageCapacity_ == 0) return;
@@ -341,7 +343,8 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   auto* block = static_cast<TreeBlock*>(uniforms_[s].mapped);
   block->camera = glm::vec4(static_cast<float>(request.cameraEnu[0]), static_cast<float>(request.cameraEnu[1]),
                             static_cast<float>(request.cameraEnu[2]), request.timeS);
-  block->lod = {request.lod.fullHeights, request.lod.reducedHeights, request.lod.horizonM, request.lod.fadeShare};
+  block->lod = {request.lod.fullHeights * lodScale, request.lod.reducedHeights * lodScale, request.lod.horizonM,
+                request.lod.fadeShare};
   frustumPlanes(viewProj, block->frustum);
   block->counts = {pages * kTreePageSize, static_cast<uint32_t>(models_.size()), request.fades ? 1u : 0u,
                    kImpostorViews};
@@ -433,7 +436,6 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
       vkCmdDrawIndexedIndirect(cmd, meshDraws_.get(), (m * 2 + lod) * kIndexedCommand, 1,
                                static_cast<uint32_t>(kIndexedCommand));
     }
-  if (cascade == 0) return;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
   vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);

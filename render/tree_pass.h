@@ -49,14 +49,15 @@ class TreePass {
   // Outside rendering: page uploads, then the classify dispatch (needs set 0's simulation block).
   // `shadowMarginM`: trees this far outside the view still classify (they cast into it; 0 without
   // shadows).
+  // `lodScale`: treeLodScale of the view.
   void recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
-                      const glm::dmat4& viewProj, float shadowMarginM, const RetireBuffer& retire);
+                      const glm::dmat4& viewProj, float lodScale, float shadowMarginM, const RetireBuffer& retire);
   // Inside rendering (colour target of `samples`), after recordClassify.
   void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
   // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the same trees,
-  // depth only, through the cascade's matrix; impostors turn to the sun. The nearest cascade
-  // takes the models only (impostors are beyond it), the farthest the reduced models and impostors
-  // (the full models stand near the camera, their shadows in the nearer cascades).
+  // depth only, through the cascade's matrix; impostors turn to the sun. The farthest cascade takes
+  // the reduced models and impostors only (the full models stand near the camera, their shadows in
+  // the nearer cascades).
   void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;

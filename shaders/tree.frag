@@ -29,8 +29,10 @@ void main() {
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
   float alpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
-  if (push.mode >= 2u) {  // impostor capture: hard coverage, unlit
-    if (alpha < 0.5) discard;
+  if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
+    uint mask = treeSampleMask(alpha, push.samples, 0.5);
+    if (mask == 0u) discard;
+    gl_SampleMask[0] = int(mask);
     vec3 n = normalize(vNormal);
     if (!gl_FrontFacing) n = -n;
     outColor = vec4((leaf ? m.leaf.rgb : m.bark.rgb) * mix(0.35, 1.0, vOcclusion), 1.0);

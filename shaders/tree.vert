@@ -7,7 +7,7 @@
 // at an amplitude from the shared wind filtered at its own resonance (002 §4.5), leaves flutter;
 // positional animation only (002 §4.8's cheaper variant: the normals stay the undeformed ones).
 // Per tree, from its seed: yaw, lean, a scale to its height and crown, and each branch turned by up
-// to ±10° about its attachment — so no two trees of one model variant look alike.
+// to ±20° about the trunk — so no two trees of one model variant look alike.
 // Modes (push): 0 colour, 1 shadow depth (through push.capture), 2 impostor capture: the model
 // as built, through push.capture, no tree and no wind (render/tree_impostors.h).
 #include "common/frame_uniforms.glsl"
@@ -80,18 +80,19 @@ void main() {
     x = treeBranches[firstBranch + b].link.y;
     b = uint(parent);
   }
-  // This tree's branch angles: each branch turned about its attachment, deepest first, so a
-  // twig turns with the branch it grows on.
+  // This tree's branch angles: each branch on the trunk turned about the trunk at its attachment
+  // (by up to ±20°), its twigs with it. Turning the trunk's branches about the trunk keeps the
+  // crown's envelope — the one the impostors were captured with — while no two trees of a variant
+  // have their branches in the same places; turning the twigs about their branches as well grew
+  // the broadleaf's silhouette by 10 % (tests/render/tree_render_test.cpp).
   for (int k = 0; k < depth; ++k) {
     TreeBranchGpu br = treeBranches[firstBranch + chain[k]];
     int parent = floatBitsToInt(br.link.x);
-    if (parent < 0) continue;
-    vec3 axis = cross(treeBranches[firstBranch + uint(parent)].tC2.xyz, br.tC2.xyz);
-    float len = length(axis);
-    if (len < 1e-3) continue;
-    float angle = (hash01(seed ^ (chain[k] * 0x9e3779b9u)) - 0.5) * 0.35;
-    p = br.originLength.xyz + rotateAbout(p - br.originLength.xyz, axis / len, angle);
-    n = rotateAbout(n, axis / len, angle);
+    if (parent < 0 || floatBitsToUint(br.link.z) != 1u) continue;
+    vec3 axis = treeBranches[firstBranch + uint(parent)].tC2.xyz;
+    float angle = (hash01(seed ^ (chain[k] * 0x9e3779b9u)) - 0.5) * 0.7;
+    p = br.originLength.xyz + rotateAbout(p - br.originLength.xyz, axis, angle);
+    n = rotateAbout(n, axis, angle);
   }
   // Bending in the wind, in the model's frame (the wind turned by the tree's yaw).
   vec3 wind = treeUnrotateYaw(vec3(uintBitsToFloat(entry.z), uintBitsToFloat(entry.w), 0.0), seed);

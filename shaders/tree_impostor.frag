@@ -37,7 +37,8 @@ void main() {
   uint mask = treeSampleMask(albedo.a, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
-  vec3 nm = texture(impostorNormal, vec3(vUv, float(vLayer))).xyz * 2.0 - 1.0;
+  // Premultiplied by the coverage (the capture averaged its samples with the empty background).
+  vec3 nm = texture(impostorNormal, vec3(vUv, float(vLayer))).xyz / max(albedo.a, 1e-3) * 2.0 - 1.0;
   vec3 n = normalize(treeRotate(nm, vSeed));
   if (dot(n, vTowards) < 0.0) n = -n;
   TreeModelGpu m = trees.models[push.model];
