@@ -41,26 +41,6 @@ void impostorBasis(glm::vec3 d, glm::vec3& right, glm::vec3& up) {
   up = glm::cross(d, right);
 }
 
-glm::mat4 impostorCaptureMatrix(uint32_t i, uint32_t j, float centreZ, float halfExtent) {
-  const float g = static_cast<float>(kImpostorViews);
-  const glm::vec3 d = impostorDirection(glm::vec2((static_cast<float>(i) + 0.5f) / g, (static_cast<float>(j) + 0.5f) / g));
-  glm::vec3 right, up;
-  impostorBasis(d, right, up);
-  const glm::vec3 c(0.0f, 0.0f, centreZ);
-  const float inv = 1.0f / halfExtent;
-  glm::mat4 m(0.0f);  // rows: x = right, y = −up (Vulkan's y points down), z = depth towards the viewer
-  for (int k = 0; k < 3; ++k) {
-    m[k][0] = right[k] * inv;
-    m[k][1] = -up[k] * inv;
-    m[k][2] = 0.5f * d[k] * inv;
-  }
-  m[3][0] = -glm::dot(c, right) * inv;
-  m[3][1] = glm::dot(c, up) * inv;
-  m[3][2] = 0.5f - 0.5f * glm::dot(c, d) * inv;
-  m[3][3] = 1.0f;
-  return m;
-}
-
 TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorModel> models, const DrawModel& draw)
     : ctx_(&ctx) {
   assert(!models.empty());
@@ -73,10 +53,13 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
   normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth");
   depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, kImpostorSamples,
                          "tree impostor capture depth");
-  msAlbedo_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
-                            "tree impostor capture albedo (multisampled)");
-  msNormal_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
-                            "tree impostor capture normal (multisampled)");
+  const bool multisampled = kImpostorSamples != VK_SAMPLE_COUNT_1_BIT;
+  if (multisampled) {
+    msAlbedo_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
+                              "tree impostor capture albedo (multisampled)");
+    msNormal_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
+                              "tree impostor capture normal (multisampled)");
+  }
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
     for (const GpuImage* img : {&albedo_, &normal_})
@@ -84,8 +67,9 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
                            VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     std::vector<ImageView> views;
-    for (const GpuImage* img : {&msAlbedo_, &msNormal_})
-      transitionImage(cmd, img->get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+    if (multisampled)
+      for (const GpuImage* img : {&msAlbedo_, &msNormal_})
+        transitionImage(cmd, img->get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     for (uint32_t layer = 0; layer < layers; ++layer) {
@@ -99,13 +83,19 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
       VkRenderingAttachmentInfo colour[2]{};
       for (int k = 0; k < 2; ++k) {
         colour[k].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-        colour[k].imageView = (k == 0 ? msAlbedo_ : msNormal_).view.get();
+        const VkImageView layerView = views[views.size() - 2 + static_cast<size_t>(k)].get();
         colour[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colour[k].resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;  // coverage → alpha
-        colour[k].resolveImageView = views[views.size() - 2 + static_cast<size_t>(k)].get();
-        colour[k].resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         colour[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colour[k].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        if (multisampled) {
+          colour[k].imageView = (k == 0 ? msAlbedo_ : msNormal_).view.get();
+          colour[k].resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;  // coverage → alpha
+          colour[k].resolveImageView = layerView;
+          colour[k].resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+          colour[k].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        } else {
+          colour[k].imageView = layerView;
+          colour[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        }
         colour[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
       }
       VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -121,15 +111,11 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
       ri.pColorAttachments = colour;
       ri.pDepthAttachment = &depth;
       vkCmdBeginRendering(cmd, &ri);
-      for (uint32_t j = 0; j < kImpostorViews; ++j)
-        for (uint32_t i = 0; i < kImpostorViews; ++i) {
-          const float x = static_cast<float>(i * kImpostorCellPx), y = static_cast<float>(j * kImpostorCellPx);
-          const VkViewport vp{x, y, static_cast<float>(kImpostorCellPx), static_cast<float>(kImpostorCellPx), 0.0f, 1.0f};
-          const VkRect2D scissor{{static_cast<int32_t>(x), static_cast<int32_t>(y)}, {kImpostorCellPx, kImpostorCellPx}};
-          vkCmdSetViewport(cmd, 0, 1, &vp);
-          vkCmdSetScissor(cmd, 0, 1, &scissor);
-          draw(cmd, layer, impostorCaptureMatrix(i, j, models[layer].centreZ, models[layer].halfExtent));
-        }
+      const VkViewport vp{0.0f, 0.0f, static_cast<float>(side), static_cast<float>(side), 0.0f, 1.0f};
+      const VkRect2D scissor{{0, 0}, extent};
+      vkCmdSetViewport(cmd, 0, 1, &vp);
+      vkCmdSetScissor(cmd, 0, 1, &scissor);
+      draw(cmd, layer);
       vkCmdEndRendering(cmd);
     }
     for (const GpuImage* img : {&albedo_, &normal_})

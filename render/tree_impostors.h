@@ -3,10 +3,12 @@
 // themselves: per model one layer of two RGBA8 atlases of G × G cells — albedo with coverage, and
 // the model-space normal with depth — cell (i, j) seen orthographically from the hemisphere
 // direction of shaders/common/tree_impostor.glsl (treeImpostorDirection), over a square of half
-// extent `halfExtent` around the model's centre. Captured with kImpostorSamples samples per texel
-// and resolved by averaging, so a texel's alpha is the share of it the model covers (and its
-// colour and normal are premultiplied by it): the impostor then covers, on average, what the
-// model covers at any size. Lit at run time (shaders/tree_impostor.frag).
+// extent `halfExtent` around the model's centre. kImpostorSamples samples per texel (resolved by
+// averaging when more than one, so alpha is the share covered): one on every device — 4 samples
+// matched the model's coverage no better in tests/render/tree_render_test.cpp (1.0 / 3.5 % against
+// 1.3 / 3.8 %) and tripled the capture on lavapipe (4.9 s against 1.6 s for six models). The
+// background is empty (0), so bilinear lookups come premultiplied by coverage and the shader
+// divides by it. Lit at run time (shaders/tree_impostor.frag).
 
 #include <cstdint>
 #include <functional>
@@ -23,14 +25,11 @@ namespace vegstream::render {
 
 inline constexpr uint32_t kImpostorViews = 8;    // G: cells per side
 inline constexpr uint32_t kImpostorCellPx = 64;  // pixels per cell side
-inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_4_BIT;
+inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_1_BIT;  // see above
 
 // The C++ twin of common/tree_impostor.glsl.
 glm::vec3 impostorDirection(glm::vec2 uv);
 void impostorBasis(glm::vec3 towardsViewer, glm::vec3& right, glm::vec3& up);
-// The capture camera of cell (i, j) for a model whose centre is at height `centreZ` (model space,
-// metres) and whose bounding radius is `halfExtent`: orthographic, reverse-Z (nearest 1).
-glm::mat4 impostorCaptureMatrix(uint32_t i, uint32_t j, float centreZ, float halfExtent);
 
 struct TreeImpostorModel {
   float centreZ = 0.0f;     // the model's centre height
@@ -39,9 +38,10 @@ struct TreeImpostorModel {
 
 class TreeImpostors {
  public:
-  // Draws model `m` with the capture matrix into the bound two-attachment target (the caller's
-  // tree pipeline in capture mode).
-  using DrawModel = std::function<void(VkCommandBuffer, uint32_t model, const glm::mat4& capture)>;
+  // Draws model `m` into every cell of the bound two-attachment target, one instance per cell
+  // (the caller's tree pipeline in capture mode: shaders/tree.vert places each instance; one draw
+  // per model, where lavapipe spent most of 5 s on 64 small draws per model).
+  using DrawModel = std::function<void(VkCommandBuffer, uint32_t model)>;
   TreeImpostors(const Context& ctx, std::span<const TreeImpostorModel> models, const DrawModel& draw);
 
   const GpuImage& albedo() const { return albedo_; }

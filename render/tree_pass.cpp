@@ -274,7 +274,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   writeSampledImage(*ctx_, sets_[0], sampler_.get(), placeholder.view.get(), 8);
   writeSampledImage(*ctx_, sets_[0], sampler_.get(), placeholder.view.get(), 9);
   impostors_ = std::make_unique<TreeImpostors>(
-      *ctx_, impostorModels, [&](VkCommandBuffer cmd, uint32_t m, const glm::mat4& matrix) {
+      *ctx_, impostorModels, [&](VkCommandBuffer cmd, uint32_t m) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, capturePipeline.get());
         const VkDescriptorSet bound[] = {frameSet, sets_[0]};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
@@ -282,10 +282,10 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
         const VkBuffer vb = vertices_.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
-        const TreePush push{matrix, m, 0u, 2u, static_cast<uint32_t>(kImpostorSamples)};
+        const TreePush push{glm::mat4(1.0f), m, kImpostorViews, 2u, static_cast<uint32_t>(kImpostorSamples)};
         vkCmdPushConstants(cmd, drawLayout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
-        vkCmdDrawIndexed(cmd, models_[m].indexCount[0], 1, models_[m].firstIndex[0],
+        vkCmdDrawIndexed(cmd, models_[m].indexCount[0], kImpostorViews * kImpostorViews, models_[m].firstIndex[0],
                          static_cast<int32_t>(models_[m].vertexOffset[0]), 0);
       });
   for (size_t s = 0; s < sets_.size(); ++s) {

@@ -19,6 +19,7 @@ layout(location = 4) flat in float vThreshold;
 layout(location = 5) flat in uint vInstance;
 layout(location = 6) in float vOcclusion;
 layout(location = 7) flat in float vTint;
+layout(location = 8) in vec2 vCell;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormalDepth;  // capture only
 
@@ -30,6 +31,7 @@ void main() {
   bool leaf = vKind == 1u;
   float alpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
   if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
+    if (any(greaterThan(abs(vCell), vec2(1.0)))) discard;  // outside this view's cell
     uint mask = treeSampleMask(alpha, push.samples, 0.5);
     if (mask == 0u) discard;
     gl_SampleMask[0] = int(mask);

@@ -15,6 +15,7 @@
 #include "simulation/shared/tree_bending.glsl"
 #include "common/tree_layout.glsl"
 #include "common/tree_push.glsl"
+#include "common/tree_impostor.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in uint inBranch;
@@ -32,6 +33,7 @@ layout(location = 4) flat out float vThreshold;
 layout(location = 5) flat out uint vInstance;
 layout(location = 6) out float vOcclusion;
 layout(location = 7) flat out float vTint;
+layout(location = 8) out vec2 vCell;  // capture: the point in its cell's square (−1 … 1), outside is cut
 
 uint hashU(uint x) {  // lowbias32 (Wellons): branch angles and phases from the tree's seed
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -52,13 +54,24 @@ void main() {
   vKind = inKind;
   vUv = inUv;
   vOcclusion = clamp(length(p.xy) / max(m.shape.y, 0.1), 0.0, 1.0) * 0.6 + clamp(p.z / m.shape.x, 0.0, 1.0) * 0.4;
-  if (push.mode >= 2u) {
+  vCell = vec2(0.0);
+  if (push.mode >= 2u) {  // impostor capture: instance i draws the model into cell i of the atlas
+    uint g = push.lod;      // views per side
+    vec2 cell = vec2(float(uint(gl_InstanceIndex) % g), float(uint(gl_InstanceIndex) / g));
+    vec3 d = treeImpostorDirection((cell + 0.5) / float(g));
+    vec3 right, up;
+    treeImpostorBasis(d, right, up);
+    vec3 q = p - vec3(0.0, 0.0, m.shape.w);
+    float r = m.shape.z;
+    vec2 local = vec2(dot(q, right), -dot(q, up)) / r;  // y down, as the atlas' rows
     vPos = p;
     vNormal = n;
     vThreshold = 1.0;
     vInstance = 0u;
     vTint = 1.0;
-    gl_Position = push.capture * vec4(p, 1.0);
+    vCell = local;
+    // Reverse-Z: nearest the viewer 1.
+    gl_Position = vec4((cell + 0.5 + 0.5 * local) / float(g) * 2.0 - 1.0, 0.5 + 0.5 * dot(q, d) / r, 1.0);
     return;
   }
   uvec4 entry = treeVisible[gl_InstanceIndex];

@@ -3,9 +3,9 @@
 // The tree pipelines' push constants (render/tree_pass.cpp TreePush mirrors them).
 const int kTreeMaxChain = 4;  // vegetation::kMaxBranchLevels + 1: the trunk and its descendants
 layout(push_constant) uniform TreePush {
-  mat4 capture;  // modes 1–2: the light's (shadow) or the capture camera's view-projection
+  mat4 capture;  // mode 1: the light's (shadow cascade's) view-projection
   uint model;
-  uint lod;
+  uint lod;      // impostor capture: the views per side
   uint mode;     // 0 colour, 1 shadow depth, 2 impostor capture (albedo + coverage, normal + depth)
   uint samples;  // MSAA samples of the target (alpha to coverage)
 } push;
