@@ -30,7 +30,9 @@ struct ShadowCascades {
 
 struct ShadowSettings {
   uint32_t mapSize = 1024;                                   // texels per side of each cascade
-  std::array<float, kShadowCascades> splitsM{50.0f, 250.0f, 1200.0f};  // far distances
+  // Far distances: beyond 600 m a tree's shadow is a few pixels at 1080p; the H200 spent 21 ms a
+  // frame drawing the impostors of a 1200 m cascade over the Kolob forest.
+  std::array<float, kShadowCascades> splitsM{40.0f, 180.0f, 600.0f};
   float casterMarginM = 400.0f;  // how far towards the sun casters may stand outside a slice
 };
 

@@ -51,6 +51,10 @@ struct TreePageUpload {
 struct TreeLodDistances {
   float fullHeights = 6.0f;      // full model up to 6 heights (90 m for a 15 m tree)
   float reducedHeights = 20.0f;  // reduced model up to 20 heights, the impostor beyond
+  // Impostors end (fading to the terrain's own colour) where a tree is about 2.5 pixels tall: 400
+  // heights at 1080 lines (6 km for a 15 m tree: the horizon ends them first), 67 in a 180-line
+  // frame. Scaled like the two above.
+  float impostorEndHeights = 400.0f;
   float horizonM = 3000.0f;      // impostors fade out to the terrain's own colour over the last fadeShare
   float fadeShare = 0.15f;
 };

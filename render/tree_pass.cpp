@@ -31,7 +31,7 @@ struct TreeBlock {
   glm::vec4 camera, lod;
   glm::vec4 frustum[6];
   glm::uvec4 counts, capacity;
-  glm::vec4 shadow;
+  glm::vec4 limits;
   TreeModelGpu models[kMaxTreeModels];
 };
 static_assert(sizeof(TreeModelGpu) == 80);
@@ -349,7 +349,7 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   block->counts = {pages * kTreePageSize, static_cast<uint32_t>(models_.size()), request.fades ? 1u : 0u,
                    kImpostorViews};
   block->capacity = {capacity_[0], capacity_[1], capacity_[2], 0u};
-  block->shadow = glm::vec4(shadowMarginM, 0.0f, 0.0f, 0.0f);
+  block->limits = glm::vec4(shadowMarginM, request.lod.impostorEndHeights * lodScale, 0.0f, 0.0f);
   std::memcpy(block->models, modelBlock_.data(), modelBlock_.size());
 
   // Reset the draws and counters, classify, clamp.

@@ -20,6 +20,8 @@ layout(location = 5) flat in uint vInstance;
 layout(location = 6) in float vOcclusion;
 layout(location = 7) flat in float vTint;
 layout(location = 8) in vec2 vCell;
+layout(location = 9) in vec4 vSky;
+layout(location = 10) in float vSun;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormalDepth;  // capture only
 
@@ -55,5 +57,6 @@ void main() {
   if (!gl_FrontFacing) n = -n;
   vec3 albedo = (leaf ? m.leaf.rgb : m.bark.rgb) * vTint;
   if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
-  outColor = vec4(treeLight(vPos, n, albedo, m.leaf.w, leaf, vOcclusion), 1.0);
+  vec3 lit = treeLight(n, albedo, m.leaf.w, leaf, vOcclusion, vSun);
+  outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
 }

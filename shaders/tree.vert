@@ -16,6 +16,8 @@
 #include "common/tree_layout.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_impostor.glsl"
+#include "common/atmosphere.glsl"
+#include "common/tree_shading.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in uint inBranch;
@@ -34,6 +36,8 @@ layout(location = 5) flat out uint vInstance;
 layout(location = 6) out float vOcclusion;
 layout(location = 7) flat out float vTint;
 layout(location = 8) out vec2 vCell;  // capture: the point in its cell's square (−1 … 1), outside is cut
+layout(location = 9) out vec4 vSky;   // the aerial perspective: sky colour, transmittance
+layout(location = 10) out float vSun; // the sun shadow
 
 uint hashU(uint x) {  // lowbias32 (Wellons): branch angles and phases from the tree's seed
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -55,6 +59,8 @@ void main() {
   vUv = inUv;
   vOcclusion = clamp(length(p.xy) / max(m.shape.y, 0.1), 0.0, 1.0) * 0.6 + clamp(p.z / m.shape.x, 0.0, 1.0) * 0.4;
   vCell = vec2(0.0);
+  vSky = vec4(0.0, 0.0, 0.0, 1.0);
+  vSun = 1.0;
   if (push.mode >= 2u) {  // impostor capture: instance i draws the model into cell i of the atlas
     uint g = push.lod;      // views per side
     vec2 cell = vec2(float(uint(gl_InstanceIndex) % g), float(uint(gl_InstanceIndex) / g));
@@ -135,5 +141,9 @@ void main() {
   vThreshold = uintBitsToFloat(entry.y);
   vInstance = entry.x;
   vTint = t.tint;
+  if (push.mode == 0u) {
+    vSky = treeVertexAtmosphere(rel);
+    vSun = sunShadow(rel, vNormal);
+  }
   gl_Position = (push.mode == 1u ? treeShadowMatrix(0u) : frame.viewProj) * vec4(rel, 1.0);
 }

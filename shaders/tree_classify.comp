@@ -49,11 +49,12 @@ void main() {
   TreeInstanceGpu t = treeInstances[i];
   vec3 rel = t.position - trees.camera.xyz;
   float dist = length(rel);
-  float horizon = trees.lod.z;
-  if (dist >= horizon) return;
   float h = max(t.heightM, 0.5);
+  // Trees end at the horizon, or sooner where they are a pixel or two tall.
+  float horizon = min(trees.lod.z, trees.limits.y * h);
+  if (dist >= horizon) return;
   vec3 centre = rel + vec3(0.0, 0.0, 0.5 * h);
-  float radius = 0.6 * max(h, t.crownM) + trees.shadow.x;
+  float radius = 0.6 * max(h, t.crownM) + trees.limits.x;
   for (int p = 0; p < 6; ++p)
     if (dot(trees.frustum[p].xyz, centre) + trees.frustum[p].w < -radius) return;
 

@@ -22,6 +22,8 @@ layout(location = 6) flat in vec3 vUp;
 layout(location = 7) flat in vec3 vTowards;
 layout(location = 8) flat in float vTint;
 layout(location = 9) flat in uint vSeed;
+layout(location = 10) flat in vec4 vSky;
+layout(location = 11) flat in float vSun;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -43,5 +45,6 @@ void main() {
   if (dot(n, vTowards) < 0.0) n = -n;
   TreeModelGpu m = trees.models[push.model];
   vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * vTint;
-  outColor = vec4(treeLight(vPos, n, colour, m.leaf.w, true, 1.0), 1.0);
+  vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
+  outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
 }

@@ -22,7 +22,7 @@ layout(set = 1, binding = 0, std140) uniform TreeBlock {
   vec4 frustum[6];  // camera-relative planes: dot(xyz, p) + w ≥ 0 inside
   uvec4 counts;     // x: instance slots (pages × kTreePageSize), y: models, z: flags, w: impostor views per side
   uvec4 capacity;   // visible entries per model: x full, y reduced, z impostor
-  vec4 shadow;      // x: how far shadow casters may lie outside the view (m)
+  vec4 limits;      // x: how far shadow casters may lie outside the view (m), y: impostors end (tree heights)
   TreeModelGpu models[kMaxTreeModels];
 } trees;
 

@@ -43,16 +43,23 @@ uint treeSampleMask(float alpha, uint samples, float dither) {
   return ((bits << first) | (bits >> (samples - first))) & (samples >= 32u ? 0xffffffffu : (1u << samples) - 1u);
 }
 
-// pos: camera-relative; n: the face's unit normal towards the viewer; leaf: a card (else bark);
-// occlusion: 0 deep in the crown … 1 at its surface.
-vec3 treeLight(vec3 pos, vec3 n, vec3 albedo, float translucency, bool leaf, float occlusion) {
+// The lighting at a fragment, without the aerial perspective: n the face's unit normal towards
+// the viewer; leaf: a card (else bark); occlusion: 0 deep in the crown … 1 at its surface; sun:
+// the sun shadow's factor (sunShadow). What varies slowly over a tree — the shadow lookup and the
+// aerial perspective — the vertex stages evaluate (treeVertexLight): the H200 shades fragments on
+// 2 of its 66 TPCs, and the trees' cards overlap many times.
+vec3 treeLight(vec3 n, vec3 albedo, float translucency, bool leaf, float occlusion, float sun) {
   vec3 l = frame.sunDirection.xyz;
   float ndl = dot(n, l);
   vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.4;
-  vec3 ii = frame.sunColor.rgb * sunShadow(pos, n);
+  vec3 ii = frame.sunColor.rgb * sun;
   vec3 kd = albedo * kTreeImageryExposure * mix(0.35, 1.0, occlusion);
   vec3 lit = ia * kd + ii * kd * max(ndl, 0.0);
   if (leaf && ndl < 0.0) lit += ii * kd * vec3(0.9, 1.0, 0.5) * translucency * (-ndl);  // through the leaf
-  return applyAerialPerspective(lit, pos);
+  return lit;
 }
+
+// Per vertex: xyz the sky colour behind the point (aerial perspective), w its transmittance;
+// and the sun shadow at the point (normal `n`).
+vec4 treeVertexAtmosphere(vec3 pos) { return vec4(skyColor(normalize(pos)), fogTransmittance(pos)); }
 #endif
