@@ -93,6 +93,11 @@ const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", 
                                           // Issue 17's Hi-Z occlusion culling.
                                           "plant_cull_tested",    "plant_cull_culled", "plant_clusters_culled",
                                           "plant_groups_culled",  "plants_culled"};
+// Issue 20's trees, the last columns.
+const std::vector<std::string> kTrees = {"trees_full",        "trees_reduced",      "trees_impostor",
+                                         "trees_dropped",     "trees_classified",   "tree_tiles_wanted",
+                                         "tree_tiles_drawn",  "tree_pages_used",    "tree_page_capacity",
+                                         "tree_budget_bound", "tree_gpu_bytes",     "tree_placement_ms"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -158,15 +163,17 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
     EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size();
+  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size() + kTrees.size();
   ASSERT_GE(csv.header.size(), kLeading.size() + tail);
   EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
   const auto back = [&](std::size_t skip) { return csv.header.rbegin() + static_cast<long>(skip); };
-  EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(0)));
-  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(kPlants.size())));
-  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(kPlants.size() + kRoam.size())));
-  EXPECT_TRUE(
-      std::equal(kTrailing.rbegin(), kTrailing.rend(), back(kPlants.size() + kStreaming.size() + kRoam.size())));
+  const std::size_t t = kTrees.size();
+  EXPECT_TRUE(std::equal(kTrees.rbegin(), kTrees.rend(), back(0)));
+  EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(t)));
+  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(t + kPlants.size())));
+  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(t + kPlants.size() + kRoam.size())));
+  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(),
+                         back(t + kPlants.size() + kStreaming.size() + kRoam.size())));
   for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
     EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
@@ -201,7 +208,10 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
                              "plants",
                              "plant_overflow",
                              "plant_cull_tested",
-                             "plant_cull_culled"})
+                             "plant_cull_culled",
+                             "trees_classified",
+                             "tree_page_capacity",
+                             "tree_gpu_bytes"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));

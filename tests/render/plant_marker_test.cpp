@@ -69,7 +69,10 @@ TEST_F(PlantMarkers, ARedRockFieldGrowsGravelAndAPaleOneNothing) {
   EXPECT_EQ(changedPixels(*pale.with.color, *pale.without.color, 0, kH), 0u);
 }
 
-TEST_F(PlantMarkers, TreesAreClassifiedButDrawnOnlyAsMarkers) {
+// Trees grow on their own grid (issue 20, vegetation/tree_placement.h, render/tree_pass.h): to the
+// plants' classify pass a tree species is bare soil — its seeds are made and rejected, no group,
+// no marker, nothing drawn as plants.
+TEST_F(PlantMarkers, TreeSpeciesAreBareSoilToThePlants) {
   auto r = makeRenderer(kW, kH, 4);
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->setImageryLayers(1).ok());
@@ -78,10 +81,12 @@ TEST_F(PlantMarkers, TreesAreClassifiedButDrawnOnlyAsMarkers) {
   const FieldResult markers = renderField(*r, "conifer", PlantStyle::Markers);
   const FieldResult plants = renderField(*r, "conifer", PlantStyle::Plants);
   ASSERT_TRUE(markers.with.vegetation && plants.with.vegetation);
-  EXPECT_GT(markers.with.vegetation->plants[size_t(conifer)], 0.9 * double(markers.with.vegetation->plantsTotal));
-  EXPECT_EQ(plants.with.vegetation->plants[size_t(conifer)], markers.with.vegetation->plants[size_t(conifer)]);
-  EXPECT_GT(changedPixels(*markers.with.color, *markers.without.color, 0, kH), 1000u) << "markers drawn";
-  EXPECT_EQ(changedPixels(*plants.with.color, *plants.without.color, 0, kH), 0u) << "no tree drawn as plants";
+  EXPECT_GT(markers.with.vegetation->clusters, 1000u);  // seeded …
+  EXPECT_EQ(markers.with.vegetation->plants[size_t(conifer)], 0u);  // … and rejected
+  EXPECT_LT(double(markers.with.vegetation->plantsTotal), 0.1 * double(markers.with.vegetation->clusters));
+  EXPECT_EQ(plants.with.vegetation->plants[size_t(conifer)], 0u);
+  // The few plants of other species that the conifer's colour leaves (grass at its border) only.
+  EXPECT_LT(changedPixels(*plants.with.color, *plants.without.color, 0, kH), kW * kH / 100) << "no tree drawn as plants";
 }
 
 }  // namespace
