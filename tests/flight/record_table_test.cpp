@@ -86,7 +86,8 @@ TEST(RecorderTable, ColumnsAndFrameCount) {
   EXPECT_EQ(at("terrain_roam_update_ms"), at("terrain_error_relaxation") + 1);  // issue 6's columns follow
   EXPECT_EQ(at("plant_seed_triangles"), at("terrain_achieved_error_px") + 1);   // issue 7's columns follow
   EXPECT_EQ(at("plant_cull_tested"), at("plant_triangles") + 1);  // issue 17's occlusion culling follows
-  EXPECT_EQ(names.back(), "plants_culled");
+  EXPECT_EQ(at("trees_full"), at("plants_culled") + 1);  // issue 20's trees follow, last
+  EXPECT_EQ(names.back(), "tree_placement_ms");
   EXPECT_EQ(frameCount(30.0, 60.0), 1801u);
   EXPECT_EQ(frameCount(2.0, 15.0), 31u);
   EXPECT_EQ(frameCount(0.1, 15.0), 2u);
