@@ -50,6 +50,15 @@ constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
 constexpr VkDeviceSize kDrawCommand = 4 * sizeof(uint32_t);
 constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
 
+// vegetation::TreeVertex as the vertex stage reads it (shaders/tree.vert's locations 0–6).
+void setTreeVertexInput(GraphicsPipelineDesc& desc) {
+  desc.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  desc.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
+                     {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
+                     {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
+                     {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+}
+
 // Camera-relative frustum planes of a Vulkan clip space (Gribb & Hartmann), normalised.
 void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
   const auto row = [&](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
@@ -94,11 +103,7 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   GraphicsPipelineDesc mesh;
   mesh.name = "tree pipeline";
   mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
-  mesh.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  mesh.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
-                     {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
-                     {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
-                     {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+  setTreeVertexInput(mesh);
   mesh.cullMode = VK_CULL_MODE_NONE;  // cards are seen from both sides
   mesh.samples = samples_;
   mesh.colorFormat = kColorFormat;
@@ -207,11 +212,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   GraphicsPipelineDesc capture;
   capture.name = "tree impostor capture pipeline";
   capture.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
-  capture.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  capture.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
-                        {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
-                        {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
-                        {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+  setTreeVertexInput(capture);
   capture.cullMode = VK_CULL_MODE_NONE;
   capture.samples = kImpostorSamples;
   capture.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
