@@ -48,13 +48,17 @@ struct TreePageUpload {
 // (treeLodScale), so a tree switches at the same size on screen in any window — a 320 × 180 frame
 // draws the full model only within a sixth of the distance. Trees end at `horizonM` (metres, not
 // scaled). Each switch cross-fades over `fadeShare` of its distance.
+//
+// Each level's cost on the H200 is its pixels times its layers of cards (render/README.md
+// "Trees"): at 1080 lines, the full model up to 2 heights (30 m for a 15 m tree), the reduced
+// one up to 7 (105 m), where the impostor's 64-pixel views are nearly as sharp as the screen.
 struct TreeLodDistances {
-  float fullHeights = 6.0f;      // full model up to 6 heights (90 m for a 15 m tree)
-  float reducedHeights = 20.0f;  // reduced model up to 20 heights, the impostor beyond
-  // Impostors end (fading to the terrain's own colour) where a tree is about 2.5 pixels tall: 400
-  // heights at 1080 lines (6 km for a 15 m tree: the horizon ends them first), 67 in a 180-line
-  // frame. Scaled like the two above.
-  float impostorEndHeights = 400.0f;
+  float fullHeights = 2.0f;     // full model up to 2 heights
+  float reducedHeights = 7.0f;  // reduced model up to 7 heights, the impostor beyond
+  // Impostors end (fading to the terrain's own colour) where a tree is about 5 pixels tall: 200
+  // heights at 1080 lines (3 km for a 15 m tree, where the horizon ends them too), 33 in a
+  // 180-line frame. Scaled like the two above.
+  float impostorEndHeights = 200.0f;
   float horizonM = 3000.0f;      // impostors fade out to the terrain's own colour over the last fadeShare
   float fadeShare = 0.15f;
 };

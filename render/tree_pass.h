@@ -54,11 +54,10 @@ class TreePass {
                       const glm::dmat4& viewProj, float lodScale, float shadowMarginM, const RetireBuffer& retire);
   // Inside rendering (colour target of `samples`), after recordClassify.
   void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
-  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the same trees,
-  // depth only, through the cascade's matrix; impostors turn to the sun. The farthest cascade takes
-  // the reduced models and impostors only (the full models stand near the camera, their shadows in
-  // the nearer cascades).
-  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix);
+  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): every classified
+  // tree — impostor, reduced or full in the view — as its impostor turned to the sun, depth only,
+  // through the cascade's matrix (the models' cards cost 15 × the impostors there).
+  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& matrix);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 
@@ -77,7 +76,7 @@ class TreePass {
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};
   PipelineLayout classifyLayout_, drawLayout_;
-  Pipeline classifyPipeline_, meshPipeline_, impostorPipeline_, shadowMeshPipeline_, shadowImpostorPipeline_;
+  Pipeline classifyPipeline_, meshPipeline_, impostorPipeline_, shadowImpostorPipeline_;
   Sampler sampler_;
 
   std::vector<ModelDraw> models_;

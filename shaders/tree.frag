@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Tree models' fragments (issue 20): bark and leaf or needle cards (their outline procedural, in
 // the card's uv), the level-of-detail cross-fade as a dither (common/tree_layout.glsl), alpha to
-// coverage into the sample mask, and the lighting of common/tree_shading.glsl. Capture modes write
+// coverage (sharpened) into the sample mask, and the lighting of common/tree_shading.glsl. Capture modes write
 // what the impostors keep (mode 2): albedo (darkened by the crown's occlusion) and coverage, and the
 // model-space normal and depth.
 #include "common/frame_uniforms.glsl"
@@ -31,7 +31,15 @@ void main() {
   gl_SampleMask[0] = -1;
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
-  float alpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
+  // The card's alpha sharpened to its pixel footprint (Golus 2017, "Anti-aliased alpha test"): a
+  // crisp outline, antialiased by the coverage mask, and no fragment kept for the faint fringe —
+  // on the H200 every fragment kept costs its samples whether it covers one or four.
+  float rawAlpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
+  // Where the card's pattern is finer than a pixel (fwidth near 1) the plain alpha is the better
+  // coverage estimate: the sharpening would round it towards one half.
+  float footprint = fwidth(rawAlpha);
+  float alpha = mix(clamp((rawAlpha - 0.5) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), rawAlpha,
+                    smoothstep(0.3, 1.0, footprint));
   if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
     if (any(greaterThan(abs(vCell), vec2(1.0)))) discard;  // outside this view's cell
     uint mask = treeSampleMask(alpha, push.samples, 0.5);
@@ -45,11 +53,6 @@ void main() {
   }
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
-  if (push.mode == 1u) {  // shadow depth
-    if (alpha < 0.5) discard;
-    outColor = vec4(0.0);
-    return;
-  }
   uint mask = treeSampleMask(alpha, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);

@@ -8,8 +8,8 @@
 // positional animation only (002 §4.8's cheaper variant: the normals stay the undeformed ones).
 // Per tree, from its seed: yaw, lean, a scale to its height and crown, and each branch turned by up
 // to ±20° about the trunk — so no two trees of one model variant look alike.
-// Modes (push): 0 colour, 1 shadow depth (through push.capture), 2 impostor capture: the model
-// as built, through push.capture, no tree and no wind (render/tree_impostors.h).
+// Modes (push): 0 colour, 2 impostor capture: the model as built, through push.capture, no tree
+// and no wind (render/tree_impostors.h). (Trees cast shadows through their impostors only.)
 #include "common/frame_uniforms.glsl"
 #include "common/simulation_block.glsl"
 #include "simulation/shared/tree_bending.glsl"
@@ -141,9 +141,7 @@ void main() {
   vThreshold = uintBitsToFloat(entry.y);
   vInstance = entry.x;
   vTint = t.tint;
-  if (push.mode == 0u) {
-    vSky = treeVertexAtmosphere(rel);
-    vSun = sunShadow(rel, vNormal);
-  }
-  gl_Position = (push.mode == 1u ? treeShadowMatrix(0u) : frame.viewProj) * vec4(rel, 1.0);
+  vSky = treeVertexAtmosphere(rel);
+  vSun = sunShadow(rel, vNormal);
+  gl_Position = frame.viewProj * vec4(rel, 1.0);
 }

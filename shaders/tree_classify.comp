@@ -16,7 +16,7 @@ float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
 
 layout(set = 1, binding = 4, std430) readonly buffer PageCounts { uint pageCounts[]; };
 layout(set = 1, binding = 5, std430) buffer MeshDraws { uint meshDraws[]; };          // per model × 2: VkDrawIndexedIndirectCommand
-layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model: VkDrawIndirectCommand
+layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model: VkDrawIndirectCommand; then per model × 2 the shadow casters
 layout(set = 1, binding = 7, std430) buffer TreeCounters { uint treeCounters[]; };    // instances, full, reduced, impostor, dropped
 
 layout(push_constant) uniform Push { uint mode; } push;
@@ -40,6 +40,14 @@ void main() {
       for (uint lod = 0u; lod < 2u; ++lod)
         meshDraws[(i * 2u + lod) * 5u + 1u] = min(meshDraws[(i * 2u + lod) * 5u + 1u], treeRegionCapacity(lod));
       impostorDraws[i * 4u + 1u] = min(impostorDraws[i * 4u + 1u], trees.capacity.z);
+      // The shadow pass draws the full and reduced lists as impostor quads too.
+      for (uint lod = 0u; lod < 2u; ++lod) {
+        uint at = (trees.counts.y + i * 2u + lod) * 4u;
+        impostorDraws[at] = 6u;
+        impostorDraws[at + 1u] = meshDraws[(i * 2u + lod) * 5u + 1u];
+        impostorDraws[at + 2u] = 0u;
+        impostorDraws[at + 3u] = treeRegionBase(i, lod);
+      }
     }
     return;
   }

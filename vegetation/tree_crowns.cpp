@@ -191,16 +191,36 @@ void fitCard(Card& c, const Envelope& env) {
   }
 }
 
-void addCards(Skeleton& k, const TreeParams& p, const Envelope& env, uint32_t perBranch, float size, Random& rng) {
+float sideArea(const Envelope& env) {
+  if (env.form == TreeForm::Conifer) return env.radius * (env.height - env.base);  // a triangle
+  // A superellipse's area: 4ab Γ(1 + 1/n)² / Γ(1 + 2/n).
+  const float n = kCrownRoundness;
+  return 4.0f * env.radius * env.halfHeight() * std::pow(std::tgamma(1.0f + 1.0f / n), 2.0f) /
+         std::tgamma(1.0f + 2.0f / n);
+}
+
+float cardArea(TreeForm form, float length) { return (form == TreeForm::Conifer ? 0.6f : 0.92f) * length * length; }
+
+void addCards(Skeleton& k, const TreeParams& p, const Envelope& env, uint32_t total, float size, Random& rng) {
   const bool conifer = p.form == TreeForm::Conifer;
   const vec3 centre(0.0f, 0.0f, env.centreZ());
   const size_t count = k.branches.size();
+  uint32_t last = 0;
+  for (const TreeBranch& b : k.branches) last += b.level == p.branchLevels ? 1u : 0u;
+  uint32_t seen = 0;
   for (size_t i = 0; i < count; ++i) {
     const TreeBranch& b = k.branches[i];
     if (b.level != p.branchLevels) continue;
+    // This branch's share of the total, spread evenly (some branches get one more).
+    const auto before = static_cast<uint32_t>(uint64_t{seen} * total / std::max(last, 1u));
+    ++seen;
+    const auto upTo = static_cast<uint32_t>(uint64_t{seen} * total / std::max(last, 1u));
+    const uint32_t perBranch = std::min(upTo - before, p.leavesPerTwig);
     for (uint32_t j = 0; j < perBranch; ++j) {
+      // On the branch's outer half, where the crown's surface is: cards deep inside are hidden
+      // behind the others yet still cost their pixels.
       const float share = (static_cast<float>(j) + rng.range(0.1f, 0.9f)) / static_cast<float>(perBranch);
-      const float along = conifer ? 0.05f + 0.95f * share : 0.25f + 0.75f * share;
+      const float along = conifer ? 0.4f + 0.6f * share : 0.45f + 0.55f * share;
       Card c{};
       c.stem = pointOn(b, along);
       const vec3 out = horizontal(c.stem) > 1e-3f ? glm::normalize(vec3(c.stem.x, c.stem.y, 0.0f)) : load(b.r);

@@ -106,13 +106,18 @@ uint32_t addBranch(Skeleton& k, int32_t parent, float parentAlong, vec3 directio
                    const BeamFit& fit);
 
 // The crowns (tree_crowns.cpp): level-1 and level-2 branches, level-3 branchlets, and the Full
-// cards — `perBranch` on every last-level branch, each about `size` long.
+// cards — `total` spread evenly over the last-level branches (at most leavesPerTwig on one), on
+// their outer part, each about `size` long.
 void growConifer(Skeleton& k, const TreeParams& p, const Envelope& env, float scale, Random& rng, const BeamFit& fit);
 void growBroadleaf(Skeleton& k, const TreeParams& p, const Envelope& env, float scale, Random& rng,
                    const BeamFit& fit);
 void growBranchlets(Skeleton& k, const TreeParams& p, const Envelope& env, float scale, Random& rng,
                     const BeamFit& fit);
-void addCards(Skeleton& k, const TreeParams& p, const Envelope& env, uint32_t perBranch, float size, Random& rng);
+void addCards(Skeleton& k, const TreeParams& p, const Envelope& env, uint32_t total, float size, Random& rng);
+// The crown envelope's side view, m²: what the cards must fill.
+float sideArea(const Envelope& env);
+// A card's area for its length (conifer sprays are 0.6 as wide as long, leaf clumps about square).
+float cardArea(TreeForm form, float length);
 // Keeps a card under the top and inside the crown's width (5 % slack).
 void fitCard(Card& c, const Envelope& env);
 

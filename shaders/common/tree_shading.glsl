@@ -15,18 +15,18 @@ const float kTreeImageryExposure = 1.6;
 float treeCardShape(vec2 uv, float form) {
   if (form < 0.5) {
     float across = abs(uv.x - 0.5) * 2.0;
-    float width = 1.0 - 0.55 * uv.y;
+    float width = 1.0 - 0.4 * uv.y;
     float needles = 0.5 + 0.5 * sin((uv.y * 9.0 + across * 3.0) * 6.2831853);
     float inside = width - across;
-    return clamp(inside * 6.0, 0.0, 1.0) * mix(0.55, 1.0, needles) * smoothstep(0.0, 0.08, uv.y);
+    return clamp(inside * 6.0, 0.0, 1.0) * mix(0.42, 1.0, needles) * smoothstep(0.0, 0.08, uv.y);
   }
   float a = 0.0;
   for (int i = 0; i < 3; ++i) {
     float ang = 1.0 + 2.0944 * float(i);
-    vec2 c = vec2(0.5, 0.5) + 0.22 * vec2(cos(ang), sin(ang));
+    vec2 c = vec2(0.5, 0.5) + 0.2 * vec2(cos(ang), sin(ang));
     vec2 axis = normalize(c - vec2(0.5, 0.35));
     vec2 q = uv - c;
-    vec2 e = vec2(dot(q, axis), dot(q, vec2(-axis.y, axis.x))) / vec2(0.28, 0.16);
+    vec2 e = vec2(dot(q, axis), dot(q, vec2(-axis.y, axis.x))) / vec2(0.3, 0.22);
     a = max(a, 1.0 - dot(e, e));
   }
   return clamp(a * 4.0, 0.0, 1.0);

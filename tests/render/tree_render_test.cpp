@@ -203,13 +203,14 @@ TEST_F(TreeRenderTest, CrossFadesKeepTheTwoPercentRule) {
   const double fov = 2.0 * std::atan(0.75 * kTreeHeight / d) * 180.0 / 3.14159265358979;
   TreeLodDistances base;
   base.horizonM = 1e5f;
+  base.reducedHeights = 1e6f;  // each switch on its own: the reduced model until switch 1 moves it
   const FrameResult bg = frame(*r, trees, camera, target, fov, base, false, false);
   const FrameResult whole = frame(*r, trees, camera, target, fov, base, false);
   ASSERT_TRUE(bg.color && whole.color);
   size_t treePixels = 0;
   for (uint8_t m : mask(*whole.color, *bg.color)) treePixels += m;
   dump(whole, "fade-whole");
-  ASSERT_GT(treePixels, 1000u);
+  ASSERT_GT(treePixels, 600u);  // enough for 2 % to be a dozen pixels
   const float at = float(d / kTreeHeight) / treeLodScale(128.0, fov);  // in the renderer's scaled heights
   double worst[2] = {0.0, 0.0};
   for (int fades = 0; fades < 2; ++fades) {
