@@ -24,7 +24,7 @@
 namespace vegstream::render {
 
 inline constexpr uint32_t kImpostorViews = 8;    // G: cells per side
-inline constexpr uint32_t kImpostorCellPx = 64;  // pixels per cell side
+inline constexpr uint32_t kImpostorCellPx = 96;  // pixels per cell side
 inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_1_BIT;  // see above
 
 // The C++ twin of common/tree_impostor.glsl.

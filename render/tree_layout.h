@@ -54,7 +54,7 @@ struct TreePageUpload {
 // one up to 7 (105 m), where the impostor's 64-pixel views are nearly as sharp as the screen.
 struct TreeLodDistances {
   float fullHeights = 2.0f;     // full model up to 2 heights
-  float reducedHeights = 7.0f;  // reduced model up to 7 heights, the impostor beyond
+  float reducedHeights = 5.0f;  // reduced model up to 5 heights, the impostor beyond
   // Impostors end (fading to the terrain's own colour) where a tree is about 5 pixels tall: 200
   // heights at 1080 lines (3 km for a 15 m tree, where the horizon ends them too), 33 in a
   // 180-line frame. Scaled like the two above.

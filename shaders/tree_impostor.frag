@@ -31,10 +31,10 @@ void main() {
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened to the pixel's footprint as tree.frag's cards (where the atlas is
   // magnified): no fragment kept for the faint fringe the capture's averaging leaves. The edge at
-  // 0.54, not 0.5: magnified, the averaged atlas fills needle gaps narrower than its texels, and
+  // 0.57, not 0.5: magnified, the averaged atlas fills needle gaps narrower than its texels, and
   // the impostor drew 5 % more than the conifer model at the switch (tree_render_test.cpp).
   float footprint = fwidth(albedo.a);
-  float coverage = mix(clamp((albedo.a - 0.54) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), albedo.a,
+  float coverage = mix(clamp((albedo.a - 0.57) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), albedo.a,
                        smoothstep(0.3, 1.0, footprint));
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
