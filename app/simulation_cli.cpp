@@ -6,14 +6,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/number_text.h"
+
 namespace vegstream::app {
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
 
 constexpr double kMaxTrailBudgetMb = 1e6;  // as --cpu-budget-mb / --gpu-budget-mb
 
@@ -23,32 +19,32 @@ void addSimulationOptions(CLI::App& cmd, SimulationCli& out) {
   const simulation::SimulationOptions defaults;
   cmd.add_option("--wind-speed", out.windSpeedMps,
                  "Mean wind 10 m above the ground, m/s, 0 … 100 (default: the flight path's wind section, else " +
-                     num(defaults.wind.speedMps) + ")");
+                     numberText(defaults.wind.speedMps) + ")");
   cmd.add_option("--wind-direction", out.windDirectionDeg,
                  "Where the wind comes FROM, degrees clockwise from north (270: a west wind) (default: the flight "
                  "path's wind section, else " +
-                     num(defaults.wind.directionDeg) + ")");
+                     numberText(defaults.wind.directionDeg) + ")");
   cmd.add_option("--gustiness", out.gustiness,
                  "Turbulence and gusts relative to the mean wind, 0 (steady) … 1 (default: the flight path's wind "
                  "section, else " +
-                     num(defaults.wind.gustiness) + ")");
+                     numberText(defaults.wind.gustiness) + ")");
   cmd.add_option("--trail-budget-mb", out.trailBudgetMb,
                  "GPU memory of the trail store (plants pushed down by colliders), MiB, more than 0 (default " +
-                     num(simulation::kDefaultTrailBudgetMb) + ")");
+                     numberText(simulation::kDefaultTrailBudgetMb) + ")");
 }
 
 Status checkSimulationOptions(const SimulationCli& o) {
   auto bad = [](const std::string& m) { return makeError(ErrorKind::InvalidInput, m); };
   if (o.windSpeedMps && !(*o.windSpeedMps >= 0.0 && *o.windSpeedMps <= simulation::kMaxWindSpeedMps))
-    return bad("--wind-speed " + num(*o.windSpeedMps) + ": must be 0 … " + num(simulation::kMaxWindSpeedMps) +
+    return bad("--wind-speed " + numberText(*o.windSpeedMps) + ": must be 0 … " + numberText(simulation::kMaxWindSpeedMps) +
                " m/s");
   if (o.windDirectionDeg && !std::isfinite(*o.windDirectionDeg))
-    return bad("--wind-direction " + num(*o.windDirectionDeg) +
+    return bad("--wind-direction " + numberText(*o.windDirectionDeg) +
                ": must be a finite number of degrees (where the wind comes from, clockwise from north)");
   if (o.gustiness && !(*o.gustiness >= 0.0 && *o.gustiness <= 1.0))
-    return bad("--gustiness " + num(*o.gustiness) + ": must be 0 … 1");
+    return bad("--gustiness " + numberText(*o.gustiness) + ": must be 0 … 1");
   if (o.trailBudgetMb && !(*o.trailBudgetMb > 0.0 && *o.trailBudgetMb <= kMaxTrailBudgetMb))
-    return bad("--trail-budget-mb " + num(*o.trailBudgetMb) + ": must be more than 0 and at most 1000000 MiB");
+    return bad("--trail-budget-mb " + numberText(*o.trailBudgetMb) + ": must be more than 0 and at most 1000000 MiB");
   return {};
 }
 

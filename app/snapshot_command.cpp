@@ -14,6 +14,7 @@
 #include "app/record_command.h"
 #include "app/scene_setup.h"
 #include "app/settled_still.h"
+#include "core/number_text.h"
 #include "datasets/dataset_format.h"
 #include "render/png_writer.h"
 #include "streaming/open_tile_source.h"
@@ -29,12 +30,6 @@ constexpr double kMaxSimulationTimeS = 600.0;
 constexpr double kMinClearanceM = 0.5;  // the camera at least this far above the ground
 constexpr double kMaxAltM = 100000.0;
 constexpr double kMaxPitchDeg = 89.0;  // ±90 looks along the up axis: no heading, no view
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
 
 Error userError(const std::string& message) { return makeError(ErrorKind::InvalidInput, message); }
 
@@ -54,16 +49,16 @@ Status checkOut(const std::string& out) {
 // The pose's numbers on their own: finite, pitch in range, altitude plausible.
 Status checkPoseNumbers(const SnapshotOptions& o) {
   if (!std::isfinite(o.latDeg) || o.latDeg < -90.0 || o.latDeg > 90.0)
-    return userError("--lat " + num(o.latDeg) + ": must be -90 … 90 degrees");
+    return userError("--lat " + numberText(o.latDeg) + ": must be -90 … 90 degrees");
   if (!std::isfinite(o.lonDeg) || o.lonDeg < -180.0 || o.lonDeg > 180.0)
-    return userError("--lon " + num(o.lonDeg) + ": must be -180 … 180 degrees");
-  if (!std::isfinite(o.headingDeg)) return userError("--heading " + num(o.headingDeg) + ": must be a number of degrees");
+    return userError("--lon " + numberText(o.lonDeg) + ": must be -180 … 180 degrees");
+  if (!std::isfinite(o.headingDeg)) return userError("--heading " + numberText(o.headingDeg) + ": must be a number of degrees");
   if (!std::isfinite(o.pitchDeg) || std::abs(o.pitchDeg) > kMaxPitchDeg)
-    return userError("--pitch " + num(o.pitchDeg) + ": must be -89 … 89 degrees (0 level, negative looks down)");
+    return userError("--pitch " + numberText(o.pitchDeg) + ": must be -89 … 89 degrees (0 level, negative looks down)");
   if (!std::isfinite(o.altM) || o.altM > kMaxAltM)
-    return userError("--alt " + num(o.altM) + ": must be a number of metres up to 100000");
+    return userError("--alt " + numberText(o.altM) + ": must be a number of metres up to 100000");
   if (o.altRef == "ground" && o.altM < kMinClearanceM)
-    return userError("--alt " + num(o.altM) + ": the camera must be at least 0.5 m above the ground");
+    return userError("--alt " + numberText(o.altM) + ": the camera must be at least 0.5 m above the ground");
   return {};
 }
 
@@ -72,9 +67,9 @@ Status checkCoverage(const SnapshotOptions& o, const geo::GeoBounds& b, const st
   const bool latOut = o.latDeg < b.southDeg || o.latDeg > b.northDeg;
   const bool lonOut = o.lonDeg < b.westDeg || o.lonDeg > b.eastDeg;
   if (!latOut && !lonOut) return {};
-  const std::string which = latOut && lonOut ? "--lat " + num(o.latDeg) + " --lon " + num(o.lonDeg)
-                            : latOut         ? "--lat " + num(o.latDeg)
-                                             : "--lon " + num(o.lonDeg);
+  const std::string which = latOut && lonOut ? "--lat " + numberText(o.latDeg) + " --lon " + numberText(o.lonDeg)
+                            : latOut         ? "--lat " + numberText(o.latDeg)
+                                             : "--lon " + numberText(o.lonDeg);
   char cover[160];
   std::snprintf(cover, sizeof(cover), "lat %.5f … %.5f, lon %.5f … %.5f", b.southDeg, b.northDeg, b.westDeg,
                 b.eastDeg);
@@ -121,7 +116,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
   if (!std::isfinite(o.timeS) || o.timeS < 0.0 || o.timeS > kMaxSimulationTimeS)
-    return reportError(log, userError("--time " + num(o.timeS) + ": must be 0 … 600 seconds"));
+    return reportError(log, userError("--time " + numberText(o.timeS) + ": must be 0 … 600 seconds"));
   if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
 
   scene::SceneOptions so;
@@ -148,12 +143,12 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (Status s = checkCoverage(o, scene.info().bounds, *dataset); !s) return reportError(log, s.error());
   const double ground = scene.groundHeight(o.latDeg, o.lonDeg);
   if (std::isnan(ground))
-    return reportError(log, userError("--lat " + num(o.latDeg) + " --lon " + num(o.lonDeg) + ": dataset " + *dataset +
+    return reportError(log, userError("--lat " + numberText(o.latDeg) + " --lon " + numberText(o.lonDeg) + ": dataset " + *dataset +
                                       " has no elevation data there"));
   const double heightMsl = o.altRef == "msl" ? o.altM : ground + o.altM;
   if (heightMsl - ground < kMinClearanceM)
-    return reportError(log, userError("--alt " + num(o.altM) + " (above sea level): the camera must be at least 0.5 m "
-                                      "above the ground, which is at " + num(ground) + " m there"));
+    return reportError(log, userError("--alt " + numberText(o.altM) + " (above sea level): the camera must be at least 0.5 m "
+                                      "above the ground, which is at " + numberText(ground) + " m there"));
   logSceneOpened(scene, log);
 
   flight::FlightSample pose;

@@ -5,14 +5,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/number_text.h"
+
 namespace vegstream::app {
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
 
 constexpr double kMaxTreeHorizonM = 20000.0;  // as a species' horizon_m
 constexpr double kMaxTreeBudgetMb = 1e6;
@@ -30,7 +26,7 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
   cmd.add_option("--tree-budget-mb", out.budgetMb,
                  "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "
                  "fall back to the terrain's colour (default " +
-                     num(static_cast<double>(render::RendererOptions{}.treeBudgetBytes >> 20)) + ")");
+                     numberText(static_cast<double>(render::RendererOptions{}.treeBudgetBytes >> 20)) + ")");
 }
 
 Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& catalog) {
@@ -40,13 +36,13 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
   if (o.horizonM) {
     const double plants = vegetation::farthestHorizon(catalog);
     if (!(std::isfinite(*o.horizonM) && *o.horizonM <= kMaxTreeHorizonM))
-      return bad("--tree-horizon-m " + num(*o.horizonM) + ": must be a distance in metres, at most 20000");
+      return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": must be a distance in metres, at most 20000");
     if (*o.horizonM < plants)
-      return bad("--tree-horizon-m " + num(*o.horizonM) + ": shorter than the plants' horizon (" + num(plants) +
+      return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": shorter than the plants' horizon (" + numberText(plants) +
                  " m)");
   }
   if (o.budgetMb && !(*o.budgetMb > 0.0 && *o.budgetMb <= kMaxTreeBudgetMb))
-    return bad("--tree-budget-mb " + num(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
+    return bad("--tree-budget-mb " + numberText(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
   return {};
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/number_text.h"
 #include "flight/path_sampler.h"
 
 namespace vegstream::flight {
@@ -42,18 +43,12 @@ std::optional<PathProblem> checkPositions(const std::string& list, const std::ve
   return std::nullopt;
 }
 
-std::string shortNum(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 // A wind value: finite, lo ≤ v ≤ hi ("must be ≥ 0 m/s, found -3").
 std::optional<PathProblem> checkWindValue(const std::string& field, double v, double lo, double hi,
                                           const std::string& unit) {
   if (!std::isfinite(v)) return PathProblem{field, "is not a finite number"};
-  if (v < lo) return PathProblem{field, "must be ≥ " + shortNum(lo) + unit + ", found " + shortNum(v)};
-  if (v > hi) return PathProblem{field, "must be ≤ " + shortNum(hi) + unit + ", found " + shortNum(v)};
+  if (v < lo) return PathProblem{field, "must be ≥ " + numberText(lo) + unit + ", found " + numberText(v)};
+  if (v > hi) return PathProblem{field, "must be ≤ " + numberText(hi) + unit + ", found " + numberText(v)};
   return std::nullopt;
 }
 

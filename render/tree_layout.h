@@ -51,7 +51,7 @@ struct TreePageUpload {
 //
 // Each level's cost on the H200 is its pixels times its layers of cards (render/README.md
 // "Trees"): at 1080 lines, the full model up to 2 heights (30 m for a 15 m tree), the reduced
-// one up to 7 (105 m), where the impostor's 64-pixel views are nearly as sharp as the screen.
+// one up to 5 (75 m), where the impostor's 96-pixel views are about half as sharp as the screen.
 struct TreeLodDistances {
   float fullHeights = 2.0f;     // full model up to 2 heights
   float reducedHeights = 5.0f;  // reduced model up to 5 heights, the impostor beyond

@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
 
+#include "vegetation/species_catalog.h"
 #include "vegetation/tree_bending.h"
 #include "vegetation/tree_model.h"
 
@@ -51,33 +52,17 @@ TreeParams broadleaf(uint32_t levels) {
   return p;
 }
 
-// config/species.json's two tree species.
-TreeParams catalogConifer() {
-  TreeParams p = conifer(2);
-  p.branches = 40;
-  p.twigs = 6;
-  p.branchAngleDeg = 80.0f;
-  p.trunkRadiusM = 0.22f;
-  p.taper = 0.15f;
-  p.leafSizeM = 1.0f;
-  p.leavesPerTwig = 16;
-  return p;
-}
-
-TreeParams catalogBroadleaf() {
-  TreeParams p = broadleaf(3);
-  p.twigs = 8;
-  p.branchAngleDeg = 50.0f;
-  p.trunkRadiusM = 0.26f;
-  p.taper = 0.6f;
-  p.leafSizeM = 1.0f;
-  p.leavesPerTwig = 24;
-  return p;
+// config/species.json's tree species, as the program builds them.
+TreeParams catalogTree(TreeForm form) {
+  for (const vegetation::Species& s : defaultSpeciesCatalog().species)
+    if (isTree(s) && s.tree.form == form) return s.tree;
+  ADD_FAILURE() << "the default catalog has no tree of that form";
+  return {};
 }
 
 std::vector<Species> species() {
-  return {{"catalog conifer", catalogConifer(), 15.0f, 5.0f},
-          {"catalog broadleaf", catalogBroadleaf(), 10.0f, 8.0f},
+  return {{"catalog conifer", catalogTree(TreeForm::Conifer), 15.0f, 5.0f},
+          {"catalog broadleaf", catalogTree(TreeForm::Broadleaf), 10.0f, 8.0f},
           {"conifer, 2 levels", conifer(2), 18.0f, 6.0f},
           {"conifer, 3 levels", conifer(3), 24.0f, 7.0f},
           {"broadleaf, 2 levels", broadleaf(2), 14.0f, 10.0f},
