@@ -6,7 +6,7 @@
 // extent `halfExtent` around the model's centre. kImpostorSamples samples per texel (resolved by
 // averaging when more than one, so alpha is the share covered): one on every device — 4 samples
 // matched the model's coverage no better in tests/render/tree_render_test.cpp (1.0 / 3.5 % against
-// 1.3 / 3.8 %) and tripled the capture on lavapipe (4.9 s against 1.6 s for six models). The
+// 1.3 / 3.8 %) and tripled the capture on lavapipe (4.9 s against 1.6 s for six models, at 64 px cells). The
 // background is empty (0), so bilinear lookups come premultiplied by coverage and the shader
 // divides by it. Lit at run time (shaders/tree_impostor.frag).
 
@@ -24,7 +24,7 @@
 namespace vegstream::render {
 
 inline constexpr uint32_t kImpostorViews = 8;    // G: cells per side
-inline constexpr uint32_t kImpostorCellPx = 96;  // pixels per cell side
+inline constexpr uint32_t kImpostorCellPx = 96;  // pixels per cell side (sharp enough at the 5-height switch)
 inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_1_BIT;  // see above
 
 // The C++ twin of common/tree_impostor.glsl.
