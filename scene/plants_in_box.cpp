@@ -9,7 +9,7 @@
 
 #include "geo/xyz_tiles.h"
 #include "scene/settled_tiles.h"
-#include "streaming/open_tile_source.h"
+#include "scene/box_dataset.h"
 #include "terrain/resident_heights.h"
 #include "terrain/seed_region.h"
 #include "terrain/seed_triangles.h"
@@ -18,12 +18,6 @@
 
 namespace vegstream::scene {
 namespace {
-
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), format, v);
-  return buf;
-}
 
 std::string plural(uint64_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); }
 
@@ -76,20 +70,11 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
 
 Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds& box,
                                 const vegetation::SpeciesCatalog& catalog, const PlantsInBoxOptions& options) {
-  auto source = streaming::openTileSource(dataset, {});
-  if (!source) return source.error();
-  auto meta = streaming::readMetaFrom(**source);
-  if (!meta) return meta.error();
-  if (!meta->imagery)
-    return makeError(ErrorKind::InvalidInput,
-                     "dataset " + dataset + " has no imagery: species come from the imagery colour");
+  auto opened = openBoxDataset(dataset, box, options.boxName);
+  if (!opened) return opened.error();
+  const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
+  const datasets::DatasetMeta* meta = &opened->meta;
   const geo::GeoBounds& b = meta->bounds;
-  if (b.crossesAntimeridian())
-    return makeError(ErrorKind::Unsupported, "dataset " + dataset + " crosses the antimeridian: not supported");
-  if (box.westDeg < b.westDeg || box.eastDeg > b.eastDeg || box.southDeg < b.southDeg || box.northDeg > b.northDeg)
-    return makeError(ErrorKind::InvalidInput, options.boxName + ": not inside the dataset's bounds (lon " +
-                                                  fmt("%.6f", b.westDeg) + " … " + fmt("%.6f", b.eastDeg) + ", lat " +
-                                                  fmt("%.6f", b.southDeg) + " … " + fmt("%.6f", b.northDeg) + ")");
 
   // The renderer's grid, seed level and roots (StreamedTerrain): the same triangles, keys and
   // vertices as in a flight.
@@ -124,7 +109,7 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
 
   // The box's finest tiles of both layers in one settle (decoded in parallel); the rest (tiles
   // beside the box that edge triangles reach, ancestors where a tile is missing) on demand.
-  SettledTiles tiles(*source, *meta);
+  SettledTiles tiles(source, *meta);
   std::vector<streaming::TileKey> wanted;
   for (const geo::TileId& id : geo::tilesCovering(box, meta->maxZoom))
     for (streaming::TileLayer layer : {streaming::TileLayer::Height, streaming::TileLayer::Imagery})

@@ -10,7 +10,7 @@
 
 #include "geo/local_frame.h"
 #include "scene/tree_ground.h"
-#include "streaming/open_tile_source.h"
+#include "scene/box_dataset.h"
 #include "vegetation/tree_placement.h"
 
 namespace vegstream::scene {
@@ -59,20 +59,11 @@ CellRange cellsCovering(const geo::GeoBounds& box, const geo::LocalFrame& frame,
 
 Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& box,
                               const vegetation::SpeciesCatalog& catalog, const TreesInBoxOptions& options) {
-  auto source = streaming::openTileSource(dataset, {});
-  if (!source) return source.error();
-  auto meta = streaming::readMetaFrom(**source);
-  if (!meta) return meta.error();
-  if (!meta->imagery)
-    return makeError(ErrorKind::InvalidInput,
-                     "dataset " + dataset + " has no imagery: species come from the imagery colour");
+  auto opened = openBoxDataset(dataset, box, options.boxName);
+  if (!opened) return opened.error();
+  const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
+  const datasets::DatasetMeta* meta = &opened->meta;
   const geo::GeoBounds& b = meta->bounds;
-  if (b.crossesAntimeridian())
-    return makeError(ErrorKind::Unsupported, "dataset " + dataset + " crosses the antimeridian: not supported");
-  if (box.westDeg < b.westDeg || box.eastDeg > b.eastDeg || box.southDeg < b.southDeg || box.northDeg > b.northDeg)
-    return makeError(ErrorKind::InvalidInput, options.boxName + ": not inside the dataset's bounds (lon " +
-                                                  fmt("%.6f", b.westDeg) + " … " + fmt("%.6f", b.eastDeg) + ", lat " +
-                                                  fmt("%.6f", b.southDeg) + " … " + fmt("%.6f", b.northDeg) + ")");
   TreesInBox out;
   out.datasetName = meta->name;
   if (!vegetation::hasTrees(catalog)) return out;
@@ -93,7 +84,7 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
                                                   "; give a smaller box or " + options.maxTreesName + " " +
                                                   std::to_string(upperBound));
 
-  auto ground = TreeGround::load(**source, *meta, frame, options.ground);
+  auto ground = TreeGround::load(*source, *meta, frame, options.ground);
   if (!ground) return ground.error();
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
