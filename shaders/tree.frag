@@ -10,6 +10,7 @@
 #include "common/tree_layout.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
+#include "common/tree_coverage.glsl"
 
 layout(location = 0) in vec3 vPos;
 layout(location = 1) in vec3 vNormal;
@@ -31,15 +32,7 @@ void main() {
   gl_SampleMask[0] = -1;
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
-  // The card's alpha sharpened to its pixel footprint (Golus 2017, "Anti-aliased alpha test"): a
-  // crisp outline, antialiased by the coverage mask, and no fragment kept for the faint fringe —
-  // on the H200 every fragment kept costs its samples whether it covers one or four.
-  float rawAlpha = leaf ? treeCardShape(vUv, m.bark.w) : 1.0;
-  // Where the card's pattern is finer than a pixel (fwidth near 1) the plain alpha is the better
-  // coverage estimate: the sharpening would round it towards one half.
-  float footprint = fwidth(rawAlpha);
-  float alpha = mix(clamp((rawAlpha - 0.5) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), rawAlpha,
-                    smoothstep(0.3, 1.0, footprint));
+  float alpha = treeSharpCoverage(leaf ? treeCardShape(vUv, m.bark.w) : 1.0, 0.5);
   if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
     if (any(greaterThan(abs(vCell), vec2(1.0)))) discard;  // outside this view's cell
     uint mask = treeSampleMask(alpha, push.samples, 0.5);

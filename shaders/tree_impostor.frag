@@ -8,6 +8,7 @@
 #include "common/tree_layout.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
+#include "common/tree_coverage.glsl"
 
 layout(set = 1, binding = 8) uniform sampler2DArray impostorAlbedo;
 layout(set = 1, binding = 9) uniform sampler2DArray impostorNormal;
@@ -29,13 +30,10 @@ layout(location = 0) out vec4 outColor;
 void main() {
   gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
-  // The coverage sharpened to the pixel's footprint as tree.frag's cards (where the atlas is
-  // magnified): no fragment kept for the faint fringe the capture's averaging leaves. The edge at
-  // 0.57, not 0.5: magnified, the averaged atlas fills needle gaps narrower than its texels, and
-  // the impostor drew 5 % more than the conifer model at the switch (tree_render_test.cpp).
-  float footprint = fwidth(albedo.a);
-  float coverage = mix(clamp((albedo.a - 0.57) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), albedo.a,
-                       smoothstep(0.3, 1.0, footprint));
+  // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
+  // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than
+  // the conifer model at the switch (tree_render_test.cpp).
+  float coverage = treeSharpCoverage(albedo.a, 0.57);
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
   if (push.mode == 1u) {
