@@ -167,6 +167,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   terrain::SeedOptions& seeds = impl->options.terrain.seeds;
   seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
   seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));
+  impl->options.terrain.roam.tasks = impl->tasks.get();  // compactions beside the frame
   impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, impl->options.terrain);
   info.seedLevel = impl->terrain->roam().seedLevel();
   info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);

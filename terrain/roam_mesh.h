@@ -95,6 +95,14 @@ struct RoamRenumbering {
   std::vector<uint32_t> nodes, vertices;
 };
 
+// A compaction in three steps, so that its copy (milliseconds: every node and vertex, read in
+// tree order) can run on another thread while the frame goes on (roam_tessellator.h).
+struct RoamCompaction {
+  std::vector<RoamNode> nodes;
+  std::vector<RoamVertex> vertices;
+  RoamRenumbering renumbering;
+};
+
 class RoamMesh {
  public:
   // One root tile pair for every tile of `roots` (at grid.rootZoom()).
@@ -136,8 +144,18 @@ class RoamMesh {
 
   // Renumbers nodes and vertices in depth-first order (roots and root corners keep theirs), so
   // traversals walk memory forwards: splits and merges scatter the pools over time. Every node
-  // and vertex index held outside is invalid afterwards.
-  RoamRenumbering compact();
+  // and vertex index held outside is invalid afterwards, and every node's drawnChunk is
+  // kNoNode: drawn chunks are the tessellator's, and it attaches them again.
+  RoamRenumbering compact() {
+    RoamCompaction c = beginCompaction();
+    buildCompaction(c);
+    return endCompaction(std::move(c));
+  }
+  // compact() in steps. begin and end on the thread that owns the mesh; build on any thread,
+  // while nothing changes the mesh in between (it only reads it).
+  RoamCompaction beginCompaction();  // hands the spare pools out
+  void buildCompaction(RoamCompaction& c) const;
+  RoamRenumbering endCompaction(RoamCompaction&& c);  // the copy becomes the mesh
   // Node pairs allocated since the last compaction (or construction), against those live: how
   // far the pools have drifted from depth-first order.
   uint64_t pairsAllocatedSinceCompact() const { return pairsAllocated_; }

@@ -47,22 +47,36 @@ void RoamMesh::resample(const geo::TileId& tile) {
   for (uint32_t r : roots_) resampleNode(r, tile, lo, hi);
 }
 
-RoamRenumbering RoamMesh::compact() {
-  std::vector<uint32_t> nodeMap(nodes_.size(), kNoNode), vertexMap(vertices_.size(), kNoNode);
-  std::vector<RoamNode>& nodes = spareNodes_;
-  std::vector<RoamVertex>& vertices = spareVertices_;
-  nodes.clear();
-  vertices.clear();
-  nodes.reserve(nodes_.capacity());  // the pools swap: both keep what reserve() asked for
-  vertices.reserve(vertices_.capacity());
+RoamCompaction RoamMesh::beginCompaction() {
+  RoamCompaction c;
+  c.nodes = std::move(spareNodes_);  // kept from the last compaction: no pages faulted in again
+  c.vertices = std::move(spareVertices_);
+  c.nodes.clear();
+  c.vertices.clear();
+  c.nodes.reserve(nodes_.capacity());  // the pools swap: both keep what reserve() asked for
+  c.vertices.reserve(vertices_.capacity());
+  return c;
+}
+
+void RoamMesh::buildCompaction(RoamCompaction& c) const {
+  std::vector<uint32_t>& nodeMap = c.renumbering.nodes;
+  std::vector<uint32_t>& vertexMap = c.renumbering.vertices;
+  nodeMap.assign(nodes_.size(), kNoNode);
+  vertexMap.assign(vertices_.size(), kNoNode);
+  std::vector<RoamNode>& nodes = c.nodes;
+  std::vector<RoamVertex>& vertices = c.vertices;
   for (uint32_t v : cornerVertices_) {
     vertexMap[v] = static_cast<uint32_t>(vertices.size());
     vertices.push_back(vertices_[v]);
   }
+  auto copy = [&](uint32_t t) {
+    nodes.push_back(nodes_[t]);
+    nodes.back().drawnChunk = kNoNode;  // the tessellator attaches its chunks again
+  };
   for (uint32_t r : roots_) {  // roots are the first pairs, in order
     assert(r == nodes.size());
     nodeMap[r] = r;
-    nodes.push_back(nodes_[r]);
+    copy(r);
   }
   // Depth first, children pair by pair; a diamond's vertex goes where its first half meets it.
   std::vector<uint32_t> stack(roots_.rbegin(), roots_.rend());
@@ -77,8 +91,8 @@ RoamRenumbering RoamMesh::compact() {
     }
     nodeMap[n.child] = static_cast<uint32_t>(nodes.size());
     nodeMap[n.child + 1] = static_cast<uint32_t>(nodes.size() + 1);
-    nodes.push_back(nodes_[n.child]);
-    nodes.push_back(nodes_[n.child + 1]);
+    copy(n.child);
+    copy(n.child + 1);
     stack.push_back(n.child + 1);
     stack.push_back(n.child);
   }
@@ -92,13 +106,18 @@ RoamRenumbering RoamMesh::compact() {
     if (n.mid != kNoNode) n.mid = vertexMap[n.mid];
     for (uint32_t& v : n.v) v = vertexMap[v];
   }
-  for (uint32_t& v : cornerVertices_) v = vertexMap[v];
-  nodes_.swap(nodes);
-  vertices_.swap(vertices);
+}
+
+RoamRenumbering RoamMesh::endCompaction(RoamCompaction&& c) {
+  for (uint32_t& v : cornerVertices_) v = c.renumbering.vertices[v];
+  nodes_.swap(c.nodes);
+  vertices_.swap(c.vertices);
+  spareNodes_ = std::move(c.nodes);  // the old pools: the next compaction's scratch
+  spareVertices_ = std::move(c.vertices);
   freePairs_.clear();
   freeVertices_.clear();
   pairsAllocated_ = 0;
-  return {std::move(nodeMap), std::move(vertexMap)};
+  return std::move(c.renumbering);
 }
 
 std::vector<uint32_t> RoamMesh::leaves() const {

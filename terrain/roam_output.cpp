@@ -140,7 +140,9 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
       slot = freeChunks_.back();
       freeChunks_.pop_back();
     }
-    mesh_.node(t).drawnChunk = slot;
+    // While a compaction's copy reads the nodes the attachment waits: finishCompaction attaches
+    // every chunk to its root again (chunks_[slot].root, set below).
+    if (!compaction_) mesh_.node(t).drawnChunk = slot;
     chunks_[slot].root = kNoNode;
   }
   DrawnChunk& chunk = chunks_[slot];
@@ -240,9 +242,12 @@ void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
   // Chunks whose root was freed are released before compaction: every index here is live.
   auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
   auto vertex = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.vertices[i]; };
-  for (DrawnChunk& c : chunks_) {
+  // The compacted nodes hold no chunk (RoamMesh::compact): each is attached to its root again.
+  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
+    DrawnChunk& c = chunks_[slot];
     if (c.root == kNoNode) continue;
     c.root = node(c.root);
+    mesh_.node(c.root).drawnChunk = slot;
     for (uint32_t& v : c.sources) v = vertex(v);
   }
 }

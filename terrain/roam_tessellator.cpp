@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -55,6 +56,8 @@ RoamTessellator::RoamTessellator(BintreeGrid grid, geo::TileRange roots, const g
 }
 
 void RoamTessellator::tilesChanged(std::span<const streaming::TileKey> keys) {
+  if (keys.empty()) return;
+  finishCompaction();
   for (const streaming::TileKey& k : keys)
     if (k.layer == streaming::TileLayer::Height) mesh_.resample(k.id);
 }
@@ -232,6 +235,8 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
 void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double timeS) {
   Stopwatch watch;
   figures_ = {};
+  finishCompaction();
+  figures_.compactWaitMs = std::exchange(compactWaitMs_, 0.0);
   mesh_.setTime(timeS);
   timeS_ = timeS;
   beginUpdate(view);
@@ -261,16 +266,16 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   // The pools are put back in depth-first order (cache locality) once the splits since the last
   // time have allocated 1 / kCompactChurn as many node pairs as are live: that is what scatters
   // them (a compaction costs milliseconds, so it waits for churn, not for a number of frames).
-  // At the end of the update: the frame that churned pays for it (the first frame builds the
-  // whole mesh), and this frame's output walks the compacted pools.
+  // At the end of the update: with a task runner its copy goes on beside the output and the rest
+  // of the frame, and the next update applies it; without one, this update makes it and this
+  // frame's output walks the compacted pools.
   const bool compact = mesh_.pairsAllocatedSinceCompact() * kCompactChurn >= mesh_.livePairs();
   if (++updates_ % kChunkIdleFrames == 0 || compact) {
     releaseChunks();
     dropIdleChunks();
   }
   if (compact) {
-    remapChunks(mesh_.compact());
-    stamps_.clear();
+    startCompaction();
     figures_.compacted = true;
   }
   figures_.compactMs = watch.elapsedMs() - merged;

@@ -37,12 +37,14 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <span>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include "core/stopwatch.h"
+#include "core/task_runner.h"
 #include "geo/local_frame.h"
 #include "streaming/tile_key.h"
 #include "terrain/eye_space.h"
@@ -69,6 +71,11 @@ struct RoamOptions {
   // The most leaves a drawn chunk holds: larger chunks are fewer (less work per frame, fewer
   // draws) but each change rebuilds more.
   uint32_t chunkMaxLeaves = 64;
+  // Where a compaction's copy runs (RoamMesh::compact): started at the end of the update that
+  // calls for it, it goes on beside the output and the rest of the frame, and the next change
+  // of the mesh waits for it (or makes the copy itself if no worker has taken it yet). Null:
+  // in the update, on the frame thread. The mesh is the same either way.
+  TaskRunner* tasks = nullptr;
 };
 
 // The pieces the frame draws: one tile each (at most the dataset's max zoom), none an ancestor
@@ -106,6 +113,7 @@ struct RoamFigures {
   uint64_t constrainedLeaves = 0;  // drawn leaves still coarser than a piece (drawn untextured)
   uint64_t morphingVertices = 0;   // drawn vertices still on their way to a new height
   bool compacted = false;          // the pools were put back in depth-first order (RoamMesh::compact)
+  double compactWaitMs = 0.0;      // of updateMs: waiting for the last compaction's copy (RoamOptions::tasks)
   bool budgetLimited = false;      // the triangle budget stopped refinement
   bool workLimited = false;        // the per-frame work budget stopped the queues
   // The largest on-screen error of a visible leaf whose priority the update computed (the
@@ -129,7 +137,14 @@ class RoamTessellator {
   RoamTessellator(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,
                   RoamOptions options, SeedOptions seeds, RoamMeshOptions meshOptions, double seedLatitudeDeg);
 
-  RoamMesh& mesh() { return mesh_; }
+  ~RoamTessellator();
+  RoamTessellator(const RoamTessellator&) = delete;
+  RoamTessellator& operator=(const RoamTessellator&) = delete;
+
+  RoamMesh& mesh() {
+    finishCompaction();
+    return mesh_;
+  }
   const RoamMesh& mesh() const { return mesh_; }
   const RoamOptions& options() const { return options_; }
   void setMaxErrorPx(double px) { options_.maxErrorPx = px; }
@@ -257,6 +272,13 @@ class RoamTessellator {
   std::vector<Stamp> stamps_;
   uint64_t outputFrame_ = 0;
   static constexpr uint64_t kCompactChurn = 4;
+  // A compaction whose copy runs on options_.tasks (RoamOptions::tasks): whoever claims it first,
+  // the worker or finishCompaction(), makes the copy.
+  struct PendingCompaction;
+  std::shared_ptr<PendingCompaction> compaction_;
+  void startCompaction();
+  void finishCompaction();  // before anything changes the mesh: waits for the copy, applies it
+  double compactWaitMs_ = 0.0;
   uint64_t updates_ = 0;
   double timeS_ = 0.0;
 };

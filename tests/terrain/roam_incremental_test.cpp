@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/task_runner.h"
 #include "terrain/roam_tessellator.h"
 #include "tests/terrain/roam_fixture.h"
 
@@ -106,6 +107,55 @@ TEST(RoamIncremental, CachedChunksDrawTheSameTrianglesAsTheDirectOutput) {
   EXPECT_GE(compactions, 2u);
   RecordProperty("chunks_reused", std::to_string(reused));
   RecordProperty("chunks_built", std::to_string(built));
+}
+
+// Compactions whose copy runs on a worker (RoamOptions::tasks, as the app has them) give the
+// same mesh, the same triangles and the same cached chunks as compactions in the update; so do
+// those whose copy no worker took (a runner that never runs: the next update makes it).
+TEST(RoamIncremental, CompactionsOnAWorkerGiveTheSameMeshTrianglesAndChunks) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  ThreadPool pool(1);
+  ManualTaskRunner never;
+  RoamOptions onPool, onNone;
+  onPool.tasks = &pool;
+  onNone.tasks = &never;
+  auto a = z.tessellator({}, {}, 0.5);
+  auto b = z.tessellator(onPool, {}, 0.5);
+  auto c = z.tessellator(onNone, {}, 0.5);
+  std::vector<TerrainMesh> ma, mb, mc;
+  std::vector<SeedTriangle> sa, sb, sc;
+  uint64_t compactions = 0, reused = 0;
+  for (int i = 0; i < 150; ++i) {
+    const EyeView view = flightView(z, i);
+    const double t = i / 60.0;
+    a->update(view, pieces, t);
+    b->update(view, pieces, t);
+    c->update(view, pieces, t);
+    a->output(view, pieces, t, ma, sa);
+    b->output(view, pieces, t, mb, sb);
+    c->output(view, pieces, t, mc, sc);
+    compactions += a->figures().compacted && i > 0 ? 1 : 0;
+    reused += a->figures().chunksReused;
+    for (const RoamTessellator* x : {b.get(), c.get()}) {
+      ASSERT_EQ(x->figures().compacted, a->figures().compacted) << "frame " << i;
+      ASSERT_EQ(x->figures().chunksBuilt, a->figures().chunksBuilt) << "frame " << i;
+      ASSERT_EQ(x->figures().chunksReused, a->figures().chunksReused) << "frame " << i;
+      ASSERT_EQ(x->figures().drawnTriangles, a->figures().drawnTriangles) << "frame " << i;
+    }
+    ASSERT_EQ(drawn(ma), drawn(mb)) << "frame " << i;
+    ASSERT_EQ(drawn(ma), drawn(mc)) << "frame " << i;
+    ASSERT_EQ(sa.size(), sb.size()) << "frame " << i;
+    ASSERT_EQ(sa.size(), sc.size()) << "frame " << i;
+  }
+  EXPECT_GE(compactions, 2u);
+  EXPECT_GT(reused, 1000u);
+  EXPECT_EQ(leafPaths(*a), leafPaths(*b));  // mesh() applies the last compaction first
+  EXPECT_EQ(leafPaths(*a), leafPaths(*c));
+  EXPECT_EQ(b->mesh().conformityViolations(), 0u);
+  // The copies the manual runner was given were made by the updates: run now, they do nothing.
+  EXPECT_GE(never.runAll(), compactions);
+  EXPECT_EQ(leafPaths(*a), leafPaths(*c));
 }
 
 // What a renderer that keeps chunks on the GPU does: a chunk is copied only when its id is new
