@@ -14,6 +14,7 @@
 #include "render/render_targets.h"
 #include "render/tree_impostors.h"
 #include "shaders/tree.frag.h"
+#include "shaders/tree_core.frag.h"
 #include "shaders/tree.vert.h"
 #include "shaders/tree_classify.comp.h"
 #include "shaders/tree_impostor.frag.h"
@@ -111,6 +112,14 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   mesh.layout = drawLayout_.get();
   meshPipeline_ = createGraphicsPipeline(*ctx_, mesh);
 
+  // The crowns' opaque cores (vegetation/tree_core.h), drawn first: closed solids, no alpha test,
+  // depth tested and written before shading, so the cards behind them are rejected unshaded.
+  GraphicsPipelineDesc core = mesh;
+  core.name = "tree core pipeline";
+  core.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_core_frag}};
+  core.cullMode = VK_CULL_MODE_BACK_BIT;
+  corePipeline_ = createGraphicsPipeline(*ctx_, core);
+
   GraphicsPipelineDesc impostor = mesh;
   impostor.name = "tree impostor pipeline";
   impostor.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_impostor_vert},
@@ -148,7 +157,8 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       ModelDraw draw{};
       for (int lod = 0; lod < 2; ++lod) {
         draw.firstIndex[lod] = static_cast<uint32_t>(indices.size());
-        draw.indexCount[lod] = static_cast<uint32_t>(model.lod[lod].indices.size());
+        draw.indexCount[lod] = model.lod[lod].coreFirstIndex;
+        draw.coreCount[lod] = static_cast<uint32_t>(model.lod[lod].indices.size()) - model.lod[lod].coreFirstIndex;
         draw.vertexOffset[lod] = static_cast<uint32_t>(vertices.size());
         indices.insert(indices.end(), model.lod[lod].indices.begin(), model.lod[lod].indices.end());
         vertices.insert(vertices.end(), model.lod[lod].vertices.begin(), model.lod[lod].vertices.end());
@@ -197,6 +207,13 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       tmpl.insert(tmpl.end(), {models_[m].indexCount[lod], 0u, models_[m].firstIndex[lod],
                                models_[m].vertexOffset[lod], base});
     }
+  // The cores of the same lists (their instance counts copied by the classify's finish).
+  for (uint32_t m = 0; m < count; ++m)
+    for (int lod = 0; lod < 2; ++lod) {
+      const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
+      tmpl.insert(tmpl.end(), {models_[m].coreCount[lod], 0u, models_[m].firstIndex[lod] + models_[m].indexCount[lod],
+                               models_[m].vertexOffset[lod], base});
+    }
   for (uint32_t m = 0; m < count; ++m) tmpl.insert(tmpl.end(), {6u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
   // Then per model × 2 the shadow casters of its full and reduced lists, as impostor quads
   // (written by the classify's finish).
@@ -205,7 +222,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "tree draw template");
   const VkBufferUsageFlags draws =
       storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  meshDraws_ = createBuffer(*ctx_, count * 2 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
+  meshDraws_ = createBuffer(*ctx_, count * 4 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
   impostorDraws_ = createBuffer(*ctx_, count * 3 * kDrawCommand, draws, MemoryUse::DeviceLocal, "tree impostor draws");
   counters_ = createBuffer(*ctx_, kCounters * sizeof(uint32_t),
                            storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -289,7 +306,9 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
         const TreePush push{glm::mat4(1.0f), m, kImpostorViews, 2u, static_cast<uint32_t>(kImpostorSamples)};
         vkCmdPushConstants(cmd, drawLayout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
-        vkCmdDrawIndexed(cmd, models_[m].indexCount[0], kImpostorViews * kImpostorViews, models_[m].firstIndex[0],
+        // The whole Full model, its core too (what shows between the cards).
+        vkCmdDrawIndexed(cmd, models_[m].indexCount[0] + models_[m].coreCount[0], kImpostorViews * kImpostorViews,
+                         models_[m].firstIndex[0],
                          static_cast<int32_t>(models_[m].vertexOffset[0]), 0);
       });
   for (size_t s = 0; s < sets_.size(); ++s) {
@@ -396,12 +415,22 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
   if (!slotRecorded_[s]) return;
   const VkDescriptorSet bound[] = {frameSet, sets_[s]};
   const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline_.get());
+  const auto count = static_cast<uint32_t>(models_.size());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, corePipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
   const VkDeviceSize offset = 0;
   const VkBuffer vb = vertices_.get();
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
   vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+  // The crowns' cores first (opaque, early depth): the cards behind them are rejected unshaded.
+  for (uint32_t lod = 0; lod < 2; ++lod)
+    for (uint32_t m = 0; m < count; ++m) {
+      const TreePush push{glm::mat4(1.0f), m, lod, 0u, static_cast<uint32_t>(samples_)};
+      vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
+      vkCmdDrawIndexedIndirect(cmd, meshDraws_.get(), (2 * count + m * 2 + lod) * kIndexedCommand, 1,
+                               static_cast<uint32_t>(kIndexedCommand));
+    }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline_.get());
   // Nearest first: every model's full trees, then the reduced ones, then the impostors, so the
   // depth the near crowns write lets the hardware reject what they hide.
   // (Measured on the H200 at the Kolob forest's edge: 8.16 ms against 8.60 model by model.)

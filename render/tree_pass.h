@@ -65,8 +65,10 @@ class TreePass {
   const TreeImpostors* impostors() const { return impostors_.get(); }
 
  private:
+  // Per level of detail: bark and cards [firstIndex, + indexCount), then the crown's core
+  // (vegetation::TreeMesh::coreFirstIndex) [firstIndex + indexCount, + coreCount).
   struct ModelDraw {
-    uint32_t firstIndex[2], indexCount[2], vertexOffset[2];
+    uint32_t firstIndex[2], indexCount[2], vertexOffset[2], coreCount[2];
   };
   void createPipelines(VkDescriptorSetLayout frameLayout);
 
@@ -76,7 +78,7 @@ class TreePass {
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};
   PipelineLayout classifyLayout_, drawLayout_;
-  Pipeline classifyPipeline_, meshPipeline_, impostorPipeline_, shadowImpostorPipeline_;
+  Pipeline classifyPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowImpostorPipeline_;
   Sampler sampler_;
 
   std::vector<ModelDraw> models_;

@@ -4,7 +4,8 @@
 // the card's uv), the level-of-detail cross-fade as a dither (common/tree_layout.glsl), alpha to
 // coverage (sharpened) into the sample mask, and the lighting of common/tree_shading.glsl. Capture modes write
 // what the impostors keep (mode 2): albedo (darkened by the crown's occlusion) and coverage, and the
-// model-space normal and depth.
+// model-space normal and depth. The capture draws the crown's core too (kind 2: opaque, shaded
+// as tree_core.frag, which draws it in colour).
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
@@ -40,7 +41,8 @@ void main() {
     gl_SampleMask[0] = int(mask);
     vec3 n = normalize(vNormal);
     if (!gl_FrontFacing) n = -n;
-    outColor = vec4((leaf ? m.leaf.rgb : m.bark.rgb) * mix(0.35, 1.0, vOcclusion), 1.0);
+    vec3 albedo = vKind == 2u ? m.leaf.rgb * kTreeCoreShade : (leaf ? m.leaf.rgb : m.bark.rgb);
+    outColor = vec4(albedo * mix(0.35, 1.0, vOcclusion), 1.0);
     outNormalDepth = vec4(n * 0.5 + 0.5, gl_FragCoord.z);
     return;
   }

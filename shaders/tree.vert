@@ -83,6 +83,14 @@ void main() {
   uvec4 entry = treeVisible[gl_InstanceIndex];
   TreeInstanceGpu t = treeInstances[entry.x];
   uint seed = t.seed;
+  float threshold = uintBitsToFloat(entry.y);
+  // A crown's core (kind 2, drawn opaque by tree_core.frag) cannot dither out: while its level
+  // fades out (threshold 1 … 2) it shrinks towards the crown's centre instead, hidden by the
+  // cards around it and the level fading in (whose own core, or the impostor, stands in for it).
+  if (inKind == 2u && threshold > 1.0) {
+    vec3 centre = vec3(0.0, 0.0, m.shape.w);
+    p = centre + (p - centre) * clamp(2.0 - threshold, 0.0, 1.0);
+  }
 
   // The chain from the vertex's branch up to the trunk, with the x on each.
   uint chain[kTreeMaxChain];
@@ -138,7 +146,7 @@ void main() {
   vec3 rel = (t.position - trees.camera.xyz) + world;
   vNormal = treeRotate(normalize(vec3(n.xy / sxy, n.z / sz)), seed);
   vPos = rel;
-  vThreshold = uintBitsToFloat(entry.y);
+  vThreshold = threshold;
   vInstance = entry.x;
   vTint = t.tint;
   vSky = treeVertexAtmosphere(rel);

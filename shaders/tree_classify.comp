@@ -15,7 +15,7 @@ layout(local_size_x = 256) in;
 float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
 
 layout(set = 1, binding = 4, std430) readonly buffer PageCounts { uint pageCounts[]; };
-layout(set = 1, binding = 5, std430) buffer MeshDraws { uint meshDraws[]; };          // per model × 2: VkDrawIndexedIndirectCommand
+layout(set = 1, binding = 5, std430) buffer MeshDraws { uint meshDraws[]; };          // per model × 2: VkDrawIndexedIndirectCommand; then per model × 2 the cores
 layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model: VkDrawIndirectCommand; then per model × 2 the shadow casters
 layout(set = 1, binding = 7, std430) buffer TreeCounters { uint treeCounters[]; };    // instances, full, reduced, impostor, dropped
 
@@ -37,8 +37,11 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (push.mode == 1u) {  // finish: no draw reads past its region
     if (i < trees.counts.y) {
-      for (uint lod = 0u; lod < 2u; ++lod)
+      for (uint lod = 0u; lod < 2u; ++lod) {
         meshDraws[(i * 2u + lod) * 5u + 1u] = min(meshDraws[(i * 2u + lod) * 5u + 1u], treeRegionCapacity(lod));
+        // The crowns' cores: the same lists (render/tree_pass.cpp draws them first).
+        meshDraws[((trees.counts.y + i) * 2u + lod) * 5u + 1u] = meshDraws[(i * 2u + lod) * 5u + 1u];
+      }
       impostorDraws[i * 4u + 1u] = min(impostorDraws[i * 4u + 1u], trees.capacity.z);
       // The shadow pass draws the full and reduced lists as impostor quads too.
       for (uint lod = 0u; lod < 2u; ++lod) {

@@ -23,6 +23,7 @@
 #include <mutex>
 #include <utility>
 
+#include "vegetation/tree_core.h"
 #include "vegetation/tree_crowns.h"
 
 namespace vegstream::vegetation {
@@ -249,6 +250,8 @@ TreeModel buildTreeModel(const TreeParams& params, float heightM, float crownWid
       for (uint32_t b = 0; b < k.branches.size(); ++b) addTube(mesh, k, b, params, heightM, lod);
       for (const Card& c : lod == TreeLod::Full ? k.cards : reducedCards(k, env)) addCardQuad(mesh, c);
     }
+    const CrownCore core = crownCoreOf(candidate.lod[0]);
+    for (TreeMesh& mesh : candidate.lod) addCrownCore(mesh, core, k.branches[0].length);
     candidate.crownRadiusM = std::max(meshRadius(candidate.lod[0]), meshRadius(candidate.lod[1]));
     model = std::move(candidate);
     if (model.crownRadiusM <= 1.08f * env.radius) break;

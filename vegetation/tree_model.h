@@ -28,7 +28,7 @@ struct TreeVertex {
   float normal[3];    // unit
   float along;        // x ∈ [0, 1] on its branch (a card: where it is attached)
   float uv[2];        // bark: (around 0…1, along in metres / circumference); card: [0, 1]², v along the card
-  uint32_t kind;      // 0 bark, 1 leaf card
+  uint32_t kind;      // 0 bark, 1 leaf card, 2 the crown's opaque core
   float flutter;      // 0 at a card's stem … 1 at its tip (bark: 0)
 };
 static_assert(sizeof(TreeVertex) == 48);
@@ -54,7 +54,10 @@ enum class TreeLod : uint32_t { Full = 0, Reduced = 1 };
 
 struct TreeMesh {
   std::vector<TreeVertex> vertices;
-  std::vector<uint32_t> indices;  // triangle list
+  std::vector<uint32_t> indices;  // triangle list: bark and cards, then the crown's core
+  // Where the core's triangles start (kind 2, tree_core.h): an opaque solid inside the crown,
+  // drawn before everything else with early depth tests. Bark and cards are [0, coreFirstIndex).
+  uint32_t coreFirstIndex = 0;
 };
 
 struct TreeModel {

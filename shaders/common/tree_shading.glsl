@@ -48,6 +48,9 @@ uint treeSampleMask(float alpha, uint samples, float dither) {
 // the sun shadow's factor (sunShadow). What varies slowly over a tree — the shadow lookup and the
 // aerial perspective — the vertex stages evaluate (treeVertexLight): the H200 shades fragments on
 // 2 of its 66 TPCs, and the trees' cards overlap many times.
+// The crowns' cores (tree_core.frag, and the impostor capture): foliage in its own shade.
+const float kTreeCoreShade = 0.6;
+
 vec3 treeLight(vec3 n, vec3 albedo, float translucency, bool leaf, float occlusion, float sun) {
   vec3 l = frame.sunDirection.xyz;
   float ndl = dot(n, l);
