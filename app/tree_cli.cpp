@@ -20,6 +20,9 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
   cmd.add_option("--tree-shadows", out.shadows,
                  "The trees cast sun shadows (a cascaded shadow map) on the terrain, the grass and each other: on "
                  "or off (default on)");
+  cmd.add_option("--tree-cores", out.cores,
+                 "The crowns' opaque cores (foliage in shade inside each crown, drawn first so the cards behind "
+                 "are never shaded): on or off, to compare (default on)");
   cmd.add_option("--tree-horizon-m", out.horizonM,
                  "How far trees are drawn, metres, at least the plants' horizon (default: the catalog's tree "
                  "horizon, 3000 in the default catalog)");
@@ -33,6 +36,7 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
   auto bad = [](const std::string& m) { return makeError(ErrorKind::InvalidInput, m); };
   if (o.trees != "on" && o.trees != "off") return bad("--trees " + o.trees + ": must be on or off");
   if (o.shadows != "on" && o.shadows != "off") return bad("--tree-shadows " + o.shadows + ": must be on or off");
+  if (o.cores != "on" && o.cores != "off") return bad("--tree-cores " + o.cores + ": must be on or off");
   if (o.horizonM) {
     const double plants = vegetation::farthestHorizon(catalog);
     if (!(std::isfinite(*o.horizonM) && *o.horizonM <= kMaxTreeHorizonM))
@@ -49,6 +53,7 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
 void applyTreeOptions(const TreeCli& o, scene::SceneOptions& so) {
   so.trees.enabled = o.trees == "on";
   so.trees.shadows = o.shadows == "on";
+  so.trees.cores = o.cores == "on";
   if (o.horizonM) so.trees.horizonM = *o.horizonM;
   if (o.budgetMb) so.renderer.treeBudgetBytes = static_cast<uint64_t>(*o.budgetMb * 1024.0 * 1024.0);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The tree options that `fly`, `record` and `snapshot` share (issue 20): --trees on|off,
-// --tree-horizon-m, --tree-budget-mb. One definition, so the commands spell and check them alike.
+// --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-budget-mb. One definition, so the commands spell and check them alike.
 
 #include <optional>
 #include <string>
@@ -17,6 +17,7 @@ namespace vegstream::app {
 struct TreeCli {
   std::string trees = "on";                // --trees on|off
   std::string shadows = "on";              // --tree-shadows on|off
+  std::string cores = "on";                // --tree-cores on|off
   std::optional<double> horizonM;          // --tree-horizon-m M (default: the catalog's tree horizon)
   std::optional<double> budgetMb;          // --tree-budget-mb MB, > 0 (default render::RendererOptions)
 };

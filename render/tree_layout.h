@@ -79,6 +79,7 @@ struct TreeRequest {
   TreeLodDistances lod;
   bool fades = true;   // false: hard switches (to show what the cross-fades hide)
   bool shadows = true; // the trees cast into the cascaded sun shadow map
+  bool cores = true;   // the crowns' opaque cores (vegetation/tree_core.h): false to compare without
   // Local ENU position of the camera (the instances' frame); the renderer's Camera is the same
   // point, this gives it to the trees in their frame.
   double cameraEnu[3] = {0.0, 0.0, 0.0};

@@ -408,6 +408,7 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &countersCopy);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   slotRecorded_[s] = true;
+  slotCores_[s] = request.cores;
 }
 
 void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) {
@@ -423,7 +424,7 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
   vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
   // The crowns' cores first (opaque, early depth): the cards behind them are rejected unshaded.
-  for (uint32_t lod = 0; lod < 2; ++lod)
+  for (uint32_t lod = 0; lod < (slotCores_[s] ? 2u : 0u); ++lod)
     for (uint32_t m = 0; m < count; ++m) {
       const TreePush push{glm::mat4(1.0f), m, lod, 0u, static_cast<uint32_t>(samples_)};
       vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);

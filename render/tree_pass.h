@@ -91,6 +91,7 @@ class TreePass {
   std::array<uint32_t, 3> capacity_{};  // visible entries per model and level
   std::array<uint32_t, kSlots> slotPages_{};
   std::array<bool, kSlots> slotRecorded_{};
+  std::array<bool, kSlots> slotCores_{};  // the request's cores: drawn or not
 };
 
 }  // namespace vegstream::render

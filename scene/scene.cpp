@@ -93,6 +93,7 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   fo.lod.horizonM = static_cast<float>(o.horizonM > 0.0 ? o.horizonM : vegetation::farthestTreeHorizon(catalog));
   fo.fades = o.fades;
   fo.shadows = o.shadows;
+  fo.cores = o.cores;
   m.treeField = std::make_unique<TreeField>(catalog, m.treeGround->at(), fo, std::move(firstModel), variants,
                                             m.renderer->treePageCapacity());
   m.info.treeModels = models;

@@ -57,6 +57,7 @@ struct SceneTreeOptions {
   render::TreeLodDistances lod;  // its horizonM is set from the above
   bool fades = true;
   bool shadows = true;  // the trees cast into the cascaded sun shadow map
+  bool cores = true;    // the crowns' opaque cores are drawn (vegetation/tree_core.h)
 };
 
 struct SceneOptions {

@@ -138,6 +138,7 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
   request_.lod = options_.lod;
   request_.fades = options_.fades;
   request_.shadows = options_.shadows;
+  request_.cores = options_.cores;
   request_.cameraEnu[0] = camera.x;
   request_.cameraEnu[1] = camera.y;
   request_.cameraEnu[2] = camera.z;

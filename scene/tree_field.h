@@ -27,6 +27,7 @@ struct TreeFieldOptions {
   uint32_t placementsPerFrame = 2;
   bool fades = true;
   bool shadows = true;
+  bool cores = true;
 };
 
 struct TreeFieldFigures {

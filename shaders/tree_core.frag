@@ -26,8 +26,25 @@ layout(location = 9) in vec4 vSky;
 layout(location = 10) in float vSun;
 layout(location = 0) out vec4 outColor;
 
+// Value noise over the core's surface, about 40 cm clumps in the tree's frame (vUv carries no
+// pattern for a core): sprays half in shade, so the solid does not read as a smooth surface.
+float coreHash(vec3 c) { return fract(sin(dot(c, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
+float coreNoise(vec3 p) {
+  vec3 i = floor(p), f = fract(p);
+  f = f * f * (3.0 - 2.0 * f);
+  float n = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    vec3 o = vec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    vec3 w = mix(1.0 - f, f, o);
+    n += coreHash(i + o) * w.x * w.y * w.z;
+  }
+  return n;
+}
+
 void main() {
   TreeModelGpu m = trees.models[push.model];
-  vec3 lit = treeLight(normalize(vNormal), m.leaf.rgb * vTint * kTreeCoreShade, m.leaf.w, false, vOcclusion, vSun);
+  float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
+  vec3 albedo = m.leaf.rgb * vTint * kTreeCoreShade * clumps;
+  vec3 lit = treeLight(normalize(vNormal), albedo, m.leaf.w, false, vOcclusion, vSun);
   outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
 }

@@ -53,7 +53,10 @@ CrownCore crownCoreOf(const TreeMesh& mesh) {
       if (!enough) break;
       const auto at = d.begin() + static_cast<std::ptrdiff_t>(kQuantile * static_cast<float>(d.size() - 1));
       std::nth_element(d.begin(), at, d.end());
-      ring.radiusM[s] = kShare * *at;
+      // ±12 % from ring to ring and side to side (a fixed pattern): a core's outline as ragged as
+      // foliage, not a turned cone, where it shows between the cards.
+      const float jitter = 0.88f + 0.24f * u01(philox(static_cast<uint32_t>(b) * kCoreSides + s, kRandomStream, 0x636f7265u).x);
+      ring.radiusM[s] = kShare * *at * jitter;
     }
     if (enough) core.rings.push_back(ring);
   }
@@ -87,12 +90,12 @@ void addCrownCore(TreeMesh& mesh, const CrownCore& core, float trunkLength) {
       add(dir * core.rings[r].radiusM[s] + vec3(0.0f, 0.0f, core.rings[r].z), dir + vec3(0.0f, 0.0f, -slope));
     }
   }
-  // Closed by a point under the lowest ring and one over the highest, half a band out.
+  // Closed by a point under the lowest ring and one over the highest, a quarter of a band out.
   const float half = 0.5f * (core.rings.back().z - core.rings.front().z) / static_cast<float>(rings - 1);
   const auto bottom = static_cast<uint32_t>(mesh.vertices.size());
   add({0.0f, 0.0f, core.rings.front().z - 0.5f * half}, {0.0f, 0.0f, -1.0f});
   const auto top = static_cast<uint32_t>(mesh.vertices.size());
-  add({0.0f, 0.0f, core.rings.back().z + half}, {0.0f, 0.0f, 1.0f});
+  add({0.0f, 0.0f, core.rings.back().z + 0.5f * half}, {0.0f, 0.0f, 1.0f});
   // Outward-facing: counter-clockwise seen from outside.
   for (uint32_t s = 0; s < kCoreSides; ++s) {
     const uint32_t next = (s + 1) % kCoreSides;

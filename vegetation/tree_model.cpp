@@ -33,7 +33,7 @@ using namespace tree_detail;
 constexpr int kMaxTriangles = 12000;
 // Card layers over the crown's side view, Full (Reduced: about 0.8 of it): about three opaque
 // layers, the needle sprays filling 60 % of their cards, the leaf clumps 50 %.
-float cardLayers(TreeForm form) { return form == TreeForm::Conifer ? 5.0f : 6.0f; }
+float cardLayers(TreeForm form) { return form == TreeForm::Conifer ? 4.25f : 5.25f; }
 constexpr float kReducedCardScale = 1.8f;
 // A broadleaf's trunk forks this share of the height above the crown's lowest leaves.
 constexpr float kForkAboveCrownBase = 0.08f;

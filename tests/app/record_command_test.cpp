@@ -417,6 +417,11 @@ INSTANTIATE_TEST_SUITE_P(
         // this build has no mesh-shader path: refused once the device is known, before any frame
         BadRecord{"blade_path_mesh", "{DS} {SMALL} --path {PATH} --blade-path mesh",
                   "--blade-path mesh is not available on"},
+        BadRecord{"bad_trees", "{DS} {SMALL} --path {PATH} --trees maybe", "--trees maybe"},
+        BadRecord{"bad_tree_shadows", "{DS} {SMALL} --path {PATH} --tree-shadows maybe", "--tree-shadows maybe"},
+        BadRecord{"bad_tree_cores", "{DS} {SMALL} --path {PATH} --tree-cores maybe", "--tree-cores maybe"},
+        BadRecord{"bad_tree_horizon", "{DS} {SMALL} --path {PATH} --tree-horizon-m 10", "--tree-horizon-m 10"},
+        BadRecord{"bad_tree_budget", "{DS} {SMALL} --path {PATH} --tree-budget-mb 0", "--tree-budget-mb 0"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

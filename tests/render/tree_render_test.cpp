@@ -53,7 +53,7 @@ class TreeRenderTest : public GpuTest {
   // One frame of `trees` (uploaded into page 0 …) seen from `camera` looking at `target`.
   FrameResult frame(Renderer& r, const std::vector<TreeInstanceGpu>& trees, const glm::dvec3& camera,
                     const glm::dvec3& target, double fovDeg, const TreeLodDistances& lod, bool fades,
-                    bool drawTrees = true) {
+                    bool drawTrees = true, bool cores = true) {
     FrameRequest req;
     req.camera.position = camera;
     req.camera.forward = glm::normalize(target - camera);
@@ -72,6 +72,7 @@ class TreeRenderTest : public GpuTest {
     t.pageCounts = counts;
     t.lod = lod;
     t.fades = fades;
+    t.cores = cores;
     t.cameraEnu[0] = camera.x;
     t.cameraEnu[1] = camera.y;
     t.cameraEnu[2] = camera.z;
@@ -184,6 +185,62 @@ TEST_F(TreeRenderTest, ImpostorSilhouetteMatchesTheModelAtTheSwitch) {
                 100.0 * symmetric);
     EXPECT_GT(na, 2000u);
     EXPECT_LT(coverage, 0.05);
+  }
+}
+
+// The crowns' opaque cores (vegetation/tree_core.h), drawn first: seen from the side, close, at
+// the full model, they show between the cards (pixels of the crowns change, darker: foliage in
+// shade) and only inside each crown's outline (each row between the cards' leftmost and rightmost
+// pixel): the trees cover no more of the frame than the cards and bark did. Both forms, a row of
+// five trees, cores on and off.
+TEST_F(TreeRenderTest, CrownCoresShowBetweenTheCardsOnlyInsideTheOutline) {
+  for (auto form : {vegetation::TreeForm::Conifer, vegetation::TreeForm::Broadleaf}) {
+    auto r = makeRenderer(320, 128, 4);
+    ASSERT_TRUE(r);
+    ASSERT_TRUE(r->setTreeModels(oneModel(form)).ok());
+    std::vector<TreeInstanceGpu> trees;
+    for (int i = 0; i < 5; ++i) trees.push_back(treeAt(float(i - 2) * 9.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
+    TreeLodDistances full;
+    full.fullHeights = full.reducedHeights = 1e6f;
+    full.horizonM = 1e5f;
+    const glm::dvec3 camera{0.0, -40.0, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
+    const FrameResult bg = frame(*r, trees, camera, target, 30.0, full, false, /*drawTrees=*/false);
+    const FrameResult on = frame(*r, trees, camera, target, 30.0, full, false, true, /*cores=*/true);
+    const FrameResult off = frame(*r, trees, camera, target, 30.0, full, false, true, /*cores=*/false);
+    ASSERT_TRUE(bg.color && on.color && off.color);
+    const std::string tag = form == vegetation::TreeForm::Conifer ? "conifer" : "broadleaf";
+    dump(on, "cores-on-" + tag);
+    dump(off, "cores-off-" + tag);
+    const auto mOn = mask(*on.color, *bg.color), mOff = mask(*off.color, *bg.color), changed = mask(*on.color, *off.color);
+    // Per tree (the frame split into five columns), each row's outline from the cards and bark.
+    const uint32_t w = on.color->width, h = on.color->height, column = w / 5;
+    size_t cards = 0, inside = 0, outside = 0, darker = 0;
+    for (uint32_t t = 0; t < 5; ++t)
+      for (uint32_t y = 0; y < h; ++y) {
+        uint32_t lo = w, hi = 0;
+        for (uint32_t x = t * column; x < (t + 1) * column; ++x)
+          if (mOff[size_t(y) * w + x]) lo = std::min(lo, x), hi = x, ++cards;
+        for (uint32_t x = t * column; x < (t + 1) * column; ++x) {
+          const size_t i = size_t(y) * w + x;
+          if (!changed[i]) continue;
+          if (x < lo || x > hi) {
+            outside += mOn[i];  // drawn where neither cards nor bark were
+            continue;
+          }
+          ++inside;
+          const uint8_t* a = &on.color->rgba[i * 4];
+          const uint8_t* b = &off.color->rgba[i * 4];
+          darker += a[0] + a[1] + a[2] < b[0] + b[1] + b[2] ? 1 : 0;
+        }
+      }
+    std::printf("%s: cards and bark %zu px; the cores change %zu inside the outline (%zu of them darker), draw %zu "
+                "outside\n",
+                tag.c_str(), cards, inside, darker, outside);
+    EXPECT_GT(cards, 3000u);
+    EXPECT_GT(inside * 20, cards) << "the cores show between the cards";
+    EXPECT_GT(darker * 10, inside * 7) << "as foliage in shade";
+    // (A core's antialiased edge may add a pixel where a row of cards is narrow: 1.4 % for the conifer.)
+    EXPECT_LT(outside * 50, cards) << "the cores stay inside the crowns";
   }
 }
 
