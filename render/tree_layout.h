@@ -50,11 +50,12 @@ struct TreePageUpload {
 // scaled). Each switch cross-fades over `fadeShare` of its distance.
 //
 // Each level's cost on the H200 is its pixels times its layers of cards (render/README.md
-// "Trees"): at 1080 lines, the full model up to 2 heights (30 m for a 15 m tree), the reduced
-// one up to 5 (75 m), where the impostor's 96-pixel views are about half as sharp as the screen.
+// "Trees on the H200"): at 1080 lines, the full model up to 1.6 heights (24 m for a 15 m tree),
+// the reduced one up to 4 (60 m), where the impostor's 96-pixel views are about 0.4 as sharp as
+// the screen.
 struct TreeLodDistances {
-  float fullHeights = 2.0f;     // full model up to 2 heights
-  float reducedHeights = 5.0f;  // reduced model up to 5 heights, the impostor beyond
+  float fullHeights = 1.6f;     // full model up to 1.6 heights
+  float reducedHeights = 4.0f;  // reduced model up to 4 heights, the impostor beyond
   // Impostors end (fading to the terrain's own colour) where a tree is about 5 pixels tall: 200
   // heights at 1080 lines (3 km for a 15 m tree, where the horizon ends them too), 33 in a
   // 180-line frame. Scaled like the two above.

@@ -35,6 +35,7 @@ constexpr int kMaxTriangles = 12000;
 // layers, the needle sprays filling 60 % of their cards, the leaf clumps 50 %.
 float cardLayers(TreeForm form) { return form == TreeForm::Conifer ? 4.25f : 5.25f; }
 constexpr float kReducedCardScale = 1.8f;
+constexpr size_t kReducedSkip = 7;  // Reduced keeps six of every seven groups of Full cards
 // A broadleaf's trunk forks this share of the height above the crown's lowest leaves.
 constexpr float kForkAboveCrownBase = 0.08f;
 
@@ -128,10 +129,11 @@ void levelOneAncestor(const Skeleton& k, uint32_t b, uint32_t& ancestor, float& 
 
 // One card for every (up to) four Full cards of a level-1 subtree, 1.8 × as long and wide: four
 // cards cover less than four times one (they overlap), so 2 × drew a side view 10–21 % larger
-// than Full's, 1.8 × draws it within ±8 % (tests/vegetation/tree_model_test.cpp).
+// than Full's, 1.8 × draws it within ±8 % (tests/vegetation/tree_model_test.cpp); six groups of
+// every seven.
 std::vector<Card> reducedCards(const Skeleton& k, const Envelope& env) {
   std::vector<Card> out;
-  size_t i = 0;
+  size_t i = 0, groups = 0;
   while (i < k.cards.size()) {
     uint32_t ancestor = 0;
     float along = 0.0f;
@@ -163,7 +165,9 @@ std::vector<Card> reducedCards(const Skeleton& k, const Envelope& env) {
     big.branch = ancestor;
     big.along = along;
     fitCard(big, env);
-    out.push_back(big);
+    // Every kReducedSkip-th group is left out: the crown's core fills what it showed, and on the
+    // H200 each layer of cards costs its pixels (render/README.md "Trees on the H200").
+    if (++groups % kReducedSkip != 0) out.push_back(big);
     i += n;
   }
   return out;

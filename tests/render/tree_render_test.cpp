@@ -394,7 +394,7 @@ TEST_F(TreeRenderTest, SameTreesSameImageAndBudgetRefusal) {
   ASSERT_TRUE(r);
   ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
   std::vector<TreeInstanceGpu> trees;
-  for (int i = 0; i < 40; ++i) trees.push_back(treeAt(float(i % 8) * 6.0f - 21.0f, 20.0f + float(i / 8) * 9.0f, i));
+  for (int i = 0; i < 40; ++i) trees.push_back(treeAt(float(i % 8) * 6.0f - 21.0f, 10.0f + float(i / 8) * 12.0f, i));
   TreeLodDistances lod;  // at 1080-line distances on this small frame: every level shows
   lod.fullHeights /= treeLodScale(64.0, 55.0);
   lod.reducedHeights /= treeLodScale(64.0, 55.0);
@@ -402,7 +402,10 @@ TEST_F(TreeRenderTest, SameTreesSameImageAndBudgetRefusal) {
   const FrameResult b = frame(*r, trees, {0.0, -10.0, 12.0}, {0.0, 40.0, 4.0}, 55.0, lod, true);
   ASSERT_TRUE(a.color && b.color);
   EXPECT_EQ(a.color->rgba, b.color->rgba);
-  EXPECT_GT(a.trees->full + a.trees->reduced, 30u);
+  EXPECT_GT(a.trees->full, 0u);  // every level shows
+  EXPECT_GT(a.trees->reduced, 0u);
+  EXPECT_GT(a.trees->impostor, 0u);
+  EXPECT_GT(a.trees->full + a.trees->reduced, 20u);
 
   RendererOptions o = options(32, 32, 1);
   o.treeBudgetBytes = 1 << 20;  // 1 MiB: not even the atlas
