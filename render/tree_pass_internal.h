@@ -1,0 +1,55 @@
+#pragma once
+// Internal to the tree pass (tree_pass.cpp: pipelines, classify, draws; tree_models.cpp: the
+// models' upload, the draw templates and the impostor capture): the GPU blocks the shaders read
+// and the constants both halves use. Not part of the renderer's interface (tree_pass.h is).
+
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "render/pipeline_builder.h"
+#include "render/tree_layout.h"
+#include "vegetation/tree_model.h"
+
+namespace vegstream::render::tree_detail {
+
+// shaders/common/tree_layout.glsl's TreeModelGpu and TreeBlock (std140: vec4 members only).
+struct TreeModelGpu {
+  glm::uvec4 mesh0, mesh1;
+  glm::vec4 shape, leaf, bark;
+};
+struct TreeBlock {
+  glm::vec4 camera, lod;
+  glm::vec4 frustum[6];
+  glm::uvec4 counts, capacity;
+  glm::vec4 limits;
+  TreeModelGpu models[kMaxTreeModels];
+};
+static_assert(sizeof(TreeModelGpu) == 80);
+static_assert(offsetof(TreeBlock, counts) == 128);
+static_assert(offsetof(TreeBlock, models) == 176);
+
+// shaders/common/tree_push.glsl.
+struct TreePush {
+  glm::mat4 capture;
+  uint32_t model, lod, mode, samples;
+};
+static_assert(sizeof(TreePush) == 80);
+
+inline constexpr uint32_t kCounters = 8;
+inline constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
+inline constexpr VkDeviceSize kDrawCommand = 4 * sizeof(uint32_t);
+inline constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
+
+// vegetation::TreeVertex as the vertex stage reads it (shaders/tree.vert's locations 0–6).
+inline void setTreeVertexInput(GraphicsPipelineDesc& desc) {
+  desc.bindings = {{0, sizeof(vegetation::TreeVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  desc.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},  {1, 0, VK_FORMAT_R32_UINT, 12},
+                     {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 16}, {3, 0, VK_FORMAT_R32_SFLOAT, 28},
+                     {4, 0, VK_FORMAT_R32G32_SFLOAT, 32},    {5, 0, VK_FORMAT_R32_UINT, 40},
+                     {6, 0, VK_FORMAT_R32_SFLOAT, 44}};
+}
+
+}  // namespace vegstream::render::tree_detail
