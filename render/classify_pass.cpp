@@ -19,6 +19,11 @@
 namespace vegstream::render {
 namespace {
 
+constexpr VkDeviceSize kCanopyBytes = sizeof(vegetation::CanopyHeader) + VkDeviceSize{vegetation::kCanopyCells} *
+                                                                          vegetation::kCanopyCells *
+                                                                          sizeof(vegetation::CanopyEntry);
+
+
 static_assert(kSpeciesSlots == vegetation::kMaxSpecies);
 constexpr uint32_t kWorkgroup = 64;  // shaders/classify.comp local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
@@ -56,12 +61,13 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
       storage(4),
       {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       storage(6),
-      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      storage(8)};
   classifyLayout_ = createLayout(ctx, classifyBindings, "classify set layout");
   const VkDescriptorSetLayoutBinding finishBindings[] = {storage(0), storage(1), storage(2)};
   finishLayout_ = createLayout(ctx, finishBindings, "classify finish set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 9 * kSlots},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots}};
   pool_ = createPool(ctx, sizes, 2 * kSlots, "classify pool");
 
@@ -90,6 +96,9 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
     s.figures = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
                              "classify figures" + tag);
     std::memset(s.figures.mapped, 0, kCounterBytes);
+    s.canopy = createBuffer(ctx, kCanopyBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                            "classify canopy" + tag);
+    std::memset(s.canopy.mapped, 0, kCanopyBytes);  // enabled 0: no crowns
     s.classifySet = allocateDescriptorSet(ctx, pool_.get(), classifyLayout_.get(), "classify set" + tag);
     s.finishSet = allocateDescriptorSet(ctx, pool_.get(), finishLayout_.get(), "classify finish set" + tag);
     writeStorageBuffer(ctx, s.finishSet, s.counters.get(), 0);
@@ -144,6 +153,7 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView ndvi) {
   writeSampledImage(*ctx_, s.classifySet, sampler_.get(), imagery, 5);
   writeStorageBuffer(*ctx_, s.classifySet, s.visible.get(), 6);
   writeSampledImage(*ctx_, s.classifySet, sampler_.get(), ndvi, 7);
+  writeStorageBuffer(*ctx_, s.classifySet, s.canopy.get(), 8);
   s.boundImagery = imagery;
   s.boundNdvi = ndvi;
 }
@@ -151,7 +161,7 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView ndvi) {
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                                        uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
                                        uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
-                                       const CullHook& cull) {
+                                       const CullHook& cull, const vegetation::CanopyTable* canopy) {
   assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
   Slot& s = slots_[size_t(slot)];
   VegetationFigures f;
@@ -168,6 +178,15 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   ensureCapacity(s, slot, triangles.size(), bins.order.size(), retire);
   if (!triangles.empty()) std::memcpy(s.triangles.mapped, triangles.data(), triangles.size_bytes());
   if (!bins.order.empty()) std::memcpy(s.order.mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
+  // The crowns (the slot's previous frame, which read them, has finished: its fence).
+  auto* canopyBytes = static_cast<uint8_t*>(s.canopy.mapped);
+  const bool crowns = canopy && canopy->header.enabled != 0 &&
+                      canopy->entries.size() == size_t{vegetation::kCanopyCells} * vegetation::kCanopyCells;
+  const vegetation::CanopyHeader header = crowns ? canopy->header : vegetation::CanopyHeader{};
+  std::memcpy(canopyBytes, &header, sizeof(header));
+  if (crowns)
+    std::memcpy(canopyBytes + sizeof(header), canopy->entries.data(),
+                canopy->entries.size() * sizeof(vegetation::CanopyEntry));
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
   if (s.boundImagery != imagery || s.boundNdvi != ndvi) writeSets(s, imagery, ndvi);
 

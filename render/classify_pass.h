@@ -52,11 +52,13 @@ class ClassifyPass {
   // The indirect draws get one vertex per group (a patch) for the species in `patchMask` (bit s:
   // species s is drawn by a plant pipeline), `verticesPerGroup` for the others (markers).
   // With `cull`, the triangles it marks hidden are not expanded (no cluster, no group, no draw).
+  // With `canopy` (the crowns near the camera the triangles are relative to), groups under a
+  // crown thin out (vegetation/canopy_cells.h).
   // Returns the CPU-side figures (the GPU's counts come from readFigures after the fence).
   VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                            uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
                            uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
-                           const CullHook& cull = {});
+                           const CullHook& cull = {}, const vegetation::CanopyTable* canopy = nullptr);
 
   // The GPU's counts of slot `slot`'s last frame, merged into `f` (after its fence).
   void readFigures(int slot, VegetationFigures& f) const;
@@ -83,6 +85,7 @@ class ClassifyPass {
   struct Slot {
     GpuBuffer triangles, order, counters, records, indirect, figures;
     GpuBuffer visible;  // per triangle, written by the cull hook
+    GpuBuffer canopy;   // vegetation::CanopyHeader and kCanopyCells² entries (host-upload)
     VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
     VkImageView boundImagery = VK_NULL_HANDLE, boundNdvi = VK_NULL_HANDLE;
   };

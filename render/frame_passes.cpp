@@ -115,7 +115,8 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
   }
   slot.vegetation = classify->record(cmd, slotIndex, plants.triangles, plants.clusterSize,
                                      terrainPass->imageryBytesView(), terrainPass->ndviView(), terrainPass->hasNdvi(),
-                                     PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull);
+                                     PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull,
+                                     plants.canopy);
   slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles
   slot.timer->endPass(cmd);
   // The compute blade path expands the plants before their scope (render/blade_pass.h).

@@ -17,6 +17,7 @@
 #include "render/overlay_types.h"
 #include "render/tree_layout.h"
 #include "terrain/terrain_mesh.h"
+#include "vegetation/canopy_cells.h"
 
 namespace vegstream::simulation {
 struct GpuStep;
@@ -178,6 +179,9 @@ struct VegetationRequest {
   // Cull seed triangles hidden behind this frame's terrain depth (Hi-Z, render/hiz_pass.h)
   // before the classify pass expands them; off: every triangle is classified.
   bool occlusionCulling = true;
+  // The crowns near the camera the triangles are relative to: the plants thin under them
+  // (vegetation/canopy_cells.h). Null: no trees. Must stay alive until submitFrame returns.
+  const vegetation::CanopyTable* canopy = nullptr;
 };
 
 struct FrameRequest {

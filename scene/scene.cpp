@@ -37,6 +37,7 @@ struct Scene::Impl {
   std::vector<streaming::Upload> planned;
   std::vector<render::SeedTriangleGpu> seeds;
   render::VegetationRequest vegetation;
+  vegetation::CanopyTable canopy;  // the crowns the plants thin under (vegetation/canopy_cells.h)
   std::unique_ptr<TreeGround> treeGround;
   std::unique_ptr<TreeField> treeField;
   SceneFrameFigures figures;
@@ -277,6 +278,10 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     const render::TreeRequest& trees =
         m.treeField->prepare(req.camera.position, m.options.mode == StreamingMode::Settled);
     req.trees = &trees;
+    if (req.vegetation) {  // relative to the camera the seed triangles are relative to
+      m.treeField->fillCanopy(req.camera.position, m.canopy);
+      m.vegetation.canopy = &m.canopy;
+    }
     const TreeFieldFigures& t = m.treeField->figures();
     fig.trees = true;
     fig.treeTilesWanted = t.tilesWanted;

@@ -145,4 +145,21 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
   return request_;
 }
 
+void TreeField::fillCanopy(const glm::dvec3& cameraEnu, vegetation::CanopyTable& out) {
+  // The table's window: kCanopyCells cells about the camera's, in tiles.
+  const auto n = static_cast<int32_t>(options_.tileCells);
+  constexpr auto kHalf = static_cast<int32_t>(vegetation::kCanopyCells / 2);
+  const int32_t cx = vegetation::treeCellOf(grid_, cameraEnu.x), cy = vegetation::treeCellOf(grid_, cameraEnu.y);
+  auto tileOf = [&](int32_t cell) { return cell >= 0 ? cell / n : -((-cell + n - 1) / n); };
+  canopyTrees_.clear();
+  for (int32_t ty = tileOf(cy - kHalf); ty <= tileOf(cy + kHalf); ++ty)
+    for (int32_t tx = tileOf(cx - kHalf); tx <= tileOf(cx + kHalf); ++tx) {
+      const auto it = tiles_.find({tx, ty});
+      if (it == tiles_.end() || it->second.pages.empty()) continue;  // not drawn: no crown to thin under
+      for (const render::TreeInstanceGpu& t : it->second.trees)
+        canopyTrees_.push_back({{t.position[0], t.position[1], t.position[2]}, t.crownM});
+    }
+  vegetation::fillCanopyTable(grid_, cameraEnu, canopyTrees_, out);
+}
+
 }  // namespace vegstream::scene

@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/tree_layout.h"
+#include "vegetation/canopy_cells.h"
 #include "vegetation/species_catalog.h"
 #include "vegetation/tree_placement.h"
 
@@ -48,6 +49,9 @@ class TreeField {
   // The trees of a frame for a camera at `cameraEnu` (the local frame); valid until the next call.
   const render::TreeRequest& prepare(const glm::dvec3& cameraEnu, bool settled);
   const TreeFieldFigures& figures() const { return figures_; }
+  // The crowns about `cameraEnu` of the trees drawn (tiles with pages), for the plants to thin
+  // under (vegetation/canopy_cells.h); after prepare().
+  void fillCanopy(const glm::dvec3& cameraEnu, vegetation::CanopyTable& out);
   const vegetation::TreeGrid& grid() const { return grid_; }
 
  private:
@@ -73,6 +77,7 @@ class TreeField {
   render::TreeRequest request_;
   TreeFieldFigures figures_;
   std::vector<vegetation::PlacedTree> scratch_;
+  std::vector<vegetation::CanopyTree> canopyTrees_;
 };
 
 }  // namespace vegstream::scene

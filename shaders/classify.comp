@@ -32,6 +32,21 @@ layout(set = 0, binding = 6, std430) readonly buffer Visible { uint visible[]; }
 // The NDVI of each imagery layer (R8 UNORM, datasets/tile_codec.h's bytes; 0 = none), read only
 // when pc.ndvi is 1 (the dataset has a near-infrared layer).
 layout(set = 0, binding = 7) uniform sampler2DArray ndviLayers;
+// The crowns near the camera (vegetation/canopy_cells.h): a toroidal table of the tree grid's
+// cells about the camera's, each the tree of one cell (its centre relative to the camera, its
+// crown radius, which cell it is).
+struct CanopyEntry {
+  float x, y, radiusM;
+  uint cell;
+};
+layout(set = 0, binding = 8, std430) readonly buffer Canopy {
+  vec2 canopyOffset;  // the camera's position in its cell
+  float canopyCellM;
+  uint canopyEnabled;
+  ivec2 canopyCell;  // the camera's cell
+  uvec2 canopyPad;
+  CanopyEntry canopy[];
+};
 
 layout(push_constant) uniform Push {
   uint orderFirst;     // this bin's first entry in order[]
@@ -106,6 +121,30 @@ float speciesFade(Species sp, SeedTriangle t, uint cluster, uint seed) {
   return plantFade(n, pc.clusterSize, cluster, seed) * (1.0 - f * f * (3.0 - 2.0 * f));
 }
 
+// vegetation::canopyCover: the same float operations in the same order.
+const uint kCanopyCells = 64u;
+const float kCanopyThinning = 0.85;
+const float kCanopyEdge = 0.4;
+uint canopyCellId(int cx, int cy) { return (uint(cx) & 0xFFFFu) | (uint(cy) << 16); }
+float canopyCover(vec2 p) {
+  if (canopyEnabled == 0u) return 0.0;
+  precise float fx = (p.x + canopyOffset.x) / canopyCellM, fy = (p.y + canopyOffset.y) / canopyCellM;
+  int cx = canopyCell.x + int(floor(fx));
+  int cy = canopyCell.y + int(floor(fy));
+  float cover = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int x = cx + dx, y = cy + dy;
+      CanopyEntry e = canopy[(uint(y) % kCanopyCells) * kCanopyCells + uint(x) % kCanopyCells];
+      if (e.cell != canopyCellId(x, y)) continue;
+      precise float ex = p.x - e.x, ey = p.y - e.y;
+      precise float d = sqrt(ex * ex + ey * ey);
+      precise float t = clamp((e.radiusM - d) / (kCanopyEdge * e.radiusM), 0.0, 1.0);
+      cover = max(cover, t * t * (3.0 - 2.0 * t));
+    }
+  return cover;
+}
+
 // vegetation::thinningFade.
 const float kThinningBand = 0.25;
 float thinningFade(float pressure, float priority) {
@@ -146,6 +185,13 @@ void appendPick(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint see
 // that changes from the imagery before it too — the same species keeps its plants (s′ moving
 // between the two), different ones cross-fade by size (vegetation::classifyTriangle).
 void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint seedCount, vec2 r, float z) {
+  if (canopyEnabled != 0u) {  // under a crown the group thins out (vegetation/canopy_cells.h)
+    precise vec3 p = t.v0.xyz + r.x * (t.v1.xyz - t.v0.xyz) + r.y * (t.v2.xyz - t.v0.xyz);
+    float cover = canopyCover(p.xy);
+    if (cover > 0.0 &&
+        philoxU01(philoxDraw(uvec2(t.keyLo, t.keyHi), cluster, kSlotCanopy + firstSeed).x) < kCanopyThinning * cover)
+      return;
+  }
   vec4 now = baseGround(t.uv01, t.uv2, t.layer, r);
   vec2 pick = chooseSpecies(now.xyz, now.w, z);
   float w = t.imageryBlend;

@@ -105,7 +105,17 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
     if (c.species >= 0 && isTree(catalog.species[size_t(c.species)])) c.species = -1;
     return c;
   };
+  // The vertices relative to the canopy's camera, as the GPU has them (SeedTriangleGpu).
+  glm::vec3 rel[3]{};
+  if (options.canopy)
+    for (int k = 0; k < 3; ++k) rel[k] = glm::vec3(triangle.vertices[size_t(k)] - options.canopy->camera);
   auto group = [&](glm::vec2 r, float z, uint32_t c, uint32_t firstSeed, uint32_t count) {
+    if (options.canopy) {  // under a crown the group thins out (canopy_cells.h)
+      const glm::vec3 p = rel[0] + r.x * (rel[1] - rel[0]) + r.y * (rel[2] - rel[0]);
+      const float cover = canopyCover(*options.canopy, glm::vec2(p));
+      if (cover > 0.0f && u01(draw(triangle.key, c, philox_slot::kCanopy + firstSeed).x) < kCanopyThinning * cover)
+        return;
+    }
     const GroundSample now = colourAt(r);
     SpeciesChoice pick = choose(now, z);
     float w = triangle.imageryBlend;

@@ -30,6 +30,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "vegetation/canopy_cells.h"
 #include "vegetation/species_catalog.h"
 #include "vegetation/stratified_clusters.h"
 
@@ -46,14 +47,19 @@ inline constexpr uint32_t kPosition = 2;           // + s: (u, v) of seed s in t
 inline constexpr uint32_t kHeightStiffness = 64;   // + s
 inline constexpr uint32_t kOrientationWidth = 96;  // + s
 inline constexpr uint32_t kColourSpecies = 128;    // + s: x colour modulation, y z of a cluster-0 seed
+inline constexpr uint32_t kCanopy = 160;           // + s: x whether the group survives under a crown (canopy_cells.h)
 inline constexpr uint32_t kLevelOffset = 255;      // with cluster field = level: the level's stratum offset
 }  // namespace philox_slot
 static_assert(philox_slot::kPosition + kMaxClusterSize <= philox_slot::kHeightStiffness);
+static_assert(philox_slot::kColourSpecies + kMaxClusterSize <= philox_slot::kCanopy);
+static_assert(philox_slot::kCanopy + kMaxClusterSize <= philox_slot::kLevelOffset);
 
 struct SeedingOptions {
   uint32_t clusterSize = 8;  // C, 1 … kMaxClusterSize
   // Per species, the overflow thinning's pressure (overflow_thinning.h): 0 keeps every group.
   std::array<float, kMaxSpecies> thinning{};
+  // The crowns near the camera (canopy_cells.h): groups under them thin out. Null: none.
+  const CanopyTable* canopy = nullptr;
 };
 
 // One seed triangle as the seeding sees it (terrain/seed_triangles.h makes them).

@@ -10,6 +10,7 @@ const uint kSlotPosition = 2u;
 const uint kSlotHeightStiffness = 64u;
 const uint kSlotOrientationWidth = 96u;
 const uint kSlotColourSpecies = 128u;
+const uint kSlotCanopy = 160u;
 const uint kSlotLevelOffset = 255u;
 
 uint pyramidalNumber(uint n) { return n * (n + 1u) * (2u * n + 1u) / 6u; }

@@ -19,6 +19,7 @@
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "shaders/seeding_check.comp.h"
+#include "vegetation/canopy_cells.h"
 #include "vegetation/colour_score.h"
 #include "vegetation/imagery_texels.h"
 #include "vegetation/plant_seeding.h"
@@ -231,6 +232,71 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
       "%llu plants, %u bins; roots compared %zu, worst %.2e m\n",
       cpu.size(), groupsGpu, mismatches, gpuOnly, static_cast<unsigned long long>(plantsCpu), figures.bins, compared,
       worst);
+}
+
+// Groups under the crowns near the camera thin out (vegetation/canopy_cells.h) on the GPU as in
+// the CPU reference: crowns of 10 m every three tree-grid cells over the scene; per species the
+// GPU keeps the groups the CPU does (a decision on a crown's edge may differ in the last bit of
+// the cover: at most 0.5 % + 2), and the crowns drop groups the same ground keeps without them.
+TEST_F(ClassifyGpu, GroupsThinUnderTheCrownsAsInTheCppReference) {
+  const std::unique_ptr<Context> context = validatedContext();
+  ASSERT_TRUE(context);
+  const Context& ctx = *context;
+  constexpr uint32_t kLayers = 2;
+  const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
+                                                  vegstream::testing::classifyBaseMap(2)};
+  GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
+                                      VK_FORMAT_R8G8B8A8_UNORM);
+  const VkDeviceSize tileBytes = VkDeviceSize{kTile} * kTile * 4;
+  GpuBuffer staging = createBuffer(ctx, tileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                   "test imagery staging");
+  for (uint32_t l = 0; l < kLayers; ++l)
+    std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
+  const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers, 9.0f);
+  const veg::SpeciesCatalog& catalog = veg::defaultSpeciesCatalog();
+  constexpr uint32_t kClusterSize = 8;
+
+  // The scene's vertices are relative to a camera at the origin.
+  const veg::TreeGrid grid{7.0710678, 3.5};
+  std::vector<veg::CanopyTree> trees;
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 10; ++x)
+      trees.push_back({glm::dvec3((3.0 * x + 1.4) * grid.cellM, (3.0 * y + 1.6) * grid.cellM, 10.0), 10.0f});
+  veg::CanopyTable canopy;
+  veg::fillCanopyTable(grid, glm::dvec3(0.0), trees, canopy);
+
+  ClassifyPass pass(ctx, ClassifyOptions{1u << 14});
+  pass.setCatalog(catalog);
+  VegetationFigures figures;
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
+    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), imagery.alternateView.get(),
+                          false, 3 * kClusterSize, 0, [](GpuBuffer&&) {}, {}, &canopy);
+  });
+  pass.readFigures(0, figures);
+  EXPECT_FALSE(figures.overflow);
+
+  std::vector<uint64_t> cpuWith(catalog.species.size(), 0), cpuWithout(catalog.species.size(), 0);
+  veg::SeedingOptions under{kClusterSize};
+  under.canopy = &canopy;
+  std::vector<veg::PlantCluster> with, without;
+  for (size_t i = 0; i < scene.cpu.size(); ++i) {
+    const veg::BaseColourAt colour = vegstream::testing::classifyColour(scene.gpu[i], maps);
+    veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, under, colour, with);
+    veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colour, without);
+  }
+  for (const veg::PlantCluster& g : with) ++cpuWith[g.species];
+  for (const veg::PlantCluster& g : without) ++cpuWithout[g.species];
+  uint64_t gpuGroups = 0;
+  for (uint32_t s = 0; s < catalog.species.size(); ++s) {
+    const double expected = double(cpuWith[s]);
+    EXPECT_NEAR(double(figures.groups[s]), expected, 0.005 * expected + 2.0) << catalog.species[s].name;
+    gpuGroups += figures.groups[s];
+  }
+  std::printf("under crowns: %zu groups on the CPU (%zu without the crowns), %llu on the GPU\n", with.size(),
+              without.size(), static_cast<unsigned long long>(gpuGroups));
+  EXPECT_LT(double(with.size()), 0.97 * double(without.size())) << "the crowns drop groups";
 }
 
 }  // namespace
