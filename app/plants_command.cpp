@@ -167,22 +167,25 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
   }
   if (Status s = checkOutput(o.output); !s) return reportError(log, s.error());
 
+  const std::string boxName = "--bbox " + o.bbox;
+  // The trees first: the plants thin under their crowns, as in a flight (vegetation/canopy_cells.h).
+  scene::TreesInBoxOptions treeOptions;
+  treeOptions.maxTrees = static_cast<uint64_t>(o.maxTrees);
+  treeOptions.boxName = boxName;
+  treeOptions.maxTreesName = "--max-trees";
+  auto trees = scene::treesInBox(o.dataset, *box, *catalog, treeOptions);
+  if (!trees) return reportError(log, trees.error());
   scene::PlantsInBoxOptions options;
   options.clusterSize = static_cast<uint32_t>(o.clusterSize);
   options.maxPlants = static_cast<uint64_t>(o.maxPlants);
-  options.boxName = "--bbox " + o.bbox;
+  options.boxName = boxName;
   options.maxPlantsName = "--max-plants";
+  options.crowns = std::move(trees->crowns);
   auto grown = scene::plantsInBox(o.dataset, *box, *catalog, options);
   if (!grown) return reportError(log, grown.error());
   // Trees are placed on their own grid (scene/trees_in_box.h) and listed in their own table; the
   // plant seeding's rare tree-species plants are not listed as plants.
   std::erase_if(grown->plants, [&](const scene::BoxPlant& p) { return vegetation::isTree(catalog->species[p.species]); });
-  scene::TreesInBoxOptions treeOptions;
-  treeOptions.maxTrees = static_cast<uint64_t>(o.maxTrees);
-  treeOptions.boxName = options.boxName;
-  treeOptions.maxTreesName = "--max-trees";
-  auto trees = scene::treesInBox(o.dataset, *box, *catalog, treeOptions);
-  if (!trees) return reportError(log, trees.error());
   log->debug("plants: {} seed triangles (level {}), {} skipped for nodata, {} plants; {} trees ({} cells of {:.2f} m)",
              grown->seedTriangles, grown->seedLevel, grown->nodataSkipped, grown->plants.size(), trees->trees.size(),
              trees->cells, trees->cellM);

@@ -13,6 +13,7 @@
 #include "terrain/resident_heights.h"
 #include "terrain/seed_region.h"
 #include "terrain/seed_triangles.h"
+#include "vegetation/canopy_cells.h"
 #include "vegetation/imagery_texels.h"
 #include "vegetation/plant_seeding.h"
 
@@ -33,12 +34,29 @@ const datasets::ColorTile* imageryOver(SettledTiles& tiles, const terrain::Bintr
 // Grows every seed triangle's plants and keeps those in the box (counting all of them).
 void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const terrain::SeedRegion& region,
           const geo::GeoBounds& box, const vegetation::SpeciesCatalog& catalog,
-          const vegetation::SeedingOptions& seeding, SettledTiles& tiles, int maxZoom, uint64_t maxPlants,
+          const vegetation::SeedingOptions& seeding, std::span<const vegetation::CanopyTree> crowns,
+          const vegetation::TreeGrid& treeGrid, SettledTiles& tiles, int maxZoom, uint64_t maxPlants,
           PlantsInBox& out, uint64_t& count) {
   std::vector<vegetation::PlantCluster> clusters;
   std::vector<vegetation::Plant> plants;
+  // The crowns' table about a point near the triangles (a flight's is about its camera): the
+  // corner of the kCanopyCentreM square grid nearest each triangle, well inside the table's
+  // window; a triangle's plants then do not depend on the box (a sub-box lists the same).
+  constexpr double kCanopyCentreM = 128.0;
+  vegetation::CanopyTable canopy;
+  bool canopyMade = false;
+  vegetation::SeedingOptions options = seeding;
   for (size_t i = 0; i < region.triangles.size(); ++i) {
     const terrain::RegionSeedTriangle& s = region.triangles[i];
+    if (!crowns.empty()) {
+      const glm::dvec3 centre(std::round(s.world[0].x / kCanopyCentreM) * kCanopyCentreM,
+                              std::round(s.world[0].y / kCanopyCentreM) * kCanopyCentreM, 0.0);
+      if (!canopyMade || centre != canopy.camera) {
+        vegetation::fillCanopyTable(treeGrid, centre, crowns, canopy);
+        canopyMade = true;
+      }
+      options.canopy = &canopy;
+    }
     const datasets::ColorTile* c = imageryOver(tiles, grid, maxZoom, s.corners);
     if (!c) continue;  // no imagery over it: no colour, no species (as a flight without it)
     // uv of each vertex in that tile, as StreamedTerrain::seedImagery gives the GPU (float).
@@ -54,8 +72,8 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
     const vegetation::SeedTriangleInput input{s.key, s.world, s.plantCount};
     clusters.clear();
     plants.clear();
-    vegetation::classifyTriangle(input, static_cast<uint32_t>(i), catalog, seeding, colourAt, clusters);
-    vegetation::growPlants(input, clusters, catalog, seeding, plants);
+    vegetation::classifyTriangle(input, static_cast<uint32_t>(i), catalog, options, colourAt, clusters);
+    vegetation::growPlants(input, clusters, catalog, options, plants);
     for (const vegetation::Plant& p : plants) {
       const geo::Geodetic at = frame.toGeodetic(p.position);
       if (at.lonDeg < box.westDeg || at.lonDeg >= box.eastDeg || at.latDeg < box.southDeg || at.latDeg >= box.northDeg)
@@ -127,8 +145,12 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   out.seedTriangles = region.triangles.size();
   out.nodataSkipped = region.nodataSkipped;
   uint64_t count = 0;
-  grow(grid, frame, region, box, catalog, vegetation::SeedingOptions{options.clusterSize}, tiles, meta->maxZoom,
-       maxPlants, out, count);
+  std::vector<vegetation::CanopyTree> crowns;
+  for (const BoxCrown& c : options.crowns) crowns.push_back({frame.toLocal(c.at), c.crownM});
+  if (!vegetation::hasTrees(catalog)) crowns.clear();
+  const vegetation::TreeGrid treeGrid = crowns.empty() ? vegetation::TreeGrid{} : vegetation::treeGridFor(catalog);
+  grow(grid, frame, region, box, catalog, vegetation::SeedingOptions{options.clusterSize}, crowns, treeGrid, tiles,
+       meta->maxZoom, maxPlants, out, count);
   if (tiles.error()) return *tiles.error();
   if (count > maxPlants) return tooMany("the box grows " + plural(count, "plant"), count);
   return out;

@@ -24,6 +24,7 @@
 #include "core/result.h"
 #include "geo/bounds.h"
 #include "geo/geodetic.h"
+#include "scene/trees_in_box.h"
 #include "vegetation/species_catalog.h"
 
 namespace vegstream::scene {
@@ -50,6 +51,9 @@ struct PlantsInBoxOptions {
   // (`vegstream plants` passes "--bbox 1,2,3,4" and "--max-plants").
   std::string boxName = "box";
   std::string maxPlantsName = "the plant limit";
+  // The trees whose crowns the plants thin under (vegetation/canopy_cells.h), as a flight draws
+  // them: those over the box and a crown's reach around it (scene/trees_in_box.h). Empty: none.
+  std::vector<BoxCrown> crowns;
 };
 
 // Errors: NotFound / InvalidInput for the dataset (missing, bad dataset.json, no imagery, a

@@ -92,6 +92,7 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
   uint64_t count = 0;
   for (const vegetation::PlacedTree& t : placed) {
     const geo::Geodetic at = frame.toGeodetic({t.x, t.y, t.z});
+    out.crowns.push_back({at, t.crownM});
     if (!inBox(at, box)) continue;
     ++count;
     if (out.trees.size() < options.maxTrees) out.trees.push_back({at, t.species, t.seed, t.heightM, t.crownM, t.sPrime});

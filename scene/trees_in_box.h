@@ -34,8 +34,17 @@ struct BoxTree {
   float sPrime = 0.0f;    // eq. 18
 };
 
+// A tree's crown over the ground: where its trunk stands and how wide it is.
+struct BoxCrown {
+  geo::Geodetic at;
+  float crownM = 0.0f;
+};
+
 struct TreesInBox {
   std::vector<BoxTree> trees;
+  // Every tree placed in the box and in the cells around it: the crowns that reach into the box,
+  // for the plants to thin under (scene/plants_in_box.h, vegetation/canopy_cells.h).
+  std::vector<BoxCrown> crowns;
   std::string datasetName;  // dataset.json's name
   double cellM = 0.0;       // the tree grid's cell side (0: the catalog has no tree species)
   uint64_t cells = 0;       // grid cells placed to cover the box

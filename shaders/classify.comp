@@ -122,7 +122,7 @@ float speciesFade(Species sp, SeedTriangle t, uint cluster, uint seed) {
 }
 
 // vegetation::canopyCover: the same float operations in the same order.
-const uint kCanopyCells = 64u;
+const uint kCanopyCells = 80u;  // vegetation::kCanopyCells
 const float kCanopyThinning = 0.85;
 const float kCanopyEdge = 0.4;
 uint canopyCellId(int cx, int cy) { return (uint(cx) & 0xFFFFu) | (uint(cy) << 16); }

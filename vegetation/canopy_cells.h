@@ -9,6 +9,10 @@
 // (SeedTriangleGpu): the GPU's classify (shaders/classify.comp) and the CPU's (plant_seeding.cpp
 // through canopyCover) compute the same cover with the same operations.
 //
+// The window reaches past the default seeding horizon (250 m), so a plant's cover does not depend
+// on where the camera is: a catalog whose plants reach farther than kCanopyCells / 2 cells has
+// them unthinned out there. Only the trees drawn (tiles with pages) cast a crown.
+//
 // The cover of a point at distance d from a crown of radius R is 1 inside 0.6 R, then falls to 0
 // at R (smoothstep); the plants' group there is dropped with probability kCanopyThinning × cover
 // (its own Philox draw, philox_slot::kCanopy): the ground under a crown is shaded and bare.
@@ -24,7 +28,7 @@
 
 namespace vegstream::vegetation {
 
-inline constexpr uint32_t kCanopyCells = 64;          // 64 × 7.07 m: ±226 m about the camera's cell
+inline constexpr uint32_t kCanopyCells = 80;  // 80 × 7.07 m: ±283 m about the camera's cell, past the plants' 250 m
 inline constexpr float kCanopyThinning = 0.85f;       // the share of groups dropped under a crown's middle
 inline constexpr float kCanopyEdge = 0.4f;            // the outer share of the radius the cover falls over
 inline constexpr uint32_t kNoCanopyCell = 0xFFFFFFFFu;

@@ -22,6 +22,7 @@
 #include "datasets/synthetic_generator.h"
 #include "geo/xyz_tiles.h"
 #include "scene/plants_in_box.h"
+#include "vegetation/canopy_cells.h"
 #include "tests/support/nginx_server.h"
 
 namespace vegstream::scene {
@@ -122,6 +123,56 @@ TEST(PlantsInBox, ASubBoxGivesExactlyTheBigBoxsPlantsInIt) {
   std::sort(got.begin(), got.end());
   ASSERT_GT(got.size(), 1000u);
   EXPECT_EQ(got, expected);
+}
+
+// Crowns over the meadow (scene/trees_in_box.h gives them in a flight's listing): the plants are
+// those the same box grows without them, less about 85 % of those under a crown's middle; 3 m
+// (a cluster's reach: groups are thinned whole, by their centre) beyond every crown, the same
+// plants; and a sub-box still lists exactly the big box's plants in it.
+TEST(PlantsInBox, PlantsThinUnderTheCrownsAndNowhereElse) {
+  const fs::path dataset = makeDataset(ownTestDir());
+  const auto& catalog = vegetation::defaultSpeciesCatalog();
+  const geo::GeoBounds big = boxAround(kLat, kLon, 40.0), sub = boxAround(kLat + 0.0001, kLon - 0.0002, 12.0);
+  PlantsInBoxOptions options;
+  const double dLat = 1.0 / 111000.0, dLon = 1.0 / (111000.0 * std::cos(kLat * M_PI / 180.0));
+  for (double north = -30.0; north <= 30.0; north += 20.0)  // 16 crowns of 12 m, 20 m apart
+    for (double east = -30.0; east <= 30.0; east += 20.0)
+      options.crowns.push_back({{kLat + north * dLat, kLon + east * dLon, 0.0}, 12.0f});
+  const auto bare = plantsInBox(dataset.string(), big, catalog, {});
+  const auto under = plantsInBox(dataset.string(), big, catalog, options);
+  const auto part = plantsInBox(dataset.string(), sub, catalog, options);
+  ASSERT_TRUE(bare.ok() && under.ok() && part.ok());
+  // Metres from the nearest trunk, on the local tangent plane.
+  const auto nearest = [&](const BoxPlant& p) {
+    double best = 1e9;
+    for (const BoxCrown& c : options.crowns)
+      best = std::min(best, std::hypot((p.at.lonDeg - c.at.lonDeg) / dLon, (p.at.latDeg - c.at.latDeg) / dLat));
+    return best;
+  };
+  using Key = std::tuple<double, double, double, uint32_t, float, float, float>;
+  std::vector<Key> farBare, farUnder, all(0), subExpected, subGot;
+  size_t innerBare = 0, innerUnder = 0;
+  for (const BoxPlant& p : bare->plants) {
+    if (nearest(p) > 9.0) farBare.push_back(tie(p));
+    if (nearest(p) < 3.4) ++innerBare;
+    all.push_back(tie(p));
+  }
+  std::sort(all.begin(), all.end());
+  for (const BoxPlant& p : under->plants) {
+    ASSERT_TRUE(std::binary_search(all.begin(), all.end(), tie(p))) << "a plant the bare ground does not grow";
+    if (nearest(p) > 9.0) farUnder.push_back(tie(p));
+    if (nearest(p) < 3.4) ++innerUnder;
+    if (inBox(p, sub)) subExpected.push_back(tie(p));
+  }
+  for (const BoxPlant& p : part->plants) subGot.push_back(tie(p));
+  std::sort(subExpected.begin(), subExpected.end());
+  std::sort(subGot.begin(), subGot.end());
+  std::printf("under the crowns' middles: %zu of %zu plants kept; %zu plants beyond the crowns, the same\n",
+              innerUnder, innerBare, farUnder.size());
+  EXPECT_EQ(farUnder, farBare);
+  ASSERT_GT(innerBare, 8000u);
+  EXPECT_NEAR(double(innerUnder) / double(innerBare), 1.0 - vegetation::kCanopyThinning, 0.05);
+  EXPECT_EQ(subGot, subExpected);
 }
 
 // The dataset served by nginx: the same plants, bit for bit, as from the directory (the ground

@@ -22,8 +22,8 @@ constexpr TreeGrid kGrid{7.0710678, 3.5};
 TEST(CanopyCells, CoverIsOneUnderTheMiddleAndNoneOutsideTheCrown) {
   const glm::dvec3 camera{1003.7, -2051.2, 12.0};
   const glm::dvec3 tree = camera + glm::dvec3(10.3, -4.1, 0.0);
-  // Another tree 64 cells east: the same slot of the table, out of its window.
-  const glm::dvec3 far = tree + glm::dvec3(64.0 * kGrid.cellM, 0.0, 0.0);
+  // Another tree kCanopyCells cells east: the same slot of the table, out of its window.
+  const glm::dvec3 far = tree + glm::dvec3(double(kCanopyCells) * kGrid.cellM, 0.0, 0.0);
   const std::vector<CanopyTree> trees = {{tree, 8.0f}, {far, 8.0f}};
   CanopyTable table;
   fillCanopyTable(kGrid, camera, trees, table);
@@ -36,7 +36,7 @@ TEST(CanopyCells, CoverIsOneUnderTheMiddleAndNoneOutsideTheCrown) {
   EXPECT_LT(edge, 0.8f);
   EXPECT_EQ(canopyCover(table, c + glm::vec2(-4.01f, 0.0f)), 0.0f);
   EXPECT_EQ(canopyCover(table, c + glm::vec2(3.0f, 3.0f)), 0.0f);  // 4.24 m away
-  // The far tree is not in the table: its own place (64 cells east, the same slot) has no crown.
+  // The far tree is not in the table: its own place (the same slot) has no crown.
   EXPECT_EQ(canopyCover(table, glm::vec2(far - camera)), 0.0f);
   // An empty table covers nothing.
   EXPECT_EQ(canopyCover(CanopyTable{}, c), 0.0f);
