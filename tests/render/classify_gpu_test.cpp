@@ -39,22 +39,38 @@ using GroupKey = std::tuple<uint32_t, uint32_t, uint32_t>;  // triangle, cluster
 
 class ClassifyGpu : public GpuTest {};
 
+// The scene's two base maps as an imagery array (its UNORM view is what the pass samples), and
+// the staging buffer its upload copies from (record() it into the first command buffer).
+struct TestImagery {
+  static constexpr uint32_t kLayers = 2;
+  static constexpr VkDeviceSize kTileBytes = VkDeviceSize{kTile} * kTile * 4;
+  std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
+                                            vegstream::testing::classifyBaseMap(2)};
+  GpuImage imagery;
+  GpuBuffer staging;
+  explicit TestImagery(const Context& ctx)
+      : imagery(createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
+                                 VK_FORMAT_R8G8B8A8_UNORM)),
+        staging(createBuffer(ctx, kTileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                             "test imagery staging")) {
+    for (uint32_t l = 0; l < kLayers; ++l)
+      std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * kTileBytes, maps[l].data(), kTileBytes);
+  }
+  void record(VkCommandBuffer cmd) {
+    for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * kTileBytes);
+  }
+};
+
 TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   const std::unique_ptr<Context> context = validatedContext();
   ASSERT_TRUE(context);
   const Context& ctx = *context;
 
-  constexpr uint32_t kLayers = 2;
-  const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
-                                                  vegstream::testing::classifyBaseMap(2)};
-  GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
-                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
-                                      VK_FORMAT_R8G8B8A8_UNORM);
-  const VkDeviceSize tileBytes = VkDeviceSize{kTile} * kTile * 4;
-  GpuBuffer staging = createBuffer(ctx, tileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                                   "test imagery staging");
-  for (uint32_t l = 0; l < kLayers; ++l)
-    std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
+  constexpr uint32_t kLayers = TestImagery::kLayers;
+  TestImagery test(ctx);
+  const std::vector<std::vector<uint8_t>>& maps = test.maps;
+  const GpuImage& imagery = test.imagery;
 
   // Some triangles' imagery is changing: species cross-fade, and plants fade in (issue 18).
   const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers, 9.0f, /*imageryChanges=*/true);
@@ -64,7 +80,7 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
   pass.setCatalog(catalog);
   VegetationFigures figures;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
+    test.record(cmd);
     figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), imagery.alternateView.get(), false, 3 * kClusterSize, 0,
                           [](GpuBuffer&&) {});
   });
@@ -241,19 +257,8 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
 TEST_F(ClassifyGpu, GroupsThinUnderTheCrownsAsInTheCppReference) {
   const std::unique_ptr<Context> context = validatedContext();
   ASSERT_TRUE(context);
-  const Context& ctx = *context;
-  constexpr uint32_t kLayers = 2;
-  const std::vector<std::vector<uint8_t>> maps = {vegstream::testing::classifyBaseMap(1),
-                                                  vegstream::testing::classifyBaseMap(2)};
-  GpuImage imagery = createImageArray(ctx, {kTile, kTile}, kLayers, VK_FORMAT_R8G8B8A8_SRGB,
-                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test imagery", 1,
-                                      VK_FORMAT_R8G8B8A8_UNORM);
-  const VkDeviceSize tileBytes = VkDeviceSize{kTile} * kTile * 4;
-  GpuBuffer staging = createBuffer(ctx, tileBytes * kLayers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                                   "test imagery staging");
-  for (uint32_t l = 0; l < kLayers; ++l)
-    std::memcpy(static_cast<uint8_t*>(staging.mapped) + l * tileBytes, maps[l].data(), tileBytes);
-  const ClassifyScene scene = vegstream::testing::makeClassifyScene(kLayers, 9.0f);
+  TestImagery test(*context);
+  const ClassifyScene scene = vegstream::testing::makeClassifyScene(TestImagery::kLayers, 9.0f);
   const veg::SpeciesCatalog& catalog = veg::defaultSpeciesCatalog();
   constexpr uint32_t kClusterSize = 8;
 
@@ -266,12 +271,13 @@ TEST_F(ClassifyGpu, GroupsThinUnderTheCrownsAsInTheCppReference) {
   veg::CanopyTable canopy;
   veg::fillCanopyTable(grid, glm::dvec3(0.0), trees, canopy);
 
-  ClassifyPass pass(ctx, ClassifyOptions{1u << 14});
+  ClassifyPass pass(*context, ClassifyOptions{1u << 14});
   pass.setCatalog(catalog);
   VegetationFigures figures;
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    for (uint32_t l = 0; l < kLayers; ++l) recordImageUpload(cmd, staging, imagery, l, l * tileBytes);
-    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), imagery.alternateView.get(),
+  context->submitAndWait([&](VkCommandBuffer cmd) {
+    test.record(cmd);
+    figures = pass.record(cmd, 0, scene.gpu, kClusterSize, test.imagery.alternateView.get(),
+                          test.imagery.alternateView.get(),
                           false, 3 * kClusterSize, 0, [](GpuBuffer&&) {}, {}, &canopy);
   });
   pass.readFigures(0, figures);
@@ -282,7 +288,7 @@ TEST_F(ClassifyGpu, GroupsThinUnderTheCrownsAsInTheCppReference) {
   under.canopy = &canopy;
   std::vector<veg::PlantCluster> with, without;
   for (size_t i = 0; i < scene.cpu.size(); ++i) {
-    const veg::BaseColourAt colour = vegstream::testing::classifyColour(scene.gpu[i], maps);
+    const veg::BaseColourAt colour = vegstream::testing::classifyColour(scene.gpu[i], test.maps);
     veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, under, colour, with);
     veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, colour, without);
   }
