@@ -78,19 +78,16 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   // The draws and their per-frame template (instance counts 0, firsts at the regions).
   std::vector<uint32_t> tmpl;
   const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
-  for (uint32_t m = 0; m < count; ++m)
-    for (int lod = 0; lod < 2; ++lod) {
-      const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
-      tmpl.insert(tmpl.end(), {models_[m].indexCount[lod], 0u, models_[m].firstIndex[lod],
-                               models_[m].vertexOffset[lod], base});
-    }
-  // The cores of the same lists (their instance counts copied by the classify's finish).
-  for (uint32_t m = 0; m < count; ++m)
-    for (int lod = 0; lod < 2; ++lod) {
-      const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
-      tmpl.insert(tmpl.end(), {models_[m].coreCount[lod], 0u, models_[m].firstIndex[lod] + models_[m].indexCount[lod],
-                               models_[m].vertexOffset[lod], base});
-    }
+  // Per model and level: bark and cards, then (a second set) the crowns' cores of the same
+  // lists, their instance counts copied by the classify's finish.
+  for (const bool cores : {false, true})
+    for (uint32_t m = 0; m < count; ++m)
+      for (int lod = 0; lod < 2; ++lod) {
+        const ModelDraw& d = models_[m];
+        const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
+        tmpl.insert(tmpl.end(), {cores ? d.coreCount[lod] : d.indexCount[lod], 0u,
+                                 d.firstIndex[lod] + (cores ? d.indexCount[lod] : 0u), d.vertexOffset[lod], base});
+      }
   for (uint32_t m = 0; m < count; ++m) tmpl.insert(tmpl.end(), {6u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
   // Then per model × 2 the shadow casters of its full and reduced lists, as impostor quads
   // (written by the classify's finish).
