@@ -36,8 +36,9 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
       ->capture_default_str();
   cmd.add_option("--terrain-shading", o.terrainShading,
                  "deferred: a visibility pass, then every pixel shaded in compute (fast where graphics units are "
-                 "few); forward: fragments shaded as drawn; auto: deferred where the device can")
-      ->check(CLI::IsMember({"auto", "forward", "deferred"}))
+                 "few); compute: rasterised in compute too (no graphics work for the terrain); forward: fragments "
+                 "shaded as drawn; auto: deferred where the device can")
+      ->check(CLI::IsMember({"auto", "forward", "deferred", "compute"}))
       ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM,
                  "Seed triangles (plants) only within this distance, metres (each species also stops at its "
@@ -145,6 +146,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrainDetail = static_cast<float>(o.terrainDetail);
   scene.renderer.terrainShading = o.terrainShading == "forward"    ? render::TerrainShading::Forward
                                   : o.terrainShading == "deferred" ? render::TerrainShading::Deferred
+                                  : o.terrainShading == "compute"  ? render::TerrainShading::Compute
                                                                    : render::TerrainShading::Auto;
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;

@@ -53,7 +53,16 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   slot.terrainTriangles =
       terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);
   RenderTargets::Load next = RenderTargets::Load::Keep;  // how the plants' scope starts
-  if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
+  if (terrainRaster) {  // rasterised and shaded in compute: no graphics work for the terrain
+    slot.timer->beginPass(cmd, "terrain");
+    terrainRaster->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets, slot.terrainTriangles,
+                          retireBuffer, [&] {
+                            slot.timer->endPass(cmd);
+                            slot.timer->beginPass(cmd, "terrain shade");
+                          });
+    slot.timer->endPass(cmd);
+    next = RenderTargets::Load::Shaded;
+  } else if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
     slot.timer->beginPass(cmd, "terrain");
     targets->beginVisibility(cmd);
     terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
@@ -74,6 +83,11 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     slot.timer->endPass(cmd);
     vkCmdEndRendering(cmd);
   }
+  if (slot.hizEarly) {  // the terrain's depth → the Hi-Z pyramid the trees and the classify test against
+    slot.timer->beginPass(cmd, "hi-z");
+    hiz->recordBuild(cmd);
+    slot.timer->endPass(cmd);
+  }
   if (treeRequest) {  // trees in their own scope, before the plants: they hide much of them
     slot.timer->beginPass(cmd, "trees");
     targets->beginRendering(cmd, next, /*resolve=*/plants == nullptr);
@@ -84,7 +98,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   }
   if (plants) {
     recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
-  } else if (terrainShade && !treeRequest) {  // no plants: one empty scope resolves the shaded targets
+  } else if ((terrainShade || terrainRaster) && !treeRequest) {  // no plants: one empty scope resolves the shaded targets
     targets->beginRendering(cmd, next, /*resolve=*/true);
     vkCmdEndRendering(cmd);
   }
@@ -107,7 +121,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
   classify->setFades(plants.draw.fades);
   ClassifyPass::CullHook cull;
   if (plants.occlusionCulling && !plants.triangles.empty()) {
-    hiz->recordBuild(cmd);
+    if (!slot.hizEarly) hiz->recordBuild(cmd);
     cull = [&](VkCommandBuffer c, VkBuffer triangles, VkBuffer visible, uint32_t count) {
       hiz->recordCull(c, slotIndex, slot.descriptorSet, triangles, visible, count, plants.clusterSize,
                       plants.draw.shadows && plants.style == PlantStyle::Plants);

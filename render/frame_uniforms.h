@@ -23,6 +23,11 @@ struct FrameUniforms {
   glm::mat4 shadowMatrices[3];  // render/shadow_cascades.h
   glm::vec4 shadowSplits;       // xyz: cascades' far distances, w: 1 when shadows are drawn this frame
   glm::vec4 shadowTexel;        // xyz: cascades' texel sizes (m)
+  // x: 1 when the terrain was rasterised in compute, so every fragment over it tests its depth
+  // buffer (set 0 binding 5, shaders/common/terrain_occlusion.glsl); y: samples per pixel; z: 1
+  // when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees' scope
+  // (shaders/common/hiz_occlusion.glsl).
+  glm::vec4 terrainDepth;
 };
 
 static_assert(offsetof(FrameUniforms, viewProj) == 0);
@@ -36,7 +41,8 @@ static_assert(offsetof(FrameUniforms, viewport) == 208);
 static_assert(offsetof(FrameUniforms, detail) == 224);
 static_assert(offsetof(FrameUniforms, shadowMatrices) == 240);
 static_assert(offsetof(FrameUniforms, shadowSplits) == 432);
-static_assert(sizeof(FrameUniforms) == 464);
+static_assert(offsetof(FrameUniforms, terrainDepth) == 464);
+static_assert(sizeof(FrameUniforms) == 480);
 
 struct FrameRequest;
 struct ShadowCascades;

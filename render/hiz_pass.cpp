@@ -10,6 +10,7 @@
 #include "render/vk_check.h"
 #include "shaders/hiz_cull.comp.h"
 #include "shaders/hiz_depth.comp.h"
+#include "shaders/hiz_depth_buffer.comp.h"
 #include "shaders/hiz_depth_ms.comp.h"
 #include "shaders/hiz_reduce.comp.h"
 
@@ -74,14 +75,16 @@ void HizPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
   speciesCount_ = static_cast<uint32_t>(std::min<size_t>(catalog.species.size(), reach_.size()));
 }
 
-HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets)
-    : ctx_(&ctx), targets_(&targets), levels_(hizLevels(targets.extent())) {
+HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets,
+                 VkBuffer terrainDepth)
+    : ctx_(&ctx), targets_(&targets), levels_(hizLevels(targets.extent())), fromBuffer_(terrainDepth != VK_NULL_HANDLE) {
   const uint32_t texels = levels_.back().offset + 1;
   pyramid_ = createBuffer(ctx, VkDeviceSize{texels} * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                                            VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                           MemoryUse::DeviceLocal, "hi-z pyramid");
 
-  const VkDescriptorSetLayoutBinding depthBindings[] = {binding(0, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE),
+  const VkDescriptorSetLayoutBinding depthBindings[] = {binding(0, fromBuffer_ ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                                                : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE),
                                                         binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   depthLayout_ = createLayout(ctx, depthBindings, "hi-z depth set layout");
   const VkDescriptorSetLayoutBinding reduceBindings[] = {binding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
@@ -91,15 +94,16 @@ HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const Re
       binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), binding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   cullLayout_ = createLayout(ctx, cullBindings, "hi-z cull set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 + 4 * kSlots}};
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + 4 * kSlots}};
   pool_ = createPool(ctx, sizes, 2 + kSlots, "hi-z pool");
 
   const VkPushConstantRange depthPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DepthPush)};
   const VkDescriptorSetLayout dl[] = {depthLayout_.get()};
   depthPipelineLayout_ = createPipelineLayout(ctx, dl, {&depthPush, 1}, "hi-z depth pipeline layout");
   depth_ = createComputePipeline(ctx, depthPipelineLayout_.get(),
-                                 targets.multisampled() ? std::span<const uint32_t>(spv_hiz_depth_ms_comp)
-                                                        : std::span<const uint32_t>(spv_hiz_depth_comp),
+                                 fromBuffer_              ? std::span<const uint32_t>(spv_hiz_depth_buffer_comp)
+                                 : targets.multisampled() ? std::span<const uint32_t>(spv_hiz_depth_ms_comp)
+                                                          : std::span<const uint32_t>(spv_hiz_depth_comp),
                                  "hi-z depth pipeline");
   const VkPushConstantRange reducePush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ReducePush)};
   const VkDescriptorSetLayout rl[] = {reduceLayout_.get()};
@@ -112,15 +116,19 @@ HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const Re
 
   // The depth attachment (every MSAA sample), sampled in SHADER_READ_ONLY_OPTIMAL by recordBuild.
   depthSet_ = allocateDescriptorSet(ctx, pool_.get(), depthLayout_.get(), "hi-z depth set");
-  const VkDescriptorImageInfo ii{VK_NULL_HANDLE, targets.depthAttachment().view.get(),
-                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = depthSet_;
-  w.dstBinding = 0;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+  if (fromBuffer_) {
+    writeStorageBuffer(ctx, depthSet_, terrainDepth, 0);
+  } else {
+    const VkDescriptorImageInfo ii{VK_NULL_HANDLE, targets.depthAttachment().view.get(),
+                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = depthSet_;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    w.pImageInfo = &ii;
+    vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+  }
   writeStorageBuffer(ctx, depthSet_, pyramid_.get(), 1);
   reduceSet_ = allocateDescriptorSet(ctx, pool_.get(), reduceLayout_.get(), "hi-z reduce set");
   writeStorageBuffer(ctx, reduceSet_, pyramid_.get(), 0);
@@ -140,14 +148,18 @@ HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const Re
 void HizPass::recordBuild(VkCommandBuffer cmd) {
   const GpuImage& depth = targets_->depthAttachment();
   const VkExtent2D extent = targets_->extent();
-  // The terrain's depth writes → sampled by compute. The image keeps its contents.
-  transitionImage(cmd, depth.get(), depth.aspect, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-  // The previous frame's tests (either slot) read the pyramid this build overwrites.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+  // The terrain's depth writes → sampled by compute. The image keeps its contents. (From the
+  // compute raster's buffer, its own barrier has made the samples readable.)
+  if (!fromBuffer_)
+    transitionImage(cmd, depth.get(), depth.aspect, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  // The previous frame's tests (either slot; the classify's, the impostors' vertex stage) read
+  // the pyramid this build overwrites.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depth_.get());
@@ -173,8 +185,10 @@ void HizPass::recordBuild(VkCommandBuffer cmd) {
   // The pyramid → the tests (and tests' copies); the depth back to an attachment for the
   // plants' scope, which loads it.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_COPY_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  if (fromBuffer_) return;
   transitionImage(cmd, depth.get(), depth.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,

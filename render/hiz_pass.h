@@ -59,13 +59,16 @@ class HizPass {
   static constexpr int kSlots = kFramesInFlight;  // one buffer set per frame in flight
 
   // `frameLayout`: the renderer's frame-uniform set layout (set 0 of the cull kernel).
-  HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets);
+  // `terrainDepth`: the terrain was rasterised in compute (render/terrain_raster_pass.h): the
+  // pyramid is built from that buffer of depth samples, not from the depth attachment.
+  HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets,
+          VkBuffer terrainDepth = VK_NULL_HANDLE);
 
   // The species the bounds are made for (speciesReach); call it with the classify pass's
   // setCatalog (the test's bit s is species s of this catalog).
   void setCatalog(const vegetation::SpeciesCatalog& catalog);
 
-  // Outside rendering, after the terrain's scope ended: depth attachment → pyramid.
+  // Outside rendering, after the terrain's scope ended (or its compute raster): depth → pyramid.
   void recordBuild(VkCommandBuffer cmd);
 
   // The occlusion test of `count` triangles into `visible` (classify's CullHook), after
@@ -90,6 +93,7 @@ class HizPass {
   const Context* ctx_;
   const RenderTargets* targets_;
   std::vector<HizLevel> levels_;
+  bool fromBuffer_ = false;  // level 0 from the compute raster's depth samples, not the attachment
   std::array<float, vegetation::kMaxSpecies> reach_{};
   uint32_t speciesCount_ = 0;
   GpuBuffer pyramid_;

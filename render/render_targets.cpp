@@ -29,8 +29,9 @@ VkRenderingAttachmentInfo attachment(const GpuImage& img, VkImageLayout layout, 
 }
 }  // namespace
 
-RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain)
-    : extent_(extent), samples_(samples) {
+RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain,
+                             bool computeRaster)
+    : extent_(extent), samples_(samples), deferredTerrain_(deferredTerrain) {
   const VkImageUsageFlags readable = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   // The deferred terrain's shade stores into the colour attachment: single-sample, that is color_.
   const VkImageUsageFlags storage = deferredTerrain ? VK_IMAGE_USAGE_STORAGE_BIT : 0;
@@ -48,7 +49,7 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,
                                "depth target (MSAA)");
   }
-  if (deferredTerrain)
+  if (deferredTerrain && !computeRaster)
     visibility_ = createImage2D(ctx, extent, kVisibilityFormat,
                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,
                                 "terrain visibility target");
@@ -98,13 +99,18 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve)
     transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_GENERAL,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kColorStage, kColorAccess);
-    memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
+    if (computeRaster())  // nothing wrote the depth attachment this frame: it starts cleared
+      discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+    else
+      memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
   }
 
   const VkAttachmentLoadOp op = load == Load::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   VkRenderingAttachmentInfo colorInfo = attachment(colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, op);
   colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-  VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, op);
+  const bool clearDepth = load == Load::Clear || (load == Load::Shaded && computeRaster());
+  VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                                   clearDepth ? VK_ATTACHMENT_LOAD_OP_CLEAR : op);
   depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
   if (multisampled() && resolve) {  // else the MSAA attachments are stored for the next scope
     colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;

@@ -24,8 +24,11 @@ constexpr VkFormat kColorStorageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 class RenderTargets {
  public:
-  // `deferredTerrain`: also a visibility target and a storage view of the colour attachment.
-  RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain = false);
+  // `deferredTerrain`: the terrain is shaded in compute: a storage view of the colour attachment,
+  // and a visibility target unless `computeRaster` (the terrain is rasterised in compute too,
+  // render/terrain_raster_pass.h: its depth is not in the depth attachment).
+  RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCountFlagBits samples, bool deferredTerrain = false,
+                bool computeRaster = false);
 
   VkExtent2D extent() const { return extent_; }
   VkSampleCountFlagBits samples() const { return samples_; }
@@ -36,7 +39,8 @@ class RenderTargets {
   const GpuImage& color() const { return color_; }  // single-sample, after resolve
   const GpuImage& depth() const { return depth_; }  // single-sample, after resolve
 
-  bool deferredTerrain() const { return visibility_.get() != VK_NULL_HANDLE; }
+  bool deferredTerrain() const { return deferredTerrain_; }
+  bool computeRaster() const { return deferredTerrain_ && visibility_.get() == VK_NULL_HANDLE; }
   const GpuImage& visibility() const { return visibility_; }  // attachment sample count
   // The colour attachment as kColorStorageFormat (deferred terrain only).
   VkImageView colorStorageView() const { return colorAttachment().alternateView.get(); }
@@ -48,7 +52,8 @@ class RenderTargets {
   // - Keep: a later scope continues on what the previous scope stored (a barrier orders its
   //   writes first); the images are still in their attachment layouts.
   // - Shaded: the first scope after the deferred terrain — the colour attachment comes from the
-  //   shade (GENERAL layout, written by compute), the depth from beginVisibility's scope.
+  //   shade (GENERAL layout, written by compute), the depth from beginVisibility's scope (or,
+  //   with the terrain rasterised in compute, cleared: the terrain's depth is not in it).
   // `resolve` (multisampled only): resolve into color() and depth() at the end — the frame's last
   // scope; otherwise the MSAA attachments are stored for the next one.
   enum class Load { Clear, Keep, Shaded };
@@ -70,6 +75,7 @@ class RenderTargets {
 
   VkExtent2D extent_;
   VkSampleCountFlagBits samples_;
+  bool deferredTerrain_ = false;
   GpuImage colorMsaa_, depthMsaa_;
   GpuImage color_, depth_;
   GpuImage visibility_;

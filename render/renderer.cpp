@@ -36,8 +36,9 @@ namespace vegstream::render {
 
 void Renderer::Impl::init(const RendererOptions& options) {
   const VkExtent2D extent{options.width, options.height};
-  const bool deferred = terrainShading == TerrainShading::Deferred;
-  targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa), deferred);
+  const bool computeRaster = terrainShading == TerrainShading::Compute;
+  const bool deferred = terrainShading == TerrainShading::Deferred || computeRaster;
+  targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa), deferred, computeRaster);
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
 
   // Set 0 of every pass: the frame's uniforms, and the shared simulation's block, wind cells and
@@ -48,10 +49,12 @@ void Renderer::Impl::init(const RendererOptions& options) {
       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr}};  // the sun's shadow map
+      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sun's shadow map
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the compute raster's terrain depth
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the Hi-Z pyramid
   frameLayout = createLayout(*ctx, frameBindings, "frame set layout");
   const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kFramesInFlight},
+                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kFramesInFlight},
                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFramesInFlight}};
   // Twice: each slot has a second set for the shadow pass (its binding 4 a placeholder map).
   VkDescriptorPoolSize doubled[3];
@@ -60,6 +63,19 @@ void Renderer::Impl::init(const RendererOptions& options) {
   const VkDescriptorSetLayout layout = frameLayout.get();
 
   simulation = std::make_unique<SimulationPass>(*ctx, layout, options.trailStoreBytes);
+  // The terrain's passes come before the frame sets are written: binding 5 is the compute
+  // raster's depth samples (or a placeholder nothing reads: frame.terrainDepth.x is 0 then).
+  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred && !computeRaster,
+                                              options.tasks);
+  if (computeRaster) {
+    terrainRaster = std::make_unique<TerrainRasterPass>(*ctx, layout, *terrainPass, *targets);
+  } else {
+    if (deferred) terrainShade = std::make_unique<TerrainShadePass>(*ctx, layout, *terrainPass, *targets);
+    noTerrainDepth = createBuffer(*ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
+                                  "terrain depth placeholder");
+  }
+  const VkBuffer terrainDepth = computeRaster ? terrainRaster->depthBuffer() : noTerrainDepth.get();
+  hiz = std::make_unique<HizPass>(*ctx, layout, *targets, computeRaster ? terrainDepth : VK_NULL_HANDLE);
   sunShadows = std::make_unique<SunShadowPass>(*ctx, std::max(options.shadowMapSize, 64u));
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
   for (int i = 0; i < kFramesInFlight; ++i) {
@@ -100,18 +116,19 @@ void Renderer::Impl::init(const RendererOptions& options) {
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
     simulation->writeFrameSet(s.descriptorSet, i);
     sunShadows->writeFrameSet(s.descriptorSet);
+    writeStorageBuffer(*ctx, s.descriptorSet, terrainDepth, 5);
+    writeStorageBuffer(*ctx, s.descriptorSet, hiz->pyramid(), 6);
     s.shadowPassSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "shadow pass frame set" + tag);
     writeUniformBuffer(*ctx, s.shadowPassSet, s.uniforms.get(), sizeof(FrameUniforms));
     simulation->writeFrameSet(s.shadowPassSet, i);
     sunShadows->writeFrameSet(s.shadowPassSet, /*placeholder=*/true);
+    writeStorageBuffer(*ctx, s.shadowPassSet, terrainDepth, 5);
+    writeStorageBuffer(*ctx, s.shadowPassSet, hiz->pyramid(), 6);
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
-  terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred, options.tasks);
-  if (deferred) terrainShade = std::make_unique<TerrainShadePass>(*ctx, layout, *terrainPass, *targets);
   hudPass = std::make_unique<HudPass>(*ctx);
   classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
-  hiz = std::make_unique<HizPass>(*ctx, layout, *targets);
   hiz->setCatalog(vegetation::defaultSpeciesCatalog());
   markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
   // Species stiffness is relative to the blade's buckling stiffness k_c (the catalog's k′ = 1 is
@@ -160,7 +177,14 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     slot.shadows = shadowCascades(request.camera, double(extent.width) / double(extent.height),
                                   request.lighting.sunDirection, settings);
   }
-  const FrameUniforms u = frameUniforms(request, extent.width, extent.height, slot.shadows ? &*slot.shadows : nullptr);
+  FrameUniforms u = frameUniforms(request, extent.width, extent.height, slot.shadows ? &*slot.shadows : nullptr);
+  // The Hi-Z pyramid is built right after a terrain shaded in compute whenever something tests
+  // against it: the trees' impostors (their vertex stage) and the classify's occlusion culling.
+  const bool treesDrawn = request.trees && trees->modelCount() > 0;
+  const bool plantsCulled = request.vegetation && request.vegetation->occlusionCulling &&
+                            !request.vegetation->triangles.empty();
+  slot.hizEarly = (terrainShade || terrainRaster) && (treesDrawn || plantsCulled);
+  u.terrainDepth = glm::vec4(terrainRaster ? 1.0f : 0.0f, static_cast<float>(msaa), slot.hizEarly ? 1.0f : 0.0f, 0.0f);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   simulation->writeBlock(static_cast<int>(index % kFramesInFlight), request.simulation);
 
@@ -256,8 +280,14 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
                                                   " at --msaa " + std::to_string(options.msaa) +
                                                   ": it cannot store into a colour target of that many samples" +
                                                   " (storage images, shaderStorageImageMultisample)");
+  if (options.terrainShading == TerrainShading::Compute && !canDefer)
+    return makeError(ErrorKind::InvalidInput, "--terrain-shading compute is not possible on " + info.name +
+                                                  " at --msaa " + std::to_string(options.msaa) +
+                                                  ": it cannot store into a colour target of that many samples" +
+                                                  " (storage images, shaderStorageImageMultisample)");
   impl->terrainShading = options.terrainShading == TerrainShading::Forward || !canDefer ? TerrainShading::Forward
-                                                                                        : TerrainShading::Deferred;
+                         : options.terrainShading == TerrainShading::Compute         ? TerrainShading::Compute
+                                                                                       : TerrainShading::Deferred;
   // This build has no mesh-shader blade path (VK_EXT_mesh_shader): refused before any frame.
   if (options.bladePath == BladePath::Mesh)
     return makeError(ErrorKind::InvalidInput,
@@ -285,6 +315,7 @@ const char* terrainShadingName(TerrainShading shading) {
     case TerrainShading::Auto: return "auto";
     case TerrainShading::Forward: return "forward";
     case TerrainShading::Deferred: return "deferred";
+    case TerrainShading::Compute: return "compute";
   }
   return "?";
 }
@@ -363,7 +394,8 @@ uint64_t Renderer::simulationGpuBytes() const { return impl_->simulation->gpuByt
 uint64_t Renderer::gpuBytes() const {
   return impl_->terrainPass->gpuBytes() + impl_->classify->gpuBytes() + impl_->plantPass->gpuBytes() +
          impl_->hiz->gpuBytes() + impl_->blades->gpuBytes() + impl_->simulation->gpuBytes() +
-         impl_->trees->gpuBytes() + impl_->sunShadows->gpuBytes();
+         impl_->trees->gpuBytes() + impl_->sunShadows->gpuBytes() +
+         (impl_->terrainRaster ? impl_->terrainRaster->gpuBytes() : 0);
 }
 
 Status Renderer::setTreeModels(std::span<const TreeModelSet> sets) {

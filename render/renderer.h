@@ -25,9 +25,11 @@ namespace vegstream::render {
 // How the terrain is shaded (render/terrain_pass.h). Deferred: a visibility pass, then one
 // compute dispatch shades every pixel (terrain and sky) into the colour target — needs storage
 // images at the target's sample count. Forward: the terrain's fragments are shaded as drawn.
+// Compute: rasterised in compute as well (render/terrain_raster_pass.h: no graphics work for the
+// terrain; fragments drawn over it test its depth samples themselves) — needs what deferred needs.
 // Auto: deferred where the device can, else forward. The images are the same up to rounding.
-enum class TerrainShading { Auto, Forward, Deferred };
-const char* terrainShadingName(TerrainShading shading);  // "auto", "forward", "deferred"
+enum class TerrainShading { Auto, Forward, Deferred, Compute };
+const char* terrainShadingName(TerrainShading shading);  // "auto", "forward", "deferred", "compute"
 
 struct RendererOptions {
   ContextOptions context;
@@ -66,7 +68,7 @@ class Renderer {
   uint32_t width() const;
   uint32_t height() const;
   int msaa() const;
-  TerrainShading terrainShading() const;  // Forward or Deferred: what Auto resolved to
+  TerrainShading terrainShading() const;  // Forward, Deferred or Compute: what Auto resolved to
   // The blade path frames use unless they ask for another: Tessellation or Compute, never Auto.
   BladePath bladePath() const;
   bool hasWindow() const;

@@ -36,6 +36,7 @@
 #include "render/terrain_pass.h"
 #include "render/shadow_cascades.h"
 #include "render/sun_shadow_pass.h"
+#include "render/terrain_raster_pass.h"
 #include "render/terrain_shade_pass.h"
 #include "render/tree_impostors.h"
 #include "render/tree_pass.h"
@@ -71,6 +72,7 @@ struct FrameSlot {
   std::optional<VegetationFigures> vegetation;
   bool bladesExpanded = false;  // the compute blade path drew this frame's plants
   bool treesDrawn = false;      // the tree pass classified this frame's trees
+  bool hizEarly = false;        // the Hi-Z pyramid is built right after the terrain (before the trees)
   std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
 };
 
@@ -86,6 +88,8 @@ struct Renderer::Impl {
   std::unique_ptr<SkyPass> sky;
   std::unique_ptr<TerrainPass> terrainPass;
   std::unique_ptr<TerrainShadePass> terrainShade;  // deferred terrain shading only
+  std::unique_ptr<TerrainRasterPass> terrainRaster;  // the terrain rasterised in compute only
+  GpuBuffer noTerrainDepth;  // set 0 binding 5 when the depth attachment holds the terrain
   std::unique_ptr<HudPass> hudPass;
   std::unique_ptr<ClassifyPass> classify;
   std::unique_ptr<HizPass> hiz;

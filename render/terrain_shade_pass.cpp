@@ -12,9 +12,6 @@
 
 namespace vegstream::render {
 namespace {
-struct ShadePush {  // ShadePush in shaders/common/terrain_shade.glsl
-  glm::uvec4 counts;
-};
 constexpr uint32_t kGroupSize = 8;  // local_size_x = local_size_y
 }  // namespace
 
@@ -44,7 +41,7 @@ TerrainShadePass::TerrainShadePass(const Context& ctx, VkDescriptorSetLayout fra
     writeSampledImage(ctx, inputs_[static_cast<size_t>(s)], nearest_.get(), targets.depthAttachment().view.get(), 5);
     writeStorageImage(ctx, inputs_[static_cast<size_t>(s)], targets.colorStorageView(), 4);
   }
-  const VkPushConstantRange push{c, 0, sizeof(ShadePush)};
+  const VkPushConstantRange push{c, 0, sizeof(TerrainComputePush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, terrain.imageryLayout(), terrain.detail().layout(),
                                         inputsLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain shade pipeline layout");
@@ -67,7 +64,7 @@ void TerrainShadePass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   const VkDescriptorSet sets[] = {frameSet, terrain.imagerySet(), terrain.detail().set(), inputs};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 4, sets, 0, nullptr);
-  const ShadePush push{glm::uvec4(g.pieceCount, 0u, 0u, 0u)};
+  const TerrainComputePush push{glm::uvec4(g.pieceCount, 0u, 0u, 0u), glm::uvec4(0u)};
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   const VkExtent2D e = targets.extent();
   vkCmdDispatch(cmd, (e.width + kGroupSize - 1) / kGroupSize, (e.height + kGroupSize - 1) / kGroupSize, 1);

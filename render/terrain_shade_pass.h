@@ -23,6 +23,13 @@
 
 namespace vegstream::render {
 
+// Push constants of the terrain's compute passes (ShadePush in shaders/common/terrain_geometry.glsl).
+struct TerrainComputePush {
+  glm::uvec4 counts;  // x: pieces, y: triangles, z: binning phase, w: tile list capacity
+  glm::uvec4 tiles;   // x, y: tiles across and down, z: samples per pixel
+};
+static_assert(sizeof(TerrainComputePush) == 32);
+
 class TerrainShadePass {
  public:
   static constexpr int kSlots = TerrainPass::kSlots;

@@ -9,6 +9,7 @@
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 #include "common/tree_coverage.glsl"
+#include "common/terrain_occlusion.glsl"
 
 layout(set = 1, binding = 8) uniform sampler2DArray impostorAlbedo;
 layout(set = 1, binding = 9) uniform sampler2DArray impostorNormal;
@@ -29,6 +30,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
+  vec2 depthSlope = terrainDepthSlope();
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
   // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than
@@ -41,7 +43,7 @@ void main() {
     outColor = vec4(0.0);
     return;
   }
-  uint mask = treeSampleMask(coverage, push.samples, fract(dither * 7.0 + 0.31));
+  uint mask = treeSampleMask(coverage, push.samples, fract(dither * 7.0 + 0.31)) & terrainCoverage(depthSlope);
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
   // Premultiplied by the coverage (the capture averaged its samples with the empty background).

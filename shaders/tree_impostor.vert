@@ -12,6 +12,7 @@
 #include "common/tree_impostor.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_shading.glsl"
+#include "common/hiz_occlusion.glsl"
 
 layout(location = 0) out vec3 vPos;
 layout(location = 1) out vec2 vUv;  // in the atlas (0 … 1)
@@ -80,4 +81,9 @@ void main() {
   vec3 sunward = centreRel + frame.sunDirection.xyz * (0.6 * max(t.heightM, t.crownM));
   vSun = push.mode == 0u ? sunShadow(sunward, vec3(0.0, 0.0, 1.0)) : 1.0;
   gl_Position = (push.mode == 1u ? treeShadowMatrix(0u) : frame.viewProj) * vec4(rel, 1.0);
+  // In colour, an impostor behind the terrain is dropped here, before any of its fragments: the
+  // quad's sphere (its half extents, scaled, plus the sway) against this frame's Hi-Z pyramid.
+  // Every vertex of the quad decides alike, so the quad goes whole. (The shadow pass keeps it.)
+  float reach = length(half_) * max(sxy, sz) + 0.1 * t.heightM;
+  if (push.mode == 0u && hiddenByTerrain(centreRel, reach)) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }

@@ -23,8 +23,21 @@
 #include "terrain_palette.glsl"
 #include "terrain_shading.glsl"
 
+#ifndef VEGSTREAM_RASTER
 layout(local_size_x = 8, local_size_y = 8) in;
+#endif
 
+#ifdef VEGSTREAM_RASTER  // terrain_raster.glsl: ids come from the compute rasteriser, not a target
+#ifdef VEGSTREAM_MULTISAMPLE
+layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
+#define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
+const int kMaxSamples = 8;
+#else
+layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
+#define STORE_COLOUR(px, s, c) imageStore(target, px, c)
+const int kMaxSamples = 1;
+#endif
+#else
 #ifdef VEGSTREAM_MULTISAMPLE
 layout(set = 3, binding = 0) uniform sampler2DMS visibility;
 layout(set = 3, binding = 5) uniform sampler2DMS depthSamples;
@@ -45,44 +58,9 @@ layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
 const int kMaxSamples = 1;
 #endif
 
-// terrain::TerrainVertex (36 bytes: position, normal, heightMsl, uv), read as floats.
-layout(std430, set = 3, binding = 1) readonly buffer Vertices { float vertexData[]; };
-layout(std430, set = 3, binding = 2) readonly buffer Indices { uint indexData[]; };
-// One per drawn piece, in draw order (mirrors TerrainPiece in render/terrain_pass.h).
-struct Piece {
-  vec4 originFromCamera;
-  vec4 imageryUv;
-  vec4 previousUv;
-  vec4 layers;
-  uvec4 range;  // x: first triangle, y: first vertex (the draw's vertex offset), z: triangles
-};
-layout(std430, set = 3, binding = 3) readonly buffer Pieces { Piece pieces[]; };
-layout(push_constant) uniform ShadePush {
-  uvec4 counts;  // x: pieces
-} shade;
+#endif
 
-const int kVertexFloats = 9;
-
-// A point on the ray from the camera (the origin) through `ndc`.
-vec3 rayThrough(vec2 ndc) {
-  vec4 p = frame.invViewProj * vec4(ndc, 0.5, 1.0);
-  return p.xyz / p.w;
-}
-
-// The piece that holds triangle `tri`: pieces are in draw order with increasing first triangles.
-uint pieceOf(uint tri) {
-  uint lo = 0u, hi = shade.counts.x - 1u;
-  while (lo < hi) {
-    uint mid = (lo + hi + 1u) / 2u;
-    if (pieces[mid].range.x <= tri) lo = mid; else hi = mid - 1u;
-  }
-  return lo;
-}
-
-vec3 vertexPosition(uint v) { return vec3(vertexData[v * kVertexFloats], vertexData[v * kVertexFloats + 1], vertexData[v * kVertexFloats + 2]); }
-vec3 vertexNormal(uint v) { return vec3(vertexData[v * kVertexFloats + 3], vertexData[v * kVertexFloats + 4], vertexData[v * kVertexFloats + 5]); }
-float vertexHeight(uint v) { return vertexData[v * kVertexFloats + 6]; }
-vec2 vertexUv(uint v) { return vec2(vertexData[v * kVertexFloats + 7], vertexData[v * kVertexFloats + 8]); }
+#include "terrain_geometry.glsl"
 
 // Where the ray along `dir` meets the plane through p0 with normal n (camera-relative).
 vec3 onPlane(vec3 dir, vec3 p0, vec3 n) {
@@ -126,20 +104,15 @@ vec3 srgbFromLinear(vec3 c) {
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
-void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= int(frame.viewport.x) || px.y >= int(frame.viewport.y)) return;
+// Shades pixel `px` whose samples see triangles 1 + ids[s] (0: sky), once per distinct id, and
+// stores the colours into the target.
+void shadePixel(ivec2 px, uint ids[kMaxSamples], int samples) {
   vec2 ndc = (vec2(px) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
   vec3 dir = rayThrough(ndc);
   vec3 dirX = rayThrough(ndc + vec2(2.0 * frame.viewport.z, 0.0));
   vec3 dirY = rayThrough(ndc + vec2(0.0, 2.0 * frame.viewport.w));
-  uint ids[kMaxSamples];
   vec4 colours[kMaxSamples];
-  int samples = min(SAMPLES, kMaxSamples);
   for (int s = 0; s < samples; ++s) {
-    // The visibility target is not cleared (a full-screen multisampled clear costs as much as
-    // drawing it on the H200): a sample the terrain did not reach kept the far depth, 0.
-    ids[s] = LOAD_DEPTH(px, s) > 0.0 ? LOAD_ID(px, s) : 0u;
     int same = -1;  // an earlier sample that sees the same triangle (or sky): shade once per pixel
     for (int e = 0; e < s; ++e)
       if (same < 0 && ids[e] == ids[s]) same = e;
@@ -152,3 +125,16 @@ void main() {
     STORE_COLOUR(px, s, colours[s]);
   }
 }
+
+#ifndef VEGSTREAM_RASTER
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= int(frame.viewport.x) || px.y >= int(frame.viewport.y)) return;
+  uint ids[kMaxSamples];
+  int samples = min(SAMPLES, kMaxSamples);
+  // The visibility target is not cleared (a full-screen multisampled clear costs as much as
+  // drawing it on the H200): a sample the terrain did not reach kept the far depth, 0.
+  for (int s = 0; s < samples; ++s) ids[s] = LOAD_DEPTH(px, s) > 0.0 ? LOAD_ID(px, s) : 0u;
+  shadePixel(px, ids, samples);
+}
+#endif

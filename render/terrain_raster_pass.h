@@ -1,0 +1,87 @@
+#pragma once
+// The terrain rasterised and shaded in compute (`--terrain-shading compute`): no graphics work
+// at all for the terrain. Four dispatches (shaders/terrain_bin.comp, terrain_bin_scan.comp,
+// terrain_raster*.comp):
+// 1. setup: each triangle of the frame's index buffer to clip space, culled as the hardware
+//    pipeline culls (frustum, back faces), clipped by the near plane, snapped to 1/256 pixel,
+//    and counted into every 16 × 16-pixel tile it may touch;
+// 2. scan: each tile's start in one list array;
+// 3. fill: each tile's list of the triangles that may touch it;
+// 4. raster + shade: a workgroup per tile keeps, per sample, the nearest triangle (a watertight
+//    edge-function test: shared edges are evaluated from one canonical end, ties by a fill rule),
+//    writes the depth per sample into a buffer and shades the pixel with the deferred shade's own
+//    code (terrain_shade.glsl), sky included, into the colour target's storage view.
+//
+// Why: on NVIDIA's H100/H200 the graphics units are 2 of 66 TPCs, and the hardware raster of the
+// terrain's ~90 k triangles at 4× MSAA took 1.9 ms of which a depth-only raster alone was 1.4 ms
+// (render/README.md) — more than issue 17's whole terrain budget of 1.0 ms — while compute runs
+// on all 132 SMs.
+//
+// What changes for the rest of the frame: the depth attachment no longer holds the terrain. It
+// is cleared for the trees and plants, and every fragment drawn over the terrain tests itself
+// against depthBuffer() per sample (set 0 binding 5, shaders/common/terrain_occlusion.glsl). The
+// Hi-Z build reads the same buffer (HizPass, built with it). A depth read-back then holds what
+// the trees and plants drew.
+//
+// Contract: the device can store into colour targets of the frame's sample count (as the deferred
+// shade); record() runs outside rendering, after TerrainPass::prepare of the same slot. The tile
+// lists grow when a frame needed more than they hold (that frame drops the excess: figures()).
+
+#include <array>
+#include <cstdint>
+#include <functional>
+
+#include "render/gpu_resources.h"
+#include "render/handle.h"
+#include "render/render_targets.h"
+#include "render/terrain_pass.h"
+#include "render/terrain_shade_pass.h"
+
+namespace vegstream::render {
+
+
+// What one frame's raster did (read after its fence).
+struct TerrainRasterFigures {
+  uint32_t rasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
+  uint32_t tileEntries = 0;      // triangle-in-tile entries the lists needed
+  uint32_t tileEntriesDropped = 0;
+};
+
+class TerrainRasterPass {
+ public:
+  static constexpr int kSlots = TerrainPass::kSlots;
+  static constexpr uint32_t kTile = 16;  // pixels per tile side (terrain_raster.glsl)
+
+  TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const TerrainPass& terrain,
+                    const RenderTargets& targets);
+
+  // The terrain's depth per pixel and sample ((y · width + x) · samples + s; reverse-Z, 0: sky),
+  // written by record(); readable by fragment and compute stages afterwards.
+  VkBuffer depthBuffer() const { return depth_.get(); }
+
+  using RetireBuffer = std::function<void(GpuBuffer&&)>;
+  // `triangles`: what prepare() returned for the slot. Timed as two passes by the caller's hooks:
+  // `binned` is called between the binning (setup, scan, fill) and the raster + shade.
+  void record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
+              const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
+              const std::function<void()>& binned);
+  TerrainRasterFigures figures(int slot) const;
+
+  uint64_t gpuBytes() const;
+
+ private:
+  void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, const char* what, const RetireBuffer& retire);
+
+  const Context* ctx_;
+  uint32_t tilesX_ = 0, tilesY_ = 0, samples_ = 1;
+  uint32_t listCapacity_ = 0;  // tile list entries
+  DescriptorSetLayout inputsLayout_;
+  DescriptorPool pool_;
+  std::array<VkDescriptorSet, kSlots> inputs_{};
+  std::array<GpuBuffer, kSlots> readback_;  // host-readable copies of counters_: TerrainRasterFigures
+  GpuBuffer counters_, triangles_, tileCounts_, tileStarts_, tileLists_, depth_;
+  PipelineLayout layout_;
+  Pipeline bin_, scan_, raster_;
+};
+
+}  // namespace vegstream::render
