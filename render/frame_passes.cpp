@@ -74,7 +74,8 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     slot.timer->endPass(cmd);
     next = RenderTargets::Load::Shaded;
   } else {
-    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr && treeRequest == nullptr);
+    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr && treeRequest == nullptr,
+                            slot.readDepth);
     slot.timer->beginPass(cmd, "sky");
     sky->record(cmd, slot.descriptorSet);
     slot.timer->endPass(cmd);
@@ -90,7 +91,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   }
   if (treeRequest) {  // trees in their own scope, before the plants: they hide much of them
     slot.timer->beginPass(cmd, "trees");
-    targets->beginRendering(cmd, next, /*resolve=*/plants == nullptr);
+    targets->beginRendering(cmd, next, /*resolve=*/plants == nullptr, slot.readDepth);
     trees->recordDraw(cmd, slotIndex, slot.descriptorSet);
     vkCmdEndRendering(cmd);
     slot.timer->endPass(cmd);
@@ -99,7 +100,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   if (plants) {
     recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
   } else if ((terrainShade || terrainRaster) && !treeRequest) {  // no plants: one empty scope resolves the shaded targets
-    targets->beginRendering(cmd, next, /*resolve=*/true);
+    targets->beginRendering(cmd, next, /*resolve=*/true, slot.readDepth);
     vkCmdEndRendering(cmd);
   }
   if (request.overlay) {  // over the resolved image, so read-back and present include it
@@ -142,7 +143,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
     slot.timer->endPass(cmd);
   }
 
-  targets->beginRendering(cmd, load, /*resolve=*/true);
+  targets->beginRendering(cmd, load, /*resolve=*/true, slot.readDepth);
   if (plants.style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
     if (patchMask != 0 && slot.bladesExpanded)

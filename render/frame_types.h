@@ -226,6 +226,11 @@ struct FrameResult {
   double cpuRecordMs = 0.0;
   GpuTimings gpu;
   uint64_t terrainTriangles = 0;                // triangles submitted by the terrain pass
+  // The terrain rasterised in compute (TerrainShading::Compute): what its binning made
+  // (render/terrain_raster_pass.h); zero otherwise.
+  uint64_t terrainRasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
+  uint64_t terrainTileEntries = 0;      // triangle-in-tile entries its lists needed
+  uint64_t terrainTileEntriesDropped = 0;  // past the lists' capacity (they grow for the next frames)
   std::optional<VegetationFigures> vegetation;  // when the request had plants
   std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;

@@ -76,7 +76,7 @@ void RenderTargets::setViewport(VkCommandBuffer cmd) const {
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve) const {
+void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve, bool resolveDepth) const {
   assert(load != Load::Shaded || deferredTerrain());
   if (load == Load::Clear) {  // attachments and resolve targets start undefined each frame
     discardInto(cmd, color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kColorStage, kColorAccess);
@@ -117,9 +117,11 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve)
     colorInfo.resolveImageView = color().view.get();
     colorInfo.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     colorInfo.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depthInfo.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // required of every device
-    depthInfo.resolveImageView = depth().view.get();
-    depthInfo.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    if (resolveDepth) {
+      depthInfo.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // required of every device
+      depthInfo.resolveImageView = depth().view.get();
+      depthInfo.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    }
     depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   }
   beginScope(cmd, colorInfo, depthInfo);

@@ -197,6 +197,8 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
+  slot.readColor = request.readbackColor;
+  slot.readDepth = request.readbackDepth;  // recordPasses resolves the depth only for it
   recordPasses(cmd, slot, index, request);
   recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
   if (imageIndex) recordPresent(cmd, *imageIndex);
@@ -208,8 +210,6 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
 
   slot.frameIndex = index;
   slot.submitted = true;
-  slot.readColor = request.readbackColor;
-  slot.readDepth = request.readbackDepth;
   slot.cpuRecordMs = watch.elapsedMs();
   return index;
 }
@@ -220,6 +220,12 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
   r.frameIndex = slot.frameIndex;
   r.cpuRecordMs = slot.cpuRecordMs;
   r.terrainTriangles = slot.terrainTriangles;
+  if (terrainRaster) {
+    const TerrainRasterFigures f = terrainRaster->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
+    r.terrainRasterTriangles = f.rasterTriangles;
+    r.terrainTileEntries = f.tileEntries;
+    r.terrainTileEntriesDropped = f.tileEntriesDropped;
+  }
   if (slot.vegetation) {
     classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
     if (slot.vegetation->occlusionCulling && slot.vegetation->seedTriangles > 0)  // the test ran

@@ -98,11 +98,14 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
                                const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
                                const std::function<void()>& binned) {
   const auto s = static_cast<size_t>(slot);
-  // The slot's previous frame has finished (the renderer waited for its fence): its figures say
-  // whether the lists were short; the next frames get room for 1.5 × what it needed.
+  // Room for 4 tiles per raster triangle (most touch 1 or 2); and the slot's previous frame has
+  // finished (the renderer waited for its fence): its figures say whether the lists were short
+  // even so (huge triangles), and then the next frames get 1.5 × what it needed.
   const TerrainRasterFigures last = figures(slot);
-  if (last.tileEntries > listCapacity_) {
-    listCapacity_ = last.tileEntries + last.tileEntries / 2;
+  const uint64_t wanted = std::max<uint64_t>({8 * triangles, uint64_t{last.tileEntries} + last.tileEntries / 2,
+                                               uint64_t{tilesX_} * tilesY_ * kInitialEntriesPerTile});
+  if (wanted > listCapacity_ && (last.tileEntries > listCapacity_ || 8 * triangles > listCapacity_)) {
+    listCapacity_ = static_cast<uint32_t>(std::min<uint64_t>(wanted, UINT32_MAX / 4));
     retire(std::move(tileLists_));
     tileLists_ = createBuffer(*ctx_, VkDeviceSize{listCapacity_} * 4, kStorage, MemoryUse::DeviceLocal,
                               "terrain tile lists");

@@ -145,6 +145,7 @@ Frames renderWall(Renderer& r, float wallTop) {
   req.camera.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.2));
   req.cameraHeightMsl = 2.0;
   req.readbackDepth = true;
+  req.readbackColor = true;
   req.terrain = draws;
   req.imageryUploads = {&upload, 1};
   const std::vector<SeedTriangleGpu> seeds = deepField(req.camera.position, 24.0f);
@@ -234,6 +235,46 @@ TEST_F(HizCullTest, CullsWhatATallWallHidesAndNothingThatShows) {
     EXPECT_EQ(again.on.vegetation->groupsTotal, f.on.vegetation->groupsTotal);
     EXPECT_EQ(again.on.vegetation->plantsTotal, f.on.vegetation->plantsTotal);
   }
+}
+
+// The terrain rasterised in compute (render/terrain_raster_pass.h): the pyramid comes from its
+// buffer of depth samples, and the plants behind the wall are hidden by their own per-sample test
+// against that buffer, not by an attachment holding the terrain. The same culling, and the same
+// picture as the deferred terrain's, plants included.
+TEST_F(HizCullTest, TheTerrainRasterisedInComputeCullsAndHidesAsTheDeferredOne) {
+  std::array<Frames, 2> frames;
+  for (int k = 0; k < 2; ++k) {
+    auto r = makeRenderer(kW, kH, 4, k == 0 ? TerrainShading::Deferred : TerrainShading::Compute);
+    ASSERT_TRUE(r);
+    ASSERT_TRUE(r->setImageryLayers(1).ok());
+    ASSERT_TRUE(r->setSpeciesCatalog(grassCatalog()).ok());
+    frames[size_t(k)] = renderWall(*r, 60.0f);
+  }
+  const Frames &deferred = frames[0], &compute = frames[1];
+  expectNeverCullsAVisibleGroup(compute, "tall wall, terrain rasterised in compute");
+  ASSERT_TRUE(deferred.on.vegetation && compute.on.vegetation);
+  // The two depths differ by float rounding only: the same triangles culled, give or take a few
+  // on the boundary.
+  const double culled = double(deferred.on.vegetation->cullCulled);
+  EXPECT_GT(culled, double(deferred.triangles) / 2);
+  EXPECT_NEAR(double(compute.on.vegetation->cullCulled), culled, 0.02 * culled);
+  // Without culling every plant behind the wall is drawn, and must not show through it.
+  for (const FrameResult* f : {&deferred.off, &compute.off, &deferred.bare, &compute.bare}) ASSERT_TRUE(f->color);
+  // Grass over ground of the grass's own colour: a plant changes a pixel by a few steps.
+  const auto differing = [](const ColorImage& a, const ColorImage& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+      for (size_t c = 0; c < 3; ++c)
+        if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 6) {
+          ++n;
+          break;
+        }
+    return n;
+  };
+  const size_t pixels = size_t{kW} * kH;
+  EXPECT_GT(differing(*deferred.off.color, *deferred.bare.color), pixels / 100) << "the plants show in front";
+  EXPECT_LT(differing(*compute.off.color, *deferred.off.color), pixels / 200);
+  EXPECT_LT(differing(*compute.bare.color, *deferred.bare.color), pixels / 500);
 }
 
 TEST_F(HizCullTest, AWallJustAboveTheEyeHidesTheFieldBehindItsFoot) {

@@ -143,6 +143,112 @@ TEST_F(TerrainShadingTest, TheDeferredFrameTimesItsTwoTerrainPassesAndDrawsNoSky
   EXPECT_EQ(frame->gpu.statistics.inputPrimitives, 200u);
 }
 
+// --- the terrain rasterised in compute (render/terrain_raster_pass.h) ----------------------
+
+TEST_F(TerrainShadingTest, ComputeRasterGivesTheDeferredImage) {
+  const terrain::TerrainMesh mesh = hills();
+  TerrainDraw draw{&mesh};
+  draw.imageryLayer = 0;
+  for (int msaa : {1, 4}) {
+    const ColorImage deferred = render(msaa, TerrainShading::Deferred, {&draw, 1});
+    const ColorImage compute = render(msaa, TerrainShading::Compute, {&draw, 1});
+    ASSERT_EQ(compute.rgba.size(), size_t{kW} * kH * 4);
+    ASSERT_EQ(deferred.rgba.size(), compute.rgba.size());
+    // The same triangle ids give the same colours: what may differ is which triangle a sample on
+    // a shared edge goes to, and the silhouette against the sky by a sample or so.
+    const Comparison c = compare(deferred, compute);
+    EXPECT_LT(c.meanAbs, 0.2) << "msaa " << msaa;
+    EXPECT_LT(static_cast<double>(c.over2), 0.002 * static_cast<double>(compute.rgba.size())) << "msaa " << msaa;
+  }
+}
+
+TEST_F(TerrainShadingTest, WithoutTerrainTheComputeRasterDrawsTheSky) {
+  for (int msaa : {1, 4}) {
+    const ColorImage deferred = render(msaa, TerrainShading::Deferred, {});
+    const ColorImage compute = render(msaa, TerrainShading::Compute, {});
+    ASSERT_EQ(compute.rgba.size(), size_t{kW} * kH * 4);
+    EXPECT_LE(compare(deferred, compute).maxAbs, 1) << "msaa " << msaa;
+  }
+}
+
+// Pixels whose colour is off by more than 24 in some channel: a crack (sky through the ground)
+// or a sample given to a triangle on the wrong side of an edge would be.
+size_t farOff(const ColorImage& a, const ColorImage& b) {
+  size_t n = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 24) {
+        ++n;
+        break;
+      }
+  return n;
+}
+
+// 32 768 small triangles seen from above, every pixel ground: the shared edges leave no sample
+// uncovered (the sky would show) and none covered twice; and close over the ground looking ahead,
+// where the triangles under the camera are cut by the near plane, the picture is the deferred one.
+TEST_F(TerrainShadingTest, TheComputeRasterIsWatertightAndClipsAtTheNearPlane) {
+  terrain::TerrainMesh dense = flatPlane(3'000.0, 128, 0.0f);
+  for (auto& v : dense.vertices) v.uv = {v.position.x / 3'000.0f + 0.5f, 0.5f - v.position.y / 3'000.0f};
+  TerrainDraw draw{&dense};
+  draw.imageryLayer = 0;
+  const std::vector<uint8_t> tile = checkerTile();
+  const ImageryUpload upload{0, tile.data()};
+  struct View {
+    glm::dvec3 position, forward;
+    const char* what;
+  };
+  for (const View& view : {View{{10.0, -20.0, 900.0}, {0.05, 0.3, -1.0}, "from above"},
+                           View{{3.0, -1.0, 0.6}, {0.2, 1.0, -0.02}, "at the near plane"}}) {
+    std::array<FrameResult, 2> frames;
+    for (int k = 0; k < 2; ++k) {
+      auto r = makeRenderer(kW, kH, 4, k == 0 ? TerrainShading::Deferred : TerrainShading::Compute);
+      ASSERT_TRUE(r);
+      ASSERT_TRUE(r->setImageryLayers(1).ok());
+      FrameRequest req = lookingAt(view.position, view.forward);
+      req.imageryUploads = {&upload, 1};
+      req.terrain = {&draw, 1};
+      auto frame = r->renderFrame(req);
+      ASSERT_TRUE(frame.ok()) << frame.error().message;
+      frames[size_t(k)] = std::move(*frame);
+    }
+    SCOPED_TRACE(view.what);
+    const FrameResult &deferred = frames[0], &compute = frames[1];
+    ASSERT_TRUE(deferred.color && compute.color);
+    EXPECT_EQ(compute.terrainTriangles, 2u * 128u * 128u);
+    EXPECT_GT(compute.terrainRasterTriangles, 0u);
+    EXPECT_LT(compute.terrainRasterTriangles, compute.terrainTriangles) << "triangles off screen are culled";
+    EXPECT_GE(compute.terrainTileEntries, compute.terrainRasterTriangles);
+    EXPECT_EQ(compute.terrainTileEntriesDropped, 0u);
+    EXPECT_EQ(deferred.terrainRasterTriangles, 0u) << "only the compute raster counts";
+    EXPECT_EQ(farOff(*compute.color, *deferred.color), 0u);
+    const Comparison c = compare(*deferred.color, *compute.color);
+    EXPECT_LT(c.meanAbs, 0.2);
+  }
+}
+
+TEST_F(TerrainShadingTest, TheComputeFrameTimesBinningAndRasterAndDrawsNoTriangle) {
+  auto r = makeRenderer(kW, kH, 4, TerrainShading::Compute);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->terrainShading(), TerrainShading::Compute);
+  const terrain::TerrainMesh mesh = flatPlane(2'000.0, 10, 0.0f);
+  const TerrainDraw draw{&mesh};
+  FrameRequest req = lookingAt({0, -1'500, 300}, {0, 1, -0.3});
+  req.terrain = {&draw, 1};
+  for (int frame = 0; frame < 2; ++frame) {  // the second reuses the first's buffers
+    auto result = r->renderFrame(req);
+    ASSERT_TRUE(result.ok());
+    EXPECT_EQ(result->terrainTriangles, 200u);
+    EXPECT_LE(result->terrainRasterTriangles, 200u) << "none clipped by the near plane";
+    EXPECT_GT(result->terrainRasterTriangles, 150u) << "a few off screen at the sides";
+    ASSERT_EQ(result->gpu.passes.size(), 2u);
+    EXPECT_EQ(result->gpu.passes[0].pass, "terrain");  // the binning
+    EXPECT_EQ(result->gpu.passes[1].pass, "terrain shade");  // the raster and the shading
+    ASSERT_TRUE(result->gpu.statistics.available);
+    EXPECT_EQ(result->gpu.statistics.inputPrimitives, 0u) << "no graphics work for the terrain";
+  }
+}
+
 TEST(TerrainDrawOrder, NearestPiecesComeFirstAndEmptyOnesAreLeftOut) {
   // Four 100 m pieces along y at 0, 1, 2 and 3 km; one without triangles.
   std::vector<terrain::TerrainMesh> meshes(5);
