@@ -18,6 +18,11 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
   const int slotIndex = static_cast<int>(index % kFramesInFlight);
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
+  if (terrainRaster) {  // first, so that it may overlap the compute passes (the H200 does not)
+    slot.timer->beginPass(cmd, "depth clear");
+    targets->clearDepth(cmd);
+    slot.timer->endPass(cmd);
+  }
   slot.vegetation.reset();
   slot.bladesExpanded = false;
   slot.treesDrawn = false;
@@ -103,6 +108,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     targets->beginRendering(cmd, next, /*resolve=*/true, slot.readDepth);
     vkCmdEndRendering(cmd);
   }
+  if (terrainRaster) terrainRaster->recordEndOfFrame(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
     slot.timer->beginPass(cmd, "hud");
     hudPass->record(

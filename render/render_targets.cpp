@@ -99,18 +99,14 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve,
     transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_GENERAL,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kColorStage, kColorAccess);
-    if (computeRaster())  // nothing wrote the depth attachment this frame: it starts cleared
-      discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
-    else
-      memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
+    // The depth from beginVisibility's scope, or (the terrain rasterised in compute) clearDepth's.
+    memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
   }
 
   const VkAttachmentLoadOp op = load == Load::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   VkRenderingAttachmentInfo colorInfo = attachment(colorAttachment(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, op);
   colorInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-  const bool clearDepth = load == Load::Clear || (load == Load::Shaded && computeRaster());
-  VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                                   clearDepth ? VK_ATTACHMENT_LOAD_OP_CLEAR : op);
+  VkRenderingAttachmentInfo depthInfo = attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, op);
   depthInfo.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane
   if (multisampled() && resolve) {  // else the MSAA attachments are stored for the next scope
     colorInfo.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
@@ -139,6 +135,20 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
       attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
   depthInfo.clearValue.depthStencil = {0.0f, 0};
   beginScope(cmd, idInfo, depthInfo);
+}
+
+void RenderTargets::clearDepth(VkCommandBuffer cmd) const {
+  assert(computeRaster());
+  discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
+  VkRenderingAttachmentInfo depthInfo =
+      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
+  depthInfo.clearValue.depthStencil = {0.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent_};
+  ri.layerCount = 1;
+  ri.pDepthAttachment = &depthInfo;
+  vkCmdBeginRendering(cmd, &ri);
+  vkCmdEndRendering(cmd);
 }
 
 void RenderTargets::visibilityToShade(VkCommandBuffer cmd) const {

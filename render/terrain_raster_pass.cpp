@@ -128,16 +128,17 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   writeStorageBuffer(*ctx_, inputs, tileLists_.get(), 9);
   writeStorageBuffer(*ctx_, inputs, depth_.get(), 10);
 
-  // The previous frame's readers (its raster, Hi-Z build and fragments) before this frame's
-  // writes; then the counts start at zero.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT |
-                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  // The previous frame's compute readers (its raster, Hi-Z build) before this frame's writes (its
+  // fragments' reads of the depth samples are waited for at its end: recordEndOfFrame); then the
+  // counts start at zero. No barrier here waits for graphics work, so the frame's depth clear
+  // (RenderTargets::clearDepth, recorded first) may run beside these dispatches.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdFillBuffer(cmd, tileCounts_.get(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, counters_.get(), 0, kCounterBytes, 0);
-  // ALL_TRANSFER: the fill counts as a clear (spec) or a copy (some validation layers).
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  // CLEAR | COPY: the fill counts as a clear (spec) or a copy (some validation layers).
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
@@ -183,6 +184,13 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   const VkBufferCopy copy{0, 0, kCounterBytes};
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &copy);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+void TerrainRasterPass::recordEndOfFrame(VkCommandBuffer cmd) const {
+  // This frame's fragments and Hi-Z build read the depth samples the next frame's raster writes.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TerrainRasterFigures TerrainRasterPass::figures(int slot) const {

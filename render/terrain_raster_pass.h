@@ -65,6 +65,10 @@ class TerrainRasterPass {
   void record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
               const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
               const std::function<void()>& binned);
+  // After the frame's last reader of the depth samples (its last rendering scope): the next
+  // frame's raster waits for them here, not at its start, where the wait would also hold it
+  // behind the graphics work recorded before it (the next frame's depth clear).
+  void recordEndOfFrame(VkCommandBuffer cmd) const;
   TerrainRasterFigures figures(int slot) const;
 
   uint64_t gpuBytes() const;

@@ -39,19 +39,17 @@ void loadTriangle(uint slot, RasterTriangle t) {
   sBounds[slot] = vec4(min(t.v01.xy, min(t.v01.zw, t.v2z.xy)), max(t.v01.xy, max(t.v01.zw, t.v2z.xy)));
 }
 
-bool insideStored(uint slot, vec2 p) {
+// Triangle `slot`'s edges from shared memory, once per pixel (not per sample).
+void storedEdges(uint slot, out RasterEdge e[3]) {
   vec4 signs = sSigns[slot];
   uint ties = uint(signs.w);
   for (int k = 0; k < 3; ++k) {
-    RasterEdge e;
     vec4 ed = sEdge[k][slot];
-    e.base = ed.xy;
-    e.ab = ed.zw;
-    e.sign = signs[k];
-    e.tie = (ties & (1u << k)) != 0u;
-    if (!insideEdge(e, p)) return false;
+    e[k].base = ed.xy;
+    e[k].ab = ed.zw;
+    e[k].sign = signs[k];
+    e[k].tie = (ties & (1u << k)) != 0u;
   }
-  return true;
 }
 
 void main() {
@@ -83,10 +81,12 @@ void main() {
         if (bounds.x >= hi.x || bounds.y >= hi.y || bounds.z < lo.x || bounds.w < lo.y) continue;
         vec4 plane = sPlane[j], slope = sSlope[j];
         uint id = floatBitsToUint(slope.z);
+        RasterEdge e[3];
+        storedEdges(j, e);
         for (int s = 0; s < kMaxSamples; ++s) {
           if (s >= samples) break;
           vec2 p = vec2(px) + samplePosition(uint(samples), uint(s));
-          if (!insideStored(j, p)) continue;
+          if (!insideEdge(e[0], p) || !insideEdge(e[1], p) || !insideEdge(e[2], p)) continue;
           float z = plane.z + slope.x * (p.x - plane.x) + slope.y * (p.y - plane.y);
           if (z <= 0.0) continue;  // beyond the far plane
           if (z > best[s] || (z == best[s] && id < ids[s])) {

@@ -241,9 +241,10 @@ TEST_F(TerrainShadingTest, TheComputeFrameTimesBinningAndRasterAndDrawsNoTriangl
     EXPECT_EQ(result->terrainTriangles, 200u);
     EXPECT_LE(result->terrainRasterTriangles, 200u) << "none clipped by the near plane";
     EXPECT_GT(result->terrainRasterTriangles, 150u) << "a few off screen at the sides";
-    ASSERT_EQ(result->gpu.passes.size(), 2u);
-    EXPECT_EQ(result->gpu.passes[0].pass, "terrain");  // the binning
-    EXPECT_EQ(result->gpu.passes[1].pass, "terrain shade");  // the raster and the shading
+    ASSERT_EQ(result->gpu.passes.size(), 3u);
+    EXPECT_EQ(result->gpu.passes[0].pass, "depth clear");  // for the trees and plants: not the terrain's
+    EXPECT_EQ(result->gpu.passes[1].pass, "terrain");  // the binning
+    EXPECT_EQ(result->gpu.passes[2].pass, "terrain shade");  // the raster and the shading
     ASSERT_TRUE(result->gpu.statistics.available);
     EXPECT_EQ(result->gpu.statistics.inputPrimitives, 0u) << "no graphics work for the terrain";
   }
