@@ -2,6 +2,7 @@
 // Base for every test that touches the GPU: validation layers on, and the test fails on any
 // validation message of warning or error severity (each message is printed).
 
+#include <cstdlib>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -62,5 +63,18 @@ class GpuTest : public ::testing::Test {
     EXPECT_EQ(validation->warnings(), 0);
   }
 };
+
+// Pixels of two same-sized images whose colour differs by more than `threshold` (of 255) in
+// some channel (alpha ignored).
+inline size_t pixelsOffBy(const ColorImage& a, const ColorImage& b, int threshold) {
+  size_t n = 0;
+  for (size_t i = 0; i + 3 < a.rgba.size() && i + 3 < b.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > threshold) {
+        ++n;
+        break;
+      }
+  return n;
+}
 
 }  // namespace vegstream::render::testing

@@ -261,16 +261,7 @@ TEST_F(HizCullTest, TheTerrainRasterisedInComputeCullsAndHidesAsTheDeferredOne) 
   // Without culling every plant behind the wall is drawn, and must not show through it.
   for (const FrameResult* f : {&deferred.off, &compute.off, &deferred.bare, &compute.bare}) ASSERT_TRUE(f->color);
   // Grass over ground of the grass's own colour: a plant changes a pixel by a few steps.
-  const auto differing = [](const ColorImage& a, const ColorImage& b) {
-    size_t n = 0;
-    for (size_t i = 0; i < a.rgba.size(); i += 4)
-      for (size_t c = 0; c < 3; ++c)
-        if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 6) {
-          ++n;
-          break;
-        }
-    return n;
-  };
+  const auto differing = [](const ColorImage& a, const ColorImage& b) { return pixelsOffBy(a, b, 6); };
   const size_t pixels = size_t{kW} * kH;
   EXPECT_GT(differing(*deferred.off.color, *deferred.bare.color), pixels / 100) << "the plants show in front";
   EXPECT_LT(differing(*compute.off.color, *deferred.off.color), pixels / 200);

@@ -173,16 +173,7 @@ TEST_F(TerrainShadingTest, WithoutTerrainTheComputeRasterDrawsTheSky) {
 
 // Pixels whose colour is off by more than 24 in some channel: a crack (sky through the ground)
 // or a sample given to a triangle on the wrong side of an edge would be.
-size_t farOff(const ColorImage& a, const ColorImage& b) {
-  size_t n = 0;
-  for (size_t i = 0; i < a.rgba.size(); i += 4)
-    for (size_t c = 0; c < 3; ++c)
-      if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 24) {
-        ++n;
-        break;
-      }
-  return n;
-}
+size_t farOff(const ColorImage& a, const ColorImage& b) { return pixelsOffBy(a, b, 24); }
 
 // 32 768 small triangles seen from above, every pixel ground: the shared edges leave no sample
 // uncovered (the sky would show) and none covered twice; and close over the ground looking ahead,
