@@ -17,7 +17,7 @@ namespace {
 constexpr uint32_t kBinGroup = 64;               // terrain_bin.comp local size
 constexpr VkDeviceSize kTriangleBytes = 64;      // RasterTriangle (terrain_raster.glsl)
 constexpr VkDeviceSize kCounterBytes = 4 * sizeof(uint32_t);
-constexpr uint32_t kInitialEntriesPerTile = 128;  // grown when a frame needs more
+constexpr uint32_t kInitialEntriesPerTile = 32;  // grown when a frame needs more
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 uint32_t groups(uint64_t n, uint32_t size) { return static_cast<uint32_t>((n + size - 1) / size); }

@@ -4,7 +4,7 @@
 // terrain_raster*.comp):
 // 1. setup: each triangle of the frame's index buffer to clip space, culled as the hardware
 //    pipeline culls (frustum, back faces), clipped by the near plane, snapped to 1/256 pixel,
-//    and counted into every 16 × 16-pixel tile it may touch;
+//    and counted into every 8 × 8-pixel tile it may touch;
 // 2. scan: each tile's start in one list array;
 // 3. fill: each tile's list of the triangles that may touch it;
 // 4. raster + shade: a workgroup per tile keeps, per sample, the nearest triangle (a watertight
@@ -50,7 +50,7 @@ struct TerrainRasterFigures {
 class TerrainRasterPass {
  public:
   static constexpr int kSlots = TerrainPass::kSlots;
-  static constexpr uint32_t kTile = 16;  // pixels per tile side (terrain_raster.glsl)
+  static constexpr uint32_t kTile = 8;   // pixels per tile side (terrain_raster.glsl)
 
   TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const TerrainPass& terrain,
                     const RenderTargets& targets);

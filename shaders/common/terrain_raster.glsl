@@ -3,7 +3,7 @@
 //
 // A triangle after setup (terrain_bin.comp) is a RasterTriangle: its screen vertices snapped to
 // 1/256 pixel, the plane of its reverse-Z depth over the screen, which triangle of the frame's
-// index buffer it is, and the rectangle of 16 × 16-pixel tiles its bounds touch. A triangle
+// index buffer it is, and the rectangle of 8 × 8-pixel tiles its bounds touch. A triangle
 // clipped by the near plane becomes one or two of them, with the same triangle id.
 //
 // Coverage is decided per sample by three edge functions. Each edge is evaluated from its
@@ -15,7 +15,7 @@
 #ifndef TERRAIN_RASTER_GLSL
 #define TERRAIN_RASTER_GLSL
 
-const uint kRasterTile = 16u;  // pixels per tile side; terrain_raster.comp's workgroup is one tile
+const uint kRasterTile = 8u;   // pixels per tile side; terrain_raster.comp's workgroup is one tile
 
 struct RasterTriangle {
   vec4 v01;    // xy: vertex 0, zw: vertex 1 (pixels, y down)

@@ -1,6 +1,6 @@
 // The compute terrain rasteriser's last dispatch (render/terrain_raster_pass.h): one workgroup
-// per 16 × 16-pixel tile, one thread per pixel. The tile's raster triangles (terrain_bin.comp's
-// lists) are taken 256 at a time into shared memory; each thread keeps, per sample, the nearest
+// per 8 × 8-pixel tile, one thread per pixel. The tile's raster triangles (terrain_bin.comp's
+// lists) are taken 64 at a time into shared memory; each thread keeps, per sample, the nearest
 // (reverse-Z: largest) depth and its triangle (ties: the lower triangle, whatever order the list
 // holds them in, so the frame is deterministic). Then the depths go out for the Hi-Z build and
 // the fragments drawn over the terrain, and the pixel is shaded exactly as the deferred shade
@@ -14,9 +14,9 @@
 #include "terrain_raster.glsl"
 #include "sample_positions.glsl"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = 8, local_size_y = 8) in;
 
-const uint kBatch = 256u;  // raster triangles in shared memory at a time: one per thread
+const uint kBatch = 64u;   // raster triangles in shared memory at a time: one per thread
 // Per triangle: its three edges (base xy, gradient xy), their signs and tie rules, the depth
 // plane (vertex 0's position and depth, d/dx, d/dy) and its id.
 shared vec4 sEdge[3][kBatch];
