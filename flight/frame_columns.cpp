@@ -73,6 +73,9 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
     c.push_back({n, 0});
   c.push_back({"terrain_seed_plants", 1});
   c.push_back({"terrain_achieved_error_px", 3});
+  // The terrain rasterised in compute (render/terrain_raster_pass.h); empty otherwise.
+  for (const char* n : {"terrain_raster_triangles", "terrain_tile_entries", "terrain_tile_entries_dropped"})
+    c.push_back({n, 0});
   for (const char* n : {"plant_seed_triangles", "plant_bins", "plant_clusters", "plant_cluster_slots", "plant_groups",
                         "plants", "plant_overflow", "plant_patches", "plant_triangles"})
     c.push_back({n, 0});

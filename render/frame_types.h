@@ -228,6 +228,7 @@ struct FrameResult {
   uint64_t terrainTriangles = 0;                // triangles submitted by the terrain pass
   // The terrain rasterised in compute (TerrainShading::Compute): what its binning made
   // (render/terrain_raster_pass.h); zero otherwise.
+  bool terrainRasterised = false;
   uint64_t terrainRasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
   uint64_t terrainTileEntries = 0;      // triangle-in-tile entries its lists needed
   uint64_t terrainTileEntriesDropped = 0;  // past the lists' capacity (they grow for the next frames)

@@ -220,6 +220,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
   r.frameIndex = slot.frameIndex;
   r.cpuRecordMs = slot.cpuRecordMs;
   r.terrainTriangles = slot.terrainTriangles;
+  r.terrainRasterised = terrainRaster != nullptr;
   if (terrainRaster) {
     const TerrainRasterFigures f = terrainRaster->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
     r.terrainRasterTriangles = f.rasterTriangles;

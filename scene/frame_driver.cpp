@@ -112,6 +112,10 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.recordSubmitMs = result->cpuRecordMs;
   r.gpu = std::move(result->gpu);
   r.terrainTriangles = result->terrainTriangles;
+  r.terrainRasterised = result->terrainRasterised;
+  r.terrainRasterTriangles = result->terrainRasterTriangles;
+  r.terrainTileEntries = result->terrainTileEntries;
+  r.terrainTileEntriesDropped = result->terrainTileEntriesDropped;
   r.vegetation = result->vegetation;
   r.trees = result->trees;
   r.color = std::move(result->color);

@@ -99,6 +99,8 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
       r[c++] = count(v);
     r[c++] = tf.roam.seedPlants;
     r[c++] = tf.roam.achievedErrorPx;
+    for (uint64_t x : {f.terrainRasterTriangles, f.terrainTileEntries, f.terrainTileEntriesDropped})
+      r[c++] = f.terrainRasterised ? count(x) : kNoValue;
     // The classify pass (render/classify_pass.h); empty when plants are off.
     const auto& v = f.vegetation;
     for (uint64_t x :

@@ -85,7 +85,11 @@ const std::vector<std::string> kRoam = {"terrain_roam_update_ms",
                                         "terrain_seed_interpolated",
                                         "terrain_depth_limited_leaves",
                                         "terrain_seed_plants",
-                                        "terrain_achieved_error_px"};
+                                        "terrain_achieved_error_px",
+                                        // Issue 17's terrain rasterised in compute.
+                                        "terrain_raster_triangles",
+                                        "terrain_tile_entries",
+                                        "terrain_tile_entries_dropped"};
 // Issue 7's classify-pass columns, after kRoam.
 const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins",    "plant_clusters",
                                           "plant_cluster_slots",  "plant_groups",  "plants",
@@ -291,6 +295,29 @@ TEST(RecordCommand, TwoRunsGiveIdenticalCountsAndPositions) {
     EXPECT_EQ(ca.column(col), cb.column(col)) << col;
   // The statistics are there to compare (lavapipe reports them).
   EXPECT_NE(ca.column("stat_fragment_invocations").front(), "");
+}
+
+// The terrain rasterised in compute (render/terrain_raster_pass.h) fills its three columns, and
+// the same flight gives the same terrain: the same triangles, frame by frame. Elsewhere they are
+// empty.
+TEST(RecordCommand, TheComputeRasterFillsItsColumns) {
+  const fs::path base = baseRecording();
+  const fs::path dir = freshRecordDir("record_compute_raster");
+  const auto r = recordSmall(dir, "--no-plots --terrain-shading compute");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Csv compute = readCsv(dir / "frames.csv"), deferred = readCsv(base / "frames.csv");
+  EXPECT_EQ(compute.column("terrain_triangles"), deferred.column("terrain_triangles"));
+  const auto triangles = compute.column("terrain_raster_triangles"), entries = compute.column("terrain_tile_entries"),
+             dropped = compute.column("terrain_tile_entries_dropped");
+  ASSERT_FALSE(triangles.empty());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    ASSERT_FALSE(triangles[i].empty()) << "frame " << i;
+    EXPECT_GT(std::stoull(triangles[i]), 0u) << "frame " << i;
+    EXPECT_GE(std::stoull(entries[i]), std::stoull(triangles[i])) << "frame " << i;
+    EXPECT_EQ(dropped[i], "0") << "frame " << i;
+  }
+  for (const char* col : {"terrain_raster_triangles", "terrain_tile_entries", "terrain_tile_entries_dropped"})
+    for (const std::string& cell : deferred.column(col)) EXPECT_EQ(cell, "") << col << " without the compute raster";
 }
 
 TEST(RecordCommand, ReportRemakesTheSummaryAndPlots) {
