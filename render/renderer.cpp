@@ -282,14 +282,13 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
                                                   info.name + "; choose one of " + info.msaaList());
   impl->msaa = options.msaa;
   const bool canDefer = info.supportsDeferredTerrain(options.msaa);
-  if (options.terrainShading == TerrainShading::Deferred && !canDefer)
-    return makeError(ErrorKind::InvalidInput, "--terrain-shading deferred is not possible on " + info.name +
-                                                  " at --msaa " + std::to_string(options.msaa) +
-                                                  ": it cannot store into a colour target of that many samples" +
-                                                  " (storage images, shaderStorageImageMultisample)");
-  if (options.terrainShading == TerrainShading::Compute && !canDefer)
-    return makeError(ErrorKind::InvalidInput, "--terrain-shading compute is not possible on " + info.name +
-                                                  " at --msaa " + std::to_string(options.msaa) +
+  // Both shade in compute, storing into the colour target: one message names whichever was asked.
+  const bool shadesInCompute =
+      options.terrainShading == TerrainShading::Deferred || options.terrainShading == TerrainShading::Compute;
+  if (shadesInCompute && !canDefer)
+    return makeError(ErrorKind::InvalidInput, std::string("--terrain-shading ") +
+                                                  terrainShadingName(options.terrainShading) + " is not possible on " +
+                                                  info.name + " at --msaa " + std::to_string(options.msaa) +
                                                   ": it cannot store into a colour target of that many samples" +
                                                   " (storage images, shaderStorageImageMultisample)");
   impl->terrainShading = options.terrainShading == TerrainShading::Forward || !canDefer ? TerrainShading::Forward
