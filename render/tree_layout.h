@@ -10,6 +10,7 @@
 // impostor, nothing: the terrain's own colour) with dithered cross-fades between them, and appends
 // it to the indirect draws of its model (render/tree_pass.h).
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -95,11 +96,14 @@ struct TreeModelSet {
 };
 
 // What the trees did in one frame, read back after its fence.
+inline constexpr uint32_t kTreeShadowCascades = 3;  // render/shadow_cascades.h kShadowCascades
+
 struct TreeFigures {
   uint32_t pages = 0;      // pages classified
   uint32_t instances = 0;  // trees in them
   uint32_t full = 0, reduced = 0, impostor = 0;  // appended per level (a tree cross-fading counts in two)
-  uint32_t dropped = 0;    // appended past a list's capacity (not drawn)
+  uint32_t dropped = 0;    // appended past a list's capacity (not drawn; shadow casters included)
+  std::array<uint32_t, kTreeShadowCascades> shadowCasters{};  // trees cast into each sun cascade
   bool gpuCounts = false;  // the counts above were read back
 };
 

@@ -70,14 +70,17 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   uint64_t fixed = vertices_.size + indices_.size + branches_.size;
   if (fixed > budgetBytes) return false;
 
-  // Visible lists: per model the trees it may draw at each level (a cross-fading tree in two).
+  // Visible lists: per model the trees it may draw at each level (a cross-fading tree in two);
+  // then per cascade and model the sun's shadow casters (the near cascades cover less ground).
   capacity_ = {2048u, 8192u, 65536u};
+  casterCapacity_ = {4096u, 16384u, 65536u};
+  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
   const VkDeviceSize visibleBytes =
-      VkDeviceSize{count} * (capacity_[0] + capacity_[1] + capacity_[2]) * sizeof(glm::uvec4);
+      VkDeviceSize{count} * (perModel + casterCapacity_[0] + casterCapacity_[1] + casterCapacity_[2]) *
+      sizeof(glm::uvec4);
   visible_ = createBuffer(*ctx_, visibleBytes, storage, MemoryUse::DeviceLocal, "tree visible lists");
   // The draws and their per-frame template (instance counts 0, firsts at the regions).
   std::vector<uint32_t> tmpl;
-  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
   // Per model and level: bark and cards, then (a second set) the crowns' cores of the same
   // lists, their instance counts copied by the classify's finish.
   for (const bool cores : {false, true})
@@ -88,16 +91,23 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
         tmpl.insert(tmpl.end(), {cores ? d.coreCount[lod] : d.indexCount[lod], 0u,
                                  d.firstIndex[lod] + (cores ? d.indexCount[lod] : 0u), d.vertexOffset[lod], base});
       }
+  // The impostor draws (shaders/common/tree_layout.glsl treeCasterCommand): per model the
+  // impostors, then per cascade and model the shadow casters; the classify counts their instances.
   for (uint32_t m = 0; m < count; ++m) tmpl.insert(tmpl.end(), {6u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
-  // Then per model × 2 the shadow casters of its full and reduced lists, as impostor quads
-  // (written by the classify's finish).
-  tmpl.resize(tmpl.size() + size_t{count} * 2 * 4, 0u);
+  uint32_t casterBase = count * perModel;
+  for (uint32_t c = 0; c < kTreeShadowCascades; ++c)
+    for (uint32_t m = 0; m < count; ++m) {
+      tmpl.insert(tmpl.end(), {6u, 0u, 0u, casterBase});
+      casterBase += casterCapacity_[c];
+    }
   drawTemplate_ = createBufferWithData(*ctx_, tmpl.data(), tmpl.size() * sizeof(uint32_t),
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "tree draw template");
   const VkBufferUsageFlags draws =
       storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   meshDraws_ = createBuffer(*ctx_, count * 4 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
-  impostorDraws_ = createBuffer(*ctx_, count * 3 * kDrawCommand, draws, MemoryUse::DeviceLocal, "tree impostor draws");
+  impostorDraws_ = createBuffer(*ctx_, count * (1 + kTreeShadowCascades) * kDrawCommand,
+                                draws, MemoryUse::DeviceLocal,
+                                "tree impostor draws");
   counters_ = createBuffer(*ctx_, kCounters * sizeof(uint32_t),
                            storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                            MemoryUse::DeviceLocal, "tree counters");

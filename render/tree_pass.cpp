@@ -13,6 +13,7 @@
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
 #include "render/render_targets.h"
+#include "render/shadow_cascades.h"
 #include "render/tree_impostors.h"
 #include "render/tree_pass_internal.h"
 #include "shaders/tree.frag.h"
@@ -24,6 +25,7 @@
 
 namespace vegstream::render {
 using namespace tree_detail;
+static_assert(kTreeShadowCascades == static_cast<uint32_t>(kShadowCascades));
 namespace {
 
 // Camera-relative frustum planes of a Vulkan clip space (Gribb & Hartmann), normalised.
@@ -160,6 +162,7 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
                    kImpostorViews};
   block->capacity = {capacity_[0], capacity_[1], capacity_[2], 0u};
   block->limits = glm::vec4(shadowMarginM, request.lod.impostorEndHeights * lodScale, 0.0f, 0.0f);
+  block->casters = {casterCapacity_[0], casterCapacity_[1], casterCapacity_[2], 0u};
   std::memcpy(block->models, modelBlock_.data(), modelBlock_.size());
 
   // Reset the draws and counters, classify, clamp.
@@ -231,14 +234,15 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
     }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, impostorPipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
-  for (uint32_t m = 0; m < models_.size(); ++m) {
+  for (uint32_t m = 0; m < count; ++m) {
     const TreePush push{glm::mat4(1.0f), m, 2u, 0u, static_cast<uint32_t>(samples_)};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
     vkCmdDrawIndirect(cmd, impostorDraws_.get(), m * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
   }
 }
 
-void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& matrix) {
+void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade,
+                            const glm::mat4& matrix) {
   const auto s = static_cast<size_t>(slot);
   if (!slotRecorded_[s]) return;
   const VkDescriptorSet bound[] = {frameSet, sets_[s]};
@@ -248,12 +252,14 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
   const auto count = static_cast<uint32_t>(models_.size());
+  const auto c = static_cast<uint32_t>(cascade);
+  assert(c < kTreeShadowCascades);
   for (uint32_t m = 0; m < count; ++m) {
     const TreePush push{matrix, m, 2u, 1u, 1u};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
-    // The impostor list, then the full and reduced lists as impostor quads.
-    for (const uint32_t command : {m, count + 2 * m, count + 2 * m + 1})
-      vkCmdDrawIndirect(cmd, impostorDraws_.get(), command * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
+    // This cascade's casters of the model (the classify's box test), as impostor quads.
+    vkCmdDrawIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kDrawCommand, 1,
+                      static_cast<uint32_t>(kDrawCommand));
   }
 }
 
@@ -268,6 +274,7 @@ TreeFigures TreePass::figures(int slot) const {
   f.reduced = c[2];
   f.impostor = c[3];
   f.dropped = c[4];
+  for (uint32_t k = 0; k < kTreeShadowCascades; ++k) f.shadowCasters[k] = c[5 + k];
   f.gpuCounts = true;
   return f;
 }

@@ -54,10 +54,11 @@ class TreePass {
                       const glm::dmat4& viewProj, float lodScale, float shadowMarginM, const RetireBuffer& retire);
   // Inside rendering (colour target of `samples`), after recordClassify.
   void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
-  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): every classified
-  // tree — impostor, reduced or full in the view — as its impostor turned to the sun, depth only,
-  // through the cascade's matrix (the models' cards cost 15 × the impostors there).
-  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const glm::mat4& matrix);
+  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the classified trees
+  // whose sphere reaches `cascade`'s box — impostor, reduced or full in the view — as their
+  // impostor turned to the sun, depth only, through the cascade's matrix (the models' cards cost
+  // 15 × the impostors there).
+  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 
@@ -89,6 +90,7 @@ class TreePass {
   std::vector<uint8_t> modelBlock_;  // the models' part of the TreeBlock, packed once
   uint32_t pageCapacity_ = 0;
   std::array<uint32_t, 3> capacity_{};  // visible entries per model and level
+  std::array<uint32_t, kTreeShadowCascades> casterCapacity_{};  // shadow casters per model and cascade
   std::array<uint32_t, kSlots> slotPages_{};
   std::array<bool, kSlots> slotRecorded_{};
   std::array<bool, kSlots> slotCores_{};  // the request's cores: drawn or not

@@ -25,11 +25,12 @@ struct TreeBlock {
   glm::vec4 frustum[6];
   glm::uvec4 counts, capacity;
   glm::vec4 limits;
+  glm::uvec4 casters;  // xyz: shadow caster entries per model in each cascade
   TreeModelGpu models[kMaxTreeModels];
 };
 static_assert(sizeof(TreeModelGpu) == 80);
 static_assert(offsetof(TreeBlock, counts) == 128);
-static_assert(offsetof(TreeBlock, models) == 176);
+static_assert(offsetof(TreeBlock, models) == 192);
 
 // shaders/common/tree_push.glsl.
 struct TreePush {
@@ -38,6 +39,8 @@ struct TreePush {
 };
 static_assert(sizeof(TreePush) == 80);
 
+// The counters (shaders/common/tree_layout.glsl): 0 instances, 1–3 appended per level, 4 dropped,
+// 5–7 shadow casters per cascade.
 inline constexpr uint32_t kCounters = 8;
 inline constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
 inline constexpr VkDeviceSize kDrawCommand = 4 * sizeof(uint32_t);

@@ -7,9 +7,12 @@
 // with complementary dither thresholds (shaders/common/tree_layout.glsl treeKeepsPixel), so the
 // two split the pixels and the switch is a cross-fade; past the horizon's band it dithers out.
 // The wind at the tree comes from the shared simulation's field (simulation/shared/wind_field.glsl):
-// the same gust crosses the meadow and then the forest. mode 1 (push): clamp the draws' instance
-// counts to their regions' capacity after the appends.
+// the same gust crosses the meadow and then the forest. Every tree it keeps is also appended, once,
+// to the shadow casters of each sun cascade whose box its sphere reaches (cast as its impostor
+// turned to the sun, whatever its level), so a cascade draws only its own casters.
+// mode 1 (push): clamp the draws' instance counts to their regions' capacity after the appends.
 layout(local_size_x = 256) in;
+#include "common/frame_uniforms.glsl"
 #include "common/simulation_block.glsl"
 #include "common/tree_layout.glsl"
 float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
@@ -33,6 +36,27 @@ void append(uint model, uint lod, uint instance, float threshold, vec2 wind) {
   atomicAdd(treeCounters[1u + lod], 1u);
 }
 
+// Into each cascade whose box (frame.shadowMatrices: x, y in [−1, 1], depth in [0, 1]) the tree's
+// sphere reaches. The matrices' rows are the light's axes over the box's half extents, so a
+// radius in metres is that many times their length in clip units.
+void castShadow(uint model, uint instance, float keep, vec2 wind, vec3 centre, float radius) {
+  for (uint c = 0u; c < kTreeShadowCascades; ++c) {
+    mat4 m = frame.shadowMatrices[c];
+    vec4 p = m * vec4(centre, 1.0);
+    vec3 r = radius * vec3(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1])),
+                           length(vec3(m[0][2], m[1][2], m[2][2])));
+    if (any(greaterThan(abs(p.xy), vec2(1.0) + r.xy)) || p.z < -r.z || p.z > 1.0 + r.z) continue;
+    uint slot = atomicAdd(impostorDraws[treeCasterCommand(c, model) * 4u + 1u], 1u);
+    if (slot >= treeCasterCapacity(c)) {
+      atomicAdd(treeCounters[4], 1u);
+      continue;
+    }
+    treeVisible[treeCasterBase(c, model) + slot] =
+        uvec4(instance, floatBitsToUint(keep), floatBitsToUint(wind.x), floatBitsToUint(wind.y));
+    atomicAdd(treeCounters[5u + c], 1u);
+  }
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (push.mode == 1u) {  // finish: no draw reads past its region
@@ -43,13 +67,9 @@ void main() {
         meshDraws[((trees.counts.y + i) * 2u + lod) * 5u + 1u] = meshDraws[(i * 2u + lod) * 5u + 1u];
       }
       impostorDraws[i * 4u + 1u] = min(impostorDraws[i * 4u + 1u], trees.capacity.z);
-      // The shadow pass draws the full and reduced lists as impostor quads too.
-      for (uint lod = 0u; lod < 2u; ++lod) {
-        uint at = (trees.counts.y + i * 2u + lod) * 4u;
-        impostorDraws[at] = 6u;
-        impostorDraws[at + 1u] = meshDraws[(i * 2u + lod) * 5u + 1u];
-        impostorDraws[at + 2u] = 0u;
-        impostorDraws[at + 3u] = treeRegionBase(i, lod);
+      for (uint c = 0u; c < kTreeShadowCascades; ++c) {
+        uint at = treeCasterCommand(c, i) * 4u + 1u;
+        impostorDraws[at] = min(impostorDraws[at], treeCasterCapacity(c));
       }
     }
     return;
@@ -73,11 +93,10 @@ void main() {
   if ((sim.counts.z & kSimFlagWind) != 0) wind = windAt(t.position.xy, treeTime()).xy;
   float d = dist / h;  // distance in tree heights
   float a = trees.lod.x, b = trees.lod.y, share = trees.lod.w;
+  float keep = 1.0;  // the shadow's share: the tree's own, whatever levels cross-fade
   if ((trees.counts.z & kTreeFlagFades) == 0u) {
     append(t.model, d < a ? kTreeLodFull : (d < b ? kTreeLodReduced : kTreeLodImpostor), i, 1.0, wind);
-    return;
-  }
-  if (d < a * (1.0 - share)) {
+  } else if (d < a * (1.0 - share)) {
     append(t.model, kTreeLodFull, i, 1.0, wind);
   } else if (d < a) {
     float f = (d - a * (1.0 - share)) / (a * share);
@@ -90,7 +109,9 @@ void main() {
     append(t.model, kTreeLodReduced, i, 1.0 + f, wind);
     append(t.model, kTreeLodImpostor, i, f, wind);
   } else {
-    float keep = clamp((horizon - dist) / (horizon * share), 0.0, 1.0);
+    keep = clamp((horizon - dist) / (horizon * share), 0.0, 1.0);
     if (keep > 0.0) append(t.model, kTreeLodImpostor, i, keep, wind);
   }
+  // The caster's own sphere (its quad turned to the sun, with the sway), not the view's margin.
+  if (frame.shadowSplits.w > 0.5 && keep > 0.0) castShadow(t.model, i, keep, wind, centre, 0.7 * max(h, t.crownM));
 }

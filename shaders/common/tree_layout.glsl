@@ -7,6 +7,9 @@ const uint kTreePageSize = 256u;
 const uint kMaxTreeModels = 32u;
 const uint kTreeLodFull = 0u, kTreeLodReduced = 1u, kTreeLodImpostor = 2u;
 const uint kTreeFlagFades = 1u;
+const uint kTreeShadowCascades = 3u;
+// The counters (render/tree_pass_internal.h): 0 instances, 1–3 appended per level, 4 dropped,
+// 5–7 shadow casters per cascade.
 
 struct TreeModelGpu {
   uvec4 mesh0;  // x: first index (full), y: index count (full), z: vertex offset (full), w: first branch
@@ -23,6 +26,7 @@ layout(set = 1, binding = 0, std140) uniform TreeBlock {
   uvec4 counts;     // x: instance slots (pages × kTreePageSize), y: models, z: flags, w: impostor views per side
   uvec4 capacity;   // visible entries per model: x full, y reduced, z impostor
   vec4 limits;      // x: how far shadow casters may lie outside the view (m), y: impostors end (tree heights)
+  uvec4 casters;    // xyz: shadow caster entries per model in each cascade, w: unused
   TreeModelGpu models[kMaxTreeModels];
 } trees;
 
@@ -58,6 +62,18 @@ uint treeRegionBase(uint m, uint lod) {
   return base;
 }
 uint treeRegionCapacity(uint lod) { return lod == 0u ? trees.capacity.x : (lod == 1u ? trees.capacity.y : trees.capacity.z); }
+// Shadow casters of model m into cascade c: after every model's regions.
+uint treeCasterCapacity(uint c) { return c == 0u ? trees.casters.x : (c == 1u ? trees.casters.y : trees.casters.z); }
+uint treeCasterBase(uint c, uint m) {
+  uint models = trees.counts.y;
+  uint base = models * (trees.capacity.x + trees.capacity.y + trees.capacity.z);
+  if (c >= 1u) base += models * trees.casters.x;
+  if (c >= 2u) base += models * trees.casters.y;
+  return base + m * treeCasterCapacity(c);
+}
+// The impostor draws' commands (VkDrawIndirectCommand, 4 words): per model the impostors, then
+// per cascade and model the shadow casters.
+uint treeCasterCommand(uint c, uint m) { return trees.counts.y * (1u + c) + m; }
 
 // The pixel's dither value for cross-fades: interleaved gradient noise (Jimenez 2014) shifted per
 // tree, so two levels of one tree split the pixels exactly and neighbours do not share a pattern.

@@ -12,6 +12,7 @@
 
 #include "gpu_test_fixture.h"
 #include "render/png_writer.h"
+#include "render/shadow_cascades.h"
 #include "tests/support/plant_field_scene.h"
 #include "vegetation/tree_model.h"
 
@@ -385,6 +386,86 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
               ground, darkened, expected);
   EXPECT_GT(darkened, 50u);
   EXPECT_GE(double(expected), 0.95 * double(darkened));
+}
+
+// Each sun cascade draws only the trees whose sphere reaches its box (the classify's test), not
+// every tree three times: trees up to 2.6 km ahead, the counts against the same box test on the
+// CPU (a metre either side for rounding), and the far trees cast into no cascade.
+TEST_F(TreeRenderTest, EachShadowCascadeDrawsOnlyTheCastersItsBoxReaches) {
+  auto r = makeRenderer(160, 90, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
+  std::vector<TreeInstanceGpu> trees;
+  for (int i = 0; i < 240; ++i) {  // 5 m … 2.6 km ahead, spread across the view
+    const float y = 5.0f * std::pow(1.0265f, float(i));
+    trees.push_back(treeAt(float((i * 37) % 21 - 10) * 0.02f * y, y, 100u + uint32_t(i)));
+  }
+  ASSERT_GT(trees.back().position[1], 2500.0f);
+  const glm::dvec3 camera{0.0, -10.0, 12.0}, target{0.0, 60.0, 4.0};
+  TreeLodDistances lod;
+  lod.impostorEndHeights /= treeLodScale(90.0, 50.0);  // every tree drawn, as in a 1080-line frame
+  FrameRequest req;
+  req.camera.position = camera;
+  req.camera.forward = glm::normalize(target - camera);
+  req.camera.verticalFovDeg = 50.0;
+  req.camera.nearM = 0.5;
+  const std::vector<TreePageUpload> uploads = {{0, 240, trees.data()}};
+  const std::vector<uint32_t> counts = {240};
+  TreeRequest t;
+  t.uploads = uploads;
+  t.pageCounts = counts;
+  t.lod = lod;
+  t.cameraEnu[0] = camera.x, t.cameraEnu[1] = camera.y, t.cameraEnu[2] = camera.z;
+  req.trees = &t;
+  auto f = r->renderFrame(req);
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  ASSERT_TRUE(f->trees);
+
+  // The same boxes on the CPU (the renderer's settings: 1024² maps).
+  ShadowSettings settings;
+  const ShadowCascades boxes = shadowCascades(req.camera, 160.0 / 90.0, req.lighting.sunDirection, settings);
+  std::array<uint32_t, kTreeShadowCascades> surely{}, maybe{};
+  uint32_t inNone = 0;
+  for (const TreeInstanceGpu& tree : trees) {
+    const glm::vec3 centre = glm::vec3(tree.position[0], tree.position[1], tree.position[2] + 0.5f * kTreeHeight) -
+                             glm::vec3(camera);
+    const float radius = 0.7f * std::max(kTreeHeight, kCrown);
+    bool any = false;
+    for (uint32_t c = 0; c < kTreeShadowCascades; ++c) {
+      const glm::mat4& m = boxes.matrices[c];
+      const glm::vec4 p = m * glm::vec4(centre, 1.0f);
+      const glm::vec3 scale(glm::length(glm::vec3(m[0][0], m[1][0], m[2][0])),
+                            glm::length(glm::vec3(m[0][1], m[1][1], m[2][1])),
+                            glm::length(glm::vec3(m[0][2], m[1][2], m[2][2])));
+      auto inside = [&](float grow) {
+        const glm::vec3 e = grow * scale;
+        return std::abs(p.x) <= 1.0f + e.x && std::abs(p.y) <= 1.0f + e.y && p.z >= -e.z && p.z <= 1.0f + e.z;
+      };
+      surely[c] += inside(radius - 1.0f) ? 1u : 0u;
+      maybe[c] += inside(radius + 1.0f) ? 1u : 0u;
+      any = any || inside(radius + 1.0f);
+    }
+    inNone += any ? 0u : 1u;
+  }
+  const TreeFigures& fig = *f->trees;
+  EXPECT_GE(fig.full + fig.reduced + fig.impostor, 240u) << "every tree is drawn";
+  EXPECT_EQ(fig.dropped, 0u);
+  for (uint32_t c = 0; c < kTreeShadowCascades; ++c) {
+    std::printf("cascade %u: %u casters (the CPU's box test: %u … %u)\n", c, fig.shadowCasters[c], surely[c], maybe[c]);
+    EXPECT_GE(fig.shadowCasters[c], surely[c]);
+    EXPECT_LE(fig.shadowCasters[c], maybe[c]);
+    EXPECT_GT(fig.shadowCasters[c], 0u);
+  }
+  EXPECT_LT(fig.shadowCasters[0], fig.shadowCasters[1]);
+  EXPECT_LT(fig.shadowCasters[1], fig.shadowCasters[2]);
+  EXPECT_GT(inNone, 20u) << "the far trees are beyond every cascade";
+  EXPECT_LE(fig.shadowCasters[2], 240u - inNone);
+
+  // Without shadows nothing is cast.
+  t.shadows = false;
+  auto g = r->renderFrame(req);
+  ASSERT_TRUE(g.ok() && g->trees);
+  for (uint32_t c = 0; c < kTreeShadowCascades; ++c) EXPECT_EQ(g->trees->shadowCasters[c], 0u);
 }
 
 // The same trees give the same image twice; a budget too small for the models is refused naming
