@@ -23,7 +23,8 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
   pageCapacity_ = 0;
   std::vector<vegetation::TreeVertex> vertices;
-  std::vector<uint32_t> indices;
+  // The impostors' quad: four corners as two triangles (shaders/tree_impostor.vert), first.
+  std::vector<uint32_t> indices = {0u, 1u, 2u, 0u, 2u, 3u};
   std::vector<vegetation::TreeBranch> branches;
   std::vector<TreeImpostorModel> impostorModels;
   auto* gpuModels = reinterpret_cast<TreeModelGpu*>(modelBlock_.data());
@@ -92,12 +93,14 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                                  d.firstIndex[lod] + (cores ? d.indexCount[lod] : 0u), d.vertexOffset[lod], base});
       }
   // The impostor draws (shaders/common/tree_layout.glsl treeCasterCommand): per model the
-  // impostors, then per cascade and model the shadow casters; the classify counts their instances.
-  for (uint32_t m = 0; m < count; ++m) tmpl.insert(tmpl.end(), {6u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
+  // impostors, then per cascade and model the shadow casters, each the quad's six indices; the
+  // classify counts their instances.
+  for (uint32_t m = 0; m < count; ++m)
+    tmpl.insert(tmpl.end(), {6u, 0u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
   uint32_t casterBase = count * perModel;
   for (uint32_t c = 0; c < kTreeShadowCascades; ++c)
     for (uint32_t m = 0; m < count; ++m) {
-      tmpl.insert(tmpl.end(), {6u, 0u, 0u, casterBase});
+      tmpl.insert(tmpl.end(), {6u, 0u, 0u, 0u, casterBase});
       casterBase += casterCapacity_[c];
     }
   drawTemplate_ = createBufferWithData(*ctx_, tmpl.data(), tmpl.size() * sizeof(uint32_t),
@@ -105,7 +108,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   const VkBufferUsageFlags draws =
       storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   meshDraws_ = createBuffer(*ctx_, count * 4 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
-  impostorDraws_ = createBuffer(*ctx_, count * (1 + kTreeShadowCascades) * kDrawCommand,
+  impostorDraws_ = createBuffer(*ctx_, count * (1 + kTreeShadowCascades) * kIndexedCommand,
                                 draws, MemoryUse::DeviceLocal,
                                 "tree impostor draws");
   counters_ = createBuffer(*ctx_, kCounters * sizeof(uint32_t),

@@ -237,7 +237,8 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
   for (uint32_t m = 0; m < count; ++m) {
     const TreePush push{glm::mat4(1.0f), m, 2u, 0u, static_cast<uint32_t>(samples_)};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
-    vkCmdDrawIndirect(cmd, impostorDraws_.get(), m * kDrawCommand, 1, static_cast<uint32_t>(kDrawCommand));
+    vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), m * kIndexedCommand, 1,
+                             static_cast<uint32_t>(kIndexedCommand));
   }
 }
 
@@ -251,6 +252,7 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
   vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
+  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);  // the impostors' quad
   const auto count = static_cast<uint32_t>(models_.size());
   const auto c = static_cast<uint32_t>(cascade);
   assert(c < kTreeShadowCascades);
@@ -258,8 +260,8 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
     const TreePush push{matrix, m, 2u, 1u, 1u};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
     // This cascade's casters of the model (the classify's box test), as impostor quads.
-    vkCmdDrawIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kDrawCommand, 1,
-                      static_cast<uint32_t>(kDrawCommand));
+    vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kIndexedCommand, 1,
+                             static_cast<uint32_t>(kIndexedCommand));
   }
 }
 

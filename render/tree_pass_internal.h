@@ -43,7 +43,6 @@ static_assert(sizeof(TreePush) == 80);
 // 5–7 shadow casters per cascade.
 inline constexpr uint32_t kCounters = 8;
 inline constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
-inline constexpr VkDeviceSize kDrawCommand = 4 * sizeof(uint32_t);
 inline constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
 
 // vegetation::TreeVertex as the vertex stage reads it (shaders/tree.vert's locations 0–6).

@@ -19,14 +19,14 @@ float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
 
 layout(set = 1, binding = 4, std430) readonly buffer PageCounts { uint pageCounts[]; };
 layout(set = 1, binding = 5, std430) buffer MeshDraws { uint meshDraws[]; };          // per model × 2: VkDrawIndexedIndirectCommand; then per model × 2 the cores
-layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model: VkDrawIndirectCommand; then per model × 2 the shadow casters
+layout(set = 1, binding = 6, std430) buffer ImpostorDraws { uint impostorDraws[]; };  // per model, then per cascade and model: VkDrawIndexedIndirectCommand
 layout(set = 1, binding = 7, std430) buffer TreeCounters { uint treeCounters[]; };    // instances, full, reduced, impostor, dropped
 
 layout(push_constant) uniform Push { uint mode; } push;
 
 void append(uint model, uint lod, uint instance, float threshold, vec2 wind) {
   uint slot = lod < 2u ? atomicAdd(meshDraws[(model * 2u + lod) * 5u + 1u], 1u)
-                       : atomicAdd(impostorDraws[model * 4u + 1u], 1u);
+                       : atomicAdd(impostorDraws[model * 5u + 1u], 1u);
   if (slot >= treeRegionCapacity(lod)) {
     atomicAdd(treeCounters[4], 1u);
     return;
@@ -46,7 +46,7 @@ void castShadow(uint model, uint instance, float keep, vec2 wind, vec3 centre, f
     vec3 r = radius * vec3(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1])),
                            length(vec3(m[0][2], m[1][2], m[2][2])));
     if (any(greaterThan(abs(p.xy), vec2(1.0) + r.xy)) || p.z < -r.z || p.z > 1.0 + r.z) continue;
-    uint slot = atomicAdd(impostorDraws[treeCasterCommand(c, model) * 4u + 1u], 1u);
+    uint slot = atomicAdd(impostorDraws[treeCasterCommand(c, model) * 5u + 1u], 1u);
     if (slot >= treeCasterCapacity(c)) {
       atomicAdd(treeCounters[4], 1u);
       continue;
@@ -66,9 +66,9 @@ void main() {
         // The crowns' cores: the same lists (render/tree_pass.cpp draws them first).
         meshDraws[((trees.counts.y + i) * 2u + lod) * 5u + 1u] = meshDraws[(i * 2u + lod) * 5u + 1u];
       }
-      impostorDraws[i * 4u + 1u] = min(impostorDraws[i * 4u + 1u], trees.capacity.z);
+      impostorDraws[i * 5u + 1u] = min(impostorDraws[i * 5u + 1u], trees.capacity.z);
       for (uint c = 0u; c < kTreeShadowCascades; ++c) {
-        uint at = treeCasterCommand(c, i) * 4u + 1u;
+        uint at = treeCasterCommand(c, i) * 5u + 1u;
         impostorDraws[at] = min(impostorDraws[at], treeCasterCapacity(c));
       }
     }

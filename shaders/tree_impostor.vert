@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): six vertices per entry of
+// Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): a quad per entry of
 // the classify pass's impostor list, a quad in the basis of the captured view nearest the
 // direction the tree is seen from, scaled and turned like the tree's model (tree.vert), its top
 // swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole).
@@ -44,8 +44,10 @@ void main() {
   vec3 dc = treeImpostorDirection((cell + 0.5) / float(g));
   vec3 right, up;
   treeImpostorBasis(dc, right, up);
-  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
-  vec2 c = corners[gl_VertexIndex % 6];
+  // Four corners, indexed as two triangles (0 1 2, 0 2 3: render/tree_models.cpp), so the vertex
+  // stage runs four times per quad, not six: graphics work is what the H200 has least of.
+  const vec2 corners[4] = vec2[4](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, 1));
+  vec2 c = corners[gl_VertexIndex & 3];
   float r = m.shape.z;
   // The quad holds what the model covers seen along dc — a cylinder of the crown's radius and the
   // model's height about its centre — not the captured square: a side view of a tree is a third

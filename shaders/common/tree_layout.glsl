@@ -71,7 +71,7 @@ uint treeCasterBase(uint c, uint m) {
   if (c >= 2u) base += models * trees.casters.y;
   return base + m * treeCasterCapacity(c);
 }
-// The impostor draws' commands (VkDrawIndirectCommand, 4 words): per model the impostors, then
+// The impostor draws' commands (VkDrawIndexedIndirectCommand, 5 words): per model the impostors, then
 // per cascade and model the shadow casters.
 uint treeCasterCommand(uint c, uint m) { return trees.counts.y * (1u + c) + m; }
 
