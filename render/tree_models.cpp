@@ -10,6 +10,7 @@
 #include "render/descriptors.h"
 #include "render/tree_impostors.h"
 #include "render/tree_pass.h"
+#include "render/tree_impostor_outline.h"
 #include "render/tree_pass_internal.h"
 #include "shaders/tree.frag.h"
 #include "shaders/tree.vert.h"
@@ -23,8 +24,8 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
   pageCapacity_ = 0;
   std::vector<vegetation::TreeVertex> vertices;
-  // The impostors' quad: four corners as two triangles (shaders/tree_impostor.vert), first.
-  std::vector<uint32_t> indices = {0u, 1u, 2u, 0u, 2u, 3u};
+  // The impostors' one triangle (shaders/tree_impostor.vert), first.
+  std::vector<uint32_t> indices = {0u, 1u, 2u};
   std::vector<vegetation::TreeBranch> branches;
   std::vector<TreeImpostorModel> impostorModels;
   auto* gpuModels = reinterpret_cast<TreeModelGpu*>(modelBlock_.data());
@@ -52,6 +53,10 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       g.mesh0 = {draw.firstIndex[0], draw.indexCount[0], draw.vertexOffset[0], static_cast<uint32_t>(branches.size())};
       g.mesh1 = {draw.firstIndex[1], draw.indexCount[1], draw.vertexOffset[1], m};
       g.shape = {model.modelHeightM, std::max(model.crownRadiusM, 0.1f), 1.02f * radius, centreZ};
+      const ImpostorTriangle triangle =
+          impostorTriangle(model.lod[0].vertices, {g.shape.x, g.shape.y, g.shape.z, g.shape.w});
+      g.triangleApex = triangle.apex;
+      g.triangleBase = triangle.base;
       g.leaf = {set.params.leafColour[0], set.params.leafColour[1], set.params.leafColour[2], set.params.translucency};
       g.bark = {set.params.barkColour[0], set.params.barkColour[1], set.params.barkColour[2],
                 set.params.form == vegetation::TreeForm::Broadleaf ? 1.0f : 0.0f};
@@ -93,14 +98,14 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                                  d.firstIndex[lod] + (cores ? d.indexCount[lod] : 0u), d.vertexOffset[lod], base});
       }
   // The impostor draws (shaders/common/tree_layout.glsl treeCasterCommand): per model the
-  // impostors, then per cascade and model the shadow casters, each the quad's six indices; the
+  // impostors, then per cascade and model the shadow casters, each the triangle's three indices; the
   // classify counts their instances.
   for (uint32_t m = 0; m < count; ++m)
-    tmpl.insert(tmpl.end(), {6u, 0u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
+    tmpl.insert(tmpl.end(), {kImpostorIndices, 0u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
   uint32_t casterBase = count * perModel;
   for (uint32_t c = 0; c < kTreeShadowCascades; ++c)
     for (uint32_t m = 0; m < count; ++m) {
-      tmpl.insert(tmpl.end(), {6u, 0u, 0u, 0u, casterBase});
+      tmpl.insert(tmpl.end(), {kImpostorIndices, 0u, 0u, 0u, casterBase});
       casterBase += casterCapacity_[c];
     }
   drawTemplate_ = createBufferWithData(*ctx_, tmpl.data(), tmpl.size() * sizeof(uint32_t),

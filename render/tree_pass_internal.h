@@ -19,6 +19,7 @@ namespace vegstream::render::tree_detail {
 struct TreeModelGpu {
   glm::uvec4 mesh0, mesh1;
   glm::vec4 shape, leaf, bark;
+  glm::vec4 triangleApex, triangleBase;  // the impostor's triangle per elevation bin (tree_impostor_outline.h)
 };
 struct TreeBlock {
   glm::vec4 camera, lod;
@@ -28,7 +29,7 @@ struct TreeBlock {
   glm::uvec4 casters;  // xyz: shadow caster entries per model in each cascade
   TreeModelGpu models[kMaxTreeModels];
 };
-static_assert(sizeof(TreeModelGpu) == 80);
+static_assert(sizeof(TreeModelGpu) == 112);
 static_assert(offsetof(TreeBlock, counts) == 128);
 static_assert(offsetof(TreeBlock, models) == 192);
 
@@ -42,6 +43,7 @@ static_assert(sizeof(TreePush) == 80);
 // The counters (shaders/common/tree_layout.glsl): 0 instances, 1–3 appended per level, 4 dropped,
 // 5–7 shadow casters per cascade.
 inline constexpr uint32_t kCounters = 8;
+inline constexpr uint32_t kImpostorIndices = 3;  // the impostors' triangle, at the index buffer's start
 inline constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
 inline constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
 

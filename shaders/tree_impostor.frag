@@ -26,11 +26,14 @@ layout(location = 8) flat in float vTint;
 layout(location = 9) flat in uint vSeed;
 layout(location = 10) flat in vec4 vSky;
 layout(location = 11) flat in float vSun;
+layout(location = 12) flat in vec4 vRect;
 layout(location = 0) out vec4 outColor;
 
 void main() {
   gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
   vec2 depthSlope = terrainDepthSlope();
+  // The triangle reaches past the rectangle the model fills (and its atlas cell): not drawn.
+  if (any(greaterThan(abs(vUv - vRect.xy), vRect.zw))) discard;
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
   // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than

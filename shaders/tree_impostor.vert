@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): a quad per entry of
-// the classify pass's impostor list, a quad in the basis of the captured view nearest the
+// Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): a triangle per entry of
+// the classify pass's impostor list, drawn in the basis of the captured view nearest the
 // direction the tree is seen from, scaled and turned like the tree's model (tree.vert), its top
 // swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole).
 #include "common/frame_uniforms.glsl"
@@ -26,6 +26,7 @@ layout(location = 8) flat out float vTint;
 layout(location = 9) flat out uint vSeed;
 layout(location = 10) flat out vec4 vSky;   // the aerial perspective at the tree's centre
 layout(location = 11) flat out float vSun;  // the sun shadow there
+layout(location = 12) flat out vec4 vRect;  // the rectangle the model fills, in the atlas: centre, half extents
 
 void main() {
   uvec4 entry = treeVisible[gl_InstanceIndex];
@@ -44,10 +45,6 @@ void main() {
   vec3 dc = treeImpostorDirection((cell + 0.5) / float(g));
   vec3 right, up;
   treeImpostorBasis(dc, right, up);
-  // Four corners, indexed as two triangles (0 1 2, 0 2 3: render/tree_models.cpp), so the vertex
-  // stage runs four times per quad, not six: graphics work is what the H200 has least of.
-  const vec2 corners[4] = vec2[4](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, 1));
-  vec2 c = corners[gl_VertexIndex & 3];
   float r = m.shape.z;
   // The quad holds what the model covers seen along dc — a cylinder of the crown's radius and the
   // model's height about its centre — not the captured square: a side view of a tree is a third
@@ -55,6 +52,13 @@ void main() {
   float sinE = clamp(dc.z, 0.0, 1.0), cosE = sqrt(1.0 - sinE * sinE);
   float rc = 1.08 * m.shape.y, hh = 0.55 * m.shape.x;
   vec2 half_ = min(vec2(rc, hh * cosE + rc * sinE), vec2(r));
+  // Drawn on one triangle that holds the model (render/tree_impostor_outline.h): the H200's
+  // graphics units are bound by primitives here, and a conifer fills a triangle better than a
+  // rectangle. Apex (0, a), base (±b, 0) in the rectangle's units (up: 0 at its bottom … 1 at its
+  // top); the fragment stage drops what lies outside the rectangle, as before.
+  int bin = min(int(sinE * 4.0), 3);
+  float apex = m.triangleApex[bin], base = m.triangleBase[bin];
+  vec2 c = gl_VertexIndex % 3 == 2 ? vec2(0.0, 2.0 * apex - 1.0) : vec2(gl_VertexIndex % 3 == 0 ? -base : base, -1.0);
   vec3 modelPoint = vec3(0.0, 0.0, m.shape.w) + right * (c.x * half_.x) + up * (c.y * half_.y);
   // Sway: the trunk's bend at this height.
   vec3 wind = treeUnrotateYaw(vec3(uintBitsToFloat(entry.z), uintBitsToFloat(entry.w), 0.0), seed);
@@ -69,6 +73,7 @@ void main() {
   vec3 rel = root + treeRotate(vec3(modelPoint.xy * sxy, modelPoint.z * sz), seed);
   vPos = rel;
   vUv = (cell + 0.5 + 0.5 * vec2(c.x * half_.x, -c.y * half_.y) / r) / float(g);
+  vRect = vec4((cell + 0.5) / float(g), 0.5 * half_ / (r * float(g)));
   vLayer = m.mesh1.w;
   vThreshold = uintBitsToFloat(entry.y);
   vInstance = entry.x;

@@ -17,6 +17,9 @@ struct TreeModelGpu {
   vec4 shape;   // x: model height (m), y: crown radius (m), z: impostor half extent (m), w: impostor centre height (m)
   vec4 leaf;    // rgb: leaf albedo (linear), w: translucency
   vec4 bark;    // rgb: bark albedo (linear), w: form (0 conifer, 1 broadleaf)
+  // The impostor's triangle per quarter of sin(elevation) (render/tree_impostor_outline.h): apex
+  // height and base half width, in the rectangle's units.
+  vec4 triangleApex, triangleBase;
 };
 
 layout(set = 1, binding = 0, std140) uniform TreeBlock {
