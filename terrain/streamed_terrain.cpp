@@ -7,6 +7,7 @@
 #include <cassert>
 #include <set>
 
+#include "core/parallel_for.h"
 #include "terrain/wedgie_table.h"
 
 namespace vegstream::terrain {
@@ -86,14 +87,28 @@ std::vector<streaming::TileWant> StreamedTerrain::wants(const SelectionView& now
   SelectionOptions so;
   so.maxErrorPx = options_.maxErrorPx * relaxation_;
   so.maxNodes = options_.maxNodes;
-  selection_ = selectTiles(now, dataset_, frame_, so);
   // The look-ahead poses are seconds away: their selections change slowly, so they are redone
-  // every kAheadEveryFrames frames (each costs as much as the frame's own selection).
-  if (ahead.empty()) {
-    aheadSelections_.clear();
-  } else if (aheadSelections_.empty() || frameNumber_ % kAheadEveryFrames == 0) {
-    aheadSelections_.clear();
-    for (const SelectionView& view : ahead) aheadSelections_.push_back(selectTiles(view, dataset_, frame_, so));
+  // every kAheadEveryFrames frames (each costs as much as the frame's own selection). The
+  // selections are independent (plain data in, plain data out): with a task runner they are made
+  // side by side, the frame thread taking its share, so a frame that redoes the look-ahead costs
+  // about one selection instead of 1 + the poses. The same selections whatever ran where.
+  const bool redoAhead = !ahead.empty() && (aheadSelections_.empty() || frameNumber_ % kAheadEveryFrames == 0);
+  if (ahead.empty()) aheadSelections_.clear();
+  if (redoAhead) aheadSelections_.assign(ahead.size(), Selection{});
+  const size_t count = 1 + (redoAhead ? ahead.size() : 0);
+  auto select = [&](size_t i) {
+    if (i == 0)
+      selection_ = selectTiles(now, dataset_, frame_, so);
+    else
+      aheadSelections_[i - 1] = selectTiles(ahead[i - 1], dataset_, frame_, so);
+    return Status{};
+  };
+  if (options_.roam.tasks && count > 1) {
+    const Status done = parallelFor(count, 0, options_.roam.tasks, select);
+    assert(done.ok());
+    (void)done;
+  } else {
+    for (size_t i = 0; i < count; ++i) (void)select(i);
   }
   figures_ = {};
   figures_.errorBoundPx = so.maxErrorPx;

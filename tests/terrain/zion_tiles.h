@@ -25,6 +25,7 @@ class ZionTiles {
     return instance;
   }
   const datasets::DatasetMeta& meta() const { return meta_; }
+  const std::filesystem::path& dir() const { return dir_; }
 
   // The tile, or an exception when the import wrote none there (tests pick tiles with data).
   const datasets::HeightTile& tile(const geo::TileId& id) {
