@@ -252,14 +252,14 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
   vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
-  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);  // the impostors' quad
+  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);  // the impostors' triangle
   const auto count = static_cast<uint32_t>(models_.size());
   const auto c = static_cast<uint32_t>(cascade);
   assert(c < kTreeShadowCascades);
   for (uint32_t m = 0; m < count; ++m) {
     const TreePush push{matrix, m, 2u, 1u, 1u};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
-    // This cascade's casters of the model (the classify's box test), as impostor quads.
+    // This cascade's casters of the model (the classify's box test), as impostor triangles.
     vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kIndexedCommand, 1,
                              static_cast<uint32_t>(kIndexedCommand));
   }

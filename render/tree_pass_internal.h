@@ -43,7 +43,8 @@ static_assert(sizeof(TreePush) == 80);
 // The counters (shaders/common/tree_layout.glsl): 0 instances, 1–3 appended per level, 4 dropped,
 // 5–7 shadow casters per cascade.
 inline constexpr uint32_t kCounters = 8;
-inline constexpr uint32_t kImpostorIndices = 3;  // the impostors' triangle, at the index buffer's start
+// The impostors' one triangle (render/tree_impostor_outline.h), at the index buffer's start.
+inline constexpr uint32_t kImpostorIndices = 3;
 inline constexpr VkDeviceSize kIndexedCommand = 5 * sizeof(uint32_t);
 inline constexpr uint32_t kMaxPages = 4096;  // 1 Mi trees: far more than a 3 km horizon holds
 

@@ -46,12 +46,13 @@ void castShadow(uint model, uint instance, float keep, vec2 wind, vec3 centre, f
     vec3 r = radius * vec3(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1])),
                            length(vec3(m[0][2], m[1][2], m[2][2])));
     if (any(greaterThan(abs(p.xy), vec2(1.0) + r.xy)) || p.z < -r.z || p.z > 1.0 + r.z) continue;
-    uint slot = atomicAdd(impostorDraws[treeCasterCommand(c, model) * 5u + 1u], 1u);
+    uint command = treeCasterCommand(c, model) * 5u;
+    uint slot = atomicAdd(impostorDraws[command + 1u], 1u);
     if (slot >= treeCasterCapacity(c)) {
       atomicAdd(treeCounters[4], 1u);
       continue;
     }
-    treeVisible[treeCasterBase(c, model) + slot] =
+    treeVisible[impostorDraws[command + 4u] + slot] =
         uvec4(instance, floatBitsToUint(keep), floatBitsToUint(wind.x), floatBitsToUint(wind.y));
     atomicAdd(treeCounters[5u + c], 1u);
   }

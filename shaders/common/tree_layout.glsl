@@ -65,15 +65,9 @@ uint treeRegionBase(uint m, uint lod) {
   return base;
 }
 uint treeRegionCapacity(uint lod) { return lod == 0u ? trees.capacity.x : (lod == 1u ? trees.capacity.y : trees.capacity.z); }
-// Shadow casters of model m into cascade c: after every model's regions.
+// Shadow casters of model m into cascade c: their region starts at their draw's firstInstance
+// (render/tree_models.cpp lays the regions out, after every model's).
 uint treeCasterCapacity(uint c) { return c == 0u ? trees.casters.x : (c == 1u ? trees.casters.y : trees.casters.z); }
-uint treeCasterBase(uint c, uint m) {
-  uint models = trees.counts.y;
-  uint base = models * (trees.capacity.x + trees.capacity.y + trees.capacity.z);
-  if (c >= 1u) base += models * trees.casters.x;
-  if (c >= 2u) base += models * trees.casters.y;
-  return base + m * treeCasterCapacity(c);
-}
 // The impostor draws' commands (VkDrawIndexedIndirectCommand, 5 words): per model the impostors, then
 // per cascade and model the shadow casters.
 uint treeCasterCommand(uint c, uint m) { return trees.counts.y * (1u + c) + m; }
