@@ -52,6 +52,11 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
     eyeOf(view, r, eye);
     visitOutput(w, r, eye, Cull::Partial, InPiece::None, -1, true);
   }
+  prepareChunks(w);
+  appendChunkDraws(w);
+  figures_.leavesEmitted += w.counts.leaves;
+  figures_.morphingVertices += w.counts.morphingVertices;
+  figures_.chunksMoved += w.counts.chunksMoved;
   figures_.seedTriangles = seeds.size();
   mesh_.markShown();
   figures_.outputMs = watch.elapsedMs();
@@ -110,9 +115,9 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     if (ps == InPiece::Above) ++figures_.constrainedLeaves;
     const bool textured = ps == InPiece::In;
     TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
-    if (emitLeaf(w, t,
+    if (emitLeaf(w.timeS, t,
                  {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
-                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, nullptr, nullptr}))
+                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, &w.counts, nullptr}))
       ++figures_.drawnTriangles;
     return;
   }
@@ -128,159 +133,48 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   visitOutput(w, c + 1, e1, cull, ps, piece, seeds);
 }
 
-void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
-  TerrainMesh& m = (*w.meshes)[size_t(piece)];
-  const geo::TileId& tile = w.pieces->tiles()[size_t(piece)];
-  uint32_t slot = mesh_.node(t).drawnChunk;
-  if (slot == kNoNode) {
-    if (freeChunks_.empty()) {
-      slot = static_cast<uint32_t>(chunks_.size());
-      chunks_.emplace_back();
-    } else {
-      slot = freeChunks_.back();
-      freeChunks_.pop_back();
-    }
-    // While a compaction's copy reads the nodes the attachment waits: finishCompaction attaches
-    // every chunk to its root again (chunks_[slot].root, set below).
-    if (!compaction_) mesh_.node(t).drawnChunk = slot;
-    chunks_[slot].root = kNoNode;
-  }
-  DrawnChunk& chunk = chunks_[slot];
-  chunk.usedFrame = outputFrame_;
-  if (chunk.root != t || mesh_.node(t).drawnStamp > chunk.builtStamp || !(chunk.piece == tile)) {
-    chunk.root = t;
-    chunk.piece = tile;
-    chunk.builtStamp = chunkEpoch_;
-    chunk.mesh.id = nextChunkId_++;
-    chunk.mesh.version = 0;
-    chunk.mesh.vertices.clear();
-    chunk.mesh.indices.clear();
-    chunk.morphing.clear();
-    chunk.sources.clear();
-    chunk.thickness.clear();
-    // Stamps of chunks are told apart from pieces' by the top bit.
-    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, m.origin,        &chunk.piece,
-                        0x80000000u | slot,   &chunk.sources,      &chunk.morphing, &chunk.thickness};
-    collectChunk(w, t, sink);
-    ++figures_.chunksBuilt;
-  } else {
-    // Unchanged but for its morphing vertices: move them to where they are drawn now.
-    const double fade = mesh_.options().fadeS;
-    size_t kept = 0;
-    if (!chunk.morphing.empty()) {
-      ++chunk.mesh.version;
-      ++figures_.chunksMoved;
-    }
-    for (const uint32_t at : chunk.morphing) {
-      const RoamVertex& x = mesh_.vertex(chunk.sources[at]);
-      const double h = x.drawnHeight(w.timeS, fade);
-      TerrainVertex& out = chunk.mesh.vertices[at];
-      out.position = glm::vec3(x.position(h) - m.origin);
-      out.heightMsl = static_cast<float>(h);
-      if (h != x.heightM) ++figures_.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = at;
-    }
-    chunk.morphing.resize(kept);
-    ++figures_.chunksReused;
-  }
-  const std::vector<uint32_t>& indices = chunk.mesh.indices;
-  if (indices.empty()) return;  // no data under it
-  if (!partial) {
-    m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
-    figures_.drawnTriangles += indices.size() / 3;
-    return;
-  }
-  // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
-  // own, from its vertices' plane distances (each vertex transformed once); the vertices of
-  // culled triangles stay in the chunk, unreferenced.
-  chunkPlanes_.resize(chunk.sources.size());
-  for (size_t i = 0; i < chunk.sources.size(); ++i)
-    chunkPlanes_[i] = planeDistances(*w.view, eyeOfVertex(*w.view, chunk.sources[i]));
-  const PlaneDistances up = upComponents(*w.view);
-  const auto first = static_cast<uint32_t>(m.chunkIndices.size());
-  for (size_t k = 0; k < chunk.thickness.size(); ++k) {
-    const uint32_t* tri = &indices[3 * k];
-    const double e = chunk.thickness[k];
-    if (wedgieOutside(chunkPlanes_[tri[0]], chunkPlanes_[tri[1]], chunkPlanes_[tri[2]], up, e, e + options_.canopyM))
-      continue;
-    m.chunkIndices.insert(m.chunkIndices.end(), tri, tri + 3);
-  }
-  const auto count = static_cast<uint32_t>(m.chunkIndices.size()) - first;
-  if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
-  figures_.drawnTriangles += count / 3;
-}
-
-void RoamTessellator::collectChunk(Walk& w, uint32_t t, const LeafSink& sink) {
-  // The subtree's leaves, depth first (the order the direct output emits them in).
+bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
   const RoamNode& n = mesh_.node(t);
-  if (n.isLeaf()) {
-    emitLeaf(w, t, sink);
-    return;
-  }
-  collectChunk(w, n.child, sink);
-  collectChunk(w, n.child + 1, sink);
-}
-
-void RoamTessellator::dropIdleChunks() {
-  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
-    DrawnChunk& c = chunks_[slot];
-    if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
-    mesh_.node(c.root).drawnChunk = kNoNode;
-    c = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
-    freeChunks_.push_back(slot);
-  }
-}
-
-void RoamTessellator::releaseChunks() {
-  for (uint32_t slot : mesh_.takeReleasedChunks()) {
-    chunks_[slot] = DrawnChunk{};
-    freeChunks_.push_back(slot);
-  }
-}
-
-void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
-  // Chunks whose root was freed are released before compaction: every index here is live.
-  auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
-  auto vertex = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.vertices[i]; };
-  // The compacted nodes hold no chunk (RoamMesh::compact): each is attached to its root again.
-  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
-    DrawnChunk& c = chunks_[slot];
-    if (c.root == kNoNode) continue;
-    c.root = node(c.root);
-    mesh_.node(c.root).drawnChunk = slot;
-    for (uint32_t& v : c.sources) v = vertex(v);
-  }
-}
-
-bool RoamTessellator::emitLeaf(Walk& w, uint32_t t, const LeafSink& sink) {
-  const RoamNode& n = mesh_.node(t);
-  ++figures_.leavesEmitted;
+  ++sink.counts->leaves;
   for (uint32_t v : n.v)
     if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return false;  // nodata: a hole, never a drop to 0
   const double uvScale = sink.tile ? std::ldexp(1.0, sink.tile->z - mesh_.grid().gridZoom()) : 0.0;
   const double fade = mesh_.options().fadeS;
   for (uint32_t v : n.v) {
-    Stamp& st = stamps_[v];
-    if (st.frame == outputFrame_ && st.piece == sink.stamp) {
+    uint32_t* known = nullptr;  // the chunk's entry for v
+    if (sink.chunkVertices) {
+      known = &sink.chunkVertices->at(v);
+      if (*known != kNoNode) {
+        sink.indices->push_back(*known);
+        continue;
+      }
+    } else if (const Stamp& st = stamps_[v]; st.frame == outputFrame_ && st.piece == sink.stamp) {
       sink.indices->push_back(st.index);
       continue;
     }
     const RoamVertex& x = mesh_.vertex(v);
-    const double h = x.drawnHeight(w.timeS, fade);
-    if (h != x.heightM) ++figures_.morphingVertices;
+    const double h = x.drawnHeight(timeS, fade);
+    if (h != x.heightM) ++sink.counts->morphingVertices;
     TerrainVertex out;
     out.position = glm::vec3(x.position(h) - sink.origin);
     out.normal = x.normal;
     out.heightMsl = static_cast<float>(h);
     if (sink.tile)
       out.uv = glm::vec2(double(x.grid.x) * uvScale - sink.tile->x, double(x.grid.y) * uvScale - sink.tile->y);
-    st = {outputFrame_, sink.stamp, static_cast<uint32_t>(sink.vertices->size())};
-    if (sink.morphing && !x.morphDone(w.timeS, fade)) sink.morphing->push_back(st.index);
-    if (sink.sources) sink.sources->push_back(v);
-    sink.indices->push_back(st.index);
+    const auto index = static_cast<uint32_t>(sink.vertices->size());
+    if (known)
+      *known = index;
+    else
+      stamps_[v] = {outputFrame_, sink.stamp, index};
+    if (sink.chunk) {
+      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.push_back(index);
+      sink.chunk->sources.push_back(v);
+      sink.chunk->at.push_back(x.at);
+    }
+    sink.indices->push_back(index);
     sink.vertices->push_back(out);
   }
-  if (sink.thickness) sink.thickness->push_back(n.cullThickness());
+  if (sink.chunk) sink.chunk->thickness.push_back(n.cullThickness());
   return true;
 }
 

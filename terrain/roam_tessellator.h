@@ -32,7 +32,9 @@
 //   coordinates are carried down the recursion: only each split's new vertex is transformed,
 //   and refined seed triangles interpolate their parents' (§3.1 A and B).
 //
-// Deterministic: with maxQueueMs = 0 the same inputs give the same mesh. Frame thread only.
+// Deterministic: with maxQueueMs = 0 the same inputs give the same mesh, with or without
+// RoamOptions::tasks. Called on the frame thread only; with tasks, parts of the work run on them
+// (the compaction's copy, the output's chunks) and are done when the call returns, but the copy.
 
 #include <cstdint>
 #include <deque>
@@ -73,8 +75,9 @@ struct RoamOptions {
   uint32_t chunkMaxLeaves = 64;
   // Where a compaction's copy runs (RoamMesh::compact): started at the end of the update that
   // calls for it, it goes on beside the output and the rest of the frame, and the next change
-  // of the mesh waits for it (or makes the copy itself if no worker has taken it yet). Null:
-  // in the update, on the frame thread. The mesh is the same either way.
+  // of the mesh waits for it (or makes the copy itself if no worker has taken it yet). The
+  // output's work per chunk runs there too, the frame thread taking its share (parallelFor).
+  // Null: all of it on the frame thread. The mesh and the output are the same either way.
   TaskRunner* tasks = nullptr;
 };
 
@@ -190,21 +193,42 @@ class RoamTessellator {
   glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const { return view.toEye(mesh_.vertex(v).at); }
   void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
+  // Which vertices a chunk being built holds already (roam_chunks.cpp): a small map of its own,
+  // so that chunks are built on any thread (the direct output uses stamps_).
+  class ChunkVertexMap;
+  struct DrawnChunk;  // below: the output cache
+  struct EmitCounts {
+    uint64_t leaves = 0, morphingVertices = 0, chunksMoved = 0;
+    void add(const EmitCounts& o) {
+      leaves += o.leaves;
+      morphingVertices += o.morphingVertices;
+      chunksMoved += o.chunksMoved;
+    }
+  };
   // Where emitLeaf writes: a piece's mesh, or a drawn chunk being built.
   struct LeafSink {
     std::vector<TerrainVertex>* vertices;
     std::vector<uint32_t>* indices;
     glm::dvec3 origin;
     const geo::TileId* tile;          // the piece (uv), or null: untextured
-    uint32_t stamp;                   // which vertices are already in it (stamps_)
-    std::vector<uint32_t>* sources;   // null, or the RoamVertex of every vertex added (a chunk)
-    std::vector<uint32_t>* morphing;  // null, or the vertices added that are still morphing (a chunk)
-    std::vector<float>* thickness;    // null, or every emitted leaf's wedgie thickness (a chunk)
+    uint32_t stamp;                   // a piece's mesh: which vertices are already in it (stamps_)
+    ChunkVertexMap* chunkVertices;    // a chunk: which vertices are already in it (instead of stamps_)
+    EmitCounts* counts;
+    DrawnChunk* chunk;                // a chunk: also its sources, morphing, thickness and at
   };
-  bool emitLeaf(Walk& w, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
-  // partial: the chunk root straddles the edge of the view; its triangles are culled one by one.
+  bool emitLeaf(double timeS, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
+  // The output's chunks (roam_chunks.cpp), in three steps so that the work per chunk runs on
+  // options_.tasks: the traversal claims each chunk it reaches and queues it (drawChunk); then
+  // every queued chunk is built again, or has its morphing vertices moved, and, where it
+  // straddles the edge of the view (partial), has its triangles culled one by one
+  // (prepareChunks, in parallel: each touches its own chunk); then the draws are appended to
+  // the pieces' meshes in traversal order (appendChunkDraws).
   void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
-  void collectChunk(Walk& w, uint32_t t, const LeafSink& sink);
+  void prepareChunks(Walk& w);
+  void prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map, std::vector<PlaneDistances>& planes,
+                    EmitCounts& counts);
+  void appendChunkDraws(Walk& w);
+  void collectChunk(double timeS, uint32_t t, const LeafSink& sink);
   void releaseChunks();
   void dropIdleChunks();
   static constexpr uint64_t kChunkIdleFrames = 64;
@@ -251,15 +275,19 @@ class RoamTessellator {
     uint64_t usedFrame = 0;
     geo::TileId piece{};  // positions are relative to its origin, uvs in it
     TerrainChunk mesh;
-    // Each vertex's RoamVertex (to move it while it morphs, and to cull the chunk), the vertices
+    // Each vertex's RoamVertex (to move it while it morphs), the vertices
     // still morphing, and each triangle's wedgie thickness: where the chunk straddles the edge of
     // the view its triangles are culled one by one (a leaf's wedgie nests in its ancestors', so
     // that gives what the hierarchical culling does).
     std::vector<uint32_t> sources;
     std::vector<uint32_t> morphing;
     std::vector<float> thickness;
+    // Each vertex's RoamVertex::at (what culling uses), kept here: reading it from the vertex
+    // pool was a cache miss per vertex. A change of it changes the chunk (RoamMesh::resample).
+    std::vector<glm::dvec3> at;
+    bool rebuild = false;           // this output builds it again (drawChunk → prepareChunks)
+    std::vector<uint32_t> visible;  // partly in view: the triangles drawn this output (prepareChunk)
   };
-  std::vector<PlaneDistances> chunkPlanes_;  // drawChunk's scratch: plane distances of a chunk's vertices
   std::deque<DrawnChunk> chunks_;            // a deque: the TerrainChunks handed out keep their address
   uint64_t nextChunkId_ = 1;
   uint64_t chunkEpoch_ = 0;  // this output's (RoamMesh::closeDrawnEpoch)

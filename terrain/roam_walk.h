@@ -1,11 +1,46 @@
 #pragma once
 // Internal to roam_tessellator*.cpp: the state one traversal of the bintree carries.
 
+#include <bit>
+#include <cassert>
+#include <cstdint>
 #include <vector>
 
 #include "terrain/roam_tessellator.h"
 
 namespace vegstream::terrain {
+
+// RoamVertex → index in the chunk being built, by open addressing. A chunk of L leaves has at
+// most 3L vertices and the table 4 × (3L + 3) slots or more, so it stays under a quarter full
+// and probes stay short.
+class RoamTessellator::ChunkVertexMap {
+ public:
+  explicit ChunkVertexMap(uint32_t maxLeaves)
+      : mask_(std::bit_ceil(4u * (3u * maxLeaves + 3u)) - 1u), bits_(std::countr_zero(mask_ + 1u)),
+        keys_(mask_ + 1u, kNoNode), values_(mask_ + 1u, kNoNode) {}
+  // v's index in the chunk; kNoNode (to be set by the caller) when v is not in it yet.
+  uint32_t& at(uint32_t v) {
+    assert(v != kNoNode);
+    for (uint32_t i = (v * 2654435761u) >> (32 - bits_);; i = (i + 1) & mask_) {
+      if (keys_[i] == v) return values_[i];
+      if (keys_[i] == kNoNode) {
+        assert(used_.size() * 2 < mask_);
+        keys_[i] = v;
+        used_.push_back(i);
+        return values_[i];
+      }
+    }
+  }
+  void clear() {
+    for (uint32_t i : used_) keys_[i] = values_[i] = kNoNode;
+    used_.clear();
+  }
+
+ private:
+  uint32_t mask_;
+  int bits_;
+  std::vector<uint32_t> keys_, values_, used_;
+};
 
 struct RoamTessellator::Walk {
   const EyeView* view = nullptr;
@@ -21,6 +56,13 @@ struct RoamTessellator::Walk {
   std::vector<TerrainMesh>* meshes = nullptr;
   std::vector<SeedTriangle>* seeds = nullptr;
   int untextured = -1;  // index of the mesh for leaves not yet inside a piece
+  struct ChunkDraw {
+    uint32_t slot;
+    int piece;
+    bool partial;
+  };
+  std::vector<ChunkDraw> chunkDraws;  // in traversal order (drawChunk)
+  EmitCounts counts;                  // the direct output's
 };
 
 }  // namespace vegstream::terrain

@@ -158,6 +158,77 @@ TEST(RoamIncremental, CompactionsOnAWorkerGiveTheSameMeshTrianglesAndChunks) {
   EXPECT_EQ(leafPaths(*a), leafPaths(*c));
 }
 
+// Two outputs, field by field and in order (vertices, indices, chunk draws and what they draw).
+void expectSameMeshes(const std::vector<TerrainMesh>& a, const std::vector<TerrainMesh>& b, int frame) {
+  ASSERT_EQ(a.size(), b.size());
+  auto sameVertices = [&](const std::vector<TerrainVertex>& x, const std::vector<TerrainVertex>& y) {
+    ASSERT_EQ(x.size(), y.size()) << "frame " << frame;
+    for (size_t i = 0; i < x.size(); ++i) {
+      ASSERT_EQ(x[i].position, y[i].position) << "frame " << frame << " vertex " << i;
+      ASSERT_EQ(x[i].normal, y[i].normal) << "frame " << frame << " vertex " << i;
+      ASSERT_EQ(x[i].heightMsl, y[i].heightMsl) << "frame " << frame << " vertex " << i;
+      ASSERT_EQ(x[i].uv, y[i].uv) << "frame " << frame << " vertex " << i;
+    }
+  };
+  for (size_t m = 0; m < a.size(); ++m) {
+    ASSERT_EQ(a[m].origin, b[m].origin);
+    sameVertices(a[m].vertices, b[m].vertices);
+    ASSERT_EQ(a[m].indices, b[m].indices) << "frame " << frame << " mesh " << m;
+    ASSERT_EQ(a[m].chunkIndices, b[m].chunkIndices) << "frame " << frame << " mesh " << m;
+    ASSERT_EQ(a[m].chunks.size(), b[m].chunks.size()) << "frame " << frame << " mesh " << m;
+    for (size_t c = 0; c < a[m].chunks.size(); ++c) {
+      const TerrainChunkDraw &x = a[m].chunks[c], &y = b[m].chunks[c];
+      ASSERT_EQ(x.partial, y.partial);
+      ASSERT_EQ(x.first, y.first);
+      ASSERT_EQ(x.count, y.count);
+      ASSERT_EQ(x.chunk->version, y.chunk->version);
+      sameVertices(x.chunk->vertices, y.chunk->vertices);
+      ASSERT_EQ(x.chunk->indices, y.chunk->indices) << "frame " << frame << " mesh " << m << " chunk " << c;
+    }
+  }
+}
+
+// The output's work per chunk (building, moving morphs, culling one that straddles the edge of
+// the view) on three workers and the frame thread gives the output of one thread: the same
+// vertices, indices and chunk draws in the same order, the same figures.
+TEST(RoamIncremental, ChunksPreparedOnWorkersGiveTheSameOutputInTheSameOrder) {
+  auto& z = zionResident();
+  const PieceSet pieces = z.finestPieces();
+  ThreadPool pool(3);
+  RoamOptions onPool;
+  onPool.tasks = &pool;
+  auto a = z.tessellator({}, {}, 0.5);
+  auto b = z.tessellator(onPool, {}, 0.5);
+  std::vector<TerrainMesh> ma, mb;
+  std::vector<SeedTriangle> sa, sb;
+  uint64_t built = 0, moved = 0, partial = 0;
+  for (int i = 0; i < 120; ++i) {
+    const EyeView view = flightView(z, i);
+    const double t = i / 60.0;
+    a->update(view, pieces, t);
+    b->update(view, pieces, t);
+    a->output(view, pieces, t, ma, sa);
+    b->output(view, pieces, t, mb, sb);
+    expectSameMeshes(ma, mb, i);
+    if (HasFatalFailure()) return;
+    const RoamFigures &fa = a->figures(), &fb = b->figures();
+    ASSERT_EQ(fa.chunksBuilt, fb.chunksBuilt) << "frame " << i;
+    ASSERT_EQ(fa.chunksMoved, fb.chunksMoved) << "frame " << i;
+    ASSERT_EQ(fa.leavesEmitted, fb.leavesEmitted) << "frame " << i;
+    ASSERT_EQ(fa.morphingVertices, fb.morphingVertices) << "frame " << i;
+    ASSERT_EQ(fa.drawnTriangles, fb.drawnTriangles) << "frame " << i;
+    ASSERT_EQ(sa.size(), sb.size()) << "frame " << i;
+    built += fa.chunksBuilt;
+    moved += fa.chunksMoved;
+    for (const TerrainMesh& m : ma)
+      for (const TerrainChunkDraw& d : m.chunks) partial += d.partial ? 1 : 0;
+  }
+  // What the comparison covered: chunks built, moved while morphing, and culled one by one.
+  EXPECT_GT(built, 1000u);
+  EXPECT_GT(moved, 100u);
+  EXPECT_GT(partial, 100u);
+}
+
 // What a renderer that keeps chunks on the GPU does: a chunk is copied only when its id is new
 // or its version changed; the rest of each mesh is taken as it is every frame.
 class ChunkKeeper {

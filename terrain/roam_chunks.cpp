@@ -1,0 +1,184 @@
+// ROAM output's drawn chunks (roam_tessellator.h, "The output cache"): each chunk keeps the
+// drawn leaves of one subtree between frames, built again only when something under it changed.
+// The traversal (roam_output.cpp) claims the chunks it reaches; the work per chunk — building
+// it, moving its morphing vertices, culling the triangles of one that straddles the edge of the
+// view — then runs on options_.tasks, since each chunk touches only itself; the draws are
+// appended in traversal order, so the output is the same with any number of threads.
+// Seed 001_3eca9f2c7752e4fb.txt §3.1 (the drawn triangulation, eye-space culling).
+
+#include <algorithm>
+#include <cassert>
+
+#include "core/parallel_for.h"
+#include "terrain/roam_tessellator.h"
+#include "terrain/roam_walk.h"
+
+namespace vegstream::terrain {
+
+void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
+  const geo::TileId& tile = w.pieces->tiles()[size_t(piece)];
+  uint32_t slot = mesh_.node(t).drawnChunk;
+  if (slot == kNoNode) {
+    if (freeChunks_.empty()) {
+      slot = static_cast<uint32_t>(chunks_.size());
+      chunks_.emplace_back();
+    } else {
+      slot = freeChunks_.back();
+      freeChunks_.pop_back();
+    }
+    // While a compaction's copy reads the nodes the attachment waits: finishCompaction attaches
+    // every chunk to its root again (chunks_[slot].root, set below).
+    if (!compaction_) mesh_.node(t).drawnChunk = slot;
+    chunks_[slot].root = kNoNode;
+  }
+  DrawnChunk& chunk = chunks_[slot];
+  chunk.usedFrame = outputFrame_;
+  chunk.rebuild = chunk.root != t || mesh_.node(t).drawnStamp > chunk.builtStamp || !(chunk.piece == tile);
+  if (chunk.rebuild) {
+    chunk.root = t;
+    chunk.piece = tile;
+    chunk.builtStamp = chunkEpoch_;
+    chunk.mesh.id = nextChunkId_++;
+    chunk.mesh.version = 0;
+    ++figures_.chunksBuilt;
+  } else {
+    ++figures_.chunksReused;
+  }
+  w.chunkDraws.push_back({slot, piece, partial});
+}
+
+void RoamTessellator::prepareChunks(Walk& w) {
+  // Blocks of chunks, each with its own scratch: a task per chunk would cost more than most
+  // chunks (a reused one with nothing morphing and wholly in view is nothing to do).
+  constexpr size_t kBlock = 16;
+  const size_t n = w.chunkDraws.size();
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<EmitCounts> counts(blocks);
+  const auto block = [&](size_t b) -> Status {
+    ChunkVertexMap map(options_.chunkMaxLeaves);
+    std::vector<PlaneDistances> planes;
+    for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) prepareChunk(w, i, map, planes, counts[b]);
+    return {};
+  };
+  if (options_.tasks && blocks > 1) {
+    const Status done = parallelFor(blocks, 0, options_.tasks, block);
+    assert(done.ok());
+    (void)done;
+  } else {
+    for (size_t b = 0; b < blocks; ++b) (void)block(b);
+  }
+  for (const EmitCounts& c : counts) w.counts.add(c);
+}
+
+void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map,
+                                   std::vector<PlaneDistances>& planes, EmitCounts& counts) {
+  // Any thread: reads the mesh, writes this chunk (and the caller's scratch and counts) only.
+  const Walk::ChunkDraw& d = w.chunkDraws[draw];
+  DrawnChunk& chunk = chunks_[d.slot];
+  const glm::dvec3& origin = (*w.meshes)[size_t(d.piece)].origin;
+  if (chunk.rebuild) {
+    chunk.mesh.vertices.clear();
+    chunk.mesh.indices.clear();
+    chunk.morphing.clear();
+    chunk.sources.clear();
+    chunk.thickness.clear();
+    chunk.at.clear();
+    map.clear();
+    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, origin, &chunk.piece, 0, &map, &counts, &chunk};
+    collectChunk(w.timeS, chunk.root, sink);
+  } else if (!chunk.morphing.empty()) {
+    // Unchanged but for its morphing vertices: move them to where they are drawn now.
+    const double fade = mesh_.options().fadeS;
+    size_t kept = 0;
+    ++chunk.mesh.version;
+    ++counts.chunksMoved;
+    for (const uint32_t at : chunk.morphing) {
+      const RoamVertex& x = mesh_.vertex(chunk.sources[at]);
+      const double h = x.drawnHeight(w.timeS, fade);
+      TerrainVertex& out = chunk.mesh.vertices[at];
+      out.position = glm::vec3(x.position(h) - origin);
+      out.heightMsl = static_cast<float>(h);
+      if (h != x.heightM) ++counts.morphingVertices;
+      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = at;
+    }
+    chunk.morphing.resize(kept);
+  }
+  chunk.visible.clear();
+  if (!d.partial || chunk.mesh.indices.empty()) return;
+  // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
+  // own, from its vertices' plane distances (each vertex transformed once); the vertices of
+  // culled triangles stay in the chunk, unreferenced.
+  planes.resize(chunk.at.size());
+  for (size_t i = 0; i < chunk.at.size(); ++i) planes[i] = planeDistances(*w.view, w.view->toEye(chunk.at[i]));
+  const PlaneDistances up = upComponents(*w.view);
+  const std::vector<uint32_t>& indices = chunk.mesh.indices;
+  for (size_t k = 0; k < chunk.thickness.size(); ++k) {
+    const uint32_t* tri = &indices[3 * k];
+    const double e = chunk.thickness[k];
+    if (!wedgieOutside(planes[tri[0]], planes[tri[1]], planes[tri[2]], up, e, e + options_.canopyM))
+      chunk.visible.insert(chunk.visible.end(), tri, tri + 3);
+  }
+}
+
+void RoamTessellator::appendChunkDraws(Walk& w) {
+  for (const Walk::ChunkDraw& d : w.chunkDraws) {
+    const DrawnChunk& chunk = chunks_[d.slot];
+    TerrainMesh& m = (*w.meshes)[size_t(d.piece)];
+    const std::vector<uint32_t>& indices = chunk.mesh.indices;
+    if (indices.empty()) continue;  // no data under it
+    if (!d.partial) {
+      m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
+      figures_.drawnTriangles += indices.size() / 3;
+      continue;
+    }
+    const auto first = static_cast<uint32_t>(m.chunkIndices.size());
+    const auto count = static_cast<uint32_t>(chunk.visible.size());
+    m.chunkIndices.insert(m.chunkIndices.end(), chunk.visible.begin(), chunk.visible.end());
+    if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
+    figures_.drawnTriangles += count / 3;
+  }
+}
+
+void RoamTessellator::collectChunk(double timeS, uint32_t t, const LeafSink& sink) {
+  // The subtree's leaves, depth first (the order the direct output emits them in).
+  const RoamNode& n = mesh_.node(t);
+  if (n.isLeaf()) {
+    emitLeaf(timeS, t, sink);
+    return;
+  }
+  collectChunk(timeS, n.child, sink);
+  collectChunk(timeS, n.child + 1, sink);
+}
+
+void RoamTessellator::dropIdleChunks() {
+  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
+    DrawnChunk& c = chunks_[slot];
+    if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
+    mesh_.node(c.root).drawnChunk = kNoNode;
+    c = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
+    freeChunks_.push_back(slot);
+  }
+}
+
+void RoamTessellator::releaseChunks() {
+  for (uint32_t slot : mesh_.takeReleasedChunks()) {
+    chunks_[slot] = DrawnChunk{};
+    freeChunks_.push_back(slot);
+  }
+}
+
+void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
+  // Chunks whose root was freed are released before compaction: every index here is live.
+  auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
+  auto vertex = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.vertices[i]; };
+  // The compacted nodes hold no chunk (RoamMesh::compact): each is attached to its root again.
+  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
+    DrawnChunk& c = chunks_[slot];
+    if (c.root == kNoNode) continue;
+    c.root = node(c.root);
+    mesh_.node(c.root).drawnChunk = slot;
+    for (uint32_t& v : c.sources) v = vertex(v);
+  }
+}
+
+}  // namespace vegstream::terrain
