@@ -67,7 +67,7 @@ void RoamTessellator::prepareChunks(Walk& w) {
   } else {
     for (size_t b = 0; b < blocks; ++b) (void)block(b);
   }
-  for (const EmitCounts& c : counts) w.counts.add(c);
+  for (const EmitCounts& c : counts) w.emitted.add(c);
 }
 
 void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map,

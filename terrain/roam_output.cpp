@@ -54,9 +54,9 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   }
   prepareChunks(w);
   appendChunkDraws(w);
-  figures_.leavesEmitted += w.counts.leaves;
-  figures_.morphingVertices += w.counts.morphingVertices;
-  figures_.chunksMoved += w.counts.chunksMoved;
+  figures_.leavesEmitted += w.emitted.leaves;
+  figures_.morphingVertices += w.emitted.morphingVertices;
+  figures_.chunksMoved += w.emitted.chunksMoved;
   figures_.seedTriangles = seeds.size();
   mesh_.markShown();
   figures_.outputMs = watch.elapsedMs();
@@ -117,7 +117,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
     if (emitLeaf(w.timeS, t,
                  {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
-                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, &w.counts, nullptr}))
+                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, &w.emitted, nullptr}))
       ++figures_.drawnTriangles;
     return;
   }

@@ -17,13 +17,6 @@
 
 namespace vegstream::terrain {
 
-namespace {
-
-constexpr double kNever = std::numeric_limits<double>::infinity();
-constexpr double kNow = -std::numeric_limits<double>::infinity();
-
-}  // namespace
-
 void PieceSet::assign(std::span<const geo::TileId> tiles) {
   tiles_.assign(tiles.begin(), tiles.end());
   index_.clear();
@@ -87,55 +80,6 @@ double RoamTessellator::projectedErrorPx(const EyeView& view, uint32_t t, const 
   return ErrorGeometry::of(view, eye, thickness, mesh_.node(t).radius).errorPx();
 }
 
-void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
-  RoamNode& n = mesh_.node(t);
-  n.seenCull = static_cast<uint8_t>(cull);
-  n.seenPiece = static_cast<uint8_t>(ps);
-  ErrorGeometry g;
-  n.priority = priority(view, t, eye, cull, ps, &g);
-  ++figures_.prioritiesComputed;
-  // Outside, or no data: 0 until the cull or the mesh changes (both checked without a deadline).
-  if (n.priority == 0.0f) {
-    n.deadline = kNever;
-    return;
-  }
-  if (n.priority > options_.maxErrorPx) {  // to be split: every update looks at it again
-    n.deadline = kNow;
-    return;
-  }
-  figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, double(n.priority));
-  double safe = g.safeDistance(options_.maxErrorPx, true);
-  // The seed-level constraint starts where the sphere comes within the horizon.
-  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_)
-    safe = std::min(safe, std::max(0.0, g.dc - g.r - seeds_.horizonM));
-  n.deadline = odometerM_ + safe;
-}
-
-void RoamTessellator::evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
-  RoamNode& n = mesh_.node(t);
-  n.seenCull = static_cast<uint8_t>(cull);
-  n.seenPiece = static_cast<uint8_t>(ps);
-  ErrorGeometry g;
-  n.priority = priority(*w.view, t, eye, cull, ps, &g);
-  ++figures_.prioritiesComputed;
-  if (n.priority < w.mergeBelow) {
-    // A merge candidate: the merge phase decides when to look again (at once while it waits for
-    // its morph or the work budget; while its partner holds it, until either may change).
-    n.deadline = n.priority == 0.0f ? kNever : odometerM_ + g.safeDistance(w.mergeBelow, true);
-    return;
-  }
-  mesh_.cancelMergeMorph(t);   // it sank towards a merge that is no longer wanted
-  if (ps == InPiece::Above) {  // forced by the pieces: their changes are seen without a deadline
-    n.deadline = kNever;
-    return;
-  }
-  if (n.priority >= kForcedPriority) {  // forced by the seed level until the sphere leaves the horizon
-    n.deadline = odometerM_ + std::max(0.0, seeds_.horizonM - g.sphereDistance());
-    return;
-  }
-  n.deadline = odometerM_ + g.safeDistance(w.mergeBelow, false);
-}
-
 RoamTessellator::InPiece RoamTessellator::pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent,
                                                      int level) const {
   if (level > 0 && (parent != InPiece::Above || level % 2 == 1)) return parent;
@@ -170,68 +114,6 @@ double RoamTessellator::errorPx(const EyeView& view, uint32_t t) const {
   return projectedErrorPx(view, t, eye, n.thickness);
 }
 
-void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
-  RoamNode& n = mesh_.node(t);
-  mesh_.prefetchChildren(t);
-  const int level = n.path.level;
-  if (cull == Cull::Partial) {
-    const double e = n.cullThickness();
-    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
-  }
-  if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
-    ps = pieceState(*w.pieces, mesh_.grid().square(mesh_.corners(t), level), ps, level);
-  const bool seenSame = n.seenCull == static_cast<uint8_t>(cull) && n.seenPiece == static_cast<uint8_t>(ps);
-  // Nothing below is due and it is wholly in (or out of) the view and the pieces as before:
-  // every priority below is still on the same side of its bounds (Inside and Outside, In and
-  // None hold for the whole subtree).
-  if (!evaluateAll_ && seenSame && cull != Cull::Partial && ps != InPiece::Above && n.subtreeDeadline > odometerM_)
-    return;
-  const bool due = evaluateAll_ || !seenSame || !(n.deadline > odometerM_);
-  ++figures_.nodesVisited;
-  if (n.isLeaf()) {
-    if (due) evaluateLeaf(*w.view, t, eye, cull, ps);
-    if (n.priority > w.bound) w.splits->push_back({n.priority, t, n.path});
-    n.subtreeDeadline = n.deadline;
-    return;
-  }
-  const uint32_t c = n.child;
-  if (mesh_.node(c).isLeaf() && mesh_.node(c + 1).isLeaf()) {
-    if (due) evaluateDiamond(w, t, eye, cull, ps);
-    // A diamond merges below the threshold (its priority is the larger half's), or for the budget.
-    if (n.priority < w.mergeBelow || w.overBudget) w.diamonds->push_back({n.priority, t, n.path});
-  } else if (due) {
-    n.priority = kForcedPriority;  // not a diamond half: never merged as one
-    n.deadline = kNever;
-    n.seenCull = static_cast<uint8_t>(cull);
-    n.seenPiece = static_cast<uint8_t>(ps);
-    mesh_.cancelMergeMorph(t);
-  }
-  // Children the deferral skips on entry (the test at the top, for a cull and piece state
-  // they inherit unchanged) need no eye coordinates: do not transform the split vertex for them.
-  auto skipped = [&](uint32_t child) {
-    const RoamNode& x = mesh_.node(child);
-    return !evaluateAll_ && cull != Cull::Partial && (ps == InPiece::In || ps == InPiece::None) &&
-           x.seenCull == static_cast<uint8_t>(cull) && x.seenPiece == static_cast<uint8_t>(ps) &&
-           x.subtreeDeadline > odometerM_;
-  };
-  if (!skipped(c) || !skipped(c + 1)) {
-    glm::dvec3 e0[3], e1[3];
-    if (cull != Cull::Outside) {
-      const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
-      e0[0] = m;
-      e0[1] = eye[0];
-      e0[2] = eye[1];
-      e1[0] = m;
-      e1[1] = eye[2];
-      e1[2] = eye[0];
-    }
-    visitPriorities(w, c, e0, cull, ps);
-    visitPriorities(w, c + 1, e1, cull, ps);
-  }
-  RoamNode& after = mesh_.node(t);
-  after.subtreeDeadline = std::min({after.deadline, mesh_.node(c).subtreeDeadline, mesh_.node(c + 1).subtreeDeadline});
-}
-
 void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double timeS) {
   Stopwatch watch;
   figures_ = {};
@@ -249,11 +131,7 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   w.diamonds = &diamonds;
   w.mergeBelow = options_.mergeFraction * options_.maxErrorPx;
   w.overBudget = mesh_.leafCount() > options_.maxTriangles;
-  for (uint32_t r : mesh_.roots()) {
-    glm::dvec3 eye[3];
-    eyeOf(view, r, eye);
-    visitPriorities(w, r, eye, Cull::Partial, InPiece::None);
-  }
+  computePriorities(w);
   const double visited = watch.elapsedMs();
   figures_.prioritiesMs = visited;
   uint64_t ops = 0;
@@ -328,7 +206,10 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       eyeOf(view, leaf, eye);
       const double e = ln.cullThickness();
       const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
-      evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf));
+      PriorityFigures counts;
+      evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf), counts);
+      figures_.prioritiesComputed += counts.computed;
+      figures_.achievedErrorPx = std::max(figures_.achievedErrorPx, counts.achievedErrorPx);
       RoamNode& evaluated = mesh_.node(leaf);
       evaluated.subtreeDeadline = evaluated.deadline;  // its ancestors are due already (the split)
       const float p = evaluated.priority;

@@ -34,7 +34,7 @@
 //
 // Deterministic: with maxQueueMs = 0 the same inputs give the same mesh, with or without
 // RoamOptions::tasks. Called on the frame thread only; with tasks, parts of the work run on them
-// (the compaction's copy, the output's chunks) and are done when the call returns, but the copy.
+// (the output's chunks, done when output() returns; the compaction's copy, waited for later).
 
 #include <cstdint>
 #include <deque>
@@ -111,6 +111,7 @@ struct RoamFigures {
   uint64_t splits = 0, merges = 0;
   uint64_t leavesCreated = 0;  // by the splits, forced ones included
   uint64_t nodesVisited = 0;   // the update's traversal (deferral skips subtrees none of whose priorities is due)
+  uint64_t priorityTasks = 0;  // subtrees of that traversal handed to RoamOptions::tasks
   uint64_t prioritiesComputed = 0;
   uint64_t mergesStarted = 0;      // diamonds whose split vertex began sinking to its base (merged after fadeS)
   uint64_t constrainedLeaves = 0;  // drawn leaves still coarser than a piece (drawn untextured)
@@ -191,6 +192,26 @@ class RoamTessellator {
     for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
   }
   glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const { return view.toEye(mesh_.vertex(v).at); }
+  // The priority traversal (roam_priorities.cpp). With options_.tasks, the frame thread walks
+  // the top of the tree and hands each subtree of at most kTaskLeaves leaves to a task; the
+  // tasks' results are put back together in the order one traversal gives.
+  struct PriorityFigures {
+    uint64_t visited = 0, computed = 0;
+    double achievedErrorPx = 0.0;
+    void add(const PriorityFigures& o);
+  };
+  struct PriorityTask {
+    uint32_t node;
+    glm::dvec3 eye[3];  // unset when culled: an Outside subtree needs none
+    Cull cull;
+    InPiece ps;
+    std::vector<Candidate> splits, diamonds;
+    std::vector<uint32_t> cancels;
+    PriorityFigures counts;
+  };
+  static constexpr uint32_t kTaskLeaves = 1024;  // ≥ 2: a task's root is never a leaf or diamond of the top
+  void computePriorities(Walk& w);
+  void descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
   // Which vertices a chunk being built holds already (roam_chunks.cpp): a small map of its own,
@@ -253,8 +274,10 @@ class RoamTessellator {
   // Deferred priority recomputation (Duchaineau et al. 1997 §6): the camera's odometer (metres
   // travelled), and what a change of which means every priority is computed again.
   void beginUpdate(const EyeView& view);
-  void evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
-  void evaluateDiamond(const Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
+  void evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
+                    PriorityFigures& counts);
+  void evaluateDiamond(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
+  std::vector<PriorityTask> priorityTasks_;  // reused: their vectors keep their capacity
   double odometerM_ = 0.0;
   glm::dvec3 lastCamera_{std::numeric_limits<double>::quiet_NaN()};
   glm::dvec3 lastUp_{0.0};

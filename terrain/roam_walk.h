@@ -4,11 +4,16 @@
 #include <bit>
 #include <cassert>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "terrain/roam_tessellator.h"
 
 namespace vegstream::terrain {
+
+// Deadlines (RoamNode::deadline): never due until the cull, piece or mesh changes; due now.
+inline constexpr double kNever = std::numeric_limits<double>::infinity();
+inline constexpr double kNow = -std::numeric_limits<double>::infinity();
 
 // RoamVertex → index in the chunk being built, by open addressing. A chunk of L leaves has at
 // most 3L vertices and the table 4 × (3L + 3) slots or more, so it stays under a quarter full
@@ -52,6 +57,13 @@ struct RoamTessellator::Walk {
   std::vector<Candidate>* diamonds = nullptr;
   double mergeBelow = 0.0;
   bool overBudget = false;
+  PriorityFigures counts;
+  std::vector<uint32_t>* cancels = nullptr;  // diamonds whose merge morph is cancelled after the traversal
+  // The top of a parallel traversal (computePriorities): the subtrees handed to tasks, and the
+  // nodes above them, post-order, whose subtree deadlines wait for the tasks.
+  std::vector<PriorityTask>* tasks = nullptr;
+  size_t taskCount = 0;
+  std::vector<uint32_t> waiting;
   // output()
   std::vector<TerrainMesh>* meshes = nullptr;
   std::vector<SeedTriangle>* seeds = nullptr;
@@ -62,7 +74,7 @@ struct RoamTessellator::Walk {
     bool partial;
   };
   std::vector<ChunkDraw> chunkDraws;  // in traversal order (drawChunk)
-  EmitCounts counts;                  // the direct output's
+  EmitCounts emitted;                 // the direct output's
 };
 
 }  // namespace vegstream::terrain

@@ -188,10 +188,11 @@ void expectSameMeshes(const std::vector<TerrainMesh>& a, const std::vector<Terra
   }
 }
 
-// The output's work per chunk (building, moving morphs, culling one that straddles the edge of
-// the view) on three workers and the frame thread gives the output of one thread: the same
-// vertices, indices and chunk draws in the same order, the same figures.
-TEST(RoamIncremental, ChunksPreparedOnWorkersGiveTheSameOutputInTheSameOrder) {
+// The update's priority traversal in subtrees and the output's work per chunk (building,
+// moving morphs, culling one that straddles the edge of the view), on three workers and the
+// frame thread, give what one thread gives: the same splits and merges, and the same vertices,
+// indices and chunk draws in the same order.
+TEST(RoamIncremental, UpdateAndOutputOnWorkersGiveTheSameMeshAndOutputInTheSameOrder) {
   auto& z = zionResident();
   const PieceSet pieces = z.finestPieces();
   ThreadPool pool(3);
@@ -201,12 +202,22 @@ TEST(RoamIncremental, ChunksPreparedOnWorkersGiveTheSameOutputInTheSameOrder) {
   auto b = z.tessellator(onPool, {}, 0.5);
   std::vector<TerrainMesh> ma, mb;
   std::vector<SeedTriangle> sa, sb;
-  uint64_t built = 0, moved = 0, partial = 0;
+  uint64_t built = 0, moved = 0, partial = 0, visited = 0, tasks = 0;
   for (int i = 0; i < 120; ++i) {
     const EyeView view = flightView(z, i);
     const double t = i / 60.0;
     a->update(view, pieces, t);
     b->update(view, pieces, t);
+    const RoamFigures ua = a->figures(), ub = b->figures();
+    ASSERT_EQ(ua.splits, ub.splits) << "frame " << i;
+    ASSERT_EQ(ua.merges, ub.merges) << "frame " << i;
+    ASSERT_EQ(ua.mergesStarted, ub.mergesStarted) << "frame " << i;
+    ASSERT_EQ(ua.nodesVisited, ub.nodesVisited) << "frame " << i;
+    ASSERT_EQ(ua.prioritiesComputed, ub.prioritiesComputed) << "frame " << i;
+    ASSERT_EQ(ua.achievedErrorPx, ub.achievedErrorPx) << "frame " << i;
+    visited += ua.nodesVisited;
+    tasks += ub.priorityTasks;
+    ASSERT_EQ(ua.priorityTasks, 0u);
     a->output(view, pieces, t, ma, sa);
     b->output(view, pieces, t, mb, sb);
     expectSameMeshes(ma, mb, i);
@@ -223,7 +234,11 @@ TEST(RoamIncremental, ChunksPreparedOnWorkersGiveTheSameOutputInTheSameOrder) {
     for (const TerrainMesh& m : ma)
       for (const TerrainChunkDraw& d : m.chunks) partial += d.partial ? 1 : 0;
   }
-  // What the comparison covered: chunks built, moved while morphing, and culled one by one.
+  EXPECT_EQ(leafPaths(*a), leafPaths(*b));
+  // What the comparison covered: a traversal larger than one task, chunks built, moved while
+  // morphing, and culled one by one.
+  EXPECT_GT(visited / 120, 4u * 1024u);
+  EXPECT_GT(tasks / 120, 8u);
   EXPECT_GT(built, 1000u);
   EXPECT_GT(moved, 100u);
   EXPECT_GT(partial, 100u);
