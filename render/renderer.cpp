@@ -66,7 +66,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The terrain's passes come before the frame sets are written: binding 5 is the compute
   // raster's depth samples (or a placeholder nothing reads: frame.terrainDepth.x is 0 then).
   terrainPass = std::make_unique<TerrainPass>(*ctx, layout, toSampleBits(msaa), deferred && !computeRaster,
-                                              options.tasks);
+                                              options.tasks, options.terrainTriangles);
   if (computeRaster) {
     terrainRaster = std::make_unique<TerrainRasterPass>(*ctx, layout, *terrainPass, *targets);
   } else {

@@ -52,6 +52,10 @@ struct RendererOptions {
   // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
   uint32_t shadowMapSize = 1024;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
+  // The terrain triangles a frame may draw (the ROAM budget, terrain::RoamOptions::maxTriangles):
+  // the terrain pass's geometry buffers start that large, so they do not grow — a new buffer
+  // allocated and mapped, 1–4 ms on the H200 — while a flight refines; 0: they start small.
+  uint64_t terrainTriangles = 0;
   // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
   // with the thread that submits; null: all on that thread. Must outlive the renderer.
   TaskRunner* tasks = nullptr;

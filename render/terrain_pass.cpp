@@ -105,8 +105,11 @@ std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const
 }
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                         bool deferred, TaskRunner* tasks)
-    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()) {
+                         bool deferred, TaskRunner* tasks, uint64_t reserveTriangles)
+    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()),
+      // ROAM's chunked meshes hold 1.0–1.5 vertices a triangle (the benchmark flights).
+      reserveVertexBytes_(reserveTriangles * 3 / 2 * sizeof(terrain::TerrainVertex)),
+      reserveIndexBytes_(reserveTriangles * 3 * sizeof(uint32_t)) {
   // Binding 0: the imagery array; 1: its NDVI array (terrain_shading.glsl).
   const VkDescriptorSetLayoutBinding imageryBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kSampledBy, nullptr},
@@ -186,10 +189,11 @@ void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage
 }
 
 void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
-                                 const std::string& what, int slot, const RetireBuffer& retire) {
+                                 const std::string& what, int slot, const RetireBuffer& retire,
+                                 VkDeviceSize reserve) {
   if (buffer.buffer && buffer.size >= bytes) return;
   if (buffer.buffer) retire(std::move(buffer));
-  buffer = createBuffer(*ctx_, grownSize(bytes, 256 * 1024), usage, use,
+  buffer = createBuffer(*ctx_, grownSize(bytes, std::max<VkDeviceSize>(reserve, 256 * 1024)), usage, use,
                         "terrain " + what + " (slot " + std::to_string(slot) + ")");
 }
 
@@ -237,13 +241,13 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   indexBytes = std::max<VkDeviceSize>(indexBytes, 3 * sizeof(uint32_t));
   constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices", slot,
-                 retire);
+                 retire, reserveVertexBytes_);
   ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices", slot,
-                 retire);
+                 retire, reserveIndexBytes_);
   ensureCapacity(deviceVertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
-                 "vertices (device)", slot, retire);
+                 "vertices (device)", slot, retire, reserveVertexBytes_);
   ensureCapacity(deviceIndices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
-                 "indices (device)", slot, retire);
+                 "indices (device)", slot, retire, reserveIndexBytes_);
   ensureCapacity(pieces_[s], std::max<size_t>(order.size(), 1) * sizeof(TerrainPiece),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "pieces", slot, retire);
   if (order.empty()) return 0;

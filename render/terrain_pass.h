@@ -76,9 +76,10 @@ class TerrainPass {
 
   // `deferred`: also build the visibility pipeline (the device can shade in compute). `tasks`
   // (may be null: all on the calling thread) shares prepare()'s per-piece work with the calling
-  // thread; it must outlive the pass.
+  // thread; it must outlive the pass. `reserveTriangles`: the geometry buffers' smallest size, in
+  // triangles (RendererOptions::terrainTriangles).
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred,
-              TaskRunner* tasks = nullptr);
+              TaskRunner* tasks = nullptr, uint64_t reserveTriangles = 0);
 
   using RetireImage = std::function<void(GpuImage&&)>;
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
@@ -130,13 +131,15 @@ class TerrainPass {
     uint32_t firstIndex = 0;
     int32_t vertexOffset = 0;
   };
+  // Grown to twice what is needed (and at least `reserve`) when too small.
   void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
-                      const std::string& what, int slot, const RetireBuffer& retire);
+                      const std::string& what, int slot, const RetireBuffer& retire, VkDeviceSize reserve = 0);
   void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
 
   const Context* ctx_;
   TaskRunner* tasks_;
   DetailTextures detail_;
+  VkDeviceSize reserveVertexBytes_, reserveIndexBytes_;  // the geometry buffers' smallest sizes
   DescriptorSetLayout imageryLayout_;
   DescriptorPool imageryPool_;
   VkDescriptorSet imagerySet_ = VK_NULL_HANDLE;

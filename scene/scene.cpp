@@ -122,6 +122,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (!meta) return meta.error();
   render::RendererOptions rendererOptions = options.renderer;
   rendererOptions.tasks = tasks.get();
+  rendererOptions.terrainTriangles = options.terrain.roam.maxTriangles;
   rendererOptions.trailStoreBytes = static_cast<uint64_t>(options.simulation.trailBudgetMb * 1024.0 * 1024.0);
   auto renderer = render::Renderer::create(rendererOptions);
   if (!renderer) return renderer.error();
