@@ -45,6 +45,12 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
     ++figures_.chunksReused;
   }
   w.chunkDraws.push_back({slot, piece, partial});
+  if (options_.tasks) return;  // prepared on the workers, appended in order (prepareChunks)
+  // One thread: prepared and appended at once, while the chunk is still in the cache.
+  if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
+  prepareChunk(w, w.chunkDraws.size() - 1, chunkScratch_[0].map, chunkScratch_[0].planes, w.emitted);
+  appendChunkDraw(w, w.chunkDraws.back());
+  w.chunkDraws.clear();
 }
 
 void RoamTessellator::prepareChunks(Walk& w) {
@@ -54,10 +60,12 @@ void RoamTessellator::prepareChunks(Walk& w) {
   const size_t n = w.chunkDraws.size();
   const size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<EmitCounts> counts(blocks);
+  // Each block's scratch, kept from output to output (a map is a few kB to clear otherwise).
+  while (chunkScratch_.size() < blocks) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
   const auto block = [&](size_t b) -> Status {
-    ChunkVertexMap map(options_.chunkMaxLeaves);
-    std::vector<PlaneDistances> planes;
-    for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) prepareChunk(w, i, map, planes, counts[b]);
+    ChunkScratch& scratch = chunkScratch_[b];
+    for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+      prepareChunk(w, i, scratch.map, scratch.planes, counts[b]);
     return {};
   };
   if (options_.tasks && blocks > 1) {
@@ -73,7 +81,7 @@ void RoamTessellator::prepareChunks(Walk& w) {
 void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map,
                                    std::vector<PlaneDistances>& planes, EmitCounts& counts) {
   // Any thread: reads the mesh, writes this chunk (and the caller's scratch and counts) only.
-  const Walk::ChunkDraw& d = w.chunkDraws[draw];
+  const ChunkDraw& d = w.chunkDraws[draw];
   DrawnChunk& chunk = chunks_[d.slot];
   const glm::dvec3& origin = (*w.meshes)[size_t(d.piece)].origin;
   if (chunk.rebuild) {
@@ -121,22 +129,24 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& m
 }
 
 void RoamTessellator::appendChunkDraws(Walk& w) {
-  for (const Walk::ChunkDraw& d : w.chunkDraws) {
-    const DrawnChunk& chunk = chunks_[d.slot];
-    TerrainMesh& m = (*w.meshes)[size_t(d.piece)];
-    const std::vector<uint32_t>& indices = chunk.mesh.indices;
-    if (indices.empty()) continue;  // no data under it
-    if (!d.partial) {
-      m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
-      figures_.drawnTriangles += indices.size() / 3;
-      continue;
-    }
-    const auto first = static_cast<uint32_t>(m.chunkIndices.size());
-    const auto count = static_cast<uint32_t>(chunk.visible.size());
-    m.chunkIndices.insert(m.chunkIndices.end(), chunk.visible.begin(), chunk.visible.end());
-    if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
-    figures_.drawnTriangles += count / 3;
+  for (const ChunkDraw& d : w.chunkDraws) appendChunkDraw(w, d);
+}
+
+void RoamTessellator::appendChunkDraw(Walk& w, const ChunkDraw& d) {
+  const DrawnChunk& chunk = chunks_[d.slot];
+  TerrainMesh& m = (*w.meshes)[size_t(d.piece)];
+  const std::vector<uint32_t>& indices = chunk.mesh.indices;
+  if (indices.empty()) return;  // no data under it
+  if (!d.partial) {
+    m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
+    figures_.drawnTriangles += indices.size() / 3;
+    return;
   }
+  const auto first = static_cast<uint32_t>(m.chunkIndices.size());
+  const auto count = static_cast<uint32_t>(chunk.visible.size());
+  m.chunkIndices.insert(m.chunkIndices.end(), chunk.visible.begin(), chunk.visible.end());
+  if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
+  figures_.drawnTriangles += count / 3;
 }
 
 void RoamTessellator::collectChunk(double timeS, uint32_t t, const LeafSink& sink) {

@@ -11,6 +11,7 @@
 
 #include "core/stopwatch.h"
 #include "terrain/roam_tessellator.h"
+#include "terrain/roam_walk.h"  // the scratch types the destructor destroys
 
 namespace vegstream::terrain {
 

@@ -243,12 +243,21 @@ class RoamTessellator {
   // every queued chunk is built again, or has its morphing vertices moved, and, where it
   // straddles the edge of the view (partial), has its triangles culled one by one
   // (prepareChunks, in parallel: each touches its own chunk); then the draws are appended to
-  // the pieces' meshes in traversal order (appendChunkDraws).
+  // the pieces' meshes in traversal order (appendChunkDraws). Without tasks drawChunk does all
+  // three at once, while the chunk is in the cache.
+  struct ChunkDraw {
+    uint32_t slot;
+    int piece;
+    bool partial;  // its root straddles the edge of the view
+  };
+  struct ChunkScratch;  // roam_walk.h: a block's vertex map and plane distances
   void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
   void prepareChunks(Walk& w);
   void prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map, std::vector<PlaneDistances>& planes,
                     EmitCounts& counts);
   void appendChunkDraws(Walk& w);
+  void appendChunkDraw(Walk& w, const ChunkDraw& d);
+  std::vector<ChunkScratch> chunkScratch_;  // kept from output to output
   void collectChunk(double timeS, uint32_t t, const LeafSink& sink);
   void releaseChunks();
   void dropIdleChunks();

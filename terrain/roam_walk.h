@@ -47,6 +47,11 @@ class RoamTessellator::ChunkVertexMap {
   std::vector<uint32_t> keys_, values_, used_;
 };
 
+struct RoamTessellator::ChunkScratch {
+  ChunkVertexMap map;
+  std::vector<PlaneDistances> planes;
+};
+
 struct RoamTessellator::Walk {
   const EyeView* view = nullptr;
   const PieceSet* pieces = nullptr;
@@ -68,11 +73,6 @@ struct RoamTessellator::Walk {
   std::vector<TerrainMesh>* meshes = nullptr;
   std::vector<SeedTriangle>* seeds = nullptr;
   int untextured = -1;  // index of the mesh for leaves not yet inside a piece
-  struct ChunkDraw {
-    uint32_t slot;
-    int piece;
-    bool partial;
-  };
   std::vector<ChunkDraw> chunkDraws;  // in traversal order (drawChunk)
   EmitCounts emitted;                 // the direct output's
 };
