@@ -65,7 +65,7 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 }  // namespace
 
 BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                     uint32_t maxVertices)
+                     uint32_t maxVertices, TaskRunner* tasks)
     : ctx_(&ctx),
       // A storage buffer is bound whole: no larger than the device's maxStorageBufferRange.
       maxVertices_(std::min<uint64_t>(maxVertices, ctx.properties().limits.maxStorageBufferRange /
@@ -112,6 +112,11 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
     const std::string tag = " (slot " + std::to_string(i) + ")";
     s.inputSet = allocateDescriptorSet(ctx, pool_.get(), inputLayout_.get(), "blade input set" + tag);
     s.bladeSet = allocateDescriptorSet(ctx, pool_.get(), bladeLayout_.get(), "blade set" + tag);
+    // Transfer source: Renderer::readBladeVertices copies them out for the tests.
+    s.vertices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               MemoryUse::DeviceLocal, "blade vertices" + tag, tasks);
+    s.indices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                              MemoryUse::DeviceLocal, "blade indices" + tag, tasks);
     s.state = createBuffer(
         ctx, kStateBytes,
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -153,30 +158,19 @@ BladePass::Bound BladePass::bound(std::span<const SeedTriangleGpu> triangles, ui
   return b;
 }
 
-void BladePass::ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire) {
+void BladePass::ensureCapacity(Slot& s, const Bound& need, const RetireBuffer& retire) {
   const uint64_t vertices = std::min(need.vertices, maxVertices_);
   const uint64_t indices = std::min(need.indices, maxIndices_);
-  const std::string tag = " (slot " + std::to_string(slot) + ")";
-  auto grow = [&](GpuBuffer& b, uint64_t count, uint64_t ceiling, VkDeviceSize stride, VkBufferUsageFlags usage,
-                  const char* name) {
-    const VkDeviceSize bytes = std::max<uint64_t>(count, 1) * stride;
-    if (b.buffer && b.size >= bytes) return;
-    if (b.buffer) retire(std::move(b));
-    // Grown ahead, but never past the ceiling (which keeps it within maxStorageBufferRange).
-    const VkDeviceSize size = std::max<VkDeviceSize>(std::min<VkDeviceSize>(grownSize(bytes), ceiling * stride), bytes);
-    b = createBuffer(*ctx_, size, usage, MemoryUse::DeviceLocal, name + tag);
-  };
-  // Transfer source: Renderer::readBladeVertices copies them out for the tests.
-  grow(s.vertices, vertices, maxVertices_, sizeof(BladeVertexGpu),
-       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "blade vertices");
-  grow(s.indices, indices, maxIndices_, sizeof(uint32_t),
-       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "blade indices");
+  // Grown ahead (on the runner when there is one), never past the ceiling (which keeps them
+  // within maxStorageBufferRange).
+  s.vertices.ensure(vertices * sizeof(BladeVertexGpu), maxVertices_ * sizeof(BladeVertexGpu), retire);
+  s.indices.ensure(indices * sizeof(uint32_t), maxIndices_ * sizeof(uint32_t), retire);
   // What the buffers hold (grownSize may give more than asked), within the ceiling; indices a
   // whole number of quads, so the clamped draw never splits a triangle.
-  s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size / sizeof(BladeVertexGpu), maxVertices_));
+  s.vertexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.vertices.size() / sizeof(BladeVertexGpu), maxVertices_));
   // Plants are numbered (the vertex's plant word), not stored: the count follows the bound.
   s.plantCapacity = static_cast<uint32_t>(std::min(need.plants, maxPlants_));
-  s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size / sizeof(uint32_t), maxIndices_) / 6 * 6);
+  s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size() / sizeof(uint32_t), maxIndices_) / 6 * 6);
 }
 
 void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
@@ -187,7 +181,7 @@ void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   const uint32_t mask = bladeMask(classify);
   s.expanded = mask != 0 && classify.triangles(slot) != VK_NULL_HANDLE;
   if (!s.expanded) return;
-  ensureCapacity(s, slot, bound(triangles, clusterSize, options), retire);
+  ensureCapacity(s, bound(triangles, clusterSize, options), retire);
 
   // The slot's previous frame has finished (the renderer waited on its fence): its sets are free.
   writeUniformBuffer(*ctx_, s.inputSet, classify.species(), sizeof(SpeciesBlock), 0);
@@ -278,7 +272,7 @@ uint64_t BladePass::writtenVertices(int slot) const {
 
 uint64_t BladePass::gpuBytes() const {
   uint64_t n = 0;
-  for (const Slot& s : slots_) n += s.vertices.size + s.indices.size + s.state.size;
+  for (const Slot& s : slots_) n += s.vertices.size() + s.indices.size() + s.state.size;
   return n;
 }
 

@@ -29,6 +29,7 @@
 #include "render/context.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
+#include "render/growing_buffer.h"
 #include "render/handle.h"
 #include "render/plant_pass.h"
 
@@ -39,8 +40,10 @@ class BladePass {
   using RetireBuffer = ClassifyPass::RetireBuffer;
 
   // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
-  // indices and the plant count (numbered, not stored) follow from it.
-  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices);
+  // indices and the plant count (numbered, not stored) follow from it. `tasks` (may be null)
+  // makes the vertex and index buffers' next sizes ahead of need (growing_buffer.h).
+  BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices,
+            TaskRunner* tasks = nullptr);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
   // buffers are sized for); call with ClassifyPass::setCatalog.
@@ -72,7 +75,8 @@ class BladePass {
 
  private:
   struct Slot {
-    GpuBuffer vertices, indices, state, figures;
+    GrowingBuffer vertices, indices;
+    GpuBuffer state, figures;
     VkDescriptorSet inputSet = VK_NULL_HANDLE, bladeSet = VK_NULL_HANDLE;
     uint32_t vertexCapacity = 0, indexCapacity = 0, plantCapacity = 0;
     PlantPush drawPush{};
@@ -82,7 +86,7 @@ class BladePass {
     uint64_t plants = 0, vertices = 0, indices = 0;
   };
   Bound bound(std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize, const PlantDrawOptions& o) const;
-  void ensureCapacity(Slot& s, int slot, const Bound& need, const RetireBuffer& retire);
+  void ensureCapacity(Slot& s, const Bound& need, const RetireBuffer& retire);
 
   const Context* ctx_;
   uint64_t maxVertices_, maxIndices_, maxPlants_;  // one slot's ceilings

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,12 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
     s.canopy = createBuffer(ctx, kCanopyBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
                             "classify canopy" + tag);
     std::memset(s.canopy.mapped, 0, kCanopyBytes);  // enabled 0: no crowns
+    s.triangles = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                                "classify triangles" + tag, options.tasks);
+    s.visible = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
+                              "classify visible triangles" + tag, options.tasks);
+    s.order = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "classify bin order" + tag,
+                            options.tasks);
     s.classifySet = allocateDescriptorSet(ctx, pool_.get(), classifyLayout_.get(), "classify set" + tag);
     s.finishSet = allocateDescriptorSet(ctx, pool_.get(), finishLayout_.get(), "classify finish set" + tag);
     writeStorageBuffer(ctx, s.finishSet, s.counters.get(), 0);
@@ -116,31 +123,11 @@ void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
     kinds_[i] = catalog.species[i].bare ? kNoKind : static_cast<uint32_t>(catalog.species[i].kind);
 }
 
-void ClassifyPass::ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries,
-                                  const RetireBuffer& retire) {
-  const std::string tag = " (slot " + std::to_string(slot) + ")";
-  const VkDeviceSize triBytes = std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu);
-  const VkDeviceSize orderBytes = std::max<size_t>(orderEntries, 1) * sizeof(uint32_t);
-  const VkDeviceSize visibleBytes = std::max<size_t>(triangles, 1) * sizeof(uint32_t);
-  bool changed = false;
-  if (!s.triangles.buffer || s.triangles.size < triBytes) {
-    if (s.triangles.buffer) retire(std::move(s.triangles));
-    s.triangles = createBuffer(*ctx_, grownSize(triBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
-                               "classify triangles" + tag);
-    changed = true;
-  }
-  if (!s.visible.buffer || s.visible.size < visibleBytes) {
-    if (s.visible.buffer) retire(std::move(s.visible));
-    s.visible = createBuffer(*ctx_, grownSize(visibleBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
-                             "classify visible triangles" + tag);
-    changed = true;
-  }
-  if (!s.order.buffer || s.order.size < orderBytes) {
-    if (s.order.buffer) retire(std::move(s.order));
-    s.order = createBuffer(*ctx_, grownSize(orderBytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
-                           "classify bin order" + tag);
-    changed = true;
-  }
+void ClassifyPass::ensureCapacity(Slot& s, size_t triangles, size_t orderEntries, const RetireBuffer& retire) {
+  constexpr VkDeviceSize kNoCeiling = std::numeric_limits<VkDeviceSize>::max() / 4;
+  bool changed = s.triangles.ensure(std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu), kNoCeiling, retire);
+  changed |= s.visible.ensure(std::max<size_t>(triangles, 1) * sizeof(uint32_t), kNoCeiling, retire);
+  changed |= s.order.ensure(std::max<size_t>(orderEntries, 1) * sizeof(uint32_t), kNoCeiling, retire);
   if (changed) s.boundImagery = VK_NULL_HANDLE;  // rewrite the set
 }
 
@@ -175,9 +162,10 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   f.clusters = bins.clusters;  // work items: seeds of cluster 0 + further clusters
   f.clusterSlots = bins.slots;
 
-  ensureCapacity(s, slot, triangles.size(), bins.order.size(), retire);
-  if (!triangles.empty()) std::memcpy(s.triangles.mapped, triangles.data(), triangles.size_bytes());
-  if (!bins.order.empty()) std::memcpy(s.order.mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
+  ensureCapacity(s, triangles.size(), bins.order.size(), retire);
+  if (!triangles.empty()) std::memcpy(s.triangles.buffer().mapped, triangles.data(), triangles.size_bytes());
+  if (!bins.order.empty())
+    std::memcpy(s.order.buffer().mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
   // The crowns (the slot's previous frame, which read them, has finished: its fence).
   auto* canopyBytes = static_cast<uint8_t*>(s.canopy.mapped);
   const bool crowns = canopy && canopy->header.enabled != 0 &&
@@ -285,8 +273,8 @@ void ClassifyPass::updateThinning(const VegetationFigures& f) {
 uint64_t ClassifyPass::gpuBytes() const {
   uint64_t bytes = species_.size;
   for (const Slot& s : slots_)
-    bytes += s.triangles.size + s.order.size + s.counters.size + s.records.size + s.indirect.size + s.figures.size +
-             s.visible.size;
+    bytes += s.triangles.size() + s.order.size() + s.counters.size + s.records.size + s.indirect.size + s.figures.size +
+             s.visible.size();
   return bytes;
 }
 

@@ -20,12 +20,16 @@
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
+#include "render/growing_buffer.h"
 #include "render/handle.h"
 
 namespace vegstream::render {
 
 struct ClassifyOptions {
   uint32_t clustersPerSpecies = 1u << 16;
+  // Makes the per-frame triangle, order and visibility buffers' next sizes ahead of need
+  // (growing_buffer.h); null: the frame that outgrows one makes it.
+  TaskRunner* tasks = nullptr;
 };
 
 class ClassifyPass {
@@ -83,13 +87,14 @@ class ClassifyPass {
 
  private:
   struct Slot {
-    GpuBuffer triangles, order, counters, records, indirect, figures;
-    GpuBuffer visible;  // per triangle, written by the cull hook
+    GrowingBuffer triangles, order;
+    GpuBuffer counters, records, indirect, figures;
+    GrowingBuffer visible;  // per triangle, written by the cull hook
     GpuBuffer canopy;   // vegetation::CanopyHeader and kCanopyCells² entries (host-upload)
     VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
     VkImageView boundImagery = VK_NULL_HANDLE, boundNdvi = VK_NULL_HANDLE;
   };
-  void ensureCapacity(Slot& s, int slot, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
+  void ensureCapacity(Slot& s, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
   void writeSets(Slot& s, VkImageView imagery, VkImageView ndvi);
 
   const Context* ctx_;

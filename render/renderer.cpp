@@ -127,7 +127,9 @@ void Renderer::Impl::init(const RendererOptions& options) {
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   hudPass = std::make_unique<HudPass>(*ctx);
-  classify = std::make_unique<ClassifyPass>(*ctx, ClassifyOptions{});
+  ClassifyOptions classifyOptions;
+  classifyOptions.tasks = options.tasks;
+  classify = std::make_unique<ClassifyPass>(*ctx, classifyOptions);
   classify->setCatalog(vegetation::defaultSpeciesCatalog());
   hiz->setCatalog(vegetation::defaultSpeciesCatalog());
   markers = std::make_unique<PlantMarkerPass>(*ctx, layout, toSampleBits(msaa));
@@ -139,7 +141,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
-  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u));
+  blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u),
+                                       options.tasks);
   blades->setCatalog(vegetation::defaultSpeciesCatalog());
   trees = std::make_unique<TreePass>(*ctx, layout, toSampleBits(msaa));
   treeBudgetBytes = options.treeBudgetBytes;
