@@ -107,10 +107,11 @@ void flyPath(benchmark::State& state, const char* pathName) {
     // range(1) = 0: the same work done in full every frame (no deferred priorities, no cached
     // chunks), the baseline the incremental figures are a ratio to.
     to.roam.deferPriorities = to.roam.cacheChunks = state.range(1) != 0;
-    // range(1) = 2: compactions copied on a worker, as the app does (RoamOptions::tasks). The copy
-    // overlaps the output and then the untimed settle of the next frame, as in the app it
-    // overlaps the output, the seeding, the record and the wait for the GPU; what it does not
-    // hide is the next update's compact_wait_ms.
+    // range(1) = 2: one worker beside the frame thread, as the app has its pool
+    // (RoamOptions::tasks): the priority traversal's subtrees and the output's chunks are shared
+    // with it, and compactions are copied on it. The copy overlaps the output and then the
+    // untimed settle of the next frame, as in the app it overlaps the output, the seeding, the
+    // record and the wait for the GPU; what it does not hide is the next update's compact_wait_ms.
     ThreadPool worker(1);
     if (state.range(1) == 2) to.roam.tasks = &worker;
     terrain::StreamedTerrain terrain(streamer, frame, to);
