@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cstring>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -124,7 +123,7 @@ void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
 }
 
 void ClassifyPass::ensureCapacity(Slot& s, size_t triangles, size_t orderEntries, const RetireBuffer& retire) {
-  constexpr VkDeviceSize kNoCeiling = std::numeric_limits<VkDeviceSize>::max() / 4;
+  constexpr VkDeviceSize kNoCeiling = GrowingBuffer::kNoCeiling;
   bool changed = s.triangles.ensure(std::max<size_t>(triangles, 1) * sizeof(SeedTriangleGpu), kNoCeiling, retire);
   changed |= s.visible.ensure(std::max<size_t>(triangles, 1) * sizeof(uint32_t), kNoCeiling, retire);
   changed |= s.order.ensure(std::max<size_t>(orderEntries, 1) * sizeof(uint32_t), kNoCeiling, retire);

@@ -43,8 +43,8 @@ struct GrowingBuffer::Ahead {
 };
 
 GrowingBuffer::GrowingBuffer(const Context& ctx, VkBufferUsageFlags usage, MemoryUse use, std::string name,
-                             TaskRunner* tasks)
-    : ctx_(&ctx), usage_(usage), use_(use), name_(std::move(name)), tasks_(tasks) {}
+                             TaskRunner* tasks, VkDeviceSize minimum)
+    : ctx_(&ctx), usage_(usage), use_(use), name_(std::move(name)), tasks_(tasks), minimum_(minimum) {}
 
 GrowingBuffer::~GrowingBuffer() {
   if (!ahead_) return;
@@ -87,7 +87,7 @@ bool GrowingBuffer::ensure(VkDeviceSize bytes, VkDeviceSize ceiling, const Retir
     else if (ahead_)
       dropAhead(retire);  // outgrown before it was taken (or past a lowered ceiling)
     if (!next.buffer) {
-      next = make(std::max(std::min(grownSize(need), ceiling), need));
+      next = make(std::max(std::min(grownSize(need, minimum_), ceiling), need));
       ++madeHere_;
     }
     if (buffer_.buffer) retire(std::move(buffer_));
@@ -96,7 +96,7 @@ bool GrowingBuffer::ensure(VkDeviceSize bytes, VkDeviceSize ceiling, const Retir
   }
   // More than half used: the next size, made ahead on the worker.
   if (tasks_ && !ahead_ && 2 * need > buffer_.size && buffer_.size < ceiling) {
-    const VkDeviceSize size = std::min(grownSize(2 * need), ceiling);
+    const VkDeviceSize size = std::min(grownSize(2 * need, minimum_), ceiling);
     if (size > buffer_.size) {
       ahead_ = std::make_shared<Ahead>();
       ahead_->ctx = ctx_;

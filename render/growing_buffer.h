@@ -22,9 +22,13 @@ namespace vegstream::render {
 class GrowingBuffer {
  public:
   using Retire = std::function<void(GpuBuffer&&)>;
+  // For ensure(): no ceiling (small enough that twice a need never overflows).
+  static constexpr VkDeviceSize kNoCeiling = ~VkDeviceSize{0} / 4;
 
   GrowingBuffer() = default;
-  GrowingBuffer(const Context& ctx, VkBufferUsageFlags usage, MemoryUse use, std::string name, TaskRunner* tasks);
+  // `minimum`: the smallest size made (grownSize's start: sizes are it doubled).
+  GrowingBuffer(const Context& ctx, VkBufferUsageFlags usage, MemoryUse use, std::string name, TaskRunner* tasks,
+                VkDeviceSize minimum = 64 * 1024);
   ~GrowingBuffer();
   GrowingBuffer(GrowingBuffer&&) = default;
   GrowingBuffer& operator=(GrowingBuffer&&) = default;
@@ -52,6 +56,7 @@ class GrowingBuffer {
   MemoryUse use_ = MemoryUse::DeviceLocal;
   std::string name_;
   TaskRunner* tasks_ = nullptr;
+  VkDeviceSize minimum_ = 64 * 1024;
   GpuBuffer buffer_;
   std::shared_ptr<Ahead> ahead_;
   int madeHere_ = 0, takenAhead_ = 0;

@@ -106,10 +106,29 @@ std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
                          bool deferred, TaskRunner* tasks, uint64_t reserveTriangles)
-    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()),
-      // ROAM's chunked meshes hold 1.0–1.5 vertices a triangle (the benchmark flights).
-      reserveVertexBytes_(reserveTriangles * 3 / 2 * sizeof(terrain::TerrainVertex)),
-      reserveIndexBytes_(reserveTriangles * 3 * sizeof(uint32_t)) {
+    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()) {
+  // The slots' buffers, made as frames need them (growing_buffer.h); the geometry ones at least
+  // as large as `reserveTriangles` need (ROAM's chunked meshes hold 1.0–1.5 vertices a triangle
+  // on the benchmark flights).
+  constexpr VkDeviceSize kSmallest = 256 * 1024;
+  const VkDeviceSize vertexMin = std::max<VkDeviceSize>(reserveTriangles * 3 / 2 * sizeof(terrain::TerrainVertex), kSmallest);
+  const VkDeviceSize indexMin = std::max<VkDeviceSize>(reserveTriangles * 3 * sizeof(uint32_t), kSmallest);
+  constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  for (int i = 0; i < kSlots; ++i) {
+    const auto s = static_cast<size_t>(i);
+    const std::string tag = " (slot " + std::to_string(i) + ")";
+    auto make = [&](VkBufferUsageFlags usage, MemoryUse use, const char* what, VkDeviceSize minimum) {
+      return GrowingBuffer(ctx, usage, use, std::string("terrain ") + what + tag, tasks, minimum);
+    };
+    staging_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "imagery staging", kSmallest);
+    vertices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices", vertexMin);
+    indices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices", indexMin);
+    deviceVertices_[s] =
+        make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "vertices (device)", vertexMin);
+    deviceIndices_[s] =
+        make(VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "indices (device)", indexMin);
+    pieces_[s] = make(VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "pieces", kSmallest);
+  }
   // Binding 0: the imagery array; 1: its NDVI array (terrain_shading.glsl).
   const VkDescriptorSetLayoutBinding imageryBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kSampledBy, nullptr},
@@ -188,28 +207,18 @@ void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), ndvi_.view.get(), 1);
 }
 
-void TerrainPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
-                                 const std::string& what, int slot, const RetireBuffer& retire,
-                                 VkDeviceSize reserve) {
-  if (buffer.buffer && buffer.size >= bytes) return;
-  if (buffer.buffer) retire(std::move(buffer));
-  buffer = createBuffer(*ctx_, grownSize(bytes, std::max<VkDeviceSize>(reserve, 256 * 1024)), usage, use,
-                        "terrain " + what + " (slot " + std::to_string(slot) + ")");
-}
-
 void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
                                 const RetireBuffer& retire) {
   if (uploads.empty()) return;
   const auto s = static_cast<size_t>(slot);
   const VkDeviceSize perTile = kTileBytes + (withNdvi_ ? kNdviBytes : 0);
-  ensureCapacity(staging_[s], perTile * uploads.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
-                 "imagery staging", slot, retire);
-  auto* staging = static_cast<uint8_t*>(staging_[s].mapped);
+  staging_[s].ensure(perTile * uploads.size(), GrowingBuffer::kNoCeiling, retire);
+  auto* staging = static_cast<uint8_t*>(staging_[s].buffer().mapped);
   VkDeviceSize offset = 0;
   for (const ImageryUpload& u : uploads) {
     assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
     std::memcpy(staging + offset, u.rgba, kTileBytes);
-    recordImageUpload(cmd, staging_[s], imagery_, u.layer, offset);
+    recordImageUpload(cmd, staging_[s].buffer(), imagery_, u.layer, offset);
     offset += kTileBytes;
     if (!withNdvi_) continue;
     // A tile without NDVI clears the layer's (0: none), so no earlier tile's NDVI lingers.
@@ -217,7 +226,7 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
       std::memcpy(staging + offset, u.ndvi, kNdviBytes);
     else
       std::memset(staging + offset, 0, kNdviBytes);
-    recordImageUpload(cmd, staging_[s], ndvi_, u.layer, offset);
+    recordImageUpload(cmd, staging_[s].buffer(), ndvi_, u.layer, offset);
     offset += kNdviBytes;
   }
 }
@@ -239,22 +248,16 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   // The buffers exist even for a frame without terrain: the shade pass's descriptors need them.
   vertexBytes = std::max<VkDeviceSize>(vertexBytes, sizeof(terrain::TerrainVertex));
   indexBytes = std::max<VkDeviceSize>(indexBytes, 3 * sizeof(uint32_t));
-  constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  ensureCapacity(vertices_[s], vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices", slot,
-                 retire, reserveVertexBytes_);
-  ensureCapacity(indices_[s], indexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices", slot,
-                 retire, reserveIndexBytes_);
-  ensureCapacity(deviceVertices_[s], vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
-                 "vertices (device)", slot, retire, reserveVertexBytes_);
-  ensureCapacity(deviceIndices_[s], indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal,
-                 "indices (device)", slot, retire, reserveIndexBytes_);
-  ensureCapacity(pieces_[s], std::max<size_t>(order.size(), 1) * sizeof(TerrainPiece),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "pieces", slot, retire);
+  vertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
+  indices_[s].ensure(indexBytes, GrowingBuffer::kNoCeiling, retire);
+  deviceVertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
+  deviceIndices_[s].ensure(indexBytes, GrowingBuffer::kNoCeiling, retire);
+  pieces_[s].ensure(std::max<size_t>(order.size(), 1) * sizeof(TerrainPiece), GrowingBuffer::kNoCeiling, retire);
   if (order.empty()) return 0;
 
-  auto* vdst = static_cast<uint8_t*>(vertices_[s].mapped);
-  auto* idst = static_cast<uint8_t*>(indices_[s].mapped);
-  auto* pdst = static_cast<TerrainPiece*>(pieces_[s].mapped);
+  auto* vdst = static_cast<uint8_t*>(vertices_[s].buffer().mapped);
+  auto* idst = static_cast<uint8_t*>(indices_[s].buffer().mapped);
+  auto* pdst = static_cast<TerrainPiece*>(pieces_[s].buffer().mapped);
   // Each piece's range of the buffers, in draw order; then the copies, a task per piece.
   std::vector<std::pair<uint32_t, uint32_t>> at(order.size());  // first vertex, first index
   uint32_t totalVertices = 0, totalIndices = 0;
@@ -335,8 +338,8 @@ TerrainGeometry TerrainPass::geometry(int slot) const {
 uint64_t TerrainPass::gpuBytes() const {
   uint64_t bytes = imagery_.bytes + ndvi_.bytes + detail_.gpuBytes();
   for (size_t s = 0; s < kSlots; ++s)
-    bytes += vertices_[s].size + indices_[s].size + staging_[s].size + pieces_[s].size + deviceVertices_[s].size +
-             deviceIndices_[s].size;
+    bytes += vertices_[s].size() + indices_[s].size() + staging_[s].size() + pieces_[s].size() +
+             deviceVertices_[s].size() + deviceIndices_[s].size();
   return bytes;
 }
 

@@ -37,6 +37,7 @@
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
 #include "render/gpu_resources.h"
+#include "render/growing_buffer.h"
 #include "render/handle.h"
 #include "terrain/terrain_mesh.h"
 
@@ -76,7 +77,8 @@ class TerrainPass {
 
   // `deferred`: also build the visibility pipeline (the device can shade in compute). `tasks`
   // (may be null: all on the calling thread) shares prepare()'s per-piece work with the calling
-  // thread; it must outlive the pass. `reserveTriangles`: the geometry buffers' smallest size, in
+  // thread; it must outlive the pass; it also makes the slots' buffers' next sizes ahead of need
+  // (growing_buffer.h). `reserveTriangles`: the geometry buffers' smallest size, in
   // triangles (RendererOptions::terrainTriangles).
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred,
               TaskRunner* tasks = nullptr, uint64_t reserveTriangles = 0);
@@ -131,15 +133,11 @@ class TerrainPass {
     uint32_t firstIndex = 0;
     int32_t vertexOffset = 0;
   };
-  // Grown to twice what is needed (and at least `reserve`) when too small.
-  void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
-                      const std::string& what, int slot, const RetireBuffer& retire, VkDeviceSize reserve = 0);
   void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
 
   const Context* ctx_;
   TaskRunner* tasks_;
   DetailTextures detail_;
-  VkDeviceSize reserveVertexBytes_, reserveIndexBytes_;  // the geometry buffers' smallest sizes
   DescriptorSetLayout imageryLayout_;
   DescriptorPool imageryPool_;
   VkDescriptorSet imagerySet_ = VK_NULL_HANDLE;
@@ -151,8 +149,8 @@ class TerrainPass {
   GpuImage ndvi_;
   bool withNdvi_ = false;
   uint32_t layers_ = 0;
-  std::array<GpuBuffer, kSlots> vertices_, indices_, pieces_, staging_;  // host-visible
-  std::array<GpuBuffer, kSlots> deviceVertices_, deviceIndices_;
+  std::array<GrowingBuffer, kSlots> vertices_, indices_, pieces_, staging_;  // host-visible
+  std::array<GrowingBuffer, kSlots> deviceVertices_, deviceIndices_;
   std::array<std::vector<PreparedDraw>, kSlots> prepared_;
 };
 

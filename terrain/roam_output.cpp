@@ -134,6 +134,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
 }
 
 bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
+  assert((sink.chunk == nullptr) == (sink.chunkVertices == nullptr) && "a chunk brings its vertex map");
   const RoamNode& n = mesh_.node(t);
   ++sink.counts->leaves;
   for (uint32_t v : n.v)

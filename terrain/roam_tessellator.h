@@ -76,7 +76,8 @@ struct RoamOptions {
   // Where a compaction's copy runs (RoamMesh::compact): started at the end of the update that
   // calls for it, it goes on beside the output and the rest of the frame, and the next change
   // of the mesh waits for it (or makes the copy itself if no worker has taken it yet). The
-  // output's work per chunk runs there too, the frame thread taking its share (parallelFor).
+  // update's priority subtrees and the output's work per chunk run there too, the frame thread
+  // taking its share (parallelFor).
   // Null: all of it on the frame thread. The mesh and the output are the same either way.
   TaskRunner* tasks = nullptr;
 };

@@ -72,6 +72,13 @@ TEST_F(GrowingBufferTest, TheNextSizeIsMadeByTheRunnerAndTakenWhenOutgrown) {
     EXPECT_EQ(tasks.runAll(), 2u);
     EXPECT_EQ(c.size(), 128 * kKiB);
 
+    // A minimum: the smallest size made, doubled from there.
+    GrowingBuffer m(*ctx, kUsage, MemoryUse::DeviceLocal, "test buffer 4", nullptr, 1024 * kKiB);
+    m.ensure(10 * kKiB, GrowingBuffer::kNoCeiling, retire());
+    EXPECT_EQ(m.size(), 1024 * kKiB);
+    m.ensure(1500 * kKiB, GrowingBuffer::kNoCeiling, retire());
+    EXPECT_EQ(m.size(), 2048 * kKiB);
+
     // One queued when its buffer goes: the destructor claims it, so it is never made.
     GrowingBuffer d(*ctx, kUsage, MemoryUse::DeviceLocal, "test buffer 3", &tasks);
     d.ensure(50 * kKiB, 4096 * kKiB, retire());
