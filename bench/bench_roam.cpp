@@ -85,23 +85,63 @@ double percentile(std::vector<double> v, double p) {
   return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
 }
 
+constexpr double kW = 1920.0, kH = 1080.0, kFps = 60.0;
+
+Result<flight::FlightPath> bundledPath(const char* name) {
+  return flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(name) + ".json"));
+}
+
+// The streamed terrain of one flight over the Zion sample. settle(t): the tile selection's wants
+// for the camera at t, the streamer settled (untimed: I/O is not the terrain's).
+struct RoamFlight {
+  std::shared_ptr<streaming::TileSource> source;
+  terrain::HeightGrid grid;
+  geo::LocalFrame frame;
+  std::unique_ptr<streaming::TileStreamer> streamer;
+  std::unique_ptr<terrain::StreamedTerrain> terrain;
+  flight::PathSampler sampler;
+  std::string error;  // set when it cannot fly
+
+  RoamFlight(const Zion& z, const flight::FlightPath& path, const terrain::StreamedTerrainOptions& options)
+      : frame({0.5 * (z.meta.bounds.southDeg + z.meta.bounds.northDeg), z.meta.bounds.centre().x, 0.0}),
+        sampler(path) {
+    auto opened = streaming::openTileSource(z.dir.string(), {});
+    if (!opened) {
+      error = "cannot open the dataset";
+      return;
+    }
+    source = *opened;
+    auto ground = streaming::loadGroundHeights(*source, z.meta, {});
+    if (!ground) {
+      error = "no ground heights";
+      return;
+    }
+    grid = terrain::heightGridFrom(*ground);
+    streamer = std::make_unique<streaming::TileStreamer>(source, z.meta, terrain::streamingOptionsFor(z.meta, {}),
+                                                         makeNullLogger());
+    terrain = std::make_unique<terrain::StreamedTerrain>(*streamer, frame, options);
+  }
+  int frames() const { return static_cast<int>(std::floor(sampler.duration() * kFps)) + 1; }
+  void settle(double t) {
+    const flight::GroundHeight groundFn = [&](double lat, double lon) { return grid.sampleLonLat(lon, lat); };
+    const render::Camera cam = scene::cameraFor(frame, sampler.sample(t, groundFn));
+    auto wants = terrain->wants(scene::selectionViewFor(cam, kW, kH), scene::eyeViewFor(cam, kW, kH), {});
+    for (int round = 0; round < 32; ++round) {
+      streamer->settle(wants, t);
+      auto again = terrain->wantsAgain();
+      const bool same = again.size() == wants.size();
+      wants = std::move(again);
+      if (same) break;
+    }
+  }
+};
+
 void flyPath(benchmark::State& state, const char* pathName) {
   Zion& z = zion();
   if (!z.ok) return state.SkipWithError("no Zion dataset");
-  auto path =
-      flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(pathName) + ".json"));
+  auto path = bundledPath(pathName);
   if (!path) return state.SkipWithError(path.error().message.c_str());
-  constexpr double kW = 1920.0, kH = 1080.0, kFps = 60.0;
   for (auto _ : state) {
-    auto source = streaming::openTileSource(z.dir.string(), {});
-    if (!source) return state.SkipWithError("cannot open the dataset");
-    auto ground = streaming::loadGroundHeights(**source, z.meta, {});
-    if (!ground) return state.SkipWithError("no ground heights");
-    const terrain::HeightGrid grid = terrain::heightGridFrom(*ground);
-    const flight::GroundHeight groundFn = [&](double lat, double lon) { return grid.sampleLonLat(lon, lat); };
-    const geo::GeoBounds& b = z.meta.bounds;
-    const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
-    streaming::TileStreamer streamer(*source, z.meta, terrain::streamingOptionsFor(z.meta, {}), makeNullLogger());
     terrain::StreamedTerrainOptions to;
     to.maxErrorPx = static_cast<double>(state.range(0));
     // range(1) = 0: the same work done in full every frame (no deferred priorities, no cached
@@ -114,11 +154,12 @@ void flyPath(benchmark::State& state, const char* pathName) {
     // record and the wait for the GPU; what it does not hide is the next update's compact_wait_ms.
     ThreadPool worker(1);
     if (state.range(1) == 2) to.roam.tasks = &worker;
-    terrain::StreamedTerrain terrain(streamer, frame, to);
-    const flight::PathSampler sampler(*path);
+    RoamFlight flight(z, *path, to);
+    if (!flight.error.empty()) return state.SkipWithError(flight.error.c_str());
+    terrain::StreamedTerrain& terrain = *flight.terrain;
     std::vector<double> frameMs, cpuMs, updateMs, outputMs, drawn, seeds, ratio, leaves, ops, morphing, visited,
         computed, reused, built, moved, emitted;
-    const int frames = static_cast<int>(std::floor(sampler.duration() * kFps)) + 1;
+    const int frames = flight.frames();
     int compactions = 0;
     // VEGSTREAM_BENCH_CSV=DIR: one row per frame in DIR/<benchmark name>.csv (where the time goes).
     std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
@@ -134,15 +175,7 @@ void flyPath(benchmark::State& state, const char* pathName) {
     }
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
-      const render::Camera cam = scene::cameraFor(frame, sampler.sample(t, groundFn));
-      auto wants = terrain.wants(scene::selectionViewFor(cam, kW, kH), scene::eyeViewFor(cam, kW, kH), {});
-      for (int round = 0; round < 32; ++round) {
-        streamer.settle(wants, t);
-        auto again = terrain.wantsAgain();
-        const bool same = again.size() == wants.size();
-        wants = std::move(again);
-        if (same) break;
-      }
+      flight.settle(t);
       Stopwatch watch;
       const double cpu0 = threadCpuMs();
       const auto pieces = terrain.pieces(t);
@@ -205,6 +238,42 @@ void flyPath(benchmark::State& state, const char* pathName) {
   }
 }
 
+// A compaction's copy (RoamMesh::buildCompaction) of the mesh benchmark-30s has at 20 s (80 k
+// leaves, at 15 m over the Kolob plateau), its pools scattered by the flight since the last
+// compaction: on the calling thread alone (range(0) = 1) or with range(0) − 1 workers helping,
+// the subtrees split between them (roam_mesh_compaction.cpp). Each iteration copies the
+// scattered mesh first, untimed. Counters: leaves, and the pairs allocated since the last
+// compaction against those live (how scattered the pools are).
+void BM_RoamCompaction(benchmark::State& state) {
+  Zion& z = zion();
+  if (!z.ok) return state.SkipWithError("no Zion dataset");
+  auto path = bundledPath("benchmark-30s");
+  if (!path) return state.SkipWithError(path.error().message.c_str());
+  RoamFlight flight(z, *path, {});
+  if (!flight.error.empty()) return state.SkipWithError(flight.error.c_str());
+  for (int i = 0; i <= static_cast<int>(20.0 * kFps); ++i) {
+    flight.settle(i / kFps);
+    (void)flight.terrain->pieces(i / kFps);
+  }
+  const terrain::RoamMesh& scattered = flight.terrain->roam().mesh();
+  const auto threads = static_cast<int>(state.range(0));
+  std::unique_ptr<ThreadPool> pool = threads > 1 ? std::make_unique<ThreadPool>(threads - 1) : nullptr;
+  for (auto _ : state) {
+    terrain::RoamMesh mesh = scattered;
+    terrain::RoamCompaction c = mesh.beginCompaction();
+    // The pools as the app's kept spare ones are: every page touched already.
+    c.nodes.resize(c.nodes.capacity());
+    c.vertices.resize(c.vertices.capacity());
+    Stopwatch watch;
+    mesh.buildCompaction(c, pool.get());
+    state.SetIterationTime(watch.elapsedMs() * 1e-3);
+    (void)mesh.endCompaction(std::move(c));
+  }
+  state.counters["leaves"] = static_cast<double>(scattered.leafCount());
+  state.counters["churn"] =
+      static_cast<double>(scattered.pairsAllocatedSinceCompact()) / static_cast<double>(scattered.livePairs());
+}
+
 void BM_RoamBenchmark30s(benchmark::State& state) { flyPath(state, "benchmark-30s"); }
 void BM_RoamCanyonRun(benchmark::State& state) { flyPath(state, "canyon-run"); }
 // range(0): the screen-space error bound, pixels; range(1): incremental with compactions on a
@@ -216,6 +285,7 @@ BENCHMARK(BM_RoamBenchmark30s)
     ->Args({4, 2})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
+BENCHMARK(BM_RoamCompaction)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RoamCanyonRun)->Args({2, 2})->Args({2, 1})->Args({2, 0})->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace

@@ -17,6 +17,7 @@ namespace vegstream::terrain {
 
 struct RoamTessellator::PendingCompaction {
   const RoamMesh* mesh = nullptr;
+  TaskRunner* tasks = nullptr;  // the copy's subtrees run there too (RoamMesh::buildCompaction)
   RoamCompaction work;
   std::atomic<bool> claimed{false};  // the worker or finishCompaction: the first one makes the copy
   std::mutex mu;
@@ -24,7 +25,7 @@ struct RoamTessellator::PendingCompaction {
   bool done = false;
 
   void build() {
-    mesh->buildCompaction(work);
+    mesh->buildCompaction(work, tasks);
     std::lock_guard lock(mu);
     done = true;
     doneCv.notify_all();
@@ -49,6 +50,7 @@ void RoamTessellator::startCompaction() {
   }
   compaction_ = std::make_shared<PendingCompaction>();
   compaction_->mesh = &mesh_;
+  compaction_->tasks = options_.tasks;
   compaction_->work = mesh_.beginCompaction();
   options_.tasks->post([pending = compaction_] {
     if (!pending->claimed.exchange(true)) pending->build();

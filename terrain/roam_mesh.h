@@ -29,6 +29,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/task_runner.h"
 #include "geo/local_frame.h"
 #include "geo/xyz_tiles.h"
 #include "terrain/bintree.h"
@@ -101,6 +102,13 @@ struct RoamCompaction {
   std::vector<RoamNode> nodes;
   std::vector<RoamVertex> vertices;
   RoamRenumbering renumbering;
+  // Scratch (roam_mesh_compaction.cpp): every split node's rank in preorder, by node; and by
+  // rank, its split vertex and base neighbour.
+  struct Split {
+    uint32_t mid, base;
+  };
+  std::vector<uint32_t> ranks;
+  std::vector<Split> splits;
 };
 
 class RoamMesh {
@@ -152,9 +160,10 @@ class RoamMesh {
     return endCompaction(std::move(c));
   }
   // compact() in steps. begin and end on the thread that owns the mesh; build on any thread,
-  // while nothing changes the mesh in between (it only reads it).
+  // while nothing changes the mesh in between (it only reads it), with its subtrees copied in
+  // parallel on `tasks` when given (the same result with any number of threads).
   RoamCompaction beginCompaction();  // hands the spare pools out
-  void buildCompaction(RoamCompaction& c) const;
+  void buildCompaction(RoamCompaction& c, TaskRunner* tasks = nullptr) const;
   RoamRenumbering endCompaction(RoamCompaction&& c);  // the copy becomes the mesh
   // Node pairs allocated since the last compaction (or construction), against those live: how
   // far the pools have drifted from depth-first order.

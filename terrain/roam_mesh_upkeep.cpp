@@ -1,6 +1,6 @@
 // The ROAM bintree's upkeep (roam_mesh.h): resampling the vertices under a tile whose heights
-// changed, compacting the node pool, and the checks the tests use (leaves, conformity). The
-// splits and merges themselves are in roam_mesh.cpp (Duchaineau et al. 1997 §4, seed
+// changed, and the checks the tests use (leaves, conformity). The
+// splits and merges themselves are in roam_mesh.cpp, the compaction in roam_mesh_compaction.cpp (Duchaineau et al. 1997 §4, seed
 // 001_3eca9f2c7752e4fb.txt §3.1).
 #include "terrain/roam_mesh.h"
 
@@ -45,79 +45,6 @@ void RoamMesh::resample(const geo::TileId& tile) {
     if (x.grid.x >= lo[0] && x.grid.x <= hi[0] && x.grid.y >= lo[1] && x.grid.y <= hi[1]) sampleVertex(x, true);
   }
   for (uint32_t r : roots_) resampleNode(r, tile, lo, hi);
-}
-
-RoamCompaction RoamMesh::beginCompaction() {
-  RoamCompaction c;
-  c.nodes = std::move(spareNodes_);  // kept from the last compaction: no pages faulted in again
-  c.vertices = std::move(spareVertices_);
-  c.nodes.clear();
-  c.vertices.clear();
-  c.nodes.reserve(nodes_.capacity());  // the pools swap: both keep what reserve() asked for
-  c.vertices.reserve(vertices_.capacity());
-  return c;
-}
-
-void RoamMesh::buildCompaction(RoamCompaction& c) const {
-  std::vector<uint32_t>& nodeMap = c.renumbering.nodes;
-  std::vector<uint32_t>& vertexMap = c.renumbering.vertices;
-  nodeMap.assign(nodes_.size(), kNoNode);
-  vertexMap.assign(vertices_.size(), kNoNode);
-  std::vector<RoamNode>& nodes = c.nodes;
-  std::vector<RoamVertex>& vertices = c.vertices;
-  for (uint32_t v : cornerVertices_) {
-    vertexMap[v] = static_cast<uint32_t>(vertices.size());
-    vertices.push_back(vertices_[v]);
-  }
-  auto copy = [&](uint32_t t) {
-    nodes.push_back(nodes_[t]);
-    nodes.back().drawnChunk = kNoNode;  // the tessellator attaches its chunks again
-  };
-  for (uint32_t r : roots_) {  // roots are the first pairs, in order
-    assert(r == nodes.size());
-    nodeMap[r] = r;
-    copy(r);
-  }
-  // Depth first, children pair by pair; a diamond's vertex goes where its first half meets it.
-  std::vector<uint32_t> stack(roots_.rbegin(), roots_.rend());
-  while (!stack.empty()) {
-    const uint32_t t = stack.back();
-    stack.pop_back();
-    const RoamNode& n = nodes_[t];
-    if (n.isLeaf()) continue;
-    if (vertexMap[n.mid] == kNoNode) {
-      vertexMap[n.mid] = static_cast<uint32_t>(vertices.size());
-      vertices.push_back(vertices_[n.mid]);
-    }
-    nodeMap[n.child] = static_cast<uint32_t>(nodes.size());
-    nodeMap[n.child + 1] = static_cast<uint32_t>(nodes.size() + 1);
-    copy(n.child);
-    copy(n.child + 1);
-    stack.push_back(n.child + 1);
-    stack.push_back(n.child);
-  }
-  auto mapNode = [&](uint32_t i) { return i == kNoNode ? kNoNode : nodeMap[i]; };
-  for (RoamNode& n : nodes) {
-    n.parent = mapNode(n.parent);
-    n.child = mapNode(n.child);
-    n.base = mapNode(n.base);
-    n.left = mapNode(n.left);
-    n.right = mapNode(n.right);
-    if (n.mid != kNoNode) n.mid = vertexMap[n.mid];
-    for (uint32_t& v : n.v) v = vertexMap[v];
-  }
-}
-
-RoamRenumbering RoamMesh::endCompaction(RoamCompaction&& c) {
-  for (uint32_t& v : cornerVertices_) v = c.renumbering.vertices[v];
-  nodes_.swap(c.nodes);
-  vertices_.swap(c.vertices);
-  spareNodes_ = std::move(c.nodes);  // the old pools: the next compaction's scratch
-  spareVertices_ = std::move(c.vertices);
-  freePairs_.clear();
-  freeVertices_.clear();
-  pairsAllocated_ = 0;
-  return std::move(c.renumbering);
 }
 
 std::vector<uint32_t> RoamMesh::leaves() const {

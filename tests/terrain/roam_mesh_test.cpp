@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/task_runner.h"
 #include "terrain/roam_mesh.h"
 #include "terrain/wedgie_table.h"
 #include "tests/terrain/roam_fixture.h"
@@ -144,6 +145,85 @@ TEST(RoamMesh, RandomSplitsAndMergesNeverCrack) {
   }
   std::set<GridPoint> points;
   for (const auto& [p, i] : owners) ASSERT_TRUE(points.insert(p).second) << "two vertices at one grid point";
+}
+
+// The compaction's copy split over subtrees on a pool (roam_mesh_compaction.cpp) gives the pools
+// one thread gives, and both are in depth-first order: the children of the i-th split node in
+// preorder are the pair at R + 2i, and the split vertices are numbered in the order a preorder
+// walk first meets them, after the root corners.
+TEST(RoamMesh, CompactionOnAPoolCopiesDepthFirstLikeOneThread) {
+  auto& z = zionResident();
+  const BintreeGrid grid(z.meta().minZoom + 2, z.meta().maxZoom);
+  const geo::TileRange roots = geo::tileRangesCovering(z.meta().bounds, grid.rootZoom()).front();
+  RoamMeshOptions mo;
+  mo.fillHeightM = 1500.0;
+  RoamMesh one(grid, roots, z.frame(), z.heights(), mo);
+  std::mt19937 rng(99);
+  // Splits near one corner grow a subtree of far more than one item's 2048 leaves; merges and
+  // more splits scatter the pools.
+  // (The leaves are listed again every 16 steps and after a merge, which frees nodes.)
+  std::vector<uint32_t> leaves;
+  for (int step = 0; one.leafCount() < 30000; ++step) {
+    if (step % 16 == 0 || leaves.empty()) leaves = one.leaves();
+    const uint32_t t = leaves[step % 4 == 0 ? rng() % leaves.size() : rng() % (leaves.size() / 8)];
+    if (!one.node(t).isLeaf()) continue;
+    if (rng() % 5 != 0) {
+      one.split(t);
+    } else if (one.node(t).parent != kNoNode && one.isMergeable(one.node(t).parent)) {
+      one.merge(one.node(t).parent);
+      leaves.clear();
+    }
+  }
+  uint32_t largestRoot = 0;
+  for (uint32_t r : one.roots()) largestRoot = std::max(largestRoot, one.node(r).leafCount);
+  ASSERT_GT(largestRoot, 4u * 2048u) << "a root holds several items";
+  RoamMesh pooled = one;
+  const RoamRenumbering a = one.compact();
+  ThreadPool pool(3);
+  RoamCompaction c = pooled.beginCompaction();
+  pooled.buildCompaction(c, &pool);
+  const RoamRenumbering b = pooled.endCompaction(std::move(c));
+  ASSERT_EQ(a.nodes, b.nodes);
+  ASSERT_EQ(a.vertices, b.vertices);
+  ASSERT_EQ(one.nodeCapacity(), pooled.nodeCapacity());
+  ASSERT_EQ(one.vertexCount(), pooled.vertexCount());
+  for (uint32_t i = 0; i < one.nodeCapacity(); ++i) {
+    const RoamNode &x = one.node(i), &y = pooled.node(i);
+    ASSERT_TRUE(x.path == y.path && x.parent == y.parent && x.child == y.child && x.base == y.base &&
+                x.left == y.left && x.right == y.right && x.mid == y.mid && x.v[0] == y.v[0] && x.v[1] == y.v[1] &&
+                x.v[2] == y.v[2] && x.leafCount == y.leafCount && x.drawnChunk == kNoNode && y.drawnChunk == kNoNode)
+        << "node " << i;
+  }
+  for (uint32_t i = 0; i < one.vertexCount(); ++i) {
+    ASSERT_EQ(one.vertex(i).grid, pooled.vertex(i).grid) << "vertex " << i;
+    ASSERT_EQ(one.vertex(i).at, pooled.vertex(i).at) << "vertex " << i;
+  }
+  // Depth-first order, walked here.
+  const auto rootCount = static_cast<uint32_t>(one.roots().size());
+  uint32_t split = 0, nextVertex = 0;
+  std::set<uint32_t> met;
+  for (uint32_t r : one.roots())
+    for (uint32_t v : one.node(r).v)
+      if (met.insert(v).second) ++nextVertex;  // the root corners come first
+  ASSERT_EQ(met.size(), nextVertex);
+  ASSERT_EQ(*met.rbegin() + 1, nextVertex);
+  std::vector<uint32_t> stack(one.roots().rbegin(), one.roots().rend());
+  while (!stack.empty()) {
+    const uint32_t t = stack.back();
+    stack.pop_back();
+    const RoamNode& n = one.node(t);
+    if (n.isLeaf()) continue;
+    ASSERT_EQ(n.child, rootCount + 2 * split++);
+    if (met.insert(n.mid).second) {
+      ASSERT_EQ(n.mid, nextVertex++);
+    }
+    stack.push_back(n.child + 1);
+    stack.push_back(n.child);
+  }
+  EXPECT_EQ(split + split + rootCount, one.nodeCapacity());
+  EXPECT_EQ(nextVertex, one.vertexCount());
+  EXPECT_EQ(one.conformityViolations(), 0u);
+  EXPECT_EQ(pooled.conformityViolations(), 0u);
 }
 
 TEST(RoamMesh, VerticesSampleTheHeightsAndSitInTheFrame) {
