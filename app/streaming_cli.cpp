@@ -37,7 +37,7 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--terrain-shading", o.terrainShading,
                  "deferred: a visibility pass, then every pixel shaded in compute (fast where graphics units are "
                  "few); compute: rasterised in compute too (no graphics work for the terrain); forward: fragments "
-                 "shaded as drawn; auto: deferred where the device can")
+                 "shaded as drawn; auto: compute on a GPU, deferred on a CPU rasteriser (lavapipe), else forward")
       ->check(CLI::IsMember({"auto", "forward", "deferred", "compute"}))
       ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM,

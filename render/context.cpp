@@ -68,6 +68,7 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
                                              : VkSampleCountFlags{VK_SAMPLE_COUNT_1_BIT};
   for (int s : {1, 2, 4, 8})  // the shade shader handles up to 8 samples
     if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
+  info.sampleRateShading = features.sampleRateShading == VK_TRUE;
   return info;
 }
 

@@ -8,6 +8,10 @@ bool DeviceInfo::supportsDeferredTerrain(int samples) const {
   return std::find(storageMsaaCounts.begin(), storageMsaaCounts.end(), samples) != storageMsaaCounts.end();
 }
 
+bool DeviceInfo::supportsComputeTerrain(int samples) const {
+  return supportsDeferredTerrain(samples) && (samples == 1 || sampleRateShading);
+}
+
 bool DeviceInfo::supportsMsaa(int samples) const {
   return std::find(msaaCounts.begin(), msaaCounts.end(), samples) != msaaCounts.end();
 }

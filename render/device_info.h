@@ -18,10 +18,14 @@ struct DeviceInfo {
   // Sample counts at which compute may store into the colour target (storage images; above 1
   // only with shaderStorageImageMultisample): where deferred terrain shading can run.
   std::vector<int> storageMsaaCounts;
+  bool sampleRateShading = false;  // fragment stages run per sample when asked (the compute terrain's depth pass)
 
   bool supportsMsaa(int samples) const;
   std::string msaaList() const;  // "1, 4"
   bool supportsDeferredTerrain(int samples) const;
+  // The terrain rasterised in compute: the deferred shade's storage, and above one sample a
+  // fragment stage run per sample (its depth samples written into the depth attachment).
+  bool supportsComputeTerrain(int samples) const;
 };
 
 }  // namespace vegstream::render

@@ -18,11 +18,6 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   const auto retireBuffer = [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); };
   const int slotIndex = static_cast<int>(index % kFramesInFlight);
   terrainPass->recordUploads(cmd, slotIndex, request.imageryUploads, retireBuffer);
-  if (terrainRaster) {  // first, so that it may overlap the compute passes (the H200 does not)
-    slot.timer->beginPass(cmd, "depth clear");
-    targets->clearDepth(cmd);
-    slot.timer->endPass(cmd);
-  }
   slot.vegetation.reset();
   slot.bladesExpanded = false;
   slot.treesDrawn = false;
@@ -65,6 +60,13 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
                             slot.timer->endPass(cmd);
                             slot.timer->beginPass(cmd, "terrain shade");
                           });
+    slot.timer->endPass(cmd);
+    // Its depth samples into the depth attachment: the trees and plants are depth-tested against
+    // the terrain by the hardware, hidden fragments rejected before they are shaded (on the H200,
+    // benchmark-30s: trees pass p50 1.23 → 0.82 ms against testing each fragment against the
+    // samples in its shader; this pass costs 0.68 ms, the clear it replaces 0.59).
+    slot.timer->beginPass(cmd, "terrain depth");
+    terrainRaster->recordDepthAttachment(cmd, slot.descriptorSet, *targets);
     slot.timer->endPass(cmd);
     next = RenderTargets::Load::Shaded;
   } else if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)

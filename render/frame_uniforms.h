@@ -23,8 +23,8 @@ struct FrameUniforms {
   glm::mat4 shadowMatrices[3];  // render/shadow_cascades.h
   glm::vec4 shadowSplits;       // xyz: cascades' far distances, w: 1 when shadows are drawn this frame
   glm::vec4 shadowTexel;        // xyz: cascades' texel sizes (m)
-  // x: 1 when the terrain was rasterised in compute, so every fragment over it tests its depth
-  // buffer (set 0 binding 5, shaders/common/terrain_occlusion.glsl); y: samples per pixel; z: 1
+  // x: 1 when the terrain was rasterised in compute (its depth samples, set 0 binding 5, are
+  // written into the depth attachment: shaders/terrain_depth.frag); y: samples per pixel; z: 1
   // when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees' scope
   // (shaders/common/hiz_occlusion.glsl).
   glm::vec4 terrainDepth;

@@ -99,7 +99,7 @@ void RenderTargets::beginRendering(VkCommandBuffer cmd, Load load, bool resolve,
     transitionImage(cmd, colorAttachment().get(), colorAttachment().aspect, VK_IMAGE_LAYOUT_GENERAL,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kColorStage, kColorAccess);
-    // The depth from beginVisibility's scope, or (the terrain rasterised in compute) clearDepth's.
+    // The depth from beginVisibility's scope, or (the terrain rasterised in compute) beginTerrainDepth's.
     memoryBarrier(cmd, kDepthStage, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStage, kDepthAccess);
   }
 
@@ -137,18 +137,17 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
   beginScope(cmd, idInfo, depthInfo);
 }
 
-void RenderTargets::clearDepth(VkCommandBuffer cmd) const {
+void RenderTargets::beginTerrainDepth(VkCommandBuffer cmd) const {
   assert(computeRaster());
   discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
   VkRenderingAttachmentInfo depthInfo =
-      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
-  depthInfo.clearValue.depthStencil = {0.0f, 0};
+      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, extent_};
   ri.layerCount = 1;
   ri.pDepthAttachment = &depthInfo;
   vkCmdBeginRendering(cmd, &ri);
-  vkCmdEndRendering(cmd);
+  setViewport(cmd);
 }
 
 void RenderTargets::visibilityToShade(VkCommandBuffer cmd) const {

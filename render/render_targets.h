@@ -53,7 +53,7 @@ class RenderTargets {
   //   writes first); the images are still in their attachment layouts.
   // - Shaded: the first scope after the deferred terrain — the colour attachment comes from the
   //   shade (GENERAL layout, written by compute), the depth from beginVisibility's scope (or,
-  //   with the terrain rasterised in compute, from clearDepth's: the terrain's depth is not in it).
+  //   with the terrain rasterised in compute, from beginTerrainDepth's).
   // `resolve` (multisampled only): resolve into color() and depth() at the end — the frame's last
   // scope; otherwise the MSAA attachments are stored for the next one. `resolveDepth`: whether
   // depth() is resolved too (only a frame that reads its depth back needs it; on the H200 the
@@ -69,10 +69,9 @@ class RenderTargets {
   // the colour attachment writable by compute (GENERAL). The shade returns the depth to its
   // attachment layout.
   void visibilityToShade(VkCommandBuffer cmd) const;
-  // The terrain rasterised in compute: the depth attachment cleared (to the far plane) in a scope
-  // of its own, recorded at the frame's start so that the GPU may clear it while the compute work
-  // before the first scope that loads it runs (no barrier between them waits for it).
-  void clearDepth(VkCommandBuffer cmd) const;
+  // Opens a scope of the depth attachment alone, its contents discarded (the terrain rasterised in
+  // compute writes every sample: TerrainRasterPass::recordDepthAttachment); the caller ends it.
+  void beginTerrainDepth(VkCommandBuffer cmd) const;
 
  private:
   // Begins rendering over the whole extent into one colour and one depth attachment.

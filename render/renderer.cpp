@@ -259,6 +259,30 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
 Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Renderer::~Renderer() = default;
 
+Result<TerrainShading> resolveTerrainShading(TerrainShading asked, const DeviceInfo& info, int msaa) {
+  const bool canDefer = info.supportsDeferredTerrain(msaa);
+  // Both shade in compute, storing into the colour target: one message names whichever was asked.
+  if ((asked == TerrainShading::Deferred || asked == TerrainShading::Compute) && !canDefer)
+    return makeError(ErrorKind::InvalidInput, std::string("--terrain-shading ") + terrainShadingName(asked) +
+                                                  " is not possible on " + info.name + " at --msaa " +
+                                                  std::to_string(msaa) +
+                                                  ": it cannot store into a colour target of that many samples" +
+                                                  " (storage images, shaderStorageImageMultisample)");
+  const bool canRasterInCompute = info.supportsComputeTerrain(msaa);
+  if (asked == TerrainShading::Compute && !canRasterInCompute)
+    return makeError(ErrorKind::InvalidInput, "--terrain-shading compute is not possible on " + info.name +
+                                                  " at --msaa " + std::to_string(msaa) +
+                                                  ": it cannot run a fragment stage per sample (sampleRateShading)");
+  if (asked == TerrainShading::Forward || !canDefer) return TerrainShading::Forward;
+  if (asked == TerrainShading::Deferred) return TerrainShading::Deferred;
+  if (asked == TerrainShading::Compute) return TerrainShading::Compute;
+  // Auto: the terrain rasterised in compute on a GPU — where graphics units are few (the H200:
+  // 2 of 66 TPCs) it is the fastest, measured side by side (render/README.md "The terrain
+  // rasterised in compute") — and deferred on a CPU rasteriser (lavapipe), whose raster is
+  // software either way.
+  return !info.software && canRasterInCompute ? TerrainShading::Compute : TerrainShading::Deferred;
+}
+
 Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& options) {
   ContextOptions co = options.context;
   if (options.window) {
@@ -284,19 +308,9 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const RendererOptions& option
     return makeError(ErrorKind::InvalidInput, "--msaa " + std::to_string(options.msaa) + " is not offered by " +
                                                   info.name + "; choose one of " + info.msaaList());
   impl->msaa = options.msaa;
-  const bool canDefer = info.supportsDeferredTerrain(options.msaa);
-  // Both shade in compute, storing into the colour target: one message names whichever was asked.
-  const bool shadesInCompute =
-      options.terrainShading == TerrainShading::Deferred || options.terrainShading == TerrainShading::Compute;
-  if (shadesInCompute && !canDefer)
-    return makeError(ErrorKind::InvalidInput, std::string("--terrain-shading ") +
-                                                  terrainShadingName(options.terrainShading) + " is not possible on " +
-                                                  info.name + " at --msaa " + std::to_string(options.msaa) +
-                                                  ": it cannot store into a colour target of that many samples" +
-                                                  " (storage images, shaderStorageImageMultisample)");
-  impl->terrainShading = options.terrainShading == TerrainShading::Forward || !canDefer ? TerrainShading::Forward
-                         : options.terrainShading == TerrainShading::Compute         ? TerrainShading::Compute
-                                                                                       : TerrainShading::Deferred;
+  Result<TerrainShading> shading = resolveTerrainShading(options.terrainShading, info, options.msaa);
+  if (!shading) return shading.error();
+  impl->terrainShading = *shading;
   // This build has no mesh-shader blade path (VK_EXT_mesh_shader): refused before any frame.
   if (options.bladePath == BladePath::Mesh)
     return makeError(ErrorKind::InvalidInput,

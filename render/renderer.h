@@ -26,10 +26,15 @@ namespace vegstream::render {
 // compute dispatch shades every pixel (terrain and sky) into the colour target — needs storage
 // images at the target's sample count. Forward: the terrain's fragments are shaded as drawn.
 // Compute: rasterised in compute as well (render/terrain_raster_pass.h: no graphics work for the
-// terrain; fragments drawn over it test its depth samples themselves) — needs what deferred needs.
-// Auto: deferred where the device can, else forward. The images are the same up to rounding.
+// terrain but one full-screen pass that writes its depth samples into the depth attachment) —
+// needs what deferred needs, and above one sample sampleRateShading.
+// Auto: compute on a GPU (the fastest on the H200, measured), deferred on a CPU rasteriser, else
+// forward. The images are the same up to rounding.
 enum class TerrainShading { Auto, Forward, Deferred, Compute };
 const char* terrainShadingName(TerrainShading shading);  // "auto", "forward", "deferred", "compute"
+// What `asked` becomes on `device` at `msaa` samples (Auto resolved as above), or an
+// InvalidInput error naming the option, the device and what it lacks.
+Result<TerrainShading> resolveTerrainShading(TerrainShading asked, const DeviceInfo& device, int msaa);
 
 struct RendererOptions {
   ContextOptions context;

@@ -7,7 +7,9 @@
 
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
+#include "shaders/sky.vert.h"
 #include "shaders/terrain_bin.comp.h"
+#include "shaders/terrain_depth.frag.h"
 #include "shaders/terrain_bin_scan.comp.h"
 #include "shaders/terrain_raster.comp.h"
 #include "shaders/terrain_raster_ms.comp.h"
@@ -85,6 +87,16 @@ TerrainRasterPass::TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout f
   raster_ = targets.multisampled()
                 ? createComputePipeline(ctx, layout_.get(), spv_terrain_raster_ms_comp, "terrain raster (MSAA)")
                 : createComputePipeline(ctx, layout_.get(), spv_terrain_raster_comp, "terrain raster");
+  depthLayout_ = createPipelineLayout(ctx, {&frameLayout, 1}, {}, "terrain depth pipeline layout");
+  GraphicsPipelineDesc d;
+  d.name = "terrain depth pipeline";
+  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_sky_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_depth_frag}};
+  d.cullMode = VK_CULL_MODE_NONE;
+  d.depthCompare = VK_COMPARE_OP_ALWAYS;  // every sample written, the far plane where the sky is
+  d.samples = targets.samples();
+  d.depthFormat = kDepthFormat;
+  d.layout = depthLayout_.get();
+  depthPipeline_ = createGraphicsPipeline(ctx, d);
 }
 
 void TerrainRasterPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, const char* what,
@@ -130,8 +142,7 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
 
   // The previous frame's compute readers (its raster, Hi-Z build) before this frame's writes (its
   // fragments' reads of the depth samples are waited for at its end: recordEndOfFrame); then the
-  // counts start at zero. No barrier here waits for graphics work, so the frame's depth clear
-  // (RenderTargets::clearDepth, recorded first) may run beside these dispatches.
+  // counts start at zero.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                 VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -184,6 +195,15 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   const VkBufferCopy copy{0, 0, kCounterBytes};
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &copy);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+void TerrainRasterPass::recordDepthAttachment(VkCommandBuffer cmd, VkDescriptorSet frameSet,
+                                              const RenderTargets& targets) const {
+  targets.beginTerrainDepth(cmd);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthLayout_.get(), 0, 1, &frameSet, 0, nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
 }
 
 void TerrainRasterPass::recordEndOfFrame(VkCommandBuffer cmd) const {

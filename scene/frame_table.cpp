@@ -93,6 +93,7 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     // ROAM and seed triangles (sub-stages of cpu_terrain_ms, not added to cpu_frame_ms).
     r[c++] = tf.roam.updateMs;
     r[c++] = tf.roam.outputMs;
+    r[c++] = tf.roam.compactWaitMs;
     for (uint64_t v : {tf.roam.leaves, tf.roam.splits, tf.roam.merges, tf.roam.constrainedLeaves,
                        static_cast<uint64_t>(tf.roam.budgetLimited), static_cast<uint64_t>(tf.roam.workLimited),
                        tf.roam.seedTriangles, tf.roam.seedInterpolated, tf.roam.depthLimitedLeaves})

@@ -13,7 +13,6 @@
 #include "seeding.glsl"
 #include "classify_layout.glsl"
 #include "plant_common.glsl"
-#include "terrain_occlusion.glsl"
 
 layout(location = 0) in vec3 gColour;
 layout(location = 1) in vec2 gBlade;
@@ -52,7 +51,6 @@ float bladeDetail(uint kind) {
 }
 
 void main() {
-  vec2 depthSlope = terrainDepthSlope();
   bool shadow = (gFlags & 4u) != 0u;
   uint kind = gFlags & 3u;
   // The outline: a blade's soft edges, a flower head's disc, a stone's lumpy disc. A shadow is
@@ -71,7 +69,6 @@ void main() {
   uint first = uint(d * 16.0) % samples;
   uint bits = (k >= 32u ? 0xffffffffu : (1u << k) - 1u);
   uint mask = ((bits << first) | (bits >> (samples - first))) & ((samples >= 32u ? 0xffffffffu : (1u << samples) - 1u));
-  mask &= terrainCoverage(depthSlope);  // behind the terrain when it was rasterised in compute
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
   vec3 lit = (pc.flags & kFlagFlatColour) != 0u ? vec3(1.0, 0.0, 1.0) : gColour * bladeDetail(kind);

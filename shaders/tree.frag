@@ -12,7 +12,6 @@
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 #include "common/tree_coverage.glsl"
-#include "common/terrain_occlusion.glsl"
 
 layout(location = 0) in vec3 vPos;
 layout(location = 1) in vec3 vNormal;
@@ -32,7 +31,6 @@ void main() {
   // The colour path writes its own coverage; every other path covers all samples (a shader that
   // writes gl_SampleMask on one path leaves it undefined on the others: lavapipe drops them).
   gl_SampleMask[0] = -1;
-  vec2 depthSlope = terrainDepthSlope();
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
   float alpha = treeSharpCoverage(leaf ? treeCardShape(vUv, m.bark.w) : 1.0, 0.5);
@@ -50,7 +48,7 @@ void main() {
   }
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
-  uint mask = treeSampleMask(alpha, push.samples, fract(dither * 7.0 + 0.31)) & terrainCoverage(depthSlope);
+  uint mask = treeSampleMask(alpha, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
   vec3 n = normalize(vNormal);

@@ -12,7 +12,6 @@ layout(early_fragment_tests) in;
 #include "common/tree_layout.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
-#include "common/terrain_occlusion.glsl"
 
 layout(location = 0) in vec3 vPos;
 layout(location = 1) in vec3 vNormal;
@@ -43,12 +42,6 @@ float coreNoise(vec3 p) {
 }
 
 void main() {
-  // Behind a terrain rasterised in compute: its samples are dropped from the colour (the depth was
-  // written before the shader, which is harmless: anything in front of the terrain is in front of
-  // a core hidden behind it).
-  uint visible = terrainCoverage(terrainDepthSlope());
-  if (visible == 0u) discard;
-  gl_SampleMask[0] = int(visible);
   TreeModelGpu m = trees.models[push.model];
   float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
   vec3 albedo = m.leaf.rgb * vTint * kTreeCoreShade * clumps;

@@ -9,7 +9,6 @@
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 #include "common/tree_coverage.glsl"
-#include "common/terrain_occlusion.glsl"
 
 layout(set = 1, binding = 8) uniform sampler2DArray impostorAlbedo;
 layout(set = 1, binding = 9) uniform sampler2DArray impostorNormal;
@@ -31,7 +30,6 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
-  vec2 depthSlope = terrainDepthSlope();
   // The triangle reaches past the rectangle the model fills (and its atlas cell): not drawn.
   if (any(greaterThan(abs(vUv - vRect.xy), vRect.zw))) discard;
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
@@ -46,7 +44,7 @@ void main() {
     outColor = vec4(0.0);
     return;
   }
-  uint mask = treeSampleMask(coverage, push.samples, fract(dither * 7.0 + 0.31)) & terrainCoverage(depthSlope);
+  uint mask = treeSampleMask(coverage, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
   // Premultiplied by the coverage (the capture averaged its samples with the empty background).

@@ -2,9 +2,8 @@
 #define SAMPLE_POSITIONS_GLSL
 // Vulkan's standard sample locations (spec "Multisampling", standardSampleLocations) for 1, 2, 4
 // and 8 samples, within the pixel (0 … 1, y down). The compute terrain rasteriser
-// (terrain_raster.glsl) samples its triangles there, and the fragments that test themselves
-// against its depth (terrain_occlusion.glsl) find their own depth there, so both agree with the
-// hardware's coverage of the other passes.
+// (terrain_raster.glsl) samples its triangles there, so that the depth samples it writes into
+// the depth attachment (terrain_depth.frag) are where the hardware tests the other passes'.
 vec2 samplePosition(uint samples, uint s) {
   const vec2 two[2] = vec2[2](vec2(0.75, 0.75), vec2(0.25, 0.25));
   const vec2 four[4] = vec2[4](vec2(0.375, 0.125), vec2(0.875, 0.375), vec2(0.125, 0.625), vec2(0.625, 0.875));

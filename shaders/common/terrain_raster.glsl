@@ -31,8 +31,8 @@ layout(std430, set = 3, binding = 7) buffer TileCounts { uint tileCount[]; };  /
 layout(std430, set = 3, binding = 8) buffer TileStarts { uint tileStart[]; };  // per tile
 layout(std430, set = 3, binding = 9) buffer TileLists { uint tileList[]; };    // raster triangle indices
 // Per pixel and sample ((y · width + x) · samples + s): the terrain's reverse-Z depth, 0 where
-// no terrain is (sky). Read by the Hi-Z build and, through set 0, by every fragment drawn over
-// the terrain (terrain_occlusion.glsl).
+// no terrain is (sky). Read by the Hi-Z build and, through set 0, by the pass that writes them
+// into the depth attachment (terrain_depth.frag).
 layout(std430, set = 3, binding = 10) buffer TerrainDepthOut { float terrainDepthOut[]; };
 
 // One edge, canonical: E(p) = a · (p.x − base.x) + b · (p.y − base.y), times `sign` for the

@@ -75,6 +75,7 @@ const std::vector<std::string> kStreaming = {"streaming_wait_ms",
 // Issue 6's ROAM and seed-triangle columns, after kStreaming.
 const std::vector<std::string> kRoam = {"terrain_roam_update_ms",
                                         "terrain_roam_output_ms",
+                                        "terrain_roam_compact_wait_ms",
                                         "terrain_leaves",
                                         "terrain_splits",
                                         "terrain_merges",

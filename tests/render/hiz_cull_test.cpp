@@ -12,6 +12,7 @@
 //    the reference and in the culled frame alike. Same inputs, same counts. Validation silent.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -238,9 +239,9 @@ TEST_F(HizCullTest, CullsWhatATallWallHidesAndNothingThatShows) {
 }
 
 // The terrain rasterised in compute (render/terrain_raster_pass.h): the pyramid comes from its
-// buffer of depth samples, and the plants behind the wall are hidden by their own per-sample test
-// against that buffer, not by an attachment holding the terrain. The same culling, and the same
-// picture as the deferred terrain's, plants included.
+// buffer of depth samples, and the plants behind the wall are hidden by the depth attachment those
+// samples are written into (shaders/terrain_depth.frag), as by the deferred terrain's own raster.
+// The same culling, the same depth read back, and the same picture, plants included.
 TEST_F(HizCullTest, TheTerrainRasterisedInComputeCullsAndHidesAsTheDeferredOne) {
   std::array<Frames, 2> frames;
   for (int k = 0; k < 2; ++k) {
@@ -266,6 +267,18 @@ TEST_F(HizCullTest, TheTerrainRasterisedInComputeCullsAndHidesAsTheDeferredOne) 
   EXPECT_GT(differing(*deferred.off.color, *deferred.bare.color), pixels / 100) << "the plants show in front";
   EXPECT_LT(differing(*compute.off.color, *deferred.off.color), pixels / 200);
   EXPECT_LT(differing(*compute.bare.color, *deferred.bare.color), pixels / 500);
+  // The depth read back holds the terrain (the wall and the ground), as the deferred one does
+  // (sample 0 of each pixel, within float rounding).
+  ASSERT_TRUE(compute.bare.depth && deferred.bare.depth);
+  ASSERT_EQ(compute.bare.depth->depth.size(), deferred.bare.depth->depth.size());
+  size_t terrain = 0, apart = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const float c = compute.bare.depth->depth[i], d = deferred.bare.depth->depth[i];
+    terrain += d > 0.0f ? 1 : 0;
+    apart += std::abs(c - d) > 1e-5f ? 1 : 0;  // rounding: a few 1e-6
+  }
+  EXPECT_GT(terrain, pixels / 2);
+  EXPECT_LT(apart, pixels / 500);
 }
 
 TEST_F(HizCullTest, AWallJustAboveTheEyeHidesTheFieldBehindItsFoot) {

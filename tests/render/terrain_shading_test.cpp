@@ -235,11 +235,58 @@ TEST_F(TerrainShadingTest, TheComputeFrameTimesBinningAndRasterAndDrawsNoTriangl
     EXPECT_LE(result->terrainRasterTriangles, 200u) << "none clipped by the near plane";
     EXPECT_GT(result->terrainRasterTriangles, 150u) << "a few off screen at the sides";
     ASSERT_EQ(result->gpu.passes.size(), 3u);
-    EXPECT_EQ(result->gpu.passes[0].pass, "depth clear");  // for the trees and plants: not the terrain's
-    EXPECT_EQ(result->gpu.passes[1].pass, "terrain");  // the binning
-    EXPECT_EQ(result->gpu.passes[2].pass, "terrain shade");  // the raster and the shading
+    EXPECT_EQ(result->gpu.passes[0].pass, "terrain");        // the binning
+    EXPECT_EQ(result->gpu.passes[1].pass, "terrain shade");  // the raster and the shading
+    EXPECT_EQ(result->gpu.passes[2].pass, "terrain depth");  // its depth samples into the attachment
     ASSERT_TRUE(result->gpu.statistics.available);
-    EXPECT_EQ(result->gpu.statistics.inputPrimitives, 0u) << "no graphics work for the terrain";
+    EXPECT_EQ(result->gpu.statistics.inputPrimitives, 1u) << "the depth pass's full-screen triangle, none of the terrain's";
+  }
+}
+
+// Which shading each device gets (no GPU needed): auto rasterises the terrain in compute on a
+// GPU, keeps deferred on a CPU rasteriser and falls back to forward where neither runs; an
+// explicit choice the device cannot run is one message naming the option, the device and what
+// it lacks.
+TEST(TerrainShadingChoice, AutoRasterisesInComputeOnAGpuAndDefersOnACpuRasteriser) {
+  DeviceInfo gpu;
+  gpu.name = "NVIDIA H200";
+  gpu.msaaCounts = gpu.storageMsaaCounts = {1, 2, 4, 8};
+  gpu.sampleRateShading = true;
+  DeviceInfo cpu = gpu;
+  cpu.name = "llvmpipe";
+  cpu.software = true;
+  auto pick = [](TerrainShading asked, const DeviceInfo& d, int msaa) {
+    Result<TerrainShading> r = resolveTerrainShading(asked, d, msaa);
+    EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
+    return r.ok() ? *r : TerrainShading::Auto;
+  };
+  EXPECT_EQ(pick(TerrainShading::Auto, gpu, 4), TerrainShading::Compute);
+  EXPECT_EQ(pick(TerrainShading::Auto, cpu, 4), TerrainShading::Deferred);
+  for (TerrainShading s : {TerrainShading::Forward, TerrainShading::Deferred, TerrainShading::Compute}) {
+    EXPECT_EQ(pick(s, gpu, 4), s);
+    EXPECT_EQ(pick(s, cpu, 4), s);
+  }
+  // No per-sample fragment stage: the depth pass cannot write 4 samples, so auto defers; one
+  // sample needs none.
+  DeviceInfo noSampleRate = gpu;
+  noSampleRate.sampleRateShading = false;
+  EXPECT_EQ(pick(TerrainShading::Auto, noSampleRate, 4), TerrainShading::Deferred);
+  EXPECT_EQ(pick(TerrainShading::Auto, noSampleRate, 1), TerrainShading::Compute);
+  Result<TerrainShading> refused = resolveTerrainShading(TerrainShading::Compute, noSampleRate, 4);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(refused.error().message.find("--terrain-shading compute"), std::string::npos);
+  EXPECT_NE(refused.error().message.find("NVIDIA H200"), std::string::npos);
+  EXPECT_NE(refused.error().message.find("sampleRateShading"), std::string::npos);
+  // No storage at 4 samples: forward for auto, a message for deferred and compute.
+  DeviceInfo noStorage = gpu;
+  noStorage.storageMsaaCounts = {1};
+  EXPECT_EQ(pick(TerrainShading::Auto, noStorage, 4), TerrainShading::Forward);
+  EXPECT_EQ(pick(TerrainShading::Auto, noStorage, 1), TerrainShading::Compute);
+  for (TerrainShading s : {TerrainShading::Deferred, TerrainShading::Compute}) {
+    Result<TerrainShading> r = resolveTerrainShading(s, noStorage, 4);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("shaderStorageImageMultisample"), std::string::npos);
   }
 }
 
