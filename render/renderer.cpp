@@ -179,6 +179,9 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     settings.mapSize = sunShadows->mapSize();
     slot.shadows = shadowCascades(request.camera, double(extent.width) / double(extent.height),
                                   request.lighting.sunDirection, settings);
+    slot.shadowMask = shadowRefresh.plan(*slot.shadows, request.camera.position, request.lighting.sunDirection, index);
+  } else {
+    shadowRefresh.reset();
   }
   FrameUniforms u = frameUniforms(request, extent.width, extent.height, slot.shadows ? &*slot.shadows : nullptr);
   // The Hi-Z pyramid is built right after a terrain shaded in compute whenever something tests

@@ -35,6 +35,7 @@
 #include "render/terrain_detail.h"
 #include "render/terrain_pass.h"
 #include "render/shadow_cascades.h"
+#include "render/shadow_refresh.h"
 #include "render/sun_shadow_pass.h"
 #include "render/terrain_raster_pass.h"
 #include "render/terrain_shade_pass.h"
@@ -74,6 +75,7 @@ struct FrameSlot {
   bool treesDrawn = false;      // the tree pass classified this frame's trees
   bool hizEarly = false;        // the Hi-Z pyramid is built right after the terrain (before the trees)
   std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
+  uint32_t shadowMask = 0;                // the cascades this frame draws (ShadowRefresh)
 };
 
 inline VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
@@ -99,6 +101,7 @@ struct Renderer::Impl {
   std::unique_ptr<SimulationPass> simulation;
   std::unique_ptr<TreePass> trees;
   std::unique_ptr<SunShadowPass> sunShadows;
+  ShadowRefresh shadowRefresh;  // which cascades each frame draws again (frames are recorded in order)
   uint64_t treeBudgetBytes = 0;
   BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   std::array<FrameSlot, kFramesInFlight> slots;

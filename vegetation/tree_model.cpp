@@ -96,11 +96,19 @@ void addTube(TreeMesh& mesh, const Skeleton& k, uint32_t index, const TreeParams
   }
 }
 
-void addCardQuad(TreeMesh& mesh, const Card& c) {
+// A conifer's needle spray narrows to 0.6 of its width at the tip (shaders/common/tree_shading.glsl
+// treeCardShape: width 1 − 0.4 v), and nothing covers the card outside that: its card is that
+// trapezoid rather than the whole quad, with each corner's uv where it lies, so the picture is the
+// same and a fifth of the card's fragments — launched, then dropped by their coverage — are never
+// made. On the H200 the trees' cards are bound by how many fragments are launched.
+constexpr float kConiferTipWidth = 0.6f;
+
+void addCardQuad(TreeMesh& mesh, const Card& c, TreeForm form) {
   const vec3 across = glm::cross(c.axis, c.normal) * (0.5f * c.width);  // (across × axis) ∥ normal: front face
   const vec3 tip = c.stem + c.axis * c.length;
-  const vec3 corners[4] = {c.stem - across, c.stem + across, tip + across, tip - across};
-  const float us[4] = {0.0f, 1.0f, 1.0f, 0.0f}, vs[4] = {0.0f, 0.0f, 1.0f, 1.0f};
+  const float t = form == TreeForm::Conifer ? kConiferTipWidth : 1.0f;  // the tip's share of the width
+  const vec3 corners[4] = {c.stem - across, c.stem + across, tip + t * across, tip - t * across};
+  const float us[4] = {0.0f, 1.0f, 0.5f + 0.5f * t, 0.5f - 0.5f * t}, vs[4] = {0.0f, 0.0f, 1.0f, 1.0f};
   const auto first = static_cast<uint32_t>(mesh.vertices.size());
   for (int i = 0; i < 4; ++i) {
     TreeVertex v{};
@@ -252,7 +260,7 @@ TreeModel buildTreeModel(const TreeParams& params, float heightM, float crownWid
     for (TreeLod lod : {TreeLod::Full, TreeLod::Reduced}) {
       TreeMesh& mesh = candidate.lod[static_cast<size_t>(lod)];
       for (uint32_t b = 0; b < k.branches.size(); ++b) addTube(mesh, k, b, params, heightM, lod);
-      for (const Card& c : lod == TreeLod::Full ? k.cards : reducedCards(k, env)) addCardQuad(mesh, c);
+      for (const Card& c : lod == TreeLod::Full ? k.cards : reducedCards(k, env)) addCardQuad(mesh, c, params.form);
     }
     const CrownCore core = crownCoreOf(candidate.lod[0]);
     for (TreeMesh& mesh : candidate.lod) addCrownCore(mesh, core, k.branches[0].length);

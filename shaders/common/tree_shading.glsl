@@ -15,7 +15,7 @@ const float kTreeImageryExposure = 1.6;
 float treeCardShape(vec2 uv, float form) {
   if (form < 0.5) {
     float across = abs(uv.x - 0.5) * 2.0;
-    float width = 1.0 - 0.4 * uv.y;
+    float width = 1.0 - 0.4 * uv.y;  // the card itself is this trapezoid (vegetation/tree_model.cpp kConiferTipWidth)
     float needles = 0.5 + 0.5 * sin((uv.y * 9.0 + across * 3.0) * 6.2831853);
     float inside = width - across;
     return clamp(inside * 6.0, 0.0, 1.0) * mix(0.42, 1.0, needles) * smoothstep(0.0, 0.08, uv.y);
