@@ -15,7 +15,7 @@ import re
 import statistics
 import sys
 
-ORDER = ["default", "no-plants", "forward", "forward-no-plants", "compute", "compute-no-plants", "dense-compute", "canyon-compute", "kolob-forest-compute", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "wind", "dense-wind", "wind-tessellation", "meadow-wind", "kolob-forest", "kolob-forest-no-trees", "kolob-forest-no-shadows", "kolob-forest-no-cores", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
+ORDER = ["default", "no-plants", "forward", "forward-no-plants", "deferred", "dense-deferred", "compute", "compute-no-plants", "dense-compute", "canyon-compute", "kolob-forest-compute", "dense", "dense-serial", "tessellation", "dense-tessellation", "canyon", "canyon-no-cull", "canyon-dense", "slickrock", "wind", "dense-wind", "wind-tessellation", "meadow-wind", "kolob-forest", "kolob-forest-no-trees", "kolob-forest-no-shadows", "kolob-forest-no-cores", "gallery-meadow", "gallery-forest-edge", "gallery-slickrock", "gallery-overview"]
 LOW_PHASE_S = (10.0, 20.0)  # benchmark-30s: near the ground between 10 and 20 s
 
 
