@@ -65,7 +65,7 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 }  // namespace
 
 BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                     uint32_t maxVertices, TaskRunner* tasks)
+                     uint32_t maxVertices, TaskRunner* tasks, bool startAtHalf)
     : ctx_(&ctx),
       // A storage buffer is bound whole: no larger than the device's maxStorageBufferRange.
       maxVertices_(std::min<uint64_t>(maxVertices, ctx.properties().limits.maxStorageBufferRange /
@@ -113,10 +113,13 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
     s.inputSet = allocateDescriptorSet(ctx, pool_.get(), inputLayout_.get(), "blade input set" + tag);
     s.bladeSet = allocateDescriptorSet(ctx, pool_.get(), bladeLayout_.get(), "blade set" + tag);
     // Transfer source: Renderer::readBladeVertices copies them out for the tests.
+    constexpr VkDeviceSize kSmall = 64 * 1024;  // GrowingBuffer's own default start
     s.vertices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               MemoryUse::DeviceLocal, "blade vertices" + tag, tasks);
+                               MemoryUse::DeviceLocal, "blade vertices" + tag, tasks,
+                               startAtHalf ? std::max(kSmall, maxVertices_ / 2 * sizeof(BladeVertexGpu)) : kSmall);
     s.indices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                              MemoryUse::DeviceLocal, "blade indices" + tag, tasks);
+                              MemoryUse::DeviceLocal, "blade indices" + tag, tasks,
+                              startAtHalf ? std::max(kSmall, maxIndices_ / 2 * sizeof(uint32_t)) : kSmall);
     s.state = createBuffer(
         ctx, kStateBytes,
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,

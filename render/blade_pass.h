@@ -42,8 +42,13 @@ class BladePass {
   // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
   // indices and the plant count (numbered, not stored) follow from it. `tasks` (may be null)
   // makes the vertex and index buffers' next sizes ahead of need (growing_buffer.h).
+  // `startAtHalf`: the vertex and index buffers start at half their ceilings (when the first frame
+  // with plants makes them) instead of small. On a GPU: the driver's first use of each new
+  // 64–256 MiB buffer cost 2–6 ms of the frame thread's recording while the plants came in
+  // (H200, benchmark-30s, CPU frame p99 4.58 / 4.60 → 3.90 / 4.01 ms side by side, the same peak
+  // GPU memory: the flight grows them to the ceiling anyway).
   BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices,
-            TaskRunner* tasks = nullptr);
+            TaskRunner* tasks = nullptr, bool startAtHalf = false);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
   // buffers are sized for); call with ClassifyPass::setCatalog.
