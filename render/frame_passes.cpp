@@ -44,7 +44,7 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
   }
   if (slot.shadows) {
     slot.timer->beginPass(cmd, "shadow");
-    sunShadows->record(cmd, *slot.shadows, slot.shadowMask, [&](VkCommandBuffer c, int cascade, const glm::mat4& m) {
+    sunShadows->record(cmd, *slot.shadows, [&](VkCommandBuffer c, int cascade, const glm::mat4& m) {
       trees->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m);
     });
     slot.timer->endPass(cmd);

@@ -36,7 +36,7 @@ FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_
   if (shadows) {
     for (int c = 0; c < kShadowCascades; ++c) u.shadowMatrices[c] = shadows->matrices[size_t(c)];
     u.shadowSplits = shadows->splits;
-    u.shadowTexel = glm::vec4(shadows->texelM[0], shadows->texelM[1], shadows->texelM[2], 0.0f);
+    u.shadowTexel = glm::vec4(shadows->texelM[0], shadows->texelM[1], shadows->texelM[2], float(shadows->drawn));
   }
   return u;
 }

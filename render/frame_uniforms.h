@@ -22,7 +22,7 @@ struct FrameUniforms {
   glm::vec4 detail;  // xyz: camera position modulo kDetailPeriodM (render/terrain_detail.h), w: detail strength
   glm::mat4 shadowMatrices[3];  // render/shadow_cascades.h
   glm::vec4 shadowSplits;       // xyz: cascades' far distances, w: 1 when shadows are drawn this frame
-  glm::vec4 shadowTexel;        // xyz: cascades' texel sizes (m)
+  glm::vec4 shadowTexel;        // xyz: cascades' texel sizes (m), w: ShadowCascades::drawn (the cascades drawn this frame)
   // x: 1 when the terrain was rasterised in compute (its depth samples, set 0 binding 5, are
   // written into the depth attachment: shaders/terrain_depth.frag); y: samples per pixel; z: 1
   // when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees' scope

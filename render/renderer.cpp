@@ -181,7 +181,7 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
     settings.mapSize = sunShadows->mapSize();
     slot.shadows = shadowCascades(request.camera, double(extent.width) / double(extent.height),
                                   request.lighting.sunDirection, settings);
-    slot.shadowMask = shadowRefresh.plan(*slot.shadows, request.camera.position, request.lighting.sunDirection, index);
+    shadowRefresh.plan(*slot.shadows, request.camera.position, request.lighting.sunDirection, index);
   } else {
     shadowRefresh.reset();
   }

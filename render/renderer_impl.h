@@ -75,7 +75,6 @@ struct FrameSlot {
   bool treesDrawn = false;      // the tree pass classified this frame's trees
   bool hizEarly = false;        // the Hi-Z pyramid is built right after the terrain (before the trees)
   std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
-  uint32_t shadowMask = 0;                // the cascades this frame draws (ShadowRefresh)
 };
 
 inline VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }

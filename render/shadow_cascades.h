@@ -26,6 +26,9 @@ struct ShadowCascades {
   std::array<glm::mat4, kShadowCascades> matrices{};
   glm::vec4 splits{0.0f};  // xyz: each cascade's far view distance (m), w: 1 when shadows are on
   std::array<float, kShadowCascades> texelM{};  // world size of one texel per cascade
+  // The cascades this frame draws (bit c: cascade c); the others keep what an earlier frame drew
+  // (render/shadow_refresh.h). The trees' classify casts into these only.
+  uint32_t drawn = (1u << kShadowCascades) - 1;
 };
 
 struct ShadowSettings {

@@ -24,6 +24,7 @@ uint32_t ShadowRefresh::plan(ShadowCascades& cascades, const glm::dvec3& camera,
       cascades.matrices[size_t(c)] = d.matrix * glm::translate(glm::mat4(1.0f), glm::vec3(camera - d.camera));
     }
   }
+  cascades.drawn = mask;
   return mask;
 }
 

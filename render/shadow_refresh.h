@@ -24,8 +24,8 @@ namespace vegstream::render {
 
 class ShadowRefresh {
  public:
-  // This frame's cascades (fresh from shadowCascades) → the mask of those to draw (bit c:
-  // cascade c); the kept ones' matrices in `cascades` are replaced by the ones their layers hold.
+  // This frame's cascades (fresh from shadowCascades) → which to draw, set in `cascades.drawn`
+  // (bit c: cascade c) and returned; the kept ones' matrices are replaced by the ones their layers hold.
   uint32_t plan(ShadowCascades& cascades, const glm::dvec3& camera, const glm::dvec3& towardsSun, uint64_t frame);
   // A frame without shadows: the layers are no longer this flight's.
   void reset() { drawn_ = {}; }

@@ -71,8 +71,7 @@ void SunShadowPass::writeFrameSet(VkDescriptorSet frameSet, bool placeholder) co
   vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
 }
 
-void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, uint32_t mask,
-                           const DrawCasters& draw) const {
+void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, const DrawCasters& draw) const {
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, kShadowCascades};
   // Earlier frames' reads finish before the map is drawn again.
   transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -80,7 +79,7 @@ void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, 
                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
   for (int c = 0; c < kShadowCascades; ++c) {
-    if ((mask & (1u << c)) == 0) continue;  // kept: its layout changes back and forth, its contents stay
+    if ((cascades.drawn & (1u << c)) == 0) continue;  // kept: its layout changes back and forth, its contents stay
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = layers_[size_t(c)].get();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;

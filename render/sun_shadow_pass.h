@@ -29,10 +29,10 @@ class SunShadowPass {
   uint64_t gpuBytes() const { return map_.bytes + placeholder_.bytes; }
 
   using DrawCasters = std::function<void(VkCommandBuffer, int cascade, const glm::mat4& matrix)>;
-  // Outside rendering: the cascades in `mask` (bit c: cascade c; render/shadow_refresh.h) cleared
-  // and drawn, the others kept as earlier frames drew them; then the map readable by fragment and
+  // Outside rendering: the cascades in `cascades.drawn` (render/shadow_refresh.h) cleared and
+  // drawn, the others kept as earlier frames drew them; then the map readable by fragment and
   // compute shaders.
-  void record(VkCommandBuffer cmd, const ShadowCascades& cascades, uint32_t mask, const DrawCasters& draw) const;
+  void record(VkCommandBuffer cmd, const ShadowCascades& cascades, const DrawCasters& draw) const;
 
  private:
   const Context* ctx_;

@@ -40,7 +40,9 @@ void append(uint model, uint lod, uint instance, float threshold, vec2 wind) {
 // sphere reaches. The matrices' rows are the light's axes over the box's half extents, so a
 // radius in metres is that many times their length in clip units.
 void castShadow(uint model, uint instance, float keep, vec2 wind, vec3 centre, float radius) {
+  uint drawn = uint(frame.shadowTexel.w);  // a cascade kept from an earlier frame needs no casters
   for (uint c = 0u; c < kTreeShadowCascades; ++c) {
+    if ((drawn & (1u << c)) == 0u) continue;
     mat4 m = frame.shadowMatrices[c];
     vec4 p = m * vec4(centre, 1.0);
     vec3 r = radius * vec3(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1])),

@@ -13,6 +13,6 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 detail;        // xyz: camera position modulo the detail period (m, world-anchored tiling), w: detail strength 0 … 1
   mat4 shadowMatrices[3];  // camera-relative → each sun shadow cascade's clip space (render/shadow_cascades.h)
   vec4 shadowSplits;       // xyz: each cascade's far view distance (m), w: 1 when the shadow map holds this frame's casters
-  vec4 shadowTexel;        // xyz: each cascade's texel size (m)
+  vec4 shadowTexel;        // xyz: each cascade's texel size (m), w: the cascades drawn this frame (bit c; render/shadow_refresh.h)
   vec4 terrainDepth;       // x: 1 when the terrain was rasterised in compute (its depth samples, binding 5, go into the depth attachment: terrain_depth.frag), y: samples per pixel, z: 1 when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees (hiz_occlusion.glsl)
 } frame;

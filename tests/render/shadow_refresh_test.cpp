@@ -35,6 +35,7 @@ TEST(ShadowRefresh, TheFarCascadesTakeTurnsAndAKeptLayerStaysPutInTheWorld) {
     ShadowCascades c = shadowCascades(cameraAt(eye), 16.0 / 9.0, kSun, settings);
     const ShadowCascades fresh = c;
     const uint32_t mask = refresh.plan(c, eye, kSun, frame);
+    EXPECT_EQ(c.drawn, mask) << "what the classify casts into and the shadow pass draws";
     if (frame == 0) EXPECT_EQ(mask, 7u) << "the first frame draws every cascade";
     else EXPECT_EQ(mask, frame % 2 == 0 ? 1u : frame % 4 == 1 ? 2u : 4u) << "frame " << frame;
     for (int k = 0; k < kShadowCascades; ++k) {

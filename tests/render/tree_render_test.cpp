@@ -461,6 +461,18 @@ TEST_F(TreeRenderTest, EachShadowCascadeDrawsOnlyTheCastersItsBoxReaches) {
   EXPECT_GT(inNone, 20u) << "the far trees are beyond every cascade";
   EXPECT_LE(fig.shadowCasters[2], 240u - inNone);
 
+  // The next frame, the camera still, draws one cascade (render/shadow_refresh.h): the classify
+  // casts into that one alone, the same trees as before, and into none of the kept ones.
+  auto next = r->renderFrame(req);
+  ASSERT_TRUE(next.ok() && next->trees);
+  uint32_t castInto = 0;
+  for (uint32_t c = 0; c < kTreeShadowCascades; ++c) {
+    if (next->trees->shadowCasters[c] == 0) continue;
+    ++castInto;
+    EXPECT_EQ(next->trees->shadowCasters[c], fig.shadowCasters[c]) << "cascade " << c;
+  }
+  EXPECT_EQ(castInto, 1u);
+
   // Without shadows nothing is cast.
   t.shadows = false;
   auto g = r->renderFrame(req);
