@@ -47,8 +47,8 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
   w.chunkDraws.push_back({slot, piece, partial});
   if (options_.tasks) return;  // prepared on the workers, appended in order (prepareChunks)
   // One thread: prepared and appended at once, while the chunk is still in the cache.
-  if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
-  prepareChunk(w, w.chunkDraws.size() - 1, chunkScratch_[0].map, chunkScratch_[0].planes, w.emitted);
+  if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}, {}});
+  prepareChunk(w, w.chunkDraws.size() - 1, chunkScratch_[0], w.emitted);
   appendChunkDraw(w, w.chunkDraws.back());
   w.chunkDraws.clear();
 }
@@ -61,11 +61,11 @@ void RoamTessellator::prepareChunks(Walk& w) {
   const size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<EmitCounts> counts(blocks);
   // Each block's scratch, kept from output to output (a map is a few kB to clear otherwise).
-  while (chunkScratch_.size() < blocks) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
+  while (chunkScratch_.size() < blocks) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}, {}});
   const auto block = [&](size_t b) -> Status {
     ChunkScratch& scratch = chunkScratch_[b];
     for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
-      prepareChunk(w, i, scratch.map, scratch.planes, counts[b]);
+      prepareChunk(w, i, scratch, counts[b]);
     return {};
   };
   if (options_.tasks && blocks > 1) {
@@ -78,8 +78,7 @@ void RoamTessellator::prepareChunks(Walk& w) {
   for (const EmitCounts& c : counts) w.emitted.add(c);
 }
 
-void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map,
-                                   std::vector<PlaneDistances>& planes, EmitCounts& counts) {
+void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkScratch& scratch, EmitCounts& counts) {
   // Any thread: reads the mesh, writes this chunk (and the caller's scratch and counts) only.
   const ChunkDraw& d = w.chunkDraws[draw];
   DrawnChunk& chunk = chunks_[d.slot];
@@ -88,26 +87,26 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& m
     chunk.mesh.vertices.clear();
     chunk.mesh.indices.clear();
     chunk.morphing.clear();
-    chunk.sources.clear();
     chunk.thickness.clear();
     chunk.at.clear();
-    map.clear();
-    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, origin, &chunk.piece, 0, &map, &counts, &chunk};
-    collectChunk(w.timeS, chunk.root, sink);
+    scratch.map.clear();
+    const LeafSink sink{&chunk.mesh.vertices, &chunk.mesh.indices, origin, &chunk.piece, 0, &scratch.map, &counts, &chunk};
+    collectChunk(chunk.root, scratch.leaves);
+    for (const uint32_t leaf : scratch.leaves) emitLeaf(w.timeS, leaf, sink);
   } else if (!chunk.morphing.empty()) {
     // Unchanged but for its morphing vertices: move them to where they are drawn now.
     const double fade = mesh_.options().fadeS;
     size_t kept = 0;
     ++chunk.mesh.version;
     ++counts.chunksMoved;
-    for (const uint32_t at : chunk.morphing) {
-      const RoamVertex& x = mesh_.vertex(chunk.sources[at]);
+    for (const DrawnChunk::Morphing& m : chunk.morphing) {
+      const RoamVertex& x = m.source;
       const double h = x.drawnHeight(w.timeS, fade);
-      TerrainVertex& out = chunk.mesh.vertices[at];
+      TerrainVertex& out = chunk.mesh.vertices[m.at];
       out.position = glm::vec3(x.position(h) - origin);
       out.heightMsl = static_cast<float>(h);
       if (h != x.heightM) ++counts.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = at;
+      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = m;
     }
     chunk.morphing.resize(kept);
   }
@@ -116,6 +115,7 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& m
   // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
   // own, from its vertices' plane distances (each vertex transformed once); the vertices of
   // culled triangles stay in the chunk, unreferenced.
+  std::vector<PlaneDistances>& planes = scratch.planes;
   planes.resize(chunk.at.size());
   for (size_t i = 0; i < chunk.at.size(); ++i) planes[i] = planeDistances(*w.view, w.view->toEye(chunk.at[i]));
   const PlaneDistances up = upComponents(*w.view);
@@ -149,15 +149,28 @@ void RoamTessellator::appendChunkDraw(Walk& w, const ChunkDraw& d) {
   figures_.drawnTriangles += count / 3;
 }
 
-void RoamTessellator::collectChunk(double timeS, uint32_t t, const LeafSink& sink) {
-  // The subtree's leaves, depth first (the order the direct output emits them in).
-  const RoamNode& n = mesh_.node(t);
-  if (n.isLeaf()) {
-    emitLeaf(timeS, t, sink);
-    return;
+void RoamTessellator::collectChunk(uint32_t root, std::vector<uint32_t>& leaves) const {
+  // The subtree's leaves, depth first (the order the direct output emits them in). Emitting a
+  // leaf reads its three vertices, scattered over the pool: asking for all of them here, before
+  // the first is needed, overlaps the misses that reading them one by one waited for in turn.
+  leaves.clear();
+  uint32_t stack[128];
+  int depth = 0;
+  stack[depth++] = root;
+  while (depth > 0) {
+    const uint32_t t = stack[--depth];
+    const RoamNode& n = mesh_.node(t);
+    if (n.isLeaf()) {
+      leaves.push_back(t);
+      continue;
+    }
+    mesh_.prefetchChildren(t);
+    assert(depth + 2 <= 128 && "a chunk's subtree is shallower than 127 levels");
+    stack[depth++] = n.child + 1;
+    stack[depth++] = n.child;
   }
-  collectChunk(timeS, n.child, sink);
-  collectChunk(timeS, n.child + 1, sink);
+  for (const uint32_t leaf : leaves)
+    for (const uint32_t v : mesh_.node(leaf).v) mesh_.prefetchVertex(v);
 }
 
 void RoamTessellator::dropIdleChunks() {
@@ -180,14 +193,12 @@ void RoamTessellator::releaseChunks() {
 void RoamTessellator::remapChunks(const RoamRenumbering& renumbering) {
   // Chunks whose root was freed are released before compaction: every index here is live.
   auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
-  auto vertex = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.vertices[i]; };
   // The compacted nodes hold no chunk (RoamMesh::compact): each is attached to its root again.
   for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
     DrawnChunk& c = chunks_[slot];
     if (c.root == kNoNode) continue;
     c.root = node(c.root);
     mesh_.node(c.root).drawnChunk = slot;
-    for (uint32_t& v : c.sources) v = vertex(v);
   }
 }
 

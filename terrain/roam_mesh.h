@@ -185,6 +185,10 @@ class RoamMesh {
     for (size_t at = 0; at < 2 * sizeof(RoamNode); at += 64) __builtin_prefetch(c + at);
     __builtin_prefetch(&vertices_[n.mid].at);
   }
+  void prefetchVertex(uint32_t v) const {
+    const char* x = reinterpret_cast<const char*>(&vertices_[v]);
+    for (size_t at = 0; at < sizeof(RoamVertex); at += 64) __builtin_prefetch(x + at);
+  }
   const RoamNode& node(uint32_t i) const { return nodes_[i]; }
   RoamNode& node(uint32_t i) { return nodes_[i]; }
   const RoamVertex& vertex(uint32_t i) const { return vertices_[i]; }

@@ -168,8 +168,7 @@ bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
     else
       stamps_[v] = {outputFrame_, sink.stamp, index};
     if (sink.chunk) {
-      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.push_back(index);
-      sink.chunk->sources.push_back(v);
+      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.push_back({index, x});
       sink.chunk->at.push_back(x.at);
     }
     sink.indices->push_back(index);

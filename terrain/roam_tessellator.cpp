@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -21,9 +22,13 @@ void PieceSet::assign(std::span<const geo::TileId> tiles) {
   tiles_.assign(tiles.begin(), tiles.end());
   index_.clear();
   above_.clear();
+  minZoom_ = std::numeric_limits<int>::max();
+  maxZoom_ = -1;
   for (size_t i = 0; i < tiles_.size(); ++i) {
     const geo::TileId& t = tiles_[i];
     index_.emplace(pack(t), static_cast<int>(i));
+    minZoom_ = std::min(minZoom_, t.z);
+    maxZoom_ = std::max(maxZoom_, t.z);
     for (int z = t.z - 1; z >= 0; --z) {
       const int k = t.z - z;
       if (!above_.insert(pack({z, t.x >> k, t.y >> k})).second) break;  // its ancestors are in already
@@ -32,7 +37,8 @@ void PieceSet::assign(std::span<const geo::TileId> tiles) {
 }
 
 int PieceSet::pieceOf(const geo::TileId& square) const {
-  for (int z = square.z; z >= 0; --z) {
+  // Only the zooms pieces are at: a new leaf asks this, and most pieces are at one or two zooms.
+  for (int z = std::min(square.z, maxZoom_); z >= minZoom_; --z) {
     const int k = square.z - z;
     const int i = exactly({z, square.x >> k, square.y >> k});
     if (i >= 0) return i;

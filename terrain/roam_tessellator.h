@@ -104,6 +104,7 @@ class PieceSet {
   std::vector<geo::TileId> tiles_;
   std::unordered_map<uint64_t, int> index_;
   std::unordered_set<uint64_t> above_;
+  int minZoom_ = 0, maxZoom_ = -1;  // of the pieces (none: an empty range)
 };
 
 struct RoamFigures {
@@ -236,7 +237,7 @@ class RoamTessellator {
     uint32_t stamp;                   // a piece's mesh: which vertices are already in it (stamps_)
     ChunkVertexMap* chunkVertices;    // a chunk: which vertices are already in it (instead of stamps_)
     EmitCounts* counts;
-    DrawnChunk* chunk;                // a chunk: also its sources, morphing, thickness and at
+    DrawnChunk* chunk;                // a chunk: also its morphing vertices, thickness and at
   };
   bool emitLeaf(double timeS, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
   // The output's chunks (roam_chunks.cpp), in three steps so that the work per chunk runs on
@@ -254,12 +255,12 @@ class RoamTessellator {
   struct ChunkScratch;  // roam_walk.h: a block's vertex map and plane distances
   void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
   void prepareChunks(Walk& w);
-  void prepareChunk(const Walk& w, size_t draw, ChunkVertexMap& map, std::vector<PlaneDistances>& planes,
-                    EmitCounts& counts);
+  void prepareChunk(const Walk& w, size_t draw, ChunkScratch& scratch, EmitCounts& counts);
   void appendChunkDraws(Walk& w);
   void appendChunkDraw(Walk& w, const ChunkDraw& d);
   std::vector<ChunkScratch> chunkScratch_;  // kept from output to output
-  void collectChunk(double timeS, uint32_t t, const LeafSink& sink);
+  // A chunk's leaves, depth first, into `leaves` (their vertices asked for ahead of emitLeaf).
+  void collectChunk(uint32_t root, std::vector<uint32_t>& leaves) const;
   void releaseChunks();
   void dropIdleChunks();
   static constexpr uint64_t kChunkIdleFrames = 64;
@@ -308,12 +309,17 @@ class RoamTessellator {
     uint64_t usedFrame = 0;
     geo::TileId piece{};  // positions are relative to its origin, uvs in it
     TerrainChunk mesh;
-    // Each vertex's RoamVertex (to move it while it morphs), the vertices
-    // still morphing, and each triangle's wedgie thickness: where the chunk straddles the edge of
-    // the view its triangles are culled one by one (a leaf's wedgie nests in its ancestors', so
-    // that gives what the hierarchical culling does).
-    std::vector<uint32_t> sources;
-    std::vector<uint32_t> morphing;
+    // The vertices still morphing, each with a copy of its RoamVertex (to move it each output
+    // without a cache miss in the vertex pool: a change of the copied morph changes the chunk —
+    // RoamMesh stamps every leaf of a vertex whose morph it starts, cancels or resamples), and
+    // each triangle's wedgie thickness: where the chunk straddles the edge of the view its
+    // triangles are culled one by one (a leaf's wedgie nests in its ancestors', so that gives
+    // what the hierarchical culling does).
+    struct Morphing {
+      uint32_t at;  // index in mesh.vertices
+      RoamVertex source;
+    };
+    std::vector<Morphing> morphing;
     std::vector<float> thickness;
     // Each vertex's RoamVertex::at (what culling uses), kept here: reading it from the vertex
     // pool was a cache miss per vertex. A change of it changes the chunk (RoamMesh::resample).

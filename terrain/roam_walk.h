@@ -50,6 +50,7 @@ class RoamTessellator::ChunkVertexMap {
 struct RoamTessellator::ChunkScratch {
   ChunkVertexMap map;
   std::vector<PlaneDistances> planes;
+  std::vector<uint32_t> leaves;  // collectChunk's
 };
 
 struct RoamTessellator::Walk {
