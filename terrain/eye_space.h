@@ -55,15 +55,19 @@ inline PlaneDistances upComponents(const EyeView& view) {
   const glm::dvec3& u = view.upEye;
   return {{-u.z, u.x - tx * u.z, -u.x - tx * u.z, u.y - ty * u.z, -u.y - ty * u.z}};
 }
+// Whether the prism lies wholly outside plane k.
+inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,
+                               const PlaneDistances& up, double below, double above, int k) {
+  const double s = -below * up.d[k], t = above * up.d[k];
+  const double hi = s > t ? s : t;
+  double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
+  m = m > c.d[k] ? m : c.d[k];
+  return m + hi < 0.0;
+}
 inline bool wedgieOutside(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,
                           const PlaneDistances& up, double below, double above) {
-  for (int k = 0; k < 5; ++k) {
-    const double s = -below * up.d[k], t = above * up.d[k];
-    const double hi = s > t ? s : t;
-    double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
-    m = m > c.d[k] ? m : c.d[k];
-    if (m + hi < 0.0) return true;
-  }
+  for (int k = 0; k < 5; ++k)
+    if (wedgieOutsidePlane(a, b, c, up, below, above, k)) return true;
   return false;
 }
 

@@ -115,16 +115,29 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkScratch& scr
   // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
   // own, from its vertices' plane distances (each vertex transformed once); the vertices of
   // culled triangles stay in the chunk, unreferenced.
+  // A plane every vertex is inside culls none of them (a prism reaches at least as far in as
+  // its triangle: below, above ≥ 0), so only the planes some vertex is outside are tested — most
+  // such chunks straddle one plane of the five.
   std::vector<PlaneDistances>& planes = scratch.planes;
   planes.resize(chunk.at.size());
-  for (size_t i = 0; i < chunk.at.size(); ++i) planes[i] = planeDistances(*w.view, w.view->toEye(chunk.at[i]));
+  double lowest[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  for (size_t i = 0; i < chunk.at.size(); ++i) {
+    planes[i] = planeDistances(*w.view, w.view->toEye(chunk.at[i]));
+    for (int k = 0; k < 5; ++k) lowest[k] = std::min(lowest[k], planes[i].d[k]);
+  }
+  int straddled[5], count = 0;
+  for (int k = 0; k < 5; ++k)
+    if (lowest[k] < 0.0) straddled[count++] = k;
   const PlaneDistances up = upComponents(*w.view);
   const std::vector<uint32_t>& indices = chunk.mesh.indices;
-  for (size_t k = 0; k < chunk.thickness.size(); ++k) {
-    const uint32_t* tri = &indices[3 * k];
-    const double e = chunk.thickness[k];
-    if (!wedgieOutside(planes[tri[0]], planes[tri[1]], planes[tri[2]], up, e, e + options_.canopyM))
-      chunk.visible.insert(chunk.visible.end(), tri, tri + 3);
+  for (size_t t = 0; t < chunk.thickness.size(); ++t) {
+    const uint32_t* tri = &indices[3 * t];
+    const double e = chunk.thickness[t];
+    bool outside = false;
+    for (int j = 0; j < count && !outside; ++j)
+      outside = wedgieOutsidePlane(planes[tri[0]], planes[tri[1]], planes[tri[2]], up, e, e + options_.canopyM,
+                                   straddled[j]);
+    if (!outside) chunk.visible.insert(chunk.visible.end(), tri, tri + 3);
   }
 }
 
