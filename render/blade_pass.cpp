@@ -64,8 +64,13 @@ uint64_t plantBound(const SeedTriangleGpu& t, uint32_t clusterSize) {
 
 }  // namespace
 
+BladeBufferStart chooseBladeBufferStart(bool software, uint64_t deviceLocalBytes, uint64_t allSlotsCeilingBytes) {
+  if (software) return BladeBufferStart::Small;
+  return allSlotsCeilingBytes <= deviceLocalBytes / 16 ? BladeBufferStart::Full : BladeBufferStart::Half;
+}
+
 BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                     uint32_t maxVertices, TaskRunner* tasks, bool startAtHalf)
+                     uint32_t maxVertices, TaskRunner* tasks)
     : ctx_(&ctx),
       // A storage buffer is bound whole: no larger than the device's maxStorageBufferRange.
       maxVertices_(std::min<uint64_t>(maxVertices, ctx.properties().limits.maxStorageBufferRange /
@@ -107,19 +112,34 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   desc.layout = layout_.get();
   draw_ = createGraphicsPipeline(ctx, desc);
 
+  const BladeBufferStart start = chooseBladeBufferStart(
+      ctx.info().software, ctx.info().deviceLocalBytes,
+      slots_.size() * (maxVertices_ * sizeof(BladeVertexGpu) + maxIndices_ * sizeof(uint32_t)));
   for (size_t i = 0; i < slots_.size(); ++i) {
     Slot& s = slots_[i];
     const std::string tag = " (slot " + std::to_string(i) + ")";
     s.inputSet = allocateDescriptorSet(ctx, pool_.get(), inputLayout_.get(), "blade input set" + tag);
     s.bladeSet = allocateDescriptorSet(ctx, pool_.get(), bladeLayout_.get(), "blade set" + tag);
     // Transfer source: Renderer::readBladeVertices copies them out for the tests.
+    // Transfer destination: a Full start fills a word of each before the first frame.
     constexpr VkDeviceSize kSmall = 64 * 1024;  // GrowingBuffer's own default start
-    s.vertices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               MemoryUse::DeviceLocal, "blade vertices" + tag, tasks,
-                               startAtHalf ? std::max(kSmall, maxVertices_ / 2 * sizeof(BladeVertexGpu)) : kSmall);
-    s.indices = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                              MemoryUse::DeviceLocal, "blade indices" + tag, tasks,
-                              startAtHalf ? std::max(kSmall, maxIndices_ / 2 * sizeof(uint32_t)) : kSmall);
+    const VkDeviceSize vertexCeiling = maxVertices_ * sizeof(BladeVertexGpu), indexCeiling = maxIndices_ * sizeof(uint32_t);
+    const auto first = [&](VkDeviceSize ceiling) {
+      return start == BladeBufferStart::Full ? ceiling
+             : start == BladeBufferStart::Half ? std::max(kSmall, ceiling / 2)
+                                                : kSmall;
+    };
+    s.vertices = GrowingBuffer(
+        ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        MemoryUse::DeviceLocal, "blade vertices" + tag, tasks, first(vertexCeiling));
+    s.indices = GrowingBuffer(
+        ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        MemoryUse::DeviceLocal, "blade indices" + tag, tasks, first(indexCeiling));
+    if (start == BladeBufferStart::Full) {
+      const auto nothingToRetire = [](GpuBuffer&&) { assert(false && "a first buffer retires nothing"); };
+      s.vertices.ensure(vertexCeiling, vertexCeiling, nothingToRetire);
+      s.indices.ensure(indexCeiling, indexCeiling, nothingToRetire);
+    }
     s.state = createBuffer(
         ctx, kStateBytes,
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -128,6 +148,11 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
                              "blade figures" + tag);
     std::memset(s.figures.mapped, 0, kFigureBytes);
   }
+  if (start == BladeBufferStart::Full)
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      for (Slot& s : slots_)
+        for (VkBuffer b : {s.vertices.get(), s.indices.get()}) vkCmdFillBuffer(cmd, b, 0, 4, 0);
+    });
 }
 
 void BladePass::setCatalog(const vegetation::SpeciesCatalog& catalog) {

@@ -35,6 +35,17 @@
 
 namespace vegstream::render {
 
+// What the blade vertex and index buffers start at. Small: grown as the plants come in (a CPU
+// rasteriser: memory is the host's). On a GPU each new 64–256 MiB buffer stalled the frame
+// thread for 2–7 ms where it was made and first used (the driver maps it: H200, benchmark-30s,
+// one frame per slot as the plants came in at t = 8.7 s, and again at 9.0 s for the indices):
+// Half starts them at half their ceiling, one growth left per slot; Full makes them at the
+// ceiling and uses them once before the first frame, when every slot's ceilings together take
+// at most a sixteenth of the device's memory (the H200: 1.1 GB of 141; benchmark-30s grows them
+// to the ceiling anyway).
+enum class BladeBufferStart { Small, Half, Full };
+BladeBufferStart chooseBladeBufferStart(bool software, uint64_t deviceLocalBytes, uint64_t allSlotsCeilingBytes);
+
 class BladePass {
  public:
   using RetireBuffer = ClassifyPass::RetireBuffer;
@@ -42,13 +53,9 @@ class BladePass {
   // `maxVertices`: the ceiling of one frame slot's vertex buffer (RendererOptions::bladeMaxVertices);
   // indices and the plant count (numbered, not stored) follow from it. `tasks` (may be null)
   // makes the vertex and index buffers' next sizes ahead of need (growing_buffer.h).
-  // `startAtHalf`: the vertex and index buffers start at half their ceilings (when the first frame
-  // with plants makes them) instead of small. On a GPU: the driver's first use of each new
-  // 64–256 MiB buffer cost 2–6 ms of the frame thread's recording while the plants came in
-  // (H200, benchmark-30s, CPU frame p99 4.58 / 4.60 → 3.90 / 4.01 ms side by side, the same peak
-  // GPU memory: the flight grows them to the ceiling anyway).
+  // The vertex and index buffers start as chooseBladeBufferStart says for the device.
   BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, uint32_t maxVertices,
-            TaskRunner* tasks = nullptr, bool startAtHalf = false);
+            TaskRunner* tasks = nullptr);
 
   // The catalog the classify pass sorts into (its tallest plant bounds the segment counts the
   // buffers are sized for); call with ClassifyPass::setCatalog.

@@ -69,6 +69,11 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
   for (int s : {1, 2, 4, 8})  // the shade shader handles up to 8 samples
     if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
   info.sampleRateShading = features.sampleRateShading == VK_TRUE;
+  VkPhysicalDeviceMemoryProperties memory{};
+  vkGetPhysicalDeviceMemoryProperties(pd, &memory);
+  for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+    if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info.deviceLocalBytes = std::max<uint64_t>(info.deviceLocalBytes, memory.memoryHeaps[h].size);
   return info;
 }
 

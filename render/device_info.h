@@ -19,6 +19,7 @@ struct DeviceInfo {
   // only with shaderStorageImageMultisample): where deferred terrain shading can run.
   std::vector<int> storageMsaaCounts;
   bool sampleRateShading = false;  // fragment stages run per sample when asked (the compute terrain's depth pass)
+  uint64_t deviceLocalBytes = 0;   // the largest device-local memory heap
 
   bool supportsMsaa(int samples) const;
   std::string msaaList() const;  // "1, 4"

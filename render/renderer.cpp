@@ -141,10 +141,10 @@ void Renderer::Impl::init(const RendererOptions& options) {
   // The default table always solves (tests/vegetation/blade_shape_test.cpp); failing is a bug.
   if (!table) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "blade shape table: " + table.error().message);
   plantPass = std::make_unique<PlantPass>(*ctx, layout, toSampleBits(msaa), *table, kc);
-  // On a GPU the blade buffers start at half their ceiling (blade_pass.h: the driver's first use
-  // of each new large buffer stalled the frame thread); on a CPU rasteriser small.
+  // On a GPU the blade buffers start at their ceiling or half of it (blade_pass.h: each new large
+  // buffer stalled the frame thread); on a CPU rasteriser small.
   blades = std::make_unique<BladePass>(*ctx, layout, toSampleBits(msaa), std::max(options.bladeMaxVertices, 6u),
-                                       options.tasks, !ctx->info().software);
+                                       options.tasks);
   blades->setCatalog(vegetation::defaultSpeciesCatalog());
   trees = std::make_unique<TreePass>(*ctx, layout, toSampleBits(msaa));
   treeBudgetBytes = options.treeBudgetBytes;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "plant_field.h"
+#include "render/blade_pass.h"
 #include "render/png_writer.h"
 #include "vegetation/species_catalog.h"
 
@@ -335,6 +336,17 @@ TEST_F(BladePathTest, TheBuffersFollowTheFramesLodBoundAndNothingIsDropped) {
   EXPECT_GT(full.with.vegetation->bladeTriangles, lod.with.vegetation->bladeTriangles);
   EXPECT_GT(withLod, before);
   EXPECT_GT(withFull, withLod) << "full detail needs larger buffers than eq. 4's level of detail";
+}
+
+TEST(BladeBufferStart, FullWhereTheCeilingsAreASixteenthOfTheDeviceHalfOnSmallerGpusSmallOnACpu) {
+  constexpr uint64_t kGiB = 1ull << 30;
+  const uint64_t ceilings = 3 * (256ull << 20) + 3 * (96ull << 20);  // three slots at the default ceiling: 1.03 GiB
+  EXPECT_EQ(chooseBladeBufferStart(false, 141 * kGiB, ceilings), BladeBufferStart::Full);  // an H200
+  EXPECT_EQ(chooseBladeBufferStart(false, 16 * kGiB + 512 * (1ull << 20), ceilings), BladeBufferStart::Full);
+  EXPECT_EQ(chooseBladeBufferStart(false, 16 * kGiB, ceilings), BladeBufferStart::Half);
+  EXPECT_EQ(chooseBladeBufferStart(false, 8 * kGiB, ceilings), BladeBufferStart::Half);
+  EXPECT_EQ(chooseBladeBufferStart(false, 0, ceilings), BladeBufferStart::Half);  // no device-local heap reported
+  EXPECT_EQ(chooseBladeBufferStart(true, 141 * kGiB, ceilings), BladeBufferStart::Small);  // lavapipe: host memory
 }
 
 TEST_F(BladePathTest, PlantsPastTheCeilingAreDroppedWholeAndCounted) {
