@@ -33,8 +33,9 @@ Geodetic LocalFrame::toGeodetic(const glm::dvec3& enu) const {
   return p;
 }
 
-glm::dvec3 LocalFrame::upAt(const Geodetic& p) const {
-  const glm::dvec3 base = toLocal(p);
+glm::dvec3 LocalFrame::upAt(const Geodetic& p) const { return upAt(p, toLocal(p)); }
+
+glm::dvec3 LocalFrame::upAt(const Geodetic& p, const glm::dvec3& base) const {
   const glm::dvec3 above = toLocal(Geodetic{p.latDeg, p.lonDeg, p.heightM + 1.0});
   return above - base;  // exactly unit length: 1 m along the ellipsoid normal
 }

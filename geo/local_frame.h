@@ -35,6 +35,8 @@ class LocalFrame {
   // The local "up" (ellipsoid normal) at p, expressed in this frame: it tilts away from +z
   // by about 1 mrad per 6.4 km of distance from the origin.
   glm::dvec3 upAt(const Geodetic& p) const;
+  // The same, given base = toLocal(p) (one projection fewer; the result is bit-identical).
+  glm::dvec3 upAt(const Geodetic& p, const glm::dvec3& base) const;
 
  private:
   Geodetic origin_;

@@ -145,7 +145,7 @@ uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
   const glm::dvec2 lonLat = geo::tileXYToLonLat(grid_.tileXY(p, grid_.gridZoom()), grid_.gridZoom());
   const geo::Geodetic g{lonLat.y, lonLat.x, 0.0};
   v.base = frame_.toLocal(g);
-  v.up = frame_.upAt(g);
+  v.up = frame_.upAt(g, v.base);
   sampleVertex(v, false);
   if (shown_) {  // else: nothing drawn yet to morph from (markShown)
     v.fromHeightM = fromHeight;

@@ -75,7 +75,7 @@ glm::dvec3 groundVertex(const BintreeGrid& grid, const geo::LocalFrame& frame, R
   const glm::dvec2 lonLat = geo::tileXYToLonLat(grid.tileXY(p, grid.gridZoom()), grid.gridZoom());
   const geo::Geodetic g{lonLat.y, lonLat.x, 0.0};
   const glm::dvec3 base = frame.toLocal(g);
-  const glm::dvec3 up = frame.upAt(g);
+  const glm::dvec3 up = frame.upAt(g, base);
   const double h = heights.sample(p).heightM;
   if (!(h == h)) return glm::dvec3(std::numeric_limits<double>::quiet_NaN());
   return base + up * h;
