@@ -22,8 +22,10 @@
 // children are allocated in pairs (child1 = child0 + 1). Frame thread only.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -38,6 +40,8 @@
 namespace vegstream::terrain {
 
 inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
+
+inline uint64_t packGridPoint(GridPoint p) { return (uint64_t{p.x} << 32) | p.y; }
 
 struct RoamVertex {
   GridPoint grid;
@@ -170,11 +174,22 @@ class RoamMesh {
   uint64_t pairsAllocatedSinceCompact() const { return pairsAllocated_; }
   uint64_t livePairs() const { return nodes_.size() / 2 - freePairs_.size(); }
   // Room for a mesh of `leaves` leaves without reallocating the pools: growing them in a frame
-  // copies every node and faults the new pages in (milliseconds). Pages are touched only when used.
+  // copies every node and faults the new pages in (milliseconds). Every page of the pools (and of
+  // the compaction's spares) is touched here, not by the splits that first use it.
   void reserve(uint64_t leaves);
 
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
+
+  // What splitting these leaves will compute from the ground alone — each one's split vertex
+  // (heights, slope, position) and its and its diamond partner's children's tile thicknesses —
+  // computed ahead on `tasks` (roam_mesh_prepare.cpp); split() then takes them instead of
+  // computing them: the same values, from the same functions on the same resident tiles. Valid
+  // until dropPrepared(); nothing but splits may change the mesh or the tiles in between.
+  void prepareSplits(std::span<const uint32_t> leaves, TaskRunner* tasks);
+  void dropPrepared();
+  // Split vertices split() took from prepareSplits since the last call.
+  uint64_t takePreparedUsed() { return std::exchange(preparedUsed_, 0); }
 
   // The traversals are bound by fetching nodes and vertices: a node being visited asks for its
   // children and split vertex early, so they are in cache by the time the visit needs them.
@@ -213,8 +228,10 @@ class RoamMesh {
   uint32_t allocPair();
   void freePair(uint32_t first);
   uint32_t newVertex(GridPoint p, double fromHeight);
+  // A new vertex at p as sampled from `heights` (before any morph): what newVertex stores.
+  RoamVertex makeVertex(GridPoint p, ResidentHeights& heights) const;
   void sampleVertex(RoamVertex& v, bool morph);
-  void applySample(RoamVertex& v, const HeightSample& s, bool morph);
+  void applySample(RoamVertex& v, const HeightSample& s, bool morph) const;
   void splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created);
   void mergeOne(uint32_t t);
   void replaceLink(uint32_t at, uint32_t from, uint32_t to);
@@ -244,6 +261,25 @@ class RoamMesh {
   std::vector<RoamVertex> spareVertices_;
   uint64_t drawnEpoch_ = 1;
   uint64_t pairsAllocated_ = 0;
+  // prepareSplits' results, sorted by their split vertex's grid point (roam_mesh_prepare.cpp).
+  struct PreparedSplit {
+    struct Child {
+      TriCorners corners;
+      float thickness = 0.0f;
+      bool ok = false;  // false: computed by split() (a tile the frame had not cached yet)
+    };
+    uint64_t key = 0;  // packGridPoint(mid)
+    GridPoint mid;
+    int level = 0;  // the children's
+    RoamVertex vertex;
+    bool vertexOk = false;
+    std::array<Child, 4> children;  // the leaf's two, then its diamond partner's
+    int childCount = 0;
+  };
+  std::vector<PreparedSplit> prepared_;
+  const PreparedSplit* findPrepared(GridPoint mid) const;
+  bool preparedThickness(const TriCorners& c, int level, float* thickness) const;
+  uint64_t preparedUsed_ = 0;
 };
 
 }  // namespace vegstream::terrain
