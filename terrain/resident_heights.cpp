@@ -50,12 +50,6 @@ ResidentHeights::ResidentHeights(BintreeGrid grid, Find find) : grid_(grid), fin
 
 const streaming::ResidentTile* ResidentHeights::find(const geo::TileId& tile) {
   const uint64_t key = packTile(tile);
-  if (cachedFrom_) {
-    const auto it = cachedFrom_->cache_.find(key);
-    if (it != cachedFrom_->cache_.end()) return it->second;
-    *missed_ = true;
-    return nullptr;
-  }
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
   const streaming::ResidentTile* t = find_(tile);
@@ -130,30 +124,13 @@ HeightSample ResidentHeights::sampleLonLat(double latDeg, double lonDeg) {
   return sampleTileXY(geo::lonLatToTileXY({lonDeg, latDeg}, grid_.maxZoom()), grid_.maxZoom());
 }
 
-geo::TileId ResidentHeights::thicknessTile(const TriCorners& t, int level) const {
+float ResidentHeights::thickness(const TriCorners& t, int level) {
   geo::TileId square = grid_.square(t, level);
   if (square.z > grid_.maxZoom()) {
     const int k = square.z - grid_.maxZoom();
     square = {grid_.maxZoom(), square.x >> k, square.y >> k};
   }
-  return square;
-}
-
-void ResidentHeights::cacheFor(GridPoint p) {
-  (void)find(clampedTile(grid_.tileXY(p, grid_.maxZoom()), grid_.maxZoom()));
-}
-
-void ResidentHeights::cacheFor(const TriCorners& t, int level) { (void)find(thicknessTile(t, level)); }
-
-ResidentHeights ResidentHeights::cachedOnly(bool* missed) const {
-  ResidentHeights view(grid_, nullptr);
-  view.cachedFrom_ = this;
-  view.missed_ = missed;
-  return view;
-}
-
-float ResidentHeights::thickness(const TriCorners& t, int level) {
-  const streaming::ResidentTile* r = find(thicknessTile(t, level));
+  const streaming::ResidentTile* r = find(square);
   const auto* table = r ? dynamic_cast<const WedgieTable*>(r->extra.get()) : nullptr;
   if (!table) return std::numeric_limits<float>::quiet_NaN();
   const geo::TileId& id = table->tile();

@@ -59,25 +59,13 @@ class ResidentHeights {
   // The finest resident height tile at or above `tile` (cached for the frame).
   const streaming::ResidentTile* find(const geo::TileId& tile);
 
-  // For sampling on other threads: cacheFor looks up (and caches) the tile that sample(p), or
-  // thickness(t, level), starts from; cachedOnly gives a view that finds only what this one has
-  // cached (it never calls the lookup, which is not thread-safe, and caches nothing itself) and
-  // sets *missed when it needed anything else — then the result is not to be used. Views may
-  // run on any threads while nothing uses or changes this one.
-  void cacheFor(GridPoint p);
-  void cacheFor(const TriCorners& t, int level);
-  ResidentHeights cachedOnly(bool* missed) const;
-
  private:
-  geo::TileId thicknessTile(const TriCorners& t, int level) const;
   HeightSample sampleTileXY(glm::dvec2 xy, int z);
   double bilinearAcross(const datasets::HeightTile& tile, int z, glm::dvec2 xy);
 
   BintreeGrid grid_;
   Find find_;
   std::unordered_map<uint64_t, const streaming::ResidentTile*> cache_;
-  const ResidentHeights* cachedFrom_ = nullptr;  // a cachedOnly view: reads this one's cache only
-  bool* missed_ = nullptr;
 };
 
 // The lookup of a flight: the streamer's nearest resident height tile (marks it used).

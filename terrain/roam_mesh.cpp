@@ -122,7 +122,7 @@ void RoamMesh::freePair(uint32_t first) {
 
 void RoamMesh::sampleVertex(RoamVertex& v, bool morph) { applySample(v, heights_->sample(v.grid), morph); }
 
-void RoamMesh::applySample(RoamVertex& v, const HeightSample& s, bool morph) const {
+void RoamMesh::applySample(RoamVertex& v, const HeightSample& s, bool morph) {
   if (morph && shown_) {
     v.fromHeightM = v.drawnHeight(timeS_, options_.fadeS);
     v.morphStartS = timeS_;
@@ -147,12 +147,13 @@ uint32_t RoamMesh::newVertex(GridPoint p, double fromHeight) {
     vertices_.emplace_back();
   }
   RoamVertex& v = vertices_[i];
-  if (const PreparedSplit* prepared = findPrepared(p); prepared && prepared->vertexOk) {
-    v = prepared->vertex;
-    ++preparedUsed_;
-  } else {
-    v = makeVertex(p, *heights_);
-  }
+  v = RoamVertex{};
+  v.grid = p;
+  const glm::dvec2 lonLat = geo::tileXYToLonLat(grid_.tileXY(p, grid_.gridZoom()), grid_.gridZoom());
+  const geo::Geodetic g{lonLat.y, lonLat.x, 0.0};
+  v.base = frame_.toLocal(g);
+  v.up = frame_.upAt(g, v.base);
+  sampleVertex(v, false);
   if (shown_) {  // else: nothing drawn yet to morph from (markShown)
     v.fromHeightM = fromHeight;
     v.morphStartS = timeS_;
@@ -167,22 +168,9 @@ void RoamMesh::updateRadius(uint32_t t) {
       std::max(glm::length(vertices_[n.v[0]].at - c), glm::length(vertices_[n.v[1]].at - c)) * 1.0001 + 0.01);
 }
 
-RoamVertex RoamMesh::makeVertex(GridPoint p, ResidentHeights& heights) const {
-  RoamVertex v;
-  v.grid = p;
-  const glm::dvec2 lonLat = geo::tileXYToLonLat(grid_.tileXY(p, grid_.gridZoom()), grid_.gridZoom());
-  const geo::Geodetic g{lonLat.y, lonLat.x, 0.0};
-  v.base = frame_.toLocal(g);
-  v.up = frame_.upAt(g, v.base);
-  applySample(v, heights.sample(p), false);
-  return v;
-}
-
 float RoamMesh::thicknessOf(uint32_t t) {
   const RoamNode& n = nodes_[t];
-  const TriCorners c = corners(t);
-  float e;
-  if (!preparedThickness(c, n.path.level, &e)) e = heights_->thickness(c, n.path.level);
+  const float e = heights_->thickness(corners(t), n.path.level);
   if (!(e >= 0.0f)) return e;  // unknown (NaN) or no data (< 0)
   const glm::dvec3 hyp = vertices_[n.v[1]].base - vertices_[n.v[2]].base;
   return e + static_cast<float>(glm::dot(hyp, hyp) / (8.0 * kEarthRadiusM));

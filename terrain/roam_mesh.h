@@ -22,10 +22,8 @@
 // children are allocated in pairs (child1 = child0 + 1). Frame thread only.
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <limits>
-#include <span>
 #include <utility>
 #include <vector>
 
@@ -40,8 +38,6 @@
 namespace vegstream::terrain {
 
 inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
-
-inline uint64_t packGridPoint(GridPoint p) { return (uint64_t{p.x} << 32) | p.y; }
 
 struct RoamVertex {
   GridPoint grid;
@@ -181,16 +177,6 @@ class RoamMesh {
   // Samples the vertices and thicknesses inside `tile`'s square again (its residency changed).
   void resample(const geo::TileId& tile);
 
-  // What splitting these leaves will compute from the ground alone — each one's split vertex
-  // (heights, slope, position) and its and its diamond partner's children's tile thicknesses —
-  // computed ahead on `tasks` (roam_mesh_prepare.cpp); split() then takes them instead of
-  // computing them: the same values, from the same functions on the same resident tiles. Valid
-  // until dropPrepared(); nothing but splits may change the mesh or the tiles in between.
-  void prepareSplits(std::span<const uint32_t> leaves, TaskRunner* tasks);
-  void dropPrepared();
-  // Split vertices split() took from prepareSplits since the last call.
-  uint64_t takePreparedUsed() { return std::exchange(preparedUsed_, 0); }
-
   // The traversals are bound by fetching nodes and vertices: a node being visited asks for its
   // children and split vertex early, so they are in cache by the time the visit needs them.
   void prefetchChildren(uint32_t t) const {
@@ -228,10 +214,8 @@ class RoamMesh {
   uint32_t allocPair();
   void freePair(uint32_t first);
   uint32_t newVertex(GridPoint p, double fromHeight);
-  // A new vertex at p as sampled from `heights` (before any morph): what newVertex stores.
-  RoamVertex makeVertex(GridPoint p, ResidentHeights& heights) const;
   void sampleVertex(RoamVertex& v, bool morph);
-  void applySample(RoamVertex& v, const HeightSample& s, bool morph) const;
+  void applySample(RoamVertex& v, const HeightSample& s, bool morph);
   void splitOne(uint32_t t, uint32_t mid, std::vector<uint32_t>* created);
   void mergeOne(uint32_t t);
   void replaceLink(uint32_t at, uint32_t from, uint32_t to);
@@ -261,25 +245,6 @@ class RoamMesh {
   std::vector<RoamVertex> spareVertices_;
   uint64_t drawnEpoch_ = 1;
   uint64_t pairsAllocated_ = 0;
-  // prepareSplits' results, sorted by their split vertex's grid point (roam_mesh_prepare.cpp).
-  struct PreparedSplit {
-    struct Child {
-      TriCorners corners;
-      float thickness = 0.0f;
-      bool ok = false;  // false: computed by split() (a tile the frame had not cached yet)
-    };
-    uint64_t key = 0;  // packGridPoint(mid)
-    GridPoint mid;
-    int level = 0;  // the children's
-    RoamVertex vertex;
-    bool vertexOk = false;
-    std::array<Child, 4> children;  // the leaf's two, then its diamond partner's
-    int childCount = 0;
-  };
-  std::vector<PreparedSplit> prepared_;
-  const PreparedSplit* findPrepared(GridPoint mid) const;
-  bool preparedThickness(const TriCorners& c, int level, float* thickness) const;
-  uint64_t preparedUsed_ = 0;
 };
 
 }  // namespace vegstream::terrain

@@ -180,14 +180,6 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
   auto less = [](const Candidate& a, const Candidate& b) { return a.priority < b.priority; };
   std::make_heap(heap.begin(), heap.end(), less);
   const double bound = options_.maxErrorPx;
-  // What the queue's splits will sample from the ground, sampled ahead on the workers (the
-  // queue itself stays on this thread): worth it from a few dozen splits on.
-  if (options_.tasks) {
-    prepareLeaves_.clear();
-    for (const Candidate& c : heap)
-      if (c.priority > bound) prepareLeaves_.push_back(c.node);
-    if (prepareLeaves_.size() >= kPrepareSplitsFrom) mesh_.prepareSplits(prepareLeaves_, options_.tasks);
-  }
   std::vector<uint32_t> created;
   while (!heap.empty() && heap.front().priority > bound) {
     if (outOfWork(ops, watch)) break;
@@ -233,8 +225,6 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       }
     }
   }
-  mesh_.dropPrepared();
-  figures_.splitVerticesPrepared = mesh_.takePreparedUsed();
   // What the budgets left unsplit is what the mesh misses the bound by.
   for (const Candidate& c : heap) {
     const RoamNode& n = mesh_.node(c.node);

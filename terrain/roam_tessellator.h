@@ -112,7 +112,6 @@ struct RoamFigures {
   uint64_t drawnTriangles = 0;  // leaves drawn (visible, with data)
   uint64_t splits = 0, merges = 0;
   uint64_t leavesCreated = 0;  // by the splits, forced ones included
-  uint64_t splitVerticesPrepared = 0;  // the splits' new vertices sampled ahead on the workers (RoamMesh::prepareSplits)
   uint64_t nodesVisited = 0;   // the update's traversal (deferral skips subtrees none of whose priorities is due)
   uint64_t priorityTasks = 0;  // subtrees of that traversal handed to RoamOptions::tasks
   uint64_t prioritiesComputed = 0;
@@ -290,10 +289,6 @@ class RoamTessellator {
                     PriorityFigures& counts);
   void evaluateDiamond(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
   std::vector<PriorityTask> priorityTasks_;  // reused: their vectors keep their capacity
-  // The split queue's leaves whose splits are sampled ahead (RoamMesh::prepareSplits), from
-  // this many on: fewer are not worth the workers' start.
-  static constexpr size_t kPrepareSplitsFrom = 32;
-  std::vector<uint32_t> prepareLeaves_;
   double odometerM_ = 0.0;
   glm::dvec3 lastCamera_{std::numeric_limits<double>::quiet_NaN()};
   glm::dvec3 lastUp_{0.0};
