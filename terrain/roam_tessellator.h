@@ -252,7 +252,7 @@ class RoamTessellator {
     int piece;
     bool partial;  // its root straddles the edge of the view
   };
-  struct ChunkScratch;  // roam_walk.h: a block's vertex map and plane distances
+  struct ChunkScratch;  // roam_walk.h: a block's vertex map, plane distances and leaf list
   void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
   void prepareChunks(Walk& w);
   void prepareChunk(const Walk& w, size_t draw, ChunkScratch& scratch, EmitCounts& counts);
