@@ -40,8 +40,8 @@ inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec
 
 // The same test split in two, for many triangles sharing vertices (a drawn chunk culled
 // triangle by triangle): each vertex's signed distances to the five planes once, then per
-// triangle only the comparisons. wedgieOutside(...) == (cullWedgie(...) == Cull::Outside),
-// bit for bit: the same arithmetic in the same order.
+// triangle only the comparisons, plane by plane. wedgieOutsidePlane(..., k) for any k being
+// true == (cullWedgie(...) == Cull::Outside), bit for bit: the same arithmetic in the same order.
 struct PlaneDistances {
   double d[5];  // near, left, right, bottom, top (n·q + d ≥ 0 inside)
 };
@@ -63,12 +63,6 @@ inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b,
   double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
   m = m > c.d[k] ? m : c.d[k];
   return m + hi < 0.0;
-}
-inline bool wedgieOutside(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,
-                          const PlaneDistances& up, double below, double above) {
-  for (int k = 0; k < 5; ++k)
-    if (wedgieOutsidePlane(a, b, c, up, below, above, k)) return true;
-  return false;
 }
 
 inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
