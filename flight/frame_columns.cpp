@@ -68,6 +68,8 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
   c.push_back({"terrain_roam_update_ms", 6});
   c.push_back({"terrain_roam_output_ms", 6});
   c.push_back({"terrain_roam_compact_wait_ms", 6});
+  c.push_back({"terrain_roam_priorities_ms", 6});
+  c.push_back({"terrain_roam_split_ms", 6});
   for (const char* n : {"terrain_leaves", "terrain_splits", "terrain_merges", "terrain_constrained_leaves",
                         "terrain_triangle_budget_hit", "terrain_work_budget_hit", "terrain_seed_triangles",
                         "terrain_seed_interpolated", "terrain_depth_limited_leaves"})

@@ -94,6 +94,8 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
     r[c++] = tf.roam.updateMs;
     r[c++] = tf.roam.outputMs;
     r[c++] = tf.roam.compactWaitMs;
+    r[c++] = tf.roam.prioritiesMs;
+    r[c++] = tf.roam.splitMs;
     for (uint64_t v : {tf.roam.leaves, tf.roam.splits, tf.roam.merges, tf.roam.constrainedLeaves,
                        static_cast<uint64_t>(tf.roam.budgetLimited), static_cast<uint64_t>(tf.roam.workLimited),
                        tf.roam.seedTriangles, tf.roam.seedInterpolated, tf.roam.depthLimitedLeaves})

@@ -137,9 +137,10 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   w.diamonds = &diamonds;
   w.mergeBelow = options_.mergeFraction * options_.maxErrorPx;
   w.overBudget = mesh_.leafCount() > options_.maxTriangles;
+  const double started = watch.elapsedMs();  // the compaction's wait and beginUpdate before it
   computePriorities(w);
   const double visited = watch.elapsedMs();
-  figures_.prioritiesMs = visited;
+  figures_.prioritiesMs = visited - started;
   uint64_t ops = 0;
   splitPhase(view, pieces, splits, ops, watch);
   const double split = watch.elapsedMs();
