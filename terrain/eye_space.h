@@ -7,6 +7,9 @@
 //
 // Eye space: x right, y up, looking down −z (as render/camera_math's view matrix).
 
+#include <bit>
+#include <cstdint>
+
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
@@ -31,12 +34,24 @@ struct EyeView {
   glm::dvec3 toEye(const glm::dvec3& enu) const { return rotation * (enu - cameraEnu); }
 };
 
+// The frustum planes a wedgie straddles: bit k for plane k (near, left, right, bottom, top).
+// Hierarchical culling hands them down the bintree: a wedgie lies inside its parent's (the
+// thicknesses nest, roam_mesh.h), so it is wholly inside every plane its parent's is wholly
+// inside, and only the planes the parent straddled are tested again — at most nodes one of five.
+using PlaneMask = uint8_t;
+inline constexpr PlaneMask kEveryPlane = 0x1F;
+
 // The wedgie of a triangle with eye-space vertices a, b, c: the prism from `below` metres under
 // it to `above` metres over it along the local up. Outside when all six corners are outside
 // one plane (near, left, right, bottom, top); Inside when all are inside all planes.
 // (Defined below, inline: the traversals call it for every node.)
 inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
                        double above);
+// The same, against the planes in `planes` only (the others known to hold the prism wholly
+// inside); `planes` becomes those the prism straddles (none when Inside; unchanged when Outside).
+// With kEveryPlane it is the test above, bit for bit.
+inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+                       double above, PlaneMask& planes);
 
 // The same test split in two, for many triangles sharing vertices (a drawn chunk culled
 // triangle by triangle): each vertex's signed distances to the five planes once, then per
@@ -49,11 +64,25 @@ inline PlaneDistances planeDistances(const EyeView& view, const glm::dvec3& q) {
   const double tx = view.tanHalfX, ty = view.tanHalfY;
   return {{-q.z - view.nearM, q.x - tx * q.z, -q.x - tx * q.z, q.y - ty * q.z, -q.y - ty * q.z}};
 }
+// One of them: planeDistances(view, q).d[k], the same arithmetic.
+inline double planeDistance(const EyeView& view, const glm::dvec3& q, int k) {
+  switch (k) {
+    case 0: return -q.z - view.nearM;
+    case 1: return q.x - view.tanHalfX * q.z;
+    case 2: return -q.x - view.tanHalfX * q.z;
+    case 3: return q.y - view.tanHalfY * q.z;
+    default: return -q.y - view.tanHalfY * q.z;
+  }
+}
 // The up direction's component along each plane normal (the plane offsets do not apply to it).
 inline PlaneDistances upComponents(const EyeView& view) {
   const double tx = view.tanHalfX, ty = view.tanHalfY;
   const glm::dvec3& u = view.upEye;
   return {{-u.z, u.x - tx * u.z, -u.x - tx * u.z, u.y - ty * u.z, -u.y - ty * u.z}};
+}
+// One of them: upComponents(view).d[k].
+inline double upComponent(const EyeView& view, int k) {
+  return k == 0 ? -view.upEye.z : planeDistance(view, view.upEye, k);
 }
 // Whether the prism lies wholly outside plane k.
 inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,
@@ -66,23 +95,32 @@ inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b,
 }
 
 inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
-                       double above) {
+                       double above, PlaneMask& planes) {
   // The planes in eye space (n·q + d ≥ 0 inside): near −z − near, left x − tx·z, right −x − tx·z,
-  // bottom y − ty·z, top −y − ty·z.
-  const PlaneDistances da = planeDistances(view, a), db = planeDistances(view, b), dc = planeDistances(view, c);
-  const PlaneDistances nu = upComponents(view);
-  bool inside = true;
-  for (int k = 0; k < 5; ++k) {
+  // bottom y − ty·z, top −y − ty·z. In order, so that the first plane the prism is wholly
+  // outside decides, as with every plane.
+  PlaneMask straddled = 0;
+  for (PlaneMask m = planes; m != 0; m = static_cast<PlaneMask>(m & (m - 1))) {
+    const int k = std::countr_zero(m);
     // The prism's corners v + s·up for s in {−below, +above}: extremes per vertex.
-    const double s = -below * nu.d[k], t = above * nu.d[k];
+    const double u = upComponent(view, k);
+    const double s = -below * u, t = above * u;
     const double lo = s < t ? s : t, hi = s > t ? s : t;
-    double mx = da.d[k] > db.d[k] ? da.d[k] : db.d[k], mn = da.d[k] < db.d[k] ? da.d[k] : db.d[k];
-    mx = mx > dc.d[k] ? mx : dc.d[k];
-    mn = mn < dc.d[k] ? mn : dc.d[k];
+    const double da = planeDistance(view, a, k), db = planeDistance(view, b, k), dc = planeDistance(view, c, k);
+    double mx = da > db ? da : db, mn = da < db ? da : db;
+    mx = mx > dc ? mx : dc;
+    mn = mn < dc ? mn : dc;
     if (mx + hi < 0.0) return Cull::Outside;
-    if (mn + lo < 0.0) inside = false;
+    if (mn + lo < 0.0) straddled = static_cast<PlaneMask>(straddled | (1u << k));
   }
-  return inside ? Cull::Inside : Cull::Partial;
+  planes = straddled;
+  return straddled == 0 ? Cull::Inside : Cull::Partial;
+}
+
+inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+                       double above) {
+  PlaneMask planes = kEveryPlane;
+  return cullWedgie(view, a, b, c, below, above, planes);
 }
 
 }  // namespace vegstream::terrain

@@ -147,7 +147,7 @@ float ResidentHeights::thickness(const TriCorners& t, int level) {
     return table->thickness(localLevel, centroidPx);
   }
   if (localLevel <= kTileLevels)
-    return WedgieTable::deepThickness(*r->heights, {local(t.apex), local(t.left), local(t.right)}, localLevel);
+    return table->deepThickness(*r->heights, {local(t.apex), local(t.left), local(t.right)}, localLevel);
   // Inside one pixel the surface is bilinear: its departure from a triangle's plane shrinks by
   // half per level, so the nested sum is twice the departure at the base midpoint.
   const double hm = sampleTileXY(0.5 * (grid_.tileXY(t.left, id.z) + grid_.tileXY(t.right, id.z)), id.z).heightM;

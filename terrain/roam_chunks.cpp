@@ -7,6 +7,7 @@
 // Seed 001_3eca9f2c7752e4fb.txt §3.1 (the drawn triangulation, eye-space culling).
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 
 #include "core/parallel_for.h"
@@ -15,7 +16,7 @@
 
 namespace vegstream::terrain {
 
-void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
+void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, PlaneMask planes) {
   const geo::TileId& tile = w.pieces->tiles()[size_t(piece)];
   uint32_t slot = mesh_.node(t).drawnChunk;
   if (slot == kNoNode) {
@@ -44,7 +45,7 @@ void RoamTessellator::drawChunk(Walk& w, uint32_t t, int piece, bool partial) {
   } else {
     ++figures_.chunksReused;
   }
-  w.chunkDraws.push_back({slot, piece, partial});
+  w.chunkDraws.push_back({slot, piece, planes});
   if (options_.tasks) return;  // prepared on the workers, appended in order (prepareChunks)
   // One thread: prepared and appended at once, while the chunk is still in the cache.
   if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}, {}});
@@ -99,31 +100,38 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkScratch& scr
     size_t kept = 0;
     ++chunk.mesh.version;
     ++counts.chunksMoved;
-    for (const DrawnChunk::Morphing& m : chunk.morphing) {
-      const RoamVertex& x = m.source;
-      const double h = x.drawnHeight(w.timeS, fade);
+    for (size_t i = 0; i < chunk.morphing.size(); ++i) {
+      const DrawnChunk::Morphing& m = chunk.morphing[i];
+      const double h = m.drawnHeight(w.timeS, fade);
       TerrainVertex& out = chunk.mesh.vertices[m.at];
-      out.position = glm::vec3(x.position(h) - origin);
+      out.position = glm::vec3(m.position(h) - origin);
       out.heightMsl = static_cast<float>(h);
-      if (h != x.heightM) ++counts.morphingVertices;
-      if (!x.morphDone(w.timeS, fade)) chunk.morphing[kept++] = m;
+      if (h != m.heightM) ++counts.morphingVertices;
+      if (m.morphDone(w.timeS, fade)) continue;
+      if (kept != i) chunk.morphing[kept] = m;
+      ++kept;
     }
-    chunk.morphing.resize(kept);
+    chunk.morphing.erase(chunk.morphing.begin() + static_cast<std::ptrdiff_t>(kept), chunk.morphing.end());
   }
   chunk.visible.clear();
-  if (!d.partial || chunk.mesh.indices.empty()) return;
+  if (d.planes == 0 || chunk.mesh.indices.empty()) return;
   // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
   // own, from its vertices' plane distances (each vertex transformed once); the vertices of
   // culled triangles stay in the chunk, unreferenced.
-  // A plane every vertex is inside culls none of them (a prism reaches at least as far in as
-  // its triangle: below, above ≥ 0), so only the planes some vertex is outside are tested — most
-  // such chunks straddle one plane of the five.
+  // Only the planes the root's wedgie straddles can cull a triangle (each triangle's wedgie lies
+  // inside the root's, eye_space.h), and of those only the ones some vertex is outside: a plane
+  // every vertex is inside culls none of them (a prism reaches at least as far in as its
+  // triangle: below, above ≥ 0). Most such chunks straddle one plane of the five.
   std::vector<PlaneDistances>& planes = scratch.planes;
   planes.resize(chunk.at.size());
   double lowest[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
   for (size_t i = 0; i < chunk.at.size(); ++i) {
-    planes[i] = planeDistances(*w.view, w.view->toEye(chunk.at[i]));
-    for (int k = 0; k < 5; ++k) lowest[k] = std::min(lowest[k], planes[i].d[k]);
+    const glm::dvec3 q = w.view->toEye(chunk.at[i]);
+    for (PlaneMask m = d.planes; m != 0; m = static_cast<PlaneMask>(m & (m - 1))) {
+      const int k = std::countr_zero(m);
+      planes[i].d[k] = planeDistance(*w.view, q, k);
+      lowest[k] = std::min(lowest[k], planes[i].d[k]);
+    }
   }
   int straddled[5], count = 0;
   for (int k = 0; k < 5; ++k)
@@ -150,7 +158,7 @@ void RoamTessellator::appendChunkDraw(Walk& w, const ChunkDraw& d) {
   TerrainMesh& m = (*w.meshes)[size_t(d.piece)];
   const std::vector<uint32_t>& indices = chunk.mesh.indices;
   if (indices.empty()) return;  // no data under it
-  if (!d.partial) {
+  if (d.planes == 0) {
     m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
     figures_.drawnTriangles += indices.size() / 3;
     return;

@@ -19,12 +19,16 @@ double smooth(double s) { return s * s * (3.0 - 2.0 * s); }
 
 }  // namespace
 
-double RoamVertex::drawnHeight(double t, double fadeS) const {
+double morphedHeight(double heightM, double fromHeightM, double toHeightM, double morphStartS, double t, double fadeS) {
   if (!(heightM == heightM)) return heightM;
   const double to = toHeightM == toHeightM ? toHeightM : heightM;
   if (!(fromHeightM == fromHeightM) || fadeS <= 0.0) return to;
   const double s = std::clamp((t - morphStartS) / fadeS, 0.0, 1.0);
   return fromHeightM + (to - fromHeightM) * smooth(s);
+}
+
+double RoamVertex::drawnHeight(double t, double fadeS) const {
+  return morphedHeight(heightM, fromHeightM, toHeightM, morphStartS, t, fadeS);
 }
 
 RoamMesh::RoamMesh(BintreeGrid grid, geo::TileRange roots, const geo::LocalFrame& frame, ResidentHeights& heights,

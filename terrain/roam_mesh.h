@@ -39,6 +39,11 @@ namespace vegstream::terrain {
 
 inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 
+// The height a vertex is drawn at, time t: from `from` to `to` (or its sampled height) over
+// fadeS, eased; nodata (a NaN height) stays NaN. RoamVertex::drawnHeight, and the drawn chunks'
+// copies of their morphing vertices (roam_tessellator.h).
+double morphedHeight(double heightM, double fromHeightM, double toHeightM, double morphStartS, double t, double fadeS);
+
 struct RoamVertex {
   GridPoint grid;
   glm::dvec3 base{0.0};                                           // ENU of the point on the ellipsoid (height 0)

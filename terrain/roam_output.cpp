@@ -50,7 +50,7 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
     eyeOf(view, r, eye);
-    visitOutput(w, r, eye, Cull::Partial, InPiece::None, -1, true);
+    visitOutput(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None, -1, true);
   }
   prepareChunks(w);
   appendChunkDraws(w);
@@ -62,8 +62,8 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   figures_.outputMs = watch.elapsedMs();
 }
 
-void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece,
-                                  bool seeds) {
+void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps,
+                                  int piece, bool seeds) {
   // Eye coordinates are needed while the culling or the seeds are undecided, and only then.
   assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
@@ -71,7 +71,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   const int level = n.path.level;
   const double e = n.cullThickness();
   if (cull != Cull::Inside) {
-    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
     if (cull == Cull::Outside) return;
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0)) {
@@ -108,7 +108,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
     }
   }
   if (options_.cacheChunks && !seeds && ps == InPiece::In && n.leafCount <= options_.chunkMaxLeaves) {
-    drawChunk(w, t, piece, cull != Cull::Inside);
+    drawChunk(w, t, piece, cull == Cull::Inside ? PlaneMask{0} : planes);
     return;
   }
   if (n.isLeaf()) {
@@ -123,14 +123,14 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   }
   const uint32_t c = n.child;
   if (cull == Cull::Inside && !seeds) {
-    visitOutput(w, c, nullptr, cull, ps, piece, false);
-    visitOutput(w, c + 1, nullptr, cull, ps, piece, false);
+    visitOutput(w, c, nullptr, cull, 0, ps, piece, false);
+    visitOutput(w, c + 1, nullptr, cull, 0, ps, piece, false);
     return;
   }
   const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);  // the only vertex transformed here (§3.1 A)
   const glm::dvec3 e0[3] = {m, eye[0], eye[1]}, e1[3] = {m, eye[2], eye[0]};
-  visitOutput(w, c, e0, cull, ps, piece, seeds);
-  visitOutput(w, c + 1, e1, cull, ps, piece, seeds);
+  visitOutput(w, c, e0, cull, planes, ps, piece, seeds);
+  visitOutput(w, c + 1, e1, cull, planes, ps, piece, seeds);
 }
 
 bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
@@ -168,7 +168,7 @@ bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
     else
       stamps_[v] = {outputFrame_, sink.stamp, index};
     if (sink.chunk) {
-      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.push_back({index, x});
+      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.emplace_back(index, x);
       sink.chunk->at.push_back(x.at);
     }
     sink.indices->push_back(index);

@@ -35,7 +35,7 @@ void RoamTessellator::computePriorities(Walk& w) {
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
     eyeOf(*w.view, r, eye);
-    descendPriorities(w, r, eye, Cull::Partial, InPiece::None);
+    descendPriorities(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None);
   }
   if (w.taskCount > 0) {
     const auto run = [&](size_t k) -> Status {
@@ -49,7 +49,7 @@ void RoamTessellator::computePriorities(Walk& w) {
       tw.splits = &task.splits;
       tw.diamonds = &task.diamonds;
       tw.cancels = &task.cancels;
-      visitPriorities(tw, task.node, task.cull == Cull::Outside ? nullptr : task.eye, task.cull, task.ps);
+      visitPriorities(tw, task.node, task.cull == Cull::Outside ? nullptr : task.eye, task.cull, task.planes, task.ps);
       task.counts = tw.counts;
       return {};
     };
@@ -82,9 +82,10 @@ void RoamTessellator::computePriorities(Walk& w) {
   figures_.achievedErrorPx = w.counts.achievedErrorPx;
 }
 
-void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
+                                        InPiece ps) {
   if (!w.tasks || mesh_.node(t).leafCount > kTaskLeaves) {
-    visitPriorities(w, t, eye, cull, ps);
+    visitPriorities(w, t, eye, cull, planes, ps);
     return;
   }
   if (w.taskCount == w.tasks->size()) w.tasks->emplace_back();
@@ -92,6 +93,7 @@ void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* e
   task.node = t;
   if (cull != Cull::Outside) std::copy(eye, eye + 3, task.eye);
   task.cull = cull;
+  task.planes = planes;
   task.ps = ps;
   task.splits.clear();
   task.diamonds.clear();
@@ -99,13 +101,14 @@ void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* e
   task.counts = {};
 }
 
-void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
+                                      InPiece ps) {
   RoamNode& n = mesh_.node(t);
   mesh_.prefetchChildren(t);
   const int level = n.path.level;
   if (cull == Cull::Partial) {
     const double e = n.cullThickness();
-    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
     ps = pieceState(*w.pieces, mesh_.grid().square(mesh_.corners(t), level), ps, level);
@@ -156,11 +159,11 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
       e1[2] = eye[0];
     }
     if (top) {
-      descendPriorities(w, c, e0, cull, ps);
-      descendPriorities(w, c + 1, e1, cull, ps);
+      descendPriorities(w, c, e0, cull, planes, ps);
+      descendPriorities(w, c + 1, e1, cull, planes, ps);
     } else {
-      visitPriorities(w, c, e0, cull, ps);
-      visitPriorities(w, c + 1, e1, cull, ps);
+      visitPriorities(w, c, e0, cull, planes, ps);
+      visitPriorities(w, c + 1, e1, cull, planes, ps);
     }
   }
   if (top) {

@@ -206,6 +206,7 @@ class RoamTessellator {
     uint32_t node;
     glm::dvec3 eye[3];  // unset when culled: an Outside subtree needs none
     Cull cull;
+    PlaneMask planes;  // those its wedgie straddles, when Partial
     InPiece ps;
     std::vector<Candidate> splits, diamonds;
     std::vector<uint32_t> cancels;
@@ -213,9 +214,11 @@ class RoamTessellator {
   };
   static constexpr uint32_t kTaskLeaves = 1024;  // ≥ 2: a task's root is never a leaf or diamond of the top
   void computePriorities(Walk& w);
-  void descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
-  void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
-  void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps, int piece, bool seeds);
+  // `planes`: those the parent's wedgie straddles, when `cull` is Partial (eye_space.h).
+  void descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps);
+  void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps);
+  void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps, int piece,
+                   bool seeds);
   // Which vertices a chunk being built holds already (roam_chunks.cpp): a small map of its own,
   // so that chunks are built on any thread (the direct output uses stamps_).
   class ChunkVertexMap;
@@ -250,10 +253,10 @@ class RoamTessellator {
   struct ChunkDraw {
     uint32_t slot;
     int piece;
-    bool partial;  // its root straddles the edge of the view
+    PlaneMask planes;  // the planes of the view its root's wedgie straddles (none: wholly inside)
   };
   struct ChunkScratch;  // roam_walk.h: a block's vertex map, plane distances and leaf list
-  void drawChunk(Walk& w, uint32_t t, int piece, bool partial);
+  void drawChunk(Walk& w, uint32_t t, int piece, PlaneMask planes);
   void prepareChunks(Walk& w);
   void prepareChunk(const Walk& w, size_t draw, ChunkScratch& scratch, EmitCounts& counts);
   void appendChunkDraws(Walk& w);
@@ -309,15 +312,25 @@ class RoamTessellator {
     uint64_t usedFrame = 0;
     geo::TileId piece{};  // positions are relative to its origin, uvs in it
     TerrainChunk mesh;
-    // The vertices still morphing, each with a copy of its RoamVertex (to move it each output
-    // without a cache miss in the vertex pool: a change of the copied morph changes the chunk —
-    // RoamMesh stamps every leaf of a vertex whose morph it starts, cancels or resamples), and
+    // The vertices still morphing, each with a copy of what moving it needs (to move it each
+    // output without a cache miss in the vertex pool: a change of the copied morph changes the
+    // chunk — RoamMesh stamps every leaf of a vertex whose morph it starts, cancels or
+    // resamples; 88 bytes, not the 144 of a RoamVertex: most chunks moved are read only for it), and
     // each triangle's wedgie thickness: where the chunk straddles the edge of the view its
     // triangles are culled one by one (a leaf's wedgie nests in its ancestors', so that gives
     // what the hierarchical culling does).
     struct Morphing {
       uint32_t at;  // index in mesh.vertices
-      RoamVertex source;
+      glm::dvec3 base, up;  // RoamVertex's: the same arithmetic as emitting it
+      double heightM, fromHeightM, toHeightM, morphStartS;
+      explicit Morphing(uint32_t index, const RoamVertex& v)
+          : at(index), base(v.base), up(v.up), heightM(v.heightM), fromHeightM(v.fromHeightM), toHeightM(v.toHeightM),
+            morphStartS(v.morphStartS) {}
+      double drawnHeight(double t, double fadeS) const {
+        return morphedHeight(heightM, fromHeightM, toHeightM, morphStartS, t, fadeS);
+      }
+      glm::dvec3 position(double h) const { return base + up * h; }
+      bool morphDone(double t, double fadeS) const { return t - morphStartS >= fadeS; }
     };
     std::vector<Morphing> morphing;
     std::vector<float> thickness;

@@ -92,7 +92,8 @@ WedgieTable::WedgieTable(const datasets::HeightTile& tile, int rootZoom) : tile_
                        (double(t.apex.y) + t.left.y + t.right.y) / 3.0};
     errors_[thicknessIndex(level, c)] = e;
   };
-  const double pixelM = pixelGroundM(tile.id);
+  pixelM_ = pixelGroundM(tile.id);
+  const double pixelM = pixelM_;
   const GridPoint nw{0, 0}, ne{kSide, 0}, se{kSide, kSide}, sw{0, kSide};
   const bool swne = tile.id.z > rootZoom && ((tile.id.x + tile.id.y) & 1) != 0;
   if (swne) {
@@ -104,10 +105,10 @@ WedgieTable::WedgieTable(const datasets::HeightTile& tile, int rootZoom) : tile_
   }
 }
 
-float WedgieTable::deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level) {
-  assert(level > kStoredLevels && level <= kTileLevels);
+float WedgieTable::deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level) const {
+  assert(level > kStoredLevels && level <= kTileLevels && tile.id == tile_);
   auto h = [&](GridPoint p) { return cornerHeight(tile, p.x, p.y); };
-  return nested(cornersPx, level, h, pixelGroundM(tile.id), [](const TriCorners&, int, float) {}).e;
+  return nested(cornersPx, level, h, pixelM_, [](const TriCorners&, int, float) {}).e;
 }
 
 size_t WedgieTable::thicknessIndex(int level, glm::dvec2 c) const {

@@ -43,9 +43,9 @@ class WedgieTable final : public streaming::TileExtra {
   // whose centroid is at `centroidPx` (pixel units of this tile, [0, 256]²); kNoData if there is
   // no data under it.
   float thickness(int level, glm::dvec2 centroidPx) const;
-  // The same for a triangle deeper than kStoredLevels (≤ kTileLevels), from the tile's heights;
-  // corners in pixel-corner coordinates of the tile.
-  static float deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level);
+  // The same for a triangle deeper than kStoredLevels (≤ kTileLevels), from the tile's heights
+  // (`tile` is the one this table was made from); corners in pixel-corner coordinates of the tile.
+  float deepThickness(const datasets::HeightTile& tile, const TriCorners& cornersPx, int level) const;
   uint64_t bytes() const override { return errors_.size() * sizeof(float) + sizeof(*this); }
   // Where the thickness of that triangle is stored (level ≤ kStoredLevels).
   size_t thicknessIndex(int level, glm::dvec2 centroidPx) const;
@@ -53,6 +53,7 @@ class WedgieTable final : public streaming::TileExtra {
  private:
   geo::TileId tile_;
   int rootZoom_ = 0;
+  double pixelM_ = 0.0;  // a pixel's ground size at the tile's centre (pixelGroundM, asked for every deep triangle)
   std::vector<float> errors_;  // level by level, then square row-major, then part
 };
 
