@@ -22,6 +22,7 @@
 // children are allocated in pairs (child1 = child0 + 1). Frame thread only.
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -65,31 +66,40 @@ struct RoamVertex {
   bool morphDone(double t, double fadeS) const { return t - morphStartS >= fadeS; }
 };
 
-struct RoamNode {
+// Laid out for the priority traversal, which visits tens of thousands of nodes a frame, most of
+// them cache misses: what it reads fills the first 64 bytes (a cache line: the node is aligned
+// to one), the links and the output's fields the second. A visit then reads one line of the
+// node and one of each child, not two or three of each.
+struct alignas(64) RoamNode {
+  // --- The priority traversal's line.
   TriPath path;
-  uint32_t v[3] = {0, 0, 0};                                 // apex, left, right (RoamVertex indices)
-  uint32_t parent = kNoNode, child = kNoNode;                // child: the first of the pair
-  uint32_t base = kNoNode, left = kNoNode, right = kNoNode;  // neighbours across base, apex–left, apex–right
-  uint32_t mid = kNoNode;                                    // the split vertex, while split
-  float thickness = 0.0f;  // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
-  float priority = 0.0f;   // the last priority the update gave it
-  float radius = 0.0f;     // bounding sphere about the base midpoint (m, at geometry heights)
+  uint32_t child = kNoNode;  // the first of the pair
+  uint32_t mid = kNoNode;    // the split vertex, while split
+  float thickness = 0.0f;    // nested wedgie thickness + sagitta (m); NaN: unknown; < 0: no data
+  float priority = 0.0f;     // the last priority the update gave it
+  float radius = 0.0f;       // bounding sphere about the base midpoint (m, at geometry heights)
+  uint8_t seenCull = 0xFF, seenPiece = 0xFF;  // the cull and piece states the priority was computed under
   // Deferred priority recomputation (the tessellator's, roam_tessellator.h): `priority` stays on
   // the same side of the split / merge bounds until the camera has travelled `deadline` metres
   // on the tessellator's odometer; subtreeDeadline is the least over the subtree. −∞: evaluate
   // again (new, changed, or next to a bound); the mesh expires what it changes.
   double deadline = -std::numeric_limits<double>::infinity();
   double subtreeDeadline = -std::numeric_limits<double>::infinity();
-  uint8_t seenCull = 0xFF, seenPiece = 0xFF;  // the cull and piece states the priority was computed under
+  // --- The links, and the output's fields.
+  uint32_t v[3] = {0, 0, 0};                                 // apex, left, right (RoamVertex indices)
+  uint32_t parent = kNoNode;
+  uint32_t base = kNoNode, left = kNoNode, right = kNoNode;  // neighbours across base, apex–left, apex–right
+  uint32_t leafCount = 1;         // leaves in the subtree (what a drawn chunk here would hold)
+  uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   // Drawn chunks (the tessellator's output cache) span a node's whole subtree. drawnStamp: the
   // mesh's drawn epoch when this node, or one below it, last changed in a way that shows.
   uint64_t drawnStamp = 0;
-  uint32_t leafCount = 1;         // leaves in the subtree (what a drawn chunk here would hold)
-  uint32_t drawnChunk = kNoNode;  // the cache slot attached to a chunk root (released when freed)
   bool isLeaf() const { return child == kNoNode; }
   // The thickness culling uses: unknown (NaN) or no data (< 0) count as flat.
   float cullThickness() const { return std::max(0.0f, thickness == thickness ? thickness : 0.0f); }
 };
+static_assert(offsetof(RoamNode, subtreeDeadline) + sizeof(double) == 64, "the traversal's fields fill one line");
+static_assert(sizeof(RoamNode) == 128);
 
 struct RoamMeshOptions {
   double fadeS = 0.5;        // geomorph time (s)
@@ -183,12 +193,20 @@ class RoamMesh {
   void resample(const geo::TileId& tile);
 
   // The traversals are bound by fetching nodes and vertices: a node being visited asks for its
-  // children and split vertex early, so they are in cache by the time the visit needs them.
+  // children and split vertex early, so they are in cache by the time the visit needs them. The
+  // priority traversal reads the children's first lines only (RoamNode).
   void prefetchChildren(uint32_t t) const {
     const RoamNode& n = nodes_[t];
     if (n.isLeaf()) return;
     const char* c = reinterpret_cast<const char*>(&nodes_[n.child]);
     for (size_t at = 0; at < 2 * sizeof(RoamNode); at += 64) __builtin_prefetch(c + at);
+    __builtin_prefetch(&vertices_[n.mid].at);
+  }
+  void prefetchChildrenForPriorities(uint32_t t) const {
+    const RoamNode& n = nodes_[t];
+    if (n.isLeaf()) return;
+    __builtin_prefetch(&nodes_[n.child]);
+    __builtin_prefetch(&nodes_[n.child + 1]);
     __builtin_prefetch(&vertices_[n.mid].at);
   }
   void prefetchVertex(uint32_t v) const {

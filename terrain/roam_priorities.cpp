@@ -104,7 +104,7 @@ void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* e
 void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
                                       InPiece ps) {
   RoamNode& n = mesh_.node(t);
-  mesh_.prefetchChildren(t);
+  mesh_.prefetchChildrenForPriorities(t);
   const int level = n.path.level;
   if (cull == Cull::Partial) {
     const double e = n.cullThickness();
