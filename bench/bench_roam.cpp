@@ -14,6 +14,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define VEGSTREAM_BENCH_HAS_CALLGRIND 1
+#endif
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -173,9 +177,30 @@ void flyPath(benchmark::State& state, const char* pathName) {
           "frame,ms,cpu_ms,update_ms,compact_ms,compact_wait_ms,priorities_ms,split_ms,merge_ms,output_ms,leaves,splits,merges,"
           "visited,computed,chunks_reused,chunks_built,emitted,seeds,created,compacted\n");
     }
+    // VEGSTREAM_BENCH_CALLGRIND=FIRST-LAST: under `valgrind --tool=callgrind --instr-atstart=no`,
+    // only frames FIRST..LAST are instrumented, and the flight stops after them: instruction and
+    // simulated cache-miss counts of a stretch of the flight (the descent: 130-199), the same on
+    // every run, where this machine's wall clock moves by half between runs.
+    int profileFirst = -1, profileLast = -1;
+    if (const char* range = std::getenv("VEGSTREAM_BENCH_CALLGRIND")) {
+#ifndef VEGSTREAM_BENCH_HAS_CALLGRIND
+      (void)range;
+      return state.SkipWithError("VEGSTREAM_BENCH_CALLGRIND: built without valgrind/callgrind.h (apt install valgrind)");
+#else
+      if (std::sscanf(range, "%d-%d", &profileFirst, &profileLast) != 2 || profileFirst < 0 || profileLast < profileFirst)
+        return state.SkipWithError("VEGSTREAM_BENCH_CALLGRIND: expected FIRST-LAST frames, e.g. 130-199");
+#endif
+    }
     for (int i = 0; i < frames; ++i) {
       const double t = i / kFps;
       flight.settle(t);
+#ifdef VEGSTREAM_BENCH_HAS_CALLGRIND
+      if (i == profileFirst) CALLGRIND_START_INSTRUMENTATION;
+      if (profileLast >= 0 && i == profileLast + 1) {
+        CALLGRIND_STOP_INSTRUMENTATION;
+        break;
+      }
+#endif
       Stopwatch watch;
       const double cpu0 = threadCpuMs();
       const auto pieces = terrain.pieces(t);
