@@ -5,7 +5,7 @@ Usage: gpu_measure_report.py DIR [FAILED_NAME ...]. Tables: the frame per record
 wall p50/p99, plants in the low phase), GPU ms per pass (p50/p99; empty where the device's
 per-pass times mean nothing), the Hi-Z occlusion culling (median per frame over the whole flight:
 seed triangles tested and culled, plants classified and culled; canyon vs canyon-no-cull is the
-comparison), and every benchmark with its counters.
+comparison), CPU ms per stage and ROAM ms per phase, and every benchmark with its counters.
 """
 import csv
 import json
@@ -129,6 +129,16 @@ def main():
         for n in recordings:
             t = data[n][0]["times_ms"]
             print(f"| {n} | " + " | ".join(f"{fmt(pct(t, c, 'p50'))} / {fmt(pct(t, c, 'p99'))}" for c in stages) + " |")
+        # Where cpu_terrain_ms goes: the update's priority traversal (on the workers too) and split
+        # queue (the frame thread alone), the output, and the wait for the last compaction's copy.
+        print("\n## ROAM ms per phase (p50 / p99)\n")
+        phases = ["terrain_roam_update_ms", "terrain_roam_priorities_ms", "terrain_roam_split_ms",
+                  "terrain_roam_compact_wait_ms", "terrain_roam_output_ms"]
+        print("| recording | " + " | ".join(phases) + " |")
+        print("|---|" + "---|" * len(phases))
+        for n in recordings:
+            t = data[n][0]["times_ms"]
+            print(f"| {n} | " + " | ".join(f"{fmt(pct(t, c, 'p50'))} / {fmt(pct(t, c, 'p99'))}" for c in phases) + " |")
     for bench in ("bench_plants", "bench_roam"):
         f = os.path.join(d, bench + ".json")
         if not os.path.isfile(f):
