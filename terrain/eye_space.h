@@ -54,17 +54,13 @@ inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec
                        double above, PlaneMask& planes);
 
 // The same test split in two, for many triangles sharing vertices (a drawn chunk culled
-// triangle by triangle): each vertex's signed distances to the five planes once, then per
+// triangle by triangle): each vertex's signed distances to the planes that matter once, then per
 // triangle only the comparisons, plane by plane. wedgieOutsidePlane(..., k) for any k being
 // true == (cullWedgie(...) == Cull::Outside), bit for bit: the same arithmetic in the same order.
 struct PlaneDistances {
   double d[5];  // near, left, right, bottom, top (n·q + d ≥ 0 inside)
 };
-inline PlaneDistances planeDistances(const EyeView& view, const glm::dvec3& q) {
-  const double tx = view.tanHalfX, ty = view.tanHalfY;
-  return {{-q.z - view.nearM, q.x - tx * q.z, -q.x - tx * q.z, q.y - ty * q.z, -q.y - ty * q.z}};
-}
-// One of them: planeDistances(view, q).d[k], the same arithmetic.
+// The signed distance of eye-space point q to plane k (near, left, right, bottom, top).
 inline double planeDistance(const EyeView& view, const glm::dvec3& q, int k) {
   switch (k) {
     case 0: return -q.z - view.nearM;
@@ -74,15 +70,15 @@ inline double planeDistance(const EyeView& view, const glm::dvec3& q, int k) {
     default: return -q.y - view.tanHalfY * q.z;
   }
 }
-// The up direction's component along each plane normal (the plane offsets do not apply to it).
-inline PlaneDistances upComponents(const EyeView& view) {
-  const double tx = view.tanHalfX, ty = view.tanHalfY;
-  const glm::dvec3& u = view.upEye;
-  return {{-u.z, u.x - tx * u.z, -u.x - tx * u.z, u.y - ty * u.z, -u.y - ty * u.z}};
-}
-// One of them: upComponents(view).d[k].
+// The up direction's component along plane k's normal (the plane offsets do not apply to it),
+// and along all five.
 inline double upComponent(const EyeView& view, int k) {
   return k == 0 ? -view.upEye.z : planeDistance(view, view.upEye, k);
+}
+inline PlaneDistances upComponents(const EyeView& view) {
+  PlaneDistances u;
+  for (int k = 0; k < 5; ++k) u.d[k] = upComponent(view, k);
+  return u;
 }
 // Whether the prism lies wholly outside plane k.
 inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,

@@ -93,15 +93,14 @@ WedgieTable::WedgieTable(const datasets::HeightTile& tile, int rootZoom) : tile_
     errors_[thicknessIndex(level, c)] = e;
   };
   pixelM_ = pixelGroundM(tile.id);
-  const double pixelM = pixelM_;
   const GridPoint nw{0, 0}, ne{kSide, 0}, se{kSide, kSide}, sw{0, kSide};
   const bool swne = tile.id.z > rootZoom && ((tile.id.x + tile.id.y) & 1) != 0;
   if (swne) {
-    nested(TriCorners{nw, sw, ne}, 0, h, pixelM, store);
-    nested(TriCorners{se, ne, sw}, 0, h, pixelM, store);
+    nested(TriCorners{nw, sw, ne}, 0, h, pixelM_, store);
+    nested(TriCorners{se, ne, sw}, 0, h, pixelM_, store);
   } else {
-    nested(TriCorners{sw, se, nw}, 0, h, pixelM, store);
-    nested(TriCorners{ne, nw, se}, 0, h, pixelM, store);
+    nested(TriCorners{sw, se, nw}, 0, h, pixelM_, store);
+    nested(TriCorners{ne, nw, se}, 0, h, pixelM_, store);
   }
 }
 
