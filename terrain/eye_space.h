@@ -41,68 +41,40 @@ struct EyeView {
 using PlaneMask = uint8_t;
 inline constexpr PlaneMask kEveryPlane = 0x1F;
 
+// The five planes as coefficients, made once per traversal: a distance is then three products
+// and three sums, the same for every plane (a switch over the planes, an indirect jump for every
+// plane of every vertex whose target changes from node to node, was a fifth of the priority
+// traversal's instructions). In eye space (n·q + d ≥ 0 inside): near −z − near, left x − tx·z,
+// right −x − tx·z, bottom y − ty·z, top −y − ty·z.
+struct Frustum {
+  double nx[5], ny[5], nz[5], d[5];
+  double up[5];  // the local up's component along each normal (offsets do not apply to it)
+
+  explicit Frustum(const EyeView& view)
+      : nx{0.0, 1.0, -1.0, 0.0, 0.0},
+        ny{0.0, 0.0, 0.0, 1.0, -1.0},
+        nz{-1.0, -view.tanHalfX, -view.tanHalfX, -view.tanHalfY, -view.tanHalfY},
+        d{-view.nearM, 0.0, 0.0, 0.0, 0.0} {
+    for (int k = 0; k < 5; ++k) up[k] = nx[k] * view.upEye.x + ny[k] * view.upEye.y + nz[k] * view.upEye.z;
+  }
+  double distance(const glm::dvec3& q, int k) const { return nx[k] * q.x + ny[k] * q.y + nz[k] * q.z + d[k]; }
+};
+
 // The wedgie of a triangle with eye-space vertices a, b, c: the prism from `below` metres under
 // it to `above` metres over it along the local up. Outside when all six corners are outside
-// one plane (near, left, right, bottom, top); Inside when all are inside all planes.
-// (Defined below, inline: the traversals call it for every node.)
-inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
-                       double above);
-// The same, against the planes in `planes` only (the others known to hold the prism wholly
-// inside); `planes` becomes those the prism straddles (none when Inside; unchanged when Outside).
-// With kEveryPlane it is the test above, bit for bit.
-inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
-                       double above, PlaneMask& planes);
-
-// The same test split in two, for many triangles sharing vertices (a drawn chunk culled
-// triangle by triangle): each vertex's signed distances to the planes that matter once, then per
-// triangle only the comparisons, plane by plane. wedgieOutsidePlane(..., k) for any k being
-// true == (cullWedgie(...) == Cull::Outside), bit for bit: the same arithmetic in the same order.
-struct PlaneDistances {
-  double d[5];  // near, left, right, bottom, top (n·q + d ≥ 0 inside)
-};
-// The signed distance of eye-space point q to plane k (near, left, right, bottom, top).
-inline double planeDistance(const EyeView& view, const glm::dvec3& q, int k) {
-  switch (k) {
-    case 0: return -q.z - view.nearM;
-    case 1: return q.x - view.tanHalfX * q.z;
-    case 2: return -q.x - view.tanHalfX * q.z;
-    case 3: return q.y - view.tanHalfY * q.z;
-    default: return -q.y - view.tanHalfY * q.z;
-  }
-}
-// The up direction's component along plane k's normal (the plane offsets do not apply to it),
-// and along all five.
-inline double upComponent(const EyeView& view, int k) {
-  return k == 0 ? -view.upEye.z : planeDistance(view, view.upEye, k);
-}
-inline PlaneDistances upComponents(const EyeView& view) {
-  PlaneDistances u;
-  for (int k = 0; k < 5; ++k) u.d[k] = upComponent(view, k);
-  return u;
-}
-// Whether the prism lies wholly outside plane k.
-inline bool wedgieOutsidePlane(const PlaneDistances& a, const PlaneDistances& b, const PlaneDistances& c,
-                               const PlaneDistances& up, double below, double above, int k) {
-  const double s = -below * up.d[k], t = above * up.d[k];
-  const double hi = s > t ? s : t;
-  double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
-  m = m > c.d[k] ? m : c.d[k];
-  return m + hi < 0.0;
-}
-
-inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+// one plane (near, left, right, bottom, top); Inside when all are inside all planes. Against
+// the planes in `planes` only (the others known to hold the prism wholly inside): `planes`
+// becomes those the prism straddles (none when Inside; unchanged when Outside). In plane order,
+// so that the first plane the prism is wholly outside decides, whatever the mask.
+inline Cull cullWedgie(const Frustum& f, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
                        double above, PlaneMask& planes) {
-  // The planes in eye space (n·q + d ≥ 0 inside): near −z − near, left x − tx·z, right −x − tx·z,
-  // bottom y − ty·z, top −y − ty·z. In order, so that the first plane the prism is wholly
-  // outside decides, as with every plane.
   PlaneMask straddled = 0;
   for (PlaneMask m = planes; m != 0; m = static_cast<PlaneMask>(m & (m - 1))) {
     const int k = std::countr_zero(m);
     // The prism's corners v + s·up for s in {−below, +above}: extremes per vertex.
-    const double u = upComponent(view, k);
-    const double s = -below * u, t = above * u;
+    const double s = -below * f.up[k], t = above * f.up[k];
     const double lo = s < t ? s : t, hi = s > t ? s : t;
-    const double da = planeDistance(view, a, k), db = planeDistance(view, b, k), dc = planeDistance(view, c, k);
+    const double da = f.distance(a, k), db = f.distance(b, k), dc = f.distance(c, k);
     double mx = da > db ? da : db, mn = da < db ? da : db;
     mx = mx > dc ? mx : dc;
     mn = mn < dc ? mn : dc;
@@ -112,11 +84,28 @@ inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec
   planes = straddled;
   return straddled == 0 ? Cull::Inside : Cull::Partial;
 }
-
+// Against every plane, for a test of one wedgie (the traversals make their Frustum once).
 inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
                        double above) {
   PlaneMask planes = kEveryPlane;
-  return cullWedgie(view, a, b, c, below, above, planes);
+  return cullWedgie(Frustum(view), a, b, c, below, above, planes);
+}
+
+// The same test split in two, for many triangles sharing vertices (a drawn chunk culled
+// triangle by triangle): each vertex's signed distances to the planes that matter once, then per
+// triangle only the comparisons, plane by plane. wedgieOutsidePlane(..., k) for any k being
+// true == (cullWedgie(...) == Cull::Outside), bit for bit: the same arithmetic in the same order.
+struct PlaneDistances {
+  double d[5];  // near, left, right, bottom, top (Frustum::distance)
+};
+// Whether the prism lies wholly outside plane k.
+inline bool wedgieOutsidePlane(const Frustum& f, const PlaneDistances& a, const PlaneDistances& b,
+                               const PlaneDistances& c, double below, double above, int k) {
+  const double s = -below * f.up[k], t = above * f.up[k];
+  const double hi = s > t ? s : t;
+  double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
+  m = m > c.d[k] ? m : c.d[k];
+  return m + hi < 0.0;
 }
 
 }  // namespace vegstream::terrain

@@ -129,21 +129,20 @@ void RoamTessellator::prepareChunk(const Walk& w, size_t draw, ChunkScratch& scr
     const glm::dvec3 q = w.view->toEye(chunk.at[i]);
     for (PlaneMask m = d.planes; m != 0; m = static_cast<PlaneMask>(m & (m - 1))) {
       const int k = std::countr_zero(m);
-      planes[i].d[k] = planeDistance(*w.view, q, k);
+      planes[i].d[k] = w.frustum->distance(q, k);
       lowest[k] = std::min(lowest[k], planes[i].d[k]);
     }
   }
   int straddled[5], count = 0;
   for (int k = 0; k < 5; ++k)
     if (lowest[k] < 0.0) straddled[count++] = k;
-  const PlaneDistances up = upComponents(*w.view);
   const std::vector<uint32_t>& indices = chunk.mesh.indices;
   for (size_t t = 0; t < chunk.thickness.size(); ++t) {
     const uint32_t* tri = &indices[3 * t];
     const double e = chunk.thickness[t];
     bool outside = false;
     for (int j = 0; j < count && !outside; ++j)
-      outside = wedgieOutsidePlane(planes[tri[0]], planes[tri[1]], planes[tri[2]], up, e, e + options_.canopyM,
+      outside = wedgieOutsidePlane(*w.frustum, planes[tri[0]], planes[tri[1]], planes[tri[2]], e, e + options_.canopyM,
                                    straddled[j]);
     if (!outside) chunk.visible.insert(chunk.visible.end(), tri, tri + 3);
   }

@@ -36,8 +36,10 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   seeds.clear();
   // Changes from here on are after every chunk this output builds.
   chunkEpoch_ = mesh_.closeDrawnEpoch();
+  const Frustum frustum(view);
   Walk w;
   w.view = &view;
+  w.frustum = &frustum;
   w.pieces = &pieces;
   w.timeS = timeS;
   w.meshes = &meshes;
@@ -71,7 +73,7 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   const int level = n.path.level;
   const double e = n.cullThickness();
   if (cull != Cull::Inside) {
-    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
+    cull = cullWedgie(*w.frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
     if (cull == Cull::Outside) return;
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0)) {
@@ -213,7 +215,9 @@ void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3
                                   double thickness, int piece) {
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
-  if (cullWedgie(*w.view, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside) return;
+  PlaneMask planes = kEveryPlane;
+  if (cullWedgie(*w.frustum, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM, planes) == Cull::Outside)
+    return;
   const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
   const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
   if (glm::length(c) - radius - thickness > seeds_.horizonM) return;

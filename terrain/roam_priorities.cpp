@@ -42,6 +42,7 @@ void RoamTessellator::computePriorities(Walk& w) {
       PriorityTask& task = priorityTasks_[k];
       Walk tw;
       tw.view = w.view;
+      tw.frustum = w.frustum;
       tw.pieces = w.pieces;
       tw.bound = w.bound;
       tw.mergeBelow = w.mergeBelow;
@@ -108,7 +109,7 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   const int level = n.path.level;
   if (cull == Cull::Partial) {
     const double e = n.cullThickness();
-    cull = cullWedgie(*w.view, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
+    cull = cullWedgie(*w.frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0))
     ps = pieceState(*w.pieces, mesh_.grid().square(mesh_.corners(t), level), ps, level);
@@ -147,7 +148,8 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
            x.subtreeDeadline > odometerM_;
   };
   const bool top = w.tasks != nullptr;  // children may be tasks: the subtree deadline waits
-  if (!skipped(c) || !skipped(c + 1)) {
+  const bool skip0 = skipped(c), skip1 = skipped(c + 1);
+  if (!skip0 || !skip1) {
     glm::dvec3 e0[3], e1[3];
     if (cull != Cull::Outside) {
       const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
@@ -158,12 +160,14 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
       e1[1] = eye[2];
       e1[2] = eye[0];
     }
+    // A skipped child would return at once (the test at the top) with nothing written: it is
+    // not entered, nor made a task.
     if (top) {
-      descendPriorities(w, c, e0, cull, planes, ps);
-      descendPriorities(w, c + 1, e1, cull, planes, ps);
+      if (!skip0) descendPriorities(w, c, e0, cull, planes, ps);
+      if (!skip1) descendPriorities(w, c + 1, e1, cull, planes, ps);
     } else {
-      visitPriorities(w, c, e0, cull, planes, ps);
-      visitPriorities(w, c + 1, e1, cull, planes, ps);
+      if (!skip0) visitPriorities(w, c, e0, cull, planes, ps);
+      if (!skip1) visitPriorities(w, c + 1, e1, cull, planes, ps);
     }
   }
   if (top) {

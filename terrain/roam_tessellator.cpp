@@ -129,8 +129,10 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   timeS_ = timeS;
   beginUpdate(view);
   std::vector<Candidate> splits, diamonds;
+  const Frustum frustum(view);
   Walk w;
   w.view = &view;
+  w.frustum = &frustum;
   w.pieces = &pieces;
   w.bound = options_.maxErrorPx;
   w.splits = &splits;
@@ -181,6 +183,7 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
   auto less = [](const Candidate& a, const Candidate& b) { return a.priority < b.priority; };
   std::make_heap(heap.begin(), heap.end(), less);
   const double bound = options_.maxErrorPx;
+  const Frustum frustum(view);
   std::vector<uint32_t> created;
   while (!heap.empty() && heap.front().priority > bound) {
     if (outOfWork(ops, watch)) break;
@@ -212,7 +215,8 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       glm::dvec3 eye[3];
       eyeOf(view, leaf, eye);
       const double e = ln.cullThickness();
-      const Cull cull = cullWedgie(view, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+      PlaneMask planes = kEveryPlane;
+      const Cull cull = cullWedgie(frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
       PriorityFigures counts;
       evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf), counts);
       figures_.prioritiesComputed += counts.computed;

@@ -49,12 +49,13 @@ class RoamTessellator::ChunkVertexMap {
 
 struct RoamTessellator::ChunkScratch {
   ChunkVertexMap map;
-  std::vector<PlaneDistances> planes;
+  std::vector<PlaneDistances> planes;  // each vertex's, by plane
   std::vector<uint32_t> leaves;  // collectChunk's
 };
 
 struct RoamTessellator::Walk {
   const EyeView* view = nullptr;
+  const Frustum* frustum = nullptr;  // the view's planes
   const PieceSet* pieces = nullptr;
   double bound = 0.0;
   double timeS = 0.0;

@@ -25,6 +25,17 @@ EyeView viewWithUp(const glm::dvec3& upEye) {
   return v;
 }
 
+// The planes written out (n·q + d ≥ 0 inside): what Frustum's coefficients stand for.
+double planeDistance(const EyeView& view, const glm::dvec3& q, int k) {
+  switch (k) {
+    case 0: return -q.z - view.nearM;
+    case 1: return q.x - view.tanHalfX * q.z;
+    case 2: return -q.x - view.tanHalfX * q.z;
+    case 3: return q.y - view.tanHalfY * q.z;
+    default: return -q.y - view.tanHalfY * q.z;
+  }
+}
+
 // The reference: the prism's six corners v + s·up, s ∈ {−below, +above}, against each plane.
 Cull byCorners(const EyeView& view, const std::array<glm::dvec3, 3>& tri, double below, double above) {
   bool inside = true;
@@ -54,6 +65,20 @@ struct Scene {
   }
 };
 
+TEST(WedgieCulling, TheFrustumsCoefficientsGiveThePlanesDistancesExactly) {
+  Scene s;
+  for (int i = 0; i < 2000; ++i) {
+    const EyeView view = viewWithUp({s.uniform(-0.3, 0.3), 1.0, s.uniform(-0.3, 0.3)});
+    const Frustum f(view);
+    const glm::dvec3 q = s.point();
+    for (int k = 0; k < 5; ++k) {
+      // Bit for bit: the culling of a chunk's triangles one by one must agree with the traversal's.
+      ASSERT_EQ(f.distance(q, k), planeDistance(view, q, k)) << "plane " << k << ", point " << i;
+      ASSERT_EQ(f.up[k], k == 0 ? -view.upEye.z : planeDistance(view, view.upEye, k)) << "plane " << k;
+    }
+  }
+}
+
 TEST(WedgieCulling, EveryPlaneAgreesWithThePrismsCornersAndTheMaskSaysWhichAreStraddled) {
   Scene s;
   int seen[3] = {0, 0, 0};
@@ -63,7 +88,7 @@ TEST(WedgieCulling, EveryPlaneAgreesWithThePrismsCornersAndTheMaskSaysWhichAreSt
     const double below = s.uniform(0.0, 8.0), above = below + s.uniform(0.0, 30.0);
     const Cull expected = byCorners(view, tri, below, above);
     PlaneMask planes = kEveryPlane;
-    const Cull got = cullWedgie(view, tri[0], tri[1], tri[2], below, above, planes);
+    const Cull got = cullWedgie(Frustum(view), tri[0], tri[1], tri[2], below, above, planes);
     ASSERT_EQ(got, expected) << "triangle " << i;
     ASSERT_EQ(cullWedgie(view, tri[0], tri[1], tri[2], below, above), expected);
     ++seen[int(got)];
@@ -90,7 +115,7 @@ TEST(WedgieCulling, ANestedWedgieTestedAgainstItsParentsStraddledPlanesGetsWhatE
     const auto [a, b, c] = s.triangle();
     const double E = s.uniform(0.0, 8.0), canopy = s.uniform(0.0, 30.0);
     PlaneMask parentPlanes = kEveryPlane;
-    const Cull parent = cullWedgie(view, a, b, c, E, E + canopy, parentPlanes);
+    const Cull parent = cullWedgie(Frustum(view), a, b, c, E, E + canopy, parentPlanes);
     const double delta = s.uniform(-E, E), e = s.uniform(0.0, E - std::abs(delta));
     const glm::dvec3 m = 0.5 * (b + c) + delta * view.upEye;
     const Cull full = cullWedgie(view, m, a, b, e, e + canopy);
@@ -100,7 +125,7 @@ TEST(WedgieCulling, ANestedWedgieTestedAgainstItsParentsStraddledPlanesGetsWhatE
     }
     ++partialParents;
     PlaneMask childPlanes = parentPlanes;
-    const Cull masked = cullWedgie(view, m, a, b, e, e + canopy, childPlanes);
+    const Cull masked = cullWedgie(Frustum(view), m, a, b, e, e + canopy, childPlanes);
     ASSERT_EQ(masked, full) << "triangle " << i;
     ASSERT_EQ(childPlanes & ~parentPlanes, 0) << "a child straddles only planes its parent straddles";
     ++childOutcomes[int(masked)];
