@@ -141,7 +141,10 @@ bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
   ++sink.counts->leaves;
   for (uint32_t v : n.v)
     if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return false;  // nodata: a hole, never a drop to 0
-  const double uvScale = sink.tile ? std::ldexp(1.0, sink.tile->z - mesh_.grid().gridZoom()) : 0.0;
+  // 2^(z − gridZoom), exactly (a piece's zoom is below the grid's): the tile's uv per grid step.
+  assert(!sink.tile || sink.tile->z < mesh_.grid().gridZoom());
+  const double uvScale =
+      sink.tile ? 1.0 / static_cast<double>(uint64_t{1} << (mesh_.grid().gridZoom() - sink.tile->z)) : 0.0;
   const double fade = mesh_.options().fadeS;
   for (uint32_t v : n.v) {
     uint32_t* known = nullptr;  // the chunk's entry for v

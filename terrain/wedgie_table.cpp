@@ -48,8 +48,11 @@ template <typename Heights, typename Store>
 Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, const Store& store) {
   const float ha = h(t.apex), hl = h(t.left), hr = h(t.right);
   const bool cornersOk = !std::isnan(ha) && !std::isnan(hl) && !std::isnan(hr);
-  const double dx = double(t.left.x) - double(t.right.x), dy = double(t.left.y) - double(t.right.y);
-  const float partialE = static_cast<float>(0.5 * std::sqrt(dx * dx + dy * dy) * pixelM);
+  // Only where data is missing under it (a square root per triangle otherwise unused).
+  const auto partialE = [&] {
+    const double dx = double(t.left.x) - double(t.right.x), dy = double(t.left.y) - double(t.right.y);
+    return static_cast<float>(0.5 * std::sqrt(dx * dx + dy * dy) * pixelM);
+  };
   Acc out;
   if (level == kTileLevels) {
     // Half a pixel square: the bilinear surface departs most from the plane at the pixel centre.
@@ -60,7 +63,7 @@ Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, cons
     if (out.complete)
       out.e = std::abs(0.25f * (ha + hl + hr + ho) - 0.5f * (hl + hr));
     else
-      out.e = out.any ? partialE : kNoData;
+      out.e = out.any ? partialE() : kNoData;
   } else {
     const Acc c0 = nested(child(t, 0), level + 1, h, pixelM, store);
     const Acc c1 = nested(child(t, 1), level + 1, h, pixelM, store);
@@ -71,7 +74,7 @@ Acc nested(const TriCorners& t, int level, const Heights& h, double pixelM, cons
     if (out.complete)
       out.e = std::abs(hm - 0.5f * (hl + hr)) + below;
     else
-      out.e = out.any ? std::max(below, partialE) : kNoData;
+      out.e = out.any ? std::max(below, partialE()) : kNoData;
   }
   store(t, level, out.e);
   return out;
