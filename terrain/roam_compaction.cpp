@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cassert>
 #include <condition_variable>
+#include <deque>
+#include <memory>
 #include <mutex>
 
 #include "core/stopwatch.h"
@@ -15,30 +17,73 @@
 
 namespace vegstream::terrain {
 
-struct RoamTessellator::PendingCompaction {
+// The copy's own runner: RoamMesh::buildCompaction splits it over subtrees with parallelFor,
+// whose helper tasks go to the pool and also to a queue of this copy's, each run once by
+// whichever gets to it first. The thread that waits for the copy (finishCompaction) runs them
+// from the queue instead of idling: the copy starts on a worker at the end of an update, and when
+// it is not done by the next one — in a fast descent the frame has little else to do on a small
+// machine — the frame thread copies beside that worker rather than wait for it alone.
+struct RoamTessellator::PendingCompaction final : TaskRunner {
+  struct Helper {
+    Task task;
+    std::atomic<bool> taken{false};
+    void run() {
+      if (!taken.exchange(true)) task();
+    }
+  };
+
   const RoamMesh* mesh = nullptr;
-  TaskRunner* tasks = nullptr;  // the copy's subtrees run there too (RoamMesh::buildCompaction)
+  TaskRunner* pool = nullptr;  // the copy's helpers run there too
   RoamCompaction work;
   std::atomic<bool> claimed{false};  // the worker or finishCompaction: the first one makes the copy
   std::mutex mu;
-  std::condition_variable doneCv;
+  std::condition_variable changed;  // a helper queued, or the copy done
+  std::deque<std::shared_ptr<Helper>> helpers;
   bool done = false;
 
+  void post(Task task) override {
+    auto helper = std::make_shared<Helper>();
+    helper->task = std::move(task);
+    {
+      std::lock_guard lock(mu);
+      helpers.push_back(helper);
+    }
+    changed.notify_all();
+    pool->post([helper] { helper->run(); });
+  }
+  void postLongRunning(Task task) override { pool->postLongRunning(std::move(task)); }
+  // The pool's workers and the thread waiting for the copy.
+  int concurrency() const override { return pool->concurrency() + 1; }
+
   void build() {
-    mesh->buildCompaction(work, tasks);
+    mesh->buildCompaction(work, this);
     std::lock_guard lock(mu);
     done = true;
-    doneCv.notify_all();
+    changed.notify_all();
+  }
+  // Until the copy is done: runs its queued helpers (a helper that a worker took first does
+  // nothing here), else waits for one or for the end.
+  void helpUntilDone() {
+    std::unique_lock lock(mu);
+    while (!done) {
+      if (helpers.empty()) {
+        changed.wait(lock);
+        continue;
+      }
+      const std::shared_ptr<Helper> helper = std::move(helpers.front());
+      helpers.pop_front();
+      lock.unlock();
+      helper->run();
+      lock.lock();
+    }
+    helpers.clear();
   }
 };
 
 RoamTessellator::~RoamTessellator() {
   // A worker may be copying from the mesh: it must be done first. One that has not started
   // never will (the claim is taken here).
-  if (compaction_ && compaction_->claimed.exchange(true)) {
-    std::unique_lock lock(compaction_->mu);
-    compaction_->doneCv.wait(lock, [&] { return compaction_->done; });
-  }
+  if (compaction_ && compaction_->claimed.exchange(true)) compaction_->helpUntilDone();
 }
 
 void RoamTessellator::startCompaction() {
@@ -50,7 +95,7 @@ void RoamTessellator::startCompaction() {
   }
   compaction_ = std::make_shared<PendingCompaction>();
   compaction_->mesh = &mesh_;
-  compaction_->tasks = options_.tasks;
+  compaction_->pool = options_.tasks;
   compaction_->work = mesh_.beginCompaction();
   options_.tasks->post([pending = compaction_] {
     if (!pending->claimed.exchange(true)) pending->build();
@@ -61,12 +106,10 @@ void RoamTessellator::finishCompaction() {
   if (!compaction_) return;
   Stopwatch watch;
   PendingCompaction& pending = *compaction_;
-  if (!pending.claimed.exchange(true)) {
+  if (!pending.claimed.exchange(true))
     pending.build();  // no worker took it (a busy runner): the copy is made here
-  } else {
-    std::unique_lock lock(pending.mu);
-    pending.doneCv.wait(lock, [&] { return pending.done; });
-  }
+  else
+    pending.helpUntilDone();
   remapChunks(mesh_.endCompaction(std::move(pending.work)));
   stamps_.clear();
   compaction_.reset();
