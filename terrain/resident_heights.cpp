@@ -116,6 +116,11 @@ HeightSample ResidentHeights::sampleTileXY(glm::dvec2 xy, int z) {
   return s;
 }
 
+double ResidentHeights::heightTileXY(glm::dvec2 xy, int z) {
+  const streaming::ResidentTile* r = find(clampedTile(xy, z));
+  return r ? bilinearAcross(*r->heights, z, xy) : std::numeric_limits<double>::quiet_NaN();
+}
+
 HeightSample ResidentHeights::sample(GridPoint p) {
   return sampleTileXY(grid_.tileXY(p, grid_.maxZoom()), grid_.maxZoom());
 }
@@ -150,9 +155,9 @@ float ResidentHeights::thickness(const TriCorners& t, int level) {
     return table->deepThickness(*r->heights, {local(t.apex), local(t.left), local(t.right)}, localLevel);
   // Inside one pixel the surface is bilinear: its departure from a triangle's plane shrinks by
   // half per level, so the nested sum is twice the departure at the base midpoint.
-  const double hm = sampleTileXY(0.5 * (grid_.tileXY(t.left, id.z) + grid_.tileXY(t.right, id.z)), id.z).heightM;
-  const double hl = sampleTileXY(grid_.tileXY(t.left, id.z), id.z).heightM;
-  const double hr = sampleTileXY(grid_.tileXY(t.right, id.z), id.z).heightM;
+  const double hm = heightTileXY(0.5 * (grid_.tileXY(t.left, id.z) + grid_.tileXY(t.right, id.z)), id.z);
+  const double hl = heightTileXY(grid_.tileXY(t.left, id.z), id.z);
+  const double hr = heightTileXY(grid_.tileXY(t.right, id.z), id.z);
   if (std::isnan(hm) || std::isnan(hl) || std::isnan(hr)) return kNoData;
   return static_cast<float>(2.0 * std::abs(hm - 0.5 * (hl + hr)));
 }

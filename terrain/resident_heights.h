@@ -61,6 +61,9 @@ class ResidentHeights {
 
  private:
   HeightSample sampleTileXY(glm::dvec2 xy, int z);
+  // Its height alone (NaN where nothing is resident): the slope costs four more bilinear
+  // samples, a projection and a cosine, which a thickness below the pixels does not need.
+  double heightTileXY(glm::dvec2 xy, int z);
   double bilinearAcross(const datasets::HeightTile& tile, int z, glm::dvec2 xy);
 
   BintreeGrid grid_;
