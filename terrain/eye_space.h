@@ -84,11 +84,16 @@ inline Cull cullWedgie(const Frustum& f, const glm::dvec3& a, const glm::dvec3& 
   planes = straddled;
   return straddled == 0 ? Cull::Inside : Cull::Partial;
 }
-// Against every plane, for a test of one wedgie (the traversals make their Frustum once).
-inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+// Against every plane.
+inline Cull cullWedgie(const Frustum& f, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
                        double above) {
   PlaneMask planes = kEveryPlane;
-  return cullWedgie(Frustum(view), a, b, c, below, above, planes);
+  return cullWedgie(f, a, b, c, below, above, planes);
+}
+// The same for a test of one wedgie (the traversals make their Frustum once).
+inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double below,
+                       double above) {
+  return cullWedgie(Frustum(view), a, b, c, below, above);
 }
 
 // The same test split in two, for many triangles sharing vertices (a drawn chunk culled

@@ -218,9 +218,7 @@ void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3
                                   double thickness, int piece) {
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
-  PlaneMask planes = kEveryPlane;
-  if (cullWedgie(*w.frustum, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM, planes) == Cull::Outside)
-    return;
+  if (cullWedgie(*w.frustum, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside) return;
   const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
   const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
   if (glm::length(c) - radius - thickness > seeds_.horizonM) return;

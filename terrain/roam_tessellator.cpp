@@ -144,7 +144,7 @@ void RoamTessellator::update(const EyeView& view, const PieceSet& pieces, double
   const double visited = watch.elapsedMs();
   figures_.prioritiesMs = visited - started;
   uint64_t ops = 0;
-  splitPhase(view, pieces, splits, ops, watch);
+  splitPhase(w, splits, ops, watch);
   const double split = watch.elapsedMs();
   figures_.splitMs = split - visited;
   mergePhase(diamonds, ops, watch);
@@ -178,12 +178,12 @@ bool RoamTessellator::outOfWork(uint64_t ops, const Stopwatch& watch) {
   return false;
 }
 
-void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, std::vector<Candidate>& heap,
-                                 uint64_t& ops, const Stopwatch& watch) {
+void RoamTessellator::splitPhase(const Walk& w, std::vector<Candidate>& heap, uint64_t& ops, const Stopwatch& watch) {
+  const EyeView& view = *w.view;
+  const PieceSet& pieces = *w.pieces;
   auto less = [](const Candidate& a, const Candidate& b) { return a.priority < b.priority; };
   std::make_heap(heap.begin(), heap.end(), less);
   const double bound = options_.maxErrorPx;
-  const Frustum frustum(view);
   std::vector<uint32_t> created;
   while (!heap.empty() && heap.front().priority > bound) {
     if (outOfWork(ops, watch)) break;
@@ -215,8 +215,7 @@ void RoamTessellator::splitPhase(const EyeView& view, const PieceSet& pieces, st
       glm::dvec3 eye[3];
       eyeOf(view, leaf, eye);
       const double e = ln.cullThickness();
-      PlaneMask planes = kEveryPlane;
-      const Cull cull = cullWedgie(frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
+      const Cull cull = cullWedgie(*w.frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM);
       PriorityFigures counts;
       evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf), counts);
       figures_.prioritiesComputed += counts.computed;

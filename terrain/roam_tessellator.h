@@ -272,8 +272,8 @@ class RoamTessellator {
                 int piece);
   void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
                    int piece);
-  void splitPhase(const EyeView& view, const PieceSet& pieces, std::vector<Candidate>& candidates, uint64_t& ops,
-                  const Stopwatch& watch);
+  // `w`: the update's walk (its view, frustum and pieces).
+  void splitPhase(const Walk& w, std::vector<Candidate>& candidates, uint64_t& ops, const Stopwatch& watch);
   void mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch);
   bool outOfWork(uint64_t ops, const Stopwatch& watch);
   void lowerDeadline(uint32_t t, double deadline);  // and its ancestors' subtree deadlines
