@@ -45,6 +45,11 @@ double reverseZDepth(const Camera& camera, double viewDistance);
 
 struct Lighting {
   glm::dvec3 sunDirection{-0.85, -0.15, 0.5};  // towards the sun (late afternoon, west), local ENU; normalised on use
+  // Exposure (EV100): fixed when set (`--exposure EV`); otherwise automatic from the frame's
+  // luminance histogram, a function of the frame alone unless `adaptExposure` (the window)
+  // smooths it over time.
+  std::optional<float> exposureEv;
+  bool adaptExposure = false;
   glm::vec3 sunColor{1.05f, 0.98f, 0.88f};
   glm::vec3 skyZenith{0.16f, 0.32f, 0.68f};
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.85f};
@@ -236,6 +241,7 @@ struct FrameResult {
   std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;
   std::optional<DepthImage> depth;
+  float exposureEv = 0.0f;  // the exposure (EV100) this frame was tone-mapped with
 };
 
 }  // namespace vegstream::render
