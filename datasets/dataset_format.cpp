@@ -7,7 +7,8 @@
 //     "min_zoom": 9, "max_zoom": 12, "tile_size": 256,
 //     "min_height_m": 1024.0, "max_height_m": 2892.0,
 //     "elevation": { "encoding": "terrarium", "tiles": "elevation/{z}/{x}/{y}.png", "tile_count": N },
-//     "imagery":   { "format": "jpeg", "tiles": "imagery/{z}/{x}/{y}.jpg", "tile_count": N }  (or null)
+//     "imagery":   { "format": "jpeg", "tiles": "imagery/{z}/{x}/{y}.jpg", "tile_count": N,
+//                    "datetime": "2015-08-18T17:58:00Z" (optional: when it was taken) }  (or null)
 //     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
 //     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
 //
@@ -145,6 +146,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
       return f.bad("imagery.format", concat("is '", fmt, "'; expected jpeg or png"));
     VEG_TRY_ASSIGN(count, f.integer(*im, "tile_count", "imagery.tile_count", 0, INT64_MAX));
     m.imageryTiles = static_cast<uint64_t>(count);
+    if (auto dt = im->find("datetime"); dt != im->end() && !dt->is_null())
+      VEG_TRY_ASSIGN(m.imageryDatetime, f.text(*im, "datetime", "imagery.datetime"));
   }
 
   if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null()) {
@@ -189,6 +192,7 @@ json toJson(const DatasetMeta& m) {
     imagery = {{"format", toString(*m.imagery)},
                {"tiles", concat("imagery/{z}/{x}/{y}.", imageryExtension(*m.imagery))},
                {"tile_count", m.imageryTiles}};
+    if (!m.imageryDatetime.empty()) imagery["datetime"] = m.imageryDatetime;
   }
   json ndvi = nullptr;
   if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};

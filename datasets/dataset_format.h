@@ -52,6 +52,9 @@ struct DatasetMeta {
   double maxHeightM = 0.0;
   ElevationEncoding elevationEncoding = ElevationEncoding::Terrarium;
   std::optional<ImageryFormat> imagery;  // nullopt: no imagery tiles
+  // When the imagery was taken, ISO 8601 with a zone (`import --imagery-datetime`, checked by
+  // geo/datetime.h where it is used); empty: unknown. dataset.json's "imagery.datetime".
+  std::string imageryDatetime;
   int tileSize = kTileSize;
   std::string attribution;
   std::vector<SourceInfo> sources;
