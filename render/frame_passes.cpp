@@ -9,6 +9,24 @@
 
 namespace vegstream::render {
 
+// The tone map's settings for a frame: the flat-colour coverage style passes its colours through
+// (identity), a fixed --exposure is fixed, otherwise automatic (smoothed in the window).
+namespace {
+ToneSettings toneSettings(const FrameRequest& request) {
+  ToneSettings s;
+  const bool flat = request.vegetation && request.vegetation->draw.flatColour;
+  if (flat) {
+    s.mode = ToneMode::Identity;
+  } else if (request.lighting.exposureEv) {
+    s.mode = ToneMode::Fixed;
+    s.fixedEv = *request.lighting.exposureEv;
+  }
+  s.adapt = request.lighting.adaptExposure;
+  s.frameSeconds = request.lighting.adaptSeconds;
+  return s;
+}
+}  // namespace
+
 // The frame's passes, in order: imagery uploads; the terrain's geometry (front to back) — then
 // deferred: the visibility scope and the shade (compute, sky included), or forward: scope 1
 // with sky and terrain; with plants: the Hi-Z build from the terrain's depth and the classify
@@ -28,6 +46,10 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     simulation->record(cmd, slot.descriptorSet, *request.simulation);
     slot.timer->endPass(cmd);
   }
+
+  slot.timer->beginPass(cmd, "atmosphere");  // the LUTs and the light every later pass reads
+  atmosphere->record(cmd, request.cameraHeightMsl, glm::vec3(glm::normalize(request.lighting.sunDirection)));
+  slot.timer->endPass(cmd);
 
   // Trees first: classified (compute), then cast into the sun's shadow map, which the terrain,
   // the plants and the trees themselves sample.
@@ -111,10 +133,13 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
     vkCmdEndRendering(cmd);
   }
   if (terrainRaster) terrainRaster->recordEndOfFrame(cmd);
+  slot.timer->beginPass(cmd, "tonemap");
+  tonemap->record(cmd, slotIndex, toneSettings(request), *targets);
+  slot.timer->endPass(cmd);
   if (request.overlay) {  // over the resolved image, so read-back and present include it
     slot.timer->beginPass(cmd, "hud");
     hudPass->record(
-        cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->color(),
+        cmd, static_cast<int>(index % kFramesInFlight), *request.overlay, targets->display(),
         [&](GpuBuffer&& old) { deletions.defer(index, std::move(old)); },
         [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
     slot.timer->endPass(cmd);
@@ -205,7 +230,7 @@ void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool r
                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, stage, access);
   };
   if (readColor)
-    copy(targets->color(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+    copy(targets->display(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.colorReadback);
   if (readDepth)
     copy(targets->depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -214,7 +239,7 @@ void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool r
 }
 
 void Renderer::Impl::recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const {
-  const GpuImage& src = targets->color();
+  const GpuImage& src = targets->display();
   const VkImage dst = swapchain->image(imageIndex);
   transitionImage(cmd, src.get(), src.aspect, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,

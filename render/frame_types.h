@@ -43,6 +43,8 @@ glm::dmat4 projection(const Camera& camera, double aspect);
 // Reverse-Z depth of a point at view distance d (along the view axis): n(f − d) / ((f − n) d).
 double reverseZDepth(const Camera& camera, double viewDistance);
 
+// The light of a frame: the sun's direction (its colour, the sky and the air come from the
+// atmosphere model for it, render/atmosphere_pass.h) and the exposure.
 struct Lighting {
   glm::dvec3 sunDirection{-0.85, -0.15, 0.5};  // towards the sun (late afternoon, west), local ENU; normalised on use
   // Exposure (EV100): fixed when set (`--exposure EV`); otherwise automatic from the frame's
@@ -50,11 +52,7 @@ struct Lighting {
   // smooths it over time.
   std::optional<float> exposureEv;
   bool adaptExposure = false;
-  glm::vec3 sunColor{1.05f, 0.98f, 0.88f};
-  glm::vec3 skyZenith{0.16f, 0.32f, 0.68f};
-  glm::vec3 skyHorizon{0.62f, 0.72f, 0.85f};
-  float fogDensity = 1.2e-5f;  // extinction per metre at sea level
-  float fogFalloff = 1.0e-4f;  // per metre of height (scale height 10 km)
+  float adaptSeconds = 0.0f;  // with adaptExposure: the time since the last frame
 };
 
 // Imagery tiles live in one GPU texture array, one 256 × 256 sRGB layer per tile; the streamer
@@ -192,7 +190,7 @@ struct VegetationRequest {
 struct FrameRequest {
   Camera camera;
   Lighting lighting;
-  double cameraHeightMsl = 0.0;  // for the height fog
+  double cameraHeightMsl = 0.0;  // the atmosphere's LUTs are seen from this height
   bool readbackColor = false;
   bool readbackDepth = false;
   bool present = false;  // to the window, when the renderer has one

@@ -7,6 +7,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "render/atmosphere_pass.h"
 #include "render/frame_types.h"
 #include "render/shadow_cascades.h"
 #include "render/terrain_detail.h"
@@ -21,11 +22,7 @@ FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_
   u.viewProj = glm::mat4(viewProj);
   u.invViewProj = glm::mat4(glm::inverse(viewProj));
   u.sunDirection = glm::vec4(glm::vec3(glm::normalize(request.lighting.sunDirection)), 0.0f);
-  u.sunColor = glm::vec4(request.lighting.sunColor, 0.0f);
-  u.skyZenith = glm::vec4(request.lighting.skyZenith, 0.0f);
-  u.skyHorizon = glm::vec4(request.lighting.skyHorizon, 0.0f);
-  u.fog = glm::vec4(request.lighting.fogDensity, request.lighting.fogFalloff,
-                    static_cast<float>(request.cameraHeightMsl), 0.0f);
+  u.atmosphere = glm::vec4(atmosphereCameraRadiusKm(request.cameraHeightMsl), kAerialFarKm, 0.0f, 0.0f);
   u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height), 1.0f / static_cast<float>(width),
                          1.0f / static_cast<float>(height));
   // World-anchored detail tiling: the camera position modulo the period, in double, so the

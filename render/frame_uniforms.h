@@ -14,10 +14,7 @@ struct FrameUniforms {
   glm::mat4 viewProj;
   glm::mat4 invViewProj;
   glm::vec4 sunDirection;
-  glm::vec4 sunColor;
-  glm::vec4 skyZenith;
-  glm::vec4 skyHorizon;
-  glm::vec4 fog;
+  glm::vec4 atmosphere;  // x: the camera's radius (km), y: the aerial volume's far distance (km) (render/atmosphere_pass.h)
   glm::vec4 viewport;
   glm::vec4 detail;  // xyz: camera position modulo kDetailPeriodM (render/terrain_detail.h), w: detail strength
   glm::mat4 shadowMatrices[3];  // render/shadow_cascades.h
@@ -33,16 +30,13 @@ struct FrameUniforms {
 static_assert(offsetof(FrameUniforms, viewProj) == 0);
 static_assert(offsetof(FrameUniforms, invViewProj) == 64);
 static_assert(offsetof(FrameUniforms, sunDirection) == 128);
-static_assert(offsetof(FrameUniforms, sunColor) == 144);
-static_assert(offsetof(FrameUniforms, skyZenith) == 160);
-static_assert(offsetof(FrameUniforms, skyHorizon) == 176);
-static_assert(offsetof(FrameUniforms, fog) == 192);
-static_assert(offsetof(FrameUniforms, viewport) == 208);
-static_assert(offsetof(FrameUniforms, detail) == 224);
-static_assert(offsetof(FrameUniforms, shadowMatrices) == 240);
-static_assert(offsetof(FrameUniforms, shadowSplits) == 432);
-static_assert(offsetof(FrameUniforms, terrainDepth) == 464);
-static_assert(sizeof(FrameUniforms) == 480);
+static_assert(offsetof(FrameUniforms, atmosphere) == 144);
+static_assert(offsetof(FrameUniforms, viewport) == 160);
+static_assert(offsetof(FrameUniforms, detail) == 176);
+static_assert(offsetof(FrameUniforms, shadowMatrices) == 192);
+static_assert(offsetof(FrameUniforms, shadowSplits) == 384);
+static_assert(offsetof(FrameUniforms, terrainDepth) == 416);
+static_assert(sizeof(FrameUniforms) == 432);
 
 struct FrameRequest;
 struct ShadowCascades;

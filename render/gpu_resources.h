@@ -46,6 +46,7 @@ struct GpuImage {
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
   uint32_t layers = 1;
+  uint32_t depth = 1;  // a 3D image's slices
   uint32_t mipLevels = 1;
   VkDeviceSize bytes = 0;  // device memory it holds
 
@@ -60,6 +61,9 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 
 // A single-sampled colour image of `layers` array layers (each with `mipLevels` levels) with a
 // 2D-array view of all of them.
+// A 3D image (one level, single sample) of `depth` slices with a 3D view.
+GpuImage createImage3D(const Context& ctx, VkExtent2D extent, uint32_t depth, VkFormat format, VkImageUsageFlags usage,
+                       const std::string& name);
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,
                           VkImageUsageFlags usage, const std::string& name, uint32_t mipLevels = 1,
                           VkFormat alsoViewAs = VK_FORMAT_UNDEFINED);

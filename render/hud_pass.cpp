@@ -48,7 +48,7 @@ HudPass::HudPass(const Context& ctx) : ctx_(&ctx) {
   desc.depthWrite = false;
   desc.alphaBlend = true;
   desc.samples = VK_SAMPLE_COUNT_1_BIT;
-  desc.colorFormat = kColorFormat;
+  desc.colorFormat = kDisplayFormat;  // over the tone-mapped display target
   desc.depthFormat = VK_FORMAT_UNDEFINED;
   desc.layout = layout_.get();
   pipeline_ = createGraphicsPipeline(ctx, desc);

@@ -33,17 +33,20 @@ RenderTargets::RenderTargets(const Context& ctx, VkExtent2D extent, VkSampleCoun
                              bool computeRaster)
     : extent_(extent), samples_(samples), deferredTerrain_(deferredTerrain) {
   const VkImageUsageFlags readable = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  // The deferred terrain's shade stores into the colour attachment: single-sample, that is color_.
+  // The deferred terrain's shade stores into the colour attachment; the tone map reads the
+  // resolved colour as a storage image.
   const VkImageUsageFlags storage = deferredTerrain ? VK_IMAGE_USAGE_STORAGE_BIT : 0;
-  const VkFormat storageView = deferredTerrain ? kColorStorageFormat : VK_FORMAT_UNDEFINED;
-  color_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable |
-                         (multisampled() ? 0 : storage), VK_SAMPLE_COUNT_1_BIT, "colour target",
-                         multisampled() ? VK_FORMAT_UNDEFINED : storageView);
+  color_ = createImage2D(ctx, extent, kColorFormat,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable | VK_IMAGE_USAGE_STORAGE_BIT,
+                         VK_SAMPLE_COUNT_1_BIT, "colour target (HDR)");
+  display_ = createImage2D(ctx, extent, kDisplayFormat,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable | VK_IMAGE_USAGE_STORAGE_BIT,
+                           VK_SAMPLE_COUNT_1_BIT, "display target", kDisplayStorageFormat);
   depth_ = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
                          VK_SAMPLE_COUNT_1_BIT, "depth target");
   if (multisampled()) {
     colorMsaa_ = createImage2D(ctx, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | storage, samples,
-                               "colour target (MSAA)", storageView);
+                               "colour target (MSAA, HDR)");
     // Sampled: the Hi-Z build reads every sample (hiz_pass.h).
     depthMsaa_ = createImage2D(ctx, extent, kDepthFormat,
                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, samples,

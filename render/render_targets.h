@@ -1,25 +1,28 @@
 #pragma once
-// Offscreen colour + depth targets. With MSAA (samples > 1) the multisampled attachments are
-// resolved at the end of the frame's last rendering scope — colour by averaging, depth by taking
-// sample 0 — into single-sample images that can be copied, presented or read back. With
-// samples == 1 the attachments are those images themselves.
+// Offscreen colour + depth targets. The scene is drawn in linear HDR (half floats). With MSAA
+// (samples > 1) the multisampled attachments are resolved at the end of the frame's last
+// rendering scope — colour by averaging, depth by taking sample 0 — into single-sample images;
+// with samples == 1 the attachments are those images themselves. The tone map
+// (render/tonemap_pass.h) turns the resolved HDR colour into the sRGB display target, which is
+// what is copied, presented or read back.
 
 #include "render/gpu_resources.h"
 
 namespace vegstream::render {
 
-// sRGB storage: shaders work in linear light, MSAA resolve averages in linear light, and the
-// bytes read back are display-ready.
-constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+// The scene's colour: linear HDR radiance (render/tonemap_pass.h's units); MSAA resolve averages
+// it in linear light. Half floats store from compute directly (the deferred terrain shade).
+constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The display target: tone-mapped, sRGB-encoded bytes (display-ready when read back). The tone
+// map stores through a UNORM view (sRGB formats have no storage) and encodes sRGB itself.
+constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_SRGB;
+constexpr VkFormat kDisplayStorageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // Reverse-Z float depth: near → 1, far → 0, for precision from 1 m to 100 km.
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 // Deferred terrain shading: per sample, 1 + the index of the triangle it sees (0: none), its
 // four bytes stored as UNORM: on the H200 a 4× MSAA R32_UINT target wrote samples at a quarter
 // of RGBA8's rate (2.5 ms against 0.7 for the same triangles).
 constexpr VkFormat kVisibilityFormat = VK_FORMAT_R8G8B8A8_UNORM;
-// The colour target seen as plain bytes, so compute can store into it (sRGB formats have no
-// storage support): the shader encodes sRGB itself.
-constexpr VkFormat kColorStorageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 
 class RenderTargets {
@@ -36,14 +39,15 @@ class RenderTargets {
 
   const GpuImage& colorAttachment() const { return multisampled() ? colorMsaa_ : color_; }
   const GpuImage& depthAttachment() const { return multisampled() ? depthMsaa_ : depth_; }
-  const GpuImage& color() const { return color_; }  // single-sample, after resolve
+  const GpuImage& color() const { return color_; }  // single-sample HDR, after resolve
+  const GpuImage& display() const { return display_; }  // tone-mapped sRGB (TonemapPass)
   const GpuImage& depth() const { return depth_; }  // single-sample, after resolve
 
   bool deferredTerrain() const { return deferredTerrain_; }
   bool computeRaster() const { return deferredTerrain_ && visibility_.get() == VK_NULL_HANDLE; }
   const GpuImage& visibility() const { return visibility_; }  // attachment sample count
-  // The colour attachment as kColorStorageFormat (deferred terrain only).
-  VkImageView colorStorageView() const { return colorAttachment().alternateView.get(); }
+  // The colour attachment as a storage image (deferred terrain only).
+  VkImageView colorStorageView() const { return colorAttachment().view.get(); }
 
   // Begins dynamic rendering into the colour and depth attachments, viewport and scissor over the
   // whole extent.
@@ -84,6 +88,7 @@ class RenderTargets {
   bool deferredTerrain_ = false;
   GpuImage colorMsaa_, depthMsaa_;
   GpuImage color_, depth_;
+  GpuImage display_;
   GpuImage visibility_;
 };
 

@@ -51,11 +51,14 @@ void Renderer::Impl::init(const RendererOptions& options) {
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sun's shadow map
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the compute raster's terrain depth
-      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the Hi-Z pyramid
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the Hi-Z pyramid
+      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sky-view LUT
+      {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the aerial-perspective volume
+      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the sky light (render/atmosphere_pass.h)
   frameLayout = createLayout(*ctx, frameBindings, "frame set layout");
   const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFramesInFlight}};
+                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kFramesInFlight},
+                                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * kFramesInFlight}};
   // Twice: each slot has a second set for the shadow pass (its binding 4 a placeholder map).
   VkDescriptorPoolSize doubled[3];
   for (int k = 0; k < 3; ++k) doubled[k] = {frameSizes[k].type, 2 * frameSizes[k].descriptorCount};
@@ -77,6 +80,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   const VkBuffer terrainDepth = computeRaster ? terrainRaster->depthBuffer() : noTerrainDepth.get();
   hiz = std::make_unique<HizPass>(*ctx, layout, *targets, computeRaster ? terrainDepth : VK_NULL_HANDLE);
   sunShadows = std::make_unique<SunShadowPass>(*ctx, std::max(options.shadowMapSize, 64u));
+  tonemap = std::make_unique<TonemapPass>(*ctx, *targets);
+  atmosphere = std::make_unique<AtmospherePass>(*ctx);
   const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
   for (int i = 0; i < kFramesInFlight; ++i) {
     FrameSlot& s = slots[static_cast<size_t>(i)];
@@ -118,12 +123,14 @@ void Renderer::Impl::init(const RendererOptions& options) {
     sunShadows->writeFrameSet(s.descriptorSet);
     writeStorageBuffer(*ctx, s.descriptorSet, terrainDepth, 5);
     writeStorageBuffer(*ctx, s.descriptorSet, hiz->pyramid(), 6);
+    atmosphere->writeFrameSet(s.descriptorSet);
     s.shadowPassSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "shadow pass frame set" + tag);
     writeUniformBuffer(*ctx, s.shadowPassSet, s.uniforms.get(), sizeof(FrameUniforms));
     simulation->writeFrameSet(s.shadowPassSet, i);
     sunShadows->writeFrameSet(s.shadowPassSet, /*placeholder=*/true);
     writeStorageBuffer(*ctx, s.shadowPassSet, terrainDepth, 5);
     writeStorageBuffer(*ctx, s.shadowPassSet, hiz->pyramid(), 6);
+    atmosphere->writeFrameSet(s.shadowPassSet);
   }
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   hudPass = std::make_unique<HudPass>(*ctx);
@@ -243,6 +250,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     r.vegetation = slot.vegetation;
   }
   if (slot.treesDrawn) r.trees = trees->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
+  r.exposureEv = tonemap->exposureEv(static_cast<int>(slot.frameIndex % kFramesInFlight));
   r.gpu = slot.timer->read();
   const VkExtent2D e = targets->extent();
   const size_t pixels = size_t{e.width} * e.height;
@@ -381,6 +389,14 @@ Result<std::vector<Renderer::BladeVertexReadback>> Renderer::readBladeVertices()
     return out;
   } catch (const VulkanError& e) {
     return makeError(ErrorKind::Internal, std::string("blade vertex read-back: ") + e.what());
+  }
+}
+
+Result<AtmosphereLuts> Renderer::readAtmosphere() {
+  try {
+    return impl_->atmosphere->readBack();
+  } catch (const VulkanError& e) {
+    return makeError(ErrorKind::Internal, std::string("atmosphere read-back: ") + e.what());
   }
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/result.h"
 #include "core/task_runner.h"
+#include "render/atmosphere_luts.h"
 #include "render/context_options.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
@@ -124,6 +125,8 @@ class Renderer {
     uint32_t unused;
   };
   Result<std::vector<BladeVertexReadback>> readBladeVertices();
+  // The atmosphere's LUTs and sky light as the last frame left them (render/atmosphere_pass.h).
+  Result<AtmosphereLuts> readAtmosphere();
   // The shared simulation's GPU memory: fixed at start-up, whatever the plants drawn.
   uint64_t simulationGpuBytes() const;
 

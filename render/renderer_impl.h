@@ -39,6 +39,8 @@
 #include "render/sun_shadow_pass.h"
 #include "render/terrain_raster_pass.h"
 #include "render/terrain_shade_pass.h"
+#include "render/tonemap_pass.h"
+#include "render/atmosphere_pass.h"
 #include "render/tree_impostors.h"
 #include "render/tree_pass.h"
 #include "render/vk_check.h"
@@ -49,7 +51,7 @@ namespace vegstream::render {
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
 static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
-inline constexpr int kMaxPasses = 12;
+inline constexpr int kMaxPasses = 16;
 static_assert(TreePass::kSlots == kFramesInFlight, "one tree block per frame slot");
 inline constexpr int kBladeTableSegments = vegetation::kBladeShapeSegments;
 
@@ -83,6 +85,8 @@ struct Renderer::Impl {
   std::unique_ptr<Context> ctx;
   std::shared_ptr<ValidationLog> validationLog;
   std::unique_ptr<RenderTargets> targets;
+  std::unique_ptr<TonemapPass> tonemap;
+  std::unique_ptr<AtmospherePass> atmosphere;
   std::unique_ptr<Swapchain> swapchain;
   DescriptorSetLayout frameLayout;
   DescriptorPool descriptorPool;

@@ -56,5 +56,5 @@ void main() {
   vec3 albedo = (leaf ? m.leaf.rgb : m.bark.rgb) * vTint;
   if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
   vec3 lit = treeLight(n, albedo, m.leaf.w, leaf, vOcclusion, vSun);
-  outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
+  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

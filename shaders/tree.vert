@@ -36,7 +36,7 @@ layout(location = 5) flat out uint vInstance;
 layout(location = 6) out float vOcclusion;
 layout(location = 7) flat out float vTint;
 layout(location = 8) out vec2 vCell;  // capture: the point in its cell's square (−1 … 1), outside is cut
-layout(location = 9) out vec4 vSky;   // the aerial perspective: sky colour, transmittance
+layout(location = 9) out vec4 vSky;   // the aerial perspective: in-scattered light, transmittance
 layout(location = 10) out float vSun; // the sun shadow
 
 uint hashU(uint x) {  // lowbias32 (Wellons): branch angles and phases from the tree's seed

@@ -46,5 +46,5 @@ void main() {
   float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
   vec3 albedo = m.leaf.rgb * vTint * kTreeCoreShade * clumps;
   vec3 lit = treeLight(normalize(vNormal), albedo, m.leaf.w, false, vOcclusion, vSun);
-  outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
+  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

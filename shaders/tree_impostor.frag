@@ -54,5 +54,5 @@ void main() {
   TreeModelGpu m = trees.models[push.model];
   vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * vTint;
   vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
-  outColor = vec4(mix(vSky.rgb, lit, vSky.a), 1.0);
+  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -1,30 +1,80 @@
-// Sky colour and aerial perspective, shared by the sky pass and every surface pass so distant
-// terrain fades into exactly the sky behind it. Needs frame_uniforms.glsl.
+// The sky, the light and the aerial perspective every pass shares (issue 39 item 2), read from the
+// frame's atmosphere LUTs (render/atmosphere_pass.h; Hillaire 2020): the sky-view LUT for the sky,
+// the aerial-perspective volume for anything at a distance, and the frame's sun illuminance and
+// sky irradiance, so the terrain, the plants and the trees are lit by one light and fade into
+// exactly the sky behind them. Radiance in the scene's units (exposure.glsl). Needs
+// frame_uniforms.glsl (frame.atmosphere: x the camera's radius in km, y the aerial volume's far
+// distance in km).
+#ifndef VS_INLINE  // as simulation/shared/simulation_layout.glsl defines them for GLSL
+#define VS_INLINE
+#define VS_INOUT(T) inout T
+#define VS_SIM_ARG
+#define VS_SIM
+#endif
+#include "atmosphere_model.glsl"
 
+layout(set = 0, binding = 7) uniform sampler2D skyViewLut;
+layout(set = 0, binding = 8) uniform sampler3D aerialLut;
+layout(set = 0, binding = 9, std430) readonly buffer SkyLight {
+  vec4 sunIlluminance;  // rgb at the camera; w: the sun's cosine with the up
+  vec4 skyUp, skySide, skyDown;
+} skyLight;
+
+const float kSunAngularRadius = 0.004654;  // rad: 0.2667°
+
+// The azimuth of a direction from the sun's, 0 … π.
+float azimuthFromSun(vec3 dir) {
+  vec2 d = dir.xy, s = frame.sunDirection.xy;
+  float ld = length(d), ls = length(s);
+  if (ld < 1e-6 || ls < 1e-6) return 0.0;
+  return acos(clamp(dot(d, s) / (ld * ls), -1.0, 1.0));
+}
+
+vec2 atmosphereLutUv(vec2 uv, vec2 size) { return (uv * (size - 1.0) + 0.5) / size; }
+
+// The sky's radiance towards `dir` (unit, local ENU), the sun's disc included.
 vec3 skyColor(vec3 dir) {
-  float up = clamp(dir.z, 0.0, 1.0);
-  vec3 sky = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, pow(up, 0.45));
-  // Below the horizon: the haze colour, slightly darker, so the far ground line is soft.
-  if (dir.z < 0.0) sky = frame.skyHorizon.rgb * mix(1.0, 0.8, clamp(-dir.z * 4.0, 0.0, 1.0));
-  float sunCos = max(dot(dir, frame.sunDirection.xyz), 0.0);
-  sky += frame.sunColor.rgb * (0.25 * pow(sunCos, 8.0) + 8.0 * pow(sunCos, 2000.0));
-  return sky;
+  vec2 uv = skyViewUvFromDirection(frame.atmosphere.x, dir.z, azimuthFromSun(dir));
+  vec3 sky = textureLod(skyViewLut, atmosphereLutUv(uv, vec2(textureSize(skyViewLut, 0))), 0.0).rgb;
+  float c = dot(dir, frame.sunDirection.xyz);
+  float discCos = cos(kSunAngularRadius);
+  if (c > discCos) {  // the disc: its illuminance over its solid angle, limb-darkened
+    float x = clamp((1.0 - c) / (1.0 - discCos), 0.0, 1.0);
+    float limb = 1.0 - 0.6 * (1.0 - sqrt(1.0 - x));
+    sky += skyLight.sunIlluminance.rgb / (kAtmospherePi * kSunAngularRadius * kSunAngularRadius) * limb;
+  }
+  return min(sky, vec3(60000.0));  // half floats
 }
 
-// Exponential height fog integrated along the ray from the camera to a point at `offset`
-// (camera-relative, metres): optical depth = density · ∫ exp(−falloff · height) ds.
-float fogTransmittance(vec3 offset) {
-  float dist = length(offset);
-  float h0 = frame.fog.z;
-  float falloff = frame.fog.y;
-  float dh = offset.z * falloff;
-  float integral = abs(dh) > 1e-4 ? (1.0 - exp(-dh)) / dh : 1.0;
-  float opticalDepth = frame.fog.x * exp(-falloff * h0) * dist * integral;
-  return exp(-opticalDepth);
+// The air between the camera and a point at `offset` (camera-relative, m): xyz the light it
+// scatters towards the camera, w its transmittance (the point is seen as colour · w + xyz).
+vec4 aerialPerspective(vec3 offset) {
+  float d = length(offset);
+  if (d < 1e-3) return vec4(0.0, 0.0, 0.0, 1.0);
+  vec3 dir = offset / d;
+  vec2 uv = skyViewUvFromDirection(frame.atmosphere.x, dir.z, azimuthFromSun(dir));
+  float w = sqrt(clamp(d * 1e-3 / frame.atmosphere.y, 0.0, 1.0));  // slices: far · ((k + 1) / n)²
+  ivec3 size = textureSize(aerialLut, 0);
+  // Slice k holds the distance ((k + 1) / n)²: w = (k + 1) / n ↔ coordinate (k + 0.5) / n; nearer
+  // than the first slice, the first slice's values scaled down with the distance.
+  float slice = w * float(size.z) - 1.0;
+  vec3 coord = vec3(atmosphereLutUv(uv, vec2(size.xy)), (max(slice, 0.0) + 0.5) / float(size.z));
+  vec4 ap = textureLod(aerialLut, coord, 0.0);
+  float near = clamp(slice + 1.0, 0.0, 1.0);
+  return vec4(ap.rgb * near, mix(1.0, ap.a, near));
 }
 
+// A surface point's colour seen through the air.
 vec3 applyAerialPerspective(vec3 color, vec3 offset) {
-  vec3 dir = normalize(offset);
-  return mix(skyColor(dir), color, fogTransmittance(offset));
+  vec4 ap = aerialPerspective(offset);
+  return color * ap.a + ap.rgb;
+}
+
+// The light on a surface of unit normal `n`: the sun's illuminance (before its cosine and
+// shadow) and the sky's irradiance (ground bounce included).
+vec3 sunIlluminance() { return skyLight.sunIlluminance.rgb; }
+vec3 skyIrradiance(vec3 n) {
+  return n.z >= 0.0 ? mix(skyLight.skySide.rgb, skyLight.skyUp.rgb, n.z)
+                    : mix(skyLight.skySide.rgb, skyLight.skyDown.rgb, -n.z);
 }
 #include "sun_shadow.glsl"

@@ -5,10 +5,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   mat4 viewProj;      // projection * rotation-only view (reverse-Z: near → 1, far → 0)
   mat4 invViewProj;   // its inverse, for sky rays
   vec4 sunDirection;  // xyz: unit vector towards the sun; w: unused
-  vec4 sunColor;      // rgb: sun irradiance colour (linear)
-  vec4 skyZenith;     // rgb: sky colour straight up (linear)
-  vec4 skyHorizon;    // rgb: sky colour at the horizon (linear)
-  vec4 fog;           // x: extinction per metre at sea level, y: height falloff per metre, z: camera height (m MSL)
+  vec4 atmosphere;    // x: the camera's radius from the planet's centre (km), y: the aerial-perspective volume's far distance (km) (atmosphere.glsl)
   vec4 viewport;      // xy: size in pixels, zw: 1 / size
   vec4 detail;        // xyz: camera position modulo the detail period (m, world-anchored tiling), w: detail strength 0 … 1
   mat4 shadowMatrices[3];  // camera-relative → each sun shadow cascade's clip space (render/shadow_cascades.h)

@@ -11,14 +11,14 @@
 // fragment it was most of the plants pass on GPUs whose fragment units are few (the H200 runs
 // them on 2 of 66 TPCs). Needs frame_uniforms.glsl and atmosphere.glsl.
 
-const float kPlantImageryExposure = 1.6;  // as terrain_shading.glsl: imagery is albedo × its day's light
 const float kPlantAttenuation = 0.6;      // α of eq. 13: light absorbed crossing a blade of unit width
 
 const uint kPlantKindBlade = 0u, kPlantKindStone = 1u, kPlantKindHead = 2u;
 
 // pos: camera-relative; normal: the surface's (either side); blade.y: 0 root … 1 tip;
-// ground: the imagery colour under the root (linear); modulation: the plant's colour factor;
-// up: the ground's unit normal under the plant.
+// ground: the albedo under the root (linear, the terrain's own: issue 39 item 5, plants average to
+// the ground they grow from); modulation: the plant's colour factor (around 1); up: the ground's
+// unit normal under the plant. Lit by the frame's sun and sky (atmosphere.glsl) as the terrain is.
 vec3 plantColour(vec3 pos, vec3 normal, vec2 blade, vec3 ground, float modulation, uint kind, vec3 up) {
   vec3 n = normalize(normal);
   vec3 v = normalize(-pos);
@@ -28,20 +28,17 @@ vec3 plantColour(vec3 pos, vec3 normal, vec2 blade, vec3 ground, float modulatio
   vec3 nLight = normalize(mix(n, up, 0.7));
   vec3 l = frame.sunDirection.xyz;
   float ndl = dot(nLight, l);
-  vec3 albedo = ground * kPlantImageryExposure * 0.5 * modulation;
-  if (kind == kPlantKindHead) albedo = mix(albedo, vec3(0.55, 0.45, 0.12), 0.6) * 1.6;  // flower heads: yellow
+  vec3 albedo = ground * modulation;
+  if (kind == kPlantKindHead) albedo = mix(albedo, vec3(0.55, 0.45, 0.12), 0.6);  // flower heads: yellow
   // Occlusion by the neighbours: dark at the root, the sunlit top of the canopy a little brighter
-  // than the bare ground (stones and heads: none).
-  float occlusion = kind != kPlantKindBlade ? 1.0 : mix(0.45, 1.1, blade.y);
-  vec3 kd = albedo * occlusion;
-  vec3 ka = kd;
-  vec3 kt = albedo * vec3(0.9, 1.0, 0.55) * occlusion;  // light through a leaf turns yellow-green
+  // than the bare ground (stones and heads: none); the canopy seen from afar averages near 1.
+  float occlusion = kind != kPlantKindBlade ? 1.0 : mix(0.55, 1.15, blade.y);
+  vec3 kd = albedo * occlusion / kAtmospherePi;
+  vec3 kt = kd * vec3(0.9, 1.0, 0.55);  // light through a leaf turns yellow-green
   float ks = (kind == kPlantKindBlade ? 0.015 : 0.01) * occlusion;
-  vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.35;
-  vec3 ii = frame.sunColor.rgb;
+  vec3 ii = sunIlluminance() * sunShadow(pos, up);  // the trees' shadows (the blades' own planar ones are drawn apart)
   vec3 r = reflect(-l, nLight);
-  ii *= sunShadow(pos, up);  // the trees' shadows (the planar ones of the blades themselves are drawn apart)
-  vec3 lit = ia * ka + ii * (kd * max(ndl, 0.0) + ks * pow(max(dot(v, r), 0.0), 32.0));
+  vec3 lit = kd * skyIrradiance(nLight) + ii * (kd * max(ndl, 0.0) + ks / kAtmospherePi * pow(max(dot(v, r), 0.0), 32.0));
   float ndlFace = dot(n, l);  // translucency goes through the blade's own face
   if (ndlFace < 0.0 && kind == kPlantKindBlade) lit += ii * kt * (-ndlFace) * exp(kPlantAttenuation / ndlFace);  // eq. 13
   return applyAerialPerspective(lit, pos);

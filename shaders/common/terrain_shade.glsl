@@ -29,11 +29,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef VEGSTREAM_RASTER  // terrain_raster.glsl: ids come from the compute rasteriser, not a target
 #ifdef VEGSTREAM_MULTISAMPLE
-layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
+layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
 const int kMaxSamples = 8;
 #else
-layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
+layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
 #define STORE_COLOUR(px, s, c) imageStore(target, px, c)
 const int kMaxSamples = 1;
 #endif
@@ -41,7 +41,7 @@ const int kMaxSamples = 1;
 #ifdef VEGSTREAM_MULTISAMPLE
 layout(set = 3, binding = 0) uniform sampler2DMS visibility;
 layout(set = 3, binding = 5) uniform sampler2DMS depthSamples;
-layout(set = 3, binding = 4, rgba8) uniform writeonly image2DMS target;
+layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, s))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, s).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
@@ -50,7 +50,7 @@ const int kMaxSamples = 8;
 #else
 layout(set = 3, binding = 0) uniform sampler2D visibility;
 layout(set = 3, binding = 5) uniform sampler2D depthSamples;
-layout(set = 3, binding = 4, rgba8) uniform writeonly image2D target;
+layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, 0))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, 0).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, c)
@@ -99,11 +99,6 @@ vec3 shadeTriangle(uint tri, vec3 dir, vec3 dirX, vec3 dirY) {
   return shadeTerrain(p, TerrainImagery(pc.imageryUv, pc.previousUv, pc.layers));
 }
 
-vec3 srgbFromLinear(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
-
 // Shades pixel `px` whose samples see triangles 1 + ids[s] (0: sky), once per distinct id, and
 // stores the colours into the target.
 void shadePixel(ivec2 px, uint ids[kMaxSamples], int samples) {
@@ -120,7 +115,7 @@ void shadePixel(ivec2 px, uint ids[kMaxSamples], int samples) {
       colours[s] = colours[same];
     } else {
       vec3 c = ids[s] == 0u ? skyColor(normalize(dir)) : shadeTriangle(ids[s] - 1u, dir, dirX, dirY);
-      colours[s] = vec4(srgbFromLinear(c), 1.0);
+      colours[s] = vec4(min(c, vec3(65000.0)), 1.0);  // linear HDR (half floats)
     }
     STORE_COLOUR(px, s, colours[s]);
   }

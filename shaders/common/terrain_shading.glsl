@@ -17,10 +17,9 @@ float terrainNdvi(vec2 uv, float layer) {
 }
 layout(set = 2, binding = 0) uniform sampler2DArray detailTextures;  // one layer per detail surface; UNORM, 0.5 = neutral
 
-// Imagery is a photograph: it already holds the sun and shadows of its day. Treat it as
-// albedo times the light it was taken under (roughly the average lighting), so relighting with
-// our sun keeps its brightness rather than doubling the shading.
-const float kImageryExposure = 1.6;
+// The imagery is the ground's albedo (issue 39 item 4): the importer turned it into reflectance
+// and took the shading it was photographed under out of it (datasets/README.md), so it is lit
+// here once, by this frame's sun and sky (atmosphere.glsl), as a Lambertian surface.
 
 // What the shading needs of a surface point: its attributes as the vertex stage interpolates
 // them, its piece's imagery mapping (terrain_push.glsl), and the screen derivatives of its
@@ -90,13 +89,11 @@ vec3 shadeTerrain(TerrainPoint p, TerrainImagery im) {
       photo = mix(before, photo, im.layers.z);
     }
     base = mix(albedo, photo.rgb, photo.a);
-    albedo = mix(albedo, photo.rgb * kImageryExposure * 0.5, photo.a);  // alpha 0: no imagery there
+    albedo = mix(albedo, photo.rgb, photo.a);  // alpha 0: no imagery there
   }
   vec3 world = (frame.detail.xyz + p.offset) / detail.tiling.x;
   albedo *= detailFactor(base, ndvi, n, length(p.offset), world, p.offsetDx / detail.tiling.x, p.offsetDy / detail.tiling.x);
   float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(p.offset, n);
-  // Hemispherical sky light: full from above, half from the horizon.
-  vec3 ambient = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * (0.5 + 0.5 * n.z) * 0.35;
-  vec3 lit = albedo * (frame.sunColor.rgb * sun + ambient);
+  vec3 lit = albedo / kAtmospherePi * (sunIlluminance() * sun + skyIrradiance(n));
   return applyAerialPerspective(lit, p.offset);
 }

@@ -8,8 +8,6 @@
 // ρ_t per species instead of the measured maps and the multi-dipole). Needs frame_uniforms.glsl
 // and atmosphere.glsl.
 
-const float kTreeImageryExposure = 1.6;
-
 // A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
 // needles, narrowing to the tip; broadleaf: a clump of three leaves.
 float treeCardShape(vec2 uv, float form) {
@@ -51,18 +49,19 @@ uint treeSampleMask(float alpha, uint samples, float dither) {
 // The crowns' cores (tree_core.frag, and the impostor capture): foliage in its own shade.
 const float kTreeCoreShade = 0.6;
 
+// Lambertian under the frame's sun and sky (atmosphere.glsl): the sky light reaches into the crown
+// as the occlusion allows, the sun as its shadow map does.
 vec3 treeLight(vec3 n, vec3 albedo, float translucency, bool leaf, float occlusion, float sun) {
   vec3 l = frame.sunDirection.xyz;
   float ndl = dot(n, l);
-  vec3 ia = mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, 0.5) * 0.4;
-  vec3 ii = frame.sunColor.rgb * sun;
-  vec3 kd = albedo * kTreeImageryExposure * mix(0.35, 1.0, occlusion);
-  vec3 lit = ia * kd + ii * kd * max(ndl, 0.0);
+  vec3 ii = sunIlluminance() * sun;
+  vec3 kd = albedo / kAtmospherePi;
+  vec3 lit = kd * (skyIrradiance(n) * mix(0.35, 1.0, occlusion) + ii * max(ndl, 0.0));
   if (leaf && ndl < 0.0) lit += ii * kd * vec3(0.9, 1.0, 0.5) * translucency * (-ndl);  // through the leaf
   return lit;
 }
 
-// Per vertex: xyz the sky colour behind the point (aerial perspective), w its transmittance;
-// and the sun shadow at the point (normal `n`).
-vec4 treeVertexAtmosphere(vec3 pos) { return vec4(skyColor(normalize(pos)), fogTransmittance(pos)); }
+// Per vertex: the aerial perspective at the point (xyz the air's in-scattered light, w the
+// transmittance: colour · w + xyz).
+vec4 treeVertexAtmosphere(vec3 pos) { return aerialPerspective(pos); }
 #endif

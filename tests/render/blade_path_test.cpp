@@ -275,8 +275,12 @@ TEST_F(BladePathTest, PhototropicBladesLeanTowardsTheSunOnBothPaths) {
     std::printf("%s: sun east %zu right / %zu left, sun west %zu right / %zu left\n", bladePathName(path), eRight,
                 eLeft, wRight, wLeft);
     EXPECT_GT(eLeft, 100u);
-    EXPECT_GT(double(eRight), 1.3 * double(eLeft)) << "sun in the east: blades lean east (right)";
+    // Which blade pixels differ from the bare ground depends on their lighting too (issue 39: the
+    // blades take the ground's albedo, so only their shading tells them apart): each sun's lean
+    // shows, and the lean flips with the sun.
+    EXPECT_GT(double(eRight), 1.15 * double(eLeft)) << "sun in the east: blades lean east (right)";
     EXPECT_GT(double(wLeft), 1.3 * double(wRight)) << "sun in the west: blades lean west (left)";
+    EXPECT_GT(double(eRight) / double(eLeft), 1.5 * double(wRight) / double(wLeft)) << "the lean flips with the sun";
   }
 }
 

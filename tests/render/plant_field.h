@@ -43,6 +43,7 @@ inline FieldResult renderField(Renderer& r, const std::string& referenceOf, Plan
     TerrainDraw draw{&plane};
     draw.imageryLayer = 0;
     FrameRequest req;
+    req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
     req.camera.position = view.position;
     req.camera.forward = glm::normalize(view.forward);
     req.camera.up = std::abs(req.camera.forward.z) > 0.99 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
@@ -78,6 +79,7 @@ inline bool renderPlantsFrame(Renderer& r, const PlantDrawOptions& plantDraw, co
   TerrainDraw draw{&plane};
   draw.imageryLayer = 0;
   FrameRequest req;
+  req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
   req.camera.position = camera;
   req.camera.forward = kFieldForward;
   req.camera.up = {0.0, 0.0, 1.0};

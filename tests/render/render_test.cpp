@@ -166,9 +166,11 @@ TEST_F(RenderTest, TimingsAndPipelineStatisticsCountTheSubmittedWork) {
   ASSERT_TRUE(frame.ok());
   EXPECT_EQ(frame->terrainTriangles, 200u);
   EXPECT_GT(frame->gpu.frameMs, 0.0);
-  ASSERT_EQ(frame->gpu.passes.size(), 2u);
-  EXPECT_EQ(frame->gpu.passes[0].pass, "sky");
-  EXPECT_EQ(frame->gpu.passes[1].pass, "terrain");
+  ASSERT_EQ(frame->gpu.passes.size(), 4u);
+  EXPECT_EQ(frame->gpu.passes[0].pass, "atmosphere");  // the LUTs and the light (render/atmosphere_pass.h)
+  EXPECT_EQ(frame->gpu.passes[1].pass, "sky");
+  EXPECT_EQ(frame->gpu.passes[2].pass, "terrain");
+  EXPECT_EQ(frame->gpu.passes[3].pass, "tonemap");  // exposure and tone map (render/tonemap_pass.h)
   EXPECT_EQ(frame->gpu.perPassMeaningful, !r->device().software);
   ASSERT_TRUE(frame->gpu.statistics.available);
   EXPECT_EQ(frame->gpu.statistics.inputPrimitives, 201u);

@@ -20,6 +20,7 @@ constexpr uint32_t kW = 160, kH = 90;
 
 FrameRequest lookingAt(const glm::dvec3& position, const glm::dvec3& forward) {
   FrameRequest req;
+  req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
   req.camera.position = position;
   req.camera.forward = glm::normalize(forward);
   req.camera.up = {0, 0, 1};
@@ -136,9 +137,11 @@ TEST_F(TerrainShadingTest, TheDeferredFrameTimesItsTwoTerrainPassesAndDrawsNoSky
   auto frame = r->renderFrame(req);
   ASSERT_TRUE(frame.ok());
   EXPECT_EQ(frame->terrainTriangles, 200u);
-  ASSERT_EQ(frame->gpu.passes.size(), 2u);
-  EXPECT_EQ(frame->gpu.passes[0].pass, "terrain");  // the visibility raster
-  EXPECT_EQ(frame->gpu.passes[1].pass, "terrain shade");
+  ASSERT_EQ(frame->gpu.passes.size(), 4u);
+  EXPECT_EQ(frame->gpu.passes[0].pass, "atmosphere");
+  EXPECT_EQ(frame->gpu.passes[1].pass, "terrain");  // the visibility raster
+  EXPECT_EQ(frame->gpu.passes[2].pass, "terrain shade");
+  EXPECT_EQ(frame->gpu.passes[3].pass, "tonemap");
   ASSERT_TRUE(frame->gpu.statistics.available);
   EXPECT_EQ(frame->gpu.statistics.inputPrimitives, 200u);
 }
@@ -234,10 +237,12 @@ TEST_F(TerrainShadingTest, TheComputeFrameTimesBinningAndRasterAndDrawsNoTriangl
     EXPECT_EQ(result->terrainTriangles, 200u);
     EXPECT_LE(result->terrainRasterTriangles, 200u) << "none clipped by the near plane";
     EXPECT_GT(result->terrainRasterTriangles, 150u) << "a few off screen at the sides";
-    ASSERT_EQ(result->gpu.passes.size(), 3u);
-    EXPECT_EQ(result->gpu.passes[0].pass, "terrain");        // the binning
-    EXPECT_EQ(result->gpu.passes[1].pass, "terrain shade");  // the raster and the shading
-    EXPECT_EQ(result->gpu.passes[2].pass, "terrain depth");  // its depth samples into the attachment
+    ASSERT_EQ(result->gpu.passes.size(), 5u);
+    EXPECT_EQ(result->gpu.passes[0].pass, "atmosphere");
+    EXPECT_EQ(result->gpu.passes[1].pass, "terrain");        // the binning
+    EXPECT_EQ(result->gpu.passes[2].pass, "terrain shade");  // the raster and the shading
+    EXPECT_EQ(result->gpu.passes[3].pass, "terrain depth");  // its depth samples into the attachment
+    EXPECT_EQ(result->gpu.passes[4].pass, "tonemap");
     ASSERT_TRUE(result->gpu.statistics.available);
     EXPECT_EQ(result->gpu.statistics.inputPrimitives, 1u) << "the depth pass's full-screen triangle, none of the terrain's";
   }

@@ -56,6 +56,7 @@ class TreeRenderTest : public GpuTest {
                     const glm::dvec3& target, double fovDeg, const TreeLodDistances& lod, bool fades,
                     bool drawTrees = true, bool cores = true) {
     FrameRequest req;
+    req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
     req.camera.position = camera;
     req.camera.forward = glm::normalize(target - camera);
     req.camera.verticalFovDeg = fovDeg;
@@ -326,6 +327,7 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
   const glm::dvec3 camera{8.0, -30.0, 28.0};
   auto render = [&](bool withTrees, bool shadows, bool upload0) {
     FrameRequest req;
+    req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
     req.camera.position = camera;
     req.camera.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
     req.camera.verticalFovDeg = 60.0;
@@ -405,6 +407,7 @@ TEST_F(TreeRenderTest, EachShadowCascadeDrawsOnlyTheCastersItsBoxReaches) {
   TreeLodDistances lod;
   lod.impostorEndHeights /= treeLodScale(90.0, 50.0);  // every tree drawn, as in a 1080-line frame
   FrameRequest req;
+  req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
   req.camera.position = camera;
   req.camera.forward = glm::normalize(target - camera);
   req.camera.verticalFovDeg = 50.0;
