@@ -28,7 +28,10 @@ struct TreeInstanceGpu {
   float heightM;      // this tree's height
   float crownM;       // its crown width
   uint32_t seed;      // Philox word: yaw, lean, branch angles, sway phases
-  float tint;         // colour factor (s′ of the species choice: a minority tree is paler)
+  // The imagery's colour under the tree, sRGB-encoded bytes in r, g, b (the leaves take it:
+  // shaders/common/tree_shading.glsl treeLeafAlbedo), and a colour factor in a (s′ of the species
+  // choice: a minority tree is paler), as packUnorm4x8.
+  uint32_t colour;
 };
 static_assert(sizeof(TreeInstanceGpu) == 32);
 

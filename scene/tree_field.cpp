@@ -5,6 +5,10 @@
 #include <cassert>
 #include <cmath>
 
+#include <glm/common.hpp>
+#include <glm/gtc/color_space.hpp>
+#include <glm/packing.hpp>
+
 #include "core/stopwatch.h"
 
 namespace vegstream::scene {
@@ -41,7 +45,9 @@ void TreeField::place(const TileKey& key, Tile& tile) {
     g.heightM = t.heightM;
     g.crownM = t.crownM;
     g.seed = t.seed;
-    g.tint = 0.8f + 0.2f * t.sPrime;  // a tree at the border of its colour is paler
+    // The imagery under it, and a paler tree at the border of its colour.
+    g.colour = glm::packUnorm4x8(glm::vec4(glm::convertLinearToSRGB(glm::clamp(t.groundLinear, 0.0f, 1.0f)),
+                                           0.8f + 0.2f * t.sPrime));
     tile.trees.push_back(g);
   }
   tile.placed = true;

@@ -20,7 +20,7 @@ layout(location = 3) flat in uint vKind;
 layout(location = 4) flat in float vThreshold;
 layout(location = 5) flat in uint vInstance;
 layout(location = 6) in float vOcclusion;
-layout(location = 7) flat in float vTint;
+layout(location = 7) flat in vec4 vColour;
 layout(location = 8) in vec2 vCell;
 layout(location = 9) in vec4 vSky;
 layout(location = 10) in float vSun;
@@ -53,7 +53,7 @@ void main() {
   gl_SampleMask[0] = int(mask);
   vec3 n = normalize(vNormal);
   if (!gl_FrontFacing) n = -n;
-  vec3 albedo = (leaf ? m.leaf.rgb : m.bark.rgb) * vTint;
+  vec3 albedo = (leaf ? treeLeafAlbedo(m.leaf.rgb, vColour.rgb) : m.bark.rgb) * vColour.a;
   if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
   vec3 lit = treeLight(n, albedo, m.leaf.w, leaf, vOcclusion, vSun);
   outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);

@@ -20,7 +20,7 @@ layout(location = 3) flat in uint vKind;
 layout(location = 4) flat in float vThreshold;
 layout(location = 5) flat in uint vInstance;
 layout(location = 6) in float vOcclusion;
-layout(location = 7) flat in float vTint;
+layout(location = 7) flat in vec4 vColour;
 layout(location = 8) in vec2 vCell;
 layout(location = 9) in vec4 vSky;
 layout(location = 10) in float vSun;
@@ -44,7 +44,7 @@ float coreNoise(vec3 p) {
 void main() {
   TreeModelGpu m = trees.models[push.model];
   float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
-  vec3 albedo = m.leaf.rgb * vTint * kTreeCoreShade * clumps;
+  vec3 albedo = treeLeafAlbedo(m.leaf.rgb, vColour.rgb) * vColour.a * kTreeCoreShade * clumps;
   vec3 lit = treeLight(normalize(vNormal), albedo, m.leaf.w, false, vOcclusion, vSun);
   outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -21,7 +21,7 @@ layout(location = 4) flat in uint vInstance;
 layout(location = 5) flat in vec3 vRight;
 layout(location = 6) flat in vec3 vUp;
 layout(location = 7) flat in vec3 vTowards;
-layout(location = 8) flat in float vTint;
+layout(location = 8) flat in vec4 vColour;
 layout(location = 9) flat in uint vSeed;
 layout(location = 10) flat in vec4 vSky;
 layout(location = 11) flat in float vSun;
@@ -52,7 +52,8 @@ void main() {
   vec3 n = normalize(treeRotate(nm, vSeed));
   if (dot(n, vTowards) < 0.0) n = -n;
   TreeModelGpu m = trees.models[push.model];
-  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * vTint;
+  // The capture holds the species' leaf colour: turned into this tree's (treeLeafAlbedo).
+  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * treeLeafAlbedo(m.leaf.rgb, vColour.rgb) / max(m.leaf.rgb, vec3(1e-3)) * vColour.a;
   vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
   outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

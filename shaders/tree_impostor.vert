@@ -22,7 +22,7 @@ layout(location = 4) flat out uint vInstance;
 layout(location = 5) flat out vec3 vRight;  // the quad's axes and the view axis, world: for the normal
 layout(location = 6) flat out vec3 vUp;
 layout(location = 7) flat out vec3 vTowards;
-layout(location = 8) flat out float vTint;
+layout(location = 8) flat out vec4 vColour;  // as tree.vert's
 layout(location = 9) flat out uint vSeed;
 layout(location = 10) flat out vec4 vSky;   // the aerial perspective at the tree's centre
 layout(location = 11) flat out float vSun;  // the sun shadow there
@@ -80,7 +80,7 @@ void main() {
   vRight = treeRotate(right, seed);
   vUp = treeRotate(up, seed);
   vTowards = treeRotate(dc, seed);
-  vTint = t.tint;
+  vColour = treeInstanceColour(t.colour);
   vSeed = seed;
   vSky = treeVertexAtmosphere(centreRel);
   // The shadow of other trees: looked up just outside this one's crown, towards the sun (its own

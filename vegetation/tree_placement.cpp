@@ -81,6 +81,7 @@ void placeTreesInCells(const SpeciesCatalog& catalog, const TreeGrid& grid, int3
       t.heightM = glm::mix(sp.heightM.min, sp.heightM.max, u01(size.x)) * sPrimeFactor(kSPrimeHeightLo, pick.sPrime);
       t.crownM = glm::mix(sp.widthM.min, sp.widthM.max, u01(size.y)) * sPrimeFactor(kSPrimeWidthLo, pick.sPrime);
       t.sPrime = pick.sPrime;
+      t.groundLinear = g.linearRgb;
       out.push_back(t);
     }
 }

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include <glm/vec3.hpp>
+
 namespace vegstream::vegetation {
 
 // The tree forms the procedural generator knows (catalog "form").
@@ -46,6 +48,9 @@ struct PlacedTree {
   float heightM = 0.0f;   // full height
   float crownM = 0.0f;    // crown width
   float sPrime = 1.0f;    // eq. 18 share of the species at its colour
+  // The imagery's colour under the tree (linear albedo): seen from afar the crowns average to it
+  // (issue 39 item 5, core seed §2.4's blend into the terrain it grows from).
+  glm::vec3 groundLinear{0.0f};
 };
 
 }  // namespace vegstream::vegetation

@@ -39,7 +39,7 @@ struct TreeInstanceGpu {
   float heightM;
   float crownM;
   uint seed;
-  float tint;
+  uint colour;  // rgb: the imagery under the tree (sRGB bytes), a: colour factor (render/tree_layout.h)
 };
 
 struct TreeBranchGpu {

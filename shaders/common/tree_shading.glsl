@@ -46,6 +46,22 @@ uint treeSampleMask(float alpha, uint samples, float dither) {
 // the sun shadow's factor (sunShadow). What varies slowly over a tree — the shadow lookup and the
 // aerial perspective — the vertex stages evaluate (treeVertexLight): the H200 shades fragments on
 // 2 of its 66 TPCs, and the trees' cards overlap many times.
+// The leaves' albedo: the imagery under the tree (linear), brightened by kCanopyGain — from afar
+// a crown's lit and shaded leaves and the shadow around it average to the photographed canopy
+// (issue 39 item 5); the species' own leaf colour where there is no imagery (rgb 0).
+const float kCanopyGain = 1.6;
+vec3 treeLeafAlbedo(vec3 speciesLeaf, vec3 ground) {
+  return dot(ground, vec3(1.0)) <= 0.0 ? speciesLeaf : min(ground * kCanopyGain, vec3(0.9));
+}
+
+// An instance's colour word (render/tree_layout.h): the imagery under it decoded to linear, and
+// its colour factor.
+vec4 treeInstanceColour(uint packed) {
+  vec4 c = unpackUnorm4x8(packed);
+  vec3 linear = mix(c.rgb / 12.92, pow((c.rgb + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c.rgb));
+  return vec4(linear, c.a);
+}
+
 // The crowns' cores (tree_core.frag, and the impostor capture): foliage in its own shade.
 const float kTreeCoreShade = 0.6;
 

@@ -45,7 +45,7 @@ TreeInstanceGpu treeAt(float x, float y, uint32_t seed = 0x12345678u) {
   t.heightM = kTreeHeight;
   t.crownM = kCrown;
   t.seed = seed;
-  t.tint = 1.0f;
+  t.colour = 0xff000000u;  // no imagery under it: the species' own leaves, full colour
   return t;
 }
 
