@@ -108,8 +108,8 @@ Result<DeshadingRecord> parseDeshading(const json& d, const FieldReader& f) {
   if (!d.is_object()) return f.bad(at, "must be an object");
   DeshadingRecord r;
   VEG_TRY_ASSIGN(r.source, f.text(d, "source", at + ".source"));
-  if (r.source != "imagery datetime" && r.source != "estimated" && r.source != "none")
-    return f.bad(at + ".source", concat("is '", r.source, "'; expected imagery datetime, estimated or none"));
+  if (r.source != "imagery datetime" && r.source != "given" && r.source != "estimated" && r.source != "none")
+    return f.bad(at + ".source", concat("is '", r.source, "'; expected imagery datetime, given, estimated or none"));
   if (auto n = d.find("note"); n != d.end() && !n->is_null()) VEG_TRY_ASSIGN(r.note, f.text(d, "note", at + ".note"));
   if (r.source == "none") return r;
   VEG_TRY_ASSIGN(r.sunAzimuthDeg, f.number(d, "sun_azimuth_deg", at + ".sun_azimuth_deg", 0.0, 360.0));

@@ -46,7 +46,7 @@ struct SourceInfo {
 // How the imagery's acquisition shading was taken out (deshading.h): the sun it was taken under
 // and where that came from. dataset.json's "imagery.radiometry.deshading".
 struct DeshadingRecord {
-  std::string source = "none";  // "imagery datetime", "estimated" or "none"
+  std::string source = "none";  // "imagery datetime", "given" (--imagery-sun), "estimated" or "none"
   double sunAzimuthDeg = 0.0;   // clockwise from north; unless source is "none"
   double sunElevationDeg = 0.0;
   double directFraction = 0.0;  // k of deshading.h

@@ -81,7 +81,7 @@ std::vector<ShadingSample> collectShadingSamples(
     const double keep = static_cast<double>(samples.size()) / static_cast<double>(maxSamples);
     std::vector<ShadingSample> thin;
     thin.reserve(maxSamples);
-    for (size_t n = 0; n < maxSamples; ++n) thin.push_back(samples[static_cast<size_t>(n * keep)]);
+    for (size_t n = 0; n < maxSamples; ++n) thin.push_back(samples[static_cast<size_t>(static_cast<double>(n) * keep)]);
     samples.swap(thin);
   }
   // Dense group numbers: estimateSun sizes its sums by the largest.
