@@ -17,6 +17,7 @@
 #include "geo/crs.h"
 #include "geo/projection.h"
 #include "geo/xyz_tiles.h"
+#include <glm/geometric.hpp>
 #include "tests/support/ciede2000.h"
 
 namespace vegstream::datasets::test {
@@ -110,21 +111,46 @@ inline glm::dvec2 offsetM(const Place& p, glm::dvec2 lonLat) {
           (lonLat.y - p.latDeg) * kM};
 }
 
-// Mean over the max-zoom imagery pixels whose centres lie in the footprint around `p`.
-inline LinearRgb tileFootprintMean(const std::filesystem::path& dataset, const DatasetMeta& meta, const Place& p) {
+// The acquisition sun's shading relative to flat ground, k · max(0, n · s) + (1 − k) over
+// k · s_up + (1 − k), for a tile pixel: n from the height tile by central differences
+// (one-sided at its edges). Multiplying an albedo tile by it gives the ground as photographed.
+struct Relight {
+  glm::dvec3 sun{0.0, 0.0, 1.0};  // unit, east-north-up
+  double k = 0.8;
+  double at(const HeightTile& h, int i, int j, double pixelM) const {
+    const auto height = [&](int x, int y) {
+      return static_cast<double>(h.at(std::clamp(x, 0, h.size - 1), std::clamp(y, 0, h.size - 1)));
+    };
+    const int il = std::max(i - 1, 0), ir = std::min(i + 1, h.size - 1), jn = std::max(j - 1, 0),
+              js = std::min(j + 1, h.size - 1);
+    const double dx = (height(ir, j) - height(il, j)) / ((ir - il) * pixelM);
+    const double dy = (height(i, jn) - height(i, js)) / ((js - jn) * pixelM);  // rows run south
+    const glm::dvec3 n = glm::normalize(glm::dvec3(-dx, -dy, 1.0));
+    if (!std::isfinite(n.z)) return 1.0;
+    return (k * std::max(0.0, glm::dot(n, sun)) + 1.0 - k) / (k * sun.z + 1.0 - k);
+  }
+};
+
+// Mean over the max-zoom imagery pixels whose centres lie in the footprint around `p`; with
+// `relight`, each pixel's linear colour multiplied by its shading first.
+inline LinearRgb tileFootprintMean(const std::filesystem::path& dataset, const DatasetMeta& meta, const Place& p,
+                                   const std::optional<Relight>& relight = std::nullopt) {
   LinearRgb out;
   const double dLat = 2.0 * kFootprintHalfNorthM / 111000.0, dLon = 2.0 * dLat;
   const geo::GeoBounds box{p.lonDeg - dLon, p.latDeg - dLat, p.lonDeg + dLon, p.latDeg + dLat};
   for (const auto& id : geo::tilesCovering(box, meta.maxZoom)) {
     auto tile = readColorTile(imageryTilePath(dataset, id, *meta.imagery), id);
-    if (!tile) continue;
+    auto heights = readHeightTile(elevationTilePath(dataset, id), id, meta.elevationEncoding);
+    if (!tile || (relight && !heights)) continue;
+    const double pixelM = geo::groundResolution(p.latDeg, id.z, tile->size);
     for (int j = 0; j < tile->size; ++j)
       for (int i = 0; i < tile->size; ++i) {
         const glm::dvec2 o = offsetM(p, geo::pixelToLonLat(id, {i + 0.5, j + 0.5}, tile->size));
         if (std::abs(o.x) > kFootprintHalfEastM || std::abs(o.y) > kFootprintHalfNorthM) continue;
         const uint8_t* px = &tile->rgba[(static_cast<size_t>(j) * static_cast<size_t>(tile->size) + static_cast<size_t>(i)) * 4];
         if (px[3] == 0) continue;
-        for (size_t c = 0; c < 3; ++c) out.rgb[c] += vegstream::testing::srgbToLinear(px[c] / 255.0);
+        const double shade = relight ? relight->at(*heights, i, j, pixelM) : 1.0;
+        for (size_t c = 0; c < 3; ++c) out.rgb[c] += shade * vegstream::testing::srgbToLinear(px[c] / 255.0);
         ++out.pixels;
       }
   }
