@@ -5,14 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
+#include "datasets/dataset_format.h"
 #include "datasets/deshading.h"
 #include "datasets/radiometry.h"
 #include "datasets/srgb.h"
 #include "datasets/sun_estimate.h"
+#include "tests/support/test_dirs.h"
 
 namespace vegstream::datasets {
 namespace {
@@ -205,6 +209,75 @@ TEST(SunEstimate, RefusesFlatTerrainAndUnshadedImagery) {
   const SunEstimate unlit = estimateSun(litTerrain({135.0, 60.0}, 0.0), 0.8);
   EXPECT_FALSE(unlit.found);
   EXPECT_NE(unlit.note.find("explains only"), std::string::npos) << unlit.note;
+}
+
+DatasetMeta metaWith(std::optional<RadiometryRecord> r) {
+  DatasetMeta m;
+  m.name = "r";
+  m.bounds = {-113.2, 37.1, -112.9, 37.5};
+  m.imagery = ImageryFormat::Jpeg;
+  m.imageryDatetime = "2015-08-18T17:58:00Z";
+  m.radiometry = std::move(r);
+  return m;
+}
+
+std::string jsonText(const DatasetMeta& m) {
+  const fs::path d = vegstream::testing::testOutputDir();
+  EXPECT_TRUE(writeDatasetMeta(d, m));
+  std::stringstream ss;
+  ss << std::ifstream(d / "dataset.json").rdbuf();
+  return ss.str();
+}
+
+TEST(RadiometryRecord, RoundTripsThroughDatasetJsonAndIsOptional) {
+  RadiometryRecord r;
+  r.method = "reflectance";
+  r.scale = 2e-5;
+  r.offset = -0.1;
+  r.darkObject = std::array<double, 3>{0.0218, 0.0334, 0.0551};
+  r.darkObjectPercentile = 0.01;
+  r.darkObjectReflectance = 0.01;
+  r.deshading = DeshadingRecord{"imagery datetime", 133.25, 61.5, 0.8, "NOAA"};
+  const std::string text = jsonText(metaWith(r));
+  EXPECT_NE(text.find("\"radiometry\""), std::string::npos) << text;
+  auto back = parseDatasetMeta(text, "x.json");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->imageryDatetime, "2015-08-18T17:58:00Z");
+  ASSERT_TRUE(back->radiometry);
+  EXPECT_EQ(back->radiometry->method, "reflectance");
+  EXPECT_EQ(back->radiometry->scale, 2e-5);
+  EXPECT_EQ(back->radiometry->offset, -0.1);
+  EXPECT_EQ(back->radiometry->darkObject, r.darkObject);
+  ASSERT_TRUE(back->radiometry->deshading);
+  EXPECT_EQ(back->radiometry->deshading->source, "imagery datetime");
+  EXPECT_EQ(back->radiometry->deshading->sunAzimuthDeg, 133.25);
+  EXPECT_EQ(back->radiometry->deshading->sunElevationDeg, 61.5);
+  EXPECT_EQ(back->radiometry->deshading->directFraction, 0.8);
+  // A dataset.json from before the key: no record, and it still reads.
+  auto old = parseDatasetMeta(jsonText(metaWith(std::nullopt)), "old.json");
+  ASSERT_TRUE(old) << old.error().message;
+  EXPECT_FALSE(old->radiometry);
+}
+
+TEST(RadiometryRecord, BadFieldsAreNamed) {
+  RadiometryRecord r;
+  r.method = "srgb";
+  r.deshading = DeshadingRecord{"estimated", 10.0, 40.0, 0.8, ""};
+  const std::string text = jsonText(metaWith(r));
+  const auto errorWith = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) t.replace(at, from.size(), to);
+    auto m = parseDatasetMeta(t, "d.json");
+    return m ? std::string("(read)") : m.error().message;
+  };
+  EXPECT_NE(errorWith("\"method\": \"srgb\"", "\"method\": \"gamma\"").find("imagery.radiometry.method"),
+            std::string::npos);
+  EXPECT_NE(errorWith("\"source\": \"estimated\"", "\"source\": \"guess\"").find("imagery.radiometry.deshading.source"),
+            std::string::npos);
+  EXPECT_NE(errorWith("\"sun_elevation_deg\": 40.0", "\"sun_elevation_deg\": 140").find("sun_elevation_deg"),
+            std::string::npos);
 }
 
 }  // namespace
