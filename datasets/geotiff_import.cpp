@@ -208,8 +208,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   log->info("{}: {} ({:.1f} m pixels) → zoom {} ({:.1f} m pixels), {} tiles", o.dem.string(), demCrs->name(),
             demGrid->pixelSizeM(), maxZoom, geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
   if (imageryGrid)
-    log->info("{}: {} ({:.1f} m pixels{})", imagery->raster.path.string(), imageryGrid->crs().name(),
-              imageryGrid->pixelSizeM(), imagery->stretched ? ", stretched" : "");
+    log->info("{}: {} ({:.1f} m pixels), {}", imagery->raster.path.string(), imageryGrid->crs().name(),
+              imageryGrid->pixelSizeM(), imagery->radiometryChoice);
   std::optional<ImageryTiling> tiling;
   std::optional<DeshadingPlan> deshading;
   if (imageryGrid) {

@@ -163,7 +163,7 @@ void applyReflectance(const RadiometryChoice& choice, PreparedImagery& out) {
 
 }  // namespace
 
-Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& log) {
+Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& /*log*/) {
   assert(input.file.has_value() != !input.bands.empty());
   auto merged = readMerged(input);
   if (!merged) return merged.error();
@@ -177,7 +177,7 @@ Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& 
   if (input.file) files = {*input.file};
   auto choice = chooseRadiometry(input.radiometry, input.stretch.has_value(), files, values);
   if (!choice) return choice.error();
-  log->info("{}: radiometry {} ({})", r.path.string(), toString(choice->method), choice->why);
+  out.radiometryChoice = concat("radiometry ", toString(choice->method), " (", choice->why, ")");
   if (input.keepRawRed) {
     const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
     out.rawRed.resize(count);

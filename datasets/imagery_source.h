@@ -49,6 +49,7 @@ struct PreparedImagery {
   std::array<std::array<double, 2>, 3> ranges{{{0.0, 255.0}, {0.0, 255.0}, {0.0, 255.0}}};  // stretch: per band, the values mapped to 0 and 255
   bool stretched = false;
   RadiometryRecord radiometry;  // for dataset.json (deshading filled in by the importer)
+  std::string radiometryChoice;  // what was chosen and why, for the importer's log
   std::string description;  // for dataset.json's sources
   // With ImageryInput::keepRawRed: channel 0 (the first of --imagery-bands, channel 0 of
   // --imagery) as read, before the stretch, one value per pixel of `raster`, NaN = no data.
@@ -57,7 +58,7 @@ struct PreparedImagery {
 };
 
 // Errors as readGeoTiff's, plus: bands of different grids / CRSs, a band with more than one
-// channel, imagery with no valid pixel, and chooseRadiometry's. Logs the radiometry chosen.
+// channel, imagery with no valid pixel, and chooseRadiometry's.
 Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& log);
 
 }  // namespace vegstream::datasets
