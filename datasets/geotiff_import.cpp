@@ -91,6 +91,20 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& sr
   return {};
 }
 
+// How the tiles sample the imagery, with the sun that de-shades it (deshading_plan.h), whose
+// record goes into imagery.radiometry.
+Result<ImageryTiling> imageryTiling(const GeoTiffImportOptions& o, PreparedImagery& imagery, const SourceGrid& grid,
+                                    const SourceGrid& dem, const std::vector<geo::TileId>& tiles, const Logger& log) {
+  ImageryTiling tiling{&grid, imagery.linear, std::nullopt, o.directFraction};
+  auto plan = planDeshading(
+      o, imagery.radiometry, tiling, tiles, dem.extent().centre(),
+      [&](const geo::TileId& id) { return tileHeights(dem, id, o.heightResampling); }, log);
+  if (!plan) return plan.error();
+  tiling.sun = plan->sun;
+  imagery.radiometry.deshading = plan->record;
+  return tiling;
+}
+
 std::string describe(const SourceGrid& g) {
   char buf[96];
   std::snprintf(buf, sizeof(buf), "%dx%d px, %.2f m pixels", g.raster().width, g.raster().height, g.pixelSizeM());
@@ -211,15 +225,10 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     log->info("{}: {} ({:.1f} m pixels), {}", imagery->raster.path.string(), imageryGrid->crs().name(),
               imageryGrid->pixelSizeM(), imagery->radiometryChoice);
   std::optional<ImageryTiling> tiling;
-  std::optional<DeshadingPlan> deshading;
   if (imageryGrid) {
-    tiling = ImageryTiling{&*imageryGrid, imagery->linear, std::nullopt, o.directFraction};
-    auto plan = planDeshading(
-        o, imagery->radiometry, *tiling, tiles, bounds.centre(),
-        [&](const geo::TileId& id) { return tileHeights(*demGrid, id, o.heightResampling); }, log);
-    if (!plan) return plan.error();
-    tiling->sun = plan->sun;
-    deshading = std::move(*plan);
+    auto t = imageryTiling(o, *imagery, *imageryGrid, *demGrid, tiles, log);
+    if (!t) return t.error();
+    tiling = *t;
   }
 
   DatasetMeta meta;
@@ -231,7 +240,6 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     meta.imagery = o.imageryFormat;
     meta.imageryDatetime = o.imageryDatetime;
     meta.radiometry = imagery->radiometry;
-    meta.radiometry->deshading = deshading->record;
   }
   meta.attribution = o.attribution;
   meta.sources.push_back({"elevation", o.dem.string(), demCrs->name(), describe(*demGrid)});
