@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -147,6 +148,8 @@ TEST(DeshadingImport, TheStatedSunTakesTheRidgesShadingOut) {
   const fs::path out = importScene(dir, "given", "--imagery-sun 135,50");
   const Spread flat = ringSpread(out);
   ASSERT_GT(shaded.pixels, 10000);
+  std::printf("ring luminance spread (std/mean): %.4f shaded, %.4f de-shaded; mean %.4f (albedo %.4f)\n", shaded.cv,
+              flat.cv, flat.meanLuminance, kAlbedoLuminance);
   EXPECT_GT(shaded.cv, 0.12);
   EXPECT_LT(flat.cv, 0.03) << "against " << shaded.cv << " shaded";
   EXPECT_NEAR(flat.meanLuminance, kAlbedoLuminance, 0.02 * kAlbedoLuminance);
@@ -184,6 +187,8 @@ TEST(DeshadingImport, WithoutATimeTheSunIsEstimatedFromTheImagery) {
   const fs::path out = importScene(dir, "out", "");
   const DeshadingRecord d = deshadingOf(out);
   EXPECT_EQ(d.source, "estimated") << d.note;
+  std::printf("estimated sun: azimuth %.2f, elevation %.2f (true 230, 40): %s\n", d.sunAzimuthDeg, d.sunElevationDeg,
+              d.note.c_str());
   EXPECT_LT(std::abs(std::remainder(d.sunAzimuthDeg - sun.azimuthDeg, 360.0)), 3.0) << d.sunAzimuthDeg;
   EXPECT_LT(std::abs(d.sunElevationDeg - sun.elevationDeg), 4.0) << d.sunElevationDeg;
   EXPECT_LT(ringSpread(out).cv, 0.04);
