@@ -47,7 +47,9 @@ float deshadingGain(const glm::dvec3& normal, const glm::dvec3& sun, double k) {
 
 std::vector<glm::vec3> tileNormals(const std::vector<float>& heights, int size, double pixelM) {
   std::vector<glm::vec3> normals(heights.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-  const auto at = [&](int i, int j) { return heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)]; };
+  const auto at = [&](int i, int j) {
+    return heights[static_cast<size_t>(j) * static_cast<size_t>(size) + static_cast<size_t>(i)];
+  };
   for (int j = 0; j < size; ++j) {
     for (int i = 0; i < size; ++i) {
       if (!std::isfinite(at(i, j))) continue;

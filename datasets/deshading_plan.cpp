@@ -51,9 +51,9 @@ Result<DeshadingPlan> planDeshading(const GeoTiffImportOptions& o, const Radiome
     auto ms = imageryUnixMs(o.imageryDatetime);
     if (!ms) return ms.error();
     const geo::SolarPosition s = geo::solarPosition(*ms, centre.y, centre.x);
-    return fromSun({s.azimuthDeg, s.elevationDeg}, "imagery datetime", k,
-                   concat("NOAA solar position at the dataset's centre (", centre.y, ", ", centre.x, ") at ",
-                          o.imageryDatetime));
+    return fromSun(
+        {s.azimuthDeg, s.elevationDeg}, "imagery datetime", k,
+        concat("NOAA solar position at the dataset's centre (", centre.y, ", ", centre.x, ") at ", o.imageryDatetime));
   }
   const SunEstimate e = estimateSun(collectShadingSamples(tiling, tiles, kTileSize, heightsOf), k);
   if (!e.found) {

@@ -142,9 +142,9 @@ void applyStretch(const Stretch& stretch, PreparedImagery& out) {
     }
   }
   out.stretched = true;
-  out.description = concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…",
-                           out.ranges[1][1], ", B ", out.ranges[2][0], "…", out.ranges[2][1],
-                           " (display colours, not albedo)");
+  out.description =
+      concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…", out.ranges[1][1],
+             ", B ", out.ranges[2][0], "…", out.ranges[2][1], " (display colours, not albedo)");
 }
 
 void applyReflectance(const RadiometryChoice& choice, PreparedImagery& out) {
@@ -157,8 +157,7 @@ void applyReflectance(const RadiometryChoice& choice, PreparedImagery& out) {
   rec.darkObjectPercentile = kDarkObjectPercent;
   rec.darkObjectReflectance = kDarkObjectReflectance;
   out.description = concat("surface reflectance DN x ", choice.scale, " + ", choice.offset,
-                           ", dark-object subtracted (dark objects R ", dark[0], ", G ", dark[1], ", B ", dark[2],
-                           ")");
+                           ", dark-object subtracted (dark objects R ", dark[0], ", G ", dark[1], ", B ", dark[2], ")");
 }
 
 }  // namespace

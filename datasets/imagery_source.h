@@ -35,8 +35,8 @@ struct ImageryInput {
   std::optional<std::filesystem::path> file;  // --imagery
   std::vector<std::filesystem::path> bands;   // --imagery-bands R,G,B
   std::optional<int> assumeEpsg;              // --imagery-crs
-  std::optional<Stretch> stretch;  // --stretch (auto radiometry then stretches)
-  RadiometryOptions radiometry;     // --radiometry, --reflectance-scale, --reflectance-offset
+  std::optional<Stretch> stretch;             // --stretch (auto radiometry then stretches)
+  RadiometryOptions radiometry;               // --radiometry, --reflectance-scale, --reflectance-offset
   uint64_t maxPixels = 400'000'000;
   // Keep the red channel's raw values (PreparedImagery::rawRed): NDVI needs the digital numbers
   // the stretch throws away (ndvi_source.h).
@@ -46,11 +46,12 @@ struct ImageryInput {
 struct PreparedImagery {
   Raster raster;  // 3 channels, NaN = no data: linear 0 … 1 when `linear`, else sRGB-encoded 0 … 255
   bool linear = false;
-  std::array<std::array<double, 2>, 3> ranges{{{0.0, 255.0}, {0.0, 255.0}, {0.0, 255.0}}};  // stretch: per band, the values mapped to 0 and 255
+  std::array<std::array<double, 2>, 3> ranges{
+      {{0.0, 255.0}, {0.0, 255.0}, {0.0, 255.0}}};  // stretch: per band, the values mapped to 0 and 255
   bool stretched = false;
-  RadiometryRecord radiometry;  // for dataset.json (deshading filled in by the importer)
+  RadiometryRecord radiometry;   // for dataset.json (deshading filled in by the importer)
   std::string radiometryChoice;  // what was chosen and why, for the importer's log
-  std::string description;  // for dataset.json's sources
+  std::string description;       // for dataset.json's sources
   // With ImageryInput::keepRawRed: channel 0 (the first of --imagery-bands, channel 0 of
   // --imagery) as read, before the stretch, one value per pixel of `raster`, NaN = no data.
   // Empty otherwise.

@@ -16,8 +16,9 @@ constexpr int kGroupBlock = 64;  // pixels on a side of one sun-estimate group
 bool linearColour(const ImageryTiling& t, glm::dvec2 p, glm::vec3& out) {
   std::array<float, 3> v{};
   if (!sampleColour(t.grid->raster(), p, v)) return false;
-  for (int c = 0; c < 3; ++c) out[c] = t.linear ? std::clamp(v[static_cast<size_t>(c)], 0.0f, 1.0f)
-                                                : srgbDecode(v[static_cast<size_t>(c)] / 255.0f);
+  for (int c = 0; c < 3; ++c)
+    out[c] =
+        t.linear ? std::clamp(v[static_cast<size_t>(c)], 0.0f, 1.0f) : srgbDecode(v[static_cast<size_t>(c)] / 255.0f);
   return true;
 }
 
@@ -54,9 +55,10 @@ bool fillImageryTile(const ImageryTiling& t, const std::vector<glm::dvec2>& imgP
   return any;
 }
 
-std::vector<ShadingSample> collectShadingSamples(
-    const ImageryTiling& t, const std::vector<geo::TileId>& tiles, int size,
-    const std::function<std::vector<float>(const geo::TileId&)>& heightsOf, size_t maxSamples) {
+std::vector<ShadingSample> collectShadingSamples(const ImageryTiling& t, const std::vector<geo::TileId>& tiles,
+                                                 int size,
+                                                 const std::function<std::vector<float>(const geo::TileId&)>& heightsOf,
+                                                 size_t maxSamples) {
   std::vector<ShadingSample> samples;
   const size_t step = std::max<size_t>(1, tiles.size() / 64);
   const int blocks = (size + kGroupBlock - 1) / kGroupBlock;

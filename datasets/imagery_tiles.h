@@ -36,8 +36,9 @@ bool fillImageryTile(const ImageryTiling& tiling, const std::vector<glm::dvec2>&
 // Samples for estimateSun (normal, log luminance, one group per 64 × 64-pixel block) from up to
 // 64 of `tiles` spread evenly over the list, thinned to at most maxSamples. heightsOf(tile)
 // gives a tile's heights (size², as above).
-std::vector<ShadingSample> collectShadingSamples(
-    const ImageryTiling& tiling, const std::vector<geo::TileId>& tiles, int size,
-    const std::function<std::vector<float>(const geo::TileId&)>& heightsOf, size_t maxSamples = 60000);
+std::vector<ShadingSample> collectShadingSamples(const ImageryTiling& tiling, const std::vector<geo::TileId>& tiles,
+                                                 int size,
+                                                 const std::function<std::vector<float>(const geo::TileId&)>& heightsOf,
+                                                 size_t maxSamples = 60000);
 
 }  // namespace vegstream::datasets

@@ -54,8 +54,8 @@ const char* toString(RadiometryMethod m) {
 }
 
 Result<RadiometryMethod> parseRadiometryMethod(const std::string& text) {
-  for (auto m : {RadiometryMethod::Auto, RadiometryMethod::Reflectance, RadiometryMethod::Srgb,
-                 RadiometryMethod::Stretch})
+  for (auto m :
+       {RadiometryMethod::Auto, RadiometryMethod::Reflectance, RadiometryMethod::Srgb, RadiometryMethod::Stretch})
     if (text == toString(m)) return m;
   return makeError(ErrorKind::InvalidInput,
                    concat("--radiometry '", text, "': expected auto, reflectance, srgb or stretch"));
@@ -72,8 +72,8 @@ LandsatLevel landsatFromNames(const std::vector<fs::path>& files) {
     const std::string name = lower(f.filename().string()), dir = lower(f.parent_path().filename().string());
     for (const std::string& s : {name, dir}) {
       if (s.empty()) continue;
-      const bool landsat = std::regex_search(s, product) || std::regex_search(s, scene) ||
-                           s.find("landsat") != std::string::npos;
+      const bool landsat =
+          std::regex_search(s, product) || std::regex_search(s, scene) || s.find("landsat") != std::string::npos;
       if (!landsat) continue;
       if (std::regex_search(s, level2)) return LandsatLevel::Level2;
       level = LandsatLevel::Level1;
@@ -118,12 +118,13 @@ Result<RadiometryChoice> chooseRadiometry(const RadiometryOptions& o, bool stret
                    " digital numbers by their names and values: reflectance = DN x ", c.scale, " + ", c.offset);
   } else {
     c.method = RadiometryMethod::Stretch;
-    c.why = landsat != LandsatLevel::None
-                ? concat("named like Landsat but values ", v.lo, " … ", v.hi,
-                         " do not scale to reflectances: stretching p1,p99 (display colours, not albedo)")
-                : concat("values ", v.lo, " … ", v.hi,
-                         " exceed 8 bits and are not a known sensor's: stretching p1,p99 (display colours, not "
-                         "albedo; --radiometry reflectance with --reflectance-scale/--reflectance-offset gives albedo)");
+    c.why =
+        landsat != LandsatLevel::None
+            ? concat("named like Landsat but values ", v.lo, " … ", v.hi,
+                     " do not scale to reflectances: stretching p1,p99 (display colours, not albedo)")
+            : concat("values ", v.lo, " … ", v.hi,
+                     " exceed 8 bits and are not a known sensor's: stretching p1,p99 (display colours, not "
+                     "albedo; --radiometry reflectance with --reflectance-scale/--reflectance-offset gives albedo)");
   }
   return c;
 }

@@ -54,9 +54,9 @@ struct RadiometryOptions {
 
 // What auto looks at: the merged raster's valid samples over all three channels.
 struct ImageryValues {
-  float lo = 0.0f, hi = 0.0f;      // extremes
-  double p1 = 0.0, p99 = 0.0;      // 1st and 99th percentiles
-  bool integers = true;            // every sample a whole number
+  float lo = 0.0f, hi = 0.0f;  // extremes
+  double p1 = 0.0, p99 = 0.0;  // 1st and 99th percentiles
+  bool integers = true;        // every sample a whole number
 };
 
 enum class LandsatLevel { None, Level1, Level2 };
@@ -74,8 +74,7 @@ struct RadiometryChoice {
 // Errors (InvalidInput, naming the option and the file): srgb asked for values beyond 0 … 255;
 // --stretch with --radiometry reflectance or srgb.
 Result<RadiometryChoice> chooseRadiometry(const RadiometryOptions& options, bool stretchGiven,
-                                          const std::vector<std::filesystem::path>& files,
-                                          const ImageryValues& values);
+                                          const std::vector<std::filesystem::path>& files, const ImageryValues& values);
 
 // The value at percentile p (0 … 100) of `values` (reordered; not empty).
 double percentile(std::vector<float>& values, double p);

@@ -58,17 +58,22 @@ double ciede2000(const Lab& x, const Lab& y) {
   double dh = 0.0;
   if (cp1 * cp2 != 0.0) {
     dh = h2 - h1;
-    if (dh > 180.0) dh -= 360.0;
-    else if (dh < -180.0) dh += 360.0;
+    if (dh > 180.0)
+      dh -= 360.0;
+    else if (dh < -180.0)
+      dh += 360.0;
   }
   const double dH = 2.0 * std::sqrt(cp1 * cp2) * std::sin(rad(dh / 2.0));
   // (12)–(14): means; the mean hue across the 0/360 wrap.
   const double lMean = (x.L + y.L) / 2.0, cpMean = (cp1 + cp2) / 2.0;
   double hMean = h1 + h2;
   if (cp1 * cp2 != 0.0) {
-    if (std::abs(h1 - h2) <= 180.0) hMean /= 2.0;
-    else if (h1 + h2 < 360.0) hMean = (h1 + h2 + 360.0) / 2.0;
-    else hMean = (h1 + h2 - 360.0) / 2.0;
+    if (std::abs(h1 - h2) <= 180.0)
+      hMean /= 2.0;
+    else if (h1 + h2 < 360.0)
+      hMean = (h1 + h2 + 360.0) / 2.0;
+    else
+      hMean = (h1 + h2 - 360.0) / 2.0;
   }
   // (15)–(21): weights and the rotation term.
   const double t = 1.0 - 0.17 * std::cos(rad(hMean - 30.0)) + 0.24 * std::cos(rad(2.0 * hMean)) +

@@ -85,10 +85,9 @@ TEST(SrgbToLab, LinearAndEncodedAgree) {
   const double lin = srgbToLinear(128 / 255.0);
   EXPECT_NEAR(lin, 0.2158605, 1e-6);
   EXPECT_NEAR(linearToSrgb(lin) * 255.0, 128.0, 1e-9);
-  const Lab a = labFromSrgb8(74, 68, 50), b = labFromLinear(glm::vec3(
-                                                static_cast<float>(srgbToLinear(74 / 255.0)),
-                                                static_cast<float>(srgbToLinear(68 / 255.0)),
-                                                static_cast<float>(srgbToLinear(50 / 255.0))));
+  const Lab a = labFromSrgb8(74, 68, 50), b = labFromLinear(glm::vec3(static_cast<float>(srgbToLinear(74 / 255.0)),
+                                                                      static_cast<float>(srgbToLinear(68 / 255.0)),
+                                                                      static_cast<float>(srgbToLinear(50 / 255.0))));
   EXPECT_LT(ciede2000(a, b), 1e-3);
 }
 

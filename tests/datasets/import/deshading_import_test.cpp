@@ -24,8 +24,8 @@ using namespace vegstream::datasets::test;
 using vegstream::testing::runVegstream;
 
 constexpr double kLat0 = 37.024, kLon0 = -113.024;  // north-west corner
-constexpr double kDemPx = 0.0002, kImgPx = 0.0001;   // degrees (≈ 22 m and 11 m)
-constexpr int kDemN = 240, kImgN = 480;               // both span 0.048°
+constexpr double kDemPx = 0.0002, kImgPx = 0.0001;  // degrees (≈ 22 m and 11 m)
+constexpr int kDemN = 240, kImgN = 480;             // both span 0.048°
 constexpr double kLatC = kLat0 - 0.024, kLonC = kLon0 + 0.024;
 constexpr double kEarthR = 6371000.0, kRingR = 1500.0, kRingW = 500.0, kRingA = 400.0;
 const glm::dvec3 kAlbedo(0.20, 0.16, 0.09);  // linear
@@ -102,7 +102,8 @@ Spread ringSpread(const fs::path& dataset) {
       for (int i = 0; i < tile->size; ++i) {
         const glm::dvec2 ll = geo::pixelToLonLat(id, {i + 0.5, j + 0.5}, tile->size);
         if (glm::length(metres(ll.x, ll.y)) > 2400.0) continue;
-        const uint8_t* p = &tile->rgba[(static_cast<size_t>(j) * static_cast<size_t>(tile->size) + static_cast<size_t>(i)) * 4];
+        const uint8_t* p =
+            &tile->rgba[(static_cast<size_t>(j) * static_cast<size_t>(tile->size) + static_cast<size_t>(i)) * 4];
         if (p[3] == 0) continue;
         const double y = 0.2126 * srgbDecode(p[0] / 255.0f) + 0.7152 * srgbDecode(p[1] / 255.0f) +
                          0.0722 * srgbDecode(p[2] / 255.0f);

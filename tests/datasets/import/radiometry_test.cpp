@@ -58,8 +58,8 @@ TEST(Radiometry, AutoPicksSrgbReflectanceOrStretch) {
   EXPECT_EQ(zion->method, RadiometryMethod::Reflectance);
   EXPECT_DOUBLE_EQ(zion->scale, 2.0e-5);
   EXPECT_DOUBLE_EQ(zion->offset, -0.1);
-  auto level2 = chooseRadiometry(autoOpts, false, {"LC08_L2SP_038034_20150818_SR_B4.TIF"},
-                                 values(7300, 20000, 7600, 16000));
+  auto level2 =
+      chooseRadiometry(autoOpts, false, {"LC08_L2SP_038034_20150818_SR_B4.TIF"}, values(7300, 20000, 7600, 16000));
   ASSERT_TRUE(level2);
   EXPECT_EQ(level2->method, RadiometryMethod::Reflectance);
   EXPECT_DOUBLE_EQ(level2->scale, 2.75e-5);
@@ -130,8 +130,8 @@ TEST(Radiometry, DarkObjectSubtractionTakesEachBandsHazeOff) {
 TEST(Srgb, IsTheStandardsPiecewiseCurve) {
   EXPECT_EQ(srgbEncode8(0.0f), 0);
   EXPECT_EQ(srgbEncode8(1.0f), 255);
-  EXPECT_EQ(srgbEncode8(0.05f), 63);    // a 5 % forest encodes near 63, not near 13
-  EXPECT_EQ(srgbEncode8(0.002f), 7);    // the linear segment: 12.92 · 0.002 · 255 = 6.6
+  EXPECT_EQ(srgbEncode8(0.05f), 63);  // a 5 % forest encodes near 63, not near 13
+  EXPECT_EQ(srgbEncode8(0.002f), 7);  // the linear segment: 12.92 · 0.002 · 255 = 6.6
   EXPECT_NEAR(srgbEncode(0.18f), 0.4614f, 2e-4);
   for (int b = 0; b < 256; ++b) EXPECT_EQ(srgbEncode8(srgbDecode(static_cast<float>(b) / 255.0f)), b);
 }

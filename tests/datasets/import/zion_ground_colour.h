@@ -76,7 +76,8 @@ class LandsatReflectance {
   LinearRgb footprintMean(const Place& p) const {
     LinearRgb out;
     auto utm = geo::crsFromEpsg(32612);
-    auto centre = utm ? geo::toProjected(*utm, geo::Geodetic{p.latDeg, p.lonDeg, 0.0}) : Result<glm::dvec2>(utm.error());
+    auto centre =
+        utm ? geo::toProjected(*utm, geo::Geodetic{p.latDeg, p.lonDeg, 0.0}) : Result<glm::dvec2>(utm.error());
     if (!centre) return out;
     const Raster& r = bands_[0];
     for (int j = 0; j < r.height; ++j)
@@ -85,8 +86,7 @@ class LandsatReflectance {
         if (std::abs(xy[0] - centre->x) > kFootprintHalfEastM || std::abs(xy[1] - centre->y) > kFootprintHalfNorthM ||
             !valid(i, j))
           continue;
-        for (size_t c = 0; c < 3; ++c)
-          out.rgb[c] += std::clamp(bands_[c].at(i, j) * 2e-5 - 0.1 - haze_[c], 0.0, 1.0);
+        for (size_t c = 0; c < 3; ++c) out.rgb[c] += std::clamp(bands_[c].at(i, j) * 2e-5 - 0.1 - haze_[c], 0.0, 1.0);
         ++out.pixels;
       }
     for (double& v : out.rgb) v /= std::max(1, out.pixels);
@@ -107,8 +107,7 @@ class LandsatReflectance {
 // Metres east and north of `p` (equirectangular: the footprint is a few hundred metres).
 inline glm::dvec2 offsetM(const Place& p, glm::dvec2 lonLat) {
   constexpr double kM = 3.14159265358979323846 / 180.0 * 6371000.0;
-  return {(lonLat.x - p.lonDeg) * kM * std::cos(p.latDeg * 3.14159265358979323846 / 180.0),
-          (lonLat.y - p.latDeg) * kM};
+  return {(lonLat.x - p.lonDeg) * kM * std::cos(p.latDeg * 3.14159265358979323846 / 180.0), (lonLat.y - p.latDeg) * kM};
 }
 
 // The acquisition sun's shading relative to flat ground, k · max(0, n · s) + (1 − k) over
@@ -147,7 +146,8 @@ inline LinearRgb tileFootprintMean(const std::filesystem::path& dataset, const D
       for (int i = 0; i < tile->size; ++i) {
         const glm::dvec2 o = offsetM(p, geo::pixelToLonLat(id, {i + 0.5, j + 0.5}, tile->size));
         if (std::abs(o.x) > kFootprintHalfEastM || std::abs(o.y) > kFootprintHalfNorthM) continue;
-        const uint8_t* px = &tile->rgba[(static_cast<size_t>(j) * static_cast<size_t>(tile->size) + static_cast<size_t>(i)) * 4];
+        const uint8_t* px =
+            &tile->rgba[(static_cast<size_t>(j) * static_cast<size_t>(tile->size) + static_cast<size_t>(i)) * 4];
         if (px[3] == 0) continue;
         const double shade = relight ? relight->at(*heights, i, j, pixelM) : 1.0;
         for (size_t c = 0; c < 3; ++c) out.rgb[c] += shade * vegstream::testing::srgbToLinear(px[c] / 255.0);

@@ -23,9 +23,8 @@ constexpr const char* kWhen = "2015-08-18T17:58:00Z";  // LC80380342015230LGN00'
 // The meadow and slickrock of issue 39, and a dense conifer stand on the Kolob plateau (its
 // densest green in the bands over 37.48–37.50 N, 113.00–113.03 W: the footprint of highest NDVI
 // less twice its red reflectance, NDVI 0.44 from the raw bands 5 and 4).
-const Place kPlaces[] = {{"Kolob meadow", 37.4815, -113.0095},
-                         {"Kolob forest", 37.4940, -113.0080},
-                         {"slickrock", 37.1907, -112.9185}};
+const Place kPlaces[] = {
+    {"Kolob meadow", 37.4815, -113.0095}, {"Kolob forest", 37.4940, -113.0080}, {"slickrock", 37.1907, -112.9185}};
 
 Result<fs::path> zionImport(const std::string& name, const std::string& args) {
   return testing::cachedFixture(name, testing::vegstreamKey(), [args](const fs::path& out) -> Status {
@@ -109,10 +108,11 @@ TEST_F(ZionReflectance, TilesHoldTheGroundsSurfaceReflectance) {
       c[k] = got[k].srgb8();
     }
     const auto w = want.srgb8();
-    std::printf("%-13s (%3d, %3d, %3d) | (%3d, %3d, %3d) %5.2f | (%3d, %3d, %3d) dE %5.2f | (%3d, %3d, %3d) dE %5.2f | "
-                "(%3d, %3d, %3d) dE %5.2f\n",
-                p.name, w[0], w[1], w[2], c[0][0], c[0][1], c[0][2], dE[0], c[1][0], c[1][1], c[1][2], dE[1], c[2][0],
-                c[2][1], c[2][2], dE[2], c[3][0], c[3][1], c[3][2], dE[3]);
+    std::printf(
+        "%-13s (%3d, %3d, %3d) | (%3d, %3d, %3d) %5.2f | (%3d, %3d, %3d) dE %5.2f | (%3d, %3d, %3d) dE %5.2f | "
+        "(%3d, %3d, %3d) dE %5.2f\n",
+        p.name, w[0], w[1], w[2], c[0][0], c[0][1], c[0][2], dE[0], c[1][0], c[1][1], c[1][2], dE[1], c[2][0], c[2][1],
+        c[2][2], dE[2], c[3][0], c[3][1], c[3][2], dE[3]);
     EXPECT_LE(dE[1], 3.0) << p.name << ": the radiometry alone";
     EXPECT_LE(dE[3], 3.0) << p.name << ": the albedo lit by the acquisition sun";
     if (std::string(p.name) != "slickrock") {
