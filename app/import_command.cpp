@@ -4,6 +4,8 @@
 #include "app/import_command.h"
 
 #include <atomic>
+#include <cmath>
+#include <cstdlib>
 #include <csignal>
 #include <cstdio>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/exit_codes.h"
+#include "datasets/deshading_plan.h"
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
 #include "datasets/xyz_import.h"
@@ -45,6 +48,56 @@ std::vector<fs::path> splitList(const std::string& text) {
   for (std::string item; std::getline(ss, item, ',');)
     if (!item.empty()) out.emplace_back(item);
   return out;
+}
+
+// A finite number, the whole text: "--reflectance-scale 'nan': expected a finite number".
+Result<double> numberOption(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    std::string m = flag;
+    m += " '";
+    m += text;
+    m += "': expected a finite number";
+    return userError(m);
+  }
+  return v;
+}
+
+// --radiometry, --reflectance-scale/-offset, --imagery-datetime, --imagery-sun, --deshading.
+Status radiometryOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& g) {
+  auto method = datasets::parseRadiometryMethod(o.radiometry);
+  if (!method) return method.error();
+  g.imagery.radiometry.method = *method;
+  if (!o.reflectanceScale.empty()) {
+    auto v = numberOption("--reflectance-scale", o.reflectanceScale);
+    if (!v) return v.error();
+    if (*v <= 0.0) return userError("--reflectance-scale '" + o.reflectanceScale + "': expected a number above 0");
+    g.imagery.radiometry.scale = *v;
+  }
+  if (!o.reflectanceOffset.empty()) {
+    auto v = numberOption("--reflectance-offset", o.reflectanceOffset);
+    if (!v) return v.error();
+    g.imagery.radiometry.offset = *v;
+  }
+  if (!o.imageryDatetime.empty()) {
+    if (auto ms = datasets::imageryUnixMs(o.imageryDatetime); !ms) return ms.error();
+    g.imageryDatetime = o.imageryDatetime;
+  }
+  if (!o.imagerySun.empty()) {
+    const auto comma = o.imagerySun.find(',');
+    auto az = numberOption("--imagery-sun", o.imagerySun.substr(0, comma));
+    auto el = numberOption("--imagery-sun", comma == std::string::npos ? "" : o.imagerySun.substr(comma + 1));
+    if (!az || !el || *az < 0.0 || *az >= 360.0 || *el < -90.0 || *el > 90.0)
+      return userError("--imagery-sun '" + o.imagerySun +
+                       "': expected AZIMUTH,ELEVATION in degrees (0 <= azimuth < 360 clockwise from north, "
+                       "-90 … 90)");
+    g.imagerySun = datasets::SunAngles{*az, *el};
+  }
+  if (o.deshading != "on" && o.deshading != "off")
+    return userError("--deshading '" + o.deshading + "': expected on or off");
+  g.deshade = o.deshading == "on";
+  return {};
 }
 
 Result<datasets::ImageryFormat> imageryFormatOption(const std::string& text, datasets::ImageryFormat fallback) {
@@ -89,6 +142,7 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
     g.imagery.stretch = *s;
   }
   g.imagery.maxPixels = o.maxPixels;
+  if (auto r = radiometryOptions(o, g); !r) return r.error();
   if (!o.imageryNir.empty()) {
     datasets::NirInput nir;
     nir.file = o.imageryNir;
@@ -161,7 +215,30 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
                   "Near-infrared GeoTIFF (one band, any supported CRS) → an NDVI layer with the imagery's red");
   cmd->add_option("--imagery-nir-crs", o.imageryNirCrs,
                   "The NIR file's CRS (EPSG:N) when its GeoKeys are missing or wrong");
-  cmd->add_option("--stretch", o.stretch, "Colour stretch to 0…255: percentiles p1,p99 or values LO,HI");
+  cmd->add_option("--stretch", o.stretch,
+                  "Display stretch to 0…255 (with --radiometry stretch or auto): percentiles p1,p99 or values LO,HI");
+  cmd->add_option("--radiometry", o.radiometry,
+                  "What the imagery's numbers are: reflectance (DN x scale + offset, dark-object subtracted, "
+                  "stored as sRGB-encoded albedo), srgb (8-bit photographs, as stored), stretch (display colours, "
+                  "not albedo), or auto: 8-bit -> srgb; Landsat digital numbers (a product or scene id such as "
+                  "LC08_L1TP_... or LC80380342015230LGN00, or 'landsat', in the file names, and values that scale "
+                  "to reflectances) -> reflectance; other data beyond 8 bits -> stretch")
+      ->capture_default_str();
+  cmd->add_option("--reflectance-scale", o.reflectanceScale,
+                  "Reflectance per digital number (default 2e-5, Landsat 8/9 Level-1; 2.75e-5 when the names say "
+                  "Level-2)");
+  cmd->add_option("--reflectance-offset", o.reflectanceOffset,
+                  "Reflectance at digital number 0 (default -0.1, Landsat 8/9 Level-1; -0.2 for Level-2)");
+  cmd->add_option("--imagery-datetime", o.imageryDatetime,
+                  "When the imagery was taken, ISO 8601 with a zone (2015-08-18T17:58:00Z): recorded, and its sun "
+                  "de-shades the imagery");
+  cmd->add_option("--imagery-sun", o.imagerySun,
+                  "The acquisition sun as AZIMUTH,ELEVATION degrees (a Landsat MTL's SUN_AZIMUTH, SUN_ELEVATION); "
+                  "wins over --imagery-datetime's");
+  cmd->add_option("--deshading", o.deshading,
+                  "on: take the acquisition shading out of reflectance and srgb imagery with the DEM's normals and "
+                  "the sun (stated, from --imagery-datetime, or estimated from the imagery); off: keep it")
+      ->capture_default_str();
   cmd->add_option("--height-resampling", o.heightResampling,
                   "bilinear, or cubic (Catmull-Rom: keeps the DEM's values at its pixel centres without kinks)")
       ->capture_default_str();
@@ -204,10 +281,11 @@ int runImport(const ImportOptions& o, const Logger& log) {
     auto g = geoTiffOptions(o);
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
-    if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty())
+    if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty() ||
+        !o.imageryDatetime.empty() || !o.imagerySun.empty() || o.radiometry != "auto")
       meta = userError(
-          "--imagery, --imagery-bands, --imagery-nir and --stretch go with --dem; use --xyz-imagery with "
-          "--xyz-elevation");
+          "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime and "
+          "--imagery-sun go with --dem; use --xyz-imagery with --xyz-elevation");
     else
       meta = runXyz(o, log, progress);
   }

@@ -21,6 +21,12 @@ struct ImportOptions {
   std::string imageryNir, imageryNirCrs;  // near-infrared band → the NDVI layer
   double demNodata = 0.0;
   std::string heightResampling = "bilinear";
+  // Imagery radiometry and de-shading (datasets/radiometry.h, deshading_plan.h).
+  std::string radiometry = "auto";
+  std::string reflectanceScale, reflectanceOffset;  // empty: the defaults of the radiometry
+  std::string imageryDatetime;                      // ISO 8601 with a zone
+  std::string imagerySun;                           // "AZ,EL" degrees
+  std::string deshading = "on";
   // XYZ form.
   std::string xyzElevation, xyzImagery;
   // Both.

@@ -3,6 +3,7 @@
 #include "app/sample_dataset.h"
 
 #include <cstdlib>
+#include <string_view>
 
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
@@ -10,6 +11,10 @@
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
+
+namespace {
+constexpr std::string_view kZionImageryDatetime = "2015-08-18T17:58:00Z";
+}  // namespace
 
 std::string samplesDirFromEnvironment(const std::string& compiledIn) {
   const char* env = std::getenv("VEGSTREAM_SAMPLES_DIR");
@@ -21,11 +26,16 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   const fs::path zion = samplesDir / "zion";
   const bool withNir = fs::exists(zion / "landsat_b5.tif", ec);
   if (fs::exists(datasetDir / "dataset.json", ec)) {
-    // An import made before the near-infrared layer existed is this program's own cache:
-    // imported again, so the species use NDVI (issue 18). Anything else there is left alone.
+    // An import made before the near-infrared layer (issue 18) or the reflectance radiometry
+    // (issue 39) existed is this program's own cache: imported again, so the species use NDVI
+    // and the tiles hold albedo. Anything else there is left alone.
     auto meta = datasets::readDatasetMeta(datasetDir);
-    if (!meta || meta->ndvi || !withNir || meta->name != "zion") return datasetDir;
-    log->info("{} has no near-infrared layer: importing the Zion sample again", datasetDir.string());
+    if (!meta || meta->name != "zion") return datasetDir;
+    const bool stale = (!meta->ndvi && withNir) || !meta->radiometry || meta->imageryDatetime.empty();
+    if (!stale) return datasetDir;
+    log->info("{} was imported by an older vegstream (no NDVI layer or no reflectance): importing the Zion sample "
+              "again",
+              datasetDir.string());
     fs::remove_all(datasetDir, ec);
     if (ec) return makeError(ErrorKind::Io, datasetDir.string() + ": cannot remove the old import: " + ec.message());
   }
@@ -37,7 +47,11 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   datasets::GeoTiffImportOptions o;
   o.dem = zion / "srtm.tif";
   o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
-  o.imagery.stretch = datasets::Stretch{};  // 1st–99th percentiles
+  // Landsat 8 digital numbers → surface reflectance (DN × 2e-5 − 0.1, dark-object subtracted),
+  // de-shaded under the sun of the scene's acquisition: LC80380342015230LGN00, 2015-08-18 at
+  // about 17:58 UTC.
+  o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;
+  o.imageryDatetime = std::string(kZionImageryDatetime);
   if (withNir) o.nir = datasets::NirInput{zion / "landsat_b5.tif"};  // NDVI for the species
   o.heightResampling = datasets::HeightResampling::Cubic;
   o.out = datasetDir;

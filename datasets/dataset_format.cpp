@@ -8,13 +8,20 @@
 //     "min_height_m": 1024.0, "max_height_m": 2892.0,
 //     "elevation": { "encoding": "terrarium", "tiles": "elevation/{z}/{x}/{y}.png", "tile_count": N },
 //     "imagery":   { "format": "jpeg", "tiles": "imagery/{z}/{x}/{y}.jpg", "tile_count": N,
-//                    "datetime": "2015-08-18T17:58:00Z" (optional: when it was taken) }  (or null)
+//                    "datetime": "2015-08-18T17:58:00Z" (optional: when it was taken),
+//                    "radiometry": { "method": "reflectance", "scale": 2e-5, "offset": -0.1,
+//                                    "dark_object": [r, g, b], "dark_object_percentile": 0.01,
+//                                    "dark_object_reflectance": 0.01,
+//                                    "deshading": { "source": "imagery datetime", "sun_azimuth_deg": …,
+//                                                   "sun_elevation_deg": …, "direct_fraction": 0.8,
+//                                                   "note": "…" } } (optional) }  (or null)
 //     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
 //     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
 //
 // "ndvi" (import --imagery-nir) came after format version 1 was fixed: a dataset.json without
 // the key reads as one without an NDVI layer, so datasets written before it keep working; a key
-// that is there is checked like every other field. "ndvi8" is tile_codec.h's ndviToByte.
+// that is there is checked like every other field. The same holds for "imagery.datetime" and
+// "imagery.radiometry" (and each of radiometry's own keys but "method"). "ndvi8" is tile_codec.h's ndviToByte.
 
 #include "datasets/dataset_format.h"
 
@@ -86,6 +93,58 @@ class FieldReader {
     target = std::move(*r_);         \
   } while (0)
 
+// An optional number: absent or null → nullopt; otherwise checked like number().
+Result<std::optional<double>> optionalNumber(const json& obj, const std::string& key, const std::string& field,
+                                             double lo, double hi, const FieldReader& f) {
+  auto it = obj.find(key);
+  if (it == obj.end() || it->is_null()) return std::optional<double>{};
+  auto v = f.number(obj, key, field, lo, hi);
+  if (!v) return v.error();
+  return std::optional<double>(*v);
+}
+
+Result<DeshadingRecord> parseDeshading(const json& d, const FieldReader& f) {
+  const std::string at = "imagery.radiometry.deshading";
+  if (!d.is_object()) return f.bad(at, "must be an object");
+  DeshadingRecord r;
+  VEG_TRY_ASSIGN(r.source, f.text(d, "source", at + ".source"));
+  if (r.source != "imagery datetime" && r.source != "given" && r.source != "estimated" && r.source != "none")
+    return f.bad(at + ".source", concat("is '", r.source, "'; expected imagery datetime, given, estimated or none"));
+  if (auto n = d.find("note"); n != d.end() && !n->is_null()) VEG_TRY_ASSIGN(r.note, f.text(d, "note", at + ".note"));
+  if (r.source == "none") return r;
+  VEG_TRY_ASSIGN(r.sunAzimuthDeg, f.number(d, "sun_azimuth_deg", at + ".sun_azimuth_deg", 0.0, 360.0));
+  VEG_TRY_ASSIGN(r.sunElevationDeg, f.number(d, "sun_elevation_deg", at + ".sun_elevation_deg", -90.0, 90.0));
+  VEG_TRY_ASSIGN(r.directFraction, f.number(d, "direct_fraction", at + ".direct_fraction", 0.0, 1.0));
+  return r;
+}
+
+Result<RadiometryRecord> parseRadiometry(const json& r, const FieldReader& f) {
+  const std::string at = "imagery.radiometry";
+  if (!r.is_object()) return f.bad(at, "must be an object");
+  RadiometryRecord m;
+  VEG_TRY_ASSIGN(m.method, f.text(r, "method", at + ".method"));
+  if (m.method != "reflectance" && m.method != "srgb" && m.method != "stretch")
+    return f.bad(at + ".method", concat("is '", m.method, "'; expected reflectance, srgb or stretch"));
+  constexpr double kBig = 1e12;
+  VEG_TRY_ASSIGN(m.scale, optionalNumber(r, "scale", at + ".scale", 0.0, kBig, f));
+  VEG_TRY_ASSIGN(m.offset, optionalNumber(r, "offset", at + ".offset", -kBig, kBig, f));
+  VEG_TRY_ASSIGN(m.darkObjectPercentile,
+                 optionalNumber(r, "dark_object_percentile", at + ".dark_object_percentile", 0.0, 100.0, f));
+  VEG_TRY_ASSIGN(m.darkObjectReflectance,
+                 optionalNumber(r, "dark_object_reflectance", at + ".dark_object_reflectance", 0.0, 1.0, f));
+  if (auto d = r.find("dark_object"); d != r.end() && !d->is_null()) {
+    if (!d->is_array() || d->size() != 3) return f.bad(at + ".dark_object", "must be an array of 3 numbers");
+    std::array<double, 3> v{};
+    for (size_t i = 0; i < 3; ++i) {
+      if (!(*d)[i].is_number()) return f.bad(at + ".dark_object", "must be an array of 3 numbers");
+      v[i] = (*d)[i].get<double>();
+    }
+    m.darkObject = v;
+  }
+  if (auto d = r.find("deshading"); d != r.end() && !d->is_null()) VEG_TRY_ASSIGN(m.deshading, parseDeshading(*d, f));
+  return m;
+}
+
 Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
   DatasetMeta m;
@@ -148,6 +207,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     m.imageryTiles = static_cast<uint64_t>(count);
     if (auto dt = im->find("datetime"); dt != im->end() && !dt->is_null())
       VEG_TRY_ASSIGN(m.imageryDatetime, f.text(*im, "datetime", "imagery.datetime"));
+    if (auto r = im->find("radiometry"); r != im->end() && !r->is_null())
+      VEG_TRY_ASSIGN(m.radiometry, parseRadiometry(*r, f));
   }
 
   if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null()) {
@@ -183,6 +244,27 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
 
 #undef VEG_TRY_ASSIGN
 
+json radiometryJson(const RadiometryRecord& r) {
+  json j = {{"method", r.method}};
+  if (r.scale) j["scale"] = *r.scale;
+  if (r.offset) j["offset"] = *r.offset;
+  if (r.darkObject) j["dark_object"] = *r.darkObject;
+  if (r.darkObjectPercentile) j["dark_object_percentile"] = *r.darkObjectPercentile;
+  if (r.darkObjectReflectance) j["dark_object_reflectance"] = *r.darkObjectReflectance;
+  if (r.deshading) {
+    const DeshadingRecord& d = *r.deshading;
+    json dj = {{"source", d.source}};
+    if (d.source != "none") {
+      dj["sun_azimuth_deg"] = d.sunAzimuthDeg;
+      dj["sun_elevation_deg"] = d.sunElevationDeg;
+      dj["direct_fraction"] = d.directFraction;
+    }
+    if (!d.note.empty()) dj["note"] = d.note;
+    j["deshading"] = dj;
+  }
+  return j;
+}
+
 json toJson(const DatasetMeta& m) {
   json sources = json::array();
   for (const auto& s : m.sources)
@@ -193,6 +275,7 @@ json toJson(const DatasetMeta& m) {
                {"tiles", concat("imagery/{z}/{x}/{y}.", imageryExtension(*m.imagery))},
                {"tile_count", m.imageryTiles}};
     if (!m.imageryDatetime.empty()) imagery["datetime"] = m.imageryDatetime;
+    if (m.radiometry) imagery["radiometry"] = radiometryJson(*m.radiometry);
   }
   json ndvi = nullptr;
   if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};

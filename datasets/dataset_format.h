@@ -13,6 +13,7 @@
 // sampled at its centre, so any static server can serve a dataset and QGIS/MapLibre read it.
 // Tiles are written only where the source has data; a missing tile is "no data there".
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -42,6 +43,27 @@ struct SourceInfo {
   std::string description;  // size, pixel size, …
 };
 
+// How the imagery's acquisition shading was taken out (deshading.h): the sun it was taken under
+// and where that came from. dataset.json's "imagery.radiometry.deshading".
+struct DeshadingRecord {
+  std::string source = "none";  // "imagery datetime", "given" (--imagery-sun), "estimated" or "none"
+  double sunAzimuthDeg = 0.0;   // clockwise from north; unless source is "none"
+  double sunElevationDeg = 0.0;
+  double directFraction = 0.0;  // k of deshading.h
+  std::string note;             // why none, or how well the estimate fits; may be empty
+};
+
+// What the imagery's bytes mean (radiometry.h), dataset.json's "imagery.radiometry". Absent in
+// datasets imported before it existed (their bytes are display-stretched or as stored).
+struct RadiometryRecord {
+  std::string method;                               // "reflectance", "srgb" or "stretch"
+  std::optional<double> scale, offset;              // reflectance: ρ = DN · scale + offset
+  std::optional<std::array<double, 3>> darkObject;  // reflectance: each band's (R, G, B) dark object
+  std::optional<double> darkObjectPercentile;       // the percentile taken as the dark object
+  std::optional<double> darkObjectReflectance;      // the reflectance assumed for it
+  std::optional<DeshadingRecord> deshading;
+};
+
 struct DatasetMeta {
   int formatVersion = kDatasetFormatVersion;
   std::string name;
@@ -55,6 +77,7 @@ struct DatasetMeta {
   // When the imagery was taken, ISO 8601 with a zone (`import --imagery-datetime`, checked by
   // geo/datetime.h where it is used); empty: unknown. dataset.json's "imagery.datetime".
   std::string imageryDatetime;
+  std::optional<RadiometryRecord> radiometry;  // dataset.json's "imagery.radiometry" (optional)
   int tileSize = kTileSize;
   std::string attribution;
   std::vector<SourceInfo> sources;

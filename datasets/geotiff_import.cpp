@@ -13,6 +13,8 @@
 
 #include "core/atomic_file.h"
 #include "datasets/dataset_finish.h"
+#include "datasets/deshading_plan.h"
+#include "datasets/imagery_tiles.h"
 #include "datasets/message.h"
 #include "core/parallel_for.h"
 #include "datasets/source_grid.h"
@@ -32,27 +34,31 @@ struct TileOutcome {
 
 struct Sources {
   const SourceGrid& dem;
-  const SourceGrid* imagery;
-  const Raster* ndvi;  // on the imagery's grid (ndvi_source.h); null: no NDVI layer
+  const ImageryTiling* imagery;  // null: no imagery
+  const Raster* ndvi;            // on the imagery's grid (ndvi_source.h); null: no NDVI layer
 };
+
+// A max-zoom tile's heights (kTileSize², NaN = nodata).
+std::vector<float> tileHeights(const SourceGrid& dem, const geo::TileId& id, HeightResampling resampling) {
+  const auto demPx = dem.tilePixelsToSource(id, kTileSize);
+  std::vector<float> heights(demPx.size());
+  for (size_t i = 0; i < demPx.size(); ++i)
+    heights[i] = resampling == HeightResampling::Cubic ? sampleHeightCubic(dem.raster(), demPx[i])
+                                                       : sampleHeight(dem.raster(), demPx[i]);
+  return heights;
+}
 
 Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& src, const GeoTiffImportOptions& o,
                    TileOutcome& out) {
-  const int size = kTileSize;
-  const auto demPx = src.dem.tilePixelsToSource(id, size);
   HeightTile h;
   h.id = id;
-  h.size = size;
-  h.heights.resize(demPx.size());
-  for (size_t i = 0; i < demPx.size(); ++i) {
-    const float v = o.heightResampling == HeightResampling::Cubic ? sampleHeightCubic(src.dem.raster(), demPx[i])
-                                                                  : sampleHeight(src.dem.raster(), demPx[i]);
-    h.heights[i] = v;
-    if (std::isfinite(v)) {
-      out.minH = std::min(out.minH, v);
-      out.maxH = std::max(out.maxH, v);
-      out.elevation = true;
-    }
+  h.size = kTileSize;
+  h.heights = tileHeights(src.dem, id, o.heightResampling);
+  for (const float v : h.heights) {
+    if (!std::isfinite(v)) continue;
+    out.minH = std::min(out.minH, v);
+    out.maxH = std::max(out.maxH, v);
+    out.elevation = true;
   }
   if (out.elevation) {
     const fs::path p = elevationTilePath(dir, id);
@@ -60,19 +66,11 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& sr
     out.bytes += fileBytes(p);
   }
   if (!src.imagery) return {};
-  const auto imgPx = src.imagery->tilePixelsToSource(id, size);
+  const auto imgPx = src.imagery->grid->tilePixelsToSource(id, kTileSize);
   ColorTile c;
   c.id = id;
-  c.size = size;
-  c.rgba.assign(imgPx.size() * 4, 0);
-  std::array<float, 3> rgb{};
-  for (size_t i = 0; i < imgPx.size(); ++i) {
-    if (!sampleColour(src.imagery->raster(), imgPx[i], rgb)) continue;
-    for (size_t ch = 0; ch < 3; ++ch)
-      c.rgba[i * 4 + ch] = static_cast<uint8_t>(std::lround(std::clamp(rgb[ch], 0.f, 255.f)));
-    c.rgba[i * 4 + 3] = 255;
-    out.imagery = true;
-  }
+  c.size = kTileSize;
+  out.imagery = fillImageryTile(*src.imagery, imgPx, h.heights, c);
   if (out.imagery) {
     const fs::path p = imageryTilePath(dir, id, o.imageryFormat);
     if (auto s = writeColorTile(p, c, o.imageryFormat, o.jpegQuality); !s) return s;
@@ -91,6 +89,20 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& sr
     out.bytes += fileBytes(p);
   }
   return {};
+}
+
+// How the tiles sample the imagery, with the sun that de-shades it (deshading_plan.h), whose
+// record goes into imagery.radiometry.
+Result<ImageryTiling> imageryTiling(const GeoTiffImportOptions& o, PreparedImagery& imagery, const SourceGrid& grid,
+                                    const SourceGrid& dem, const std::vector<geo::TileId>& tiles, const Logger& log) {
+  ImageryTiling tiling{&grid, imagery.linear, std::nullopt, o.directFraction};
+  auto plan = planDeshading(
+      o, imagery.radiometry, tiling, tiles, dem.extent().centre(),
+      [&](const geo::TileId& id) { return tileHeights(dem, id, o.heightResampling); }, log);
+  if (!plan) return plan.error();
+  tiling.sun = plan->sun;
+  imagery.radiometry.deshading = plan->record;
+  return tiling;
 }
 
 std::string describe(const SourceGrid& g) {
@@ -130,6 +142,12 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     return makeError(ErrorKind::InvalidInput,
                      concat("--imagery-nir ", o.nir->file,
                             " needs imagery (--imagery or --imagery-bands): NDVI is computed with the imagery's red"));
+  if (!o.imageryDatetime.empty()) {
+    if (auto ms = imageryUnixMs(o.imageryDatetime); !ms) return ms.error();
+    if (!withImagery)
+      return makeError(ErrorKind::InvalidInput,
+                       "--imagery-datetime says when the imagery was taken, and no imagery was given");
+  }
 
   // DEM.
   ReadOptions ro;
@@ -204,15 +222,25 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   log->info("{}: {} ({:.1f} m pixels) → zoom {} ({:.1f} m pixels), {} tiles", o.dem.string(), demCrs->name(),
             demGrid->pixelSizeM(), maxZoom, geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
   if (imageryGrid)
-    log->info("{}: {} ({:.1f} m pixels{})", imagery->raster.path.string(), imageryGrid->crs().name(),
-              imageryGrid->pixelSizeM(), imagery->stretched ? ", stretched" : "");
+    log->info("{}: {} ({:.1f} m pixels), {}", imagery->raster.path.string(), imageryGrid->crs().name(),
+              imageryGrid->pixelSizeM(), imagery->radiometryChoice);
+  std::optional<ImageryTiling> tiling;
+  if (imageryGrid) {
+    auto t = imageryTiling(o, *imagery, *imageryGrid, *demGrid, tiles, log);
+    if (!t) return t.error();
+    tiling = *t;
+  }
 
   DatasetMeta meta;
   meta.name = o.name.empty() ? defaultDatasetName(o.out) : o.name;
   meta.bounds = bounds;
   meta.maxZoom = maxZoom;
   meta.elevationEncoding = o.encoding;
-  if (imageryGrid) meta.imagery = o.imageryFormat;
+  if (imageryGrid) {
+    meta.imagery = o.imageryFormat;
+    meta.imageryDatetime = o.imageryDatetime;
+    meta.radiometry = imagery->radiometry;
+  }
   meta.attribution = o.attribution;
   meta.sources.push_back({"elevation", o.dem.string(), demCrs->name(), describe(*demGrid)});
   if (imageryGrid) {
@@ -235,7 +263,7 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     progress.addTotal(tiles.size());
     progress.stage(concat("zoom ", maxZoom));
     std::vector<TileOutcome> outcomes(tiles.size());
-    const Sources src{*demGrid, imageryGrid ? &*imageryGrid : nullptr, ndvi ? &ndvi->raster : nullptr};
+    const Sources src{*demGrid, tiling ? &*tiling : nullptr, ndvi ? &ndvi->raster : nullptr};
     Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
       if (o.cancel && o.cancel->load())
         return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");

@@ -25,6 +25,7 @@
 #include "core/result.h"
 #include "core/task_runner.h"
 #include "datasets/dataset_format.h"
+#include "datasets/deshading.h"
 #include "datasets/imagery_source.h"
 #include "datasets/ndvi_source.h"
 #include "datasets/progress.h"
@@ -46,6 +47,16 @@ struct GeoTiffImportOptions {
   ImageryInput imagery;             // neither file nor bands: no imagery
   std::optional<NirInput> nir;      // --imagery-nir: an NDVI layer (needs imagery)
   HeightResampling heightResampling = HeightResampling::Bilinear;
+  // When the imagery was taken (--imagery-datetime, ISO 8601 with a zone; empty: unknown):
+  // recorded in dataset.json, and the sun at the dataset's centre then de-shades the imagery.
+  std::string imageryDatetime;
+  // The acquisition sun as stated (--imagery-sun AZ,EL, e.g. a Landsat MTL's SUN_AZIMUTH and
+  // SUN_ELEVATION): wins over the datetime's.
+  std::optional<SunAngles> imagerySun;
+  // De-shade reflectance and sRGB imagery (deshading.h) under the acquisition sun: from
+  // imagerySun, else imageryDatetime, else estimated (sun_estimate.h). Off: --deshading off.
+  bool deshade = true;
+  double directFraction = kDirectFraction;
 
   std::filesystem::path out;
   std::string name;  // empty: the last component of `out`

@@ -1,5 +1,5 @@
 // Reading and normalising imagery for the importer (imagery_source.h): bands merged, nodata
-// made NaN, digital numbers stretched to 0 … 255.
+// made NaN, digital numbers turned into reflectance (radiometry.h) or stretched to 0 … 255.
 
 #include "datasets/imagery_source.h"
 
@@ -13,13 +13,6 @@
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
-
-// The value at percentile p (0 … 100) of `values` (reordered).
-double percentile(std::vector<float>& values, double p) {
-  const size_t k = static_cast<size_t>(std::llround(p / 100.0 * static_cast<double>(values.size() - 1)));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
 
 bool sameGrid(const Raster& a, const Raster& b) {
   return a.width == b.width && a.height == b.height && a.georef.epsg == b.georef.epsg &&
@@ -104,64 +97,98 @@ Result<Stretch> parseStretch(const std::string& text) {
                                                    "sample values LO,HI with LO < HI (e.g. 6700,18300)"));
 }
 
-Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& log) {
-  assert(input.file.has_value() != !input.bands.empty());
-  auto merged = readMerged(input);
-  if (!merged) return merged.error();
-  PreparedImagery out;
-  out.raster = std::move(*merged);
-  Raster& r = out.raster;
-  const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+namespace {
 
-  float lo = INFINITY, hi = -INFINITY;
-  size_t valid = 0;
-  for (size_t p = 0; p < count; ++p) {
-    if (std::isnan(r.samples[p * 3])) continue;
-    ++valid;
+// Extremes, 1st / 99th percentiles and integrality of the valid samples of all three channels.
+ImageryValues valuesOf(const Raster& r) {
+  ImageryValues v{INFINITY, -INFINITY, 0.0, 0.0, true};
+  std::vector<float> all;
+  all.reserve(r.samples.size());
+  for (size_t p = 0; p + 2 < r.samples.size(); p += 3) {
+    if (std::isnan(r.samples[p])) continue;
     for (size_t c = 0; c < 3; ++c) {
-      lo = std::min(lo, r.samples[p * 3 + c]);
-      hi = std::max(hi, r.samples[p * 3 + c]);
+      const float x = r.samples[p + c];
+      v.lo = std::min(v.lo, x);
+      v.hi = std::max(v.hi, x);
+      v.integers = v.integers && x == std::floor(x);
+      all.push_back(x);
     }
   }
-  if (valid == 0) return makeError(ErrorKind::InvalidInput, concat(r.path, " has no valid imagery pixel (all nodata)"));
-  if (input.keepRawRed) {
-    out.rawRed.resize(count);
-    for (size_t p = 0; p < count; ++p) out.rawRed[p] = r.samples[p * 3];
-  }
+  if (all.empty()) return v;
+  v.p1 = percentile(all, 1.0);
+  v.p99 = percentile(all, 99.0);
+  return v;
+}
 
-  std::optional<Stretch> stretch = input.stretch;
-  if (!stretch && (lo < 0.0f || hi > 255.0f)) {
-    stretch = Stretch{};
-    log->info("{}: values {} … {} exceed 8 bits and no --stretch was given: stretching p1,p99", r.path.string(), lo,
-              hi);
-  }
-  out.stretched = stretch.has_value();
+// Each band between its stretch range onto 0 … 255 (out.ranges).
+void applyStretch(const Stretch& stretch, PreparedImagery& out) {
+  Raster& r = out.raster;
+  const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
   for (size_t c = 0; c < 3; ++c) {
-    double a = 0.0, b = 255.0;
-    if (stretch && stretch->kind == Stretch::Kind::Fixed) {
-      a = stretch->lo;
-      b = stretch->hi;
-    } else if (stretch) {
+    double a = stretch.lo, b = stretch.hi;
+    if (stretch.kind == Stretch::Kind::Percentile) {
       std::vector<float> values;
-      values.reserve(valid);
       for (size_t p = 0; p < count; ++p)
         if (!std::isnan(r.samples[p * 3 + c])) values.push_back(r.samples[p * 3 + c]);
-      a = percentile(values, stretch->lo);
-      b = percentile(values, stretch->hi);
+      a = percentile(values, stretch.lo);
+      b = percentile(values, stretch.hi);
       if (!(b > a)) b = a + 1.0;  // a flat band: everything at or above a is white
     }
     out.ranges[c] = {a, b};
-    if (!stretch) continue;
     const double scale = 255.0 / (b - a);
     for (size_t p = 0; p < count; ++p) {
       float& v = r.samples[p * 3 + c];
       if (!std::isnan(v)) v = static_cast<float>(std::clamp((v - a) * scale, 0.0, 255.0));
     }
   }
-  out.description = out.stretched ? std::string() : std::string("8-bit colour as stored");
-  if (out.stretched) {
-    out.description += concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…",
-                              out.ranges[1][1], ", B ", out.ranges[2][0], "…", out.ranges[2][1]);
+  out.stretched = true;
+  out.description =
+      concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…", out.ranges[1][1],
+             ", B ", out.ranges[2][0], "…", out.ranges[2][1], " (display colours, not albedo)");
+}
+
+void applyReflectance(const RadiometryChoice& choice, PreparedImagery& out) {
+  const std::array<double, 3> dark = toSurfaceReflectance(out.raster.samples, choice.scale, choice.offset);
+  out.linear = true;
+  RadiometryRecord& rec = out.radiometry;
+  rec.scale = choice.scale;
+  rec.offset = choice.offset;
+  rec.darkObject = dark;
+  rec.darkObjectPercentile = kDarkObjectPercent;
+  rec.darkObjectReflectance = kDarkObjectReflectance;
+  out.description = concat("surface reflectance DN x ", choice.scale, " + ", choice.offset,
+                           ", dark-object subtracted (dark objects R ", dark[0], ", G ", dark[1], ", B ", dark[2], ")");
+}
+
+}  // namespace
+
+Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& /*log*/) {
+  assert(input.file.has_value() != !input.bands.empty());
+  auto merged = readMerged(input);
+  if (!merged) return merged.error();
+  PreparedImagery out;
+  out.raster = std::move(*merged);
+  Raster& r = out.raster;
+  const ImageryValues values = valuesOf(r);
+  if (!(values.lo <= values.hi))
+    return makeError(ErrorKind::InvalidInput, concat(r.path, " has no valid imagery pixel (all nodata)"));
+  std::vector<fs::path> files = input.bands;
+  if (input.file) files = {*input.file};
+  auto choice = chooseRadiometry(input.radiometry, input.stretch.has_value(), files, values);
+  if (!choice) return choice.error();
+  out.radiometryChoice = concat("radiometry ", toString(choice->method), " (", choice->why, ")");
+  if (input.keepRawRed) {
+    const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+    out.rawRed.resize(count);
+    for (size_t p = 0; p < count; ++p) out.rawRed[p] = r.samples[p * 3];
+  }
+  out.radiometry.method = toString(choice->method);
+  if (choice->method == RadiometryMethod::Reflectance) {
+    applyReflectance(*choice, out);
+  } else if (choice->method == RadiometryMethod::Stretch) {
+    applyStretch(input.stretch.value_or(Stretch{}), out);
+  } else {
+    out.description = "8-bit sRGB colour as stored";
   }
   return out;
 }
