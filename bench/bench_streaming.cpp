@@ -38,7 +38,8 @@ struct Zion {
     datasets::GeoTiffImportOptions o;
     o.dem = zion / "srtm.tif";
     o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
-    o.imagery.stretch = datasets::Stretch{};
+    o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;  // as the demo imports it
+    o.imageryDatetime = "2015-08-18T17:58:00Z";
     o.maxZoom = 12;
     o.out = dir;
     datasets::NullProgress progress;

@@ -49,7 +49,7 @@ fs::path importZion(const fs::path& dir) {
   const fs::path out = dir / "zion";
   const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
   const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                              "landsat_b3.tif," + z + "landsat_b2.tif --stretch p1,p99 --out '" + out.string() + "'");
+                              "landsat_b3.tif," + z + "landsat_b2.tif --radiometry reflectance --imagery-datetime 2015-08-18T17:58:00Z --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   return out;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The Zion sample with its NDVI layer (SRTM heights, Landsat bands 4-3-2 stretched p1–p99, band 5
+// The Zion sample with its NDVI layer (SRTM heights, Landsat bands 4-3-2 as de-shaded reflectance, band 5
 // for the NDVI), imported in process by this test program's own importer once for all its test
 // processes (cachedFixture keyed by the program): the ground the tree tests read.
 
@@ -19,7 +19,8 @@ inline Result<std::filesystem::path> zionWithNdvi() {
     datasets::GeoTiffImportOptions o;
     o.dem = zion / "srtm.tif";
     o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
-    o.imagery.stretch = datasets::Stretch{};
+    o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;  // as the demo imports it
+    o.imageryDatetime = "2015-08-18T17:58:00Z";
     datasets::NirInput nir;
     nir.file = zion / "landsat_b5.tif";
     o.nir = nir;

@@ -41,13 +41,14 @@ inline Result<datasets::DatasetMeta> makeSynthetic(const fs::path& out) {
   return datasets::generateSyntheticDataset(o, makeNullLogger(), progress);
 }
 
-// The Zion sample (SRTM + Landsat bands 4/3/2, stretched p1–p99, JPEG imagery) at zoom ≤ 12.
+// The Zion sample (SRTM + Landsat bands 4/3/2, as de-shaded reflectance, JPEG imagery) at zoom ≤ 12.
 inline Result<datasets::DatasetMeta> importZion(const fs::path& out, int maxZoom = 12) {
   const fs::path zion = fs::path(VEGSTREAM_DATASETS_DIR) / "zion";
   datasets::GeoTiffImportOptions o;
   o.dem = zion / "srtm.tif";
   o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
-  o.imagery.stretch = datasets::Stretch{};
+  o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;  // as the demo imports it
+  o.imageryDatetime = "2015-08-18T17:58:00Z";
   o.heightResampling = datasets::HeightResampling::Cubic;
   o.maxZoom = maxZoom;
   o.out = out;

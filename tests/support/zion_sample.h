@@ -1,5 +1,5 @@
 #pragma once
-// The Zion sample (SRTM heights + Landsat bands 4-3-2, stretched p1–p99, and band 5 for the NDVI
+// The Zion sample (SRTM heights + Landsat bands 4-3-2 as de-shaded surface reflectance, and band 5 for the NDVI
 // layer, as the README imports it) imported by this build's vegstream, once for all the test processes (cachedFixture), on
 // first use — never at static-initialisation time, which also runs when the build lists the
 // tests. Tests must not change it.
@@ -18,7 +18,7 @@ inline Result<std::filesystem::path> zionSampleDataset() {
     const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
     const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
                                 "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z +
-                                "landsat_b5.tif --stretch p1,p99 --out '" + dir.string() + "'");
+                                "landsat_b5.tif --radiometry reflectance --imagery-datetime 2015-08-18T17:58:00Z --out '" + dir.string() + "'");
     if (r.exitCode != 0)
       return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
     return {};
