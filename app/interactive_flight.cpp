@@ -344,7 +344,8 @@ int Session::run() {
       const HudEdits edits = drawHud(hudState(nowS_));
       input.overlay = &overlay_.end();
       if (edits.wind) driver_.setWind(*edits.wind);  // this frame's step already uses it
-      if (edits.timeOfDayH)  // this frame's sun already (its lighting is prepared on submit)
+      // The slider's time of day: this frame's sun already (its lighting is prepared on submit).
+      if (edits.timeOfDayH)
         scene_.setStartDatetime(geo::addSeconds(atLocalHours(scene_.sunClock().at(nowS_), *edits.timeOfDayH), -nowS_));
     }
     auto index = driver_.submit(input);

@@ -171,7 +171,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
     log->warn("{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
               "--cpu-budget-mb / --gpu-budget-mb",
               still->fallbackPieces);
-  const std::string sidecar = scene::frameSidecarJson(still->record, width, height, so.exposureEv.has_value());
+  const std::string sidecar = scene::frameSidecarJson(still->record, width, height, scene);
   if (Status s = scene::writeFrameWithSidecar(o.out, still->image, sidecar); !s) return reportError(log, s.error());
 
   const render::ValidationLog* validation = scene.renderer().validationLog();

@@ -83,8 +83,8 @@ struct RecordingMeta {
   } plants;
   // The sun at flight time 0 (issue 39; frames.csv's sun_* columns follow it over the flight).
   struct Sun {
-    std::string datetime;        // ISO 8601, in the offset it was given in
-    std::string datetimeSource;  // option (--datetime or the path) | dataset (imagery.datetime) | default
+    std::string datetime;               // ISO 8601, in the offset it was given in
+    std::string datetimeSource;         // option (--datetime or the path) | dataset (imagery.datetime) | default
     double latDeg = 0.0, lonDeg = 0.0;  // seen from: the dataset's centre
     double azimuthDeg = 0.0, elevationDeg = 0.0;
   } sun;

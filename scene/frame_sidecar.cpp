@@ -33,8 +33,9 @@ fs::path sidecarPathFor(const fs::path& png) {
   return out.replace_extension(".json");
 }
 
-std::string frameSidecarJson(const FrameRecord& f, uint32_t width, uint32_t height, bool exposureFixed) {
+std::string frameSidecarJson(const FrameRecord& f, uint32_t width, uint32_t height, const Scene& scene) {
   const flight::FlightSample& p = f.pose;
+  const SunClock& clock = scene.sunClock();
   const json j = {{"pose",
                    {{"lat", p.position.latDeg},
                     {"lon", p.position.lonDeg},
@@ -44,9 +45,13 @@ std::string frameSidecarJson(const FrameRecord& f, uint32_t width, uint32_t heig
                     {"pitch_deg", p.pitchDeg}}},
                   {"vertical_fov_deg", f.verticalFovDeg},
                   {"datetime", geo::formatIsoDateTime(f.datetime)},
-                  {"sun", {{"azimuth_deg", f.sun.azimuthDeg}, {"elevation_deg", f.sun.elevationDeg}}},
+                  {"sun",
+                   {{"azimuth_deg", f.sun.azimuthDeg},
+                    {"elevation_deg", f.sun.elevationDeg},
+                    {"lat", clock.latDeg},
+                    {"lon", clock.lonDeg}}},
                   {"exposure_ev", f.exposureEv},
-                  {"exposure_mode", exposureFixed ? "fixed" : "automatic"},
+                  {"exposure_mode", scene.options().exposureEv ? "fixed" : "automatic"},
                   {"size", {{"width", width}, {"height", height}}},
                   {"counts", countsOf(f)}};
   return j.dump(2) + "\n";

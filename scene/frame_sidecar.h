@@ -4,7 +4,8 @@
 // field of view, the date-time and the sun (azimuth clockwise from north, elevation with
 // refraction), the exposure the frame was tone-mapped with, the image size and the frame's counts.
 // Keys (app/README.md "Stills"): pose {lat, lon, alt_m_msl, alt_m_above_ground, heading_deg,
-// pitch_deg}, vertical_fov_deg, datetime, sun {azimuth_deg, elevation_deg}, exposure_ev,
+// pitch_deg}, vertical_fov_deg, datetime, sun {azimuth_deg, elevation_deg, lat, lon (where it is
+// seen from: the dataset's centre)}, exposure_ev,
 // exposure_mode (fixed | automatic), size {width, height}, counts {terrain_triangles,
 // seed_triangles, plants, trees {full, reduced, impostor}} — a count the frame did not produce
 // (no plants, not read back on this device) is null.
@@ -21,8 +22,8 @@ namespace vegstream::scene {
 // F.json for F.png.
 std::filesystem::path sidecarPathFor(const std::filesystem::path& png);
 
-// The sidecar's text for a frame of width × height; `exposureFixed`: --exposure was given.
-std::string frameSidecarJson(const FrameRecord& frame, uint32_t width, uint32_t height, bool exposureFixed);
+// The sidecar's text for a frame of width × height that `scene` drew.
+std::string frameSidecarJson(const FrameRecord& frame, uint32_t width, uint32_t height, const Scene& scene);
 
 // Writes `png` and its sidecar: each to a temporary file renamed into place, the sidecar only
 // once the PNG is in place and the PNG removed again if the sidecar cannot be put beside it, so

@@ -116,8 +116,7 @@ class Pipeline {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05zu.png", p.frame);
       assert(color && "the renderer returns the colour read-back it was asked for");
-      const bool fixedExposure = driver_.scene().options().exposureEv.has_value();
-      const std::string sidecar = frameSidecarJson(record, color->width, color->height, fixedExposure);
+      const std::string sidecar = frameSidecarJson(record, color->width, color->height, driver_.scene());
       if (Status s = writeFrameWithSidecar(options_.framesDir / name, *color, sidecar); !s) return s.error();
       pngMs.back() = png.elapsedMs();
       excludedMs_ += pngMs.back();

@@ -37,9 +37,9 @@ struct Mistake {
 
 // The line states a problem, not just a name: one of the phrasings the parser and the commands use.
 bool saysTheProblem(const std::string& err) {
-  for (const char* phrase : {"not in range", "not in {", "is not a number", "is not a valid", "not expected",
-                             "is required", "required", "missing", "must be", "expected", "unknown subcommand",
-                             "does not exist", "no zone"})
+  for (const char* phrase :
+       {"not in range", "not in {", "is not a number", "is not a valid", "not expected", "is required", "required",
+        "missing", "must be", "expected", "unknown subcommand", "does not exist", "no zone"})
     if (err.find(phrase) != std::string::npos) return true;
   return false;
 }
