@@ -14,10 +14,12 @@ void addSunOptions(CLI::App& cmd, SunCli& out) {
   cmd.add_option("--datetime", out.datetime,
                  "When the flight starts (the sun's position; the flight's clock advances it), ISO 8601 with a zone, "
                  "e.g. 2015-08-18T17:58:00Z or 2026-06-21T06:45:00-06:00 (default: the flight path's datetime, else "
-                 "the imagery's acquisition time, else 10:00 local mean solar time on 21 June 2024)");
+                 "the imagery's acquisition time, else 10:00 local mean solar time on 21 June 2024)")
+      ->type_name("ISO-8601");
   cmd.add_option("--exposure", out.exposure,
                  "Fixed exposure, EV100, " + numberText(kMinExposureEv) + " … " + numberText(kMaxExposureEv) +
-                     " (default: automatic from each frame)");
+                     " (default: automatic from each frame)")
+      ->type_name("EV");
 }
 
 Result<SunSettings> checkSunOptions(const SunCli& cli) {
