@@ -182,13 +182,12 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
                                                     : "plants not counted on this device";
   const std::string frames = still->settled ? std::to_string(still->frames) + " frames to settle"
                                             : "not settled after " + std::to_string(still->frames) + " frames";
-  log->info("snapshot written to {} (and {}): {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out,
-            scene::sidecarPathFor(o.out).filename().string(), width, height, pose.heightAboveGroundM,
-            still->terrainTriangles, plants, frames);
+  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
+            height, pose.heightAboveGroundM, still->terrainTriangles, plants, frames);
   const geo::SolarPosition& sunAt = still->record.sun;
-  log->info("sun at {}: azimuth {:.2f}°, elevation {:.2f}° ({} date-time)",
-            geo::formatIsoDateTime(still->record.datetime), sunAt.azimuthDeg, sunAt.elevationDeg,
-            scene::toString(scene.sunClock().source));
+  log->info("sidecar {}: sun at {} ({} date-time), azimuth {:.2f}°, elevation {:.2f}°",
+            scene::sidecarPathFor(o.out).string(), geo::formatIsoDateTime(still->record.datetime),
+            scene::toString(scene.sunClock().source), sunAt.azimuthDeg, sunAt.elevationDeg);
   return validationErrors > 0 ? kExitFailure : kExitOk;
 }
 
