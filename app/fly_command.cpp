@@ -125,6 +125,8 @@ int runFly(FlyOptions o, const Logger& log) {
       !s)
     return reportError(log, s.error());
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
+  auto sun = checkSunOptions(o.sunCli);
+  if (!sun) return reportError(log, sun.error());
   if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
     return reportError(log, s.error());
   applyTreeOptions(o.treeCli, so);
@@ -156,6 +158,7 @@ int runFly(FlyOptions o, const Logger& log) {
   Window window;
   so.dataset = *dataset;
   so.simulation = o.simulation;
+  applySunOptions(*sun, given ? &*given : nullptr, so);
   applyRendererOptions({o.width, o.height, o.msaa, o.device, o.validate}, log, so);
   if (windowWanted && glfwInit() == GLFW_TRUE) {
     window.initialised = true;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/simulation_cli.h"
+#include "app/sun_cli.h"
 #include "app/tree_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
@@ -27,6 +28,7 @@ struct FlyOptions {
   StreamingCli streaming;  // --streaming default: settled headless (frames to look at), realtime in a window
   TreeCli treeCli;              // --trees, --tree-horizon-m, --tree-budget-mb as given
   SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  SunCli sunCli;                // --datetime, --exposure as given
   // What the simulation runs with: simulationCli over --path's wind section over the defaults
   // (resolveSimulationOptions); filled by runFly once --path is read, before the scene opens
   // (the default paths have no wind section).

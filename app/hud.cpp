@@ -75,7 +75,8 @@ void drawHelp() {
       {"] / [", "wind speed +/- 1 m/s (with Shift: 10 m/s)"},
       {". / ,", "wind direction +/- 15 degrees (where it comes from)"},
       {"' / ;", "gustiness +/- 0.1"},
-      {"Left mouse on the HUD", "drag the wind sliders"},
+      {"= / -", "time of day +/- 30 min (with Shift: 3 h)"},
+      {"Left mouse on the HUD", "drag the wind and time-of-day sliders"},
       {"C", "camera collider: walking / driving / off"},
       {"H", "hide / show the HUD"},
       {"F1", "this help"},
@@ -118,6 +119,18 @@ std::optional<simulation::WindOptions> drawSimulation(const HudState& s) {
   if (!changed) return std::nullopt;
   return clampWind(w);
 }
+
+// The sun's line and the time-of-day slider; the new local hours when it moved.
+std::optional<double> drawSun(const HudState& s) {
+  ImGui::TextUnformatted(s.sun.c_str());
+  double hours = s.timeOfDayH;
+  const double lo = 0.0, hi = 24.0;
+  ImGui::PushItemWidth(170.0f);
+  const bool changed = ImGui::SliderScalar("time of day (h)", ImGuiDataType_Double, &hours, &lo, &hi, "%.2f");
+  ImGui::PopItemWidth();
+  if (!changed) return std::nullopt;
+  return hours;
+}
 }  // namespace
 
 HudEdits drawHud(const HudState& s) {
@@ -156,6 +169,8 @@ HudEdits drawHud(const HudState& s) {
   ImGui::Text("follow terrain: %s", s.followTerrain ? "on" : "off");
   ImGui::Separator();
   edits.wind = drawSimulation(s);
+  ImGui::Separator();
+  edits.timeOfDayH = drawSun(s);
   ImGui::Separator();
   if (s.recording)
     ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "REC %.1f s, %zu keyframes", s.recordingS, s.recordedKeyframes);

@@ -2,7 +2,8 @@
 // What the interactive window shows over the terrain: frame rate and a frame-time graph, GPU
 // times (per pass only where the device's per-pass times mean something), counts, streaming
 // state, the camera's position, recording state, the shared simulation (the wind, with sliders
-// that change it, its CPU time, the camera's collider), and the F1 help. Counts that do not exist
+// that change it, its CPU time, the camera's collider), the sun with a time-of-day slider, and
+// the F1 help. Counts that do not exist
 // yet are shown as "—", never invented.
 
 #include <cstdint>
@@ -40,11 +41,15 @@ struct HudState {
   std::optional<double> cpuSimulationMs;               // its simulation step (empty while nothing simulates)
   std::string cameraCollider = "off";                  // camera_collider.h: off, walking, driving
   std::size_t pathColliders = 0, pathWindSources = 0;  // the flight path's own, moving on session time
+  // The sun (issue 39): time_of_day.h's describeSun line and the local time of day, hours.
+  std::string sun;
+  double timeOfDayH = 0.0;
 };
 
 // What the user changed on the HUD this frame (its sliders); empty: nothing.
 struct HudEdits {
   std::optional<simulation::WindOptions> wind;  // clamped (wind_controls.h clampWind)
+  std::optional<double> timeOfDayH;             // the time-of-day slider moved: local hours, 0 … 24
 };
 
 // Lays out the HUD in the current ImGui frame (between ImGuiOverlay::begin and end).

@@ -15,6 +15,7 @@
 #include "app/hud.h"
 #include "app/imgui_overlay.h"
 #include "app/path_recorder.h"
+#include "app/time_of_day.h"
 #include "app/wind_controls.h"
 #include "app/window_input.h"
 #include "core/stopwatch.h"
@@ -159,6 +160,10 @@ void Session::handleActions(const WindowActions& a, double now) {
     collider_ = nextCameraColliderMode(collider_);
     sayCollider(now);
   }
+  if (a.time.any()) {
+    scene_.setStartDatetime(stepTime(scene_.sunClock().start, a.time));
+    say("time: " + describeSun(scene_.sunClock().at(now), scene_.sunClock().sunAt(now)), now);
+  }
   if (a.wind.any()) {
     const simulation::WindOptions wind = stepWind(driver_.simulation().options().wind, a.wind);
     driver_.setWind(wind);
@@ -240,6 +245,9 @@ HudState Session::hudState(double now) const {
     if (std::isfinite(last_->simulationMs)) s.cpuSimulationMs = last_->simulationMs;
   }
   s.cameraCollider = cameraColliderName(collider_);
+  const scene::SunClock& sun = scene_.sunClock();
+  s.sun = describeSun(sun.at(now), sun.sunAt(now));
+  s.timeOfDayH = localHours(sun.at(now));
   if (pathSampler_) {
     s.pathColliders = pathSampler_->colliderCount();
     s.pathWindSources = pathSampler_->windSourceCount();
@@ -271,6 +279,7 @@ scene::FrameInput Session::frameInput() {
   previousPoseS_ = nowS_;
   input.pose = now;
   input.timeS = nowS_;
+  input.adaptExposure = true;  // only the window smooths the exposure over time
   addSimulationInputs(input);
   input.flightMs = watch.elapsedMs();
   return input;
@@ -335,6 +344,9 @@ int Session::run() {
       const HudEdits edits = drawHud(hudState(nowS_));
       input.overlay = &overlay_.end();
       if (edits.wind) driver_.setWind(*edits.wind);  // this frame's step already uses it
+      // The slider's time of day: this frame's sun already (its lighting is prepared on submit).
+      if (edits.timeOfDayH)
+        scene_.setStartDatetime(geo::addSeconds(atLocalHours(scene_.sunClock().at(nowS_), *edits.timeOfDayH), -nowS_));
     }
     auto index = driver_.submit(input);
     if (!index) return reportError(log_, index.error());

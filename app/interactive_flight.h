@@ -3,8 +3,9 @@
 // keyboard and mouse (window_input.h), the HUD (hud.h) drawn by the renderer's HUD pass,
 // screenshots (P) and flown-path recording (R), and the shared simulation's inputs: the wind
 // (keys and HUD sliders, wind_controls.h), a collider following the camera (C,
-// camera_collider.h) and the path's own colliders and wind sources. Controls are listed in
-// app/README.md and on F1.
+// camera_collider.h) and the path's own colliders and wind sources; the sun's time of day (= / -
+// keys and a HUD slider, time_of_day.h), with automatic exposure smoothed over time. Controls
+// are listed in app/README.md and on F1.
 //
 // For tests, three environment variables change a run without input devices:
 //   VEGSTREAM_FLY_SCREENSHOT_FRAME=N  takes a screenshot of frame N (1-based), as P would

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   app::addStreamingOptions(*flyCmd, fly.streaming, true);
   app::addSimulationOptions(*flyCmd, fly.simulationCli);
   app::addTreeOptions(*flyCmd, fly.treeCli);
+  app::addSunOptions(*flyCmd, fly.sunCli);
 
   app::ImportOptions importOptions;
   auto* importCmd = app::addImportCommand(cli, importOptions);

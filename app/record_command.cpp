@@ -61,6 +61,7 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   addStreamingOptions(*cmd, o.streaming, true);
   addSimulationOptions(*cmd, o.simulationCli);
   addTreeOptions(*cmd, o.treeCli);
+  addSunOptions(*cmd, o.sunCli);
   return cmd;
 }
 
@@ -72,6 +73,8 @@ int runRecord(RecordOptions o, const Logger& log) {
   if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
     return userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16");
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
+  auto sun = checkSunOptions(o.sunCli);
+  if (!sun) return reportError(log, sun.error());
   std::error_code ec;
   if (fs::exists(o.out, ec) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec)))
     return userError("--out " + o.out + " already exists and is not empty; choose another output directory");
@@ -96,6 +99,7 @@ int runRecord(RecordOptions o, const Logger& log) {
 
   so.dataset = *dataset;
   so.simulation = o.simulation;
+  applySunOptions(*sun, &*path, so);
   applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
   auto scene = scene::Scene::open(so);
   if (!scene) return reportError(log, scene.error());

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/simulation_cli.h"
+#include "app/sun_cli.h"
 #include "app/tree_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
@@ -35,6 +36,7 @@ struct RecordOptions {
   StreamingCli streaming;  // budgets, --streaming settled|realtime (default settled), look-ahead
   TreeCli treeCli;              // --trees, --tree-horizon-m, --tree-budget-mb as given
   SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  SunCli sunCli;                // --datetime, --exposure as given
   // What the simulation runs with: simulationCli over the path's wind section over the defaults
   // (resolveSimulationOptions); filled by runRecord once the path is read.
   simulation::SimulationOptions simulation;

@@ -52,6 +52,7 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     input.pose = pose;
     input.timeS = stepS * i;
     input.simulationTimeS = 0.0;
+    input.sunTimeS = 0.0;
     input.readbackColor = true;
     auto frame = driver.run(input);
     if (!frame) return frame.error();
@@ -62,6 +63,8 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     still.settled = still.unsettled.empty();
     log->debug("still frame {} at t = {:.2f} s: {}", i, input.timeS, still.settled ? "settled" : still.unsettled);
     if (frame->color) still.image = std::move(*frame->color);
+    frame->color.reset();
+    still.record = *frame;
     still.terrainTriangles = frame->terrainTriangles;
     still.fallbackPieces = frame->scene.terrain.fallbackPieces;
     still.plantsCounted = frame->vegetation && frame->vegetation->gpuCounts;
@@ -77,6 +80,7 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     scene::FrameInput input;
     input.pose = pose;
     input.timeS = stepS * (still.frames - 1);
+    input.sunTimeS = 0.0;
     for (int k = 1; k <= steps; ++k) {
       input.simulationTimeS = k * chunkS;
       if (Status s = driver.advanceSimulation(input); !s) return s.error();
@@ -86,6 +90,8 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     auto frame = driver.run(input);
     if (!frame) return frame.error();
     if (frame->color) still.image = std::move(*frame->color);
+    frame->color.reset();
+    still.record = *frame;
     still.plants = frame->vegetation && frame->vegetation->gpuCounts ? frame->vegetation->plantsTotal : still.plants;
   }
   if (still.image.rgba.empty()) return makeError(ErrorKind::Internal, "the renderer returned no colour read-back");

@@ -19,6 +19,7 @@
 #include "core/result.h"
 #include "flight/path_sampler.h"
 #include "render/frame_types.h"
+#include "scene/frame_driver.h"
 #include "scene/scene.h"
 
 namespace vegstream::app {
@@ -32,10 +33,13 @@ struct SettledStill {
   uint64_t plants = 0;     // plants drawn in the still (read back from the GPU)
   uint64_t terrainTriangles = 0;
   uint64_t fallbackPieces = 0;  // pieces of the still drawn from an ancestor's tiles (0: the finest wanted)
+  scene::FrameRecord record;    // the still's figures, its sun and exposure (its colour is `image`)
 };
 
 // Runs frames at `pose` (the scene should stream settled) until one changes nothing, at most
 // maxFrames; each frame's changes are logged at debug level (-v). GPU failures come back as errors.
+// The sun is the scene's at flight time 0 in every frame (FrameInput::sunTimeS): the still shows
+// the date-time it was asked for, however many frames it took to settle.
 // With simulationTimeS > 0 the settle frames hold the simulation at time 0; then the simulation
 // alone (scene::FrameDriver::advanceSimulation) runs in quarter-second steps of its fixed
 // sub-steps to simulationTimeS — the same sub-steps a 60 fps flight runs — and one more frame at

@@ -16,7 +16,7 @@
 #include "app/settled_still.h"
 #include "core/number_text.h"
 #include "datasets/dataset_format.h"
-#include "render/png_writer.h"
+#include "scene/frame_sidecar.h"
 #include "streaming/open_tile_source.h"
 
 namespace vegstream::app {
@@ -41,6 +41,8 @@ Status checkOut(const std::string& out) {
   std::error_code ec;
   if (fs::is_directory(p, ec)) return userError("--out " + out + " is a directory; give a file name ending in .png");
   if (ext != ".png") return userError("--out " + out + ": the still is written as PNG; give a file name ending in .png");
+  if (fs::is_directory(scene::sidecarPathFor(p), ec))
+    return userError("--out " + out + ": its sidecar " + scene::sidecarPathFor(p).string() + " is a directory");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir, ec)) return userError("--out " + out + ": directory " + dir.string() + " does not exist");
   return {};
@@ -100,6 +102,7 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   addStreamingOptions(*cmd, o.streaming, false);
   addSimulationOptions(*cmd, o.simulationCli);
   addTreeOptions(*cmd, o.treeCli);
+  addSunOptions(*cmd, o.sunCli);
   cmd->add_option("--time", o.timeS,
                   "Show the wind as it is S seconds into a flight held at this pose since 0 (0 … 600)")
       ->capture_default_str();
@@ -115,6 +118,8 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (Status s = checkPoseNumbers(o); !s) return reportError(log, s.error());
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
+  auto sun = checkSunOptions(o.sunCli);
+  if (!sun) return reportError(log, sun.error());
   if (!std::isfinite(o.timeS) || o.timeS < 0.0 || o.timeS > kMaxSimulationTimeS)
     return reportError(log, userError("--time " + numberText(o.timeS) + ": must be 0 … 600 seconds"));
   if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
@@ -136,6 +141,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
 
   so.dataset = *dataset;
   so.simulation = o.simulation;
+  applySunOptions(*sun, nullptr, so);
   applyRendererOptions({width, height, o.msaa, o.device, o.validate}, log, so);
   auto opened = scene::Scene::open(so);
   if (!opened) return reportError(log, opened.error());
@@ -165,7 +171,8 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
     log->warn("{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
               "--cpu-budget-mb / --gpu-budget-mb",
               still->fallbackPieces);
-  if (Status s = render::writePng(o.out, still->image); !s) return reportError(log, s.error());
+  const std::string sidecar = scene::frameSidecarJson(still->record, width, height, scene);
+  if (Status s = scene::writeFrameWithSidecar(o.out, still->image, sidecar); !s) return reportError(log, s.error());
 
   const render::ValidationLog* validation = scene.renderer().validationLog();
   const int validationErrors = validation ? validation->errors() : 0;
@@ -177,6 +184,10 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
                                             : "not settled after " + std::to_string(still->frames) + " frames";
   log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
             height, pose.heightAboveGroundM, still->terrainTriangles, plants, frames);
+  const geo::SolarPosition& sunAt = still->record.sun;
+  log->info("sidecar {}: sun at {} ({} date-time), azimuth {:.2f}°, elevation {:.2f}°",
+            scene::sidecarPathFor(o.out).string(), geo::formatIsoDateTime(still->record.datetime),
+            scene::toString(scene.sunClock().source), sunAt.azimuthDeg, sunAt.elevationDeg);
   return validationErrors > 0 ? kExitFailure : kExitOk;
 }
 

@@ -1,7 +1,12 @@
 #pragma once
 // `vegstream snapshot [DATASET] --lat L --lon L --alt A --heading H --pitch P --out F.png
-//  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [--time S] [wind,
-//  plant, streaming and terrain options of `record`]`: one still frame from a pose, as PNG.
+//  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [--time S]
+//  [--datetime ISO] [--exposure EV] [wind, plant, streaming and terrain options of `record`]`: one
+//  still frame from a pose, as PNG, with its sidecar F.json (scene/frame_sidecar.h: pose, field of
+//  view, date-time, sun, exposure, counts).
+//
+// --datetime sets the sun (scene/sun_clock.h; default: the imagery's acquisition time, else 10:00
+// local mean solar time on 21 June 2024); the sun stays at that date-time while the still settles.
 //
 // --time S shows the shared simulation (wind, gusts) as it is S seconds into a flight that has
 // stood at the pose since time 0: the same command always gives the same image.
@@ -12,12 +17,13 @@
 // (0 level, negative looks down). Streaming is settled and the still is taken only once the
 // scene has settled at the pose (app/settled_still.h): the finest tiles the view wants, no
 // geomorph or imagery fade under way. Every option, the dataset and the pose are checked before
-// the GPU is touched where they can be; the PNG is written to a temporary file beside --out and
-// renamed into place when complete.
+// the GPU is touched where they can be; the PNG and its sidecar are each written to a temporary
+// file beside --out and renamed into place when complete (the sidecar only once the PNG is).
 
 #include <string>
 
 #include "app/simulation_cli.h"
+#include "app/sun_cli.h"
 #include "app/tree_cli.h"
 #include "app/streaming_cli.h"
 #include "core/log.h"
@@ -44,6 +50,7 @@ struct SnapshotOptions {
   StreamingCli streaming;  // the plant, streaming and terrain options of `record` (settled)
   TreeCli treeCli;              // --trees, --tree-horizon-m, --tree-budget-mb as given
   SimulationCli simulationCli;  // --wind-speed, --wind-direction, --gustiness, --trail-budget-mb as given
+  SunCli sunCli;                // --datetime (the still's sun), --exposure as given
   // What the simulation runs with: simulationCli over the defaults (a still has no flight path);
   // filled by runSnapshot.
   simulation::SimulationOptions simulation;

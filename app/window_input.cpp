@@ -43,6 +43,7 @@ FlyInput WindowInput::poll(WindowActions& a) {
   a.wind.speedSteps = steps(GLFW_KEY_RIGHT_BRACKET, GLFW_KEY_LEFT_BRACKET);
   a.wind.directionSteps = steps(GLFW_KEY_PERIOD, GLFW_KEY_COMMA);
   a.wind.gustinessSteps = steps(GLFW_KEY_APOSTROPHE, GLFW_KEY_SEMICOLON);
+  a.time.steps = steps(GLFW_KEY_EQUAL, GLFW_KEY_MINUS);
 
   FlyInput in;
   in.forward = (down(GLFW_KEY_W) ? 1.0 : 0.0) - (down(GLFW_KEY_S) ? 1.0 : 0.0);
@@ -50,6 +51,7 @@ FlyInput WindowInput::poll(WindowActions& a) {
   in.up = (down(GLFW_KEY_E) ? 1.0 : 0.0) - (down(GLFW_KEY_Q) ? 1.0 : 0.0);
   in.fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
   a.wind.coarse = in.fast;
+  a.time.coarse = in.fast;
   in.wheelSteps = wheel_;
   wheel_ = 0.0;
 

@@ -6,6 +6,7 @@
 
 #include "app/fly_camera.h"
 #include "app/imgui_overlay.h"
+#include "app/time_of_day.h"
 #include "app/wind_controls.h"
 
 struct GLFWwindow;
@@ -21,6 +22,7 @@ struct WindowActions {
   bool toggleHud = false;     // H
   bool cycleCollider = false;  // C: camera collider off → walking → driving → off
   WindKeys wind;               // ] [ speed (Shift: ×10), . , direction, ' ; gustiness
+  TimeKeys time;               // = - the time of day ±30 min (Shift: ±3 h)
 };
 
 class WindowInput {

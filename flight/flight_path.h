@@ -12,6 +12,7 @@
 
 #include "core/result.h"
 #include "geo/bounds.h"
+#include "geo/datetime.h"
 
 namespace vegstream::flight {
 
@@ -76,6 +77,9 @@ struct FlightPath {
   std::vector<Keyframe> keyframes;  // at least two, t strictly increasing, first t = 0
   std::vector<Collider> colliders;
   std::optional<WindSection> wind;  // absent: no "wind" section
+  // When the flight starts (issue 39: the sun's date-time at t = 0, advancing with t); absent: the
+  // command line's --datetime, else the dataset's imagery time, else the default sun.
+  std::optional<geo::DateTime> datetime;
 
   // Seconds: the last keyframe's t (the first is at 0).
   double duration() const;

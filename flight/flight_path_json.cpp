@@ -242,6 +242,16 @@ Result<std::optional<WindSection>> readWind(const Reader& r, const json& doc) {
   return std::optional<WindSection>(std::move(wind));
 }
 
+// The optional top-level "datetime": ISO 8601 with a zone (geo/datetime.h).
+Result<std::optional<geo::DateTime>> readDatetime(const Reader& r, const json& doc) {
+  if (!doc.contains("datetime")) return std::optional<geo::DateTime>();
+  std::string text;
+  VEG_TRY_ASSIGN(text, r.string(doc, "", "datetime"));
+  auto t = geo::parseIsoDateTime(text);
+  if (!t) return r.fail("datetime", t.error().message, "datetime");
+  return std::optional<geo::DateTime>(*t);
+}
+
 std::string stemOf(const std::string& source) { return std::filesystem::path(source).stem().string(); }
 
 // Where a problem found on the model is reported: the field itself, else its parent object.
@@ -265,11 +275,13 @@ Result<FlightPath> readFlightPath(const json& doc, std::string_view text, const 
   const Reader r{sourceName, positions};
   if (const auto& dup = positions.firstDuplicate()) return r.fail(*dup, "key given twice", *dup);
   if (auto e = r.expectObject(doc, "")) return *e;
-  if (auto e = r.onlyKnownKeys(doc, "", {"name", "description", "keyframes", "colliders", "wind"})) return *e;
+  if (auto e = r.onlyKnownKeys(doc, "", {"name", "description", "datetime", "keyframes", "colliders", "wind"}))
+    return *e;
 
   FlightPath path;
   VEG_TRY_ASSIGN(path.name, r.string(doc, "", "name", stemOf(sourceName)));
   VEG_TRY_ASSIGN(path.description, r.string(doc, "", "description", std::string()));
+  VEG_TRY_ASSIGN(path.datetime, readDatetime(r, doc));
   const json* keys = nullptr;
   VEG_TRY_ASSIGN(keys, r.array(doc, "", "keyframes", false));
   for (std::size_t i = 0; i < keys->size(); ++i) {
@@ -351,6 +363,7 @@ std::string flightPathToJson(const FlightPath& path) {
   };
   std::string out = "{\n  \"name\": " + str(path.name) + ",\n";
   if (!path.description.empty()) out += "  \"description\": " + str(path.description) + ",\n";
+  if (path.datetime) out += "  \"datetime\": " + str(geo::formatIsoDateTime(*path.datetime)) + ",\n";
   out += "  \"keyframes\": [\n";
   for (std::size_t i = 0; i < path.keyframes.size(); ++i) {
     const Keyframe& k = path.keyframes[i];

@@ -93,6 +93,9 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
                         "tree_budget_bound", "tree_gpu_bytes"})
     c.push_back({n, 0});
   c.push_back({"tree_placement_ms", 4});
+  // The sun (issue 39, scene/sun_clock.h): seen from the dataset's centre at the frame's date-time.
+  c.push_back({"sun_azimuth_deg", 4});
+  c.push_back({"sun_elevation_deg", 4});
   return c;
 }
 

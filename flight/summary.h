@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,14 @@ struct RecordingMeta {
     std::string bladePathRequested;  // --blade-path: auto | tessellation | compute
     std::vector<std::string> species;  // names, in catalog order
   } plants;
+  // The sun at flight time 0 (issue 39; frames.csv's sun_* columns follow it over the flight).
+  struct Sun {
+    std::string datetime;               // ISO 8601, in the offset it was given in
+    std::string datetimeSource;         // option (--datetime or the path) | dataset (imagery.datetime) | default
+    double latDeg = 0.0, lonDeg = 0.0;  // seen from: the dataset's centre
+    double azimuthDeg = 0.0, elevationDeg = 0.0;
+  } sun;
+  std::optional<double> exposureEv;  // --exposure (EV100); absent: automatic
   bool validate = false;
   uint64_t validationErrors = 0, validationWarnings = 0;
   bool perPassMeaningful = false;

@@ -67,6 +67,9 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
                                               " frames in flight already; collect one before submitting another");
   // prepare
   render::FrameRequest request = scene_.prepareFrame(input.pose, input.timeS, input.ahead);
+  const double sunTimeS = input.sunTimeS.value_or(input.timeS);
+  if (input.sunTimeS) request.lighting = scene_.lightingAt(sunTimeS);
+  request.lighting.adaptExposure = input.adaptExposure;
   request.present = input.present;
   request.readbackColor = input.readbackColor;
   request.overlay = input.overlay;
@@ -86,6 +89,9 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   r.index = *index;
   r.timeS = input.timeS;
   r.pose = input.pose;
+  r.verticalFovDeg = request.camera.verticalFovDeg;
+  r.datetime = scene_.sunClock().at(sunTimeS);
+  r.sun = scene_.sunClock().sunAt(sunTimeS);
   r.flightMs = input.flightMs;
   r.scene = scene_.lastFrameFigures();  // the next prepare overwrites the scene's copy
   r.simulationMs = simulationMs;
@@ -119,6 +125,7 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.vegetation = result->vegetation;
   r.trees = result->trees;
   r.color = std::move(result->color);
+  r.exposureEv = result->exposureEv;
   r.driverMs += own.elapsedMs();
   return r;
 }

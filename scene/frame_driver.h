@@ -49,6 +49,10 @@ struct FrameInput {
   std::vector<flight::ColliderSample> colliders;
   std::vector<flight::WindSourceSample> windSources;
   std::optional<double> simulationTimeS;
+  // The sun's clock (Scene::sunClock) when it differs from timeS: a still holds its date-time
+  // while the scene settles.
+  std::optional<double> sunTimeS;
+  bool adaptExposure = false;               // the window: automatic exposure smoothed over time
   double flightMs = 0.0;                    // what the caller spent producing pose and ahead
   bool present = false;                     // to the window, when the renderer has one
   bool readbackColor = false;
@@ -60,6 +64,10 @@ struct FrameRecord {
   uint64_t index = 0;  // the renderer's frame index
   double timeS = 0.0;
   flight::FlightSample pose;
+  double verticalFovDeg = 0.0;  // the camera's
+  geo::DateTime datetime;       // the sun's date-time (Scene::sunClock at sunTimeS or timeS)
+  geo::SolarPosition sun;       // seen from the dataset's centre at `datetime`
+  float exposureEv = 0.0f;      // EV100 the frame was tone-mapped with (render::FrameResult)
   double flightMs = 0.0;        // FrameInput::flightMs
   SceneFrameFigures scene;      // prepare: streaming, terrain, seeding
   double simulationMs = 0.0;    // NaN while the simulation does nothing (SimulationOptions::enabled off)

@@ -130,6 +130,8 @@ flight::RecordTable frameTable(const std::vector<FrameRecord>& records, const st
                        uint64_t{fig.treePageCapacity}, uint64_t{fig.treeBudgetBound}, fig.treeGpuBytes})
       r[c++] = fig.trees ? count(x) : kNoValue;
     r[c++] = fig.trees ? fig.treePlacementMs : kNoValue;
+    r[c++] = f.sun.azimuthDeg;
+    r[c++] = f.sun.elevationDeg;
     assert(c == r.size());
   }
   return table;

@@ -14,7 +14,7 @@
 #include "core/process_memory.h"
 #include "core/stopwatch.h"
 #include "flight/path_sampler.h"
-#include "render/png_writer.h"
+#include "scene/frame_sidecar.h"
 #include "scene/frame_table.h"
 
 namespace vegstream::scene {
@@ -101,6 +101,7 @@ class Pipeline {
     frame->color.reset();
     const double driverMs = frame->driverMs;
     records.push_back(std::move(*frame));
+    const FrameRecord& record = records.back();
     recorderMs.push_back(driverMs + bookkeeping.elapsedMs());
     // Completion to completion (playback.h): with frames in flight, the CPU work of the later
     // frames and the GPU work of this one overlap inside this interval.
@@ -115,7 +116,8 @@ class Pipeline {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05zu.png", p.frame);
       assert(color && "the renderer returns the colour read-back it was asked for");
-      if (Status s = render::writePng(options_.framesDir / name, *color); !s) return s.error();
+      const std::string sidecar = frameSidecarJson(record, color->width, color->height, driver_.scene());
+      if (Status s = writeFrameWithSidecar(options_.framesDir / name, *color, sidecar); !s) return s.error();
       pngMs.back() = png.elapsedMs();
       excludedMs_ += pngMs.back();
       ++rec_.pngFrames;

@@ -33,7 +33,7 @@ struct PlaybackOptions {
   double fps = 60.0;                // frames per second of flight time (> 0)
   double warmupS = 0.0;             // frames rendered at t = 0 before recording, not recorded
   std::size_t framesInFlight = render::kFramesInFlight;  // 1 (serial) … kFramesInFlight
-  int framesEvery = 0;                                   // > 0: save frames 0, K, 2K, … as PNG
+  int framesEvery = 0;  // > 0: save frames 0, K, 2K, … as PNG, each with its sidecar JSON (frame_sidecar.h)
   std::filesystem::path framesDir;  // where frame_NNNNN.png go (framesEvery > 0)
   // Called after each recorded frame (done = frames so far); may be empty.
   std::function<void(std::size_t done, std::size_t total)> progress;

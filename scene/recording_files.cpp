@@ -91,6 +91,15 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.plants.bladePathRequested = render::bladePathName(so.renderer.bladePath);
   for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
     m.plants.species.push_back(s.name);
+  const SunClock& sun = scene.sunClock();
+  const geo::SolarPosition start = sun.sunAt(0.0);
+  m.sun.datetime = geo::formatIsoDateTime(sun.start);
+  m.sun.datetimeSource = toString(sun.source);
+  m.sun.latDeg = sun.latDeg;
+  m.sun.lonDeg = sun.lonDeg;
+  m.sun.azimuthDeg = start.azimuthDeg;
+  m.sun.elevationDeg = start.elevationDeg;
+  if (so.exposureEv) m.exposureEv = *so.exposureEv;
   m.validate = so.renderer.context.validate;
   if (const render::ValidationLog* v = r.validationLog()) {
     m.validationErrors = static_cast<uint64_t>(v->errors());

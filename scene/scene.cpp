@@ -27,7 +27,8 @@ struct Scene::Impl {
   SceneInfo info;
   terrain::HeightGrid ground;
   geo::LocalFrame frame{geo::Geodetic{}};
-  render::Lighting lighting;
+  render::Lighting lighting;  // all but the sun's direction, which follows `sun`
+  SunClock sun;
   std::shared_ptr<streaming::TileSource> source;
   std::unique_ptr<streaming::TileStreamer> streamer;
   std::unique_ptr<terrain::StreamedTerrain> terrain;
@@ -120,6 +121,11 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (!source) return source.error();
   auto meta = streaming::readMetaFrom(**source);
   if (!meta) return meta.error();
+  const geo::GeoBounds& b = meta->bounds;
+  const double centreLat = 0.5 * (b.southDeg + b.northDeg), centreLon = b.centre().x;
+  auto sun = resolveSunClock(options.datetime, meta->imageryDatetime, streaming::datasetJsonName(**source), centreLat,
+                             centreLon);
+  if (!sun) return sun.error();
   render::RendererOptions rendererOptions = options.renderer;
   rendererOptions.tasks = tasks.get();
   rendererOptions.terrainTriangles = options.terrain.roam.maxTriangles;
@@ -137,8 +143,9 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   auto ground = streaming::loadGroundHeights(*impl->source, *meta, limits);
   if (!ground) return ground.error();
   impl->ground = terrain::heightGridFrom(*ground);
-  const geo::GeoBounds& b = meta->bounds;
-  impl->frame = geo::LocalFrame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
+  impl->frame = geo::LocalFrame({centreLat, centreLon, 0.0});
+  impl->sun = *sun;
+  impl->lighting.exposureEv = options.exposureEv;
 
   streaming::StreamingOptions streamingOptions = terrain::streamingOptionsFor(*meta, options.streaming);
   streamingOptions.tasks = impl->tasks.get();
@@ -190,6 +197,14 @@ const SceneOptions& Scene::options() const { return impl_->options; }
 const SceneInfo& Scene::info() const { return impl_->info; }
 const geo::LocalFrame& Scene::frame() const { return impl_->frame; }
 const SceneFrameFigures& Scene::lastFrameFigures() const { return impl_->figures; }
+const SunClock& Scene::sunClock() const { return impl_->sun; }
+void Scene::setStartDatetime(const geo::DateTime& start) { impl_->sun.start = start; }
+
+render::Lighting Scene::lightingAt(double timeS) const {
+  render::Lighting l = impl_->lighting;
+  l.sunDirection = geo::sunDirectionEnu(impl_->sun.sunAt(timeS));
+  return l;
+}
 
 bool Scene::waitForTileArrivals(std::chrono::milliseconds timeout) { return impl_->streamer->waitForArrivals(timeout); }
 
@@ -205,7 +220,7 @@ render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
   req.camera = cameraFor(impl_->frame, sample);
   req.cameraHeightMsl = sample.position.heightM;
   req.terrainDetail = impl_->options.terrainDetail;
-  req.lighting = impl_->lighting;
+  req.lighting = lightingAt(0.0);
   return req;
 }
 
@@ -214,6 +229,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   SceneFrameFigures& fig = m.figures;
   fig = {};
   render::FrameRequest req = cameraRequest(now);
+  req.lighting = lightingAt(timeS);
 
   Stopwatch stage;
   std::vector<terrain::SelectionView> aheadViews;

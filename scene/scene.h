@@ -29,8 +29,10 @@
 #include "flight/ground_height.h"
 #include "flight/path_sampler.h"
 #include "geo/bounds.h"
+#include "geo/datetime.h"
 #include "geo/local_frame.h"
 #include "render/renderer.h"
+#include "scene/sun_clock.h"
 #include "simulation/simulation_options.h"
 #include "streaming/tile_streamer.h"
 #include "terrain/streamed_terrain.h"
@@ -80,7 +82,11 @@ struct SceneOptions {
   // The shared simulation (wind, colliders, trails) every FrameDriver over this scene runs.
   simulation::SimulationOptions simulation;
   SceneTreeOptions trees;
-  Logger logger;                                              // may be null
+  // The sun (issue 39, sun_clock.h): the date-time at flight time 0 (`--datetime`, else the
+  // flight path's "datetime"); absent: the imagery's acquisition time, else the fixed default.
+  std::optional<geo::DateTime> datetime;
+  std::optional<float> exposureEv;  // `--exposure EV` (EV100); absent: automatic
+  Logger logger;                    // may be null
 };
 
 struct SceneInfo {
@@ -147,8 +153,17 @@ class Scene {
   // without sleeping (TileStreamer::waitForArrivals).
   bool waitForTileArrivals(std::chrono::milliseconds timeout);
 
-  // Camera and lighting for a sample, without streaming or terrain (for tests of the pose).
+  // Camera and lighting for a sample, without streaming or terrain (for tests of the pose); the
+  // sun of flight time 0.
   render::FrameRequest cameraRequest(const FlightSample& sample) const;
+
+  // The date-time and sun at every flight time (sun_clock.h), resolved at open().
+  const SunClock& sunClock() const;
+  // The date-time at flight time 0 from now on (the window's time-of-day keys and slider).
+  void setStartDatetime(const geo::DateTime& start);
+  // The frame's lighting at flight time timeS: the sun's direction (local ENU at the dataset's
+  // centre) and SceneOptions::exposureEv. prepareFrame puts it in every request.
+  render::Lighting lightingAt(double timeS) const;
 
   struct Impl;
 

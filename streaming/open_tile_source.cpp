@@ -42,14 +42,14 @@ Result<datasets::DatasetMeta> readMetaFrom(TileSource& source) {
       return makeError(ErrorKind::NotFound, source.describe() + " is not a vegstream dataset: " + text.error().message);
     return text.error();
   }
+  return datasets::parseDatasetMeta(*text, datasetJsonName(source));
+}
+
+std::string datasetJsonName(const TileSource& source) {
   std::string name = source.describe();
-  if (name.rfind("dir ", 0) == 0) {
-    name = (fs::path(name.substr(4)) / "dataset.json").string();
-  } else {
-    if (name.empty() || name.back() != '/') name += '/';
-    name += "dataset.json";
-  }
-  return datasets::parseDatasetMeta(*text, name);
+  if (name.rfind("dir ", 0) == 0) return (fs::path(name.substr(4)) / "dataset.json").string();
+  if (name.empty() || name.back() != '/') name += '/';
+  return name + "dataset.json";
 }
 
 }  // namespace vegstream::streaming

@@ -38,4 +38,7 @@ Result<std::shared_ptr<TileSource>> openTileSource(const std::string& location, 
 // readText("dataset.json") → parseDatasetMeta, the errors naming the source's file or URL.
 Result<datasets::DatasetMeta> readMetaFrom(TileSource& source);
 
+// How errors name the source's dataset.json: "DIR/dataset.json" or "URL/dataset.json".
+std::string datasetJsonName(const TileSource& source);
+
 }  // namespace vegstream::streaming

@@ -37,8 +37,9 @@ struct Mistake {
 
 // The line states a problem, not just a name: one of the phrasings the parser and the commands use.
 bool saysTheProblem(const std::string& err) {
-  for (const char* phrase : {"not in range", "not in {", "is not a number", "is not a valid", "not expected",
-                             "is required", "required", "missing", "must be", "expected", "unknown subcommand"})
+  for (const char* phrase :
+       {"not in range", "not in {", "is not a number", "is not a valid", "not expected", "is required", "required",
+        "missing", "must be", "expected", "unknown subcommand", "does not exist", "no zone"})
     if (err.find(phrase) != std::string::npos) return true;
   return false;
 }
@@ -192,6 +193,38 @@ TEST(CliErrors, SimulationOptions) {
   EXPECT_FALSE(fs::exists(rec));
   EXPECT_FALSE(fs::exists(frames));
   EXPECT_FALSE(fs::exists(still));
+}
+
+// The sun options (app/sun_cli.h, issue 39) likewise: a malformed --datetime or --exposure is one
+// line naming the option and the problem, exit 2, nothing written.
+TEST(CliErrors, SunOptions) {
+  const fs::path dir = ownDir(), d = dir / "no-dataset", rec = dir / "rec", frames = dir / "frames",
+                 still = dir / "still.png";
+  const std::string record = "record " + q(d) + " --path p.json --out " + q(rec);
+  const std::string fly = "fly " + q(d) + " --headless --out " + q(frames);
+  const std::string snapshot = "snapshot --lat 37.4 --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(still);
+  for (const std::string& command : {record, fly, snapshot})
+    expectOneLineUserErrors(
+        {{command + " --datetime 2026-13-01", "--datetime \"2026-13-01\": month 13 does not exist"},
+         {command + " --datetime 2026-06-21T06:45:00", "--datetime \"2026-06-21T06:45:00\": no zone"},
+         {command + " --datetime 2026-02-30T06:45:00Z", "--datetime \"2026-02-30T06:45:00Z\": day 30 does not exist"},
+         {command + " --datetime 2026-06-21T24:00:00Z", "hour 24 does not exist"},
+         {command + " --datetime yesterday", "--datetime \"yesterday\": not an ISO 8601 date and time"},
+         {command + " --datetime 2026-06-21T06:45:00Zulu", "after the zone"},
+         {command + " --exposure nan", "--exposure nan: must be a number of EV from -10 to 30"},
+         {command + " --exposure 31", "--exposure 31: must be"},
+         {command + " --exposure -11", "--exposure -11: must be"},
+         {command + " --exposure bright", "--exposure \"bright\": must be"},
+         {command + " --datetime", "--datetime"}},
+        "--");
+  EXPECT_FALSE(fs::exists(rec));
+  EXPECT_FALSE(fs::exists(frames));
+  EXPECT_FALSE(fs::exists(still));
+  for (const char* sub : {"fly", "record", "snapshot"}) {
+    const auto r = runVegstream(std::string(sub) + " --help");
+    EXPECT_NE(r.out.find("--datetime"), std::string::npos) << sub;
+    EXPECT_NE(r.out.find("--exposure"), std::string::npos) << sub;
+  }
 }
 
 TEST(CliErrors, Report) {

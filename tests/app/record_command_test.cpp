@@ -100,11 +100,13 @@ const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins", 
                                           // Issue 17's Hi-Z occlusion culling.
                                           "plant_cull_tested",    "plant_cull_culled", "plant_clusters_culled",
                                           "plant_groups_culled",  "plants_culled"};
-// Issue 20's trees, the last columns.
+// Issue 20's trees, after kPlants.
 const std::vector<std::string> kTrees = {"trees_full",        "trees_reduced",      "trees_impostor",
                                          "trees_dropped",     "trees_classified",   "tree_tiles_wanted",
                                          "tree_tiles_drawn",  "tree_pages_used",    "tree_page_capacity",
                                          "tree_budget_bound", "tree_gpu_bytes",     "tree_placement_ms"};
+// Issue 39's sun, the last columns.
+const std::vector<std::string> kSun = {"sun_azimuth_deg", "sun_elevation_deg"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -170,12 +172,14 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
     EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  const std::size_t tail = kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size() + kTrees.size();
+  const std::size_t tail =
+      kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size() + kTrees.size() + kSun.size();
   ASSERT_GE(csv.header.size(), kLeading.size() + tail);
   EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
   const auto back = [&](std::size_t skip) { return csv.header.rbegin() + static_cast<long>(skip); };
-  const std::size_t t = kTrees.size();
-  EXPECT_TRUE(std::equal(kTrees.rbegin(), kTrees.rend(), back(0)));
+  EXPECT_TRUE(std::equal(kSun.rbegin(), kSun.rend(), back(0)));
+  const std::size_t t = kTrees.size() + kSun.size();
+  EXPECT_TRUE(std::equal(kTrees.rbegin(), kTrees.rend(), back(kSun.size())));
   EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(t)));
   EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(t + kPlants.size())));
   EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(t + kPlants.size() + kRoam.size())));
@@ -218,7 +222,9 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
                              "plant_cull_culled",
                              "trees_classified",
                              "tree_page_capacity",
-                             "tree_gpu_bytes"})
+                             "tree_gpu_bytes",
+                             "sun_azimuth_deg",
+                             "sun_elevation_deg"})
     for (const auto& v : csv.column(filled)) EXPECT_NE(v, "") << filled;
 
   const json rec = json::parse(readWhole(dir / "recording.json"));
@@ -278,9 +284,14 @@ TEST(RecordCommand, FramesEveryWritesEveryKthFrameAsPng) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir / "frames")) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"frame_00000.png", "frame_00010.png", "frame_00020.png", "frame_00030.png"}));
-  for (const auto& n : names) EXPECT_TRUE(isPng(dir / "frames" / n)) << n;
+  // Each PNG with its sidecar (scene/frame_sidecar.h; tests/app/sun_frames_test.cpp reads them).
+  EXPECT_EQ(names, (std::vector<std::string>{"frame_00000.json", "frame_00000.png", "frame_00010.json",
+                                             "frame_00010.png", "frame_00020.json", "frame_00020.png",
+                                             "frame_00030.json", "frame_00030.png"}));
+  for (const auto& n : names) {
+    if (!n.ends_with(".png")) continue;
+    EXPECT_TRUE(isPng(dir / "frames" / n)) << n;
+  }
   const Csv csv = readCsv(dir / "frames.csv");
   const auto png = csv.column("png_ms");
   for (std::size_t i = 0; i < png.size(); ++i) EXPECT_EQ(png[i].empty(), i % 10 != 0) << "frame " << i;

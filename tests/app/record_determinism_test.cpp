@@ -135,7 +135,7 @@ void expectSameFrames(const fs::path& a, const fs::path& b) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(a / "frames")) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
-  ASSERT_EQ(names.size(), 13u) << "frames 0, 10, …, 120";
+  ASSERT_EQ(names.size(), 26u) << "frames 0, 10, …, 120, each PNG with its sidecar JSON";
   for (const std::string& n : names) {
     const std::string pa = readBytes(a / "frames" / n), pb = readBytes(b / "frames" / n);
     EXPECT_GT(pa.size(), 100u) << n;

@@ -93,8 +93,10 @@ TEST_F(SnapshotCommand, WritesASettledStillOfTheSizeAskedWithValidationSilent) {
     hi = std::max(hi, img.pixels[i + 1]);
   }
   EXPECT_GT(hi - lo, 60) << "green channel " << int(lo) << " … " << int(hi);
-  // Nothing but the PNG is left beside it.
-  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path(), out);
+  // Nothing but the PNG and its sidecar (tests/app/sun_frames_test.cpp reads it) is left beside it.
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_TRUE(e.path() == out || e.path() == dir / "still.json") << e.path();
+  EXPECT_TRUE(fs::exists(dir / "still.json"));
 }
 
 TEST_F(SnapshotCommand, PlantsChangeTheStillAndRunsAreIdentical) {
@@ -191,7 +193,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"plant_density", "'{ZION}' " + kAt + "--pitch -10 --plant-density -1 --out '{OUT}'",
                  "--plant-density"},
         BadInput{"missing_pose", "'{ZION}' --lat 37.457 --lon -113.022 --heading 0 --pitch -10 --out '{OUT}'",
-                 "--alt"}),
+                 "--alt"},
+        BadInput{"datetime_month_13", "'{ZION}' " + kAt + "--pitch -10 --datetime 2026-13-01 --out '{OUT}'",
+                 "--datetime \"2026-13-01\": month 13 does not exist"},
+        BadInput{"datetime_without_zone", "'{ZION}' " + kAt + "--pitch -10 --datetime 2026-06-21T06:45 --out '{OUT}'",
+                 "--datetime \"2026-06-21T06:45\": no zone"},
+        BadInput{"exposure_nan", "'{ZION}' " + kAt + "--pitch -10 --exposure nan --out '{OUT}'",
+                 "--exposure nan: must be a number of EV from -10 to 30"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 }  // namespace

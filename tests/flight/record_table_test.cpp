@@ -88,8 +88,9 @@ TEST(RecorderTable, ColumnsAndFrameCount) {
   EXPECT_EQ(at("terrain_raster_triangles"), at("terrain_achieved_error_px") + 1);
   EXPECT_EQ(at("plant_seed_triangles"), at("terrain_tile_entries_dropped") + 1);
   EXPECT_EQ(at("plant_cull_tested"), at("plant_triangles") + 1);  // issue 17's occlusion culling follows
-  EXPECT_EQ(at("trees_full"), at("plants_culled") + 1);  // issue 20's trees follow, last
-  EXPECT_EQ(names.back(), "tree_placement_ms");
+  EXPECT_EQ(at("trees_full"), at("plants_culled") + 1);  // issue 20's trees follow
+  EXPECT_EQ(at("sun_azimuth_deg"), at("tree_placement_ms") + 1);  // issue 39's sun follows, last
+  EXPECT_EQ(names.back(), "sun_elevation_deg");
   EXPECT_EQ(frameCount(30.0, 60.0), 1801u);
   EXPECT_EQ(frameCount(2.0, 15.0), 31u);
   EXPECT_EQ(frameCount(0.1, 15.0), 2u);
