@@ -3,6 +3,8 @@
 
 #include "scene/frame_driver.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -70,6 +72,9 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   const double sunTimeS = input.sunTimeS.value_or(input.timeS);
   if (input.sunTimeS) request.lighting = scene_.lightingAt(sunTimeS);
   request.lighting.adaptExposure = input.adaptExposure;
+  // The window's exposure moves with the time between its frames (the first frame: none).
+  if (input.adaptExposure && lastTimeS_) request.lighting.adaptSeconds = float(std::clamp(input.timeS - *lastTimeS_, 0.0, 1.0));
+  lastTimeS_ = input.timeS;
   request.present = input.present;
   request.readbackColor = input.readbackColor;
   request.overlay = input.overlay;

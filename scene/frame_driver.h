@@ -121,6 +121,7 @@ class FrameDriver {
   std::optional<double> lastStepS_;
   std::vector<simulation::ColliderState> colliders_;  // the latest step's inputs (local ENU)
   std::vector<simulation::WindSourceState> sources_;
+  std::optional<double> lastTimeS_;  // the last submitted frame's time (the window's exposure adaptation)
   std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ kMaxInFlight), oldest first
 };
 
