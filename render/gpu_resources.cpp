@@ -61,22 +61,24 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
 }
 
 namespace {
+// A 2D image (or array), or with a 3D view type a 3D image of `depth` slices.
 GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
                      VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name,
-                     uint32_t mipLevels = 1, VkFormat alsoViewAs = VK_FORMAT_UNDEFINED) {
+                     uint32_t mipLevels = 1, VkFormat alsoViewAs = VK_FORMAT_UNDEFINED, uint32_t depth = 1) {
   VkDevice device = ctx.device();
   GpuImage out;
   out.format = format;
   out.extent = extent;
+  out.depth = depth;
   out.layers = layers;
   out.mipLevels = mipLevels;
   out.samples = samples;
   out.aspect = (format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM) ? VK_IMAGE_ASPECT_DEPTH_BIT
                                                                                  : VK_IMAGE_ASPECT_COLOR_BIT;
   VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = VK_IMAGE_TYPE_2D;
+  ici.imageType = viewType == VK_IMAGE_VIEW_TYPE_3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   ici.format = format;
-  ici.extent = {extent.width, extent.height, 1};
+  ici.extent = {extent.width, extent.height, depth};
   ici.mipLevels = mipLevels;
   ici.arrayLayers = layers;
   ici.samples = samples;
@@ -128,40 +130,8 @@ GpuImage createImage2D(const Context& ctx, VkExtent2D extent, VkFormat format, V
 
 GpuImage createImage3D(const Context& ctx, VkExtent2D extent, uint32_t depth, VkFormat format, VkImageUsageFlags usage,
                        const std::string& name) {
-  VkDevice device = ctx.device();
-  GpuImage out;
-  out.format = format;
-  out.extent = extent;
-  out.depth = depth;
-  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = VK_IMAGE_TYPE_3D;
-  ici.format = format;
-  ici.extent = {extent.width, extent.height, depth};
-  ici.mipLevels = 1;
-  ici.arrayLayers = 1;
-  ici.samples = VK_SAMPLE_COUNT_1_BIT;
-  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ici.usage = usage;
-  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkImage raw;
-  vkCheck(vkCreateImage(device, &ici, nullptr, &raw), "vkCreateImage");
-  out.image = Image(device, raw);
-  ctx.setName(VK_OBJECT_TYPE_IMAGE, raw, name);
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(device, raw, &req);
-  out.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, name);
-  out.bytes = req.size;
-  vkCheck(vkBindImageMemory(device, raw, out.memory.get(), 0), "vkBindImageMemory");
-  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vci.image = raw;
-  vci.viewType = VK_IMAGE_VIEW_TYPE_3D;
-  vci.format = format;
-  vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  VkImageView view;
-  vkCheck(vkCreateImageView(device, &vci, nullptr, &view), "vkCreateImageView");
-  out.view = ImageView(device, view);
-  ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, name + " view");
-  return out;
+  return createImage(ctx, extent, 1, format, usage, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_VIEW_TYPE_3D, name, 1,
+                     VK_FORMAT_UNDEFINED, depth);
 }
 
 GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format,

@@ -53,7 +53,7 @@ void main() {
   if (dot(n, vTowards) < 0.0) n = -n;
   TreeModelGpu m = trees.models[push.model];
   // The capture holds the species' leaf colour: turned into this tree's (treeLeafAlbedo).
-  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * treeLeafAlbedo(m.leaf.rgb, vColour.rgb) / max(m.leaf.rgb, vec3(1e-3)) * vColour.a;
+  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * treeImpostorFactor(m.leaf.rgb, vColour.rgb) * vColour.a;
   vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
   outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -5,12 +5,7 @@
 // exactly the sky behind them. Radiance in the scene's units (exposure.glsl). Needs
 // frame_uniforms.glsl (frame.atmosphere: x the camera's radius in km, y the aerial volume's far
 // distance in km).
-#ifndef VS_INLINE  // as simulation/shared/simulation_layout.glsl defines them for GLSL
-#define VS_INLINE
-#define VS_INOUT(T) inout T
-#define VS_SIM_ARG
-#define VS_SIM
-#endif
+#include "shared_code_macros.glsl"
 #include "atmosphere_model.glsl"
 
 layout(set = 0, binding = 7) uniform sampler2D skyViewLut;

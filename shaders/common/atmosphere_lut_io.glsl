@@ -1,12 +1,7 @@
 // The atmosphere LUT passes' bindings (render/atmosphere_pass.h) and the GPU's lookups that
 // atmosphere_march.glsl reads. Texel i of a LUT n texels wide holds u = i / (n − 1), so u = 0
 // and 1 are texel centres.
-#ifndef VS_INLINE  // as simulation/shared/simulation_layout.glsl defines them for GLSL
-#define VS_INLINE
-#define VS_INOUT(T) inout T
-#define VS_SIM_ARG
-#define VS_SIM
-#endif
+#include "shared_code_macros.glsl"
 #include "atmosphere_model.glsl"
 
 layout(set = 0, binding = 0) uniform sampler2D transmittanceLut;

@@ -46,12 +46,25 @@ uint treeSampleMask(float alpha, uint samples, float dither) {
 // the sun shadow's factor (sunShadow). What varies slowly over a tree — the shadow lookup and the
 // aerial perspective — the vertex stages evaluate (treeVertexLight): the H200 shades fragments on
 // 2 of its 66 TPCs, and the trees' cards overlap many times.
-// The leaves' albedo: the imagery under the tree (linear), brightened by kCanopyGain — from afar
-// a crown's lit and shaded leaves and the shadow around it average to the photographed canopy
-// (issue 39 item 5); the species' own leaf colour where there is no imagery (rgb 0).
+// The leaves' albedo (issue 39 item 5): as bright as the imagery under the tree × kCanopyGain —
+// from afar a crown's lit and shaded leaves and the shadow around it average to the photographed
+// canopy — with a hue half the species' own leaf and half the imagery's, so a conifer at a
+// meadow's edge stays a conifer up close; the species' own colour where there is no imagery
+// (rgb 0).
 const float kCanopyGain = 1.6;
+float treeLuminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 vec3 treeLeafAlbedo(vec3 speciesLeaf, vec3 ground) {
-  return dot(ground, vec3(1.0)) <= 0.0 ? speciesLeaf : min(ground * kCanopyGain, vec3(0.9));
+  if (dot(ground, vec3(1.0)) <= 0.0) return speciesLeaf;
+  vec3 target = min(ground * kCanopyGain, vec3(0.9));
+  vec3 leafAtTarget = speciesLeaf * treeLuminance(target) / max(treeLuminance(speciesLeaf), 1e-4);
+  return mix(leafAtTarget, target, 0.5);
+}
+// What an impostor's captured colour (the species' leaves, its bark) is multiplied by for this
+// tree: the leaves' change, its chroma halved again so the captured bark keeps its brown.
+vec3 treeImpostorFactor(vec3 speciesLeaf, vec3 ground) {
+  vec3 ratio = treeLeafAlbedo(speciesLeaf, ground) / max(speciesLeaf, vec3(1e-3));
+  float grey = treeLuminance(treeLeafAlbedo(speciesLeaf, ground)) / max(treeLuminance(speciesLeaf), 1e-4);
+  return mix(vec3(grey), ratio, 0.5);
 }
 
 // An instance's colour word (render/tree_layout.h): the imagery under it decoded to linear, and

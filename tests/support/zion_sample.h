@@ -25,4 +25,18 @@ inline Result<std::filesystem::path> zionSampleDataset() {
   });
 }
 
+// The same bands display-stretched p1–p99 as the importer did before issue 39 (the colours the
+// default species catalog's references were read from; its tests of the catalog itself use it).
+inline Result<std::filesystem::path> zionStretchedSample() {
+  return cachedFixture("zion-sample-stretched", vegstreamKey(), [](const std::filesystem::path& dir) -> Status {
+    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
+    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
+                                "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z +
+                                "landsat_b5.tif --stretch p1,p99 --out '" + dir.string() + "'");
+    if (r.exitCode != 0)
+      return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
+    return {};
+  });
+}
+
 }  // namespace vegstream::testing
