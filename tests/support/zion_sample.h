@@ -13,30 +13,25 @@
 
 namespace vegstream::testing {
 
-inline Result<std::filesystem::path> zionSampleDataset() {
-  return cachedFixture("zion-sample", vegstreamKey(), [](const std::filesystem::path& dir) -> Status {
+// The Zion bands imported once under `name` with the imagery options `imageryArgs`.
+inline Result<std::filesystem::path> zionImport(const std::string& name, const std::string& imageryArgs) {
+  return cachedFixture(name, vegstreamKey(), [&](const std::filesystem::path& dir) -> Status {
     const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
     const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z +
-                                "landsat_b5.tif --radiometry reflectance --imagery-datetime 2015-08-18T17:58:00Z --out '" + dir.string() + "'");
+                                "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z + "landsat_b5.tif " +
+                                imageryArgs + " --out '" + dir.string() + "'");
     if (r.exitCode != 0)
       return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
     return {};
   });
 }
 
+inline Result<std::filesystem::path> zionSampleDataset() {
+  return zionImport("zion-sample", "--radiometry reflectance --imagery-datetime 2015-08-18T17:58:00Z");
+}
+
 // The same bands display-stretched p1–p99 as the importer did before issue 39 (the colours the
 // default species catalog's references were read from; its tests of the catalog itself use it).
-inline Result<std::filesystem::path> zionStretchedSample() {
-  return cachedFixture("zion-sample-stretched", vegstreamKey(), [](const std::filesystem::path& dir) -> Status {
-    const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
-    const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                                "landsat_b3.tif," + z + "landsat_b2.tif --imagery-nir " + z +
-                                "landsat_b5.tif --stretch p1,p99 --out '" + dir.string() + "'");
-    if (r.exitCode != 0)
-      return makeError(ErrorKind::Internal, "vegstream import: exit " + std::to_string(r.exitCode) + ": " + r.err);
-    return {};
-  });
-}
+inline Result<std::filesystem::path> zionStretchedSample() { return zionImport("zion-sample-stretched", "--stretch p1,p99"); }
 
 }  // namespace vegstream::testing
