@@ -41,7 +41,7 @@ std::string stillChanging(const scene::SceneFrameFigures& f, const scene::SceneF
 }
 
 Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
-                                        int maxFrames, double simulationTimeS) {
+                                        int maxFrames, double simulationTimeS, bool aov) {
   scene::FrameDriver driver(scene);
   // A step of the fade time: whatever started to morph or fade in frame i is finished in i + 1.
   const double stepS = scene.options().terrain.fadeS;
@@ -71,6 +71,11 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     still.plants = still.plantsCounted ? frame->vegetation->plantsTotal : 0;
     if (still.settled) break;
   }
+  scene::FrameInput last;  // the still's input: the AOV frame repeats it
+  last.pose = pose;
+  last.timeS = stepS * (still.frames - 1);
+  last.simulationTimeS = 0.0;
+  last.sunTimeS = 0.0;
   if (simulationTimeS > 0.0) {
     // The simulation's own steps, each as many fixed sub-steps as one step may run (a quarter
     // second): the sub-steps are counted from t = 0 whatever the steps' size
@@ -86,6 +91,7 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
       if (Status s = driver.advanceSimulation(input); !s) return s.error();
     }
     input.simulationTimeS = simulationTimeS;
+    last.simulationTimeS = simulationTimeS;
     input.readbackColor = true;
     auto frame = driver.run(input);
     if (!frame) return frame.error();
@@ -95,6 +101,13 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
     still.plants = frame->vegetation && frame->vegetation->gpuCounts ? frame->vegetation->plantsTotal : still.plants;
   }
   if (still.image.rgba.empty()) return makeError(ErrorKind::Internal, "the renderer returned no colour read-back");
+  if (aov) {
+    last.aov = true;
+    auto frame = driver.run(last);
+    if (!frame) return frame.error();
+    if (!frame->aov) return makeError(ErrorKind::Internal, "the renderer returned no AOV read-back");
+    still.aov = std::move(frame->aov);
+  }
   return still;
 }
 

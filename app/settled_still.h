@@ -13,6 +13,7 @@
 // and on the same driver the same pixels.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/log.h"
@@ -34,6 +35,7 @@ struct SettledStill {
   uint64_t terrainTriangles = 0;
   uint64_t fallbackPieces = 0;  // pieces of the still drawn from an ancestor's tiles (0: the finest wanted)
   scene::FrameRecord record;    // the still's figures, its sun and exposure (its colour is `image`)
+  std::optional<render::AovImage> aov;  // with `aov`: the still's AOVs (scene/frame_aovs.h)
 };
 
 // Runs frames at `pose` (the scene should stream settled) until one changes nothing, at most
@@ -44,8 +46,10 @@ struct SettledStill {
 // alone (scene::FrameDriver::advanceSimulation) runs in quarter-second steps of its fixed
 // sub-steps to simulationTimeS — the same sub-steps a 60 fps flight runs — and one more frame at
 // the settled scene is the still.
+// With `aov` one more frame at the still's pose and times, an AOV frame (render/aov_image.h),
+// gives SettledStill::aov: nothing has changed since the still, so it shows the same scene.
 Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
-                                        int maxFrames = 40, double simulationTimeS = 0.0);
+                                        int maxFrames = 40, double simulationTimeS = 0.0, bool aov = false);
 
 // What a frame's figures say still changed, given the frame before's ("" when nothing).
 std::string stillChanging(const scene::SceneFrameFigures& figures, const scene::SceneFrameFigures& before);

@@ -16,6 +16,7 @@
 #include "app/settled_still.h"
 #include "core/number_text.h"
 #include "datasets/dataset_format.h"
+#include "scene/frame_aovs.h"
 #include "scene/frame_sidecar.h"
 #include "streaming/open_tile_source.h"
 
@@ -78,6 +79,23 @@ Status checkCoverage(const SnapshotOptions& o, const geo::GeoBounds& b, const st
   return userError(which + ": outside dataset " + dataset + ", which covers " + cover);
 }
 
+// The AOVs first, then the PNG and its sidecar; the AOVs are removed again when those fail.
+Status writeStill(const fs::path& png, const SettledStill& still, const std::string& sidecar,
+                  const scene::AovSelection& aovs) {
+  if (aovs.any()) {
+    if (!still.aov) return makeError(ErrorKind::Internal, "the still has no AOVs");
+    if (Status s = scene::writeFrameAovs(png, *still.aov, aovs); !s) return s;
+  }
+  Status s = scene::writeFrameWithSidecar(png, still.image, sidecar);
+  if (!s && aovs.any()) {
+    std::error_code ec;
+    if (aovs.depth) fs::remove(scene::aovPathFor(png, "depth"), ec);
+    if (aovs.coverage) fs::remove(scene::aovPathFor(png, "coverage"), ec);
+    if (aovs.species) fs::remove(scene::aovPathFor(png, "species"), ec);
+  }
+  return s;
+}
+
 }  // namespace
 
 CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
@@ -106,6 +124,10 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   cmd->add_option("--time", o.timeS,
                   "Show the wind as it is S seconds into a flight held at this pose since 0 (0 … 600)")
       ->capture_default_str();
+  cmd->add_option("--aov", o.aov,
+                  "Also write measurement AOVs beside the PNG as 32-bit float TIFFs, comma-separated: depth "
+                  "(F.depth.tif, metres; 0 sky), coverage (F.coverage.tif, 0 … 1 plants and trees), species "
+                  "(F.species.tif, catalog index + 1; 0 none)");
   return cmd;
 }
 
@@ -123,6 +145,8 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (!std::isfinite(o.timeS) || o.timeS < 0.0 || o.timeS > kMaxSimulationTimeS)
     return reportError(log, userError("--time " + numberText(o.timeS) + ": must be 0 … 600 seconds"));
   if (Status s = checkOut(o.out); !s) return reportError(log, s.error());
+  auto aovs = scene::parseAovList(o.aov);
+  if (!aovs) return reportError(log, aovs.error());
 
   scene::SceneOptions so;
   if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
@@ -162,7 +186,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
   pose.pitchDeg = o.pitchDeg;
   pose.heightAboveGroundM = heightMsl - ground;
-  auto still = renderSettledStill(scene, pose, log, 40, o.timeS);
+  auto still = renderSettledStill(scene, pose, log, 40, o.timeS, aovs->any());
   if (!still) return reportError(log, still.error());
   if (!still->settled)
     log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
@@ -172,7 +196,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
               "--cpu-budget-mb / --gpu-budget-mb",
               still->fallbackPieces);
   const std::string sidecar = scene::frameSidecarJson(still->record, width, height, scene);
-  if (Status s = scene::writeFrameWithSidecar(o.out, still->image, sidecar); !s) return reportError(log, s.error());
+  if (Status s = writeStill(o.out, *still, sidecar, *aovs); !s) return reportError(log, s.error());
 
   const render::ValidationLog* validation = scene.renderer().validationLog();
   const int validationErrors = validation ? validation->errors() : 0;

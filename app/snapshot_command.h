@@ -1,9 +1,10 @@
 #pragma once
 // `vegstream snapshot [DATASET] --lat L --lon L --alt A --heading H --pitch P --out F.png
 //  [--alt-ref ground|msl] [--size WxH] [--msaa N] [--device NAME] [--validate] [--time S]
-//  [--datetime ISO] [--exposure EV] [wind, plant, streaming and terrain options of `record`]`: one
-//  still frame from a pose, as PNG, with its sidecar F.json (scene/frame_sidecar.h: pose, field of
-//  view, date-time, sun, exposure, counts).
+//  [--datetime ISO] [--exposure EV] [--aov depth,coverage,species] [wind, plant, streaming and
+//  terrain options of `record`]`: one still frame from a pose, as PNG, with its sidecar F.json
+//  (scene/frame_sidecar.h: pose, field of view, date-time, sun, exposure, counts) and, with
+//  --aov, the measurement AOVs F.depth.tif, F.coverage.tif, F.species.tif (scene/frame_aovs.h).
 //
 // --datetime sets the sun (scene/sun_clock.h; default: the imagery's acquisition time, else 10:00
 // local mean solar time on 21 June 2024); the sun stays at that date-time while the still settles.
@@ -55,6 +56,7 @@ struct SnapshotOptions {
   // filled by runSnapshot.
   simulation::SimulationOptions simulation;
   double timeS = 0.0;  // --time: the simulation as it is this many seconds into a flight held at the pose
+  std::string aov;     // --aov: comma-separated AOV names (scene/frame_aovs.h)
 };
 
 CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& options);

@@ -29,7 +29,7 @@ struct BladeVertexGpu {
   uint32_t plant;
   uint32_t colour[2];  // packHalf2x16 (r, g), (b, 0)
   uint32_t blade;
-  uint32_t unused;
+  uint32_t species;  // the catalog index (AOV frames)
 };
 static_assert(sizeof(BladeVertexGpu) == 32);
 struct BladeStateHeader {

@@ -9,13 +9,13 @@
 
 namespace vegstream::render {
 
-// The tone map's settings for a frame: the flat-colour coverage style passes its colours through
-// (identity), a fixed --exposure is fixed, otherwise automatic (smoothed in the window).
+// The tone map's settings for a frame: the flat-colour coverage style and an AOV frame pass
+// their colours through (identity), a fixed --exposure is fixed, otherwise automatic (smoothed in the window).
 namespace {
 ToneSettings toneSettings(const FrameRequest& request) {
   ToneSettings s;
   const bool flat = request.vegetation && request.vegetation->draw.flatColour;
-  if (flat) {
+  if (flat || request.aov) {
     s.mode = ToneMode::Identity;
   } else if (request.lighting.exposureEv) {
     s.mode = ToneMode::Fixed;
@@ -236,6 +236,21 @@ void Renderer::Impl::recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool r
     copy(targets->depth(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
          VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, slot.depthReadback);
+}
+
+void Renderer::Impl::recordAovReadback(VkCommandBuffer cmd, FrameSlot& slot) const {
+  const VkExtent2D extent = targets->extent();
+  const GpuImage& hdr = targets->color();
+  constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  transitionImage(cmd, hdr.get(), hdr.aspect, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kCompute,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {hdr.aspect, 0, 0, 1};
+  region.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, hdr.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.colorReadback.get(), 1, &region);
+  hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  transitionImage(cmd, hdr.get(), hdr.aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, kCompute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 void Renderer::Impl::recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const {

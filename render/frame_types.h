@@ -193,6 +193,10 @@ struct FrameRequest {
   double cameraHeightMsl = 0.0;  // the atmosphere's LUTs are seen from this height
   bool readbackColor = false;
   bool readbackDepth = false;
+  // An AOV frame (shaders/common/aov.glsl): the passes write vegetation coverage and species
+  // instead of colour, nothing is tone-mapped, and FrameResult::aov comes back (the depth is read
+  // back with it). Its colour read-back, if asked for, is meaningless.
+  bool aov = false;
   bool present = false;  // to the window, when the renderer has one
   // Strength of the close-up terrain detail textures (render/detail_textures.h), 0 … 1;
   // 0 draws the terrain as the bare imagery at every distance.
@@ -224,6 +228,14 @@ struct DepthImage {
   std::vector<float> depth;  // reverse-Z: 1 at the near plane, 0 at the far plane / sky
 };
 
+// The measurement AOVs of an AOV frame (FrameRequest::aov; render/aov_image.h decodes them), row-major from the top.
+struct AovImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> distanceM;  // metres from the camera to what the pixel's first sample sees; 0 for sky
+  std::vector<float> coverage;   // 0 … 1: the share of the pixel's samples covered by plants or trees
+  std::vector<float> species;    // the catalog index + 1 of the vegetation covering the pixel; 0 for none
+};
+
 struct FrameResult {
   uint64_t frameIndex = 0;
   double cpuRecordMs = 0.0;
@@ -239,6 +251,7 @@ struct FrameResult {
   std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;
   std::optional<DepthImage> depth;
+  std::optional<AovImage> aov;  // when the request was an AOV frame
   float exposureEv = 0.0f;  // the exposure (EV100) this frame was tone-mapped with
 };
 

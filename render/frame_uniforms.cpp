@@ -35,6 +35,7 @@ FrameUniforms frameUniforms(const FrameRequest& request, uint32_t width, uint32_
     u.shadowSplits = shadows->splits;
     u.shadowTexel = glm::vec4(shadows->texelM[0], shadows->texelM[1], shadows->texelM[2], float(shadows->drawn));
   }
+  u.outputs = glm::vec4(request.aov ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
   return u;
 }
 

@@ -25,6 +25,9 @@ struct FrameUniforms {
   // when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees' scope
   // (shaders/common/hiz_occlusion.glsl).
   glm::vec4 terrainDepth;
+  // x: 1 in an AOV frame (FrameRequest::aov, shaders/common/aov.glsl): the passes write
+  // vegetation coverage and species instead of colour.
+  glm::vec4 outputs;
 };
 
 static_assert(offsetof(FrameUniforms, viewProj) == 0);
@@ -36,7 +39,8 @@ static_assert(offsetof(FrameUniforms, detail) == 176);
 static_assert(offsetof(FrameUniforms, shadowMatrices) == 192);
 static_assert(offsetof(FrameUniforms, shadowSplits) == 384);
 static_assert(offsetof(FrameUniforms, terrainDepth) == 416);
-static_assert(sizeof(FrameUniforms) == 432);
+static_assert(offsetof(FrameUniforms, outputs) == 432);
+static_assert(sizeof(FrameUniforms) == 448);
 
 struct FrameRequest;
 struct ShadowCascades;

@@ -13,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "core/stopwatch.h"
+#include "render/aov_image.h"
 #include "render/blade_pass.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
@@ -112,7 +113,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
     s.uniforms = createBuffer(*ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
                               "frame uniforms" + tag);
     s.timer = std::make_unique<GpuTimer>(*ctx, kMaxPasses, "frame" + tag);
-    s.colorReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+    // Room for the resolved float target of an AOV frame (four half floats a pixel).
+    s.colorReadback = createBuffer(*ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                    "colour read-back" + tag);
     s.depthReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                    "depth read-back" + tag);
@@ -212,10 +214,15 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
-  slot.readColor = request.readbackColor;
-  slot.readDepth = request.readbackDepth;  // recordPasses resolves the depth only for it
+  slot.readAov = request.aov;
+  slot.readColor = request.readbackColor && !request.aov;
+  slot.readDepth = request.readbackDepth || request.aov;  // recordPasses resolves the depth only for it
+  if (request.aov)
+    slot.aovInverseProjection =
+        glm::inverse(projection(request.camera, double(extent.width) / double(extent.height)));
   recordPasses(cmd, slot, index, request);
-  recordReadback(cmd, slot, request.readbackColor, request.readbackDepth);
+  recordReadback(cmd, slot, slot.readColor, slot.readDepth);
+  if (slot.readAov) recordAovReadback(cmd, slot);
   if (imageIndex) recordPresent(cmd, *imageIndex);
   slot.timer->end(cmd);
   vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
@@ -264,6 +271,9 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     std::memcpy(img.depth.data(), slot.depthReadback.mapped, pixels * 4);
     r.depth = std::move(img);
   }
+  if (slot.readAov && r.depth)
+    r.aov = decodeAov(e.width, e.height, static_cast<const uint16_t*>(slot.colorReadback.mapped), r.depth->depth.data(),
+                      slot.aovInverseProjection);
   return r;
 }
 

@@ -122,7 +122,7 @@ class Renderer {
     uint32_t plant; // bits 0–28 the plant record, 29–30 kind, 31 shadow
     uint32_t colour[2];
     uint32_t blade;  // packSnorm2x16(across, along)
-    uint32_t unused;
+    uint32_t species;  // the plant's catalog index
   };
   Result<std::vector<BladeVertexReadback>> readBladeVertices();
   // The atmosphere's LUTs and sky light as the last frame left them (render/atmosphere_pass.h).

@@ -70,6 +70,8 @@ struct FrameSlot {
   uint64_t frameIndex = 0;
   bool submitted = false;
   bool readColor = false, readDepth = false;
+  bool readAov = false;             // an AOV frame: colorReadback holds the resolved float target
+  glm::dmat4 aovInverseProjection{1.0};  // its camera's, for the distances
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
   std::optional<VegetationFigures> vegetation;
@@ -127,6 +129,8 @@ struct Renderer::Impl {
                     RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire);
   void queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex);
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
+  // An AOV frame's resolved float target (left in the general layout by the tone map) → colorReadback.
+  void recordAovReadback(VkCommandBuffer cmd, FrameSlot& slot) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
   FrameResult collect(FrameSlot& slot);
   // The path a frame's plants take: the speed-of-light pipeline is a tessellation pipeline.

@@ -57,6 +57,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
           impostorTriangle(model.lod[0].vertices, {g.shape.x, g.shape.y, g.shape.z, g.shape.w});
       g.triangleApex = triangle.apex;
       g.triangleBase = triangle.base;
+      g.ids = {set.species, 0u, 0u, 0u};
       g.leaf = {set.params.leafColour[0], set.params.leafColour[1], set.params.leafColour[2], set.params.translucency};
       g.bark = {set.params.barkColour[0], set.params.barkColour[1], set.params.barkColour[2],
                 set.params.form == vegetation::TreeForm::Broadleaf ? 1.0f : 0.0f};

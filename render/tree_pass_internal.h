@@ -20,6 +20,7 @@ struct TreeModelGpu {
   glm::uvec4 mesh0, mesh1;
   glm::vec4 shape, leaf, bark;
   glm::vec4 triangleApex, triangleBase;  // the impostor's triangle per elevation bin (tree_impostor_outline.h)
+  glm::uvec4 ids;                        // x: the species (catalog index: the AOV frames' species)
 };
 struct TreeBlock {
   glm::vec4 camera, lod;
@@ -29,7 +30,7 @@ struct TreeBlock {
   glm::uvec4 casters;  // xyz: shadow caster entries per model in each cascade
   TreeModelGpu models[kMaxTreeModels];
 };
-static_assert(sizeof(TreeModelGpu) == 112);
+static_assert(sizeof(TreeModelGpu) == 128);
 static_assert(offsetof(TreeBlock, counts) == 128);
 static_assert(offsetof(TreeBlock, models) == 192);
 

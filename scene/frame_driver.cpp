@@ -77,6 +77,7 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   lastTimeS_ = input.timeS;
   request.present = input.present;
   request.readbackColor = input.readbackColor;
+  request.aov = input.aov;
   request.overlay = input.overlay;
 
   // simulate
@@ -130,6 +131,7 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.vegetation = result->vegetation;
   r.trees = result->trees;
   r.color = std::move(result->color);
+  r.aov = std::move(result->aov);
   r.exposureEv = result->exposureEv;
   r.driverMs += own.elapsedMs();
   return r;

@@ -56,6 +56,8 @@ struct FrameInput {
   double flightMs = 0.0;                    // what the caller spent producing pose and ahead
   bool present = false;                     // to the window, when the renderer has one
   bool readbackColor = false;
+  // An AOV frame (render::FrameRequest::aov): FrameRecord::aov comes back instead of a colour.
+  bool aov = false;
   const render::OverlayDrawData* overlay = nullptr;  // must stay alive until submit() returns
 };
 
@@ -79,6 +81,7 @@ struct FrameRecord {
   std::optional<render::VegetationFigures> vegetation;
   std::optional<render::TreeFigures> trees;  // when the frame drew trees
   std::optional<render::ColorImage> color;  // when FrameInput::readbackColor
+  std::optional<render::AovImage> aov;      // when FrameInput::aov
   double driverMs = 0.0;                    // the driver's own bookkeeping (copying figures)
   double cpuMs() const;                     // the CPU stages that exist: flight … record/submit
 };

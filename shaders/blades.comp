@@ -67,7 +67,7 @@ void putVertex(vec3 p, vec3 n, vec2 blade, bool shadow) {
   v.colour = uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
   v.plant = gPlantWord | (shadow ? kBladeShadowBit : 0u);
   v.blade = packSnorm2x16(blade);
-  v.unused = 0u;
+  v.species = pc.species;
   bladeVertices[gVertex++] = v;
 }
 

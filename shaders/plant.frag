@@ -13,10 +13,11 @@
 #include "seeding.glsl"
 #include "classify_layout.glsl"
 #include "plant_common.glsl"
+#include "aov.glsl"
 
 layout(location = 0) in vec3 gColour;
 layout(location = 1) in vec2 gBlade;
-layout(location = 2) flat in uint gFlags;  // bits 0–1: kind (0 blade, 1 stone, 2 head); bit 2: shadow
+layout(location = 2) flat in uint gFlags;  // bits 0–1: kind (0 blade, 1 stone, 2 head); bit 2: shadow; bits 3–7: species
 layout(location = 0) out vec4 outColor;
 
 const float kShadowAlpha = 0.35;
@@ -52,6 +53,7 @@ float bladeDetail(uint kind) {
 
 void main() {
   bool shadow = (gFlags & 4u) != 0u;
+  if (shadow && aovFrame()) discard;  // a shadow is not vegetation
   uint kind = gFlags & 3u;
   // The outline: a blade's soft edges, a flower head's disc, a stone's lumpy disc. A shadow is
   // drawn at 35 % coverage (less where it fades out: gColour.r, plant_shape.glsl), a head's and
@@ -72,5 +74,5 @@ void main() {
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
   vec3 lit = (pc.flags & kFlagFlatColour) != 0u ? vec3(1.0, 0.0, 1.0) : gColour * bladeDetail(kind);
-  outColor = vec4(shadow ? vec3(0.0) : lit, 1.0);
+  outColor = aovFrame() ? aovVegetation(gFlags >> 3u) : vec4(shadow ? vec3(0.0) : lit, 1.0);
 }

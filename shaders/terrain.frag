@@ -9,6 +9,7 @@
 #include "terrain_palette.glsl"
 #include "terrain_push.glsl"
 #include "terrain_shading.glsl"
+#include "aov.glsl"
 layout(location = 0) in vec3 inOffset;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in float inHeightMsl;
@@ -17,5 +18,5 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   TerrainPoint p = TerrainPoint(inOffset, inNormal, inHeightMsl, inUv, dFdx(inOffset), dFdy(inOffset));
-  outColor = vec4(shadeTerrain(p, TerrainImagery(push.imageryUv, push.previousUv, push.layers)), 1.0);
+  outColor = aovGround(vec4(shadeTerrain(p, TerrainImagery(push.imageryUv, push.previousUv, push.layers)), 1.0));
 }

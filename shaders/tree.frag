@@ -9,6 +9,7 @@
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
+#include "common/aov.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 #include "common/tree_coverage.glsl"
@@ -56,5 +57,5 @@ void main() {
   vec3 albedo = (leaf ? treeLeafAlbedo(m.leaf.rgb, vColour.rgb) : m.bark.rgb) * vColour.a;
   if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
   vec3 lit = treeLight(n, albedo, m.leaf.w, leaf, vOcclusion, vSun);
-  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
+  outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -10,6 +10,7 @@ layout(early_fragment_tests) in;
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
+#include "common/aov.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 
@@ -46,5 +47,5 @@ void main() {
   float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
   vec3 albedo = treeLeafAlbedo(m.leaf.rgb, vColour.rgb) * vColour.a * kTreeCoreShade * clumps;
   vec3 lit = treeLight(normalize(vNormal), albedo, m.leaf.w, false, vOcclusion, vSun);
-  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
+  outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -6,6 +6,7 @@
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
+#include "common/aov.glsl"
 #include "common/tree_push.glsl"
 #include "common/tree_shading.glsl"
 #include "common/tree_coverage.glsl"
@@ -55,5 +56,5 @@ void main() {
   // The capture holds the species' leaf colour: turned into this tree's (treeLeafAlbedo).
   vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * treeImpostorFactor(m.leaf.rgb, vColour.rgb) * vColour.a;
   vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
-  outColor = vec4(lit * vSky.a + vSky.rgb, 1.0);
+  outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

@@ -9,7 +9,7 @@ struct BladeVertex {
   uint plant;   // bits 0–28: the plant record; 29–30: kind (0 blade, 1 stone, 2 flower head); 31: shadow
   uvec2 colour; // packHalf2x16(r, g), packHalf2x16(b, 0): lit (common/plant_lighting.glsl); shadows 0
   uint blade;   // packSnorm2x16(x: −1 … 1 across, y: 0 root … 1 tip)
-  uint unused;
+  uint species; // the catalog index (the AOV frames' species: aov.glsl)
 };
 
 

@@ -12,4 +12,5 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 shadowSplits;       // xyz: each cascade's far view distance (m), w: 1 when the shadow map holds this frame's casters
   vec4 shadowTexel;        // xyz: each cascade's texel size (m), w: the cascades drawn this frame (bit c; render/shadow_refresh.h)
   vec4 terrainDepth;       // x: 1 when the terrain was rasterised in compute (its depth samples, binding 5, go into the depth attachment: terrain_depth.frag), y: samples per pixel, z: 1 when the Hi-Z pyramid (set 0 binding 6) holds this frame's terrain before the trees (hiz_occlusion.glsl)
+  vec4 outputs;            // x: 1 in an AOV frame (aov.glsl: vegetation coverage and species instead of colour)
 } frame;

@@ -5,7 +5,7 @@
 
 layout(location = 0) out vec3 gColour;      // lit, after aerial perspective (linear); shadows: r = coverage
 layout(location = 1) out vec2 gBlade;       // x: −1 … 1 across, y: 0 root … 1 tip
-layout(location = 2) flat out uint gFlags;  // bits 0–1: kind (0 blade, 1 stone, 2 flower head); bit 2: shadow
+layout(location = 2) flat out uint gFlags;  // bits 0–1: kind (0 blade, 1 stone, 2 flower head); bit 2: shadow; bits 3–7: species
 
 #include "atmosphere.glsl"
 #include "plant_lighting.glsl"
@@ -17,7 +17,7 @@ void emitPlantVertex(vec3 p, vec3 n, vec2 blade, vec3 ground, vec4 plant, bool s
   vec3 q = shadow ? shadowPoint(p, plane) : p;
   gColour = shadow ? vec3(shadowStrength(p), 0.0, 0.0) : plantColour(q, n, vec2(blade.x, max(blade.y, plant.y)), ground, plant.x, kind, plane.xyz);
   gBlade = blade;
-  gFlags = kind | (shadow ? 4u : 0u);
+  gFlags = kind | (shadow ? 4u : 0u) | (pc.species << 3u);
   gl_Position = frame.viewProj * vec4(q, 1.0);
   EmitVertex();
 }

@@ -22,6 +22,7 @@
 #include "terrain_detail.glsl"
 #include "terrain_palette.glsl"
 #include "terrain_shading.glsl"
+#include "aov.glsl"
 
 #ifndef VEGSTREAM_RASTER
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -30,11 +31,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #ifdef VEGSTREAM_RASTER  // terrain_raster.glsl: ids come from the compute rasteriser, not a target
 #ifdef VEGSTREAM_MULTISAMPLE
 layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
-#define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
+#define STORE_COLOUR(px, s, c) imageStore(target, px, s, aovGround(c))
 const int kMaxSamples = 8;
 #else
 layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
-#define STORE_COLOUR(px, s, c) imageStore(target, px, c)
+#define STORE_COLOUR(px, s, c) imageStore(target, px, aovGround(c))
 const int kMaxSamples = 1;
 #endif
 #else
@@ -44,7 +45,7 @@ layout(set = 3, binding = 5) uniform sampler2DMS depthSamples;
 layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, s))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, s).r
-#define STORE_COLOUR(px, s, c) imageStore(target, px, s, c)
+#define STORE_COLOUR(px, s, c) imageStore(target, px, s, aovGround(c))
 #define SAMPLES textureSamples(visibility)
 const int kMaxSamples = 8;
 #else
@@ -53,7 +54,7 @@ layout(set = 3, binding = 5) uniform sampler2D depthSamples;
 layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, 0))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, 0).r
-#define STORE_COLOUR(px, s, c) imageStore(target, px, c)
+#define STORE_COLOUR(px, s, c) imageStore(target, px, aovGround(c))
 #define SAMPLES 1
 const int kMaxSamples = 1;
 #endif

@@ -20,6 +20,7 @@ struct TreeModelGpu {
   // The impostor's triangle per quarter of sin(elevation) (render/tree_impostor_outline.h): apex
   // height and base half width, in the rectangle's units.
   vec4 triangleApex, triangleBase;
+  uvec4 ids;    // x: the species (catalog index; the AOV frames' species, aov.glsl)
 };
 
 layout(set = 1, binding = 0, std140) uniform TreeBlock {

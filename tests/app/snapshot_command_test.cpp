@@ -199,7 +199,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"datetime_without_zone", "'{ZION}' " + kAt + "--pitch -10 --datetime 2026-06-21T06:45 --out '{OUT}'",
                  "--datetime \"2026-06-21T06:45\": no zone"},
         BadInput{"exposure_nan", "'{ZION}' " + kAt + "--pitch -10 --exposure nan --out '{OUT}'",
-                 "--exposure nan: must be a number of EV from -10 to 30"}),
+                 "--exposure nan: must be a number of EV from -10 to 30"},
+        BadInput{"aov_unknown", "'{ZION}' " + kAt + "--pitch -10 --aov depth,normals --out '{OUT}'",
+                 "--aov depth,normals: no AOV named 'normals'; choose from depth, coverage, species"},
+        BadInput{"aov_twice", "'{ZION}' " + kAt + "--pitch -10 --aov depth,depth --out '{OUT}'",
+                 "--aov depth,depth: 'depth' is named twice"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 }  // namespace
