@@ -13,6 +13,7 @@
 #include "datasets/dataset_format.h"
 #include "flight/flight_path_json.h"
 #include "render/frame_slots.h"
+#include "scene/frame_aovs.h"
 #include "streaming/open_tile_source.h"
 
 namespace vegstream::app {
@@ -51,6 +52,9 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_option("--frames-every", o.framesEvery, "Save every K-th frame as frames/frame_NNNNN.png (0: none)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--aov", o.aov,
+                  "With --frames-every: also write each saved frame's measurement AOVs, comma-separated out of "
+                  "depth, coverage, species (frame_NNNNN.depth.tif …; an extra frame each, its time not counted)");
   addFramesInFlightOption(*cmd, o.framesInFlight);
   cmd->add_option("--warmup", o.warmupS, "Seconds of frames rendered at the start before recording")
       ->capture_default_str()
@@ -75,6 +79,10 @@ int runRecord(RecordOptions o, const Logger& log) {
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   auto sun = checkSunOptions(o.sunCli);
   if (!sun) return reportError(log, sun.error());
+  auto aovs = scene::parseAovList(o.aov);
+  if (!aovs) return reportError(log, aovs.error());
+  if (aovs->any() && o.framesEvery <= 0)
+    return userError("--aov " + o.aov + ": AOVs are written beside the saved frames; add --frames-every K");
   std::error_code ec;
   if (fs::exists(o.out, ec) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec)))
     return userError("--out " + o.out + " already exists and is not empty; choose another output directory");
@@ -112,6 +120,7 @@ int runRecord(RecordOptions o, const Logger& log) {
   request.playback.fps = o.fps;
   request.playback.warmupS = o.warmupS;
   request.playback.framesEvery = o.framesEvery;
+  request.playback.aovs = *aovs;
   request.playback.framesInFlight = static_cast<std::size_t>(o.framesInFlight);
   request.plots = !o.noPlots;
   request.pathFile = o.path;

@@ -28,6 +28,7 @@ struct RecordOptions {
   int msaa = 4;
   double fps = 60.0;
   int framesEvery = 0;  // 0: no PNG frames
+  std::string aov;      // --aov: the AOVs beside each saved frame (scene/frame_aovs.h)
   int framesInFlight = 3;  // 1 (serial, for comparison) … 3: frames prepared while the GPU draws
   double warmupS = 0.0;
   std::string device;

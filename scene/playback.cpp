@@ -57,7 +57,20 @@ class Pipeline {
     if (!index) return index.error();
     // A settled frame's wait for its tiles is not frame time, whichever frame it delays.
     excludedMs_ += driver_.scene().lastFrameFigures().settleWaitMs;
-    pending_.push_back({frame, recorded, savePng});
+    pending_.push_back({frame, recorded, savePng, false});
+    if (savePng && options_.aovs.any()) return submitAov(frame, std::move(input));
+    return {};
+  }
+
+  // The saved frame's AOV frame: the same input again (playback.h PlaybackOptions::aovs).
+  Status submitAov(std::size_t frame, FrameInput input) {
+    if (pending_.size() >= options_.framesInFlight)
+      if (Status s = collectOldest(); !s) return s;
+    input.readbackColor = false;
+    input.aov = true;
+    auto index = driver_.submit(input);
+    if (!index) return index.error();
+    pending_.push_back({frame, false, false, true});
     return {};
   }
 
@@ -80,14 +93,27 @@ class Pipeline {
  private:
   struct Pending {
     std::size_t frame;
-    bool recorded, savePng;
+    bool recorded, savePng, aov;
   };
+
+  static std::string frameName(std::size_t frame) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%05zu.png", frame);
+    return name;
+  }
 
   Status collectOldest() {
     const Pending p = pending_.front();
     pending_.pop_front();
     auto frame = driver_.collect(driver_.oldestInFlight());
     if (!frame) return frame.error();
+    if (p.aov) {  // written, and its time since the saved frame left out of the next one's
+      if (!frame->aov) return makeError(ErrorKind::Internal, "the renderer returned no AOV read-back");
+      if (Status s = writeFrameAovs(options_.framesDir / frameName(p.frame), *frame->aov, options_.aovs); !s) return s;
+      lastDoneMs_ = clock_.elapsedMs();
+      excludedMs_ = 0.0;
+      return {};
+    }
     if (!p.recorded) return {};
     assert(p.frame == records.size() && "frames are collected in order");
 
@@ -113,11 +139,9 @@ class Pipeline {
     pngMs.push_back(flight::kNoValue);
     if (p.savePng) {
       Stopwatch png;
-      char name[32];
-      std::snprintf(name, sizeof(name), "frame_%05zu.png", p.frame);
       assert(color && "the renderer returns the colour read-back it was asked for");
       const std::string sidecar = frameSidecarJson(record, color->width, color->height, driver_.scene());
-      if (Status s = writeFrameWithSidecar(options_.framesDir / name, *color, sidecar); !s) return s.error();
+      if (Status s = writeFrameWithSidecar(options_.framesDir / frameName(p.frame), *color, sidecar); !s) return s.error();
       pngMs.back() = png.elapsedMs();
       excludedMs_ += pngMs.back();
       ++rec_.pngFrames;

@@ -25,6 +25,7 @@
 #include "flight/flight_path.h"
 #include "flight/record_table.h"
 #include "render/frame_slots.h"
+#include "scene/frame_aovs.h"
 #include "scene/frame_driver.h"
 
 namespace vegstream::scene {
@@ -35,6 +36,11 @@ struct PlaybackOptions {
   std::size_t framesInFlight = render::kFramesInFlight;  // 1 (serial) … kFramesInFlight
   int framesEvery = 0;  // > 0: save frames 0, K, 2K, … as PNG, each with its sidecar JSON (frame_sidecar.h)
   std::filesystem::path framesDir;  // where frame_NNNNN.png go (framesEvery > 0)
+  // Beside each saved frame, its measurement AOVs (scene/frame_aovs.h): one more frame, an AOV
+  // frame, at the same input right after it — not recorded, its time left out of the next
+  // recorded frame's wall time (the GPU's frames in flight still overlap it: leave the AOVs out
+  // of recordings whose timings matter).
+  AovSelection aovs;
   // Called after each recorded frame (done = frames so far); may be empty.
   std::function<void(std::size_t done, std::size_t total)> progress;
 };

@@ -2,6 +2,7 @@
 // files, columns and keys; deterministic counts and positions; PNG frames; no faked plots;
 // user mistakes end with one message, exit code 2 and nothing written.
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -309,6 +310,34 @@ TEST(RecordCommand, TwoRunsGiveIdenticalCountsAndPositions) {
     EXPECT_EQ(ca.column(col), cb.column(col)) << col;
   // The statistics are there to compare (lavapipe reports them).
   EXPECT_NE(ca.column("stat_fragment_invocations").front(), "");
+}
+
+// --aov (issue 39 item 7): beside each saved frame its AOVs, from an extra frame that is not a
+// row of frames.csv; the recorded frames and their counts are those of the same flight without.
+TEST(RecordCommand, WritesTheSavedFramesAovsAndRecordsTheSameFrames) {
+  const fs::path base = baseRecording();
+  const fs::path dir = freshRecordDir("record_aov");
+  const auto r = recordSmall(dir, "--no-plots --frames-every 10 --aov depth,coverage");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int frame : {0, 10, 20, 30}) {
+    char stem[32];
+    std::snprintf(stem, sizeof(stem), "frame_%05d", frame);
+    EXPECT_TRUE(fs::exists(dir / "frames" / (std::string(stem) + ".png"))) << stem;
+    EXPECT_GT(fs::file_size(dir / "frames" / (std::string(stem) + ".depth.tif")), 0u) << stem;
+    EXPECT_GT(fs::file_size(dir / "frames" / (std::string(stem) + ".coverage.tif")), 0u) << stem;
+    EXPECT_FALSE(fs::exists(dir / "frames" / (std::string(stem) + ".species.tif"))) << stem;
+  }
+  EXPECT_FALSE(fs::exists(dir / "frames" / "frame_00001.depth.tif"));
+  const Csv withAovs = readCsv(dir / "frames.csv"), without = readCsv(base / "frames.csv");
+  ASSERT_EQ(withAovs.rows.size(), without.rows.size());
+  for (const char* col : {"t_s", "lat", "terrain_triangles", "plants"})
+    EXPECT_EQ(withAovs.column(col), without.column(col)) << col;
+
+  const fs::path bad = freshRecordDir("record_aov_without_frames");
+  const auto refused = recordSmall(bad, "--no-plots --aov depth");
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("--aov depth: AOVs are written beside the saved frames; add --frames-every K"),
+            std::string::npos) << refused.err;
 }
 
 // The terrain rasterised in compute (render/terrain_raster_pass.h) fills its three columns, and
