@@ -29,7 +29,13 @@ vec3 plantColour(vec3 pos, vec3 normal, vec2 blade, vec3 ground, float modulatio
   vec3 l = frame.sunDirection.xyz;
   float ndl = dot(nLight, l);
   vec3 albedo = ground * modulation;
-  if (kind == kPlantKindHead) albedo = mix(albedo, vec3(0.55, 0.45, 0.12), 0.6);  // flower heads: yellow
+  // Flower heads: yellow, at a brightness relative to the ground's (1.8 × its luminance), not a
+  // fixed albedo: a fixed 0.5 stood six times brighter than a meadow of 8 % albedo, a bright
+  // carpet from 10 m out that does not average to the imagery (issue 39 item 5).
+  if (kind == kPlantKindHead) {
+    float luma = dot(albedo, vec3(0.2126, 0.7152, 0.0722));
+    albedo = mix(albedo, vec3(1.0, 0.82, 0.22) * (1.8 / 0.8145) * luma, 0.6);
+  }
   // Occlusion by the neighbours: dark at the root, the sunlit top of the canopy a little brighter
   // than the bare ground (stones and heads: none); the canopy seen from afar averages near 1.
   float occlusion = kind != kPlantKindBlade ? 1.0 : mix(0.55, 1.15, blade.y);
