@@ -52,6 +52,10 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
       ->capture_default_str();
   cmd.add_option("--plant-max", o.plantMax, "Most plants per seed triangle (n_max of eq. 1): a ceiling")
       ->capture_default_str();
+  cmd.add_option("--plant-contour", o.plantContour,
+                 "α of Belyaev's contour term: more plants where the ground is seen edge-on (8 in the paper; "
+                 "0: off, eq. 1 alone)")
+      ->capture_default_str();
   cmd.add_option("--cluster-size", o.clusterSize, "Plants per cluster that share one species lookup (C)")
       ->capture_default_str();
   cmd.add_option("--species", o.species, "Species catalog (JSON, see config/species.json); default: the built-in one");
@@ -112,6 +116,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
     return bad("--seed-horizon-m " + std::to_string(o.seedHorizonM) + ": must be 0 … 20000 metres");
   if (!(o.plantDensity >= 0.0 && o.plantDensity <= 100.0))
     return bad("--plant-density " + std::to_string(o.plantDensity) + ": must be 0 … 100 plants per pixel²");
+  if (!(o.plantContour >= 0.0 && o.plantContour <= 64.0))
+    return bad("--plant-contour " + std::to_string(o.plantContour) + ": must be 0 (off) … 64");
   if (!(o.plantMax >= 0.0 && o.plantMax <= 65536.0))
     return bad("--plant-max " + std::to_string(o.plantMax) + ": must be 0 … 65536 plants per seed triangle");
   if (o.clusterSize < 1 || o.clusterSize > static_cast<int>(vegetation::kMaxClusterSize))
@@ -151,6 +157,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;
+  scene.terrain.seeds.contourAlpha = o.plantContour;
   scene.clusterSize = static_cast<uint32_t>(o.clusterSize);
   scene.plants = !o.noPlants;
   scene.plantStyle = o.plantStyle == "markers"  ? render::PlantStyle::Markers

@@ -33,6 +33,7 @@ struct StreamingCli {
   double plantDensity = 0.1;   // ρ: plants per reference pixel² (1080 lines) of projected seed-triangle area
   std::string plantFades = "on";
   double plantMax = 16384.0;   // n_max per seed triangle: a ceiling; the catalog's densities decide
+  double plantContour = 0.0;   // α of Belyaev's contour term (terrain::SeedOptions::contourAlpha); 0: off
   int clusterSize = 8;
   std::string species;  // a species catalog JSON file; empty: the default
   bool noPlants = false;

@@ -1,5 +1,5 @@
 // Seed-triangle plant counts (eq. 1, eq. 2) and the seed level; seed 001_3eca9f2c7752e4fb.txt
-// §2.1 and §3.1.
+// §2.1 and §3.1; the contour term of seed 004_4f0be6bef8094cc2.txt (Belyaev) §2.2.
 
 #include "terrain/seed_triangles.h"
 
@@ -15,6 +15,17 @@ namespace vegstream::terrain {
 namespace {
 constexpr double kEarthCircumferenceM = 40075016.685578488;
 }
+
+namespace {
+// |n·r|: the triangle's unit normal against the unit direction from its centre to the camera
+// (at the origin of eye space); 1 for a degenerate triangle.
+double viewCosine(const std::array<glm::dvec3, 3>& eye) {
+  const glm::dvec3 cross = glm::cross(eye[1] - eye[0], eye[2] - eye[0]);
+  const glm::dvec3 centre = (eye[0] + eye[1] + eye[2]) / 3.0;
+  const double l = glm::length(cross) * glm::length(centre);
+  return l > 0.0 ? std::abs(glm::dot(cross, centre)) / l : 1.0;
+}
+}  // namespace
 
 double screenAreaPx(const EyeView& view, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   auto project = [&](const glm::dvec3& p) { return glm::dvec2(p.x / -p.z, p.y / -p.z) * view.pixelsPerRadian; };
@@ -36,7 +47,16 @@ double plantCountScreen(const EyeView& view, const std::array<glm::dvec3, 3>& ey
   const bool behind = std::any_of(eye.begin(), eye.end(), [&](const glm::dvec3& p) { return -p.z < view.nearM; });
   if (nearPlane) *nearPlane = behind;
   if (behind) return o.maxPlants;
-  return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]) * referenceScale(view), o.maxPlants);
+  const double contour = o.contourAlpha > 0.0 ? contourFactor(viewCosine(eye), o.contourAlpha) : 1.0;
+  return std::min(o.density * screenAreaPx(view, eye[0], eye[1], eye[2]) * referenceScale(view) * contour,
+                  o.maxPlants);
+}
+
+double contourFactor(double cosine, double alpha) {
+  if (alpha <= 0.0) return 1.0;
+  const double c = std::clamp(std::abs(cosine), 1e-3, 1.0);
+  const double t = std::pow(1.0 - c, alpha);
+  return ((1.0 - t) * c + t) / c;
 }
 
 double groundArea(const std::array<glm::dvec3, 3>& v) {
@@ -63,7 +83,8 @@ double plantCountWorld(const EyeView& view, const std::array<glm::dvec3, 3>& eye
   if (d2 <= 0.0) return o.maxPlants;
   const double cosine = std::abs(glm::dot(n, v)) / std::sqrt(d2);
   const double k = view.pixelsPerRadian;
-  return std::min(o.density * area * cosine / d2 * k * k * referenceScale(view), o.maxPlants);
+  const double contour = o.contourAlpha > 0.0 ? contourFactor(cosine, o.contourAlpha) : 1.0;
+  return std::min(o.density * area * cosine / d2 * k * k * referenceScale(view) * contour, o.maxPlants);
 }
 
 double triangleAreaM2(const BintreeGrid& grid, int level, double latDeg) {

@@ -147,6 +147,36 @@ TEST(SeedTriangles, Eq1AgainstHandComputation) {
   EXPECT_TRUE(nearPlane);
 }
 
+// Belyaev's contour term (seed 004 §2.2): 1 where the ground faces the camera, growing as it turns
+// edge-on, and off with α = 0; applied to eq. 1 it multiplies the count by the same factor.
+TEST(SeedTriangles, TheContourTermKeepsGrazingGroundDense) {
+  EXPECT_DOUBLE_EQ(contourFactor(1.0, 8.0), 1.0);
+  EXPECT_DOUBLE_EQ(contourFactor(0.3, 0.0), 1.0);
+  // c = 0.057 (1.7 m up, 30 m out): t = 0.943^8 = 0.625; ((1 − t) c + t) / c = 11.3.
+  const double t = std::pow(1.0 - 0.057, 8.0);
+  EXPECT_NEAR(contourFactor(0.057, 8.0), ((1.0 - t) * 0.057 + t) / 0.057, 1e-12);
+  EXPECT_NEAR(contourFactor(0.057, 8.0), 11.3, 0.05);
+  EXPECT_NEAR(contourFactor(-0.057, 8.0), contourFactor(0.057, 8.0), 1e-12) << "either side";
+  double last = 1.0;
+  for (double c = 0.95; c > 0.01; c -= 0.05) {
+    EXPECT_GT(contourFactor(c, 8.0), last) << c;
+    last = contourFactor(c, 8.0);
+  }
+  EXPECT_TRUE(std::isfinite(contourFactor(0.0, 8.0)));
+  // Eq. 1 on a ground triangle seen at a grazing angle: the count times the factor of its cosine.
+  const EyeView v = handView();
+  SeedOptions o;
+  o.density = 0.01;
+  o.maxPlants = 1e9;
+  const std::array<glm::dvec3, 3> grazing{{{0, -2, -20}, {1, -2, -20}, {0, -2, -22}}};  // level ground, 2 m below
+  const double plain = plantCountScreen(v, grazing, o);
+  o.contourAlpha = 8.0;
+  const glm::dvec3 centre = (grazing[0] + grazing[1] + grazing[2]) / 3.0;
+  const double cosine = 2.0 / glm::length(centre);
+  EXPECT_NEAR(plantCountScreen(v, grazing, o), plain * contourFactor(cosine, 8.0), 1e-6 * plain);
+  EXPECT_GT(plantCountScreen(v, grazing, o), 5.0 * plain);
+}
+
 TEST(SeedTriangles, TheLevelOfDetailIsTheSameAtAnyWindowSizeAndTheGroundCapsIt) {
   // ρ counts pixels of a 1080-line view: the same view in a 320×180 window grows the same plants
   // (issue 18: the count "does not depend on the window's resolution").
