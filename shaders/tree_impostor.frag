@@ -36,7 +36,7 @@ layout(location = 0) out vec4 outColor;
 // grid across the footprint (its derivatives), each a bilinear 2 × 2, see every atlas texel under
 // it from 1 to about 4 atlas texels a shadow texel. `dx`, `dy`: vUv's derivatives, taken in
 // uniform control flow (before any discard).
-const float kTreeShadowCoverage = 0.15;  // kept where the footprint is this covered: thin trunks hold
+const float kTreeShadowCoverage = 0.02;  // kept where any tap sees the crown: a conservative caster
 float treeShadowFootprintCoverage(vec2 dx, vec2 dy) {
   float a = 0.0;
   const vec2 grid[4] = vec2[](vec2(-0.125, -0.375), vec2(0.375, -0.125), vec2(0.125, 0.375), vec2(-0.375, 0.125));

@@ -25,10 +25,10 @@ float sunShadow(vec3 pos, vec3 normal) {
   float texel = frame.shadowTexel[c];
   float cosT = clamp(dot(normal, frame.sunDirection.xyz), 0.05, 1.0), sinT = sqrt(1.0 - cosT * cosT);
   mat4 m = frame.shadowMatrices[c];
-  vec4 s = m * vec4(pos + normal * (texel * (0.5 + sinT)), 1.0);
+  vec4 s = m * vec4(pos + normal * (texel * 0.5 * sinT), 1.0);
   // Depth per metre towards the sun: the matrix's third row.
   float perMetre = length(vec3(m[0][2], m[1][2], m[2][2]));
-  float bias = perMetre * texel * (0.5 + min(sinT / cosT, 4.0));
+  float bias = perMetre * texel * (1.0 + min(sinT / cosT, 4.0));
   vec2 size = vec2(textureSize(sunShadowMap, 0).xy);
   vec2 uv = s.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
