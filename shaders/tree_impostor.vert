@@ -3,7 +3,9 @@
 // Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): a triangle per entry of
 // the classify pass's impostor list, drawn in the basis of the captured view nearest the
 // direction the tree is seen from, scaled and turned like the tree's model (tree.vert), its top
-// swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole).
+// swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole). In the
+// shadow pass the triangle stands across the sun itself, the nearest view's silhouette stretched
+// over it (issue 39 item 8: a shadow as long as the sun makes it, render/README.md).
 #include "common/frame_uniforms.glsl"
 #include "common/simulation_block.glsl"
 #include "simulation/shared/tree_bending.glsl"

@@ -111,15 +111,17 @@ int components(std::vector<uint8_t> m) {
   return n;
 }
 
-class TreeShadowTest : public GpuTest {};
+// The sun's direction (towards it) from its elevation and azimuth (clockwise from north).
+struct SunCase {
+  double elevationDeg, azimuthDeg;
+  glm::dvec3 towards() const {
+    const double el = glm::radians(elevationDeg), az = glm::radians(azimuthDeg);
+    return {std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)};
+  }
+};
 
-TEST_F(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
-  RendererOptions o = options(kW, kH, 1);
-  o.shadowMapSize = 384;
-  auto created = Renderer::create(o);
-  ASSERT_TRUE(created.ok()) << (created.ok() ? "" : created.error().message);
-  Renderer& r = **created;
-  ASSERT_TRUE(r.setImageryLayers(1).ok());
+// The default catalog's first conifer, one variant at kTreeHeight × kCrown.
+TreeModelSet conifer() {
   TreeModelSet set;
   set.species = 0;
   for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
@@ -127,41 +129,35 @@ TEST_F(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
       set.params = s.tree;
       break;
     }
-  ASSERT_EQ(set.params.form, vegetation::TreeForm::Conifer);
+  EXPECT_EQ(set.params.form, vegetation::TreeForm::Conifer);
   set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
-  const std::vector<Hull> env = slices(set.variants[0], kTreeHeight, kCrown);
-  const std::vector<TreeModelSet> sets = {set};
-  ASSERT_TRUE(r.setTreeModels(sets).ok());
+  return set;
+}
 
-  const std::vector<uint8_t> tile = flatTile(150, 140, 120);
+// One tree at the origin on a flat, evenly coloured plane.
+struct LoneTree {
+  std::vector<uint8_t> tile = flatTile(150, 140, 120);
   terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-  for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
   TerrainDraw draw{&plane};
-  draw.imageryLayer = 0;
-  const ImageryUpload upload{0, tile.data()};
-  // Towards the sun: 35° up, from the south-west (azimuth 235°): the shadow runs north-east,
-  // across the map's texel rows and columns alike.
-  const double el = glm::radians(35.0), az = glm::radians(235.0);
-  const glm::dvec3 sun(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
-  TreeInstanceGpu tree{};
-  tree.heightM = kTreeHeight;
-  tree.crownM = kCrown;
-  tree.seed = 0u;  // no yaw, no lean: the slices stand as the model's
-  tree.colour = 0xff000000u;
-  const std::vector<TreeInstanceGpu> trees = {tree};
-  // Straight down over the shadow's middle, a narrow view: nearly orthographic.
-  const glm::dvec3 camera = glm::dvec3(-glm::normalize(glm::dvec2(sun)) * 11.0, 120.0);
-  Camera cam;
-  cam.position = camera;
-  cam.forward = {0.0, 0.0, -1.0};
-  cam.up = {0.0, 1.0, 0.0};
-  cam.verticalFovDeg = 16.0;
-  cam.nearM = 1.0;
-  auto render = [&](bool withTrees, bool shadows, bool upload0) {
+  ImageryUpload upload{0, tile.data()};
+  std::vector<TreeInstanceGpu> trees;
+
+  LoneTree() {
+    for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+    draw.imageryLayer = 0;
+    TreeInstanceGpu t{};
+    t.heightM = kTreeHeight;
+    t.crownM = kCrown;
+    t.seed = 0u;  // no yaw, no lean: the slices stand as the model's
+    t.colour = 0xff000000u;
+    trees = {t};
+  }
+
+  FrameResult render(Renderer& r, const Camera& cam, const glm::dvec3& sun, bool withTree, bool shadows, bool upload0) {
     FrameRequest req;
     req.lighting.exposureEv = 13.0f;  // fixed: frames are compared pixel by pixel
     req.camera = cam;
-    req.cameraHeightMsl = camera.z;
+    req.cameraHeightMsl = cam.position.z;
     req.lighting.sunDirection = sun;
     req.readbackColor = req.readbackDepth = true;
     req.terrain = {&draw, 1};
@@ -173,27 +169,27 @@ TEST_F(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
     t.pageCounts = counts;
     t.shadows = shadows;
     t.lod.fullHeights = t.lod.reducedHeights = 1e6f;  // the full model
-    t.cameraEnu[0] = camera.x, t.cameraEnu[1] = camera.y, t.cameraEnu[2] = camera.z;
-    if (withTrees) req.trees = &t;
+    t.cameraEnu[0] = cam.position.x, t.cameraEnu[1] = cam.position.y, t.cameraEnu[2] = cam.position.z;
+    if (withTree) req.trees = &t;
     auto f = r.renderFrame(req);
     EXPECT_TRUE(f.ok());
     return f.ok() ? std::move(*f) : FrameResult{};
-  };
-  const FrameResult bare = render(false, false, true);
-  const FrameResult lit = render(true, false, false);
-  const FrameResult shaded = render(true, true, false);
-  ASSERT_TRUE(bare.color && lit.color && shaded.color && shaded.depth);
-  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) {
-    (void)writePng(std::string(dir) + "/lone-tree-shadow-off.png", *lit.color);
-    (void)writePng(std::string(dir) + "/lone-tree-shadow-on.png", *shaded.color);
   }
+};
 
-  // The visible ground: not the tree's pixels (they differ from the bare frame), depth on z = 0.
-  const glm::dmat4 inv = glm::inverse(projection(cam, double(kW) / kH) * viewRotation(cam));
-  std::vector<uint8_t> ground(size_t{kW} * kH, 0);
-  std::vector<glm::dvec2> at(ground.size());
-  std::vector<double> drop(ground.size(), 0.0);
+// The visible ground's pixels (not the tree's: they differ from the bare frame; depth on z = 0),
+// where each lies and how much the shadow darkens it (green, of 255).
+struct Ground {
+  std::vector<uint8_t> visible;
+  std::vector<glm::dvec2> at;
+  std::vector<double> drop;
   double deepest = 0.0;
+};
+
+Ground visibleGround(const FrameResult& bare, const FrameResult& lit, const FrameResult& shaded, const Camera& cam) {
+  const glm::dmat4 inv = glm::inverse(projection(cam, double(kW) / kH) * viewRotation(cam));
+  Ground g{std::vector<uint8_t>(size_t{kW} * kH, 0), std::vector<glm::dvec2>(size_t{kW} * kH),
+           std::vector<double>(size_t{kW} * kH, 0.0)};
   for (uint32_t y = 0; y < kH; ++y)
     for (uint32_t x = 0; x < kW; ++x) {
       const size_t i = size_t{y} * kW + x;
@@ -203,47 +199,87 @@ TEST_F(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
       const float depth = shaded.depth->depth[i];
       if (treePixel || depth <= 0.0f) continue;
       const glm::dvec4 p = inv * glm::dvec4((x + 0.5) / (kW / 2.0) - 1.0, (y + 0.5) / (kH / 2.0) - 1.0, depth, 1.0);
-      const glm::dvec3 world = glm::dvec3(p) / p.w + camera;
+      const glm::dvec3 world = glm::dvec3(p) / p.w + cam.position;
       if (std::abs(world.z) > 0.3) continue;
-      ground[i] = 1;
-      at[i] = glm::dvec2(world);
-      drop[i] = double(lit.color->rgba[i * 4 + 1]) - double(shaded.color->rgba[i * 4 + 1]);
-      deepest = std::max(deepest, drop[i]);
+      g.visible[i] = 1;
+      g.at[i] = glm::dvec2(world);
+      g.drop[i] = double(lit.color->rgba[i * 4 + 1]) - double(shaded.color->rgba[i * 4 + 1]);
+      g.deepest = std::max(g.deepest, g.drop[i]);
     }
-  // Shadowed: darkened by more than half the deepest darkening (the penumbra's middle, where the
-  // analytic shadow's hard edge lies).
-  std::vector<uint8_t> dark(ground.size(), 0);
-  size_t measured = 0, analytic = 0, both = 0, groundPixels = 0;
-  for (size_t i = 0; i < ground.size(); ++i) {
-    if (!ground[i]) continue;
-    ++groundPixels;
-    dark[i] = drop[i] > 0.5 * deepest ? 1 : 0;
-    const bool expected = inAnalyticShadow(env, at[i], sun);
-    measured += dark[i];
-    analytic += expected ? 1 : 0;
-    both += (dark[i] && expected) ? 1 : 0;
-  }
-  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) {  // white both, red analytic only, blue render only
-    ColorImage cmp{kW, kH, std::vector<uint8_t>(size_t{kW} * kH * 4, 255)};
-    for (size_t i = 0; i < ground.size(); ++i) {
-      const bool a = ground[i] && inAnalyticShadow(env, at[i], sun), d = dark[i] != 0;
-      const uint8_t v = ground[i] ? 0 : 90;
-      cmp.rgba[i * 4 + 0] = a ? 255 : v;
-      cmp.rgba[i * 4 + 1] = a && d ? 255 : v;
-      cmp.rgba[i * 4 + 2] = d ? 255 : v;
-    }
-    (void)writePng(std::string(dir) + "/lone-tree-shadow-vs-analytic.png", cmp);
-  }
-  const double px = 2.0 * 120.0 * std::tan(glm::radians(cam.verticalFovDeg / 2.0)) / kH;  // metres per pixel
-  const int pieces = components(dark);
-  std::printf("deepest darkening %.0f of 255; shadow %zu px (%.1f m²), analytic %zu px (%.1f m²), overlap %zu px; "
-              "%d connected piece(s); %zu visible ground px\n",
-              deepest, measured, double(measured) * px * px, analytic, double(analytic) * px * px, both, pieces, groundPixels);
-  EXPECT_GT(deepest, 30.0) << "the shadow must darken the ground";
-  EXPECT_EQ(pieces, 1) << "the shadow falls apart";
-  EXPECT_NEAR(double(measured), double(analytic), 0.15 * double(analytic));
-  EXPECT_GE(double(both), 0.8 * double(analytic)) << "the shadow lies elsewhere than the analytic one";
+  return g;
 }
+
+struct Figures {
+  size_t measured = 0, analytic = 0, both = 0;  // visible ground pixels
+  int pieces = 0;
+};
+
+// Shadowed: darkened by more than half the deepest darkening (the penumbra's middle, where the
+// analytic shadow's hard edge lies). VEGSTREAM_TREE_TEST_PNG=DIR writes the comparison (white
+// both, red the analytic shadow only, blue the render's only).
+Figures compare(const Ground& g, const std::vector<Hull>& hulls, const glm::dvec3& sun, const std::string& name) {
+  Figures f;
+  std::vector<uint8_t> dark(g.visible.size(), 0);
+  ColorImage cmp{kW, kH, std::vector<uint8_t>(size_t{kW} * kH * 4, 255)};
+  for (size_t i = 0; i < g.visible.size(); ++i) {
+    const bool expected = g.visible[i] && inAnalyticShadow(hulls, g.at[i], sun);
+    dark[i] = g.visible[i] && g.drop[i] > 0.5 * g.deepest ? 1 : 0;
+    f.measured += dark[i];
+    f.analytic += expected ? 1 : 0;
+    f.both += (dark[i] && expected) ? 1 : 0;
+    const uint8_t other = g.visible[i] ? 0 : 90;
+    cmp.rgba[i * 4 + 0] = expected ? 255 : other;
+    cmp.rgba[i * 4 + 1] = expected && dark[i] ? 255 : other;
+    cmp.rgba[i * 4 + 2] = dark[i] ? 255 : other;
+  }
+  f.pieces = components(dark);
+  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) (void)writePng(std::string(dir) + "/" + name + ".png", cmp);
+  return f;
+}
+
+class TreeShadowTest : public GpuTest, public ::testing::WithParamInterface<SunCase> {};
+
+TEST_P(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
+  RendererOptions o = options(kW, kH, 1);
+  o.shadowMapSize = 384;
+  auto created = Renderer::create(o);
+  ASSERT_TRUE(created.ok()) << (created.ok() ? "" : created.error().message);
+  Renderer& r = **created;
+  ASSERT_TRUE(r.setImageryLayers(1).ok());
+  const std::vector<TreeModelSet> sets = {conifer()};
+  ASSERT_TRUE(r.setTreeModels(sets).ok());
+  const std::vector<Hull> hulls = slices(sets[0].variants[0], kTreeHeight, kCrown);
+  const glm::dvec3 sun = GetParam().towards();
+  // Straight down over the shadow's middle from 120 m, a narrow view: nearly orthographic.
+  const double length = kTreeHeight / std::tan(glm::radians(GetParam().elevationDeg));
+  Camera cam;
+  cam.position = glm::dvec3(-glm::normalize(glm::dvec2(sun)) * (0.5 * length), 120.0);
+  cam.forward = {0.0, 0.0, -1.0};
+  cam.up = {0.0, 1.0, 0.0};
+  cam.verticalFovDeg = 16.0;
+  LoneTree scene;
+  const FrameResult bare = scene.render(r, cam, sun, false, false, true);
+  const FrameResult lit = scene.render(r, cam, sun, true, false, false);
+  const FrameResult shaded = scene.render(r, cam, sun, true, true, false);
+  ASSERT_TRUE(bare.color && lit.color && shaded.color && shaded.depth);
+  const std::string name = "lone-tree-" + std::to_string(int(GetParam().elevationDeg));
+  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) (void)writePng(std::string(dir) + "/" + name + ".png", *shaded.color);
+  const Ground g = visibleGround(bare, lit, shaded, cam);
+  const Figures f = compare(g, hulls, sun, name + "-vs-analytic");
+  const double px = 2.0 * 120.0 * std::tan(glm::radians(cam.verticalFovDeg / 2.0)) / kH;  // metres per pixel
+  std::printf("sun %.0f° up: darkening up to %.0f of 255; shadow %zu px (%.1f m²), analytic %zu px (%.1f m²), "
+              "overlap %zu px; %d connected piece(s)\n",
+              GetParam().elevationDeg, g.deepest, f.measured, double(f.measured) * px * px, f.analytic,
+              double(f.analytic) * px * px, f.both, f.pieces);
+  EXPECT_GT(g.deepest, 30.0) << "the shadow must darken the ground";
+  EXPECT_EQ(f.pieces, 1) << "the shadow falls apart";
+  EXPECT_NEAR(double(f.measured), double(f.analytic), 0.15 * double(f.analytic));
+  EXPECT_GE(double(f.both), 0.8 * double(f.analytic)) << "the shadow lies elsewhere than the analytic one";
+}
+
+// 35° from the south-west: the shadow runs north-east, across the map's texel rows and columns
+// alike; 50° from the east-south-east, shorter and at another slant.
+INSTANTIATE_TEST_SUITE_P(Suns, TreeShadowTest, ::testing::Values(SunCase{35.0, 235.0}, SunCase{50.0, 110.0}));
 
 }  // namespace
 }  // namespace vegstream::render::testing
