@@ -3,7 +3,9 @@
 // Octahedral impostors of trees (issue 20, common/tree_impostor.glsl): a triangle per entry of
 // the classify pass's impostor list, drawn in the basis of the captured view nearest the
 // direction the tree is seen from, scaled and turned like the tree's model (tree.vert), its top
-// swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole).
+// swaying with the trunk's amplitude in the shared wind (the impostor moves as a whole). In the
+// shadow pass the triangle stands across the sun itself, the nearest view's silhouette stretched
+// over it (issue 39 item 8: a shadow as long as the sun makes it, render/README.md).
 #include "common/frame_uniforms.glsl"
 #include "common/simulation_block.glsl"
 #include "simulation/shared/tree_bending.glsl"
@@ -43,8 +45,6 @@ void main() {
   uint g = trees.counts.w;
   vec2 cell = clamp(floor(treeImpostorUv(d) * float(g)), vec2(0.0), vec2(float(g) - 1.0));
   vec3 dc = treeImpostorDirection((cell + 0.5) / float(g));
-  vec3 right, up;
-  treeImpostorBasis(dc, right, up);
   float r = m.shape.z;
   // The quad holds what the model covers seen along dc — a cylinder of the crown's radius and the
   // model's height about its centre — not the captured square: a side view of a tree is a third
@@ -52,6 +52,15 @@ void main() {
   float sinE = clamp(dc.z, 0.0, 1.0), cosE = sqrt(1.0 - sinE * sinE);
   float rc = 1.08 * m.shape.y, hh = 0.55 * m.shape.x;
   vec2 half_ = min(vec2(rc, hh * cosE + rc * sinE), vec2(r));
+  // In the shadow pass the quad stands across the sun itself, not across the captured view
+  // nearest it (cells are 10–20° apart): the captured silhouette stretched over the cylinder as
+  // the sun sees it. Otherwise a shadow is as long as the nearest view's, not the sun's (a 15 m
+  // conifer under a 35° sun cast 17 m instead of 21: tests/render/tree_shadow_test.cpp).
+  vec3 seen = push.mode == 1u ? d : dc;
+  vec3 right, up;
+  treeImpostorBasis(seen, right, up);
+  float sinS = clamp(seen.z, 0.0, 1.0), cosS = sqrt(1.0 - sinS * sinS);
+  vec2 extent = min(vec2(rc, hh * cosS + rc * sinS), vec2(r));
   // Drawn on one triangle that holds the model (render/tree_impostor_outline.h): the H200's
   // graphics units are bound by primitives here, and a conifer fills a triangle better than a
   // rectangle. Apex (0, a), base (±b, 0) in the rectangle's units (up: 0 at its bottom … 1 at its
@@ -59,7 +68,7 @@ void main() {
   int bin = min(int(sinE * 4.0), 3);
   float apex = m.triangleApex[bin], base = m.triangleBase[bin];
   vec2 c = gl_VertexIndex % 3 == 2 ? vec2(0.0, 2.0 * apex - 1.0) : vec2(gl_VertexIndex % 3 == 0 ? -base : base, -1.0);
-  vec3 modelPoint = vec3(0.0, 0.0, m.shape.w) + right * (c.x * half_.x) + up * (c.y * half_.y);
+  vec3 modelPoint = vec3(0.0, 0.0, m.shape.w) + right * (c.x * extent.x) + up * (c.y * extent.y);
   // Sway: the trunk's bend at this height.
   vec3 wind = treeUnrotateYaw(vec3(uintBitsToFloat(entry.z), uintBitsToFloat(entry.w), 0.0), seed);
   if (dot(wind, wind) > 1e-6) {
@@ -91,6 +100,6 @@ void main() {
   // In colour, an impostor behind the terrain is dropped here, before any of its fragments: the
   // quad's sphere (its half extents, scaled, plus the sway) against this frame's Hi-Z pyramid.
   // Every vertex of the quad decides alike, so the quad goes whole. (The shadow pass keeps it.)
-  float reach = length(half_) * max(sxy, sz) + 0.1 * t.heightM;
+  float reach = length(extent) * max(sxy, sz) + 0.1 * t.heightM;
   if (push.mode == 0u && hiddenByTerrain(centreRel, reach)) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
