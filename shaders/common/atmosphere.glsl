@@ -5,7 +5,7 @@
 // exactly the sky behind them. Radiance in the scene's units (exposure.glsl). Needs
 // frame_uniforms.glsl (frame.atmosphere: x the camera's radius in km, y the aerial volume's far
 // distance in km).
-#include "shared_code_macros.glsl"
+#include "simulation/shared/shared_code_macros.glsl"
 #include "atmosphere_model.glsl"
 
 layout(set = 0, binding = 7) uniform sampler2D skyViewLut;

@@ -1,7 +1,7 @@
 // The atmosphere LUT passes' bindings (render/atmosphere_pass.h) and the GPU's lookups that
 // atmosphere_march.glsl reads. Texel i of a LUT n texels wide holds u = i / (n − 1), so u = 0
 // and 1 are texel centres.
-#include "shared_code_macros.glsl"
+#include "simulation/shared/shared_code_macros.glsl"
 #include "atmosphere_model.glsl"
 
 layout(set = 0, binding = 0) uniform sampler2D transmittanceLut;

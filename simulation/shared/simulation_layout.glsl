@@ -10,12 +10,7 @@
 // of the camera's offset inside it plus the relative position, so indexing never needs large
 // floats.
 
-#ifndef VS_INLINE
-#define VS_INLINE
-#define VS_INOUT(T) inout T
-#define VS_SIM_ARG
-#define VS_SIM
-#endif
+#include "shared_code_macros.glsl"
 
 // The wind grid: virtual blades at the centres of 4 m cells, 128 × 128 around the camera (512 m:
 // past the plants' 250 m horizon on every side).

@@ -14,6 +14,7 @@
 #include "render/png_writer.h"
 #include "render/shadow_cascades.h"
 #include "tests/support/plant_field_scene.h"
+#include "tree_frame.h"
 #include "vegetation/tree_model.h"
 
 namespace vegstream::render::testing {
@@ -325,29 +326,12 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
   const glm::dvec3 sun = glm::normalize(glm::dvec3(-1.0, 0.0, 0.9));  // towards the sun: west, 42° up
   const std::vector<TreeInstanceGpu> trees = {treeAt(0.0f, 0.0f)};
   const glm::dvec3 camera{8.0, -30.0, 28.0};
+  Camera cam;
+  cam.position = camera;
+  cam.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
+  cam.verticalFovDeg = 60.0;
   auto render = [&](bool withTrees, bool shadows, bool upload0) {
-    FrameRequest req;
-    req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
-    req.camera.position = camera;
-    req.camera.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
-    req.camera.verticalFovDeg = 60.0;
-    req.cameraHeightMsl = camera.z;
-    req.lighting.sunDirection = sun;
-    req.readbackColor = req.readbackDepth = true;
-    req.terrain = {&draw, 1};
-    if (upload0) req.imageryUploads = {&upload, 1};
-    const std::vector<TreePageUpload> uploads = {{0, 1, trees.data()}};
-    const std::vector<uint32_t> counts = {1};
-    TreeRequest t;
-    t.uploads = uploads;
-    t.pageCounts = counts;
-    t.shadows = shadows;
-    t.lod.fullHeights = t.lod.reducedHeights = 1e6f;  // the full model, whatever the frame's size
-    t.cameraEnu[0] = camera.x, t.cameraEnu[1] = camera.y, t.cameraEnu[2] = camera.z;
-    if (withTrees) req.trees = &t;
-    auto f = r->renderFrame(req);
-    EXPECT_TRUE(f.ok());
-    return f.ok() ? std::move(*f) : FrameResult{};
+    return renderTreeFrame(*r, cam, sun, draw, upload0 ? &upload : nullptr, trees, withTrees, shadows);
   };
   const FrameResult bare = render(false, false, true);
   const FrameResult lit = render(true, false, false);
@@ -358,10 +342,6 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
   const auto treePixels = mask(*lit.color, *bare.color);
   // Back from a pixel to the ground: the depth's camera-relative point.
   const double aspect = 160.0 / 120.0;
-  Camera cam;
-  cam.position = camera;
-  cam.forward = glm::normalize(glm::dvec3(9.0, 2.0, 0.0) - camera);
-  cam.verticalFovDeg = 60.0;
   const glm::dmat4 inv = glm::inverse(projection(cam, aspect) * viewRotation(cam));
   size_t darkened = 0, expected = 0, ground = 0;
   const double crownR = 0.5 * kCrown + 0.6;

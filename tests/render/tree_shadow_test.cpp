@@ -21,6 +21,7 @@
 #include "gpu_test_fixture.h"
 #include "render/png_writer.h"
 #include "tests/support/plant_field_scene.h"
+#include "tree_frame.h"
 #include "vegetation/tree_model.h"
 
 namespace vegstream::render::testing {
@@ -154,26 +155,7 @@ struct LoneTree {
   }
 
   FrameResult render(Renderer& r, const Camera& cam, const glm::dvec3& sun, bool withTree, bool shadows, bool upload0) {
-    FrameRequest req;
-    req.lighting.exposureEv = 13.0f;  // fixed: frames are compared pixel by pixel
-    req.camera = cam;
-    req.cameraHeightMsl = cam.position.z;
-    req.lighting.sunDirection = sun;
-    req.readbackColor = req.readbackDepth = true;
-    req.terrain = {&draw, 1};
-    if (upload0) req.imageryUploads = {&upload, 1};
-    const std::vector<TreePageUpload> uploads = {{0, 1, trees.data()}};
-    const std::vector<uint32_t> counts = {1};
-    TreeRequest t;
-    t.uploads = uploads;
-    t.pageCounts = counts;
-    t.shadows = shadows;
-    t.lod.fullHeights = t.lod.reducedHeights = 1e6f;  // the full model
-    t.cameraEnu[0] = cam.position.x, t.cameraEnu[1] = cam.position.y, t.cameraEnu[2] = cam.position.z;
-    if (withTree) req.trees = &t;
-    auto f = r.renderFrame(req);
-    EXPECT_TRUE(f.ok());
-    return f.ok() ? std::move(*f) : FrameResult{};
+    return renderTreeFrame(r, cam, sun, draw, upload0 ? &upload : nullptr, trees, withTree, shadows);
   }
 };
 
