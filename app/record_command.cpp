@@ -82,18 +82,19 @@ int runRecord(RecordOptions o, const Logger& log) {
   auto aovs = scene::parseAovList(o.aov);
   if (!aovs) return reportError(log, aovs.error());
   if (aovs->any() && o.framesEvery <= 0)
-    return userError("--aov " + o.aov + ": AOVs are written beside the saved frames; add --frames-every K");
+    return userError("--aov " + o.aov + ": --frames-every K is required (the AOVs are written beside the saved frames)");
   std::error_code ec;
   if (fs::exists(o.out, ec) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec)))
     return userError("--out " + o.out + " already exists and is not empty; choose another output directory");
 
+  // Every option before any file is read: a mistake is named even when the path is missing too.
+  scene::SceneOptions so;
+  if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
+    return reportError(log, s.error());
   auto path = flight::loadFlightPath(o.path);
   if (!path) return reportError(log, path.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, &*path);
 
-  scene::SceneOptions so;
-  if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
-    return reportError(log, s.error());
   if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
     return reportError(log, s.error());
   applyTreeOptions(o.treeCli, so);

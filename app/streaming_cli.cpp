@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/number_text.h"
 #include "vegetation/plant_seeding.h"
 #include "vegetation/species_catalog.h"
 
@@ -117,7 +118,7 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   if (!(o.plantDensity >= 0.0 && o.plantDensity <= 100.0))
     return bad("--plant-density " + std::to_string(o.plantDensity) + ": must be 0 … 100 plants per pixel²");
   if (!(o.plantContour >= 0.0 && o.plantContour <= 64.0))
-    return bad("--plant-contour " + std::to_string(o.plantContour) + ": must be 0 (off) … 64");
+    return bad("--plant-contour " + numberText(o.plantContour) + ": must be 0 (off) … 64");
   if (!(o.plantMax >= 0.0 && o.plantMax <= 65536.0))
     return bad("--plant-max " + std::to_string(o.plantMax) + ": must be 0 … 65536 plants per seed triangle");
   if (o.clusterSize < 1 || o.clusterSize > static_cast<int>(vegetation::kMaxClusterSize))

@@ -18,12 +18,12 @@ Result<AovSelection> parseAovList(const std::string& list, const std::string& op
     bool* flag = name == "depth" ? &s.depth : name == "coverage" ? &s.coverage : name == "species" ? &s.species : nullptr;
     if (!flag)
       return makeError(ErrorKind::InvalidInput, option + " " + list + ": no AOV named '" + name +
-                                                    "'; choose from depth, coverage, species (comma-separated)");
-    if (*flag) return makeError(ErrorKind::InvalidInput, option + " " + list + ": '" + name + "' is named twice");
+                                                    "'; each must be one of depth, coverage, species (comma-separated)");
+    if (*flag) return makeError(ErrorKind::InvalidInput, option + " " + list + ": '" + name + "' must be named once");
     *flag = true;
   }
   if (!list.empty() && list.back() == ',')
-    return makeError(ErrorKind::InvalidInput, option + " " + list + ": no AOV named ''; choose from depth, coverage, species");
+    return makeError(ErrorKind::InvalidInput, option + " " + list + ": no AOV named ''; each must be one of depth, coverage, species");
   return s;
 }
 

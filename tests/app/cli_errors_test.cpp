@@ -172,6 +172,26 @@ TEST(CliErrors, Record) {
 
 // The simulation options (app/simulation_cli.h) are checked after parsing, before the path, the
 // dataset or the GPU is touched: one line naming the option, exit 2, nothing written.
+// Belyaev's contour term and the AOVs (issue 39): checked after parsing, on every command that has them.
+TEST(CliErrors, ContourAndAovOptions) {
+  const fs::path dir = ownDir(), d = dir / "no-dataset", rec = dir / "rec", frames = dir / "frames",
+                 still = dir / "still.png";
+  const std::string record = "record " + q(d) + " --path p.json --out " + q(rec);
+  const std::string fly = "fly " + q(d) + " --headless --out " + q(frames);
+  const std::string snapshot = "snapshot --lat 37.4 --lon -113 --alt 2 --heading 0 --pitch -10 --out " + q(still);
+  for (const std::string& command : {record, fly, snapshot})
+    expectOneLineUserErrors({{command + " --plant-contour -1", "--plant-contour -1: must be 0 (off) … 64"},
+                             {command + " --plant-contour 65", "--plant-contour 65: must be"}},
+                            "--");
+  expectOneLineUserErrors({{record + " --aov depth", "--aov depth: --frames-every K is required"},
+                           {record + " --frames-every 5 --aov colour", "--aov colour: no AOV named 'colour'"},
+                           {snapshot + " --aov depth,", "--aov depth,: no AOV named ''"}},
+                          "--");
+  EXPECT_FALSE(fs::exists(rec));
+  EXPECT_FALSE(fs::exists(frames));
+  EXPECT_FALSE(fs::exists(still));
+}
+
 TEST(CliErrors, SimulationOptions) {
   const fs::path dir = ownDir(), d = dir / "no-dataset", rec = dir / "rec", frames = dir / "frames",
                  still = dir / "still.png";

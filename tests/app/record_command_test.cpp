@@ -336,7 +336,7 @@ TEST(RecordCommand, WritesTheSavedFramesAovsAndRecordsTheSameFrames) {
   const fs::path bad = freshRecordDir("record_aov_without_frames");
   const auto refused = recordSmall(bad, "--no-plots --aov depth");
   EXPECT_EQ(refused.exitCode, 2);
-  EXPECT_NE(refused.err.find("--aov depth: AOVs are written beside the saved frames; add --frames-every K"),
+  EXPECT_NE(refused.err.find("--aov depth: --frames-every K is required (the AOVs are written beside the saved frames)"),
             std::string::npos) << refused.err;
 }
 

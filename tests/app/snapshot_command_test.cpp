@@ -201,9 +201,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"exposure_nan", "'{ZION}' " + kAt + "--pitch -10 --exposure nan --out '{OUT}'",
                  "--exposure nan: must be a number of EV from -10 to 30"},
         BadInput{"aov_unknown", "'{ZION}' " + kAt + "--pitch -10 --aov depth,normals --out '{OUT}'",
-                 "--aov depth,normals: no AOV named 'normals'; choose from depth, coverage, species"},
+                 "--aov depth,normals: no AOV named 'normals'; each must be one of depth, coverage, species"},
         BadInput{"aov_twice", "'{ZION}' " + kAt + "--pitch -10 --aov depth,depth --out '{OUT}'",
-                 "--aov depth,depth: 'depth' is named twice"}),
+                 "--aov depth,depth: 'depth' must be named once"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 }  // namespace
