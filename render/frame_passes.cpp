@@ -247,7 +247,7 @@ void Renderer::Impl::recordAovReadback(VkCommandBuffer cmd, FrameSlot& slot) con
   VkBufferImageCopy region{};
   region.imageSubresource = {hdr.aspect, 0, 0, 1};
   region.imageExtent = {extent.width, extent.height, 1};
-  vkCmdCopyImageToBuffer(cmd, hdr.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.colorReadback.get(), 1, &region);
+  vkCmdCopyImageToBuffer(cmd, hdr.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.aovReadback.get(), 1, &region);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   transitionImage(cmd, hdr.get(), hdr.aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, kCompute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);

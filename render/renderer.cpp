@@ -113,8 +113,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
     s.uniforms = createBuffer(*ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
                               "frame uniforms" + tag);
     s.timer = std::make_unique<GpuTimer>(*ctx, kMaxPasses, "frame" + tag);
-    // Room for the resolved float target of an AOV frame (four half floats a pixel).
-    s.colorReadback = createBuffer(*ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+    s.colorReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                    "colour read-back" + tag);
     s.depthReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                    "depth read-back" + tag);
@@ -215,6 +214,9 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
   slot.readAov = request.aov;
+  if (request.aov && !slot.aovReadback.get())  // four half floats a pixel; the slot's frame is done (waitSlot)
+    slot.aovReadback = createBuffer(*ctx, size_t{extent.width} * extent.height * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                    MemoryUse::HostReadback, "AOV read-back");
   slot.readColor = request.readbackColor && !request.aov;
   slot.readDepth = request.readbackDepth || request.aov;  // recordPasses resolves the depth only for it
   if (request.aov)
@@ -272,7 +274,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     r.depth = std::move(img);
   }
   if (slot.readAov && r.depth)
-    r.aov = decodeAov(e.width, e.height, static_cast<const uint16_t*>(slot.colorReadback.mapped), r.depth->depth.data(),
+    r.aov = decodeAov(e.width, e.height, static_cast<const uint16_t*>(slot.aovReadback.mapped), r.depth->depth.data(),
                       slot.aovInverseProjection);
   return r;
 }

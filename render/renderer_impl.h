@@ -66,11 +66,12 @@ struct FrameSlot {
   VkDescriptorSet shadowPassSet = VK_NULL_HANDLE;  // the same, but binding 4 a placeholder: the shadow pass's own
   std::unique_ptr<GpuTimer> timer;
   GpuBuffer colorReadback, depthReadback;
+  GpuBuffer aovReadback;  // an AOV frame's resolved float target; made by the slot's first AOV frame
   // What was submitted last in this slot.
   uint64_t frameIndex = 0;
   bool submitted = false;
   bool readColor = false, readDepth = false;
-  bool readAov = false;             // an AOV frame: colorReadback holds the resolved float target
+  bool readAov = false;             // an AOV frame: aovReadback holds the resolved float target
   glm::dmat4 aovInverseProjection{1.0};  // its camera's, for the distances
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
@@ -129,7 +130,7 @@ struct Renderer::Impl {
                     RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire);
   void queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex);
   void recordReadback(VkCommandBuffer cmd, FrameSlot& slot, bool color, bool depth) const;
-  // An AOV frame's resolved float target (left in the general layout by the tone map) → colorReadback.
+  // An AOV frame's resolved float target (left in the general layout by the tone map) → aovReadback.
   void recordAovReadback(VkCommandBuffer cmd, FrameSlot& slot) const;
   void recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) const;
   FrameResult collect(FrameSlot& slot);
