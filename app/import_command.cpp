@@ -31,17 +31,6 @@ extern "C" void onInterrupt(int) { gInterrupted = true; }
 
 Error userError(const std::string& message) { return makeError(ErrorKind::InvalidInput, message); }
 
-Result<int> epsgOption(const std::string& flag, const std::string& text) {
-  auto crs = geo::parseCrs(text);
-  if (!crs) {
-    std::string m = flag;
-    m += ": ";
-    m += crs.error().message;
-    return makeError(crs.error().kind, m);
-  }
-  return crs->epsg;
-}
-
 std::vector<fs::path> splitList(const std::string& text) {
   std::vector<fs::path> out;
   std::stringstream ss(text);
@@ -49,6 +38,27 @@ std::vector<fs::path> splitList(const std::string& text) {
     if (!item.empty()) out.emplace_back(item);
   return out;
 }
+
+Result<geo::Crs> crsOption(const std::string& flag, const std::string& text) {
+  auto crs = geo::Crs::fromUserInput(text);
+  if (!crs) return makeError(crs.error().kind, flag + ": " + crs.error().message);
+  return crs;
+}
+
+// "1,2,3" → {1, 2, 3}: positive band numbers.
+Result<std::vector<int>> bandList(const std::string& text) {
+  std::vector<int> out;
+  for (const auto& item : splitList(text)) {
+    char* end = nullptr;
+    const long b = std::strtol(item.c_str(), &end, 10);
+    if (end != item.c_str() + item.string().size() || b < 1 || b > 65535)
+      return userError("--bands '" + text + "': expected band numbers from 1, e.g. 1,2,3");
+    out.push_back(static_cast<int>(b));
+  }
+  if (out.size() != 3 && out.size() != 1) return userError("--bands '" + text + "': expected three bands R,G,B or one");
+  return out;
+}
+
 
 // A finite number, the whole text: "--reflectance-scale 'nan': expected a finite number".
 Result<double> numberOption(const std::string& flag, const std::string& text) {
@@ -114,16 +124,22 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   datasets::GeoTiffImportOptions g;
   g.dem = o.dem;
   if (!o.demCrs.empty()) {
-    auto e = epsgOption("--dem-crs", o.demCrs);
+    auto e = crsOption("--dem-crs", o.demCrs);
     if (!e) return e.error();
-    g.demEpsg = *e;
+    g.demCrs = *e;
   }
   if (o.demNodataOpt && o.demNodataOpt->count()) g.demNodata = o.demNodata;
   if (!o.imagery.empty() && !o.imageryBands.empty())
     return userError("--imagery and --imagery-bands exclude each other: give one RGB file or three band files");
-  if (!o.imagery.empty()) g.imagery.file = fs::path(o.imagery);
+  g.imagery.files = o.imagery;
+  if (!o.bands.empty()) {
+    if (o.imagery.empty()) return userError("--bands chooses bands of --imagery FILE, which was not given");
+    auto b = bandList(o.bands);
+    if (!b) return b.error();
+    g.imagery.bandNumbers = *b;
+  }
   if (!o.imageryBands.empty()) {
-    g.imagery.bands = splitList(o.imageryBands);
+    for (const auto& f : splitList(o.imageryBands)) g.imagery.bands.push_back(f.string());
     if (g.imagery.bands.size() != 3) {
       std::string m = "--imagery-bands '";
       m += o.imageryBands;
@@ -132,25 +148,29 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
     }
   }
   if (!o.imageryCrs.empty()) {
-    auto e = epsgOption("--imagery-crs", o.imageryCrs);
+    auto e = crsOption("--imagery-crs", o.imageryCrs);
     if (!e) return e.error();
-    g.imagery.assumeEpsg = *e;
+    g.imagery.assumeCrs = *e;
   }
   if (!o.stretch.empty()) {
     auto s = datasets::parseStretch(o.stretch);
     if (!s) return s.error();
     g.imagery.stretch = *s;
   }
-  g.imagery.maxPixels = o.maxPixels;
   if (auto r = radiometryOptions(o, g); !r) return r.error();
-  if (!o.imageryNir.empty()) {
+  if (!o.imageryNir.empty() || o.nirBand > 0) {
     datasets::NirInput nir;
     nir.file = o.imageryNir;
-    nir.maxPixels = o.maxPixels;
+    nir.band = std::max(o.nirBand, 1);
+    if (o.imageryNir.empty()) {  // --nir-band alone: a band of the imagery file itself
+      if (o.imagery.size() != 1)
+        return userError("--nir-band without --imagery-nir takes the band from --imagery FILE: give one file");
+      nir.file = o.imagery[0];
+    }
     if (!o.imageryNirCrs.empty()) {
-      auto e = epsgOption("--imagery-nir-crs", o.imageryNirCrs);
+      auto e = crsOption("--imagery-nir-crs", o.imageryNirCrs);
       if (!e) return e.error();
-      nir.assumeEpsg = *e;
+      nir.assumeCrs = *e;
     }
     g.nir = std::move(nir);
   } else if (!o.imageryNirCrs.empty()) {
@@ -177,7 +197,9 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
     m += "': expected bilinear or cubic";
     return userError(m);
   }
-  g.maxPixels = o.maxPixels;
+  if (o.memoryMb < 64) return userError("--memory-mb " + std::to_string(o.memoryMb) + ": expected at least 64");
+  g.memoryMb = o.memoryMb;
+  g.resume = o.resume;
   g.threads = o.threads;
   g.cancel = &gInterrupted;
   return g;
@@ -207,14 +229,22 @@ Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::
 }  // namespace
 
 CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
-  auto* cmd = cli.add_subcommand("import", "GeoTIFF DEM (+ imagery) or XYZ tiles → a dataset directory");
-  cmd->add_option("--dem", o.dem, "DEM GeoTIFF (heights in metres)");
-  cmd->add_option("--imagery", o.imagery, "Imagery GeoTIFF: RGB(A) or grey, any supported CRS");
-  cmd->add_option("--imagery-bands", o.imageryBands, "Imagery as three single-band GeoTIFFs R.tif,G.tif,B.tif");
+  auto* cmd = cli.add_subcommand("import", "DEM (+ imagery) from any raster GDAL reads, or XYZ tiles → a dataset");
+  cmd->add_option("--dem", o.dem,
+                  "DEM: any raster GDAL reads (GeoTIFF, COG, VRT, JP2, HGT, IMG, …), a path or an http(s) URL (read "
+                  "by range requests); several files mosaic into one. Heights in metres, or feet when the file says so");
+  cmd->add_option("--imagery", o.imagery,
+                  "Imagery: RGB, grey or multi-band (choose with --bands), any CRS PROJ knows, path or URL; several "
+                  "mosaic");
+  cmd->add_option("--bands", o.bands, "Bands of --imagery as R,G,B (e.g. 1,2,3; default: the bands that are not alpha)");
+  cmd->add_option("--imagery-bands", o.imageryBands, "Imagery as three single-band files R.tif,G.tif,B.tif");
   cmd->add_option("--imagery-nir", o.imageryNir,
-                  "Near-infrared GeoTIFF (one band, any supported CRS) → an NDVI layer with the imagery's red");
+                  "Near-infrared raster (any CRS) → an NDVI layer with the imagery's red; --nir-band picks its band");
+  cmd->add_option("--nir-band", o.nirBand,
+                  "The near-infrared band (of --imagery-nir, or of --imagery itself when alone, e.g. NAIP's 4)")
+      ->check(CLI::Range(1, 65535));
   cmd->add_option("--imagery-nir-crs", o.imageryNirCrs,
-                  "The NIR file's CRS (EPSG:N) when its GeoKeys are missing or wrong");
+                  "The NIR file's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
   cmd->add_option("--stretch", o.stretch,
                   "Display stretch to 0…255 (with --radiometry stretch or auto): percentiles p1,p99 or values LO,HI");
   cmd->add_option("--radiometry", o.radiometry,
@@ -243,8 +273,9 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
                   "bilinear, or cubic (Catmull-Rom: keeps the DEM's values at its pixel centres without kinks)")
       ->capture_default_str();
   o.demNodataOpt = cmd->add_option("--dem-nodata", o.demNodata, "DEM nodata value (overrides the file's)");
-  cmd->add_option("--dem-crs", o.demCrs, "The DEM's CRS (EPSG:N) when its GeoKeys are missing or wrong");
-  cmd->add_option("--imagery-crs", o.imageryCrs, "The imagery's CRS (EPSG:N) when its GeoKeys are missing or wrong");
+  cmd->add_option("--dem-crs", o.demCrs, "The DEM's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
+  cmd->add_option("--imagery-crs", o.imageryCrs,
+                  "The imagery's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
   cmd->add_option("--xyz-elevation", o.xyzElevation, "Elevation tiles 'DIR/{z}/{x}/{y}.png' (instead of --dem)");
   cmd->add_option("--xyz-imagery", o.xyzImagery, "Imagery tiles 'DIR/{z}/{x}/{y}.png' (with --xyz-elevation)");
   o.encodingOpt = cmd->add_option("--encoding", o.encoding,
@@ -260,8 +291,13 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality of imagery tiles")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  cmd->add_option("--max-pixels", o.maxPixels, "Refuse source rasters with more pixels than this")
+  cmd->add_option("--memory-mb", o.memoryMb,
+                  "Memory budget in MiB: a quarter for GDAL's block cache, the rest for the windows being resampled "
+                  "and the imagery statistics; the source's size does not matter")
       ->capture_default_str();
+  cmd->add_flag("--resume", o.resume,
+                "Continue the import that was killed at this --out (same inputs and options), from its .NAME.partial "
+                "directory");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
@@ -282,6 +318,7 @@ int runImport(const ImportOptions& o, const Logger& log) {
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
     if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty() ||
+        !o.bands.empty() || o.nirBand > 0 ||
         !o.imageryDatetime.empty() || !o.imagerySun.empty() || o.radiometry != "auto")
       meta = userError(
           "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime and "

@@ -1,10 +1,11 @@
 #pragma once
-// `vegstream import`: a GeoTIFF DEM (+ imagery) or existing XYZ tiles → a dataset directory
+// `vegstream import`: a DEM (+ imagery) from any raster GDAL reads, or existing XYZ tiles → a dataset directory
 // (DESIGN.md "Dataset directory"). The options are registered here, so main.cpp only adds the
 // subcommand and dispatches to runImport.
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/log.h"
 
@@ -16,9 +17,12 @@ class Option;
 namespace vegstream::app {
 
 struct ImportOptions {
-  // GeoTIFF form.
-  std::string dem, imagery, imageryBands, stretch, demCrs, imageryCrs;
+  // Raster form (any raster GDAL reads, by path or URL; several --dem / --imagery mosaic).
+  std::vector<std::string> dem, imagery;
+  std::string imageryBands, stretch, demCrs, imageryCrs;
+  std::string bands;                      // --bands 1,2,3 of --imagery
   std::string imageryNir, imageryNirCrs;  // near-infrared band → the NDVI layer
+  int nirBand = 0;                        // --nir-band N (0: not given)
   double demNodata = 0.0;
   std::string heightResampling = "bilinear";
   // Imagery radiometry and de-shading (datasets/radiometry.h, deshading_plan.h).
@@ -35,7 +39,8 @@ struct ImportOptions {
   std::string imageryFormat;           // jpeg (GeoTIFF default) or png (XYZ default)
   int maxZoom = -1, minZoom = -1;      // -1: chosen from the data
   int jpegQuality = 90;
-  uint64_t maxPixels = 400'000'000;
+  size_t memoryMb = 512;
+  bool resume = false;
   int threads = 0;
 
   // Which options the user gave (set by addImportCommand).

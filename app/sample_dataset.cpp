@@ -45,8 +45,9 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
         (zion / "srtm.tif").string() + ": the Zion sample is missing; give a dataset directory (vegstream import)");
   log->info("importing the Zion sample once into {}", datasetDir.string());
   datasets::GeoTiffImportOptions o;
-  o.dem = zion / "srtm.tif";
-  o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
+  o.dem = {(zion / "srtm.tif").string()};
+  o.imagery.bands = {(zion / "landsat_b4.tif").string(), (zion / "landsat_b3.tif").string(),
+                      (zion / "landsat_b2.tif").string()};
   // Landsat 8 digital numbers → surface reflectance (DN × 2e-5 − 0.1, dark-object subtracted),
   // de-shaded under the sun of the scene's acquisition: LC80380342015230LGN00, 2015-08-18 at
   // about 17:58 UTC.

@@ -50,7 +50,7 @@ struct Zion {
     dir = fs::temp_directory_path() / ("vegstream_bench_roam_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     datasets::GeoTiffImportOptions o;
-    o.dem = fs::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
+    o.dem = {(fs::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif").string()};
     o.maxZoom = 12;
     o.out = dir;
     datasets::NullProgress progress;

@@ -235,6 +235,10 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     VEG_TRY_ASSIGN(info.path, f.text(s, "path", at + ".path"));
     VEG_TRY_ASSIGN(info.crs, f.text(s, "crs", at + ".crs"));
     VEG_TRY_ASSIGN(info.description, f.text(s, "description", at + ".description"));
+    if (s.contains("crs_epsg") && s["crs_epsg"].is_string()) info.crsCode = s["crs_epsg"].get<std::string>();
+    if (s.contains("crs_projjson") && s["crs_projjson"].is_object()) info.crsProjjson = s["crs_projjson"].dump();
+    if (s.contains("resolution_m") && s["resolution_m"].is_number()) info.resolutionM = s["resolution_m"].get<double>();
+    if (s.contains("driver") && s["driver"].is_string()) info.driver = s["driver"].get<std::string>();
     m.sources.push_back(std::move(info));
   }
   VEG_TRY_ASSIGN(count, f.integer(j, "bytes", "bytes", 0, INT64_MAX));
@@ -268,7 +272,14 @@ json radiometryJson(const RadiometryRecord& r) {
 json toJson(const DatasetMeta& m) {
   json sources = json::array();
   for (const auto& s : m.sources)
-    sources.push_back({{"role", s.role}, {"path", s.path}, {"crs", s.crs}, {"description", s.description}});
+  {
+    json one = {{"role", s.role}, {"path", s.path}, {"crs", s.crs}, {"description", s.description}};
+    if (!s.crsCode.empty()) one["crs_epsg"] = s.crsCode;
+    if (s.crsCode.empty() && !s.crsProjjson.empty()) one["crs_projjson"] = json::parse(s.crsProjjson, nullptr, false);
+    if (s.resolutionM > 0.0) one["resolution_m"] = s.resolutionM;
+    if (!s.driver.empty()) one["driver"] = s.driver;
+    sources.push_back(std::move(one));
+  }
   json imagery = nullptr;
   if (m.imagery) {
     imagery = {{"format", toString(*m.imagery)},

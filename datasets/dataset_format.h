@@ -41,6 +41,13 @@ struct SourceInfo {
   std::string path;         // as given by the user, or the tile template
   std::string crs;          // Crs::name(), e.g. "WGS 84 (EPSG:4326)"
   std::string description;  // size, pixel size, …
+  // Provenance (optional; absent in datasets written before GDAL import): the CRS as an EPSG
+  // code ("EPSG:27700"), or as PROJJSON text when it has none; the ground pixel size at the
+  // source's centre; GDAL's driver ("GTiff", "VRT", …).
+  std::string crsCode;
+  std::string crsProjjson;
+  double resolutionM = 0.0;
+  std::string driver;
 };
 
 // How the imagery's acquisition shading was taken out (deshading.h): the sun it was taken under

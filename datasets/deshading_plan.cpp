@@ -42,6 +42,7 @@ Result<DeshadingPlan> planDeshading(const GeoTiffImportOptions& o, const Radiome
                                     const ImageryTiling& tiling, const std::vector<geo::TileId>& tiles,
                                     glm::dvec2 centre,
                                     const std::function<std::vector<float>(const geo::TileId&)>& heightsOf,
+                                    const std::function<std::optional<TileImagery>(const geo::TileId&)>& imageryOf,
                                     const Logger& log) {
   if (radiometry.method == "stretch") return none("display-stretched imagery is not linear light: not de-shaded");
   if (!o.deshade) return none("--deshading off");
@@ -55,7 +56,7 @@ Result<DeshadingPlan> planDeshading(const GeoTiffImportOptions& o, const Radiome
         {s.azimuthDeg, s.elevationDeg}, "imagery datetime", k,
         concat("NOAA solar position at the dataset's centre (", centre.y, ", ", centre.x, ") at ", o.imageryDatetime));
   }
-  const SunEstimate e = estimateSun(collectShadingSamples(tiling, tiles, kTileSize, heightsOf), k);
+  const SunEstimate e = estimateSun(collectShadingSamples(tiling, tiles, kTileSize, heightsOf, imageryOf), k);
   if (!e.found) {
     log->info("imagery: {}", e.note);
     return none(e.note);

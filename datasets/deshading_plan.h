@@ -33,11 +33,13 @@ struct DeshadingPlan {
 Result<int64_t> imageryUnixMs(const std::string& isoDatetime);
 
 // tiling: the imagery as the tiles will sample it (its `sun` unset); centre: lon/lat of the
-// dataset's centre; heightsOf: a max-zoom tile's heights (for the estimate).
+// dataset's centre; heightsOf / imageryOf: a max-zoom tile's heights and imagery (for the
+// estimate).
 Result<DeshadingPlan> planDeshading(const GeoTiffImportOptions& options, const RadiometryRecord& radiometry,
                                     const ImageryTiling& tiling, const std::vector<geo::TileId>& tiles,
                                     glm::dvec2 centreLonLat,
                                     const std::function<std::vector<float>(const geo::TileId&)>& heightsOf,
+                                    const std::function<std::optional<TileImagery>(const geo::TileId&)>& imageryOf,
                                     const Logger& log);
 
 }  // namespace vegstream::datasets

@@ -1,6 +1,7 @@
-// `vegstream import --dem …` (geotiff_import.h): read and check the sources, pick the zooms,
-// reproject the max zoom's tiles in parallel, then the shared finish (pyramid, dataset.json),
-// all inside a temporary directory renamed into place at the end.
+// `vegstream import --dem …` (geotiff_import.h): open and check the sources through GDAL, pick
+// the zooms, produce the max zoom's tiles in parallel from source windows (tile_producer.h),
+// then the shared finish (pyramid, dataset.json), all inside the partial directory
+// (import_journal.h) renamed into place at the end.
 
 #include "datasets/geotiff_import.h"
 
@@ -11,104 +12,247 @@
 #include <limits>
 #include <vector>
 
-#include "core/atomic_file.h"
+#include <gdal.h>
+#include <nlohmann/json.hpp>
+
+#include "core/parallel_for.h"
 #include "datasets/dataset_finish.h"
 #include "datasets/deshading_plan.h"
-#include "datasets/imagery_tiles.h"
+#include "datasets/import_journal.h"
 #include "datasets/message.h"
-#include "core/parallel_for.h"
-#include "datasets/source_grid.h"
-#include "datasets/tile_codec.h"
+#include "datasets/tile_producer.h"
+#include "geo/gdal_quiet.h"
 #include "geo/projection.h"
 
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
-// What one max-zoom tile produced.
-struct TileOutcome {
-  bool elevation = false, imagery = false, ndvi = false;
-  float minH = std::numeric_limits<float>::infinity(), maxH = -std::numeric_limits<float>::infinity();
-  uint64_t bytes = 0;
-};
-
-struct Sources {
-  const SourceGrid& dem;
-  const ImageryTiling* imagery;  // null: no imagery
-  const Raster* ndvi;            // on the imagery's grid (ndvi_source.h); null: no NDVI layer
-};
-
-// A max-zoom tile's heights (kTileSize², NaN = nodata).
-std::vector<float> tileHeights(const SourceGrid& dem, const geo::TileId& id, HeightResampling resampling) {
-  const auto demPx = dem.tilePixelsToSource(id, kTileSize);
-  std::vector<float> heights(demPx.size());
-  for (size_t i = 0; i < demPx.size(); ++i)
-    heights[i] = resampling == HeightResampling::Cubic ? sampleHeightCubic(dem.raster(), demPx[i])
-                                                       : sampleHeight(dem.raster(), demPx[i]);
-  return heights;
+std::string describe(const SourceGrid& g) {
+  char buf[96];
+  std::snprintf(buf, sizeof(buf), "%.2f m pixels", g.pixelSizeM());
+  return concat(g.source().description(), ", ", buf);
 }
 
-Status produceTile(const fs::path& dir, const geo::TileId& id, const Sources& src, const GeoTiffImportOptions& o,
-                   TileOutcome& out) {
-  HeightTile h;
-  h.id = id;
-  h.size = kTileSize;
-  h.heights = tileHeights(src.dem, id, o.heightResampling);
-  for (const float v : h.heights) {
-    if (!std::isfinite(v)) continue;
-    out.minH = std::min(out.minH, v);
-    out.maxH = std::max(out.maxH, v);
-    out.elevation = true;
-  }
-  if (out.elevation) {
-    const fs::path p = elevationTilePath(dir, id);
-    if (auto s = writeHeightTile(p, h, o.encoding); !s) return s;
-    out.bytes += fileBytes(p);
-  }
-  if (!src.imagery) return {};
-  const auto imgPx = src.imagery->grid->tilePixelsToSource(id, kTileSize);
-  ColorTile c;
-  c.id = id;
-  c.size = kTileSize;
-  out.imagery = fillImageryTile(*src.imagery, imgPx, h.heights, c);
-  if (out.imagery) {
-    const fs::path p = imageryTilePath(dir, id, o.imageryFormat);
-    if (auto s = writeColorTile(p, c, o.imageryFormat, o.jpegQuality); !s) return s;
-    out.bytes += fileBytes(p);
-  }
-  if (!src.ndvi) return {};
-  // The same source positions as the colour: NDVI lies on the imagery's grid.
-  c.ndvi.assign(imgPx.size(), 0);
-  for (size_t i = 0; i < imgPx.size(); ++i) {
-    c.ndvi[i] = ndviToByte(sampleValue(*src.ndvi, imgPx[i]));
-    out.ndvi = out.ndvi || c.ndvi[i] != 0;
-  }
-  if (out.ndvi) {
-    const fs::path p = ndviTilePath(dir, id);
-    if (auto s = writeNdviTile(p, c); !s) return s;
-    out.bytes += fileBytes(p);
+SourceInfo sourceInfo(const std::string& role, const std::string& path, const SourceGrid& g, const std::string& more) {
+  SourceInfo s{role, path, g.crs().name(), more.empty() ? describe(g) : concat(describe(g), ", ", more)};
+  s.crsCode = g.crs().code();
+  if (s.crsCode.empty()) s.crsProjjson = g.crs().projjson();
+  s.resolutionM = std::round(g.pixelSizeM() * 1000.0) / 1000.0;
+  s.driver = g.source().driver();
+  return s;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& x : v) out += (out.empty() ? "" : ",") + x;
+  return out;
+}
+
+// What makes two imports the same import (--resume continues only that one): the inputs (with
+// each local file's size and time) and every option that changes a tile.
+std::string fingerprint(const GeoTiffImportOptions& o) {
+  nlohmann::json j;
+  const auto files = [](const std::vector<std::string>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& f : v) {
+      std::error_code ec;
+      const auto size = fs::file_size(f, ec);
+      const auto time = fs::last_write_time(f, ec).time_since_epoch().count();
+      a.push_back({f, ec ? 0 : size, ec ? 0 : time});
+    }
+    return a;
+  };
+  j["dem"] = files(o.dem);
+  j["imagery"] = files(o.imagery.files);
+  j["bands"] = files(o.imagery.bands);
+  j["band_numbers"] = o.imagery.bandNumbers;
+  if (o.nir) j["nir"] = {files({o.nir->file}), o.nir->band};
+  j["crs"] = {o.demCrs ? o.demCrs->wkt() : "", o.imagery.assumeCrs ? o.imagery.assumeCrs->wkt() : ""};
+  j["options"] = {o.demNodata.value_or(NAN), static_cast<int>(o.heightResampling), o.imageryDatetime,
+                  o.imagerySun ? o.imagerySun->azimuthDeg : NAN, o.imagerySun ? o.imagerySun->elevationDeg : NAN,
+                  o.deshade, o.directFraction, static_cast<int>(o.encoding), static_cast<int>(o.imageryFormat),
+                  o.jpegQuality, o.maxZoom.value_or(-1), o.minZoom.value_or(-1),
+                  static_cast<int>(o.imagery.radiometry.method), o.imagery.radiometry.scale.value_or(NAN),
+                  o.imagery.radiometry.offset.value_or(NAN), o.imagery.stretch ? o.imagery.stretch->lo : NAN,
+                  o.imagery.stretch ? o.imagery.stretch->hi : NAN};
+  return j.dump();
+}
+
+Status checkInputs(const GeoTiffImportOptions& o) {
+  if (auto s = checkOutputDirectory(o.out); !s) return s;
+  const bool withImagery = o.imagery.given();
+  if (o.nir && !withImagery)
+    return makeError(ErrorKind::InvalidInput,
+                     concat("--imagery-nir ", o.nir->file,
+                            " needs imagery (--imagery or --imagery-bands): NDVI is computed with the imagery's red"));
+  if (!o.imageryDatetime.empty()) {
+    if (auto ms = imageryUnixMs(o.imageryDatetime); !ms) return ms.error();
+    if (!withImagery)
+      return makeError(ErrorKind::InvalidInput,
+                       "--imagery-datetime says when the imagery was taken, and no imagery was given");
   }
   return {};
 }
 
-// How the tiles sample the imagery, with the sun that de-shades it (deshading_plan.h), whose
-// record goes into imagery.radiometry.
-Result<ImageryTiling> imageryTiling(const GeoTiffImportOptions& o, PreparedImagery& imagery, const SourceGrid& grid,
-                                    const SourceGrid& dem, const std::vector<geo::TileId>& tiles, const Logger& log) {
-  ImageryTiling tiling{&grid, imagery.linear, std::nullopt, o.directFraction};
-  auto plan = planDeshading(
-      o, imagery.radiometry, tiling, tiles, dem.extent().centre(),
-      [&](const geo::TileId& id) { return tileHeights(dem, id, o.heightResampling); }, log);
-  if (!plan) return plan.error();
-  tiling.sun = plan->sun;
-  imagery.radiometry.deshading = plan->record;
-  return tiling;
+// The DEM's heights over its overview: a warning for the implausible ones, an error when none
+// is valid.
+Status checkHeights(const RasterSource& dem, uint64_t maxPixels, const Logger& log) {
+  auto overview = dem.readOverview(maxPixels);
+  if (!overview) return overview.error();
+  uint64_t implausible = 0, valid = 0;
+  for (const float v : overview->samples) {
+    if (std::isnan(v)) continue;
+    const bool ok = v >= kMinPlausibleHeightM && v <= kMaxPlausibleHeightM;
+    implausible += !ok;
+    valid += ok;
+  }
+  if (implausible)
+    log->warn("{}: {} heights{} outside {} … {} m treated as nodata", dem.label(), implausible,
+              overview->step.x > 1.0 ? " (of its overview)" : "", kMinPlausibleHeightM, kMaxPlausibleHeightM);
+  if (valid == 0) return makeError(ErrorKind::InvalidInput, concat(dem.label(), " has no valid height (all nodata)"));
+  return {};
 }
 
-std::string describe(const SourceGrid& g) {
-  char buf[96];
-  std::snprintf(buf, sizeof(buf), "%dx%d px, %.2f m pixels", g.raster().width, g.raster().height, g.pixelSizeM());
-  return buf;
+struct Grids {
+  const SourceGrid& dem;
+  const PreparedImagery* imagery;
+  const SourceGrid* imageryGrid;
+  const NdviSource* ndvi;
+};
+
+int chooseMaxZoom(const GeoTiffImportOptions& o, const Grids& g, double lat) {
+  int maxZoom = naturalZoom(g.dem.pixelSizeM(), lat);
+  if (g.imageryGrid)
+    maxZoom = std::max(maxZoom, std::min(naturalZoom(g.imageryGrid->pixelSizeM(), lat), maxZoom + 3));
+  return o.maxZoom.value_or(maxZoom);
+}
+
+DatasetMeta initialMeta(const GeoTiffImportOptions& o, const Grids& g, int maxZoom) {
+  DatasetMeta meta;
+  meta.name = o.name.empty() ? defaultDatasetName(o.out) : o.name;
+  meta.bounds = g.dem.extent();
+  meta.maxZoom = maxZoom;
+  meta.elevationEncoding = o.encoding;
+  meta.attribution = o.attribution;
+  meta.sources.push_back(sourceInfo("elevation", joined(o.dem), g.dem, ""));
+  if (g.imageryGrid) {
+    meta.imagery = o.imageryFormat;
+    meta.imageryDatetime = o.imageryDatetime;
+    meta.radiometry = g.imagery->radiometry;
+    const std::string paths = o.imagery.files.empty() ? joined(o.imagery.bands) : joined(o.imagery.files);
+    meta.sources.push_back(sourceInfo("imagery", paths, *g.imageryGrid, g.imagery->description));
+  }
+  if (g.ndvi) {
+    meta.ndvi = true;
+    SourceInfo nir{"nir", o.nir->file, g.ndvi->nirCrs().name(), g.ndvi->description()};
+    nir.crsCode = g.ndvi->nirCrs().code();
+    meta.sources.push_back(nir);
+  }
+  return meta;
+}
+
+// Adds the max zoom's tiles to meta; an error when none has a height.
+Status countTiles(const GeoTiffImportOptions& o, const std::vector<geo::TileId>& tiles,
+                  const std::vector<TileRecord>& records, DatasetMeta& meta) {
+  std::vector<geo::TileId> withHeights;
+  meta.minHeightM = std::numeric_limits<double>::infinity();
+  meta.maxHeightM = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    const TileRecord& t = records[i];
+    meta.bytes += t.bytes;
+    meta.imageryTiles += t.imagery;
+    meta.ndviTiles += t.ndvi;
+    if (!t.elevation) continue;
+    ++meta.elevationTiles;
+    withHeights.push_back(tiles[i]);
+    meta.minHeightM = std::min(meta.minHeightM, static_cast<double>(t.minH));
+    meta.maxHeightM = std::max(meta.maxHeightM, static_cast<double>(t.maxH));
+  }
+  if (withHeights.empty())
+    return makeError(ErrorKind::InvalidInput, concat(joined(o.dem), " gave no valid height at zoom ", meta.maxZoom));
+  if (meta.ndvi && meta.ndviTiles == 0)
+    return makeError(ErrorKind::InvalidInput,
+                     concat("the near-infrared file ", o.nir->file,
+                            " gives no NDVI over the imagery: no pixel where both have data (or NIR + red > 0)"));
+  meta.minZoom = std::min(o.minZoom.value_or(singleTileZoom(withHeights)), meta.maxZoom);
+  return {};
+}
+
+Result<std::optional<ImageryTiling>> planImagery(const GeoTiffImportOptions& o, const Grids& g,
+                                                 const std::vector<geo::TileId>& tiles, RadiometryRecord& record,
+                                                 const Logger& log) {
+  if (!g.imagery) return std::optional<ImageryTiling>();
+  TileSources src{&g.dem, g.imagery, g.imageryGrid, nullptr, nullptr, o.heightResampling};
+  ImageryTiling tiling{g.imagery->linear, std::nullopt, o.directFraction};
+  auto plan = planDeshading(
+      o, record, tiling, tiles, g.dem.extent().centre(),
+      [&](const geo::TileId& id) {
+        auto h = tileHeights(src, id);
+        return h ? *h : std::vector<float>(static_cast<size_t>(kTileSize * kTileSize), NAN);
+      },
+      [&](const geo::TileId& id) {
+        auto t = tileImagery(src, id);
+        return t ? std::move(*t) : std::optional<TileImagery>();
+      },
+      log);
+  if (!plan) return plan.error();
+  tiling.sun = plan->sun;
+  record.deshading = plan->record;
+  return std::optional<ImageryTiling>(tiling);
+}
+
+Result<DatasetMeta> importTiles(const GeoTiffImportOptions& o, const Grids& g, const Logger& log,
+                                ProgressSink& progress) {
+  const double lat = g.dem.extent().centre().y;
+  const int maxZoom = chooseMaxZoom(o, g, lat);
+  uint64_t tileCount = 0;
+  for (const auto& r : geo::tileRangesCovering(g.dem.extent(), maxZoom)) tileCount += static_cast<uint64_t>(r.count());
+  if (tileCount > o.maxTiles)
+    return makeError(ErrorKind::InvalidInput,
+                     concat(joined(o.dem), " at zoom ", maxZoom, " needs ", tileCount, " tiles, more than the limit of ",
+                            o.maxTiles, "; choose a lower --max-zoom"));
+  const std::vector<geo::TileId> tiles = geo::tilesCovering(g.dem.extent(), maxZoom);
+  log->info("{}: {} ({:.2f} m pixels, {}) → zoom {} ({:.1f} m pixels), {} tiles", g.dem.source().label(),
+            g.dem.crs().name(), g.dem.pixelSizeM(), g.dem.source().driver(), maxZoom,
+            geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
+  if (g.imageryGrid)
+    log->info("{}: {} ({:.2f} m pixels), {}", g.imageryGrid->source().label(), g.imageryGrid->crs().name(),
+              g.imageryGrid->pixelSizeM(), g.imagery->radiometryChoice);
+  DatasetMeta meta = initialMeta(o, g, maxZoom);
+  RadiometryRecord none;
+  auto tiling = planImagery(o, g, tiles, meta.radiometry ? *meta.radiometry : none, log);
+  if (!tiling) return tiling.error();
+
+  auto journal = ImportJournal::open(o.out, fingerprint(o), o.resume);
+  if (!journal) return journal.error();
+  if (journal->doneCount()) log->info("--resume: {} of {} tiles already done", journal->doneCount(), tiles.size());
+  const auto fail = [&](Error e) -> Result<DatasetMeta> {
+    journal->discard();
+    return e;
+  };
+  progress.addTotal(tiles.size());
+  progress.stage(concat("zoom ", maxZoom));
+  std::vector<TileRecord> records(tiles.size());
+  const TileSources src{&g.dem, g.imagery, g.imageryGrid, *tiling ? &**tiling : nullptr, g.ndvi, o.heightResampling};
+  Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
+    if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+    if (const TileRecord* done = journal->done(tiles[i])) {
+      records[i] = *done;
+    } else {
+      if (auto t = produceTile(journal->dir(), tiles[i], src, o, records[i]); !t) return t;
+      if (auto t = journal->record(tiles[i], records[i]); !t) return t;
+    }
+    progress.tileDone(records[i].bytes);
+    return {};
+  });
+  if (!s) return fail(s.error());
+  if (auto c = countTiles(o, tiles, records, meta); !c) return fail(c.error());
+  auto result = finishDataset(journal->dir(), meta, progress, o.threads, o.jpegQuality, o.tasks);
+  if (!result) return fail(result.error());
+  if (o.cancel && o.cancel->load()) return fail(makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written"));
+  if (auto done = journal->complete(o.out); !done) return fail(done.error());
+  return result;
 }
 
 }  // namespace
@@ -136,167 +280,53 @@ Status checkOutputDirectory(const fs::path& out) {
 }
 
 Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& log, ProgressSink& progress) {
-  if (auto s = checkOutputDirectory(o.out); !s) return s.error();
-  const bool withImagery = o.imagery.file || !o.imagery.bands.empty();
-  if (o.nir && !withImagery)
-    return makeError(ErrorKind::InvalidInput,
-                     concat("--imagery-nir ", o.nir->file,
-                            " needs imagery (--imagery or --imagery-bands): NDVI is computed with the imagery's red"));
-  if (!o.imageryDatetime.empty()) {
-    if (auto ms = imageryUnixMs(o.imageryDatetime); !ms) return ms.error();
-    if (!withImagery)
-      return makeError(ErrorKind::InvalidInput,
-                       "--imagery-datetime says when the imagery was taken, and no imagery was given");
-  }
+  if (auto s = checkInputs(o); !s) return s.error();
+  geo::ensureGdal();
+  GDALSetCacheMax64(static_cast<GIntBig>(std::max<size_t>(o.memoryMb / 4, 16)) << 20);
+  const uint64_t overviewPixels = std::clamp<uint64_t>(o.memoryMb * 1024 * 1024 / 40, 1'000'000, kStatisticsPixels);
 
-  // DEM.
-  ReadOptions ro;
-  ro.assumeEpsg = o.demEpsg;
-  ro.nodataOverride = o.demNodata;
-  ro.maxPixels = o.maxPixels;
-  auto demRead = readGeoTiff(o.dem, ro);
-  if (!demRead) return demRead.error();
-  Raster& dem = *demRead;
-  if (dem.channels != 1)
-    return makeError(ErrorKind::InvalidInput,
-                     concat(o.dem, " has ", dem.channels, " channels; a DEM has one (heights)"));
-  auto demCrs = rasterCrs(dem, "--dem-crs", log);
-  if (!demCrs) return demCrs.error();
-  uint64_t implausible = 0, validHeights = 0;
-  for (float& v : dem.samples) {
-    if (dem.isNodata(v)) continue;
-    if (v < kMinPlausibleHeightM || v > kMaxPlausibleHeightM) {
-      v = NAN;
-      ++implausible;
-    } else {
-      ++validHeights;
-    }
-  }
-  if (implausible)
-    log->warn("{}: {} heights outside {} … {} m treated as nodata", o.dem.string(), implausible, kMinPlausibleHeightM,
-              kMaxPlausibleHeightM);
-  if (validHeights == 0) return makeError(ErrorKind::InvalidInput, concat(o.dem, " has no valid height (all nodata)"));
-  auto demGrid = SourceGrid::make(dem, *demCrs);
+  SourceOptions demOptions;
+  demOptions.assumeCrs = o.demCrs;
+  demOptions.nodataOverride = o.demNodata;
+  demOptions.heights = true;
+  auto dem = RasterSource::open(o.dem, demOptions);
+  if (!dem) return dem.error();
+  if (dem->channels() != 1)
+    return makeError(ErrorKind::InvalidInput, concat(dem->label(), " has ", dem->channels(),
+                                                     " bands; a DEM has one (heights): choose it with --dem-band"));
+  if (auto s = checkHeights(*dem, overviewPixels, log); !s) return s.error();
+  auto demGrid = SourceGrid::make(*dem);
   if (!demGrid) return demGrid.error();
 
-  // Imagery (and the NDVI on its grid).
   std::optional<PreparedImagery> imagery;
   std::optional<SourceGrid> imageryGrid;
-  std::optional<NdviRaster> ndvi;
-  if (withImagery) {
-    ImageryInput imageryInput = o.imagery;
-    imageryInput.keepRawRed = o.nir.has_value();
-    auto prepared = prepareImagery(imageryInput, log);
+  std::optional<NdviSource> ndvi;
+  if (o.imagery.given()) {
+    auto prepared = PreparedImagery::open(o.imagery, log);
     if (!prepared) return prepared.error();
     imagery = std::move(*prepared);
-    auto crs = rasterCrs(imagery->raster, "--imagery-crs", log);
-    if (!crs) return crs.error();
-    auto grid = SourceGrid::make(imagery->raster, *crs);
+    auto grid = SourceGrid::make(imagery->source());
     if (!grid) return grid.error();
     imageryGrid = std::move(*grid);
     if (!extentsOverlap(demGrid->extent(), imageryGrid->extent()))
       return makeError(ErrorKind::InvalidInput,
-                       concat("the DEM ", o.dem, " (", extentText(demGrid->extent()), ") and the imagery ",
-                              imagery->raster.path, " (", extentText(imageryGrid->extent()), ") do not overlap"));
+                       concat("the DEM ", dem->label(), " (", extentText(demGrid->extent()), ") and the imagery ",
+                              o.imagery.label(), " (", extentText(imageryGrid->extent()), ") do not overlap"));
     if (o.nir) {
-      auto n = prepareNdvi(*o.nir, *imageryGrid, imagery->rawRed, log);
+      auto n = NdviSource::open(*o.nir, *imageryGrid, log);
       if (!n) return n.error();
       ndvi = std::move(*n);
-      imagery->rawRed = std::vector<float>();  // 4 bytes a pixel no longer needed (frees them)
     }
   }
-
-  // Zooms and tiles.
-  const geo::GeoBounds bounds = demGrid->extent();
-  const double lat = bounds.centre().y;
-  int maxZoom = naturalZoom(demGrid->pixelSizeM(), lat);
-  if (imageryGrid) maxZoom = std::max(maxZoom, std::min(naturalZoom(imageryGrid->pixelSizeM(), lat), maxZoom + 3));
-  if (o.maxZoom) maxZoom = *o.maxZoom;
-  uint64_t tileCount = 0;
-  for (const auto& r : geo::tileRangesCovering(bounds, maxZoom)) tileCount += static_cast<uint64_t>(r.count());
-  if (tileCount > o.maxTiles)
-    return makeError(ErrorKind::InvalidInput,
-                     concat(o.dem, " at zoom ", maxZoom, " needs ", tileCount, " tiles, more than the limit of ",
-                            o.maxTiles, "; choose a lower --max-zoom"));
-  const std::vector<geo::TileId> tiles = geo::tilesCovering(bounds, maxZoom);
-  log->info("{}: {} ({:.1f} m pixels) → zoom {} ({:.1f} m pixels), {} tiles", o.dem.string(), demCrs->name(),
-            demGrid->pixelSizeM(), maxZoom, geo::groundResolution(lat, maxZoom, kTileSize), tiles.size());
-  if (imageryGrid)
-    log->info("{}: {} ({:.1f} m pixels), {}", imagery->raster.path.string(), imageryGrid->crs().name(),
-              imageryGrid->pixelSizeM(), imagery->radiometryChoice);
-  std::optional<ImageryTiling> tiling;
-  if (imageryGrid) {
-    auto t = imageryTiling(o, *imagery, *imageryGrid, *demGrid, tiles, log);
-    if (!t) return t.error();
-    tiling = *t;
-  }
-
-  DatasetMeta meta;
-  meta.name = o.name.empty() ? defaultDatasetName(o.out) : o.name;
-  meta.bounds = bounds;
-  meta.maxZoom = maxZoom;
-  meta.elevationEncoding = o.encoding;
-  if (imageryGrid) {
-    meta.imagery = o.imageryFormat;
-    meta.imageryDatetime = o.imageryDatetime;
-    meta.radiometry = imagery->radiometry;
-  }
-  meta.attribution = o.attribution;
-  meta.sources.push_back({"elevation", o.dem.string(), demCrs->name(), describe(*demGrid)});
-  if (imageryGrid) {
-    std::string paths;
-    for (const auto& b : o.imagery.bands) {
-      if (!paths.empty()) paths += ',';
-      paths += b.string();
+  GeoTiffImportOptions options = o;
+  if (options.imageryDatetime.empty() && imagery)
+    if (auto t = imagery->source().acquisitionDatetime()) {
+      log->info("{}: taken at {} (its metadata)", o.imagery.label(), *t);
+      options.imageryDatetime = *t;
     }
-    if (o.imagery.file) paths = o.imagery.file->string();
-    meta.sources.push_back(
-        {"imagery", paths, imageryGrid->crs().name(), concat(describe(*imageryGrid), ", ", imagery->description)});
-  }
-  if (ndvi) {
-    meta.ndvi = true;
-    meta.sources.push_back({"nir", o.nir->file.string(), ndvi->nirCrs.name(), ndvi->description});
-  }
-
-  Result<DatasetMeta> result = makeError(ErrorKind::Internal, "import did not run");
-  Status written = writeDirectoryAtomically(o.out, [&](const fs::path& tmp) -> Status {
-    progress.addTotal(tiles.size());
-    progress.stage(concat("zoom ", maxZoom));
-    std::vector<TileOutcome> outcomes(tiles.size());
-    const Sources src{*demGrid, tiling ? &*tiling : nullptr, ndvi ? &ndvi->raster : nullptr};
-    Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
-      if (o.cancel && o.cancel->load())
-        return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
-      if (auto t = produceTile(tmp, tiles[i], src, o, outcomes[i]); !t) return t;
-      progress.tileDone(outcomes[i].bytes);
-      return {};
-    });
-    if (!s) return s;
-    std::vector<geo::TileId> withHeights;
-    meta.minHeightM = std::numeric_limits<double>::infinity();
-    meta.maxHeightM = -std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < tiles.size(); ++i) {
-      const TileOutcome& t = outcomes[i];
-      meta.bytes += t.bytes;
-      if (t.imagery) ++meta.imageryTiles;
-      if (t.ndvi) ++meta.ndviTiles;
-      if (!t.elevation) continue;
-      ++meta.elevationTiles;
-      withHeights.push_back(tiles[i]);
-      meta.minHeightM = std::min(meta.minHeightM, static_cast<double>(t.minH));
-      meta.maxHeightM = std::max(meta.maxHeightM, static_cast<double>(t.maxH));
-    }
-    if (withHeights.empty())
-      return makeError(ErrorKind::InvalidInput, concat(o.dem, " gave no valid height at zoom ", maxZoom));
-    meta.minZoom = std::min(o.minZoom.value_or(singleTileZoom(withHeights)), maxZoom);
-    result = finishDataset(tmp, meta, progress, o.threads, o.jpegQuality, o.tasks);
-    if (!result) return result.error();
-    if (o.cancel && o.cancel->load())
-      return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
-    return {};
-  });
-  if (!written) return written.error();
-  return result;
+  const Grids grids{*demGrid, imagery ? &*imagery : nullptr, imageryGrid ? &*imageryGrid : nullptr,
+                    ndvi ? &*ndvi : nullptr};
+  return importTiles(options, grids, log, progress);
 }
 
 }  // namespace vegstream::datasets

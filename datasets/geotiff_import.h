@@ -1,13 +1,17 @@
 #pragma once
-// Import of a GeoTIFF DEM (+ imagery GeoTIFFs, possibly in another CRS, possibly as separate
-// bands) into a dataset directory (dataset_format.h): `vegstream import --dem …`.
+// Import of a DEM (+ imagery, possibly in another CRS, possibly as separate bands; + a NIR band)
+// from any raster GDAL reads, by path or URL, into a dataset directory (dataset_format.h):
+// `vegstream import --dem …`.
 //
 // Every output pixel centre of every XYZ tile (Web Mercator) is taken to longitude/latitude,
-// into the source's CRS (geo/projection.h), through the inverse of the source's affine to a
-// source pixel position, and sampled bilinearly (heights: nodata if any neighbour is nodata;
-// colour: renormalised over valid neighbours). Tiles of the max zoom are produced in parallel;
-// the lower zooms come from the pyramid builder. Everything is written into a temporary
-// directory beside `out` that is renamed into place only when complete.
+// into the source's CRS (geo/projection.h, PROJ), through the inverse of the source's affine to
+// a source pixel position, and sampled (heights: bilinear or cubic, nodata if any neighbour is
+// nodata; colour: bilinear renormalised over valid neighbours) from the window of the source
+// that tile needs (raster_source.h), so memory is bounded by the tile and GDAL's block cache
+// (--memory-mb), never by the raster's size. Tiles of the max zoom are produced in parallel;
+// the lower zooms come from the pyramid builder. Everything is written into `.NAME.partial/`
+// beside `out` (import_journal.h), renamed into place only when complete; --resume continues
+// a killed import there.
 //
 // Zoom range. Max zoom, unless given: the first zoom whose ground resolution at the DEM's
 // centre latitude is at least as fine as the DEM's pixel (7 % slack, so 30.4 m tiles count as
@@ -29,20 +33,24 @@
 #include "datasets/imagery_source.h"
 #include "datasets/ndvi_source.h"
 #include "datasets/progress.h"
+#include "geo/crs.h"
 
 namespace vegstream::datasets {
 
 // Heights outside this range are not on earth: they become nodata, with a warning that counts them.
 inline constexpr double kMinPlausibleHeightM = -11000.0;
 inline constexpr double kMaxPlausibleHeightM = 9000.0;
+// Windows are read decimated beyond this many pixels on a side (4 tiles' worth: a source
+// much finer than the max zoom).
+inline constexpr int kMaxWindowSide = 1024;
 // Highest zoom picked automatically (≈ 0.3 m pixels at the equator).
 inline constexpr int kMaxAutoZoom = 19;
 
 enum class HeightResampling { Bilinear, Cubic };
 
 struct GeoTiffImportOptions {
-  std::filesystem::path dem;
-  std::optional<int> demEpsg;       // --dem-crs: stated CRS (corrupt GeoKeys), overrides the file
+  std::vector<std::string> dem;     // paths or URLs; several mosaic into one
+  std::optional<geo::Crs> demCrs;   // --dem-crs: stated CRS (missing or corrupt), overrides the file
   std::optional<double> demNodata;  // --dem-nodata
   ImageryInput imagery;             // neither file nor bands: no imagery
   std::optional<NirInput> nir;      // --imagery-nir: an NDVI layer (needs imagery)
@@ -67,15 +75,17 @@ struct GeoTiffImportOptions {
   std::optional<int> maxZoom;
   std::optional<int> minZoom;
 
-  uint64_t maxPixels = 400'000'000;           // per source raster, refused before allocating
+  // Memory budget, MiB: a quarter goes to GDAL's block cache, the rest bounds the windows the
+  // workers hold (each ≤ kMaxWindowSide² pixels) and the statistics' overview.
+  size_t memoryMb = 512;
+  bool resume = false;                        // continue the import killed at this --out
   uint64_t maxTiles = 1'000'000;              // tiles at the max zoom; more is refused (pick --max-zoom)
   int threads = 0;                            // 0: all cores
   TaskRunner* tasks = nullptr;                // runs the workers (outlives the call); null: a pool made for the call
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop, leave nothing
 };
 
-// Errors name the file and the problem: as readGeoTiff, an unsupported CRS (naming the EPSG
-// code), DEM and imagery that do not overlap, a DEM without one valid height, `out` that
+// Errors name the file and the problem: as RasterSource::open, a CRS PROJ cannot use, DEM and imagery that do not overlap, a DEM without one valid height, `out` that
 // exists and is not empty or cannot be created, a NIR file without imagery or that prepareNdvi
 // refuses (all InvalidInput / NotFound / Unsupported); a failed tile write is Io.
 Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& options, const Logger& log, ProgressSink& progress);

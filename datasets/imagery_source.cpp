@@ -1,4 +1,4 @@
-// Reading and normalising imagery for the importer (imagery_source.h): bands merged, nodata
+// Reading and normalising imagery for the importer, window by window (imagery_source.h): bands merged, nodata
 // made NaN, digital numbers turned into reflectance (radiometry.h) or stretched to 0 … 255.
 
 #include "datasets/imagery_source.h"
@@ -14,67 +14,137 @@ namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 
-bool sameGrid(const Raster& a, const Raster& b) {
-  return a.width == b.width && a.height == b.height && a.georef.epsg == b.georef.epsg &&
-         a.georef.transform == b.georef.transform;
+bool sameGrid(const RasterSource& a, const RasterSource& b) {
+  return a.width() == b.width() && a.height() == b.height() && a.crs() == b.crs() &&
+         a.georef().transform == b.georef().transform;
 }
 
-// One RGB(A) / grey file or three single-band files → a 3-channel raster of raw values with
-// NaN for nodata (a pixel is nodata when every channel holds the nodata value, or alpha is 0).
-Result<Raster> readMerged(const ImageryInput& in) {
-  ReadOptions ro;
-  ro.assumeEpsg = in.assumeEpsg;
-  ro.maxPixels = in.maxPixels;
-  Raster out;
-  if (in.file) {
-    auto r = readGeoTiff(*in.file, ro);
+Result<std::vector<RasterSource>> openSources(const ImageryInput& in) {
+  SourceOptions so;
+  so.flag = in.files.empty() ? "--imagery-bands" : "--imagery";
+  so.crsFlag = "--imagery-crs";
+  so.assumeCrs = in.assumeCrs;
+  std::vector<RasterSource> out;
+  if (!in.files.empty()) {
+    so.bands = in.bandNumbers;
+    if (!so.bands.empty() && so.bands.size() != 3 && so.bands.size() != 1)
+      return makeError(ErrorKind::InvalidInput, "--bands takes three bands (R,G,B) or one (grey)");
+    auto r = RasterSource::open(in.files, so);
     if (!r) return r.error();
-    Raster& src = *r;
-    const int n = src.channels;
-    out = src;
-    out.channels = 3;
-    out.samples.assign(static_cast<size_t>(src.width) * static_cast<size_t>(src.height) * 3, NAN);
-    for (size_t p = 0, count = static_cast<size_t>(src.width) * static_cast<size_t>(src.height); p < count; ++p) {
-      const float* s = &src.samples[p * static_cast<size_t>(n)];
-      const bool grey = n <= 2;
-      const bool alphaZero = (n == 2 && s[1] == 0) || (n >= 4 && s[3] == 0);
-      bool allNodata = true;
-      for (int c = 0; c < std::min(n, 3); ++c) allNodata = allNodata && src.isNodata(s[c]);
-      if (alphaZero || allNodata) continue;
-      for (size_t c = 0; c < 3; ++c) out.samples[p * 3 + c] = grey ? s[0] : s[c];
-    }
-    out.nodata.reset();
+    out.push_back(std::move(*r));
     return out;
   }
-  std::vector<Raster> bands;
   for (const auto& path : in.bands) {
-    auto r = readGeoTiff(path, ro);
+    auto r = RasterSource::open({path}, so);
     if (!r) return r.error();
-    if (r->channels != 1)
+    if (r->channels() != 1)
       return makeError(ErrorKind::InvalidInput,
-                       concat(path, " has ", r->channels, " channels; each --imagery-bands file must hold one band"));
-    if (!bands.empty() && !sameGrid(bands.front(), *r))
+                       concat(path, " has ", r->channels(), " bands; each --imagery-bands file must hold one band"));
+    if (!out.empty() && !sameGrid(out.front(), *r))
       return makeError(ErrorKind::InvalidInput,
-                       concat(path, " is not on the same grid (size, transform, CRS) as ", bands.front().path,
+                       concat(path, " is not on the same grid (size, transform, CRS) as ", out.front().label(),
                               "; --imagery-bands files must share one grid"));
-    bands.push_back(std::move(*r));
+    out.push_back(std::move(*r));
   }
-  out = bands.front();
-  out.path = bands.front().path;
-  out.channels = 3;
-  const size_t count = static_cast<size_t>(out.width) * static_cast<size_t>(out.height);
-  out.samples.assign(count * 3, NAN);
-  for (size_t p = 0; p < count; ++p) {
-    bool anyNodata = false;
-    for (size_t c = 0; c < 3; ++c) anyNodata = anyNodata || bands[c].isNodata(bands[c].samples[p]);
-    if (anyNodata) continue;
-    for (size_t c = 0; c < 3; ++c) out.samples[p * 3 + c] = bands[c].samples[p];
-  }
-  out.nodata.reset();
   return out;
 }
 
+// Each band's stretch range (out.ranges), from the overview's values.
+void stretchRanges(const Stretch& stretch, const Raster& r, PreparedImagery& out) {
+  const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+  for (size_t c = 0; c < 3; ++c) {
+    double a = stretch.lo, b = stretch.hi;
+    if (stretch.kind == Stretch::Kind::Percentile) {
+      std::vector<float> values;
+      for (size_t p = 0; p < count; ++p)
+        if (!std::isnan(r.samples[p * 3 + c])) values.push_back(r.samples[p * 3 + c]);
+      a = percentile(values, stretch.lo);
+      b = percentile(values, stretch.hi);
+      if (!(b > a)) b = a + 1.0;  // a flat band: everything at or above a is white
+    }
+    out.ranges[c] = {a, b};
+  }
+  out.stretched = true;
+  out.description =
+      concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…", out.ranges[1][1],
+             ", B ", out.ranges[2][0], "…", out.ranges[2][1], " (display colours, not albedo)");
+}
+
 }  // namespace
+
+std::string ImageryInput::label() const { return files.empty() ? (bands.empty() ? "" : bands[0]) : files[0]; }
+
+Raster PreparedImagery::merged(std::vector<Raster> parts) const {
+  Raster out = parts.front();
+  out.channels = 3;
+  out.nodata.reset();
+  const size_t count = static_cast<size_t>(out.width) * static_cast<size_t>(out.height);
+  out.samples.assign(count * 3, NAN);
+  if (parts.size() == 1) {
+    const Raster& src = parts.front();
+    const auto n = static_cast<size_t>(src.channels);
+    for (size_t p = 0; p < count; ++p) {
+      const float* v = &src.samples[p * n];
+      const bool grey = n < 3;
+      bool any = false;
+      for (size_t c = 0; c < std::min<size_t>(n, 3); ++c) any = any || !std::isnan(v[c]);
+      if (!any) continue;  // every channel no data (its mask, alpha or nodata value)
+      for (size_t c = 0; c < 3; ++c) {
+        const float x = grey ? v[0] : v[c];
+        out.samples[p * 3 + c] = std::isnan(x) ? 0.0f : x;  // one band's nodata among valid ones: 0
+      }
+    }
+    return out;
+  }
+  for (size_t p = 0; p < count; ++p) {
+    bool anyNodata = false;
+    for (size_t c = 0; c < 3; ++c) anyNodata = anyNodata || std::isnan(parts[c].samples[p]);
+    if (anyNodata) continue;
+    for (size_t c = 0; c < 3; ++c) out.samples[p * 3 + c] = parts[c].samples[p];
+  }
+  return out;
+}
+
+void PreparedImagery::convert(Raster& r) const {
+  if (method_ == RadiometryMethod::Reflectance) {
+    applySurfaceReflectance(r.samples, scale_, offset_, dark_);
+    return;
+  }
+  if (method_ != RadiometryMethod::Stretch) return;
+  const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+  for (size_t c = 0; c < 3; ++c) {
+    const double a = ranges[c][0], b = ranges[c][1], scale = 255.0 / (b - a);
+    for (size_t p = 0; p < count; ++p) {
+      float& v = r.samples[p * 3 + c];
+      if (!std::isnan(v)) v = static_cast<float>(std::clamp((v - a) * scale, 0.0, 255.0));
+    }
+  }
+}
+
+Result<std::optional<ImageryWindow>> PreparedImagery::window(const SourceGrid& grid,
+                                                             const std::vector<glm::dvec2>& pixels, int margin,
+                                                             int maxSide) const {
+  auto first = grid.windowFor(pixels, margin, maxSide);
+  if (!first) return first.error();
+  if (!*first) return std::optional<ImageryWindow>();
+  std::vector<Raster> parts;
+  parts.push_back(std::move(**first));
+  const Raster& f = parts.front();
+  const int x0 = static_cast<int>(f.origin.x), y0 = static_cast<int>(f.origin.y);
+  const int w = static_cast<int>(std::lround(f.width * f.step.x)), h = static_cast<int>(std::lround(f.height * f.step.y));
+  for (size_t k = 1; k < sources_.size(); ++k) {
+    auto r = sources_[k].read(x0, y0, w, h, maxSide);
+    if (!r) return r.error();
+    parts.push_back(std::move(*r));
+  }
+  ImageryWindow out;
+  out.colour = merged(std::move(parts));
+  const size_t count = static_cast<size_t>(out.colour.width) * static_cast<size_t>(out.colour.height);
+  out.rawRed.resize(count);
+  for (size_t p = 0; p < count; ++p) out.rawRed[p] = out.colour.samples[p * 3];
+  convert(out.colour);
+  return std::optional<ImageryWindow>(std::move(out));
+}
 
 Result<Stretch> parseStretch(const std::string& text) {
   static const std::regex pct(R"(\s*[pP](\d+(?:\.\d*)?)\s*,\s*[pP](\d+(?:\.\d*)?)\s*)");
@@ -120,73 +190,47 @@ ImageryValues valuesOf(const Raster& r) {
   return v;
 }
 
-// Each band between its stretch range onto 0 … 255 (out.ranges).
-void applyStretch(const Stretch& stretch, PreparedImagery& out) {
-  Raster& r = out.raster;
-  const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
-  for (size_t c = 0; c < 3; ++c) {
-    double a = stretch.lo, b = stretch.hi;
-    if (stretch.kind == Stretch::Kind::Percentile) {
-      std::vector<float> values;
-      for (size_t p = 0; p < count; ++p)
-        if (!std::isnan(r.samples[p * 3 + c])) values.push_back(r.samples[p * 3 + c]);
-      a = percentile(values, stretch.lo);
-      b = percentile(values, stretch.hi);
-      if (!(b > a)) b = a + 1.0;  // a flat band: everything at or above a is white
-    }
-    out.ranges[c] = {a, b};
-    const double scale = 255.0 / (b - a);
-    for (size_t p = 0; p < count; ++p) {
-      float& v = r.samples[p * 3 + c];
-      if (!std::isnan(v)) v = static_cast<float>(std::clamp((v - a) * scale, 0.0, 255.0));
-    }
-  }
-  out.stretched = true;
-  out.description =
-      concat("stretched R ", out.ranges[0][0], "…", out.ranges[0][1], ", G ", out.ranges[1][0], "…", out.ranges[1][1],
-             ", B ", out.ranges[2][0], "…", out.ranges[2][1], " (display colours, not albedo)");
-}
-
-void applyReflectance(const RadiometryChoice& choice, PreparedImagery& out) {
-  const std::array<double, 3> dark = toSurfaceReflectance(out.raster.samples, choice.scale, choice.offset);
-  out.linear = true;
-  RadiometryRecord& rec = out.radiometry;
-  rec.scale = choice.scale;
-  rec.offset = choice.offset;
-  rec.darkObject = dark;
-  rec.darkObjectPercentile = kDarkObjectPercent;
-  rec.darkObjectReflectance = kDarkObjectReflectance;
-  out.description = concat("surface reflectance DN x ", choice.scale, " + ", choice.offset,
-                           ", dark-object subtracted (dark objects R ", dark[0], ", G ", dark[1], ", B ", dark[2], ")");
-}
-
 }  // namespace
 
-Result<PreparedImagery> prepareImagery(const ImageryInput& input, const Logger& /*log*/) {
-  assert(input.file.has_value() != !input.bands.empty());
-  auto merged = readMerged(input);
-  if (!merged) return merged.error();
+Result<PreparedImagery> PreparedImagery::open(const ImageryInput& input, const Logger& /*log*/) {
+  assert(input.files.empty() != input.bands.empty());
+  auto sources = openSources(input);
+  if (!sources) return sources.error();
   PreparedImagery out;
-  out.raster = std::move(*merged);
-  Raster& r = out.raster;
-  const ImageryValues values = valuesOf(r);
+  out.sources_ = std::move(*sources);
+  std::vector<Raster> parts;
+  for (const RasterSource& src : out.sources_) {
+    auto r = src.readOverview(kStatisticsPixels);
+    if (!r) return r.error();
+    parts.push_back(std::move(*r));
+  }
+  const Raster overview = out.merged(std::move(parts));
+  const ImageryValues values = valuesOf(overview);
   if (!(values.lo <= values.hi))
-    return makeError(ErrorKind::InvalidInput, concat(r.path, " has no valid imagery pixel (all nodata)"));
-  std::vector<fs::path> files = input.bands;
-  if (input.file) files = {*input.file};
+    return makeError(ErrorKind::InvalidInput, concat(input.label(), " has no valid imagery pixel (all nodata)"));
+  std::vector<fs::path> files;
+  for (const auto& f : input.files.empty() ? input.bands : input.files) files.emplace_back(f);
   auto choice = chooseRadiometry(input.radiometry, input.stretch.has_value(), files, values);
   if (!choice) return choice.error();
   out.radiometryChoice = concat("radiometry ", toString(choice->method), " (", choice->why, ")");
-  if (input.keepRawRed) {
-    const size_t count = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
-    out.rawRed.resize(count);
-    for (size_t p = 0; p < count; ++p) out.rawRed[p] = r.samples[p * 3];
-  }
+  out.method_ = choice->method;
   out.radiometry.method = toString(choice->method);
   if (choice->method == RadiometryMethod::Reflectance) {
-    applyReflectance(*choice, out);
+    out.scale_ = choice->scale;
+    out.offset_ = choice->offset;
+    out.dark_ = darkObjects(overview.samples, choice->scale, choice->offset);
+    out.linear = true;
+    RadiometryRecord& rec = out.radiometry;
+    rec.scale = choice->scale;
+    rec.offset = choice->offset;
+    rec.darkObject = out.dark_;
+    rec.darkObjectPercentile = kDarkObjectPercent;
+    rec.darkObjectReflectance = kDarkObjectReflectance;
+    out.description = concat("surface reflectance DN x ", choice->scale, " + ", choice->offset,
+                             ", dark-object subtracted (dark objects R ", out.dark_[0], ", G ", out.dark_[1], ", B ",
+                             out.dark_[2], ")");
   } else if (choice->method == RadiometryMethod::Stretch) {
-    applyStretch(input.stretch.value_or(Stretch{}), out);
+    stretchRanges(input.stretch.value_or(Stretch{}), overview, out);
   } else {
     out.description = "8-bit sRGB colour as stored";
   }

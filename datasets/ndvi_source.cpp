@@ -1,5 +1,6 @@
-// The NDVI raster of an import with --imagery-nir (ndvi_source.h): the near-infrared file read
-// and checked, reprojected onto the imagery's pixel centres, and combined with the raw red.
+// NDVI of an import with --imagery-nir / --nir-band (ndvi_source.h): the near-infrared band
+// opened and checked, reprojected onto each imagery window's pixel centres, and combined with
+// the window's raw red.
 
 #include "datasets/ndvi_source.h"
 
@@ -21,51 +22,17 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // SourceGrid::tilePixelsToSource (far below 0.01 pixel for UTM ↔ geographic at 30 m pixels).
 constexpr int kStep = 8;
 
-bool sameGrid(const Raster& a, const geo::Crs& aCrs, const Raster& b, const geo::Crs& bCrs) {
-  return a.width == b.width && a.height == b.height && aCrs == bCrs && a.georef.transform == b.georef.transform;
+bool sameGrid(const RasterSource& a, const RasterSource& b) {
+  return a.width() == b.width() && a.height() == b.height() && a.crs() == b.crs() &&
+         a.georef().transform == b.georef().transform;
 }
 
-// NIR pixel coordinates (corner-based) of the imagery's pixel centres, on a coarse grid of
-// exact projections: node (gi, gj) is imagery pixel (gi·kStep, gj·kStep).
-class NirPositions {
- public:
-  NirPositions(const SourceGrid& imagery, const SourceGrid& nir) {
-    const Raster& r = imagery.raster();
-    cols_ = r.width / kStep + 2;
-    const int rows = r.height / kStep + 2;
-    nodes_.resize(static_cast<size_t>(cols_) * static_cast<size_t>(rows));
-    for (int gj = 0; gj < rows; ++gj)
-      for (int gi = 0; gi < cols_; ++gi) {
-        const auto xy = r.georef.pixelCentre(gi * kStep, gj * kStep);
-        const geo::Geodetic p = geo::fromProjected(imagery.crs(), {xy[0], xy[1]});
-        auto to = geo::toProjected(nir.crs(), p);
-        nodes_[index(gi, gj)] = to ? nir.toPixel(*to) : glm::dvec2{kNaN, kNaN};
-      }
-  }
-
-  glm::dvec2 at(int i, int j) const {
-    const int gi = i / kStep, gj = j / kStep;
-    const double fx = static_cast<double>(i % kStep) / kStep, fy = static_cast<double>(j % kStep) / kStep;
-    const glm::dvec2 a = nodes_[index(gi, gj)], b = nodes_[index(gi + 1, gj)];
-    const glm::dvec2 c = nodes_[index(gi, gj + 1)], d = nodes_[index(gi + 1, gj + 1)];
-    return (a * (1 - fx) + b * fx) * (1 - fy) + (c * (1 - fx) + d * fx) * fy;
-  }
-
- private:
-  size_t index(int gi, int gj) const {
-    return static_cast<size_t>(gj) * static_cast<size_t>(cols_) + static_cast<size_t>(gi);
-  }
-  int cols_ = 0;
-  std::vector<glm::dvec2> nodes_;
-};
-
-std::string describe(const SourceGrid& nir, bool sameGridAsImagery, double coveredPercent) {
+std::string describe(const RasterSource& nir, const SourceGrid& grid, bool sameGridAsImagery) {
   char buf[256];
   std::snprintf(buf, sizeof(buf),
-                "%dx%d px, %.2f m pixels; near-infrared for NDVI with the imagery's red before the stretch%s "
-                "(NDVI on %.1f %% of the imagery's pixels)",
-                nir.raster().width, nir.raster().height, nir.pixelSizeM(),
-                sameGridAsImagery ? ", same grid" : ", reprojected onto the imagery's grid", coveredPercent);
+                "%s, %.2f m pixels; near-infrared for NDVI with the imagery's red before the stretch%s",
+                nir.description().c_str(), grid.pixelSizeM(),
+                sameGridAsImagery ? ", same grid" : ", reprojected onto the imagery's grid");
   return buf;
 }
 
@@ -77,66 +44,87 @@ float ndviOf(float nir, float red) {
   return std::clamp((nir - red) / sum, -1.0f, 1.0f);
 }
 
-Result<NdviRaster> prepareNdvi(const NirInput& in, const SourceGrid& imagery, std::span<const float> rawRed,
-                               const Logger& log) {
-  const Raster& img = imagery.raster();
-  const size_t count = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
-  assert(rawRed.size() == count);
-
-  ReadOptions ro;
-  ro.assumeEpsg = in.assumeEpsg;
-  ro.maxPixels = in.maxPixels;
-  auto read = readGeoTiff(in.file, ro);
+Result<NdviSource> NdviSource::open(const NirInput& in, const SourceGrid& imagery, const Logger& log) {
+  SourceOptions so;
+  so.flag = "--imagery-nir";
+  so.crsFlag = "--imagery-nir-crs";
+  so.assumeCrs = in.assumeCrs;
+  so.bands = {in.band};
+  auto read = RasterSource::open({in.file}, so);
   if (!read) return read.error();
-  const Raster& nir = *read;
-  if (nir.channels != 1)
-    return makeError(ErrorKind::InvalidInput, concat(in.file, " has ", nir.channels,
-                                                     " bands; --imagery-nir takes one near-infrared band"));
-  auto crs = rasterCrs(nir, "--imagery-nir-crs", log);
-  if (!crs) return crs.error();
-  auto grid = SourceGrid::make(nir, *crs);
+  NdviSource out;
+  out.nir_ = std::make_shared<RasterSource>(std::move(*read));
+  auto grid = SourceGrid::make(*out.nir_);
   if (!grid) return grid.error();
-  if (!extentsOverlap(grid->extent(), imagery.extent()))
+  out.grid_ = std::make_shared<SourceGrid>(std::move(*grid));
+  if (!extentsOverlap(out.grid_->extent(), imagery.extent()))
     return makeError(ErrorKind::InvalidInput,
-                     concat("the near-infrared file ", in.file, " (", extentText(grid->extent()), ") and the imagery ",
-                            img.path, " (", extentText(imagery.extent()), ") do not overlap"));
+                     concat("the near-infrared file ", in.file, " (", extentText(out.grid_->extent()),
+                            ") and the imagery ", imagery.source().label(), " (", extentText(imagery.extent()),
+                            ") do not overlap"));
+  out.imagery_ = &imagery;
+  out.sameGrid_ = sameGrid(imagery.source(), *out.nir_);
+  out.description_ = describe(*out.nir_, *out.grid_, out.sameGrid_);
+  log->info("{}: band {}, {} ({:.1f} m pixels), NDVI with the imagery's red", in.file, in.band,
+            out.nir_->crs().name(), out.grid_->pixelSizeM());
+  return out;
+}
 
-  NdviRaster out;
-  out.nirCrs = *crs;
-  Raster& r = out.raster;
-  r.path = in.file;
-  r.width = img.width;
-  r.height = img.height;
-  r.channels = 1;
-  r.georef = img.georef;
-  r.samples.assign(count, NAN);
-
-  const bool same = sameGrid(img, imagery.crs(), nir, *crs);
-  std::optional<NirPositions> positions;
-  if (!same) positions.emplace(imagery, *grid);
-  size_t valid = 0;
-  for (int j = 0; j < img.height; ++j)
-    for (int i = 0; i < img.width; ++i) {
-      const size_t p = static_cast<size_t>(j) * static_cast<size_t>(img.width) + static_cast<size_t>(i);
-      if (std::isnan(rawRed[p])) continue;
-      float v = NAN;
-      if (same) {
-        v = nir.at(i, j);
-        if (nir.isNodata(v)) continue;
-      } else {
-        v = sampleValue(nir, positions->at(i, j));
-      }
-      r.samples[p] = ndviOf(v, rawRed[p]);
-      valid += !std::isnan(r.samples[p]);
+// NIR pixel coordinates of the window's pixel centres: exact on nodes every kStep pixels of the
+// whole imagery's grid (of the window's buffer when it was decimated), bilinear in between.
+std::vector<glm::dvec2> NdviSource::nirPositions(const Raster& w) const {
+  const bool whole = w.step == glm::dvec2(1.0, 1.0);
+  const int ox = whole ? static_cast<int>(w.origin.x) : 0, oy = whole ? static_cast<int>(w.origin.y) : 0;
+  const int gx0 = ox / kStep, gy0 = oy / kStep;
+  const int cols = (ox + w.width) / kStep - gx0 + 2, rows = (oy + w.height) / kStep - gy0 + 2;
+  const GeoReference& g = imagery_->source().georef();
+  std::vector<glm::dvec2> nodes(static_cast<size_t>(cols) * static_cast<size_t>(rows));
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      // node (i, j) is buffer pixel ((gx0 + i)·kStep − ox, …); its whole-raster centre:
+      const double bx = (gx0 + i) * kStep - ox + 0.5, by = (gy0 + j) * kStep - oy + 0.5;
+      const glm::dvec2 px = w.origin + glm::dvec2(bx, by) * w.step - glm::dvec2(0.5);
+      const auto xy = g.pixelCentre(px.x, px.y);
+      const geo::Geodetic p = geo::fromProjected(imagery_->crs(), {xy[0], xy[1]});
+      auto to = geo::toProjected(grid_->crs(), p);
+      nodes[static_cast<size_t>(j * cols + i)] = to ? grid_->toPixel(*to) : glm::dvec2{kNaN, kNaN};
     }
-  if (valid == 0)
-    return makeError(ErrorKind::InvalidInput,
-                     concat("the near-infrared file ", in.file, " gives no NDVI over the imagery ", img.path,
-                            ": no pixel where both have data (or NIR + red > 0)"));
-  const double percent = 100.0 * static_cast<double>(valid) / static_cast<double>(count);
-  out.description = describe(*grid, same, percent);
-  log->info("{}: {} ({:.1f} m pixels), NDVI on {:.1f} % of the imagery's pixels", in.file.string(), crs->name(),
-            grid->pixelSizeM(), percent);
+  std::vector<glm::dvec2> out(static_cast<size_t>(w.width) * static_cast<size_t>(w.height));
+  for (int y = 0; y < w.height; ++y)
+    for (int x = 0; x < w.width; ++x) {
+      const int gx = ox + x, gy = oy + y;
+      const int i = gx / kStep - gx0, j = gy / kStep - gy0;
+      const double fx = static_cast<double>(gx % kStep) / kStep, fy = static_cast<double>(gy % kStep) / kStep;
+      const auto at = [&](int a, int b) { return nodes[static_cast<size_t>(b * cols + a)]; };
+      out[static_cast<size_t>(y * w.width + x)] =
+          (at(i, j) * (1 - fx) + at(i + 1, j) * fx) * (1 - fy) + (at(i, j + 1) * (1 - fx) + at(i + 1, j + 1) * fx) * fy;
+    }
+  return out;
+}
+
+Result<Raster> NdviSource::ndviFor(const ImageryWindow& w, int maxSide) const {
+  const Raster& c = w.colour;
+  Raster out = c;
+  out.channels = 1;
+  out.nodata.reset();
+  const size_t count = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
+  out.samples.assign(count, NAN);
+  if (sameGrid_) {
+    const int ww = static_cast<int>(std::lround(c.width * c.step.x)), wh = static_cast<int>(std::lround(c.height * c.step.y));
+    auto nir = nir_->read(static_cast<int>(c.origin.x), static_cast<int>(c.origin.y), ww, wh, maxSide);
+    if (!nir) return nir.error();
+    assert(nir->width == c.width && nir->height == c.height);
+    for (size_t p = 0; p < count; ++p) out.samples[p] = ndviOf(nir->samples[p], w.rawRed[p]);
+    return out;
+  }
+  const std::vector<glm::dvec2> positions = nirPositions(c);
+  auto window = grid_->windowFor(positions, 1, 0);
+  if (!window) return window.error();
+  if (!*window) return out;
+  for (size_t p = 0; p < count; ++p) {
+    if (std::isnan(w.rawRed[p])) continue;
+    out.samples[p] = ndviOf(sampleValue(**window, positions[p]), w.rawRed[p]);
+  }
   return out;
 }
 

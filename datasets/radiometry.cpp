@@ -135,7 +135,7 @@ double percentile(std::vector<float>& values, double p) {
   return values[k];
 }
 
-std::array<double, 3> toSurfaceReflectance(std::vector<float>& rgb, double scale, double offset) {
+std::array<double, 3> darkObjects(const std::vector<float>& rgb, double scale, double offset) {
   std::array<double, 3> dark{};
   const size_t count = rgb.size() / 3;
   std::vector<float> band;
@@ -143,19 +143,30 @@ std::array<double, 3> toSurfaceReflectance(std::vector<float>& rgb, double scale
   for (size_t c = 0; c < 3; ++c) {
     band.clear();
     for (size_t p = 0; p < count; ++p) {
-      float& v = rgb[p * 3 + c];
-      if (std::isnan(v)) continue;
-      v = static_cast<float>(static_cast<double>(v) * scale + offset);
-      band.push_back(v);
+      const float v = rgb[p * 3 + c];
+      if (!std::isnan(v)) band.push_back(static_cast<float>(static_cast<double>(v) * scale + offset));
     }
-    if (band.empty()) continue;
-    dark[c] = percentile(band, kDarkObjectPercent);
+    if (!band.empty()) dark[c] = percentile(band, kDarkObjectPercent);
+  }
+  return dark;
+}
+
+void applySurfaceReflectance(std::vector<float>& rgb, double scale, double offset, const std::array<double, 3>& dark) {
+  const size_t count = rgb.size() / 3;
+  for (size_t c = 0; c < 3; ++c) {
     const double haze = std::max(0.0, dark[c] - kDarkObjectReflectance);
     for (size_t p = 0; p < count; ++p) {
       float& v = rgb[p * 3 + c];
-      if (!std::isnan(v)) v = static_cast<float>(std::clamp(static_cast<double>(v) - haze, 0.0, 1.0));
+      if (std::isnan(v)) continue;
+      const auto r = static_cast<float>(static_cast<double>(v) * scale + offset);
+      v = static_cast<float>(std::clamp(static_cast<double>(r) - haze, 0.0, 1.0));
     }
   }
+}
+
+std::array<double, 3> toSurfaceReflectance(std::vector<float>& rgb, double scale, double offset) {
+  const std::array<double, 3> dark = darkObjects(rgb, scale, offset);
+  applySurfaceReflectance(rgb, scale, offset, dark);
   return dark;
 }
 

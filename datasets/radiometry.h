@@ -83,5 +83,10 @@ double percentile(std::vector<float>& values, double p);
 // → reflectance (DN · scale + offset), minus each band's haze (dark object − 1 %), clamped to
 // 0 … 1. Returns each band's dark-object reflectance (before the subtraction).
 std::array<double, 3> toSurfaceReflectance(std::vector<float>& rgb, double scale, double offset);
+// Its two halves, for imagery read window by window: each band's dark object over the valid
+// pixels of `rgb` (the whole raster, or its overview), and the conversion of any window with
+// those dark objects.
+std::array<double, 3> darkObjects(const std::vector<float>& rgb, double scale, double offset);
+void applySurfaceReflectance(std::vector<float>& rgb, double scale, double offset, const std::array<double, 3>& dark);
 
 }  // namespace vegstream::datasets

@@ -34,7 +34,8 @@ bool edgeClamp(double& c, int n) {
 // (0 outside the raster).
 template <class Valid, class Add>
 double bilinearOverValid(const Raster& r, glm::dvec2 pixel, Valid&& valid, Add&& add) {
-  double c = pixel.x, w = pixel.y;
+  const glm::dvec2 l = r.local(pixel);
+  double c = l.x, w = l.y;
   if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return 0.0;
   const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
   const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
@@ -63,27 +64,16 @@ std::string extentText(const geo::GeoBounds& b) {
   return buf;
 }
 
-Result<geo::Crs> rasterCrs(const Raster& r, const char* flag, const Logger& log) {
-  if (r.georef.epsg == 0) {
-    std::string what = r.georef.crsDescription.empty()
-                           ? std::string("no EPSG code")
-                           : concat("no EPSG code (it says '", r.georef.crsDescription, "')");
-    return makeError(ErrorKind::Unsupported,
-                     concat(r.path, " names ", what, "; state its CRS with ", flag, " EPSG:N if you know it"));
-  }
-  auto crs = geo::crsFromEpsg(r.georef.epsg, [&](const std::string& w) { log->warn("{}: {}", r.path.string(), w); });
-  if (!crs) return makeError(crs.error().kind, concat(r.path, ": ", crs.error().message));
-  return crs;
-}
-
-Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
+Result<SourceGrid> SourceGrid::make(const RasterSource& source) {
   SourceGrid g;
-  g.raster_ = &raster;
-  g.crs_ = crs;
-  const auto& t = raster.georef.transform;
+  g.source_ = &source;
+  g.crs_ = source.crs();
+  const geo::Crs& crs = g.crs_;
+  const std::string& path = source.label();
+  const auto& t = source.georef().transform;
   const double det = t[1] * t[5] - t[2] * t[4];
   if (!(std::abs(det) > 0.0) || !std::isfinite(det))
-    return makeError(ErrorKind::InvalidInput, concat(raster.path, " has a degenerate georeference (zero pixel size)"));
+    return makeError(ErrorKind::InvalidInput, concat(path, " has a degenerate georeference (zero pixel size)"));
   // Inverse of [[t1 t2] [t4 t5]] applied to (x − t0, y − t3).
   const double ia = t[5] / det, ib = -t[2] / det, ic = -t[4] / det, id = t[1] / det;
   g.inverse_ = {ia, ib, ic, id, t[0], t[3]};
@@ -91,14 +81,14 @@ Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
   // Densified boundary → lon/lat box.
   double west = 1e9, east = -1e9, south = 1e9, north = -1e9;
   constexpr int kSteps = 64;
-  const double w = raster.width, h = raster.height;
+  const double w = source.width(), h = source.height();
   for (int s = 0; s <= kSteps; ++s) {
     const double f = static_cast<double>(s) / kSteps;
     for (glm::dvec2 px : {glm::dvec2{f * w, 0.0}, glm::dvec2{f * w, h}, glm::dvec2{0.0, f * h}, glm::dvec2{w, f * h}}) {
       const geo::Geodetic p = geo::fromProjected(crs, applyAffine(t, px));
       if (!std::isfinite(p.latDeg) || !std::isfinite(p.lonDeg) || std::abs(p.latDeg) > 90.0 + 1e-9)
         return makeError(ErrorKind::InvalidInput,
-                         concat(raster.path, " has a georeference outside the earth in ", crs.name(),
+                         concat(path, " has a georeference outside the earth in ", crs.name(),
                                 " (check its CRS; a wrong --dem-crs / --imagery-crs does this)"));
       west = std::min(west, p.lonDeg);
       east = std::max(east, p.lonDeg);
@@ -109,13 +99,13 @@ Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
   if (west < -180.0 - 1e-9 || east > 180.0 + 1e-9)
     return makeError(
         ErrorKind::Unsupported,
-        concat(raster.path, " reaches beyond ±180° longitude; rasters across the antimeridian are not supported"));
+        concat(path, " reaches beyond ±180° longitude; rasters across the antimeridian are not supported"));
   const double lim = geo::kWebMercatorMaxLatDeg;
   g.extent_ = {std::max(west, -180.0), std::clamp(south, -lim, lim), std::min(east, 180.0),
                std::clamp(north, -lim, lim)};
   if (!(g.extent_.northDeg > g.extent_.southDeg))
     return makeError(ErrorKind::Unsupported,
-                     concat(raster.path, " lies entirely beyond ±85.05° latitude, outside Web Mercator"));
+                     concat(path, " lies entirely beyond ±85.05° latitude, outside Web Mercator"));
 
   // Ground pixel size at the centre, in a local ENU frame there.
   const glm::dvec2 c{0.5 * w, 0.5 * h};
@@ -125,7 +115,7 @@ Result<SourceGrid> SourceGrid::make(const Raster& raster, const geo::Crs& crs) {
   const auto ex = enu(c + glm::dvec2{1.0, 0.0}), ey = enu(c + glm::dvec2{0.0, 1.0});
   g.pixelSizeM_ = std::min(std::hypot(ex.x, ex.y), std::hypot(ey.x, ey.y));
   if (!(g.pixelSizeM_ > 0.0))
-    return makeError(ErrorKind::InvalidInput, concat(raster.path, " has a zero ground pixel size"));
+    return makeError(ErrorKind::InvalidInput, concat(path, " has a zero ground pixel size"));
   return g;
 }
 
@@ -138,9 +128,9 @@ std::vector<glm::dvec2> SourceGrid::tilePixelsToSource(const geo::TileId& tile, 
   const size_t n = static_cast<size_t>(size);
   std::vector<glm::dvec2> out(n * n);
   const auto centre = [&](double i, double j) { return glm::dvec2{i + 0.5, j + 0.5}; };
-  if (crs_.kind == geo::Crs::Kind::Geographic || crs_.kind == geo::Crs::Kind::WebMercator) {
+  if (crs_.isWgs84LonLat() || crs_.isWebMercator()) {
     // x depends on the column only, y on the row only.
-    const bool merc = crs_.kind == geo::Crs::Kind::WebMercator;
+    const bool merc = crs_.isWebMercator();
     std::vector<double> xs(n), ys(n);
     for (size_t i = 0; i < n; ++i) {
       const double d = static_cast<double>(i);
@@ -176,8 +166,29 @@ std::vector<glm::dvec2> SourceGrid::tilePixelsToSource(const geo::TileId& tile, 
   return out;
 }
 
+Result<std::optional<Raster>> SourceGrid::windowFor(const std::vector<glm::dvec2>& pixels, int margin,
+                                                    int maxSide) const {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  const double w = source_->width(), h = source_->height();
+  for (const glm::dvec2& p : pixels) {
+    if (!(p.x >= 0.0 && p.x <= w && p.y >= 0.0 && p.y <= h)) continue;  // NaN too
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  if (!(x0 <= x1)) return std::optional<Raster>();
+  const int c0 = static_cast<int>(std::floor(x0 - 0.5)) - margin, r0 = static_cast<int>(std::floor(y0 - 0.5)) - margin;
+  const int c1 = static_cast<int>(std::floor(x1 - 0.5)) + 2 + margin, r1 = static_cast<int>(std::floor(y1 - 0.5)) + 2 + margin;
+  const int cx = std::max(c0, 0), cy = std::max(r0, 0);
+  auto r = source_->read(cx, cy, std::min(c1, source_->width()) - cx, std::min(r1, source_->height()) - cy, maxSide);
+  if (!r) return r.error();
+  return std::optional<Raster>(std::move(*r));
+}
+
 float sampleHeight(const Raster& r, glm::dvec2 pixel) {
-  double c = pixel.x, w = pixel.y;
+  const glm::dvec2 l = r.local(pixel);
+  double c = l.x, w = l.y;
   if (!edgeClamp(c, r.width) || !edgeClamp(w, r.height)) return NAN;
   const int c0 = std::min(static_cast<int>(c), std::max(r.width - 2, 0));
   const int r0 = std::min(static_cast<int>(w), std::max(r.height - 2, 0));
@@ -189,7 +200,8 @@ float sampleHeight(const Raster& r, glm::dvec2 pixel) {
 }
 
 float sampleHeightCubic(const Raster& r, glm::dvec2 pixel) {
-  const double c = pixel.x - 0.5, w = pixel.y - 0.5;  // in sample-centre units
+  const glm::dvec2 l = r.local(pixel);
+  const double c = l.x - 0.5, w = l.y - 0.5;  // in sample-centre units
   if (!(c >= 1.0 && w >= 1.0 && c < r.width - 2.0 && w < r.height - 2.0)) return sampleHeight(r, pixel);
   const int c0 = static_cast<int>(c), r0 = static_cast<int>(w);
   const double fx = c - c0, fy = w - r0;

@@ -1,10 +1,13 @@
 #pragma once
 // A source raster placed on the earth: its CRS, the inverse of its GeoReference affine, its
-// extent in longitude/latitude and its ground pixel size; plus the bilinear samplers the
-// importer uses to reproject it onto XYZ tiles. All projection goes through geo/.
+// extent in longitude/latitude and its ground pixel size; the window of it a tile needs; plus
+// the samplers the importer uses to reproject it onto XYZ tiles. All projection goes through
+// geo/ (PROJ).
 //
-// Pixel coordinates here are continuous and corner-based as in GeoReference: the centre of
-// pixel (i, j) is (i + 0.5, j + 0.5).
+// Pixel coordinates here are continuous and corner-based in the whole raster, as in
+// GeoReference: the centre of pixel (i, j) is (i + 0.5, j + 0.5). The samplers take them so and
+// read the window they are given (Raster::local), which must hold every sample they touch: a
+// window from windowFor() does.
 
 #include <array>
 #include <string>
@@ -14,17 +17,13 @@
 
 #include "core/log.h"
 #include "core/result.h"
-#include "datasets/geotiff_reader.h"
+#include "datasets/raster.h"
+#include "datasets/raster_source.h"
 #include "geo/bounds.h"
 #include "geo/crs.h"
 #include "geo/xyz_tiles.h"
 
 namespace vegstream::datasets {
-
-// A raster's CRS from its GeoReference (geo::crsFromEpsg), the file named in every message.
-// A file without an EPSG code is Unsupported, and the message tells the user to state one with
-// `flag` (--dem-crs, --imagery-crs, …); geo's warnings (NAD83 read as WGS 84) go to `log`.
-Result<geo::Crs> rasterCrs(const Raster& raster, const char* flag, const Logger& log);
 
 // Whether two longitude/latitude boxes share an area, and one printed for messages
 // ("lon -113.2396 … -112.8521, lat 37.1321 … 37.5129").
@@ -34,10 +33,10 @@ std::string extentText(const geo::GeoBounds& b);
 class SourceGrid {
  public:
   // Errors: a degenerate (non-invertible) transform, a raster whose corners do not map to
-  // valid latitudes. Messages name the raster's file.
-  static Result<SourceGrid> make(const Raster& raster, const geo::Crs& crs);
+  // valid latitudes. Messages name the raster's file. `source` outlives the grid.
+  static Result<SourceGrid> make(const RasterSource& source);
 
-  const Raster& raster() const { return *raster_; }
+  const RasterSource& source() const { return *source_; }
   const geo::Crs& crs() const { return crs_; }
   // CRS coordinates → continuous pixel coordinates (corner-based).
   glm::dvec2 toPixel(glm::dvec2 xy) const;
@@ -55,14 +54,22 @@ class SourceGrid {
   // UTM at any zoom a raster needs). Pixels whose position cannot be projected are NaN.
   std::vector<glm::dvec2> tilePixelsToSource(const geo::TileId& tile, int size) const;
 
+  // The window of the raster that sampling at `pixels` needs (their bounding box, `margin`
+  // samples more on every side — 2 for the cubic sampler — clamped to the raster), read through
+  // the source, decimated when it would exceed maxSide pixels on a side. nullopt when no
+  // position falls on the raster. Errors: the source's read errors.
+  Result<std::optional<Raster>> windowFor(const std::vector<glm::dvec2>& pixels, int margin, int maxSide) const;
+
  private:
-  const Raster* raster_ = nullptr;
+  const RasterSource* source_ = nullptr;
   geo::Crs crs_;
   std::array<double, 6> inverse_{};
   geo::GeoBounds extent_;
   double pixelSizeM_ = 0.0;
 };
 
+// Samplers: `pixel` in whole-raster coordinates, `raster` a window holding the samples around it.
+//
 // Bilinear height at continuous pixel coordinates: NaN when outside the raster or when any of
 // the four neighbours is nodata (a mask never becomes a fake height). Within half a pixel of
 // the raster's edge the edge row/column is used, so the raster's whole area is covered.

@@ -1,9 +1,17 @@
 #pragma once
-// The coordinate reference systems vegstream reads. GeoTIFFs and user options name a CRS by
-// EPSG code; only the few that real DEM / imagery deliveries use are supported, and anything
-// else is refused with a message that names the code (never a silent guess).
+// Coordinate reference systems: any CRS PROJ knows, through GDAL's OGRSpatialReference (the
+// field's standard; no table of our own). A Crs is an immutable, cheap-to-copy value naming one
+// CRS; projection.h transforms between it and WGS 84 longitude/latitude.
+//
+// Where a Crs comes from:
+//   - a raster's own georeference (datasets/raster_source.h hands over its WKT);
+//   - the user: `--dem-crs EPSG:27700`, `--imagery-crs 26912`, WKT, PROJJSON or a PROJ string
+//     (OGRSpatialReference::SetFromUserInput), for files whose CRS is missing or wrong;
+//   - code: wgs84Crs(), webMercatorCrs(), utmCrs().
+// Axis order is always the GIS one: x = longitude / easting, y = latitude / northing.
 
-#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -11,43 +19,44 @@
 
 namespace vegstream::geo {
 
-struct Crs {
-  enum class Kind {
-    Geographic,   // x = longitude, y = latitude, degrees (WGS 84; NAD83 read as WGS 84)
-    WebMercator,  // EPSG:3857 metres (spherical formula on the WGS 84 semi-major axis)
-    Utm,          // WGS 84 / UTM zone `utmZone`, hemisphere `north`, metres
-  };
+class Crs {
+ public:
+  Crs();  // WGS 84 geographic (EPSG:4326)
 
-  Kind kind = Kind::Geographic;
-  int epsg = 4326;    // the canonical code (aliases such as 900913 are stored as 3857)
-  int utmZone = 0;    // 1 … 60 for Kind::Utm, 0 otherwise
-  bool north = true;  // UTM hemisphere: false = false northing of 10 000 km
+  // "EPSG:27700", "epsg:4326", "4326", a WKT or PROJJSON text, or a PROJ string. Errors
+  // (InvalidInput) name the text and PROJ's reason.
+  static Result<Crs> fromUserInput(std::string_view text);
+  // A CRS as GDAL reports a raster's (WKT). Errors as fromUserInput.
+  static Result<Crs> fromWkt(const std::string& wkt);
 
-  // "WGS 84 / UTM zone 12N (EPSG:32612)" — for messages and dataset.json.
+  // "OSGB36 / British National Grid (EPSG:27700)" — for messages and dataset.json.
   std::string name() const;
-  // "EPSG:32612".
+  // "EPSG:27700", or "" when PROJ finds no EPSG code for it.
   std::string code() const;
+  std::optional<int> epsg() const;
+  // PROJJSON (PROJ ≥ 6.2), for dataset.json when the CRS has no EPSG code.
+  const std::string& projjson() const;
+  const std::string& wkt() const;
+  bool isGeographic() const;   // longitude/latitude degrees
+  bool isWgs84LonLat() const;  // EPSG:4326 itself: projection is the identity
+  bool isWebMercator() const;  // EPSG:3857 (or an alias): the closed form of projection.h
+  // One number per CRS value made (never reused while the process runs): the key of the
+  // per-thread transformation caches.
+  uint64_t id() const;
 
-  bool operator==(const Crs&) const = default;
+  // The same CRS (OGRSpatialReference::IsSame), e.g. EPSG:32612 and its WKT.
+  bool operator==(const Crs& other) const;
+
+  struct Data;
+
+ private:
+  explicit Crs(std::shared_ptr<const Data> d) : d_(std::move(d)) {}
+  std::shared_ptr<const Data> d_;
 };
 
-// Receives one human-readable sentence per thing the caller should know but that is not an
-// error (e.g. NAD83 read as WGS 84). Callers usually forward it to their logger.
-using WarningSink = std::function<void(const std::string&)>;
-
-// EPSG:4326, 4269 (NAD83, treated as WGS 84 with a warning to `warn`), 3857 (aliases 900913
-// and 3785), 32601–32660 and 32701–32760. Anything else: ErrorKind::Unsupported naming the
-// code.
-Result<Crs> crsFromEpsg(int epsg, const WarningSink& warn = {});
-
-// "EPSG:4326", "epsg:32612" or "4326" (surrounding blanks ignored). Text that is not an EPSG
-// code: ErrorKind::InvalidInput naming the text; a code vegstream cannot read: as crsFromEpsg.
-Result<Crs> parseCrs(std::string_view text, const WarningSink& warn = {});
-
-// Constructors for code that makes its own data (the synthetic generator, tests).
 Crs wgs84Crs();
 Crs webMercatorCrs();
-Crs utmCrs(int zone, bool north);  // zone in 1 … 60 (asserted)
+Crs utmCrs(int zone, bool north);  // WGS 84 / UTM, zone in 1 … 60 (asserted)
 
 // The standard UTM zone (1 … 60) of a point, with the Norway / Svalbard exceptions: the zone
 // a dataset centred there would naturally be delivered in. Latitude within ±90 (asserted).

@@ -5,18 +5,19 @@
 #include <numbers>
 #include <sstream>
 
+#include <limits>
+#include <memory>
+#include <vector>
+
 #include <GeographicLib/Constants.hpp>
-#include <GeographicLib/TransverseMercator.hpp>
-#include <GeographicLib/UTMUPS.hpp>
+#include <ogr_spatialref.h>
+
+#include "geo/gdal_quiet.h"
 
 namespace vegstream::geo {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-// UTM's false easting (the central meridian sits at x = 500 km) and zone layout; GeographicLib
-// keeps both private to UTMUPS (UTMShift() is the southern false northing).
-constexpr double kUtmFalseEasting = 500000.0;
-double utmCentralMeridianDeg(int zone) { return 6.0 * zone - 183.0; }
 // Tolerance on the Web Mercator latitude limit, so that the exact edge of the tile pyramid
 // (computed from y = ±πa and back) is accepted.
 constexpr double kLatSlackDeg = 1e-9;
@@ -30,22 +31,39 @@ Error outOfRange(const Crs& crs, const Geodetic& p, const std::string& why) {
   return makeError(ErrorKind::InvalidInput, msg.str());
 }
 
-Result<glm::dvec2> toUtm(const Crs& crs, const Geodetic& p) {
-  int zone = 0;
-  bool northp = true;
-  double x = 0.0;
-  double y = 0.0;
-  try {
-    // setzone forces the CRS's zone; UTMUPS then picks the hemisphere from the sign of the
-    // latitude, and Transfer moves the northing onto the CRS's hemisphere.
-    GeographicLib::UTMUPS::Forward(p.latDeg, p.lonDeg, zone, northp, x, y, crs.utmZone);
-    if (northp != crs.north) {
-      GeographicLib::UTMUPS::Transfer(zone, northp, x, y, crs.utmZone, crs.north, x, y, zone);
-    }
-  } catch (const GeographicLib::GeographicErr& e) {
-    return outOfRange(crs, p, e.what());
+// One OGR transformation per (CRS, direction) per thread: OGRCoordinateTransformation is not
+// thread-safe, and making one costs PROJ's pipeline search (milliseconds), so each thread keeps
+// the few it used last.
+class TransformCache {
+ public:
+  OGRCoordinateTransformation* get(const Crs& crs, bool toLonLat) {
+    for (auto& e : entries_)
+      if (e.id == crs.id() && e.toLonLat == toLonLat) return e.t.get();
+    GdalQuiet quiet;
+    OGRSpatialReference a, b;
+    a.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    b.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    if (a.importFromWkt(crs.wkt().c_str()) != OGRERR_NONE || b.importFromEPSG(4326) != OGRERR_NONE) return nullptr;
+    std::unique_ptr<OGRCoordinateTransformation> t(
+        toLonLat ? OGRCreateCoordinateTransformation(&a, &b) : OGRCreateCoordinateTransformation(&b, &a));
+    if (!t) return nullptr;
+    if (entries_.size() >= 8) entries_.erase(entries_.begin());
+    entries_.push_back({crs.id(), toLonLat, std::move(t)});
+    return entries_.back().t.get();
   }
-  return glm::dvec2(x, y);
+
+ private:
+  struct Entry {
+    uint64_t id;
+    bool toLonLat;
+    std::unique_ptr<OGRCoordinateTransformation> t;
+  };
+  std::vector<Entry> entries_;
+};
+
+OGRCoordinateTransformation* transformFor(const Crs& crs, bool toLonLat) {
+  thread_local TransformCache cache;
+  return cache.get(crs, toLonLat);
 }
 
 }  // namespace
@@ -68,42 +86,48 @@ Result<glm::dvec2> toProjected(const Crs& crs, const Geodetic& p) {
     return outOfRange(crs, p, "the coordinates are not finite numbers");
   }
   if (std::abs(p.latDeg) > 90.0) return outOfRange(crs, p, "latitude is outside ±90°");
-  switch (crs.kind) {
-    case Crs::Kind::Geographic: return glm::dvec2(p.lonDeg, p.latDeg);
-    case Crs::Kind::WebMercator: {
-      if (std::abs(p.latDeg) > kWebMercatorMaxLatDeg + kLatSlackDeg) {
-        return outOfRange(crs, p, "Web Mercator ends at ±85.0511° latitude");
-      }
-      return lonLatToWebMercator(glm::dvec2(p.lonDeg, p.latDeg));
+  if (crs.isWgs84LonLat()) return glm::dvec2(p.lonDeg, p.latDeg);
+  if (crs.isWebMercator()) {
+    if (std::abs(p.latDeg) > kWebMercatorMaxLatDeg + kLatSlackDeg) {
+      return outOfRange(crs, p, "Web Mercator ends at ±85.0511° latitude");
     }
-    case Crs::Kind::Utm: return toUtm(crs, p);
+    return lonLatToWebMercator(glm::dvec2(p.lonDeg, p.latDeg));
   }
-  return makeError(ErrorKind::Internal, "unknown CRS kind");
+  OGRCoordinateTransformation* t = transformFor(crs, false);
+  if (!t) return outOfRange(crs, p, "PROJ has no transformation from WGS 84 to it");
+  double x = p.lonDeg, y = p.latDeg;
+  int ok = 0;
+  {
+    GdalQuiet quiet;
+    if (!t->Transform(1, &x, &y, nullptr, nullptr, &ok) || !ok || !std::isfinite(x) || !std::isfinite(y))
+      return outOfRange(crs, p, "PROJ cannot transform the point (outside the CRS's area)");
+  }
+  return glm::dvec2(x, y);
 }
 
 Geodetic fromProjected(const Crs& crs, glm::dvec2 xy, double heightM) {
   Geodetic p;
   p.heightM = heightM;
-  switch (crs.kind) {
-    case Crs::Kind::Geographic:
-      p.lonDeg = xy.x;
-      p.latDeg = xy.y;
-      break;
-    case Crs::Kind::WebMercator: {
-      const glm::dvec2 lonLat = webMercatorToLonLat(xy);
-      p.lonDeg = lonLat.x;
-      p.latDeg = lonLat.y;
-      break;
-    }
-    case Crs::Kind::Utm: {
-      assert(crs.utmZone >= 1 && crs.utmZone <= 60);
-      // The same series UTMUPS::Reverse evaluates, minus its range checks (which would make
-      // this partial): false easting / northing removed, then the zone's central meridian.
-      const double falseNorthing = crs.north ? 0.0 : GeographicLib::UTMUPS::UTMShift();
-      GeographicLib::TransverseMercator::UTM().Reverse(utmCentralMeridianDeg(crs.utmZone), xy.x - kUtmFalseEasting,
-                                                       xy.y - falseNorthing, p.latDeg, p.lonDeg);
-      break;
-    }
+  if (crs.isWgs84LonLat()) {
+    p.lonDeg = xy.x;
+    p.latDeg = xy.y;
+    return p;
+  }
+  if (crs.isWebMercator()) {
+    const glm::dvec2 lonLat = webMercatorToLonLat(xy);
+    p.lonDeg = lonLat.x;
+    p.latDeg = lonLat.y;
+    return p;
+  }
+  p.lonDeg = p.latDeg = std::numeric_limits<double>::quiet_NaN();
+  OGRCoordinateTransformation* t = transformFor(crs, true);
+  if (!t || !std::isfinite(xy.x) || !std::isfinite(xy.y)) return p;
+  double x = xy.x, y = xy.y;
+  int ok = 0;
+  GdalQuiet quiet;
+  if (t->Transform(1, &x, &y, nullptr, nullptr, &ok) && ok) {
+    p.lonDeg = x;
+    p.latDeg = y;
   }
   return p;
 }

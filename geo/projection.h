@@ -1,14 +1,15 @@
 #pragma once
-// Geodetic ↔ projected coordinates for the CRSs of crs.h (GeographicLib underneath).
+// Geodetic (WGS 84 longitude/latitude) ↔ the coordinates of any CRS of crs.h.
 //
-//   Geographic   x = longitude, y = latitude, degrees (identity)
-//   WebMercator  EPSG:3857 metres. GeographicLib has no Web Mercator, and its closed form is
-//                the *spherical* Mercator formula evaluated on the WGS 84 semi-major axis
-//                a = 6 378 137 m (that is what EPSG:3857 defines): x = a·λ, y = a·asinh(tan φ).
-//   Utm          GeographicLib::UTMUPS with the CRS's zone forced, so a point outside the
-//                zone's 6° strip still lands in that zone's grid (data are often delivered in
-//                one zone across a boundary); the hemisphere is forced too, so a northern CRS
-//                continues across the equator with negative northings.
+//   EPSG:4326    identity (x = longitude, y = latitude).
+//   EPSG:3857    the closed form: the *spherical* Mercator formula on the WGS 84 semi-major axis
+//                a = 6 378 137 m (what EPSG:3857 defines): x = a·λ, y = a·asinh(tan φ); exact
+//                and fast, since every tile position goes through it.
+//   anything else: PROJ's transformation as GDAL chooses it (OGRCoordinateTransformation,
+//                GIS axis order; the best operation PROJ knows without network grids, e.g. the
+//                Helmert transformation for OSGB36 → WGS 84, null for NAD83 → WGS 84). One per
+//                CRS per thread is kept (they are not thread-safe and slow to make).
+// Heights are not transformed: the raster's values are heights above its own vertical datum.
 
 #include <glm/vec2.hpp>
 
@@ -29,15 +30,13 @@ glm::dvec2 lonLatToWebMercator(glm::dvec2 lonLat);
 glm::dvec2 webMercatorToLonLat(glm::dvec2 mercatorM);
 
 // Errors (ErrorKind::InvalidInput), each naming the point and the CRS: a non-finite input,
-// a latitude outside ±90°, beyond ±kWebMercatorMaxLatDeg for Web Mercator, or a point so far
-// outside a UTM zone that GeographicLib refuses it (easting outside 0 … 1000 km, northing
-// outside the hemisphere's extended range). The height is ignored.
+// a latitude outside ±90°, beyond ±kWebMercatorMaxLatDeg for Web Mercator, or a point PROJ
+// cannot transform. The height is ignored.
 Result<glm::dvec2> toProjected(const Crs& crs, const Geodetic& p);
 
-// Total: every finite (x, y) gives a position (UTM through GeographicLib's transverse Mercator
-// without range checks, so a corner slightly outside a zone's nominal grid still converts).
-// heightM is set to `heightM`. Longitudes come back in [-180, 180] for UTM and as x / a
-// (unwrapped) for Web Mercator and geographic.
+// The position of (x, y); latitude and longitude NaN when PROJ cannot transform it (callers
+// check std::isfinite). heightM is set to `heightM`. Longitudes come back as PROJ gives them,
+// and as x / a (unwrapped) for Web Mercator and as x for EPSG:4326.
 Geodetic fromProjected(const Crs& crs, glm::dvec2 xy, double heightM = 0.0);
 
 // from → geodetic → to, e.g. an output Web Mercator pixel centre into a UTM imagery file.

@@ -17,12 +17,13 @@ inline Result<std::filesystem::path> zionWithNdvi() {
   return cachedFixture("zion-ndvi", programKey(), [](const std::filesystem::path& dir) -> Status {
     const std::filesystem::path zion = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion";
     datasets::GeoTiffImportOptions o;
-    o.dem = zion / "srtm.tif";
-    o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
+    o.dem = {(zion / "srtm.tif").string()};
+    o.imagery.bands = {(zion / "landsat_b4.tif").string(), (zion / "landsat_b3.tif").string(),
+                      (zion / "landsat_b2.tif").string()};
     o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;  // as the demo imports it
     o.imageryDatetime = "2015-08-18T17:58:00Z";
     datasets::NirInput nir;
-    nir.file = zion / "landsat_b5.tif";
+    nir.file = (zion / "landsat_b5.tif").string();
     o.nir = nir;
     o.out = dir;
     o.name = "zion";

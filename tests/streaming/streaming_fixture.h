@@ -45,8 +45,9 @@ inline Result<datasets::DatasetMeta> makeSynthetic(const fs::path& out) {
 inline Result<datasets::DatasetMeta> importZion(const fs::path& out, int maxZoom = 12) {
   const fs::path zion = fs::path(VEGSTREAM_DATASETS_DIR) / "zion";
   datasets::GeoTiffImportOptions o;
-  o.dem = zion / "srtm.tif";
-  o.imagery.bands = {zion / "landsat_b4.tif", zion / "landsat_b3.tif", zion / "landsat_b2.tif"};
+  o.dem = {(zion / "srtm.tif").string()};
+  o.imagery.bands = {(zion / "landsat_b4.tif").string(), (zion / "landsat_b3.tif").string(),
+                      (zion / "landsat_b2.tif").string()};
   o.imagery.radiometry.method = datasets::RadiometryMethod::Reflectance;  // as the demo imports it
   o.imageryDatetime = "2015-08-18T17:58:00Z";
   o.heightResampling = datasets::HeightResampling::Cubic;

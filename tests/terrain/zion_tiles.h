@@ -44,7 +44,7 @@ class ZionTiles {
     auto dir = testing::cachedFixture(
         "terrain-zion-z11", testing::programKey(), [](const std::filesystem::path& out) -> Status {
           datasets::GeoTiffImportOptions options;
-          options.dem = std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif";
+          options.dem = {(std::filesystem::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif").string()};
           options.out = out;
           options.maxZoom = 11;
           options.threads = 2;

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "datasets/geotiff_reader.h"
+#include "datasets/raster_source.h"
 #include "geo/crs.h"
 #include "geo/projection.h"
 #include "import_test_util.h"
@@ -58,7 +58,7 @@ TEST_F(ZionImport, SucceedsAndRecordsTheDataset) {
 TEST_F(ZionImport, HeightsMatchTheDemAtItsPixelCentres) {
   auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta);
-  auto dem = readGeoTiff(samples() + "/zion/srtm.tif");
+  auto dem = readWholeRaster(samples() + "/zion/srtm.tif");
   ASSERT_TRUE(dem);
   DatasetSampler sampler(out_, *meta);
   std::mt19937 rng(2024);
@@ -85,8 +85,8 @@ TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
   auto meta = readDatasetMeta(out_);
   ASSERT_TRUE(meta);
   const std::string z = samples() + "/zion/";
-  auto r = readGeoTiff(z + "landsat_b4.tif"), g = readGeoTiff(z + "landsat_b3.tif"),
-       b = readGeoTiff(z + "landsat_b2.tif");
+  auto r = readWholeRaster(z + "landsat_b4.tif"), g = readWholeRaster(z + "landsat_b3.tif"),
+       b = readWholeRaster(z + "landsat_b2.tif");
   ASSERT_TRUE(r && g && b);
   // Stretch ranges as dataset.json records them (the importer's p1/p99 of each band).
   const Raster* bands[3] = {&*r, &*g, &*b};
@@ -101,7 +101,7 @@ TEST_F(ZionImport, ColourMatchesTheStretchedLandsat) {
   EXPECT_NEAR(lo[0], 6700, 500);  // README: 1st–99th percentiles roughly 6700 … 18300
   EXPECT_NEAR(hi[0], 18300, 500);
 
-  auto crs = geo::crsFromEpsg(32612);
+  auto crs = Result<geo::Crs>(geo::utmCrs(12, true));
   ASSERT_TRUE(crs);
   DatasetSampler sampler(out_, *meta);
   std::mt19937 rng(11);

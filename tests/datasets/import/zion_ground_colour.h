@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "datasets/dataset_format.h"
-#include "datasets/geotiff_reader.h"
+#include "datasets/raster_source.h"
 #include "datasets/tile_codec.h"
 #include "geo/crs.h"
 #include "geo/projection.h"
@@ -55,7 +55,7 @@ class LandsatReflectance {
  public:
   explicit LandsatReflectance(const std::string& zionDir) {
     for (int b = 0; b < 3; ++b) {
-      auto r = readGeoTiff(zionDir + "/landsat_b" + std::to_string(4 - b) + ".tif");
+      auto r = readWholeRaster(zionDir + "/landsat_b" + std::to_string(4 - b) + ".tif");
       ok_ = ok_ && r.ok();
       if (r) bands_[static_cast<size_t>(b)] = std::move(*r);
     }
@@ -75,7 +75,7 @@ class LandsatReflectance {
   // Mean over the Landsat pixels whose centres lie in the footprint around `p`.
   LinearRgb footprintMean(const Place& p) const {
     LinearRgb out;
-    auto utm = geo::crsFromEpsg(32612);
+    auto utm = Result<geo::Crs>(geo::utmCrs(12, true));
     auto centre =
         utm ? geo::toProjected(*utm, geo::Geodetic{p.latDeg, p.lonDeg, 0.0}) : Result<glm::dvec2>(utm.error());
     if (!centre) return out;

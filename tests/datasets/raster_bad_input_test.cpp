@@ -7,7 +7,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "datasets/geotiff_reader.h"
+#include "datasets/raster_source.h"
 #include "tests/datasets/tiny_tiff.h"
 #include "tests/support/test_dirs.h"
 
@@ -42,13 +42,13 @@ TinyImage geoImage(uint16_t rasterType = 1) {
 
 TEST(GeoTiffBadInput, MissingFileIsNotFound) {
   const fs::path p = tmpFile("does_not_exist.tif");
-  expectError(readGeoTiff(p), ErrorKind::NotFound, p, "does not exist");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::NotFound, p, "does not exist");
 }
 
 TEST(GeoTiffBadInput, TextFileNamedTifIsInvalid) {
   const fs::path p = tmpFile("notes.tif");
   std::ofstream(p) << "this is not an image\n";
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "is not a TIFF file");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "is not a TIFF file");
 }
 
 TEST(GeoTiffBadInput, TruncatedSrtmIsInvalid) {
@@ -59,7 +59,7 @@ TEST(GeoTiffBadInput, TruncatedSrtmIsInvalid) {
   ASSERT_GT(bytes.size(), 1000u);
   const auto half = static_cast<std::streamsize>(bytes.size() / 2);
   std::ofstream(p, std::ios::binary).write(bytes.data(), half);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "truncated");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "truncated");
 }
 
 TEST(GeoTiffBadInput, PlainTiffHasNoGeoreference) {
@@ -71,38 +71,25 @@ TEST(GeoTiffBadInput, PlainTiffHasNoGeoreference) {
   ASSERT_TRUE(out->open(p.string(), spec));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
   ASSERT_TRUE(out->close());
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "has no georeference");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "has no georeference");
 }
 
-TEST(GeoTiffBadInput, HugeClaimedSizeIsRefusedBeforeAllocating) {
-  // A 2x2 image whose header claims 10^12 pixels: 4 TB of float, had it got to allocating.
+TEST(GeoTiffBadInput, HugeClaimedSizeNeverAllocatesTheWhole) {
+  // A 2x2 image whose header claims 10^12 pixels: 4 TB of float, had anything read it whole.
+  // It opens (GDAL knows only its size), a whole read is refused before allocating, and a
+  // window of it fails on the missing pixels with a message naming the file.
   const fs::path p = tmpFile("huge.tif");
   TinyImage img = geoImage();
   img.claimedWidth = 1000000;
   img.claimedHeight = 1000000;
   test::writeTinyTiff(p, img);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p,
-              "1000000 x 1000000 = 1000000000000 pixels, more than the limit of 400000000");
-}
-
-TEST(GeoTiffBadInput, ClaimedSizeBelowOiioLimitIsStillRefused) {
-  // 30000 x 30000 UInt16 is 1.8 GB, under OIIO's own 32 GB guard: only maxPixels stops it.
-  const fs::path p = tmpFile("large.tif");
-  TinyImage img = geoImage();
-  img.claimedWidth = 30000;
-  img.claimedHeight = 30000;
-  test::writeTinyTiff(p, img);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "30000 x 30000");
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "limit of 400000000");
-}
-
-TEST(GeoTiffBadInput, MaxPixelsOptionIsHonoured) {
-  const fs::path p = fs::path(VEGSTREAM_DATASETS_DIR) / "zion/srtm.tif";
-  ReadOptions opt;
-  opt.maxPixels = 465 * 457 - 1;
-  expectError(readGeoTiff(p, opt), ErrorKind::InvalidInput, p, "more than the limit of 212504");
-  opt.maxPixels = 465 * 457;
-  EXPECT_TRUE(readGeoTiff(p, opt).ok());
+  expectError(readWholeRaster(p.string()), ErrorKind::InvalidInput, p, "read window by window");
+  auto src = RasterSource::open({p.string()}, {});
+  ASSERT_TRUE(src.ok()) << src.error().message;
+  EXPECT_EQ(src->width(), 1000000);
+  auto w = src->read(500000, 500000, 256, 256);
+  ASSERT_FALSE(w.ok());
+  EXPECT_NE(w.error().message.find(p.string()), std::string::npos) << w.error().message;
 }
 
 TEST(GeoTiffBadInput, MissingGeoKeysNeedTheUserCrs) {
@@ -110,12 +97,12 @@ TEST(GeoTiffBadInput, MissingGeoKeysNeedTheUserCrs) {
   TinyImage img = geoImage();
   img.extra.pop_back();  // drop the key directory, keep tie point + scale
   test::writeTinyTiff(p, img);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "--dem-crs EPSG:4326");
-  ReadOptions opt;
-  opt.assumeEpsg = 4326;
-  auto r = readGeoTiff(p, opt);
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "--dem-crs EPSG:4326");
+  SourceOptions opt;
+  opt.assumeCrs = *geo::Crs::fromUserInput("EPSG:4326");
+  auto r = readWholeRaster(fs::path(p).string(), opt);
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
 }
 
 TEST(GeoTiffBadInput, TagPointingPastTheEndIsInvalid) {
@@ -138,7 +125,7 @@ TEST(GeoTiffBadInput, TagPointingPastTheEndIsInvalid) {
   }
   f.close();
   ASSERT_TRUE(patched);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "past the end of the file");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "past the end of the file");
 }
 
 TEST(GeoTiffBadInput, GroundControlPointsOnlyAreUnsupported) {
@@ -146,7 +133,7 @@ TEST(GeoTiffBadInput, GroundControlPointsOnlyAreUnsupported) {
   TinyImage img = geoImage();
   img.extra = {test::doubles(33922, {0, 0, 0, 100, 50, 0, 1, 1, 0, 110, 40, 0}), img.extra[2]};
   test::writeTinyTiff(p, img);
-  expectError(readGeoTiff(p), ErrorKind::Unsupported, p, "ground control points");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::Unsupported, p, "ground control points");
 }
 
 TEST(GeoTiffBadInput, NodataThatIsNotANumberIsInvalid) {
@@ -154,13 +141,13 @@ TEST(GeoTiffBadInput, NodataThatIsNotANumberIsInvalid) {
   TinyImage img = geoImage();
   img.extra.push_back(test::ascii(42113, "none"));
   test::writeTinyTiff(p, img);
-  expectError(readGeoTiff(p), ErrorKind::InvalidInput, p, "GDAL_NODATA");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "GDAL_NODATA");
 }
 
 TEST(GeoTiffGeoref, PixelIsPointShiftsHalfAPixel) {
   const fs::path p = tmpFile("point.tif");
   test::writeTinyTiff(p, geoImage(2));
-  auto r = readGeoTiff(p);
+  auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->georef.rasterType, RasterType::PixelIsPoint);
   // The tie point (100, 50) is the first pixel's centre; the corner is half a pixel out.
@@ -174,7 +161,7 @@ TEST(GeoTiffGeoref, PixelIsPointShiftsHalfAPixel) {
 TEST(GeoTiffGeoref, PixelIsAreaTiePointIsTheCorner) {
   const fs::path p = tmpFile("area.tif");
   test::writeTinyTiff(p, geoImage(1));
-  auto r = readGeoTiff(p);
+  auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   const auto c = r->georef.pixelCentre(1, 1);
   EXPECT_DOUBLE_EQ(c[0], 115.0);
@@ -189,9 +176,9 @@ TEST(GeoTiffGeoref, ModelTransformationWithRotation) {
   img.extra = {test::doubles(34264, {2, 1, 0, 500000, 0.5, -3, 0, 4000000, 0, 0, 1, 0, 0, 0, 0, 1}),
                test::shorts(34735, {1, 1, 0, 2, 1024, 0, 1, 1, 3072, 0, 1, 32633})};
   test::writeTinyTiff(p, img);
-  auto r = readGeoTiff(p);
+  auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->georef.epsg, 32633);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 32633);
   const std::array<double, 6> want{500000, 2, 1, 4000000, 0.5, -3};
   EXPECT_EQ(r->georef.transform, want);
 }
@@ -202,7 +189,7 @@ TEST(GeoTiffSamplesTypes, Int16KeepsSignAndFloatIsExact) {
   img.sampleFormat = 2;
   img.pixels = test::pixelBytes(std::vector<int16_t>{-32768, -1, 0, 32767});
   test::writeTinyTiff(p16, img);
-  auto r = readGeoTiff(p16);
+  auto r = readWholeRaster(fs::path(p16).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->samples, (std::vector<float>{-32768, -1, 0, 32767}));
 
@@ -212,7 +199,7 @@ TEST(GeoTiffSamplesTypes, Int16KeepsSignAndFloatIsExact) {
   img.pixels = test::pixelBytes(std::vector<float>{-9999.0f, 2.5f, 20.75f, 1e6f});
   img.extra.push_back(test::ascii(42113, "-9999"));
   test::writeTinyTiff(p32, img);
-  r = readGeoTiff(p32);
+  r = readWholeRaster(fs::path(p32).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->samples, (std::vector<float>{-9999.0f, 2.5f, 20.75f, 1e6f}));
   EXPECT_TRUE(r->isNodata(r->at(0, 0)));
@@ -225,7 +212,7 @@ TEST(GeoTiffSamplesTypes, UInt8IsNotNormalised) {
   img.bits = 8;
   img.pixels = {0, 1, 200, 255};
   test::writeTinyTiff(p, img);
-  auto r = readGeoTiff(p);
+  auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->samples, (std::vector<float>{0, 1, 200, 255}));
 }

@@ -1,6 +1,6 @@
 // readGeoTiff on the real sample files in ../shared/datasets (see its README for the figures).
 
-#include "datasets/geotiff_reader.h"
+#include "datasets/raster_source.h"
 
 #include <algorithm>
 #include <limits>
@@ -35,12 +35,12 @@ MinMax minMax(const Raster& r, int channel = 0) {
 }
 
 TEST(GeoTiffSamples, ZionSrtmHeightsAndGrid) {
-  auto r = readGeoTiff(sample("zion/srtm.tif"));
+  auto r = readWholeRaster(fs::path(sample("zion/srtm.tif")).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->width, 465);
   EXPECT_EQ(r->height, 457);
   EXPECT_EQ(r->channels, 1);
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
   EXPECT_EQ(r->georef.rasterType, RasterType::PixelIsArea);
   EXPECT_NE(r->georef.crsDescription.find("WGS 84"), std::string::npos);
   ASSERT_TRUE(r->nodata.has_value());
@@ -62,11 +62,11 @@ TEST(GeoTiffSamples, ZionSrtmHeightsAndGrid) {
 }
 
 TEST(GeoTiffSamples, ZionLandsatIsUtm12WithRawDigitalNumbers) {
-  auto r = readGeoTiff(sample("zion/landsat_b4.tif"));
+  auto r = readWholeRaster(fs::path(sample("zion/landsat_b4.tif")).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->width, 1128);
   EXPECT_EQ(r->height, 1428);
-  EXPECT_EQ(r->georef.epsg, 32612);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 32612);
   EXPECT_NE(r->georef.crsDescription.find("UTM Zone 12"), std::string::npos);
   const auto& t = r->georef.transform;
   EXPECT_DOUBLE_EQ(t[0], 301905.0);
@@ -86,7 +86,7 @@ TEST(GeoTiffSamples, ZionLandsatIsUtm12WithRawDigitalNumbers) {
 }
 
 TEST(GeoTiffSamples, GoletaCorruptKeysNeedTheUserCrs) {
-  auto r = readGeoTiff(sample("goleta/sba_elev32_wgs84_512x512.tif"));
+  auto r = readWholeRaster(fs::path(sample("goleta/sba_elev32_wgs84_512x512.tif")).string());
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput);
   const std::string& msg = r.error().message;
@@ -97,13 +97,13 @@ TEST(GeoTiffSamples, GoletaCorruptKeysNeedTheUserCrs) {
 }
 
 TEST(GeoTiffSamples, GoletaRecoversWithAssumedEpsg) {
-  ReadOptions opt;
-  opt.assumeEpsg = 4326;
-  auto r = readGeoTiff(sample("goleta/sba_elev32_wgs84_512x512.tif"), opt);
+  SourceOptions opt;
+  opt.assumeCrs = *geo::Crs::fromUserInput("EPSG:4326");
+  auto r = readWholeRaster(fs::path(sample("goleta/sba_elev32_wgs84_512x512.tif")).string(), opt);
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->width, 512);
   EXPECT_EQ(r->height, 512);
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
   ASSERT_TRUE(r->nodata.has_value());
   EXPECT_EQ(*r->nodata, -9999.0);
   const MinMax m = minMax(*r);
@@ -116,10 +116,10 @@ TEST(GeoTiffSamples, GoletaRecoversWithAssumedEpsg) {
 }
 
 TEST(GeoTiffSamples, GoletaRgbHasSoundKeys) {
-  auto r = readGeoTiff(sample("goleta/sba_rgb_wgs84_512x512.tif"));
+  auto r = readWholeRaster(fs::path(sample("goleta/sba_rgb_wgs84_512x512.tif")).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->channels, 3);
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
   EXPECT_FALSE(r->nodata.has_value());
   const MinMax m = minMax(*r, 1);
   EXPECT_GE(m.min, 0.0f);
@@ -128,17 +128,17 @@ TEST(GeoTiffSamples, GoletaRgbHasSoundKeys) {
 }
 
 TEST(GeoTiffSamples, AssumedEpsgOverridesTheFile) {
-  ReadOptions opt;
-  opt.assumeEpsg = 4269;
-  auto r = readGeoTiff(sample("zion/srtm.tif"), opt);
+  SourceOptions opt;
+  opt.assumeCrs = *geo::Crs::fromUserInput("EPSG:4269");
+  auto r = readWholeRaster(fs::path(sample("zion/srtm.tif")).string(), opt);
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->georef.epsg, 4269);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4269);
 }
 
 TEST(GeoTiffSamples, NodataOverrideWins) {
-  ReadOptions opt;
+  SourceOptions opt;
   opt.nodataOverride = 1024.0;
-  auto r = readGeoTiff(sample("zion/srtm.tif"), opt);
+  auto r = readWholeRaster(fs::path(sample("zion/srtm.tif")).string(), opt);
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_TRUE(r->nodata.has_value());
   EXPECT_EQ(*r->nodata, 1024.0);
@@ -146,11 +146,11 @@ TEST(GeoTiffSamples, NodataOverrideWins) {
 }
 
 TEST(GeoTiffSamples, RmnpDemHasNonSquarePixels) {
-  auto r = readGeoTiff(sample("rmnp/rmnp-dem.tif"));
+  auto r = readWholeRaster(fs::path(sample("rmnp/rmnp-dem.tif")).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->width, 152);
   EXPECT_EQ(r->height, 187);
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
   EXPECT_NEAR(r->georef.transform[1], 0.00275, 1e-12);
   EXPECT_NEAR(r->georef.transform[5], -0.00211, 1e-12);
   const MinMax m = minMax(*r);
@@ -159,12 +159,12 @@ TEST(GeoTiffSamples, RmnpDemHasNonSquarePixels) {
 }
 
 TEST(GeoTiffSamples, RmnpRgbHasThreeChannels) {
-  auto r = readGeoTiff(sample("rmnp/rmnp-rgb.tif"));
+  auto r = readWholeRaster(fs::path(sample("rmnp/rmnp-rgb.tif")).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->width, 485);
   EXPECT_EQ(r->height, 373);
   EXPECT_EQ(r->channels, 3);
-  EXPECT_EQ(r->georef.epsg, 4326);
+  EXPECT_EQ(r->georef.crs->epsg().value_or(0), 4326);
   EXPECT_NEAR(r->georef.transform[1], 0.0015, 1e-12);
   EXPECT_NEAR(r->georef.transform[5], -0.0015, 1e-12);
   ASSERT_TRUE(r->nodata.has_value());
