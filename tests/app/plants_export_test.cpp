@@ -193,6 +193,25 @@ TEST_F(PlantsExport, CsvIsOneTableAFileThatGdalAndAPlainReaderRead) {
   EXPECT_EQ(s.out, readWhole(out_ / "box-plants.csv"));
 }
 
+TEST_F(PlantsExport, AnEmptyTableKeepsItsHeaderAndLayer) {
+  // One grass species: plants, no trees.
+  std::ofstream(out_ / "moss.json") << R"({"species": [{"name": "moss", "reference": {"srgb": "#406030"},
+    "weights": {"h": 1, "s": 1, "v": 1}, "p": 2, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02},
+    "stiffness": {"min": 0.8, "max": 0.9}, "width_m": {"min": 0.001, "max": 0.002},
+    "colour_modulation": {"min": 1, "max": 1}}]})";
+  const std::string species = "--species " + q(out_ / "moss.json") + " ";
+  EXPECT_EQ(run(species + "--layer trees").out, "lon,lat,height_m,species,tree_height_m,crown_m,s_prime\n");
+  const json fc = json::parse(run(species + "--format geojson --layer trees").out);
+  EXPECT_EQ(fc["type"], "FeatureCollection");
+  EXPECT_TRUE(fc["features"].empty());
+  run(species + "--format gpkg --output " + q(out_ / "m.gpkg"));
+  const Dataset ds = openVector(out_ / "m.gpkg", "GPKG");
+  ASSERT_TRUE(ds);
+  ASSERT_NE(ds->GetLayerByName("trees"), nullptr);
+  EXPECT_EQ(ds->GetLayerByName("trees")->GetFeatureCount(), 0);
+  EXPECT_GT(ds->GetLayerByName("plants")->GetFeatureCount(), 3000);
+}
+
 TEST_F(PlantsExport, MistakesAreOneLineExitTwoAndWriteNothing) {
   fs::create_directories(out_ / "taken-trees.csv");  // a directory where a file would go
   const std::string b = "--bbox " + box_ + " ";
