@@ -5,10 +5,12 @@
 // file; the options' mistakes one line, exit 2, nothing written. In process (app/ogr_tables.h):
 // a file that fails takes every file of the call with it and leaves an older file as it was.
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
