@@ -12,6 +12,7 @@
 
 #include "app/exit_codes.h"
 #include "datasets/dataset_reader.h"
+#include "datasets/tilejson.h"
 #include "geo/crs.h"
 
 namespace vegstream::app {
@@ -82,6 +83,13 @@ int runInfo(const InfoOptions& options, const Logger& log) {
   // The NDVI layer (import --imagery-nir); null when the dataset has none.
   tiles["ndvi"] = m.ndvi ? nlohmann::json(m.ndviTiles) : nlohmann::json(nullptr);
   if (m.ndvi) tiles["on_disk"]["ndvi"] = ndviOnDisk;
+  // The TileJSON files beside the dataset (datasets/tilejson.h) that are there: datasets made
+  // before they existed have none.
+  nlohmann::json tileJson = nlohmann::json::object();
+  for (const datasets::TileJsonFile& f : datasets::tileJsonFiles(m)) {
+    std::error_code ec;
+    if (fs::is_regular_file(reader->dir() / f.fileName, ec)) tileJson[f.layer] = f.fileName;
+  }
   const nlohmann::json out = {
       {"name", m.name},
       {"path", fs::absolute(reader->dir()).lexically_normal().string()},
@@ -103,7 +111,8 @@ int runInfo(const InfoOptions& options, const Logger& log) {
       {"tiles", tiles},
       {"bytes", m.bytes},
       {"bytes_on_disk", bytesOnDisk},
-      {"attribution", m.attribution}};
+      {"attribution", m.attribution},
+      {"tilejson", tileJson}};
   std::cout << out.dump(2) << "\n";
   return kExitOk;
 }

@@ -1,7 +1,9 @@
 #pragma once
 // `vegstream info DATASET`: what a dataset directory holds, as JSON on stdout (name, CRS of the
-// sources, bounds, zoom range, height range, tile counts per zoom, bytes), so that scripts and
-// people can check an import without opening the tiles.
+// sources, bounds, zoom range, height range, tile counts per zoom, bytes, and "tilejson": the
+// TileJSON files beside it, layer → file name relative to the dataset, datasets/tilejson.h;
+// {} for datasets made before them), so that scripts and people can check an import without
+// opening the tiles.
 
 #include <string>
 

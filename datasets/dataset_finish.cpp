@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "datasets/pyramid_builder.h"
+#include "datasets/tilejson.h"
 
 namespace vegstream::datasets {
 namespace fs = std::filesystem;
@@ -40,6 +41,8 @@ Result<DatasetMeta> finishDataset(const fs::path& dir, DatasetMeta meta, Progres
     progress.stage("lower zooms");
     if (auto s = buildLowerZooms(dir, meta, progress, po); !s) return s.error();
   }
+  // The TileJSON files first: dataset.json stays the last file a finished dataset gets.
+  if (auto s = writeTileJsons(dir, meta); !s) return s.error();
   if (auto s = writeDatasetMeta(dir, meta); !s) return s.error();
   return meta;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The last steps that every writer of a dataset shares once its finest zoom is on disk (the
 // XYZ importer and the synthetic generator): pick the min zoom, build the lower zooms with the
-// pyramid builder, write dataset.json.
+// pyramid builder, write the TileJSON files (tilejson.h) and dataset.json.
 
 #include <cstdint>
 #include <filesystem>
@@ -22,7 +22,8 @@ int singleTileZoom(const std::vector<geo::TileId>& tiles);
 uint64_t fileBytes(const std::filesystem::path& path);
 
 // meta: maxZoom / minZoom set, the max-zoom tiles already counted in elevationTiles /
-// imageryTiles / ndviTiles / bytes. Builds zooms maxZoom−1 … minZoom under dir, then writes dataset.json.
+// imageryTiles / ndviTiles / bytes. Builds zooms maxZoom−1 … minZoom under dir, then writes the
+// TileJSON files (tilejson.h) and, last, dataset.json.
 // `threads` and `tasks` as in parallelFor.
 Result<DatasetMeta> finishDataset(const std::filesystem::path& dir, DatasetMeta meta, ProgressSink& progress,
                                   int threads, int jpegQuality, TaskRunner* tasks = nullptr);

@@ -1,9 +1,10 @@
 // `vegstream plants` (app/plants_command.h) on a small synthetic dataset, through the real
-// executable: CSV and JSON agree (plants, and trees in their own table), every plant and tree is
-// in the box, the output is deterministic, a
-// sub-box gives exactly the big box's plants that lie in it (view and box independence, core
-// seed ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2), species come from the catalog, and every
-// user mistake is one message naming the option, exit 2 and no output file.
+// executable: CSV (one table a file, --layer) and JSON agree (plants, and trees in their own
+// table), every plant and tree is in the box, the output is deterministic, a sub-box gives
+// exactly the big box's plants that lie in it (view and box independence, core seed
+// ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2), species come from the catalog, and every user
+// mistake is one message naming the option, exit 2 and no output file. The GIS formats read
+// back through GDAL: plants_export_test.cpp.
 
 #include <cmath>
 #include <filesystem>
@@ -16,21 +17,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/support/run_command.h"
-#include "tests/support/test_dirs.h"
+#include "tests/app/plants_fixture.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-// `name` in the running test's own directory, not there yet.
-fs::path testTmp(const std::string& name) {
-  const auto p = testOutputDir() / name;
-  fs::remove_all(p);
-  return p;
-}
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 struct Row {
   double lat = 0, lon = 0, height = 0, plantHeight = 0, stiffness = 0, sPrime = 0;
@@ -38,21 +30,22 @@ struct Row {
   bool operator==(const Row&) const = default;
 };
 
-// The CSV's plants table (up to the empty line before the trees' table).
+// `--format csv --layer plants`: a header, then one line a plant (lon, lat first).
 std::vector<Row> parseCsv(const std::string& text) {
   std::istringstream in(text);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "lat,lon,height_m,species,plant_height_m,stiffness,s_prime");
+  EXPECT_EQ(line, "lon,lat,height_m,species,plant_height_m,stiffness,s_prime");
   std::vector<Row> rows;
-  while (std::getline(in, line) && !line.empty()) {
+  while (std::getline(in, line)) {
+    EXPECT_FALSE(line.empty()) << "one table: no empty line";
     std::vector<std::string> f;
     std::stringstream ls(line);
     for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
     EXPECT_EQ(f.size(), 7u) << line;
     if (f.size() != 7) break;
     rows.push_back(
-        {std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
+        {std::stod(f[1]), std::stod(f[0]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
   }
   return rows;
 }
@@ -63,15 +56,12 @@ struct TreeRow {
   bool operator==(const TreeRow&) const = default;
 };
 
-// The CSV's trees table: after the plants' rows, an empty line and its own header.
+// `--format csv --layer trees`: a header, then one line a tree (lon, lat first).
 std::vector<TreeRow> parseTreesCsv(const std::string& text) {
-  const size_t at = text.find("\n\n");
-  EXPECT_NE(at, std::string::npos) << "no trees table";
-  if (at == std::string::npos) return {};
-  std::istringstream in(text.substr(at + 2));
+  std::istringstream in(text);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "lat,lon,height_m,species,tree_height_m,crown_m,s_prime");
+  EXPECT_EQ(line, "lon,lat,height_m,species,tree_height_m,crown_m,s_prime");
   std::vector<TreeRow> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> f;
@@ -80,54 +70,16 @@ std::vector<TreeRow> parseTreesCsv(const std::string& text) {
     EXPECT_EQ(f.size(), 7u) << line;
     if (f.size() != 7) break;
     rows.push_back(
-        {std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
+        {std::stod(f[1]), std::stod(f[0]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]), std::stod(f[6]), f[3]});
   }
   return rows;
 }
 
-class Plants : public ::testing::Test {
- protected:
-  // A 2 km synthetic dataset (max zoom 13), made once per build for all test
-  // processes; the box: 100 m × 100 m at its centre. Made in SetUp (not SetUpTestSuite, whose
-  // failure GoogleTest turns into skipped tests): a test without its dataset fails.
-  void SetUp() override {
-    auto dir = cachedFixture("plants-synthetic-2km", vegstreamKey(), [](const fs::path& out) -> Status {
-      const auto g = runVegstream("generate --out " + q(out) + " --name synth --size-km 2 --max-zoom 13 --seed 7");
-      if (g.exitCode != 0) return makeError(ErrorKind::Internal, "vegstream generate: " + g.err);
-      return {};
-    });
-    ASSERT_TRUE(dir.ok()) << dir.error().message;
-    dir_ = *dir;
-    const auto info = runVegstream("info " + q(dir_));
-    ASSERT_EQ(info.exitCode, 0) << info.err;
-    const json j = json::parse(info.out);
-    lat_ = 0.5 * (j["bounds"]["south"].get<double>() + j["bounds"]["north"].get<double>());
-    lon_ = 0.5 * (j["bounds"]["west"].get<double>() + j["bounds"]["east"].get<double>());
-  }
-  std::string bbox(double halfM, double offsetEastM = 0.0) const {
-    const double dLat = halfM / 111000.0, mLon = 111000.0 * std::cos(lat_ * M_PI / 180.0);
-    const double dLon = halfM / mLon, c = lon_ + offsetEastM / mLon;
-    char buf[160];
-    std::snprintf(buf, sizeof(buf), "%.9f,%.9f,%.9f,%.9f", c - dLon, lat_ - dLat, c + dLon, lat_ + dLat);
-    return buf;
-  }
-  static std::vector<double> numbers(const std::string& box) {
-    std::vector<double> v;
-    std::stringstream ss(box);
-    for (std::string c; std::getline(ss, c, ',');) v.push_back(std::stod(c));
-    return v;
-  }
-  std::string plants(const std::string& args) const { return "plants " + q(dir_) + " " + args; }
-
-  fs::path dir_;
-  double lat_ = 0.0, lon_ = 0.0;
-};
-
 TEST_F(Plants, CsvAndJsonAgreeInsideTheBoxAndRunsAreIdentical) {
   const std::string box = bbox(15.0);
-  const auto a = runVegstream(plants("--bbox " + box));
+  const auto a = runVegstream(plants("--bbox " + box + " --layer plants"));
   ASSERT_EQ(a.exitCode, 0) << a.err;
-  const auto b = runVegstream(plants("--bbox " + box + " --format csv"));
+  const auto b = runVegstream(plants("--bbox " + box + " --format csv --layer plants"));
   ASSERT_EQ(b.exitCode, 0) << b.err;
   EXPECT_EQ(a.out, b.out) << "byte-identical runs";
   const std::vector<Row> rows = parseCsv(a.out);
@@ -175,7 +127,8 @@ TEST_F(Plants, CsvAndJsonAgreeInsideTheBoxAndRunsAreIdentical) {
 
 TEST_F(Plants, ASubBoxGivesExactlyTheBigBoxsPlantsInIt) {
   const std::string big = bbox(15.0), small = bbox(10.0, 4.0);
-  const auto a = runVegstream(plants("--bbox " + big)), b = runVegstream(plants("--bbox " + small));
+  const auto a = runVegstream(plants("--bbox " + big + " --layer plants"));
+  const auto b = runVegstream(plants("--bbox " + small + " --layer plants"));
   ASSERT_EQ(a.exitCode, 0) << a.err;
   ASSERT_EQ(b.exitCode, 0) << b.err;
   const std::vector<double> s = numbers(small);
@@ -209,7 +162,7 @@ TEST_F(Plants, SpeciesComeFromTheCatalogAndBareGroundGrowsNone) {
      "threshold": 1e9, "kind": "grass", "height_m": {"min": 0.01, "max": 0.02}, "stiffness": {"min": 0.8, "max": 0.9},
      "width_m": {"min": 0.001, "max": 0.002}, "colour_modulation": {"min": 1, "max": 1}}]})";
   const std::string box = bbox(25.0);
-  const auto moss = runVegstream(plants("--bbox " + box + " --species " + q(tmp / "moss.json")));
+  const auto moss = runVegstream(plants("--bbox " + box + " --layer plants --species " + q(tmp / "moss.json")));
   ASSERT_EQ(moss.exitCode, 0) << moss.err;
   const std::vector<Row> rows = parseCsv(moss.out);
   EXPECT_GT(rows.size(), 3000u);
@@ -246,10 +199,12 @@ TEST_F(Plants, TreesAreListedInTheirOwnTableAlikeInCsvAndJsonAndASubBoxKeepsThem
   writeTreeCatalog(tmp / "trees.json");
   const std::string species = " --species " + q(tmp / "trees.json");
   const std::string big = bbox(400.0), small = bbox(250.0, 60.0);
-  const auto a = runVegstream(plants("--bbox " + big + species));
+  const auto a = runVegstream(plants("--bbox " + big + species + " --layer plants"));
   ASSERT_EQ(a.exitCode, 0) << a.err;
   EXPECT_TRUE(parseCsv(a.out).empty()) << "bare soil and trees only: no plants";
-  const std::vector<TreeRow> trees = parseTreesCsv(a.out);
+  const auto at = runVegstream(plants("--bbox " + big + species + " --layer trees"));
+  ASSERT_EQ(at.exitCode, 0) << at.err;
+  const std::vector<TreeRow> trees = parseTreesCsv(at.out);
   const std::vector<double> v = numbers(big);
   const double ha = 0.8 * 0.8 * 100.0;
   std::printf("[ figures  ] %zu trees in %.0f ha of the synthetic dataset (%.1f per ha)\n", trees.size(), ha,
@@ -280,7 +235,7 @@ TEST_F(Plants, TreesAreListedInTheirOwnTableAlikeInCsvAndJsonAndASubBoxKeepsThem
         << i;
   }
   // A smaller box inside: exactly the big box's trees that lie in it (rows near its edges left out).
-  const auto b = runVegstream(plants("--bbox " + small + species));
+  const auto b = runVegstream(plants("--bbox " + small + species + " --layer trees"));
   ASSERT_EQ(b.exitCode, 0) << b.err;
   const std::vector<double> s = numbers(small);
   const auto nearEdge = [&](const TreeRow& r) {
@@ -296,7 +251,7 @@ TEST_F(Plants, TreesAreListedInTheirOwnTableAlikeInCsvAndJsonAndASubBoxKeepsThem
   EXPECT_GT(expected.size(), 30u);
   ASSERT_EQ(got, expected);
   // --max-trees binds: one message naming it, exit 2.
-  const auto limited = runVegstream(plants("--bbox " + big + species + " --max-trees 5"));
+  const auto limited = runVegstream(plants("--bbox " + big + species + " --layer trees --max-trees 5"));
   EXPECT_EQ(limited.exitCode, 2) << limited.err;
   EXPECT_EQ(countLines(limited.err), 1) << limited.err;
   EXPECT_NE(limited.err.find("--max-trees"), std::string::npos) << limited.err;
@@ -319,7 +274,7 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
     d.erase("imagery");
     std::ofstream(noImagery / "dataset.json") << d.dump(2);
   }
-  const std::string box = bbox(50.0), o = " --output " + q(out);
+  const std::string box = bbox(50.0), o = " --layer plants --output " + q(out);
   const std::vector<double> v = numbers(box);
   char swapped[160], flat[160], outside[160];
   std::snprintf(swapped, sizeof(swapped), "%.9f,%.9f,%.9f,%.9f", v[2], v[1], v[0], v[3]);
@@ -341,8 +296,8 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
       {plants("--bbox " + box + " --cluster-size 33" + o), "--cluster-size"},
       {plants("--bbox " + box + " --species " + q(tmp / "bad_species.json") + o), "bad_species.json"},
       {plants("--bbox " + box + " --species " + q(tmp / "missing.json") + o), "missing.json"},
-      {plants("--bbox " + box + " --output " + q(tmp / "no" / "such" / "dir.csv")), "--output"},
-      {plants("--bbox " + box + " --output " + q(tmp)), "--output"},
+      {plants("--bbox " + box + " --layer plants --output " + q(tmp / "no" / "such" / "dir.csv")), "--output"},
+      {plants("--bbox " + box + " --layer plants --output " + q(tmp)), "--output"},
   };
   for (const Case& c : cases) {
     const auto r = runVegstream(c.args);
@@ -353,12 +308,11 @@ TEST_F(Plants, UserMistakesAreOneMessageExitTwoAndNoOutput) {
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
   // --max-plants says how many the box grows (and so what to raise it to).
-  const auto r = runVegstream(plants("--bbox " + box + " --max-plants 1000"));
+  const auto r = runVegstream(plants("--bbox " + box + " --layer plants --max-plants 1000"));
   EXPECT_NE(r.err.find("grows"), std::string::npos) << r.err;
   // Nothing left beside the output either (no temporary files).
   size_t leftovers = 0;
-  for (const auto& e : fs::directory_iterator(tmp))
-    leftovers += e.path().filename().string().find("out.csv") != std::string::npos;
+  for (const auto& e : fs::directory_iterator(tmp)) leftovers += e.path().filename().string().rfind("out", 0) == 0;
   EXPECT_EQ(leftovers, 0u);
   fs::remove_all(tmp);
 }
