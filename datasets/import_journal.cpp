@@ -7,6 +7,7 @@
 #include <cinttypes>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "datasets/message.h"
@@ -48,6 +49,19 @@ void readJournal(const fs::path& p, std::map<uint64_t, TileRecord>& done) {
   }
 }
 
+// Files a killed writer left half-done under their temporary names (core/atomic_file.h's
+// "NAME.tmp-PID-N"): never renamed into place, so never part of the dataset.
+void removeTemporaries(const fs::path& dir) {
+  std::error_code ec;
+  std::vector<fs::path> stray;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.find(".tmp-") != std::string::npos) stray.push_back(it->path());
+  }
+  for (const auto& p : stray) fs::remove_all(p, ec);
+}
+
 }  // namespace
 
 fs::path partialDirFor(const fs::path& out) {
@@ -67,6 +81,7 @@ Result<ImportJournal> ImportJournal::open(const fs::path& out, const std::string
                        concat("--resume: ", j.dir_, " belongs to an import of other inputs or options; run it "
                                                     "again with those, or without --resume to start afresh"));
     readJournal(journal, j.done_);
+    removeTemporaries(j.dir_);
   } else {
     fs::remove_all(j.dir_, ec);
     fs::create_directories(j.dir_, ec);

@@ -7,7 +7,8 @@
 // the fingerprint of the inputs and options, and `journal.txt` one line per finished max-zoom
 // tile, appended once all of the tile's files are renamed into place:
 //   "z x y E I N minH maxH bytes\n"   (E, I, N: 0/1 for elevation, imagery, NDVI written)
-// A torn last line (a kill mid-write) is ignored, so its tile is made again.
+// A torn last line (a kill mid-write) is ignored, so its tile is made again; files a killed
+// writer left under temporary names are removed on --resume.
 
 #include <cstdint>
 #include <cstdio>

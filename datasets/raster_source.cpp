@@ -32,6 +32,7 @@ struct RasterSource::Shared {
   std::vector<GDALDataset*> idle;  // handles no thread is using
 
   ~Shared() {
+    geo::GdalQuiet quiet;  // closing may complain too; the reads already reported
     for (GDALDataset* d : idle) GDALClose(d);
     if (!vrtPath.empty()) VSIUnlink(vrtPath.c_str());
   }

@@ -39,9 +39,6 @@ void ensureGdal() {
     // streaming retry policy (streaming/http_retry_policy.h: 3 retries from 0.25 s).
     if (!CPLGetConfigOption("GDAL_HTTP_MAX_RETRY", nullptr)) CPLSetConfigOption("GDAL_HTTP_MAX_RETRY", "3");
     if (!CPLGetConfigOption("GDAL_HTTP_RETRY_DELAY", nullptr)) CPLSetConfigOption("GDAL_HTTP_RETRY_DELAY", "0.25");
-    // A URL's directory is not listed to look for side-car files (one request instead of many).
-    if (!CPLGetConfigOption("GDAL_DISABLE_READDIR_ON_OPEN", nullptr))
-      CPLSetConfigOption("GDAL_DISABLE_READDIR_ON_OPEN", "EMPTY_DIR");
   });
 }
 

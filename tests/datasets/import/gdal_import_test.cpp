@@ -204,5 +204,33 @@ TEST_F(GdalImport, HeightsInFeetBecomeMetres) {
   EXPECT_NEAR(b->minHeightM, a->minHeightM * 0.3048, 0.5);
 }
 
+// The same heights in the formats GIS people hold them in: each lossless, so each import gives
+// the GeoTIFF's tiles byte for byte.
+TEST_F(GdalImport, LosslessFormatsGiveTheGeoTiffsTiles) {
+  const std::string srtm = sample("zion/srtm.tif");
+  const fs::path ref = work_ / "ref";
+  auto r = runVegstream("import --dem '" + srtm + "' --out '" + ref.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  struct Format {
+    const char* driver;
+    const char* file;
+    const char* options;
+  };
+  for (const Format f : {Format{"HFA", "dem.img", ""}, Format{"JP2OpenJPEG", "dem.jp2", "-co REVERSIBLE=YES -co QUALITY=100"},
+                         Format{"AAIGrid", "dem.asc", ""}, Format{"ENVI", "dem.envi", ""}}) {
+    const fs::path file = work_ / f.file, out = work_ / (std::string("ds_") + f.driver);
+    run(std::string("gdal_translate -q -of ") + f.driver + " " + f.options + " '" + srtm + "' '" + file.string() + "'");
+    r = runVegstream("import --dem '" + file.string() + "' --out '" + out.string() + "'");
+    ASSERT_EQ(r.exitCode, 0) << f.driver << ": " << r.err;
+    const auto c = test::compareTileTrees(ref, out);
+    std::printf("%s: %d tiles, %d differ from the GeoTIFF import\n", f.driver, c.files, c.different);
+    EXPECT_GT(c.files, 20) << f.driver;
+    EXPECT_EQ(c.different, 0) << f.driver << ": " << c.firstDifference;
+    auto meta = readDatasetMeta(out);
+    ASSERT_TRUE(meta);
+    EXPECT_EQ(meta->sources[0].driver, f.driver);
+  }
+}
+
 }  // namespace
 }  // namespace vegstream::datasets

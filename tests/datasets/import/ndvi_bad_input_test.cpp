@@ -39,10 +39,11 @@ fs::path tinyNir(const fs::path& path, const std::vector<uint16_t>& keys, uint16
 
 ImportRun runImport(const std::string& name, const std::string& args) { return runImportIn("nir_" + name, args); }
 
-TEST(NirBadInput, MoreThanOneBand) {
+TEST(NirBadInput, NirBandBeyondTheFile) {
+  // A two-band NIR file: --nir-band chooses (band 1 by default); band 3 does not exist.
   const fs::path p = tinyNir(importTmp("nir_two_src") / "two_bands.tif", kUtm12Keys, 2);
-  expectRefused(runImport("two", kWithImagery + " --imagery-nir " + p.string()), p.string(),
-                "has 2 bands; --imagery-nir takes one");
+  expectRefused(runImport("two", kWithImagery + " --imagery-nir " + p.string() + " --nir-band 3"), p.string(),
+                "band 3 does not exist (the file has 2 bands)");
 }
 
 TEST(NirBadInput, NoOverlapWithTheImagery) {
@@ -60,7 +61,8 @@ TEST(NirBadInput, WithoutImagery) {
 TEST(NirBadInput, NotATiff) {
   const fs::path p = importTmp("nir_text_src") / "nir.tif";
   std::ofstream(p) << "this is a text file, not a TIFF\n";
-  expectRefused(runImport("text", kWithImagery + " --imagery-nir " + p.string()), p.string(), "TIFF");
+  expectRefused(runImport("text", kWithImagery + " --imagery-nir " + p.string()), p.string(),
+                "not recognized as a supported file format");
 }
 
 TEST(NirBadInput, UnknownCrsAsksForNirCrs) {
