@@ -71,6 +71,10 @@ Result<SourcePlan> planElevation(const XyzImportOptions& o) {
     return makeError(ErrorKind::InvalidInput, concat("no elevation tiles at zoom ", plan.zoom, o.bounds ? " over --bounds" : "",
                                                      " in ", plan.source->kind(), " '", plan.source->name(), "'"));
   plan.ids = std::move(*ids);
+  // The first tile there is, read before anything is written or reported: a server that does
+  // not answer, or a corrupt first tile, ends the import with its one message.
+  auto size = probeSourceTileSize(*plan.source, plan.ids);
+  if (!size) return size.error();
   return plan;
 }
 
@@ -188,8 +192,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
   assert(!options.out.empty());
   auto elevation = planElevation(options);
   if (!elevation) return elevation.error();
-  log->info("elevation: {} tiles to read at zoom {} from {} '{}'", elevation->ids.size(), elevation->zoom,
-            elevation->source->kind(), elevation->source->name());
+  log->debug("elevation: {} tiles to read at zoom {} from {} '{}'", elevation->ids.size(), elevation->zoom,
+             elevation->source->kind(), elevation->source->name());
   DatasetMeta meta;
   meta.name = options.name.empty() ? defaultDatasetName(options.out) : options.name;
   meta.elevationEncoding = options.outputEncoding.value_or(options.encoding);
