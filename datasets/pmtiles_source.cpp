@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kMaxDepth = 4;
+constexpr size_t kMaxDirectoryVisits = 1u << 16;  // per listing: leaves shared by many entries cannot explode it
 constexpr uint64_t kMaxDirectoryBytes = 64ull << 20;
 constexpr uint64_t kMaxTileBytes = 64ull << 20;
 
@@ -92,7 +93,8 @@ class PmtilesSource final : public XyzSource {
   using Directory = std::shared_ptr<const std::vector<PmtilesEntry>>;
   Result<Directory> directory(uint64_t absoluteOffset, uint64_t length);
   Result<std::optional<PmtilesEntry>> locate(const geo::TileId& id);
-  Status walk(const Directory& dir, uint64_t lo, uint64_t hi, int depth, std::vector<uint64_t>& ids, uint64_t max);
+  Status walk(const Directory& dir, uint64_t lo, uint64_t hi, int depth, std::vector<uint64_t>& ids, uint64_t max,
+              size_t& visits);
   Error bad(const std::string& problem) const {
     return makeError(ErrorKind::InvalidInput, concat("'", name(), "' is not a valid PMTiles v3 archive: ", problem));
   }
@@ -197,8 +199,9 @@ Result<std::optional<std::vector<uint8_t>>> PmtilesSource::read(const geo::TileI
 
 // The tile ids in [lo, hi) that `dir` (and its leaves) address, appended in order.
 Status PmtilesSource::walk(const Directory& dir, uint64_t lo, uint64_t hi, int depth, std::vector<uint64_t>& ids,
-                           uint64_t max) {
+                           uint64_t max, size_t& visits) {
   if (depth > kMaxDepth) return bad(concat("leaf directories nested deeper than ", kMaxDepth, " levels"));
+  if (++visits > kMaxDirectoryVisits) return bad(concat("more than ", kMaxDirectoryVisits, " directory visits"));
   for (size_t i = 0; i < dir->size(); ++i) {
     const PmtilesEntry& e = (*dir)[i];
     const uint64_t end = e.runLength > 0 ? e.tileId + e.runLength : i + 1 < dir->size() ? (*dir)[i + 1].tileId : hi;
@@ -208,7 +211,7 @@ Status PmtilesSource::walk(const Directory& dir, uint64_t lo, uint64_t hi, int d
         return bad("a leaf directory lies outside the leaf section");
       auto leaf = directory(header_.leafOffset + e.offset, e.length);
       if (!leaf) return leaf.error();
-      if (auto s = walk(*leaf, lo, hi, depth + 1, ids, max); !s) return s;
+      if (auto s = walk(*leaf, lo, hi, depth + 1, ids, max, visits); !s) return s;
       continue;
     }
     for (uint64_t t = std::max(e.tileId, lo); t < std::min(end, hi); ++t) {
@@ -237,7 +240,8 @@ Result<std::vector<geo::TileId>> PmtilesSource::tilesAt(int z, const std::option
     }
   }
   std::vector<uint64_t> ids;
-  if (auto s = walk(root_, pmtilesFirstId(z), pmtilesFirstId(z + 1), 0, ids, maxTiles); !s) return s.error();
+  size_t visits = 0;
+  if (auto s = walk(root_, pmtilesFirstId(z), pmtilesFirstId(z + 1), 0, ids, maxTiles, visits); !s) return s.error();
   const auto ranges = bounds ? geo::tileRangesCovering(*bounds, z) : std::vector<geo::TileRange>{};
   for (uint64_t t : ids) {
     const geo::TileId id = pmtilesTileZxy(t);

@@ -20,6 +20,9 @@ TEST(PmtilesTileIds, MatchTheSpecAndAnIndependentImplementation) {
   EXPECT_EQ(pmtilesTileId({1, 1, 0}), 4u);
   EXPECT_EQ(pmtilesTileId({2, 0, 0}), 5u);
   EXPECT_EQ(pmtilesFirstId(12), 5592405u);
+  // The reference implementation's test (python/test/test_tile.py): 19078479 is 12/3423/1763.
+  EXPECT_EQ(pmtilesTileId({12, 3423, 1763}), 19078479u);
+  EXPECT_EQ(pmtilesTileZxy(19078479), (geo::TileId{12, 3423, 1763}));
   for (int z = 0; z <= 7; ++z)
     for (int x = 0; x < (1 << z); ++x)
       for (int y = 0; y < (1 << z); ++y) {
@@ -31,6 +34,18 @@ TEST(PmtilesTileIds, MatchTheSpecAndAnIndependentImplementation) {
   for (const geo::TileId id : {geo::TileId{12, 758, 1608}, geo::TileId{20, 123456, 654321}, geo::TileId{30, 1, 1 << 29}})
     EXPECT_EQ(pmtilesTileZxy(pmtilesTileId(id)), id);
   EXPECT_EQ(pmtilesTileId({12, 758, 1608}), testing::referenceTileId({12, 758, 1608}));
+}
+
+TEST(PmtilesDirectory, ReadsTheSpecsVarints) {
+  // One entry: tile id 624485 (the reference test's varint e5 8e 26), run 1, length 127, offset 0.
+  const std::vector<uint8_t> bytes = {0x01, 0xe5, 0x8e, 0x26, 0x01, 0x7f, 0x01};
+  auto d = decodePmtilesDirectory(bytes, PmtilesCompression::None, "v");
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  ASSERT_EQ(d->size(), 1u);
+  EXPECT_EQ((*d)[0].tileId, 624485u);
+  EXPECT_EQ((*d)[0].length, 127u);
+  EXPECT_EQ((*d)[0].offset, 0u);
+  EXPECT_EQ(encodePmtilesDirectory(*d), bytes);
 }
 
 std::vector<PmtilesEntry> sampleEntries() {
