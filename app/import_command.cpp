@@ -225,6 +225,7 @@ Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::
     x.bounds = *b;
   }
   x.threads = o.threads;
+  x.cancel = &gInterrupted;
   return datasets::importXyzTiles(x, log, progress);
 }
 

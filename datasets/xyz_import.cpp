@@ -42,6 +42,11 @@ struct Written {
   std::atomic<int> tileSize{0};  // of the source tiles: all alike
 };
 
+Status checkCancel(const XyzImportOptions& o) {
+  if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+  return {};
+}
+
 Status sameSize(Written& w, const XyzSource& source, const geo::TileId& id, int size) {
   int expected = 0;
   if (w.tileSize.compare_exchange_strong(expected, size) || expected == size) return {};
@@ -71,10 +76,10 @@ Result<SourcePlan> planElevation(const XyzImportOptions& o) {
     return makeError(ErrorKind::InvalidInput, concat("no elevation tiles at zoom ", plan.zoom, o.bounds ? " over --bounds" : "",
                                                      " in ", plan.source->kind(), " '", plan.source->name(), "'"));
   plan.ids = std::move(*ids);
-  // The first tile there is, read before anything is written or reported: a server that does
-  // not answer, or a corrupt first tile, ends the import with its one message.
-  auto size = probeSourceTileSize(*plan.source, plan.ids);
-  if (!size) return size.error();
+  // The first tile asked for before anything is written or reported: a server that does not
+  // answer, or a corrupt first tile, ends the import with its one message.
+  auto first = probeSourceTileSize(*plan.source, {plan.ids.front()});
+  if (!first) return first.error();
   return plan;
 }
 
@@ -114,6 +119,7 @@ Status writeElevation(const XyzImportOptions& o, SourcePlan& plan, ElevationEnco
   progress.stage(concat("elevation, source zoom ", plan.zoom));
   progress.addTotal(plan.ids.size());
   return parallelFor(plan.ids.size(), o.threads, o.tasks, [&](size_t i) -> Status {
+    if (auto c = checkCancel(o); !c) return c;
     auto tiles = readSourceHeightTiles(*plan.source, plan.ids[i], o.encoding);
     if (!tiles) return tiles.error();
     const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
@@ -147,6 +153,7 @@ Status writeImagery(const XyzImportOptions& o, SourcePlan& plan, const std::set<
   progress.stage(concat("imagery, source zoom ", plan.zoom));
   progress.addTotal(plan.ids.size());
   return parallelFor(plan.ids.size(), o.threads, o.tasks, [&](size_t i) -> Status {
+    if (auto c = checkCancel(o); !c) return c;
     auto tiles = readSourceColorTiles(*plan.source, plan.ids[i]);
     if (!tiles) return tiles.error();
     const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
@@ -242,7 +249,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
                   elev.ids.size(), imagery->source->name());
     }
     result = finishDataset(tmp, meta, progress, options.threads, options.jpegQuality, options.tasks);
-    return result ? Status{} : Status{result.error()};
+    if (!result) return result.error();
+    return checkCancel(options);
   });
   if (!status) return status.error();
   return result;

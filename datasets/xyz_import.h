@@ -26,6 +26,7 @@
 // a URL that fails after the retries, ends the import with an error naming it, and nothing is
 // left at `out`.
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -73,6 +74,7 @@ struct XyzImportOptions {
 
   int threads = 0;              // 0: all cores
   TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop between tiles, leave nothing
 };
 
 // (done, total) after each tile; total grows as stages (max zoom, each lower zoom) begin.

@@ -76,52 +76,69 @@ uint64_t referenceTileId(const geo::TileId& id) {
   return below + d;
 }
 
-std::vector<uint8_t> buildPmtiles(const std::map<geo::TileId, std::vector<uint8_t>>& tiles,
-                                  const PmtilesWriteOptions& o) {
+namespace {
+
+struct Sections {
+  std::vector<Entry> entries;
+  std::vector<uint8_t> root, metadata, leaves, data;
+  uint64_t contents = 0;
+};
+
+// Tile data (deduplicated) and the entries pointing into it, runs merged.
+void addTiles(const std::map<geo::TileId, std::vector<uint8_t>>& tiles, bool gzipTiles, Sections& out) {
   std::vector<std::pair<uint64_t, const std::vector<uint8_t>*>> byId;
   for (const auto& [id, bytes] : tiles) byId.emplace_back(referenceTileId(id), &bytes);
   std::sort(byId.begin(), byId.end());
-  std::vector<uint8_t> data;
-  std::vector<Entry> entries;
   std::map<std::string, uint64_t> offsetOf;  // by content
   for (const auto& [tileId, raw] : byId) {
-    const std::vector<uint8_t> bytes = o.gzipTiles ? gzipBytes(*raw) : *raw;
+    const std::vector<uint8_t> bytes = gzipTiles ? gzipBytes(*raw) : *raw;
     const std::string key(bytes.begin(), bytes.end());
     auto found = offsetOf.find(key);
-    if (!entries.empty() && found != offsetOf.end() && entries.back().offset == found->second &&
-        entries.back().tileId + entries.back().runLength == tileId) {
-      ++entries.back().runLength;
+    Entry* last = out.entries.empty() ? nullptr : &out.entries.back();
+    if (last && found != offsetOf.end() && last->offset == found->second && last->tileId + last->runLength == tileId) {
+      ++last->runLength;
       continue;
     }
     if (found == offsetOf.end()) {
-      found = offsetOf.emplace(key, data.size()).first;
-      data.insert(data.end(), bytes.begin(), bytes.end());
+      found = offsetOf.emplace(key, out.data.size()).first;
+      out.data.insert(out.data.end(), bytes.begin(), bytes.end());
     }
-    entries.push_back({tileId, found->second, bytes.size(), 1});
+    out.entries.push_back({tileId, found->second, bytes.size(), 1});
   }
-  std::vector<uint8_t> root, leaves;
+  out.contents = offsetOf.size();
+}
+
+void addDirectories(const PmtilesWriteOptions& o, Sections& out) {
+  const auto& entries = out.entries;
   if (o.maxRootEntries == 0 || entries.size() <= o.maxRootEntries) {
-    root = directory(entries, o.gzipDirectories);
-  } else {
-    std::vector<Entry> rootEntries;
-    for (size_t i = 0; i < entries.size(); i += o.maxRootEntries) {
-      const std::vector<Entry> part(entries.begin() + static_cast<std::ptrdiff_t>(i),
-                                    entries.begin() + static_cast<std::ptrdiff_t>(std::min(entries.size(), i + o.maxRootEntries)));
-      const std::vector<uint8_t> leaf = directory(part, o.gzipDirectories);
-      rootEntries.push_back({part.front().tileId, leaves.size(), leaf.size(), 0});
-      leaves.insert(leaves.end(), leaf.begin(), leaf.end());
-    }
-    root = directory(rootEntries, o.gzipDirectories);
+    out.root = directory(entries, o.gzipDirectories);
+    return;
   }
-  const std::vector<uint8_t> metadata = o.gzipDirectories ? gzipBytes({'{', '}'}) : std::vector<uint8_t>{'{', '}'};
+  std::vector<Entry> rootEntries;
+  for (size_t i = 0; i < entries.size(); i += o.maxRootEntries) {
+    const auto from = entries.begin() + static_cast<std::ptrdiff_t>(i);
+    const std::vector<Entry> part(from, from + static_cast<std::ptrdiff_t>(std::min(o.maxRootEntries, entries.size() - i)));
+    const std::vector<uint8_t> leaf = directory(part, o.gzipDirectories);
+    rootEntries.push_back({part.front().tileId, out.leaves.size(), leaf.size(), 0});
+    out.leaves.insert(out.leaves.end(), leaf.begin(), leaf.end());
+  }
+  out.root = directory(rootEntries, o.gzipDirectories);
+}
+
+uint64_t e7(double deg) {
+  return static_cast<uint64_t>(static_cast<uint32_t>(static_cast<int32_t>(std::lround(deg * 1e7))));
+}
+
+std::vector<uint8_t> header(const std::map<geo::TileId, std::vector<uint8_t>>& tiles, const PmtilesWriteOptions& o,
+                            const Sections& x) {
   std::vector<uint8_t> out(127, 0);
   std::memcpy(out.data(), "PMTiles", 7);
   out[7] = 3;
-  const uint64_t rootOff = 127, metaOff = rootOff + root.size(), leafOff = metaOff + metadata.size(),
-                 dataOff = leafOff + leaves.size();
-  le(out, 8, rootOff, 8), le(out, 16, root.size(), 8), le(out, 24, metaOff, 8), le(out, 32, metadata.size(), 8);
-  le(out, 40, leafOff, 8), le(out, 48, leaves.size(), 8), le(out, 56, dataOff, 8), le(out, 64, data.size(), 8);
-  le(out, 72, tiles.size(), 8), le(out, 80, entries.size(), 8), le(out, 88, offsetOf.size(), 8);
+  const uint64_t rootOff = 127, metaOff = rootOff + x.root.size(), leafOff = metaOff + x.metadata.size(),
+                 dataOff = leafOff + x.leaves.size();
+  le(out, 8, rootOff, 8), le(out, 16, x.root.size(), 8), le(out, 24, metaOff, 8), le(out, 32, x.metadata.size(), 8);
+  le(out, 40, leafOff, 8), le(out, 48, x.leaves.size(), 8), le(out, 56, dataOff, 8), le(out, 64, x.data.size(), 8);
+  le(out, 72, tiles.size(), 8), le(out, 80, x.entries.size(), 8), le(out, 88, x.contents, 8);
   out[96] = 1;
   out[97] = o.gzipDirectories ? 2 : 1;
   out[98] = o.gzipTiles ? 2 : 1;
@@ -134,12 +151,22 @@ std::vector<uint8_t> buildPmtiles(const std::map<geo::TileId, std::vector<uint8_
     w = std::min(w, b.westDeg), s = std::min(s, b.southDeg), e = std::max(e, b.eastDeg), n = std::max(n, b.northDeg);
   }
   out[100] = static_cast<uint8_t>(minZ), out[101] = static_cast<uint8_t>(maxZ);
-  auto e7 = [](double deg) { return static_cast<uint64_t>(static_cast<uint32_t>(static_cast<int32_t>(std::lround(deg * 1e7)))); };
   le(out, 102, e7(w), 4), le(out, 106, e7(s), 4), le(out, 110, e7(e), 4), le(out, 114, e7(n), 4);
   out[118] = static_cast<uint8_t>(maxZ);
   le(out, 119, e7((w + e) / 2), 4), le(out, 123, e7((s + n) / 2), 4);
-  const std::vector<uint8_t>* parts[] = {&root, &metadata, &leaves, &data};
-  for (const std::vector<uint8_t>* part : parts)
+  return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> buildPmtiles(const std::map<geo::TileId, std::vector<uint8_t>>& tiles,
+                                  const PmtilesWriteOptions& o) {
+  Sections x;
+  addTiles(tiles, o.gzipTiles, x);
+  addDirectories(o, x);
+  x.metadata = o.gzipDirectories ? gzipBytes({'{', '}'}) : std::vector<uint8_t>{'{', '}'};
+  std::vector<uint8_t> out = header(tiles, o, x);
+  for (const std::vector<uint8_t>* part : {&x.root, &x.metadata, &x.leaves, &x.data})
     out.insert(out.end(), part->begin(), part->end());
   return out;
 }

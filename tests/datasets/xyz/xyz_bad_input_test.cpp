@@ -1,7 +1,16 @@
 // `vegstream import --xyz-elevation` mistakes through the real command line: one line on stderr
 // naming the URL or file and the problem, exit code 2, nothing at --out (DESIGN.md, "User
 // mistakes"): a URL template without --bounds / --max-zoom, a server nobody answers on, a server
-// that answers 500 (after the retries), corrupt MBTiles and PMTiles archives, a bad --bounds.
+// that answers 500 (after the retries), corrupt MBTiles and PMTiles archives, a bad --bounds;
+// and SIGINT during a slow URL import (exit 130, nothing left).
+
+#include <chrono>
+#include <csignal>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +102,43 @@ TEST(XyzBadInput, CorruptPmtilesNamesTheFile) {
   version[7] = 2;
   writeBytes(dir / "v2.pmtiles", version);
   expectRefused("--xyz-elevation '" + (dir / "v2.pmtiles").string() + "'", {"v2.pmtiles", "version 2"});
+}
+
+// A slow server (every answer 150 ms late, 64 tiles, one thread): SIGINT a second in stops the
+// import between tiles; exit 130 and nothing at --out.
+TEST(XyzInterrupt, SigintDuringAUrlImportLeavesNothing) {
+  const fs::path work = testOutputDir();
+  for (const auto& [id, bytes] : sampleLayer("terrain-rgb"))
+    writeBytes(work / "root" / std::to_string(id.z) / std::to_string(id.x) / (std::to_string(id.y) + ".png"), bytes);
+  FaultHttpServer server(work / "root");
+  server.setDefault({FaultAction::Serve, 150});
+  const auto nw = geo::tileBoundsLonLat({12, 755, 1605}), se = geo::tileBoundsLonLat({12, 762, 1612});
+  char bounds[160];
+  std::snprintf(bounds, sizeof bounds, "%.9f,%.9f,%.9f,%.9f", nw.westDeg + 1e-6, se.southDeg + 1e-6, se.eastDeg - 1e-6,
+                nw.northDeg - 1e-6);
+  const fs::path out = work / "out";
+  const std::string url = server.baseUrl() + "/{z}/{x}/{y}.png";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    ::dup2(devnull, 1), ::dup2(devnull, 2);
+    ::execl(VEGSTREAM_EXE, VEGSTREAM_EXE, "import", "--xyz-elevation", url.c_str(), "--encoding", "terrain-rgb",
+            "--bounds", bounds, "--max-zoom", "12", "--threads", "1", "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait until the import is under way (a few tiles asked for), then interrupt it.
+  for (int i = 0; i < 200 && server.totalRequests() < 4; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  EXPECT_GE(server.totalRequests(), 4u);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_LT(server.totalRequests(), 64u) << "stopped before the end";
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(work))
+    EXPECT_EQ(e.path().filename().string().find("out"), std::string::npos) << e.path();
 }
 
 }  // namespace
