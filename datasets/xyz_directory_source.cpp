@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <regex>
 #include <system_error>
 
@@ -25,7 +26,9 @@ std::string regexEscape(char c) {
 class TileDirectorySource final : public XyzSource {
  public:
   TileDirectorySource(TileTemplate tmpl, std::vector<XyzTileFile> files)
-      : XyzSource(tmpl.text), tmpl_(std::move(tmpl)), files_(std::move(files)) {}
+      : XyzSource(tmpl.text), tmpl_(std::move(tmpl)), files_(std::move(files)) {
+    for (const auto& f : files_) pathOf_.emplace(f.id, f.path);
+  }
   const char* kind() const override { return "tile directory"; }
   bool listsTiles() const override { return true; }
   XyzSourceExtent extent() const override {
@@ -44,14 +47,21 @@ class TileDirectorySource final : public XyzSource {
     }
     return ids;
   }
+  // The file the listing found (names such as "0758.png" match too), else none.
   Result<std::optional<std::vector<uint8_t>>> read(const geo::TileId& id) override {
-    return readTileFile(expandTileTemplate(tmpl_, id));
+    const auto it = pathOf_.find(id);
+    if (it == pathOf_.end()) return std::optional<std::vector<uint8_t>>();
+    return readTileFile(it->second);
   }
-  std::string tileName(const geo::TileId& id) const override { return expandTileTemplate(tmpl_, id); }
+  std::string tileName(const geo::TileId& id) const override {
+    const auto it = pathOf_.find(id);
+    return it == pathOf_.end() ? expandTileTemplate(tmpl_, id) : it->second.string();
+  }
 
  private:
   TileTemplate tmpl_;
   std::vector<XyzTileFile> files_;
+  std::map<geo::TileId, fs::path> pathOf_;
 };
 
 }  // namespace
@@ -124,6 +134,10 @@ Result<std::vector<XyzTileFile>> findXyzTiles(const std::string& text) {
   }
   if (ec) return makeError(ErrorKind::Io, concat("cannot list ", root, ": ", ec.message()));
   std::sort(files.begin(), files.end(), [](const XyzTileFile& a, const XyzTileFile& b) { return a.id < b.id; });
+  for (size_t i = 1; i < files.size(); ++i)
+    if (files[i].id == files[i - 1].id)  // "758.png" and "0758.png"
+      return makeError(ErrorKind::InvalidInput, concat("tile template '", text, "': ", files[i - 1].path, " and ",
+                                                       files[i].path, " are both tile ", geo::toString(files[i].id)));
   return files;
 }
 

@@ -143,6 +143,22 @@ TEST_F(XyzSources, PmtilesRunLengthServesOneTileForSeveral) {
   expectSameDataset(work_ / "dir", work_ / "archive");
 }
 
+// A directory whose rows are zero-padded is read through the files its listing found; a tile
+// named twice ("1608.png" and "01608.png") is refused rather than read from either.
+TEST_F(XyzSources, ListedFilesAreReadAsFoundAndDuplicatesRefused) {
+  for (const auto& [id, bytes] : sampleLayer("terrain-rgb"))
+    writeBytes(work_ / "padded" / std::to_string(id.z) / std::to_string(id.x) / ("0" + std::to_string(id.y) + ".png"),
+               bytes);
+  auto padded = import((work_ / "padded/{z}/{x}/{y}.png").string(), siteTemplate("imagery"), work_ / "from-padded");
+  ASSERT_TRUE(padded.ok()) << padded.error().message;
+  expectSameDataset(reference_, work_ / "from-padded");
+  writeBytes(work_ / "padded/12/758/1608.png", bytesOf(site_ / "elevation/12/758/1608.png"));
+  auto twice = import((work_ / "padded/{z}/{x}/{y}.png").string(), "", work_ / "twice");
+  ASSERT_FALSE(twice.ok());
+  EXPECT_NE(twice.error().message.find("are both tile 12/758/1608"), std::string::npos) << twice.error().message;
+  EXPECT_FALSE(fs::exists(work_ / "twice"));
+}
+
 TEST_F(XyzSources, BoundsAndMaxZoomSelectTheTiles) {
   auto o = options(siteTemplate("elevation"), siteTemplate("imagery"), work_ / "one");
   const auto b = geo::tileBoundsLonLat({12, 759, 1609});
