@@ -83,13 +83,20 @@ Result<SourcePlan> planElevation(const XyzImportOptions& o) {
   return plan;
 }
 
-// Imagery for the elevation tiles `written` (sorted, zoom `z`): 256-pixel tiles at z, else
-// 512-pixel tiles at z − 1.
-Result<SourcePlan> planImagery(const XyzImportOptions& o, const std::vector<geo::TileId>& written, int z) {
-  SourcePlan plan;
+// The imagery source, opened (an archive's header and metadata checked) and asked for one tile
+// before anything is written or reported, like the elevation's.
+Result<std::unique_ptr<XyzSource>> openImagery(const XyzImportOptions& o, const geo::TileId& first) {
   auto source = openXyzSource(*o.imageryTemplate, o.http);
   if (!source) return source.error();
-  plan.source = std::move(*source);
+  if (auto r = (*source)->read(first); !r) return r.error();
+  return std::move(*source);
+}
+
+// Imagery for the elevation tiles `written` (sorted, zoom `z`): 256-pixel tiles at z, else
+// 512-pixel tiles at z − 1.
+Result<SourcePlan> planImagery(std::unique_ptr<XyzSource> source, const std::vector<geo::TileId>& written, int z) {
+  SourcePlan plan;
+  plan.source = std::move(source);
   auto size = probeSourceTileSize(*plan.source, written);
   if (!size) return size.error();
   if (*size == kTileSize) {
@@ -201,6 +208,12 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
   if (!elevation) return elevation.error();
   log->debug("elevation: {} tiles to read at zoom {} from {} '{}'", elevation->ids.size(), elevation->zoom,
              elevation->source->kind(), elevation->source->name());
+  std::unique_ptr<XyzSource> imagerySource;
+  if (options.imageryTemplate) {
+    auto opened = openImagery(options, elevation->ids.front());
+    if (!opened) return opened.error();
+    imagerySource = std::move(*opened);
+  }
   DatasetMeta meta;
   meta.name = options.name.empty() ? defaultDatasetName(options.out) : options.name;
   meta.elevationEncoding = options.outputEncoding.value_or(options.encoding);
@@ -234,8 +247,8 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
     }
     meta.sources.push_back({"elevation", elevation->source->name(), crs,
                             describe(elev, concat(toString(options.encoding), " "), *elevation)});
-    if (options.imageryTemplate) {
-      auto imagery = planImagery(options, elev.ids, meta.maxZoom);
+    if (imagerySource) {
+      auto imagery = planImagery(std::move(imagerySource), elev.ids, meta.maxZoom);
       if (!imagery) return imagery.error();
       Written img;
       const std::set<geo::TileId> keep(elev.ids.begin(), elev.ids.end());

@@ -98,6 +98,11 @@ TEST(XyzBadInput, CorruptPmtilesNamesTheFile) {
   rootCut.resize(127 + 3);  // the header promises a root directory that is not there
   writeBytes(dir / "root.pmtiles", rootCut);
   expectRefused("--xyz-elevation '" + (dir / "root.pmtiles").string() + "'", {"root.pmtiles"});
+  // A corrupt imagery archive is found before the elevation is imported: still one line.
+  writeBytes(dir / "elevation.pmtiles", whole);
+  expectRefused("--xyz-elevation '" + (dir / "elevation.pmtiles").string() + "' --xyz-imagery '" +
+                    (dir / "magic.pmtiles").string() + "'",
+                {"magic.pmtiles", "bad magic"});
   auto version = whole;
   version[7] = 2;
   writeBytes(dir / "v2.pmtiles", version);
