@@ -82,6 +82,7 @@ class PmtilesSource final : public XyzSource {
       : XyzSource(std::move(name)), reader_(std::move(reader)) {}
   const char* kind() const override { return "PMTiles"; }
   bool listsTiles() const override { return true; }
+  bool remote() const override { return !reader_->size().has_value(); }
   XyzSourceExtent extent() const override;
   Result<std::vector<geo::TileId>> tilesAt(int z, const std::optional<geo::GeoBounds>& bounds,
                                            uint64_t maxTiles) override;

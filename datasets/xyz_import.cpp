@@ -47,6 +47,12 @@ Status checkCancel(const XyzImportOptions& o) {
   return {};
 }
 
+// Workers for one source: the option, else all cores — at least remoteWorkers over the network.
+int workersFor(const XyzImportOptions& o, const XyzSource& source) {
+  if (o.threads != 0 || !source.remote()) return o.threads;
+  return std::max(resolveThreads(0), o.remoteWorkers);
+}
+
 Status sameSize(Written& w, const XyzSource& source, const geo::TileId& id, int size) {
   int expected = 0;
   if (w.tileSize.compare_exchange_strong(expected, size) || expected == size) return {};
@@ -125,7 +131,7 @@ Status writeElevation(const XyzImportOptions& o, SourcePlan& plan, ElevationEnco
                       ProgressSink& progress, Written& w) {
   progress.stage(concat("elevation, source zoom ", plan.zoom));
   progress.addTotal(plan.ids.size());
-  return parallelFor(plan.ids.size(), o.threads, o.tasks, [&](size_t i) -> Status {
+  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
     if (auto c = checkCancel(o); !c) return c;
     auto tiles = readSourceHeightTiles(*plan.source, plan.ids[i], o.encoding);
     if (!tiles) return tiles.error();
@@ -159,7 +165,7 @@ Status writeImagery(const XyzImportOptions& o, SourcePlan& plan, const std::set<
                     const fs::path& tmp, ProgressSink& progress, Written& w) {
   progress.stage(concat("imagery, source zoom ", plan.zoom));
   progress.addTotal(plan.ids.size());
-  return parallelFor(plan.ids.size(), o.threads, o.tasks, [&](size_t i) -> Status {
+  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
     if (auto c = checkCancel(o); !c) return c;
     auto tiles = readSourceColorTiles(*plan.source, plan.ids[i]);
     if (!tiles) return tiles.error();

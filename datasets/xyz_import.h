@@ -72,7 +72,8 @@ struct XyzImportOptions {
   uint64_t maxTiles = 1'000'000;  // source tiles of the elevation's zoom; more is refused
   HttpFetchOptions http;          // URL templates and PMTiles by URL: retries, time-outs
 
-  int threads = 0;              // 0: all cores
+  int threads = 0;              // 0: all cores (remote sources: at least remoteWorkers)
+  int remoteWorkers = 8;        // workers reading a remote source when threads is 0
   TaskRunner* tasks = nullptr;  // runs the workers (outlives the call); null: a pool made for the call
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT): stop between tiles, leave nothing
 };

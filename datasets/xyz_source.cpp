@@ -22,6 +22,7 @@ class TileUrlSource final : public XyzSource {
       : XyzSource(tmpl.text), tmpl_(std::move(tmpl)), http_(http) {}
   const char* kind() const override { return "tile URL"; }
   bool listsTiles() const override { return false; }
+  bool remote() const override { return true; }
   XyzSourceExtent extent() const override { return {}; }
   Result<std::vector<geo::TileId>> tilesAt(int z, const std::optional<geo::GeoBounds>& bounds,
                                            uint64_t maxTiles) override {

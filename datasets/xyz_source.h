@@ -46,6 +46,9 @@ class XyzSource {
   virtual XyzSourceExtent extent() const = 0;
   // False for URL templates: tilesAt() then lists every tile over the bounds, existing or not.
   virtual bool listsTiles() const = 0;
+  // True when reads go over the network (URL templates, PMTiles by URL): worth more workers
+  // than cores, since they mostly wait.
+  virtual bool remote() const { return false; }
 
   // The tiles at zoom z that overlap `bounds` (all of them when nullopt), sorted. A URL
   // template needs bounds (InvalidInput without), and refuses more than maxTiles candidates.

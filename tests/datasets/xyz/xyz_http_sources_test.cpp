@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/datasets/xyz/xyz_fixture.h"
+#include "tests/support/fault_http_server.h"
 #include "tests/support/nginx_server.h"
 #include "tests/support/pmtiles_writer.h"
 #include "tests/support/run_command.h"
@@ -88,6 +89,31 @@ TEST_F(XyzOverHttp, PmtilesByRangeRequestsGiveTheSameTiles) {
     EXPECT_LT(l.bytesSent, whole);
   }
   EXPECT_GE(archiveRequests, 1u + 4u);  // the first 16 KiB, then the leaves and tiles
+}
+
+// Reads over the network mostly wait: with threads 0, a URL import keeps remoteWorkers requests
+// in flight even on a machine with fewer cores (every answer 200 ms late, 16 tiles).
+TEST_F(XyzSources, UrlImportsKeepSeveralRequestsInFlight) {
+  FaultHttpServer server(site_ / "elevation");
+  server.setDefault({FaultAction::Serve, 200});
+  auto o = options(server.baseUrl() + "/{z}/{x}/{y}.png", "", work_ / "concurrent");
+  o.threads = 0;
+  o.remoteWorkers = 8;
+  o.maxZoom = 12;
+  const auto nw = geo::tileBoundsLonLat({12, 757, 1607}), se = geo::tileBoundsLonLat({12, 760, 1610});
+  o.bounds = geo::GeoBounds{nw.westDeg + 1e-6, se.southDeg + 1e-6, se.eastDeg - 1e-6, nw.northDeg - 1e-6};
+  const auto start = std::chrono::steady_clock::now();
+  auto r = datasets::importXyzTiles(o, makeNullLogger());
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(server.totalRequests(), 16u + 1u);  // the first tile asked for once more before the import
+  EXPECT_GE(server.maxConcurrent(), 4) << "requests one after the other";
+  EXPECT_LT(s, 16 * 0.2) << "16 answers of 200 ms each, not in parallel";
+  // The same four tiles as from the directory.
+  for (const auto& id : sampleTiles()) {
+    const std::string rel = "elevation/12/" + std::to_string(id.x) + "/" + std::to_string(id.y) + ".png";
+    EXPECT_EQ(bytesOf(work_ / "concurrent" / rel), bytesOf(reference_ / rel)) << rel;
+  }
 }
 
 }  // namespace
