@@ -3,6 +3,7 @@
 
 #include "app/import_command.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -205,6 +206,23 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   return g;
 }
 
+// --bounds W,S,E,N (degrees; W > E crosses the antimeridian).
+Result<geo::GeoBounds> boundsOption(const std::string& text) {
+  const std::vector<fs::path> parts = splitList(text);
+  double v[4] = {};
+  bool good = parts.size() == 4 && std::count(text.begin(), text.end(), ',') == 3;
+  for (size_t i = 0; good && i < 4; ++i) {
+    auto n = numberOption("--bounds", parts[i].string());
+    good = n.ok();
+    if (good) v[i] = *n;
+  }
+  if (!good) return userError("--bounds '" + text + "': expected W,S,E,N in degrees (e.g. -112.5,36.0,-112.3,36.2)");
+  const bool lonOk = v[0] >= -180.0 && v[0] <= 180.0 && v[2] >= -180.0 && v[2] <= 180.0 && v[0] != v[2];
+  if (!lonOk || v[1] >= v[3] || v[1] < -90.0 || v[3] > 90.0)
+    return userError("--bounds '" + text + "': expected -180 <= W, E <= 180, W != E and -90 <= S < N <= 90");
+  return geo::GeoBounds{v[0], v[1], v[2], v[3]};
+}
+
 Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::ProgressSink& progress) {
   datasets::XyzImportOptions x;
   x.elevationTemplate = o.xyzElevation;
@@ -222,7 +240,14 @@ Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::
   x.imageryFormat = *fmt;
   x.jpegQuality = o.jpegQuality;
   if (o.minZoom >= 0) x.minZoom = o.minZoom;
+  if (o.maxZoom >= 0) x.maxZoom = o.maxZoom;
+  if (!o.bounds.empty()) {
+    auto b = boundsOption(o.bounds);
+    if (!b) return b.error();
+    x.bounds = *b;
+  }
   x.threads = o.threads;
+  x.cancel = &gInterrupted;
   return datasets::importXyzTiles(x, log, progress);
 }
 
@@ -276,8 +301,15 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--dem-crs", o.demCrs, "The DEM's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
   cmd->add_option("--imagery-crs", o.imageryCrs,
                   "The imagery's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
-  cmd->add_option("--xyz-elevation", o.xyzElevation, "Elevation tiles 'DIR/{z}/{x}/{y}.png' (instead of --dem)");
-  cmd->add_option("--xyz-imagery", o.xyzImagery, "Imagery tiles 'DIR/{z}/{x}/{y}.png' (with --xyz-elevation)");
+  cmd->add_option("--xyz-elevation", o.xyzElevation,
+                  "Elevation tiles (instead of --dem): a template 'DIR/{z}/{x}/{y}.png' or 'https://host/{z}/{x}/{y}.png' "
+                  "({-y}: TMS rows), an .mbtiles file, or a .pmtiles file or URL; 256- or 512-pixel tiles (512 are "
+                  "split into the 256 of the next zoom)");
+  cmd->add_option("--xyz-imagery", o.xyzImagery,
+                  "Imagery tiles (with --xyz-elevation), in any of --xyz-elevation's forms");
+  cmd->add_option("--bounds", o.bounds,
+                  "W,S,E,N degrees: the area of an XYZ import; required for URL templates, else overrides an "
+                  "archive's bounds");
   o.encodingOpt = cmd->add_option("--encoding", o.encoding,
                                   "terrarium or terrain-rgb: the output's (--dem) or the tiles' (--xyz-elevation)")
                       ->capture_default_str();
@@ -285,7 +317,9 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--out", o.out, "Dataset directory to create (must not exist or be empty)")->required();
   cmd->add_option("--name", o.name, "Dataset name (default: the --out directory's name)");
   cmd->add_option("--attribution", o.attribution, "Source attribution, stored in dataset.json");
-  cmd->add_option("--max-zoom", o.maxZoom, "Finest zoom (default: from the source resolution)")
+  cmd->add_option("--max-zoom", o.maxZoom,
+                  "Finest zoom (default: from the source resolution); with --xyz-elevation the source's zoom to "
+                  "read (default: its finest; required for URL templates)")
       ->check(CLI::Range(0, 22));
   cmd->add_option("--min-zoom", o.minZoom, "Coarsest zoom (default: the data in one tile)")->check(CLI::Range(0, 22));
   cmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality of imagery tiles")
@@ -313,7 +347,9 @@ int runImport(const ImportOptions& o, const Logger& log) {
   auto previousTerm = std::signal(SIGTERM, onInterrupt);
   datasets::ProgressReporter progress("import");
   Result<DatasetMeta> meta = makeError(ErrorKind::Internal, "no import ran");
-  if (!o.dem.empty()) {
+  if (!o.dem.empty() && !o.bounds.empty()) {
+    meta = userError("--bounds is the area of an XYZ import; a --dem import covers its rasters' extent");
+  } else if (!o.dem.empty()) {
     auto g = geoTiffOptions(o);
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {

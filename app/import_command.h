@@ -31,8 +31,9 @@ struct ImportOptions {
   std::string imageryDatetime;                      // ISO 8601 with a zone
   std::string imagerySun;                           // "AZ,EL" degrees
   std::string deshading = "on";
-  // XYZ form.
+  // XYZ form (templates by path or URL, MBTiles, PMTiles; datasets/xyz_source.h).
   std::string xyzElevation, xyzImagery;
+  std::string bounds;  // "W,S,E,N" degrees: the area of an XYZ import (required for URL templates)
   // Both.
   std::string out, name, attribution;
   std::string encoding = "terrarium";  // output encoding (GeoTIFF) / source encoding (XYZ)

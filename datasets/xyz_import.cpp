@@ -1,22 +1,23 @@
-// Import of existing XYZ elevation (+ imagery) tiles into a dataset directory (xyz_import.h).
-// The source tiles are decoded (which also validates them) and re-encoded, so the dataset's
-// tiles are always RGBA PNG / JPEG in the encodings dataset.json states.
+// Import of existing elevation (+ imagery) tiles into a dataset directory (xyz_import.h).
+// The source tiles are decoded (which also validates them), 512-pixel tiles split into four
+// 256-pixel tiles (xyz_source_tiles.h), and re-encoded, so the dataset's tiles are always RGBA
+// PNG / JPEG in the encodings dataset.json states, whatever kind of source they came from.
 
 #include "datasets/xyz_import.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <mutex>
-#include <regex>
-#include <system_error>
+#include <set>
 
 #include "core/atomic_file.h"
+#include "core/parallel_for.h"
 #include "datasets/dataset_finish.h"
 #include "datasets/message.h"
-#include "core/parallel_for.h"
 #include "datasets/tile_codec.h"
+#include "datasets/xyz_source_tiles.h"
 #include "geo/crs.h"
 
 namespace vegstream::datasets {
@@ -24,97 +25,179 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string regexEscape(const std::string& s) {
-  static const std::string special = R"(\^$.|?*+()[]{}/)";
-  std::string out;
-  for (char c : s) {
-    if (special.find(c) != std::string::npos) out += '\\';
-    out += c;
+// One source and the tiles to read from it at one zoom.
+struct SourcePlan {
+  std::unique_ptr<XyzSource> source;
+  int zoom = 0;
+  std::vector<geo::TileId> ids;
+};
+
+// What the workers of one stage gather (under `mutex`).
+struct Written {
+  std::mutex mutex;
+  std::vector<geo::TileId> ids;  // dataset tiles written
+  uint64_t sourceTiles = 0;      // source tiles that existed
+  uint64_t bytes = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+  std::atomic<int> tileSize{0};  // of the source tiles: all alike
+};
+
+Status checkCancel(const XyzImportOptions& o) {
+  if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+  return {};
+}
+
+// Workers for one source: the option, else all cores — at least remoteWorkers over the network.
+int workersFor(const XyzImportOptions& o, const XyzSource& source) {
+  if (o.threads != 0 || !source.remote()) return o.threads;
+  return std::max(resolveThreads(0), o.remoteWorkers);
+}
+
+Status sameSize(Written& w, const XyzSource& source, const geo::TileId& id, int size) {
+  int expected = 0;
+  if (w.tileSize.compare_exchange_strong(expected, size) || expected == size) return {};
+  return makeError(ErrorKind::InvalidInput, concat("tile '", source.tileName(id), "' is ", size,
+                                                   " pixels wide, other tiles of the same source ", expected));
+}
+
+Result<SourcePlan> planElevation(const XyzImportOptions& o) {
+  SourcePlan plan;
+  auto source = openXyzSource(o.elevationTemplate, o.http);
+  if (!source) return source.error();
+  plan.source = std::move(*source);
+  const XyzSourceExtent extent = plan.source->extent();
+  const auto zoom = o.maxZoom ? o.maxZoom : extent.maxZoom;
+  const auto bounds = o.bounds ? o.bounds : extent.bounds;
+  if (!plan.source->listsTiles() && (!zoom || !bounds))
+    return makeError(ErrorKind::InvalidInput,
+                     concat("tile URL '", plan.source->name(),
+                            "' cannot be listed: give the area and the zoom with --bounds W,S,E,N and --max-zoom Z"));
+  if (!zoom)
+    return makeError(ErrorKind::InvalidInput, concat("no elevation tiles in ", plan.source->kind(), " '",
+                                                     plan.source->name(), "'"));
+  plan.zoom = *zoom;
+  auto ids = plan.source->tilesAt(plan.zoom, bounds, o.maxTiles);
+  if (!ids) return ids.error();
+  if (ids->empty())
+    return makeError(ErrorKind::InvalidInput, concat("no elevation tiles at zoom ", plan.zoom, o.bounds ? " over --bounds" : "",
+                                                     " in ", plan.source->kind(), " '", plan.source->name(), "'"));
+  plan.ids = std::move(*ids);
+  // The first tile asked for before anything is written or reported: a server that does not
+  // answer, or a corrupt first tile, ends the import with its one message.
+  auto first = probeSourceTileSize(*plan.source, {plan.ids.front()});
+  if (!first) return first.error();
+  return plan;
+}
+
+// The imagery source, opened (an archive's header and metadata checked) and asked for one tile
+// before anything is written or reported, like the elevation's.
+Result<std::unique_ptr<XyzSource>> openImagery(const XyzImportOptions& o, const geo::TileId& first) {
+  auto source = openXyzSource(*o.imageryTemplate, o.http);
+  if (!source) return source.error();
+  if (auto r = (*source)->read(first); !r) return r.error();
+  return std::move(*source);
+}
+
+// Imagery for the elevation tiles `written` (sorted, zoom `z`): 256-pixel tiles at z, else
+// 512-pixel tiles at z − 1.
+Result<SourcePlan> planImagery(std::unique_ptr<XyzSource> source, const std::vector<geo::TileId>& written, int z) {
+  SourcePlan plan;
+  plan.source = std::move(source);
+  auto size = probeSourceTileSize(*plan.source, written);
+  if (!size) return size.error();
+  if (*size == kTileSize) {
+    plan.zoom = z;
+    plan.ids = written;
+    return plan;
   }
-  return out;
-}
-
-Error badTemplate(const std::string& tmpl, const std::string& problem) {
-  return makeError(ErrorKind::InvalidInput, concat("tile template '", tmpl, "' ", problem));
-}
-
-// "[z a … b]" of a tile list, for messages.
-std::string zoomsOf(const std::vector<XyzTileFile>& files) {
-  std::map<int, size_t> zooms;
-  for (const auto& f : files) ++zooms[f.id.z];
-  std::string s;
-  for (const auto& [z, n] : zooms) {
-    if (!s.empty()) s += ", ";
-    s += concat(n, " at zoom ", z);
+  std::set<geo::TileId> parents;
+  if (z > 0)
+    for (const auto& id : written) parents.insert(geo::parent(id));
+  plan.ids.assign(parents.begin(), parents.end());
+  auto large = probeSourceTileSize(*plan.source, plan.ids);
+  if (!large) return large.error();
+  if (*large == kLargeSourceTileSize) {
+    plan.zoom = z - 1;
+    return plan;
   }
-  return s;
+  return makeError(ErrorKind::InvalidInput,
+                   concat("no imagery tiles over the elevation tiles in ", plan.source->kind(), " '",
+                          plan.source->name(), "': needed 256-pixel tiles at zoom ", z,
+                          " or 512-pixel tiles at zoom ", z - 1, *size ? " (found 512-pixel tiles at zoom " : "",
+                          *size ? std::to_string(z) : std::string(), *size ? ")" : ""));
 }
 
-std::vector<XyzTileFile> atZoom(const std::vector<XyzTileFile>& files, int z) {
-  std::vector<XyzTileFile> out;
-  std::copy_if(files.begin(), files.end(), std::back_inserter(out), [z](const XyzTileFile& f) { return f.id.z == z; });
-  return out;
+Status writeElevation(const XyzImportOptions& o, SourcePlan& plan, ElevationEncoding encoding, const fs::path& tmp,
+                      ProgressSink& progress, Written& w) {
+  progress.stage(concat("elevation, source zoom ", plan.zoom));
+  progress.addTotal(plan.ids.size());
+  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
+    if (auto c = checkCancel(o); !c) return c;
+    auto tiles = readSourceHeightTiles(*plan.source, plan.ids[i], o.encoding);
+    if (!tiles) return tiles.error();
+    const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
+    if (auto s = tiles->empty() ? Status{} : sameSize(w, *plan.source, plan.ids[i], size); !s) return s;
+    uint64_t bytes = 0;
+    for (const HeightTile& t : *tiles) {
+      double tlo = std::numeric_limits<double>::infinity(), thi = -tlo;
+      for (float h : t.heights)
+        if (!std::isnan(h)) tlo = std::min(tlo, double{h}), thi = std::max(thi, double{h});
+      const fs::path dst = elevationTilePath(tmp, t.id);
+      if (auto s = writeHeightTile(dst, t, encoding); !s) return s;
+      const uint64_t b = fileBytes(dst);
+      bytes += b;
+      std::lock_guard lock(w.mutex);
+      w.lo = std::min(w.lo, tlo), w.hi = std::max(w.hi, thi);
+      w.ids.push_back(t.id);
+      w.bytes += b;
+    }
+    if (!tiles->empty()) {
+      std::lock_guard lock(w.mutex);
+      ++w.sourceTiles;
+    }
+    progress.tileDone(bytes);
+    return {};
+  });
+}
+
+// Imagery tiles over the elevation tiles `keep` only (a 512-pixel tile's other children are dropped).
+Status writeImagery(const XyzImportOptions& o, SourcePlan& plan, const std::set<geo::TileId>& keep,
+                    const fs::path& tmp, ProgressSink& progress, Written& w) {
+  progress.stage(concat("imagery, source zoom ", plan.zoom));
+  progress.addTotal(plan.ids.size());
+  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
+    if (auto c = checkCancel(o); !c) return c;
+    auto tiles = readSourceColorTiles(*plan.source, plan.ids[i]);
+    if (!tiles) return tiles.error();
+    const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
+    if (auto s = tiles->empty() ? Status{} : sameSize(w, *plan.source, plan.ids[i], size); !s) return s;
+    uint64_t bytes = 0;
+    for (const ColorTile& t : *tiles) {
+      if (!keep.contains(t.id)) continue;
+      const fs::path dst = imageryTilePath(tmp, t.id, o.imageryFormat);
+      if (auto s = writeColorTile(dst, t, o.imageryFormat, o.jpegQuality); !s) return s;
+      const uint64_t b = fileBytes(dst);
+      bytes += b;
+      std::lock_guard lock(w.mutex);
+      w.ids.push_back(t.id);
+      w.bytes += b;
+    }
+    if (!tiles->empty()) {
+      std::lock_guard lock(w.mutex);
+      ++w.sourceTiles;
+    }
+    progress.tileDone(bytes);
+    return {};
+  });
+}
+
+std::string describe(const Written& w, const std::string& what, const SourcePlan& plan) {
+  const bool split = w.tileSize == kLargeSourceTileSize;
+  return concat(w.sourceTiles, " ", what, "tiles at zoom ", plan.zoom,
+                split ? concat(" (512 px, split into zoom ", plan.zoom + 1, ")") : std::string());
 }
 
 }  // namespace
-
-Result<std::vector<XyzTileFile>> findXyzTiles(const std::string& tmpl) {
-  for (const char* key : {"{z}", "{x}", "{y}"}) {
-    const size_t first = tmpl.find(key);
-    if (first == std::string::npos)
-      return badTemplate(tmpl, concat("has no ", key, "; expected e.g. DIR/{z}/{x}/{y}.png"));
-    if (tmpl.find(key, first + 1) != std::string::npos) return badTemplate(tmpl, concat("has ", key, " twice"));
-  }
-  if (tmpl.find("{-y}") != std::string::npos) return badTemplate(tmpl, "uses {-y} (TMS rows), which is not supported");
-  // The fixed directory before the first placeholder; the rest becomes a regular expression.
-  const size_t firstBrace = tmpl.find('{');
-  const size_t slash = tmpl.rfind('/', firstBrace);
-  const std::string rootText = slash == std::string::npos ? std::string(".") : tmpl.substr(0, slash + 1);
-  const std::string rest = slash == std::string::npos ? tmpl : tmpl.substr(slash + 1);
-  const fs::path root(rootText);
-  std::error_code ec;
-  if (!fs::is_directory(root, ec))
-    return makeError(ErrorKind::NotFound, concat("tile template '", tmpl, "': directory ", root, " does not exist"));
-
-  std::string pattern;
-  std::vector<char> order;  // which group is z, x, y
-  for (size_t i = 0; i < rest.size();) {
-    if (rest.compare(i, 3, "{z}") == 0 || rest.compare(i, 3, "{x}") == 0 || rest.compare(i, 3, "{y}") == 0) {
-      order.push_back(rest[i + 1]);
-      pattern += "(\\d{1,10})";
-      i += 3;
-    } else {
-      pattern += regexEscape(std::string(1, rest[i]));
-      ++i;
-    }
-  }
-  const std::regex re(pattern);
-  const int maxDepth = static_cast<int>(std::count(rest.begin(), rest.end(), '/'));
-
-  std::vector<XyzTileFile> files;
-  for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied, ec);
-       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (it.depth() >= maxDepth) it.disable_recursion_pending();
-    if (!it->is_regular_file(ec)) continue;
-    const std::string rel = it->path().lexically_relative(root).generic_string();
-    std::smatch m;
-    if (!std::regex_match(rel, m, re)) continue;
-    geo::TileId id;
-    for (size_t g = 0; g < 3; ++g) {
-      const long long v = std::stoll(m[g + 1].str());
-      if (v > std::numeric_limits<int>::max())
-        return badTemplate(tmpl, concat("matches ", it->path(), ", whose numbers are out of range"));
-      (order[g] == 'z' ? id.z : order[g] == 'x' ? id.x : id.y) = static_cast<int>(v);
-    }
-    if (id.z > geo::kMaxTileZoom || !geo::isValid(id))
-      return makeError(ErrorKind::InvalidInput,
-                       concat("tile ", it->path(), " is not a valid XYZ tile (", geo::toString(id), ")"));
-    files.push_back({id, it->path()});
-  }
-  if (ec) return makeError(ErrorKind::Io, concat("cannot list ", root, ": ", ec.message()));
-  std::sort(files.begin(), files.end(), [](const XyzTileFile& a, const XyzTileFile& b) { return a.id < b.id; });
-  return files;
-}
 
 Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger& log, const XyzProgress& progress) {
   if (!progress) {
@@ -127,110 +210,66 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
 
 Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger& log, ProgressSink& progress) {
   assert(!options.out.empty());
-  auto elevationFiles = findXyzTiles(options.elevationTemplate);
-  if (!elevationFiles) return elevationFiles.error();
-  if (elevationFiles->empty())
-    return makeError(ErrorKind::InvalidInput, concat("no elevation tiles match '", options.elevationTemplate, "'"));
-  const int maxZoom = elevationFiles->back().id.z;
-  const std::vector<XyzTileFile> elevation = atZoom(*elevationFiles, maxZoom);
-  if (elevation.size() != elevationFiles->size())
-    log->info("elevation tiles found: {}; zooms below {} are rebuilt from zoom {}", zoomsOf(*elevationFiles), maxZoom,
-              maxZoom);
-
-  std::vector<XyzTileFile> imagery;
+  auto elevation = planElevation(options);
+  if (!elevation) return elevation.error();
+  log->debug("elevation: {} tiles to read at zoom {} from {} '{}'", elevation->ids.size(), elevation->zoom,
+             elevation->source->kind(), elevation->source->name());
+  std::unique_ptr<XyzSource> imagerySource;
   if (options.imageryTemplate) {
-    auto files = findXyzTiles(*options.imageryTemplate);
-    if (!files) return files.error();
-    imagery = atZoom(*files, maxZoom);
-    if (imagery.empty())
-      return makeError(
-          ErrorKind::InvalidInput,
-          concat("no imagery tiles at zoom ", maxZoom, " (the elevation's finest zoom) match '",
-                 *options.imageryTemplate, "'", files->empty() ? std::string() : concat("; found ", zoomsOf(*files))));
-    if (imagery.size() != files->size())
-      log->warn("imagery tiles found: {}; only zoom {} is imported", zoomsOf(*files), maxZoom);
+    auto opened = openImagery(options, elevation->ids.front());
+    if (!opened) return opened.error();
+    imagerySource = std::move(*opened);
   }
-
-  std::vector<geo::TileId> ids;
-  for (const auto& f : elevation) ids.push_back(f.id);
   DatasetMeta meta;
   meta.name = options.name.empty() ? defaultDatasetName(options.out) : options.name;
-  meta.maxZoom = maxZoom;
-  meta.minZoom = options.minZoom ? std::clamp(*options.minZoom, 0, maxZoom) : singleTileZoom(ids);
   meta.elevationEncoding = options.outputEncoding.value_or(options.encoding);
-  if (!imagery.empty()) meta.imagery = options.imageryFormat;
   meta.attribution = options.attribution;
-  meta.bounds = geo::tileBoundsLonLat(ids.front());
-  for (const auto& id : ids) {
-    const geo::GeoBounds b = geo::tileBoundsLonLat(id);
-    meta.bounds.westDeg = std::min(meta.bounds.westDeg, b.westDeg);
-    meta.bounds.eastDeg = std::max(meta.bounds.eastDeg, b.eastDeg);
-    meta.bounds.southDeg = std::min(meta.bounds.southDeg, b.southDeg);
-    meta.bounds.northDeg = std::max(meta.bounds.northDeg, b.northDeg);
-  }
   const std::string crs = geo::webMercatorCrs().name();
-  meta.sources.push_back({"elevation", options.elevationTemplate, crs,
-                          concat(elevation.size(), " ", toString(options.encoding), " tiles at zoom ", maxZoom)});
-  if (!imagery.empty())
-    meta.sources.push_back(
-        {"imagery", *options.imageryTemplate, crs, concat(imagery.size(), " tiles at zoom ", maxZoom)});
 
   Result<DatasetMeta> result = meta;
   Status status = writeDirectoryAtomically(options.out, [&](const fs::path& tmp) -> Status {
-    std::mutex mutex;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    progress.stage(concat("zoom ", maxZoom));
-    progress.addTotal(elevation.size() + imagery.size());
-    Status s = parallelFor(elevation.size(), options.threads, options.tasks, [&](size_t i) -> Status {
-      const XyzTileFile& f = elevation[i];
-      auto tile = readHeightTile(f.path, f.id, options.encoding);
-      if (!tile) return tile.error();
-      if (tile->size != kTileSize)
-        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size,
-                                                        " pixels wide; vegstream reads ", kTileSize, "-pixel tiles"));
-      double tlo = std::numeric_limits<double>::infinity(), thi = -tlo;
-      for (float h : tile->heights)
-        if (!std::isnan(h)) tlo = std::min(tlo, double{h}), thi = std::max(thi, double{h});
-      const fs::path dst = elevationTilePath(tmp, f.id);
-      if (auto w = writeHeightTile(dst, *tile, meta.elevationEncoding); !w) return w;
-      const uint64_t bytes = fileBytes(dst);
-      {
-        std::lock_guard lock(mutex);
-        lo = std::min(lo, tlo);
-        hi = std::max(hi, thi);
-        meta.bytes += bytes;
-        ++meta.elevationTiles;
-      }
-      progress.tileDone(bytes);
-      return {};
-    });
-    if (!s) return s;
-    if (!(lo <= hi))
+    Written elev;
+    if (auto s = writeElevation(options, *elevation, meta.elevationEncoding, tmp, progress, elev); !s) return s;
+    if (elev.ids.empty())
+      return makeError(ErrorKind::InvalidInput,
+                       concat("none of the ", elevation->ids.size(), " elevation tiles at zoom ", elevation->zoom,
+                              " exists in ", elevation->source->kind(), " '", elevation->source->name(), "'"));
+    if (!(elev.lo <= elev.hi))
       return makeError(ErrorKind::InvalidInput,
                        concat("the elevation tiles of '", options.elevationTemplate, "' hold no valid heights"));
-    meta.minHeightM = lo;
-    meta.maxHeightM = hi;
-    s = parallelFor(imagery.size(), options.threads, options.tasks, [&](size_t i) -> Status {
-      const XyzTileFile& f = imagery[i];
-      auto tile = readColorTile(f.path, f.id);
-      if (!tile) return tile.error();
-      if (tile->size != kTileSize)
-        return makeError(ErrorKind::Unsupported, concat("tile ", f.path, " is ", tile->size,
-                                                        " pixels wide; vegstream reads ", kTileSize, "-pixel tiles"));
-      const fs::path dst = imageryTilePath(tmp, f.id, options.imageryFormat);
-      if (auto w = writeColorTile(dst, *tile, options.imageryFormat, options.jpegQuality); !w) return w;
-      const uint64_t bytes = fileBytes(dst);
-      {
-        std::lock_guard lock(mutex);
-        meta.bytes += bytes;
-        ++meta.imageryTiles;
-      }
-      progress.tileDone(bytes);
-      return {};
-    });
-    if (!s) return s;
+    std::sort(elev.ids.begin(), elev.ids.end());
+    meta.maxZoom = elev.ids.front().z;
+    meta.minZoom = options.minZoom ? std::clamp(*options.minZoom, 0, meta.maxZoom) : singleTileZoom(elev.ids);
+    meta.minHeightM = elev.lo, meta.maxHeightM = elev.hi;
+    meta.elevationTiles = elev.ids.size();
+    meta.bytes = elev.bytes;
+    meta.bounds = geo::tileBoundsLonLat(elev.ids.front());
+    for (const auto& id : elev.ids) {
+      const geo::GeoBounds b = geo::tileBoundsLonLat(id);
+      meta.bounds.westDeg = std::min(meta.bounds.westDeg, b.westDeg);
+      meta.bounds.eastDeg = std::max(meta.bounds.eastDeg, b.eastDeg);
+      meta.bounds.southDeg = std::min(meta.bounds.southDeg, b.southDeg);
+      meta.bounds.northDeg = std::max(meta.bounds.northDeg, b.northDeg);
+    }
+    meta.sources.push_back({"elevation", elevation->source->name(), crs,
+                            describe(elev, concat(toString(options.encoding), " "), *elevation)});
+    if (imagerySource) {
+      auto imagery = planImagery(std::move(imagerySource), elev.ids, meta.maxZoom);
+      if (!imagery) return imagery.error();
+      Written img;
+      const std::set<geo::TileId> keep(elev.ids.begin(), elev.ids.end());
+      if (auto s = writeImagery(options, *imagery, keep, tmp, progress, img); !s) return s;
+      meta.imagery = options.imageryFormat;
+      meta.imageryTiles = img.ids.size();
+      meta.bytes += img.bytes;
+      meta.sources.push_back({"imagery", imagery->source->name(), crs, describe(img, "", *imagery)});
+      if (img.ids.size() < elev.ids.size())
+        log->warn("imagery: {} of the {} elevation tiles have no imagery in '{}'", elev.ids.size() - img.ids.size(),
+                  elev.ids.size(), imagery->source->name());
+    }
     result = finishDataset(tmp, meta, progress, options.threads, options.jpegQuality, options.tasks);
-    return result ? Status{} : Status{result.error()};
+    if (!result) return result.error();
+    return checkCancel(options);
   });
   if (!status) return status.error();
   return result;

@@ -21,11 +21,16 @@
 
 #include <curl/curl.h>
 
+#include "datasets/http_retry_policy.h"
 #include "streaming/disk_tile_cache.h"
-#include "streaming/http_retry_policy.h"
 
 namespace vegstream::streaming {
 namespace {
+using datasets::AttemptEnd;
+using datasets::AttemptVerdict;
+using datasets::backoffDelayMs;
+using datasets::describeAttempt;
+using datasets::judgeAttempt;
 
 constexpr curl_off_t kMaxBodyBytes = 256ll << 20;  // no tile is this large: a server gone wrong
 constexpr long kIdlePollMs = 1000;                 // upper bound of one curl_multi_poll wait

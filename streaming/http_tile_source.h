@@ -8,7 +8,7 @@
 // answers are cached. start() and cancel() only queue a command and wake the thread
 // (curl_multi_wakeup); they never block on I/O.
 //
-// Policy (http_retry_policy.h): at most maxInFlight transfers at once, the rest wait in start
+// Policy (datasets/http_retry_policy.h): at most maxInFlight transfers at once, the rest wait in start
 // order; each attempt has a connect and a total time-out; 5xx, time-outs, connection errors
 // and truncated bodies are retried after an exponential back-off with jitter, up to
 // maxAttempts tries in all; 404/410 end as Missing and other 4xx as Failed at once.

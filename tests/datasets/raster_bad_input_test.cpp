@@ -1,4 +1,4 @@
-// readGeoTiff on files the tests make themselves: bad input must give a clear Error naming the
+// RasterSource (GDAL) on files the tests make themselves: bad input must give a clear Error naming the
 // file, and the georeference variants (PixelIsPoint, model transformation) must map pixels
 // where the GeoTIFF spec says.
 

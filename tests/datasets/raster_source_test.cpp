@@ -1,8 +1,9 @@
-// readGeoTiff on the real sample files in ../shared/datasets (see its README for the figures).
+// RasterSource (GDAL) on the real sample files in ../shared/datasets (see its README for the figures).
 
 #include "datasets/raster_source.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 
 #include <gtest/gtest.h>

@@ -9,8 +9,8 @@
 
 #include "core/clock.h"
 #include "core/task_runner.h"
+#include "datasets/http_retry_policy.h"
 #include "streaming/disk_tile_cache.h"
-#include "streaming/http_retry_policy.h"
 #include "streaming/http_tile_source.h"
 #include "tests/streaming/http_test_dataset.h"
 #include "tests/support/fault_http_server.h"
@@ -23,6 +23,9 @@ using testing::FaultAction;
 using testing::FaultHttpServer;
 using testing::fileBytes;
 using testing::Results;
+using datasets::AttemptVerdict;
+using datasets::backoffDelayMs;
+using datasets::judgeAttempt;
 using Clock = std::chrono::steady_clock;
 
 class FaultServer : public testing::HttpDataset {

@@ -1,7 +1,9 @@
 #pragma once
-// What the HTTP source does with the end of one attempt: accept it, report the file missing,
-// try again after a back-off, or give up. Pure functions, so the policy is tested apart from
-// any network and the I/O thread only applies it.
+// What an HTTP fetch does with the end of one attempt: accept it, report the file missing, try
+// again after a back-off, or give up. Pure functions, so the policy is tested apart from any
+// network; the streamer's HTTP source (streaming/http_tile_source) and the importer's URL
+// fetches (datasets/http_fetch) only apply it. It lives in datasets/ because both use it and
+// streaming/ sits above datasets/ (DESIGN.md, "Folders").
 //
 // Retried (up to maxAttempts): 5xx, 408 and 429, time-outs, connection failures and resets,
 // bodies shorter than announced (CURLE_PARTIAL_FILE, or a Content-Length mismatch), and any
@@ -15,7 +17,7 @@
 
 #include <curl/curl.h>
 
-namespace vegstream::streaming {
+namespace vegstream::datasets {
 
 enum class AttemptVerdict { Ok, Missing, Retry, Fail };
 
@@ -36,4 +38,4 @@ std::string describeAttempt(const AttemptEnd& end, const char* curlErrorBuffer);
 // tiles failing together do not come back together, and a run is still reproducible.
 long backoffDelayMs(int nextAttempt, uint64_t requestKey, long baseMs, long maxMs);
 
-}  // namespace vegstream::streaming
+}  // namespace vegstream::datasets

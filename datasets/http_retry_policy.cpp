@@ -1,10 +1,10 @@
-// The HTTP source's retry policy (http_retry_policy.h).
+// The HTTP retry policy (http_retry_policy.h).
 
-#include "streaming/http_retry_policy.h"
+#include "datasets/http_retry_policy.h"
 
 #include <algorithm>
 
-namespace vegstream::streaming {
+namespace vegstream::datasets {
 
 AttemptVerdict judgeAttempt(const AttemptEnd& end) {
   switch (end.code) {
@@ -58,4 +58,4 @@ long backoffDelayMs(int nextAttempt, uint64_t requestKey, long baseMs, long maxM
   return static_cast<long>(static_cast<double>(raw) * (0.5 + 0.5 * fraction));
 }
 
-}  // namespace vegstream::streaming
+}  // namespace vegstream::datasets

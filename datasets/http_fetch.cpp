@@ -1,0 +1,156 @@
+// Blocking HTTP(S) GETs with the project's retry policy (http_fetch.h). Range requests:
+// RFC 9110 §14.2 (the Range header) and §15.3.7 (206 Partial Content).
+
+#include "datasets/http_fetch.h"
+
+#include <cassert>
+#include <chrono>
+#include <mutex>
+#include <thread>
+
+#include <curl/curl.h>
+
+#include "datasets/http_retry_policy.h"
+#include "datasets/message.h"
+
+namespace vegstream::datasets {
+namespace {
+
+void initCurlOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+}
+
+struct Body {
+  std::vector<uint8_t> bytes;
+  uint64_t limit = 0;
+};
+
+size_t appendBody(char* data, size_t size, size_t count, void* user) {
+  auto* b = static_cast<Body*>(user);
+  const size_t n = size * count;
+  if (b->bytes.size() + n > b->limit) return 0;  // aborts the transfer (CURLE_WRITE_ERROR)
+  b->bytes.insert(b->bytes.end(), reinterpret_cast<uint8_t*>(data), reinterpret_cast<uint8_t*>(data) + n);
+  return n;
+}
+
+uint64_t requestKey(const std::string& url, const std::optional<ByteRange>& range) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a: a reproducible jitter per request
+  for (unsigned char c : url) h = (h ^ c) * 1099511628211ull;
+  if (range) h = (h ^ range->offset) * 1099511628211ull;
+  return h;
+}
+
+struct Attempt {
+  AttemptEnd end;
+  std::string problem;
+  Body body;
+};
+
+}  // namespace
+
+struct HttpFetcher::Pool {
+  std::mutex mutex;
+  std::vector<CURL*> idle;
+  ~Pool() {
+    for (CURL* e : idle) curl_easy_cleanup(e);
+  }
+  CURL* take() {
+    std::lock_guard lock(mutex);
+    if (idle.empty()) return curl_easy_init();
+    CURL* e = idle.back();
+    idle.pop_back();
+    return e;
+  }
+  void give(CURL* e) {
+    std::lock_guard lock(mutex);
+    idle.push_back(e);
+  }
+};
+
+HttpFetcher::HttpFetcher(HttpFetchOptions options) : options_(std::move(options)), pool_(std::make_unique<Pool>()) {
+  initCurlOnce();
+  if (!options_.sleepMs) options_.sleepMs = [](long ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
+}
+
+HttpFetcher::~HttpFetcher() = default;
+
+namespace {
+
+Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRange>& range,
+                    const HttpFetchOptions& o) {
+  Attempt a;
+  a.body.limit = o.maxBodyBytes;
+  char errorBuffer[CURL_ERROR_SIZE] = {};
+  curl_easy_reset(e);
+  curl_easy_setopt(e, CURLOPT_URL, url.c_str());
+  curl_easy_setopt(e, CURLOPT_WRITEFUNCTION, appendBody);
+  curl_easy_setopt(e, CURLOPT_WRITEDATA, &a.body);
+  curl_easy_setopt(e, CURLOPT_ERRORBUFFER, errorBuffer);
+  curl_easy_setopt(e, CURLOPT_NOSIGNAL, 1L);
+  curl_easy_setopt(e, CURLOPT_CONNECTTIMEOUT_MS, o.connectTimeoutMs);
+  curl_easy_setopt(e, CURLOPT_TIMEOUT_MS, o.totalTimeoutMs);
+  curl_easy_setopt(e, CURLOPT_FOLLOWLOCATION, 1L);
+  curl_easy_setopt(e, CURLOPT_MAXREDIRS, 5L);
+  curl_easy_setopt(e, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(o.maxBodyBytes));
+  curl_easy_setopt(e, CURLOPT_TCP_KEEPALIVE, 1L);
+  curl_easy_setopt(e, CURLOPT_USERAGENT, "vegstream");
+  std::string rangeText;
+  if (range) {
+    rangeText = concat(range->offset, "-", range->offset + range->length - 1);
+    curl_easy_setopt(e, CURLOPT_RANGE, rangeText.c_str());
+  }
+  a.end.code = curl_easy_perform(e);
+  curl_easy_getinfo(e, CURLINFO_RESPONSE_CODE, &a.end.httpStatus);
+  curl_off_t length = -1;
+  curl_easy_getinfo(e, CURLINFO_CONTENT_LENGTH_DOWNLOAD_T, &length);
+  a.end.contentLength = length;
+  a.end.bodyBytes = a.body.bytes.size();
+  if (a.end.code == CURLE_WRITE_ERROR && a.body.bytes.size() >= o.maxBodyBytes) {
+    a.end.code = CURLE_FILESIZE_EXCEEDED;  // our own limit: not worth a retry
+    a.problem = concat("the body exceeds ", o.maxBodyBytes, " bytes");
+  } else {
+    a.problem = describeAttempt(a.end, errorBuffer);
+  }
+  return a;
+}
+
+}  // namespace
+
+Result<std::optional<std::vector<uint8_t>>> HttpFetcher::get(const std::string& url,
+                                                             std::optional<ByteRange> range) const {
+  assert(!range || range->length > 0);
+  const std::string what = range ? concat("GET ", url, " (bytes ", range->offset, "-",
+                                          range->offset + range->length - 1, ")")
+                                 : concat("GET ", url);
+  CURL* e = pool_->take();
+  if (e == nullptr) return makeError(ErrorKind::Io, concat(what, ": libcurl could not make a handle"));
+  for (int attempt = 1;; ++attempt) {
+    Attempt a = attemptOnce(e, url, range, options_);
+    const AttemptVerdict verdict = judgeAttempt(a.end);
+    if (verdict == AttemptVerdict::Ok) {
+      pool_->give(e);
+      if (range && a.end.httpStatus != 206)
+        return makeError(ErrorKind::InvalidInput,
+                         concat(what, ": HTTP ", a.end.httpStatus, " instead of 206: the server does not serve byte "
+                                "ranges, which a PMTiles archive over HTTP needs"));
+      if (range && a.body.bytes.size() > range->length)
+        return makeError(ErrorKind::InvalidInput,
+                         concat(what, ": ", a.body.bytes.size(), " bytes for a range of ", range->length));
+      return std::optional<std::vector<uint8_t>>(std::move(a.body.bytes));
+    }
+    if (verdict == AttemptVerdict::Missing) {
+      pool_->give(e);
+      return std::optional<std::vector<uint8_t>>();
+    }
+    if (verdict == AttemptVerdict::Fail || attempt >= options_.maxAttempts) {
+      curl_easy_cleanup(e);  // a handle whose connection went wrong is not kept
+      return makeError(ErrorKind::InvalidInput,
+                       concat(what, ": ", a.problem, " (", attempt, attempt == 1 ? " attempt)" : " attempts)"));
+    }
+    options_.sleepMs(backoffDelayMs(attempt + 1, requestKey(url, range), options_.backoffBaseMs,
+                                    options_.backoffMaxMs));
+  }
+}
+
+}  // namespace vegstream::datasets
