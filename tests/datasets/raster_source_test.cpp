@@ -67,7 +67,7 @@ TEST(GeoTiffSamples, ZionLandsatIsUtm12WithRawDigitalNumbers) {
   EXPECT_EQ(r->width, 1128);
   EXPECT_EQ(r->height, 1428);
   EXPECT_EQ(r->georef.crs->epsg().value_or(0), 32612);
-  EXPECT_NE(r->georef.crsDescription.find("UTM Zone 12"), std::string::npos);
+  EXPECT_NE(r->georef.crsDescription.find("UTM zone 12N"), std::string::npos);
   const auto& t = r->georef.transform;
   EXPECT_DOUBLE_EQ(t[0], 301905.0);
   EXPECT_DOUBLE_EQ(t[3], 4154085.0);

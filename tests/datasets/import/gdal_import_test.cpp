@@ -204,8 +204,9 @@ TEST_F(GdalImport, HeightsInFeetBecomeMetres) {
   EXPECT_NEAR(b->minHeightM, a->minHeightM * 0.3048, 0.5);
 }
 
-// The same heights in the formats GIS people hold them in: each lossless, so each import gives
-// the GeoTIFF's tiles byte for byte.
+// The same heights in the formats GIS people hold them in: each lossless and keeping the
+// geotransform exactly, so each import gives the GeoTIFF's tiles byte for byte. (Text-header
+// formats — AAIGrid, EHdr — round the geotransform and so shift the tiles by a hair.)
 TEST_F(GdalImport, LosslessFormatsGiveTheGeoTiffsTiles) {
   const std::string srtm = sample("zion/srtm.tif");
   const fs::path ref = work_ / "ref";
@@ -217,7 +218,7 @@ TEST_F(GdalImport, LosslessFormatsGiveTheGeoTiffsTiles) {
     const char* options;
   };
   for (const Format f : {Format{"HFA", "dem.img", ""}, Format{"JP2OpenJPEG", "dem.jp2", "-co REVERSIBLE=YES -co QUALITY=100"},
-                         Format{"AAIGrid", "dem.asc", ""}, Format{"ENVI", "dem.envi", ""}}) {
+                         Format{"ENVI", "dem.envi", ""}}) {
     const fs::path file = work_ / f.file, out = work_ / (std::string("ds_") + f.driver);
     run(std::string("gdal_translate -q -of ") + f.driver + " " + f.options + " '" + srtm + "' '" + file.string() + "'");
     r = runVegstream("import --dem '" + file.string() + "' --out '" + out.string() + "'");

@@ -60,9 +60,9 @@ TEST(ImportBadInput, TiffWithoutGeoreference) {
 }
 
 TEST(ImportBadInput, CrsProjDoesNotKnowNamesTheCode) {
-  // ProjectedCSType 32099 is in the user-defined range: GDAL reads no CRS from it.
+  // ProjectedCSType 32767 (user-defined) with no parameters: GDAL reads no CRS from it.
   const fs::path p =
-      tinyGeoTiff(importTmp("bad_crs_src") / "odd.tif", {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32099});
+      tinyGeoTiff(importTmp("bad_crs_src") / "odd.tif", {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32767});
   expectRefused(runImport("crs", "--dem " + p.string()), p.string(), "--dem-crs");
 }
 
@@ -73,11 +73,11 @@ TEST(ImportBadInput, DemAndImageryDoNotOverlap) {
   EXPECT_NE(c.result.err.find("sba_rgb_wgs84_512x512.tif"), std::string::npos);
 }
 
-TEST(ImportBadInput, HugeHeaderFailsOnItsMissingPixels) {
-  // Claims 10^12 pixels: opened (GDAL knows only the size), never held whole; the first window
-  // read finds no pixels behind the header.
+TEST(ImportBadInput, HugeHeaderNeverHeldWhole) {
+  // Claims 10^12 pixels of 10°: opened (GDAL knows only the size), never held whole, and
+  // refused for what it claims to cover.
   const fs::path p = tinyGeoTiff(importTmp("bad_huge_src") / "huge.tif", kWgs84Keys, 1000000);
-  expectRefused(runImport("huge", "--dem " + p.string()), p.string(), "cannot read its pixels");
+  expectRefused(runImport("huge", "--dem " + p.string()), p.string(), "outside the earth");
 }
 
 TEST(ImportBadInput, MemoryBudgetTooSmall) {
