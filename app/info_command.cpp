@@ -78,8 +78,8 @@ int runInfo(const InfoOptions& options, const Logger& log) {
     log->warn("{}: dataset.json counts {} NDVI tiles, the directory holds {}", options.dataset, m.ndviTiles,
               ndviOnDisk);
   if (landcoverOnDisk != m.landcoverTiles)
-    log->warn("{}: dataset.json counts {} landcover tiles, the directory holds {}", options.dataset,
-              m.landcoverTiles, landcoverOnDisk);
+    log->warn("{}: dataset.json counts {} landcover tiles, the directory holds {}", options.dataset, m.landcoverTiles,
+              landcoverOnDisk);
 
   nlohmann::json tiles = {{"elevation", m.elevationTiles},
                          {"imagery", m.imageryTiles},

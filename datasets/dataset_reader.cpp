@@ -272,8 +272,8 @@ Result<std::optional<uint8_t>> DatasetReader::landcoverAt(double latDeg, double 
   const int size = meta_.tileSize;
   for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
     const glm::dvec2 t = geo::lonLatToTileXY({lonDeg, latDeg}, z);
-    const PixelRef p = pixelRef(static_cast<int64_t>(std::floor(t.x * size)),
-                                static_cast<int64_t>(std::floor(t.y * size)), z, size);
+    const PixelRef p =
+        pixelRef(static_cast<int64_t>(std::floor(t.x * size)), static_cast<int64_t>(std::floor(t.y * size)), z, size);
     if (!p.valid) continue;
     auto tile = landcoverTile(p.tile);
     if (!tile) return tile.error();

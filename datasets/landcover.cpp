@@ -49,16 +49,14 @@ uint8_t nearestClass(const Raster& raster, glm::dvec2 pixel) {
 
 Status checkClassRaster(const Raster& raster) {
   if (raster.channels != 1)
-    return makeError(ErrorKind::InvalidInput,
-                     concat(raster.path, " has ", raster.channels,
-                            " bands; a landcover raster has one band of class codes"));
+    return makeError(ErrorKind::InvalidInput, concat(raster.path, " has ", raster.channels,
+                                                     " bands; a landcover raster has one band of class codes"));
   for (int row = 0; row < raster.height; ++row) {
     for (int col = 0; col < raster.width; ++col) {
       const float v = raster.at(col, row);
       if (raster.isNodata(v) || (v >= 0.0f && v <= 255.0f && std::floor(v) == v)) continue;
-      return makeError(ErrorKind::InvalidInput,
-                       concat(raster.path, " holds ", v, " at column ", col, ", row ", row,
-                              "; a landcover raster holds integer class codes 0 … 255"));
+      return makeError(ErrorKind::InvalidInput, concat(raster.path, " holds ", v, " at column ", col, ", row ", row,
+                                                       "; a landcover raster holds integer class codes 0 … 255"));
     }
   }
   return {};

@@ -129,7 +129,8 @@ Result<LandcoverScheme> detectLandcoverScheme(const ClassHistogram& h, const std
     return makeError(ErrorKind::InvalidInput, concat(head, "it holds codes only WorldCover has, ", wc.list,
                                                      ", and codes only NLCD has, ", nlcd.list, suggestion()));
   if (wc.pixels == 0 && nlcd.pixels == 0) {
-    const char* what = valid == 0 ? "it holds no class codes at all" : "none of its codes is WorldCover's or NLCD's alone";
+    const char* what =
+        valid == 0 ? "it holds no class codes at all" : "none of its codes is WorldCover's or NLCD's alone";
     return makeError(ErrorKind::InvalidInput, concat(head, what, suggestion()));
   }
   const LandcoverScheme s = wc.pixels > 0 ? LandcoverScheme::WorldCover : LandcoverScheme::Nlcd;

@@ -52,7 +52,7 @@ struct LandcoverClass {
 };
 
 const char* toString(LandcoverScheme s);  // "worldcover", "nlcd" (dataset.json's landcover.scheme)
-const char* toString(LandcoverKind k);    // "tree", "shrub", "grass", "crop", "bare", "built", "water", "snow", "wetland"
+const char* toString(LandcoverKind k);  // "tree", "shrub", "grass", "crop", "bare", "built", "water", "snow", "wetland"
 
 // "worldcover" | "nlcd" → that scheme; "auto" → nullopt (detect it from the codes). Anything
 // else: InvalidInput "landcover scheme 'x' is not known; expected worldcover, nlcd or auto".

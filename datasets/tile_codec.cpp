@@ -291,12 +291,13 @@ Result<std::vector<uint8_t>> decodeGrey8Tile(std::span<const uint8_t> bytes, con
   // Only the grey PNG that writeGrey8Tile makes: an RGB or 16-bit image would be read as some
   // other quantity and silently give wrong values.
   if (!px->png || px->channels != 1 || !px->eightBit)
-    return invalidTile(nameForErrors, concat("is not a tile of the ", layer, " layer: expected a one-channel 8-bit PNG, found ",
-                                             px->png ? "a PNG" : "a JPEG/WebP", " with ", px->channels, " channel(s)",
-                                             px->eightBit ? "" : " of more than 8 bits"));
+    return invalidTile(nameForErrors,
+                       concat("is not a tile of the ", layer, " layer: expected a one-channel 8-bit PNG, found ",
+                              px->png ? "a PNG" : "a JPEG/WebP", " with ", px->channels, " channel(s)",
+                              px->eightBit ? "" : " of more than 8 bits"));
   if (px->size != expectedSize)
-    return invalidTile(nameForErrors, concat("is ", px->size, " pixels wide; ", layer,
-                                             " tiles are ", expectedSize, " pixels wide"));
+    return invalidTile(nameForErrors,
+                       concat("is ", px->size, " pixels wide; ", layer, " tiles are ", expectedSize, " pixels wide"));
   std::vector<uint8_t> out(px->rgba.size() / 4);
   for (size_t i = 0; i < out.size(); ++i) out[i] = px->rgba[i * 4];
   return out;
@@ -304,9 +305,7 @@ Result<std::vector<uint8_t>> decodeGrey8Tile(std::span<const uint8_t> bytes, con
 
 Result<std::vector<uint8_t>> readTileFile(const fs::path& path) { return readFileBytes(path); }
 
-Status writeNdviTile(const fs::path& path, const ColorTile& tile) {
-  return writeGrey8Tile(path, tile.size, tile.ndvi);
-}
+Status writeNdviTile(const fs::path& path, const ColorTile& tile) { return writeGrey8Tile(path, tile.size, tile.ndvi); }
 
 Result<std::vector<uint8_t>> decodeNdviTile(std::span<const uint8_t> bytes, const geo::TileId& id,
                                             const std::string& nameForErrors, int expectedSize) {

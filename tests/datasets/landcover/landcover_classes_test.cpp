@@ -21,9 +21,9 @@ std::map<int, K> kinds(LandcoverScheme s) {
 }
 
 TEST(LandcoverClasses, WorldCoverTable) {
-  const std::map<int, K> expected = {{10, K::Tree},  {20, K::Shrub},   {30, K::Grass}, {40, K::Crop},
-                                     {50, K::Built}, {60, K::Bare},    {70, K::Snow},  {80, K::Water},
-                                     {90, K::Wetland}, {95, K::Tree}, {100, K::Grass}};
+  const std::map<int, K> expected = {{10, K::Tree},    {20, K::Shrub}, {30, K::Grass}, {40, K::Crop},
+                                     {50, K::Built},   {60, K::Bare},  {70, K::Snow},  {80, K::Water},
+                                     {90, K::Wetland}, {95, K::Tree},  {100, K::Grass}};
   EXPECT_EQ(kinds(LandcoverScheme::WorldCover), expected);
   EXPECT_STREQ(findLandcoverClass(LandcoverScheme::WorldCover, 10)->name, "Tree cover");
   EXPECT_STREQ(findLandcoverClass(LandcoverScheme::WorldCover, 60)->name, "Bare / sparse vegetation");
@@ -34,10 +34,10 @@ TEST(LandcoverClasses, WorldCoverTable) {
 }
 
 TEST(LandcoverClasses, NlcdTable) {
-  const std::map<int, K> expected = {
-      {11, K::Water}, {12, K::Snow},  {21, K::Built}, {22, K::Built}, {23, K::Built}, {24, K::Built}, {31, K::Bare},
-      {41, K::Tree},  {42, K::Tree},  {43, K::Tree},  {51, K::Shrub}, {52, K::Shrub}, {71, K::Grass}, {72, K::Grass},
-      {73, K::Grass}, {74, K::Grass}, {81, K::Grass}, {82, K::Crop},  {90, K::Tree},  {95, K::Wetland}};
+  const std::map<int, K> expected = {{11, K::Water}, {12, K::Snow},  {21, K::Built}, {22, K::Built}, {23, K::Built},
+                                     {24, K::Built}, {31, K::Bare},  {41, K::Tree},  {42, K::Tree},  {43, K::Tree},
+                                     {51, K::Shrub}, {52, K::Shrub}, {71, K::Grass}, {72, K::Grass}, {73, K::Grass},
+                                     {74, K::Grass}, {81, K::Grass}, {82, K::Crop},  {90, K::Tree},  {95, K::Wetland}};
   EXPECT_EQ(kinds(LandcoverScheme::Nlcd), expected);
   EXPECT_STREQ(findLandcoverClass(LandcoverScheme::Nlcd, 42)->name, "Evergreen Forest");
   EXPECT_STREQ(findLandcoverClass(LandcoverScheme::Nlcd, 95)->name, "Emergent Herbaceous Wetlands");

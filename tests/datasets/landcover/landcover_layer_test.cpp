@@ -175,8 +175,8 @@ void writeChildren(const fs::path& d) {
     for (int y = 0; y < 256; ++y)
       for (int x = 0; x < 256; ++x) {
         const int k = (y % 2) * 2 + (x % 2);
-        uint8_t c = nw ? std::array<uint8_t, 4>{10, 10, 30, 40}[size_t(k)]
-                       : std::array<uint8_t, 4>{90, 20, 20, 90}[size_t(k)];
+        uint8_t c =
+            nw ? std::array<uint8_t, 4>{10, 10, 30, 40}[size_t(k)] : std::array<uint8_t, 4>{90, 20, 20, 90}[size_t(k)];
         if (!nw && k == 0 && (x / 2) % 4 == 3) c = 0;  // (0, 20, 20, 90): 20 wins outright
         t.classes[size_t(y) * 256 + size_t(x)] = c;
       }
@@ -204,9 +204,9 @@ TEST(LandcoverPyramid, ParentIsTheModeOfItsChildrensClasses) {
     for (int x = 0; x < 256; ++x) {
       const int c = p->at(x, y);
       seen.insert(c);
-      if (y >= 128) EXPECT_EQ(c, 0) << x << "," << y;  // SW, SE children missing: no data
-      else if (x < 128) EXPECT_EQ(c, 10) << x << "," << y;  // 10, 10, 30, 40 → 10
-      else EXPECT_EQ(c, 20) << x << "," << y;               // 90, 20, 20, 90 → tie → 20
+      // SW, SE children missing: no data; NW (10, 10, 30, 40) → 10; NE (90, 20, 20, 90) → tie → 20.
+      const int expected = y >= 128 ? 0 : x < 128 ? 10 : 20;
+      EXPECT_EQ(c, expected) << x << "," << y;
     }
   }
   EXPECT_EQ(seen, (std::set<int>{0, 10, 20}));  // nothing that is no child's class (no mean: 25, 55)
@@ -218,8 +218,8 @@ TEST(LandcoverPyramid, ParentIsTheModeOfItsChildrensClasses) {
   EXPECT_EQ(top->at(63, 10), 10);
   EXPECT_EQ(top->at(64, 10), 20);
   EXPECT_EQ(top->at(100, 10), 20);
-  EXPECT_EQ(top->at(10, 100), 0);   // zoom 9's missing rows
-  EXPECT_EQ(top->at(200, 10), 0);   // 9/101/200 missing
+  EXPECT_EQ(top->at(10, 100), 0);  // zoom 9's missing rows
+  EXPECT_EQ(top->at(200, 10), 0);  // 9/101/200 missing
 }
 
 DatasetMeta sampleMeta() {
@@ -283,8 +283,11 @@ TEST(LandcoverDatasetJson, MalformedFieldIsNamed) {
   const json lc = good["landcover"];
   auto with = [&](const char* key, json v) {
     json o = lc;
-    if (v.is_discarded()) o.erase(key);
-    else o[key] = v;
+    if (v.is_discarded()) {
+      o.erase(key);
+    } else {
+      o[key] = v;
+    }
     return o;
   };
   const json gone(json::value_t::discarded);

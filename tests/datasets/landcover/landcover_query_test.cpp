@@ -20,8 +20,8 @@
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
-using nlohmann::json;
 using datasets::LandcoverTile;
+using nlohmann::json;
 
 constexpr int kMaxZoom = 13;
 
@@ -65,7 +65,8 @@ Synthetic makeDataset(const fs::path& dir) {
 void addLandcover(Synthetic& s) {
   for (const auto& xdir : fs::directory_iterator(s.dir / "elevation" / std::to_string(kMaxZoom)))
     for (const auto& file : fs::directory_iterator(xdir.path())) {
-      const geo::TileId id{kMaxZoom, std::stoi(xdir.path().filename().string()), std::stoi(file.path().stem().string())};
+      const geo::TileId id{kMaxZoom, std::stoi(xdir.path().filename().string()),
+                           std::stoi(file.path().stem().string())};
       LandcoverTile t;
       t.id = id;
       t.classes.resize(256 * 256);
