@@ -73,12 +73,6 @@ OwnCodes ownCodes(const ClassHistogram& h, LandcoverScheme s) {
   return out;
 }
 
-uint64_t knownPixels(const ClassHistogram& h, LandcoverScheme s) {
-  uint64_t n = 0;
-  for (const LandcoverClass& c : landcoverClasses(s)) n += h[c.code];
-  return n;
-}
-
 std::string suggestion() { return "; name it with --landcover-scheme worldcover or --landcover-scheme nlcd"; }
 
 }  // namespace
@@ -133,13 +127,7 @@ Result<LandcoverScheme> detectLandcoverScheme(const ClassHistogram& h, const std
         valid == 0 ? "it holds no class codes at all" : "none of its codes is WorldCover's or NLCD's alone";
     return makeError(ErrorKind::InvalidInput, concat(head, what, suggestion()));
   }
-  const LandcoverScheme s = wc.pixels > 0 ? LandcoverScheme::WorldCover : LandcoverScheme::Nlcd;
-  const uint64_t known = knownPixels(h, s);
-  if (known * 2 < valid)
-    return makeError(ErrorKind::InvalidInput,
-                     concat(head, "only ", known, " of its ", valid, " pixels with data hold ", toString(s),
-                            " classes (", s == LandcoverScheme::WorldCover ? wc.list : nlcd.list, ")", suggestion()));
-  return s;
+  return wc.pixels > 0 ? LandcoverScheme::WorldCover : LandcoverScheme::Nlcd;
 }
 
 std::vector<UnknownClass> unknownClasses(const ClassHistogram& h, LandcoverScheme s) {

@@ -27,9 +27,10 @@
 //     groups it.
 //
 // Scheme detection (`auto`): codes that only one scheme has decide (90 and 95 are in both).
-// The codes of exactly one scheme must be seen, and that scheme's classes must hold at least
-// half of the pixels with data; anything else is an error that lists what was seen and asks for
-// --landcover-scheme.
+// Codes of exactly one scheme must be seen; codes of both, or of neither alone, is an error that
+// lists what was seen and asks for --landcover-scheme. Codes neither scheme has do not count
+// either way: a fill value the source does not declare as nodata (NLCD files often hold 250
+// outside the survey) may cover most of a raster, and the unknown-code warning shows them.
 
 #include <array>
 #include <cstdint>

@@ -107,8 +107,18 @@ TEST(LandcoverScheme, AmbiguousCodesAreAnErrorSuggestingTheOption) {
   expectAmbiguous(histogram({{90, 40}, {95, 2}}), {"none of its codes"});
   // Nothing but no data.
   expectAmbiguous(histogram({{0, 400}}), {"no class codes at all"});
-  // One WorldCover code among mostly unknown codes: less than half the pixels are its classes.
-  expectAmbiguous(histogram({{10, 4}, {1, 50}, {2, 50}}), {"only 4 of its 104 pixels", "worldcover"});
+}
+
+TEST(LandcoverScheme, UnknownCodesDoNotDecide) {
+  // NLCD with an undeclared fill value (250) over most of the raster: still NLCD, and the fill
+  // is reported as unknown.
+  const ClassHistogram h = histogram({{250, 90000}, {42, 300}, {11, 20}});
+  auto s = detectLandcoverScheme(h, "nlcd.tif");
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_EQ(*s, LandcoverScheme::Nlcd);
+  EXPECT_EQ(unknownClasses(h, *s), (std::vector<UnknownClass>{{250, 90000}}));
+  // Unknown codes alone decide nothing.
+  expectAmbiguous(histogram({{1, 50}, {2, 50}, {250, 9}}), {"none of its codes"});
 }
 
 TEST(LandcoverScheme, UnknownCodesAreListedWithTheirPixels) {
