@@ -41,22 +41,26 @@ uint8_t classCodeOf(const Raster& raster, float sample) {
 
 uint8_t nearestClass(const Raster& raster, glm::dvec2 pixel) {
   assert(raster.channels >= 1);
-  // floor: the pixel whose square [i, i + 1) × [j, j + 1) holds the point. NaN fails both tests.
-  if (!(pixel.x >= 0.0 && pixel.y >= 0.0 && pixel.x < raster.width && pixel.y < raster.height)) return 0;
-  const int col = static_cast<int>(std::floor(pixel.x)), row = static_cast<int>(std::floor(pixel.y));
+  // floor: the buffer pixel whose square [i, i + 1) × [j, j + 1) holds the point. NaN fails the
+  // tests.
+  const glm::dvec2 l = raster.local(pixel);
+  if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < raster.width && l.y < raster.height)) return 0;
+  const int col = static_cast<int>(std::floor(l.x)), row = static_cast<int>(std::floor(l.y));
   return classCodeOf(raster, raster.at(col, row));
 }
 
 Status checkClassRaster(const Raster& raster) {
   if (raster.channels != 1)
-    return makeError(ErrorKind::InvalidInput, concat(raster.path, " has ", raster.channels,
+    return makeError(ErrorKind::InvalidInput, concat("'", raster.path, "' has ", raster.channels,
                                                      " bands; a landcover raster has one band of class codes"));
   for (int row = 0; row < raster.height; ++row) {
     for (int col = 0; col < raster.width; ++col) {
       const float v = raster.at(col, row);
       if (raster.isNodata(v) || (v >= 0.0f && v <= 255.0f && std::floor(v) == v)) continue;
-      return makeError(ErrorKind::InvalidInput, concat(raster.path, " holds ", v, " at column ", col, ", row ", row,
-                                                       "; a landcover raster holds integer class codes 0 … 255"));
+      // Whole-raster pixel coordinates of the sample (the window's origin and step applied).
+      const glm::dvec2 at = raster.origin + glm::dvec2(col, row) * raster.step;
+      return makeError(ErrorKind::InvalidInput, concat("'", raster.path, "' holds ", v, " at column ", at.x, ", row ",
+                                                       at.y, "; a landcover raster holds integer class codes 0 … 255"));
     }
   }
   return {};

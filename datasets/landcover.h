@@ -47,19 +47,22 @@ Result<LandcoverTile> readLandcoverTile(const std::filesystem::path& path, const
 // 0, and anything that is no such integer (negative, fractional, > 255) is 0.
 uint8_t classCodeOf(const Raster& raster, float sample);
 
-// The class of the source pixel under `pixel` (continuous pixel coordinates, (0, 0) the
-// raster's top-left corner, the centre of pixel (i, j) at (i + 0.5, j + 0.5), as
-// GeoReference::transform): nearest neighbour, never blended — the pixel whose square holds the
-// point, a point on a shared edge going to the pixel right of / below it. Outside the raster,
-// or nodata there: 0. Channel 0 of the raster.
+// The class of the source pixel under `pixel`: continuous pixel coordinates of the *whole*
+// raster, (0, 0) its top-left corner, the centre of pixel (i, j) at (i + 0.5, j + 0.5), as
+// GeoReference::transform and source_grid.h's samplers; `raster` is a window holding the point
+// (Raster::local maps it into the window; a decimated window gives its own sample there).
+// Nearest neighbour, never blended: the pixel whose square holds the point, a point on a shared
+// edge going to the pixel right of / below it. Outside the window, or nodata there: 0.
+// Channel 0 of the raster.
 uint8_t nearestClass(const Raster& raster, glm::dvec2 pixel);
 
-// A raster that can be a landcover source: one channel, every sample nodata or an integer
-// 0 … 255. InvalidInput otherwise, naming the raster's path and the first bad sample (value,
-// column, row).
+// A raster (window) that can be a landcover source: one channel, every sample nodata or an
+// integer 0 … 255. InvalidInput otherwise, naming the raster's path and the first bad sample
+// (value, whole-raster column and row).
 Status checkClassRaster(const Raster& raster);
-// Pixels per class code over the whole raster (classCodeOf of channel 0; [0] = no data). The
-// importer adds the histograms of its windows element by element.
+// Pixels per class code over the window's buffer (classCodeOf of channel 0; [0] = no data). The
+// windows of the tiles overlap: count each source pixel once (one decimated read of the whole
+// source), not the sum of the tiles' windows.
 ClassHistogram classHistogram(const Raster& raster);
 
 // The mode of the non-zero codes (the pyramid's 2×2 block), the smallest code among equally

@@ -42,7 +42,6 @@ Raster classRaster() {
   r.height = kHeight;
   r.channels = 1;
   r.nodata = 255.0;
-  r.georef.epsg = 4326;
   r.georef.transform = {kWest, kStep, 0.0, kNorth, 0.0, -kStep};
   for (int row = 0; row < kHeight; ++row)
     for (int col = 0; col < kWidth; ++col) r.samples.push_back(sourceClass(col, row));
@@ -69,7 +68,7 @@ TEST(LandcoverImportFlow, SourceClassesSurviveTheTilesAndThePyramid) {
   const Raster r = classRaster();
   ASSERT_TRUE(checkClassRaster(r));
   const ClassHistogram h = classHistogram(r);
-  auto scheme = detectLandcoverScheme(h, r.path.string());
+  auto scheme = detectLandcoverScheme(h, r.path);
   ASSERT_TRUE(scheme) << scheme.error().message;
   EXPECT_EQ(*scheme, LandcoverScheme::WorldCover);
   EXPECT_EQ(unknownClassesWarning(unknownClasses(h, *scheme), *scheme),

@@ -118,6 +118,20 @@ TEST(LandcoverSampling, NearestClassNeverBlends) {
   EXPECT_EQ(nearestClass(r, {4.0, 0.5}), 0);
   EXPECT_EQ(nearestClass(r, {0.5, 2.0}), 0);
   EXPECT_EQ(nearestClass(r, {NAN, 0.5}), 0);
+
+  // A window of a larger raster (raster.h): pixels are whole-raster coordinates.
+  Raster w = classRaster();
+  w.origin = {100.0, 50.0};
+  EXPECT_EQ(nearestClass(w, {101.5, 50.5}), 30);
+  EXPECT_EQ(nearestClass(w, {100.999, 51.2}), 20);
+  EXPECT_EQ(nearestClass(w, {1.5, 0.5}), 0);  // outside the window
+  auto bad = checkClassRaster(w);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("holds 7.5 at column 103, row 51"), std::string::npos) << bad.error().message;
+  // Decimated by 2: buffer pixel (1, 0) stands for whole-raster pixels 102 … 103.
+  w.step = {2.0, 2.0};
+  EXPECT_EQ(nearestClass(w, {103.9, 51.9}), 30);
+  EXPECT_EQ(nearestClass(w, {104.0, 50.0}), 40);
 }
 
 TEST(LandcoverSampling, RasterCheckAndHistogram) {
