@@ -21,13 +21,13 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ZoomCounts {
-  uint64_t elevation = 0, imagery = 0, ndvi = 0, bytes = 0;
+  uint64_t elevation = 0, imagery = 0, ndvi = 0, landcover = 0, bytes = 0;
 };
 
-// Tiles on disk under DIR/{elevation,imagery,ndvi}/{z}/{x}/{y}.ext, per zoom.
+// Tiles on disk under DIR/{elevation,imagery,ndvi,landcover}/{z}/{x}/{y}.ext, per zoom.
 std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
   std::map<int, ZoomCounts> zooms;
-  for (const char* kind : {"elevation", "imagery", "ndvi"}) {
+  for (const char* kind : {"elevation", "imagery", "ndvi", "landcover"}) {
     std::error_code ec;
     const fs::path root = dir / kind;
     if (!fs::is_directory(root, ec)) continue;
@@ -37,7 +37,7 @@ std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
       const std::string zText = it->path().parent_path().parent_path().filename().string();
       if (zText.empty() || zText.find_first_not_of("0123456789") != std::string::npos || zText.size() > 2) continue;
       ZoomCounts& c = zooms[std::stoi(zText)];
-      (kind[0] == 'e' ? c.elevation : kind[0] == 'i' ? c.imagery : c.ndvi) += 1;
+      (kind[0] == 'e' ? c.elevation : kind[0] == 'i' ? c.imagery : kind[0] == 'n' ? c.ndvi : c.landcover) += 1;
       const auto size = it->file_size(ec);
       if (!ec) c.bytes += size;
     }
@@ -59,14 +59,16 @@ int runInfo(const InfoOptions& options, const Logger& log) {
     crsNames.insert(s.crs);
   }
   nlohmann::json perZoom = nlohmann::json::array();
-  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, bytesOnDisk = 0;
+  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, landcoverOnDisk = 0, bytesOnDisk = 0;
   for (const auto& [z, c] : countTiles(reader->dir())) {
     nlohmann::json zoom = {{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}};
     if (m.ndvi) zoom["ndvi"] = c.ndvi;
+    if (m.landcover) zoom["landcover"] = c.landcover;
     perZoom.push_back(zoom);
     elevationOnDisk += c.elevation;
     imageryOnDisk += c.imagery;
     ndviOnDisk += c.ndvi;
+    landcoverOnDisk += c.landcover;
     bytesOnDisk += c.bytes;
   }
   if (elevationOnDisk != m.elevationTiles || imageryOnDisk != m.imageryTiles)
@@ -75,6 +77,9 @@ int runInfo(const InfoOptions& options, const Logger& log) {
   if (ndviOnDisk != m.ndviTiles)
     log->warn("{}: dataset.json counts {} NDVI tiles, the directory holds {}", options.dataset, m.ndviTiles,
               ndviOnDisk);
+  if (landcoverOnDisk != m.landcoverTiles)
+    log->warn("{}: dataset.json counts {} landcover tiles, the directory holds {}", options.dataset, m.landcoverTiles,
+              landcoverOnDisk);
 
   nlohmann::json tiles = {{"elevation", m.elevationTiles},
                          {"imagery", m.imageryTiles},
@@ -83,6 +88,9 @@ int runInfo(const InfoOptions& options, const Logger& log) {
   // The NDVI layer (import --imagery-nir); null when the dataset has none.
   tiles["ndvi"] = m.ndvi ? nlohmann::json(m.ndviTiles) : nlohmann::json(nullptr);
   if (m.ndvi) tiles["on_disk"]["ndvi"] = ndviOnDisk;
+  // The landcover layer (import --landcover); null when the dataset has none.
+  tiles["landcover"] = m.landcover ? nlohmann::json(m.landcoverTiles) : nlohmann::json(nullptr);
+  if (m.landcover) tiles["on_disk"]["landcover"] = landcoverOnDisk;
   // The TileJSON files beside the dataset (datasets/tilejson.h) that are there: datasets made
   // before they existed have none.
   nlohmann::json tileJson = nlohmann::json::object();
@@ -108,6 +116,7 @@ int runInfo(const InfoOptions& options, const Logger& log) {
       {"tile_size", m.tileSize},
       {"elevation_encoding", datasets::toString(m.elevationEncoding)},
       {"imagery_format", m.imagery ? nlohmann::json(datasets::toString(*m.imagery)) : nlohmann::json(nullptr)},
+      {"landcover_scheme", m.landcover ? nlohmann::json(datasets::toString(*m.landcover)) : nlohmann::json(nullptr)},
       {"tiles", tiles},
       {"bytes", m.bytes},
       {"bytes_on_disk", bytesOnDisk},

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -45,6 +46,18 @@ nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const data
   return out;
 }
 
+// The landcover class at the point (datasets/landcover_classes.h): its code as stored, the
+// scheme's name and coarse kind for it (null for a code the scheme does not know); null where the
+// dataset has no landcover layer or no class there.
+nlohmann::json landcoverJson(const std::optional<uint8_t>& code, const datasets::DatasetMeta& meta) {
+  if (!code || !meta.landcover) return nullptr;
+  const datasets::LandcoverClass* c = datasets::findLandcoverClass(*meta.landcover, *code);
+  return {{"code", *code},
+          {"name", c ? nlohmann::json(c->name) : nlohmann::json(nullptr)},
+          {"kind", c ? nlohmann::json(datasets::toString(c->kind)) : nlohmann::json(nullptr)},
+          {"scheme", datasets::toString(*meta.landcover)}};
+}
+
 }  // namespace
 
 int runQuery(const QueryOptions& options, const Logger& log) {
@@ -73,6 +86,8 @@ int runQuery(const QueryOptions& options, const Logger& log) {
   if (!color) return reportError(log, color.error());
   auto ndvi = reader->ndviAt(options.latDeg, options.lonDeg);
   if (!ndvi) return reportError(log, ndvi.error());
+  auto landcover = reader->landcoverAt(options.latDeg, options.lonDeg);
+  if (!landcover) return reportError(log, landcover.error());
 
   nlohmann::json out = {
       {"dataset", reader->meta().name}, {"lat", options.latDeg}, {"lon", options.lonDeg}, {"height_m", *height}};
@@ -91,6 +106,7 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     out["ndvi"] = std::round(static_cast<double>(**ndvi) * 1e4) / 1e4;
   else
     out["ndvi"] = nullptr;  // no NDVI layer (import --imagery-nir), or none at the point
+  out["landcover"] = landcoverJson(*landcover, reader->meta());
   std::cout << out.dump(2) << "\n";
   return kExitOk;
 }

@@ -16,12 +16,16 @@
 //                                                   "sun_elevation_deg": …, "direct_fraction": 0.8,
 //                                                   "note": "…" } } (optional) }  (or null)
 //     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
+//     "landcover": { "encoding": "class8", "scheme": "worldcover", "tiles": "landcover/{z}/{x}/{y}.png",
+//                    "tile_count": N }  (or null)
 //     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
 //
 // "ndvi" (import --imagery-nir) came after format version 1 was fixed: a dataset.json without
 // the key reads as one without an NDVI layer, so datasets written before it keep working; a key
 // that is there is checked like every other field. The same holds for "imagery.datetime" and
 // "imagery.radiometry" (and each of radiometry's own keys but "method"). "ndvi8" is tile_codec.h's ndviToByte.
+// "landcover" (import --landcover, issue 40) likewise: absent or null is no layer; "class8" is
+// landcover.h's class code per byte, "scheme" one of landcover_classes.h's schemes.
 
 #include "datasets/dataset_format.h"
 
@@ -40,6 +44,7 @@ using nlohmann::json;
 
 constexpr const char* kMetaFile = "dataset.json";
 constexpr const char* kNdviEncoding = "ndvi8";
+constexpr const char* kLandcoverEncoding = "class8";
 
 const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
 
@@ -145,6 +150,23 @@ Result<RadiometryRecord> parseRadiometry(const json& r, const FieldReader& f) {
   return m;
 }
 
+// dataset.json's "landcover" object (not null) into m.landcover / m.landcoverTiles.
+Status parseLandcover(const json& lc, const FieldReader& f, DatasetMeta& m) {
+  if (!lc.is_object()) return f.bad("landcover", "must be an object or null");
+  std::string encoding, scheme;
+  int64_t count = 0;
+  VEG_TRY_ASSIGN(encoding, f.text(lc, "encoding", "landcover.encoding"));
+  if (encoding != kLandcoverEncoding)
+    return f.bad("landcover.encoding", concat("is '", encoding, "'; expected ", kLandcoverEncoding));
+  VEG_TRY_ASSIGN(scheme, f.text(lc, "scheme", "landcover.scheme"));
+  auto parsed = parseLandcoverScheme(scheme);
+  if (!parsed || !*parsed) return f.bad("landcover.scheme", concat("is '", scheme, "'; expected worldcover or nlcd"));
+  VEG_TRY_ASSIGN(count, f.integer(lc, "tile_count", "landcover.tile_count", 0, INT64_MAX));
+  m.landcover = **parsed;
+  m.landcoverTiles = static_cast<uint64_t>(count);
+  return {};
+}
+
 Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
   DatasetMeta m;
@@ -222,6 +244,9 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     m.ndviTiles = static_cast<uint64_t>(count);
   }
 
+  if (auto lc = j.find("landcover"); lc != j.end() && !lc->is_null())
+    if (Status s = parseLandcover(*lc, f, m); !s) return s.error();
+
   VEG_TRY_ASSIGN(m.attribution, f.text(j, "attribution", "attribution"));
   const json* src = nullptr;
   VEG_TRY_ASSIGN(src, f.get(j, "sources", "sources"));
@@ -290,6 +315,12 @@ json toJson(const DatasetMeta& m) {
   }
   json ndvi = nullptr;
   if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};
+  json landcover = nullptr;
+  if (m.landcover)
+    landcover = {{"encoding", kLandcoverEncoding},
+                 {"scheme", toString(*m.landcover)},
+                 {"tiles", "landcover/{z}/{x}/{y}.png"},
+                 {"tile_count", m.landcoverTiles}};
   return json{{"format_version", m.formatVersion},
               {"name", m.name},
               {"bounds",
@@ -308,6 +339,7 @@ json toJson(const DatasetMeta& m) {
                 {"tile_count", m.elevationTiles}}},
               {"imagery", imagery},
               {"ndvi", ndvi},
+              {"landcover", landcover},
               {"attribution", m.attribution},
               {"sources", sources},
               {"bytes", m.bytes}};
@@ -373,6 +405,10 @@ fs::path imageryTilePath(const fs::path& datasetDir, const geo::TileId& id, Imag
 
 fs::path ndviTilePath(const fs::path& datasetDir, const geo::TileId& id) {
   return datasetDir / "ndvi" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".png");
+}
+
+fs::path landcoverTilePath(const fs::path& datasetDir, const geo::TileId& id) {
+  return datasetDir / "landcover" / std::to_string(id.z) / std::to_string(id.x) / concat(id.y, ".png");
 }
 
 }  // namespace vegstream::datasets

@@ -8,6 +8,8 @@
 //   DIR/imagery/{z}/{x}/{y}.jpg|png       RGB JPEG or RGBA PNG (alpha 0 = no data)
 //   DIR/ndvi/{z}/{x}/{y}.png              optional: 8-bit grey PNG, NDVI from the near-infrared
 //                                         and red bands (tile_codec.h ndviToByte; 0 = no data)
+//   DIR/landcover/{z}/{x}/{y}.png         optional: 8-bit grey PNG, the class code as the source
+//                                         stores it (landcover.h; 0 = no data)
 //
 // XYZ Web Mercator scheme, rows counted from the north, 256-pixel tiles, pixel (i, j) of a tile
 // sampled at its centre, so any static server can serve a dataset and QGIS/MapLibre read it.
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "datasets/landcover_classes.h"
 #include "geo/bounds.h"
 #include "geo/xyz_tiles.h"
 
@@ -92,6 +95,10 @@ struct DatasetMeta {
   uint64_t imageryTiles = 0;
   bool ndvi = false;  // an NDVI layer (import --imagery-nir); false: datasets as before
   uint64_t ndviTiles = 0;
+  // A landcover layer (import --landcover) and the scheme of its codes; nullopt: none (and in
+  // datasets written before the layer existed).
+  std::optional<LandcoverScheme> landcover;
+  uint64_t landcoverTiles = 0;
   uint64_t bytes = 0;  // all tile files together
 };
 
@@ -105,5 +112,6 @@ Status writeDatasetMeta(const std::filesystem::path& datasetDir, const DatasetMe
 std::filesystem::path elevationTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
 std::filesystem::path imageryTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id, ImageryFormat f);
 std::filesystem::path ndviTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
+std::filesystem::path landcoverTilePath(const std::filesystem::path& datasetDir, const geo::TileId& id);
 
 }  // namespace vegstream::datasets

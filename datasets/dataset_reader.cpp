@@ -114,9 +114,9 @@ void DatasetReader::insert(Entry entry) {
 }
 
 Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::TileId& id) {
-  const Key key{id, false};
+  const Key key{id, Layer::Height};
   if (const Entry* e = cached(key)) return e->height;
-  Entry entry{key, nullptr, nullptr};
+  Entry entry{key, nullptr, nullptr, nullptr};
   const fs::path path = elevationTilePath(dir_, id);
   std::error_code ec;
   if (fs::exists(path, ec)) {
@@ -133,9 +133,9 @@ Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::T
 }
 
 Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::TileId& id) {
-  const Key key{id, true};
+  const Key key{id, Layer::Color};
   if (const Entry* e = cached(key)) return e->color;
-  Entry entry{key, nullptr, nullptr};
+  Entry entry{key, nullptr, nullptr, nullptr};
   std::optional<ColorTile> tile;
   std::error_code ec;
   if (meta_.imagery) {
@@ -169,6 +169,22 @@ Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::Til
   }
   insert(entry);
   return entry.color;
+}
+
+Result<std::shared_ptr<const LandcoverTile>> DatasetReader::landcoverTile(const geo::TileId& id) {
+  const Key key{id, Layer::Landcover};
+  if (const Entry* e = cached(key)) return e->landcover;
+  Entry entry{key, nullptr, nullptr, nullptr};
+  const fs::path path = landcoverTilePath(dir_, id);
+  std::error_code ec;
+  if (meta_.landcover && fs::exists(path, ec)) {
+    auto tile = readLandcoverTile(path, id, meta_.tileSize);  // checks the size
+    if (!tile) return tile.error();
+    entry.landcover = std::make_shared<const LandcoverTile>(std::move(*tile));
+    ++decoded_;
+  }
+  insert(entry);
+  return entry.landcover;
 }
 
 Result<double> DatasetReader::heightAtZoom(double latDeg, double lonDeg, int z) {
@@ -247,6 +263,25 @@ Result<std::optional<float>> DatasetReader::ndviAt(double latDeg, double lonDeg)
     if (*weight > 0.0) return std::optional<float>(static_cast<float>(sum / *weight));
   }
   return std::optional<float>{};
+}
+
+// Nearest pixel, not bilinear: classes are categories. The pixel whose square holds the point
+// (its global pixel coordinates floored), at the finest zoom where it has a class.
+Result<std::optional<uint8_t>> DatasetReader::landcoverAt(double latDeg, double lonDeg) {
+  if (!meta_.landcover || !contains(latDeg, lonDeg)) return std::optional<uint8_t>{};
+  const int size = meta_.tileSize;
+  for (int z = meta_.maxZoom; z >= meta_.minZoom; --z) {
+    const glm::dvec2 t = geo::lonLatToTileXY({lonDeg, latDeg}, z);
+    const PixelRef p =
+        pixelRef(static_cast<int64_t>(std::floor(t.x * size)), static_cast<int64_t>(std::floor(t.y * size)), z, size);
+    if (!p.valid) continue;
+    auto tile = landcoverTile(p.tile);
+    if (!tile) return tile.error();
+    if (!*tile) continue;
+    const uint8_t code = (*tile)->at(p.i, p.j);
+    if (code != 0) return std::optional<uint8_t>(code);
+  }
+  return std::optional<uint8_t>{};
 }
 
 }  // namespace vegstream::datasets

@@ -18,6 +18,7 @@
 
 #include "core/result.h"
 #include "datasets/dataset_format.h"
+#include "datasets/landcover.h"
 #include "datasets/tile_codec.h"
 
 namespace vegstream::datasets {
@@ -48,12 +49,19 @@ class DatasetReader {
   // NDVI (−1 … 1, to the encoding's step of 1/127), bilinear like colorAt over the NDVI layer.
   // nullopt: no NDVI at the point, outside the bounds, or a dataset without the layer.
   Result<std::optional<float>> ndviAt(double latDeg, double lonDeg);
+  // Landcover class code (landcover.h; never blended): the pixel whose square holds the point,
+  // at the finest zoom where that pixel has a class. nullopt: no class there at any zoom,
+  // outside the bounds, or a dataset without the layer. Codes the scheme does not know are
+  // returned as stored.
+  Result<std::optional<uint8_t>> landcoverAt(double latDeg, double lonDeg);
 
   // One decoded tile; nullptr when the dataset has no such tile. A colour tile carries the NDVI
   // layer's tile in `ndvi` when the dataset has the layer (empty where that tile is missing);
   // where only the NDVI tile exists its rgba is all "no data".
   Result<std::shared_ptr<const HeightTile>> heightTile(const geo::TileId& id);
   Result<std::shared_ptr<const ColorTile>> colorTile(const geo::TileId& id);
+  // The landcover layer's tile; nullptr when there is none (or no layer).
+  Result<std::shared_ptr<const LandcoverTile>> landcoverTile(const geo::TileId& id);
 
   // Tiles decoded from disk so far (the LRU's misses), for tests.
   uint64_t tilesDecoded() const { return decoded_; }
@@ -62,18 +70,22 @@ class DatasetReader {
   DatasetReader(std::filesystem::path dir, DatasetMeta meta, size_t cachedTiles)
       : dir_(std::move(dir)), meta_(std::move(meta)), capacity_(cachedTiles) {}
 
+  enum class Layer : uint8_t { Height, Color, Landcover };
   struct Key {
     geo::TileId id;
-    bool imagery = false;
+    Layer layer = Layer::Height;
     bool operator==(const Key&) const = default;
   };
   struct KeyHash {
-    size_t operator()(const Key& k) const { return std::hash<geo::TileId>{}(k.id) ^ (k.imagery ? 0x5bd1e995u : 0u); }
+    size_t operator()(const Key& k) const {
+      return std::hash<geo::TileId>{}(k.id) ^ (static_cast<size_t>(k.layer) * 0x5bd1e995u);
+    }
   };
   struct Entry {
     Key key;
     std::shared_ptr<const HeightTile> height;
     std::shared_ptr<const ColorTile> color;
+    std::shared_ptr<const LandcoverTile> landcover;
   };
   const Entry* cached(const Key& key);
   void insert(Entry entry);

@@ -14,6 +14,7 @@
 
 #include "datasets/message.h"
 #include "core/parallel_for.h"
+#include "datasets/landcover.h"
 #include "datasets/tile_codec.h"
 
 namespace vegstream::datasets {
@@ -101,7 +102,7 @@ Result<Tile> checkTileSize(Result<Tile> t, const fs::path& p, const DatasetMeta&
 // parent: for parent texel `at` (row-major index), add(sum, kid, childTexel) is called on the
 // four child texels of its block and returns whether that one was valid (and added to sum);
 // where any was, put(at, sum, n) gets the sum of the n valid ones. Returns whether any
-// parent texel was put.
+// parent texel was put. The "sum" is any accumulator (landcover collects the classes).
 template <class Sum, class Kid, class Add, class Put>
 bool meanOfValidChildren(const std::array<std::optional<Kid>, 4>& kids, int size, Add&& add, Put&& put) {
   bool valid = false;
@@ -210,6 +211,39 @@ Result<std::optional<ColorTile>> downsampleNdvi(const fs::path& dir, const geo::
   return std::optional<ColorTile>(std::move(out));
 }
 
+// Landcover: the mode of the valid child classes (landcover.h modeOfClasses: ties to the
+// smallest code), never a mean — classes are categories. The "sum" collects the block's classes.
+struct ClassBlock {
+  std::array<uint8_t, 4> classes{};
+  size_t n = 0;
+};
+Result<std::optional<LandcoverTile>> downsampleLandcover(const fs::path& dir, const geo::TileId& parentId,
+                                                         const std::set<geo::TileId>& present,
+                                                         const DatasetMeta& meta) {
+  auto read = readChildren<LandcoverTile>(parentId, present, [&](const geo::TileId& id) {
+    return readLandcoverTile(landcoverTilePath(dir, id), id, meta.tileSize);
+  });
+  if (!read) return read.error();
+  if (!*read) return std::optional<LandcoverTile>{};
+  const int size = meta.tileSize;
+  LandcoverTile out;
+  out.id = parentId;
+  out.size = size;
+  out.classes.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
+  const bool valid = meanOfValidChildren<ClassBlock>(
+      **read, size,
+      [](ClassBlock& block, const LandcoverTile& kid, size_t k) {
+        if (kid.classes[k] == 0) return false;
+        block.classes[block.n++] = kid.classes[k];
+        return true;
+      },
+      [&](size_t at, const ClassBlock& block, int) {
+        out.classes[at] = modeOfClasses(std::span(block.classes.data(), block.n));
+      });
+  if (!valid) return std::optional<LandcoverTile>{};
+  return std::optional<LandcoverTile>(std::move(out));
+}
+
 }  // namespace
 
 Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& progress, const PyramidOptions& options) {
@@ -220,18 +254,21 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
   if (meta.imagery) imagery = listTiles(dir / "imagery", meta.maxZoom, imageryExt);
   std::set<geo::TileId> ndvi;
   if (meta.ndvi) ndvi = listTiles(dir / "ndvi", meta.maxZoom, ".png");
+  std::set<geo::TileId> landcover;
+  if (meta.landcover) landcover = listTiles(dir / "landcover", meta.maxZoom, ".png");
 
   for (int z = meta.maxZoom - 1; z >= meta.minZoom; --z) {
     std::set<geo::TileId> parentSet;
     for (const auto& t : elevation) parentSet.insert(geo::parent(t));
     for (const auto& t : imagery) parentSet.insert(geo::parent(t));
     for (const auto& t : ndvi) parentSet.insert(geo::parent(t));
+    for (const auto& t : landcover) parentSet.insert(geo::parent(t));
     const std::vector<geo::TileId> parents(parentSet.begin(), parentSet.end());
     progress.addTotal(parents.size());
     progress.stage(concat("zoom ", z));
 
     std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0),
-        wroteNdvi(parents.size(), 0);
+        wroteNdvi(parents.size(), 0), wroteLandcover(parents.size(), 0);
     std::vector<uint64_t> bytes(parents.size(), 0);
     Status s = parallelFor(parents.size(), options.threads, options.tasks, [&](size_t i) -> Status {
       const geo::TileId& id = parents[i];
@@ -264,6 +301,16 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
           wroteNdvi[i] = 1;
         }
       }
+      if (meta.landcover) {
+        auto l = downsampleLandcover(dir, id, landcover, meta);
+        if (!l) return l.error();
+        if (*l) {
+          const fs::path p = landcoverTilePath(dir, id);
+          if (auto w = writeLandcoverTile(p, **l); !w) return w;
+          written += fileBytes(p);
+          wroteLandcover[i] = 1;
+        }
+      }
       bytes[i] = written;
       progress.tileDone(written);
       return {};
@@ -273,6 +320,7 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
     elevation.clear();
     imagery.clear();
     ndvi.clear();
+    landcover.clear();
     for (size_t i = 0; i < parents.size(); ++i) {
       if (wroteElevation[i]) {
         elevation.insert(parents[i]);
@@ -285,6 +333,10 @@ Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& pro
       if (wroteNdvi[i]) {
         ndvi.insert(parents[i]);
         ++meta.ndviTiles;
+      }
+      if (wroteLandcover[i]) {
+        landcover.insert(parents[i]);
+        ++meta.landcoverTiles;
       }
       meta.bytes += bytes[i];
     }

@@ -278,29 +278,39 @@ uint8_t ndviToByte(float ndvi) {
 
 float ndviFromByte(uint8_t v) { return v == 0 ? NAN : static_cast<float>(v - 128) / 127.0f; }
 
-Status writeNdviTile(const fs::path& path, const ColorTile& tile) {
-  assert(tile.size > 0 && tile.ndvi.size() == static_cast<size_t>(tile.size) * static_cast<size_t>(tile.size));
+Status writeGrey8Tile(const fs::path& path, int size, std::span<const uint8_t> bytes) {
+  assert(size > 0 && bytes.size() == static_cast<size_t>(size) * static_cast<size_t>(size));
   return writeFileAtomically(
-      path, [&](const fs::path& tmp) { return writePixels(path, tmp, "png", tile.size, 1, tile.ndvi.data(), 0); });
+      path, [&](const fs::path& tmp) { return writePixels(path, tmp, "png", size, 1, bytes.data(), 0); });
 }
+
+Result<std::vector<uint8_t>> decodeGrey8Tile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
+                                             int expectedSize, const char* layer) {
+  auto px = decodeRgba8(bytes, nameForErrors, false);
+  if (!px) return px.error();
+  // Only the grey PNG that writeGrey8Tile makes: an RGB or 16-bit image would be read as some
+  // other quantity and silently give wrong values.
+  if (!px->png || px->channels != 1 || !px->eightBit)
+    return invalidTile(nameForErrors,
+                       concat("is not a tile of the ", layer, " layer: expected a one-channel 8-bit PNG, found ",
+                              px->png ? "a PNG" : "a JPEG/WebP", " with ", px->channels, " channel(s)",
+                              px->eightBit ? "" : " of more than 8 bits"));
+  if (px->size != expectedSize)
+    return invalidTile(nameForErrors,
+                       concat("is ", px->size, " pixels wide; ", layer, " tiles are ", expectedSize, " pixels wide"));
+  std::vector<uint8_t> out(px->rgba.size() / 4);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = px->rgba[i * 4];
+  return out;
+}
+
+Result<std::vector<uint8_t>> readTileFile(const fs::path& path) { return readFileBytes(path); }
+
+Status writeNdviTile(const fs::path& path, const ColorTile& tile) { return writeGrey8Tile(path, tile.size, tile.ndvi); }
 
 Result<std::vector<uint8_t>> decodeNdviTile(std::span<const uint8_t> bytes, const geo::TileId& id,
                                             const std::string& nameForErrors, int expectedSize) {
   (void)id;  // the bytes carry no position; kept for symmetry with the other decoders
-  auto px = decodeRgba8(bytes, nameForErrors, false);
-  if (!px) return px.error();
-  // Only the grey PNG that writeNdviTile makes: an RGB or 16-bit image would be read as some
-  // other quantity and silently give wrong NDVI.
-  if (!px->png || px->channels != 1 || !px->eightBit)
-    return invalidTile(nameForErrors, concat("is not an NDVI tile: expected a one-channel 8-bit PNG, found ",
-                                             px->png ? "a PNG" : "a JPEG/WebP", " with ", px->channels, " channel(s)",
-                                             px->eightBit ? "" : " of more than 8 bits"));
-  if (px->size != expectedSize)
-    return invalidTile(nameForErrors,
-                       concat("is ", px->size, " pixels wide; NDVI tiles are ", expectedSize, " pixels wide"));
-  std::vector<uint8_t> out(px->rgba.size() / 4);
-  for (size_t i = 0; i < out.size(); ++i) out[i] = px->rgba[i * 4];
-  return out;
+  return decodeGrey8Tile(bytes, nameForErrors, expectedSize, "NDVI");
 }
 
 Result<std::vector<uint8_t>> readNdviTile(const fs::path& path, const geo::TileId& id, int expectedSize) {

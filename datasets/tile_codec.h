@@ -65,6 +65,16 @@ Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::T
 Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
                                   const std::string& nameForErrors);
 
+// One-channel 8-bit layers (NDVI, landcover.h): `size` × `size` bytes written as a grey PNG
+// (atomically; errors name the path), and read back only from such a PNG: anything else (RGB,
+// 16-bit, JPEG, another size, a corrupt file) is InvalidInput naming `nameForErrors` and saying
+// it is not a tile of the `layer` layer ("NDVI", "landcover").
+Status writeGrey8Tile(const std::filesystem::path& path, int size, std::span<const uint8_t> bytes);
+Result<std::vector<uint8_t>> decodeGrey8Tile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
+                                             int expectedSize, const char* layer);
+// A tile file's bytes: NotFound naming it when it does not exist, Io when it cannot be read.
+Result<std::vector<uint8_t>> readTileFile(const std::filesystem::path& path);
+
 // NDVI tiles: 8-bit greyscale PNG of size × size bytes in the ndviToByte encoding. Writing
 // takes tile.ndvi (size × size); decoding returns the size × size bytes (a PNG that is not
 // one-channel 8-bit of the tile size is InvalidInput naming `nameForErrors`). The tile size is

@@ -74,6 +74,8 @@ TEST(JsonReadersFuzz, DatasetJson) {
                   {"imagery", "seed 7", "WGS 84 (EPSG:4326)", "biome colours"}};
   meta.elevationTiles = 40;
   meta.imageryTiles = 40;
+  meta.landcover = datasets::LandcoverScheme::Nlcd;  // the optional layer's object is mutated too
+  meta.landcoverTiles = 12;
   meta.bytes = 123456;
   ASSERT_TRUE(datasets::writeDatasetMeta(dir, meta).ok());
   const std::string text = readWhole(dir / "dataset.json");

@@ -2,8 +2,9 @@
 // workers, `query`, `plants` and the importers' checks run on every tile file, local or fetched
 // over HTTP. Small valid tiles (64 × 64 pixels of the synthetic terrain's heights and colours,
 // datasets/synthetic_generator.h) are written by the dataset writers, then fed mutated
-// (binary_mutations.h) to decodeHeightTile and decodeColorTile in process: every call must return
-// a tile or a user error naming it — never throw, never crash.
+// (binary_mutations.h) to decodeHeightTile, decodeColorTile and decodeLandcoverTile (the
+// one-channel codec NDVI shares) in process: every call must return a tile or a user error
+// naming it — never throw, never crash.
 
 #include <chrono>
 #include <cmath>
@@ -16,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "datasets/landcover.h"
 #include "datasets/synthetic_generator.h"
 #include "datasets/tile_codec.h"
 #include "tests/fuzz/binary_mutations.h"
@@ -132,6 +134,30 @@ TEST(TileDecodersFuzz, ImageryJpeg) {
     return r;
   };
   fuzz(dir, fileBytes(file), "imagery tile (JPEG)", mutateBytes, decode);
+}
+
+TEST(TileDecodersFuzz, LandcoverPng) {
+  const fs::path dir = ownTestDir();
+  const fs::path file = dir / "landcover.png";
+  datasets::LandcoverTile t;
+  t.size = kSide;
+  const datasets::SyntheticTerrain terrain(7);
+  // WorldCover-like classes in bands of height, no data (0) in a corner.
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const int band = static_cast<int>(terrain.heightM(x * kSpacingM, -y * kSpacingM)) / 200 % 9;
+      t.classes.push_back(static_cast<uint8_t>(x + y < 6 ? 0 : 10 + 10 * band));
+    }
+  }
+  ASSERT_TRUE(datasets::writeLandcoverTile(file, t).ok());
+  const auto decode = [](const std::vector<uint8_t>& b) {
+    auto r = datasets::decodeLandcoverTile(b, {12, 2138, 1447}, "fuzz/l.png", kSide);
+    if (r.ok()) {
+      EXPECT_EQ(r->classes.size(), static_cast<size_t>(kSide) * static_cast<size_t>(kSide));
+    }
+    return r;
+  };
+  fuzz(dir, fileBytes(file), "landcover tile (PNG)", mutatePng, decode);
 }
 
 }  // namespace

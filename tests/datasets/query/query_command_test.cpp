@@ -120,7 +120,8 @@ TEST_F(GrandCanyon, BadFieldInDatasetJsonIsNamed) {
 }
 
 // A dataset without the NDVI layer (no --imagery-nir), and one written before the layer existed
-// (no "ndvi" key in dataset.json): query prints "ndvi": null and everything else as before.
+// (no "ndvi" nor "landcover" key in dataset.json): query prints "ndvi": null, "landcover": null
+// and everything else as before.
 TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
   const fs::path old = testTmp("no_ndvi_key");
   fs::copy(dir(), old, fs::copy_options::recursive);
@@ -130,7 +131,9 @@ TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
     meta = json::parse(in);
   }
   EXPECT_TRUE(meta.contains("ndvi") && meta["ndvi"].is_null());
+  EXPECT_TRUE(meta.contains("landcover") && meta["landcover"].is_null());
   meta.erase("ndvi");
+  meta.erase("landcover");  // nor a landcover layer (issue 40)
   std::ofstream(old / "dataset.json") << meta.dump(2);
 
   const glm::dvec2 p = geo::tileXYToLonLat({759.3137, 1608.7071}, 12);
@@ -140,11 +143,12 @@ TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
   ASSERT_EQ(before.exitCode, 0) << before.err;
   const json j = json::parse(now.out);
   EXPECT_TRUE(j.contains("ndvi") && j["ndvi"].is_null()) << now.out;
+  EXPECT_TRUE(j.contains("landcover") && j["landcover"].is_null()) << now.out;
   EXPECT_EQ(json::parse(before.out), j);
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{"color", "dataset", "height_m", "lat", "lon", "ndvi", "species",
-                                            "species_bare", "species_candidates"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"color", "dataset", "height_m", "landcover", "lat", "lon", "ndvi",
+                                            "species", "species_bare", "species_candidates"}));
   auto reader = datasets::DatasetReader::open(dir());
   ASSERT_TRUE(reader.ok());
   const double lat = std::stod(std::to_string(p.y)), lon = std::stod(std::to_string(p.x));
