@@ -177,6 +177,21 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   } else if (!o.imageryNirCrs.empty()) {
     return userError("--imagery-nir-crs states the CRS of --imagery-nir FILE, which was not given");
   }
+  if (!o.landcover.empty()) {
+    datasets::GeoTiffImportOptions::Landcover l;
+    l.file = o.landcover;
+    auto scheme = datasets::parseLandcoverScheme(o.landcoverScheme);
+    if (!scheme) return scheme.error();
+    l.scheme = *scheme;
+    if (!o.landcoverCrs.empty()) {
+      auto e = crsOption("--landcover-crs", o.landcoverCrs);
+      if (!e) return e.error();
+      l.crs = *e;
+    }
+    g.landcover = std::move(l);
+  } else if (!o.landcoverCrs.empty() || o.landcoverScheme != "auto") {
+    return userError("--landcover-scheme and --landcover-crs describe --landcover FILE, which was not given");
+  }
   auto enc = datasets::parseElevationEncoding(o.encoding);
   if (!enc) return enc.error();
   g.encoding = *enc;
@@ -268,6 +283,13 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
   cmd->add_option("--nir-band", o.nirBand,
                   "The near-infrared band (of --imagery-nir, or of --imagery itself when alone, e.g. NAIP's 4)")
       ->check(CLI::Range(1, 65535));
+  cmd->add_option("--landcover", o.landcover,
+                  "A landcover class raster (ESA WorldCover or NLCD codes; any format and CRS) → the landcover "
+                  "layer, resampled by nearest class, never blended; query reports the class");
+  cmd->add_option("--landcover-scheme", o.landcoverScheme,
+                  "The landcover codes: worldcover, nlcd, or auto (detected from the codes present)")
+      ->capture_default_str();
+  cmd->add_option("--landcover-crs", o.landcoverCrs, "The landcover raster's CRS when it has none or a wrong one");
   cmd->add_option("--imagery-nir-crs", o.imageryNirCrs,
                   "The NIR file's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
   cmd->add_option("--stretch", o.stretch,
@@ -354,7 +376,7 @@ int runImport(const ImportOptions& o, const Logger& log) {
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
     if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty() ||
-        !o.bands.empty() || o.nirBand > 0 ||
+        !o.bands.empty() || o.nirBand > 0 || !o.landcover.empty() ||
         !o.imageryDatetime.empty() || !o.imagerySun.empty() || o.radiometry != "auto")
       meta = userError(
           "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime and "
@@ -370,9 +392,10 @@ int runImport(const ImportOptions& o, const Logger& log) {
     return 130;
   }
   if (!meta) return reportError(log, meta.error());
-  const uint64_t tiles = meta->elevationTiles + meta->imageryTiles + meta->ndviTiles;
+  const uint64_t tiles = meta->elevationTiles + meta->imageryTiles + meta->ndviTiles + meta->landcoverTiles;
   const double s = progress.seconds();
-  const std::string ndvi = meta->ndvi ? ", " + std::to_string(meta->ndviTiles) + " NDVI" : std::string();
+  std::string ndvi = meta->ndvi ? ", " + std::to_string(meta->ndviTiles) + " NDVI" : std::string();
+  if (meta->landcover) ndvi += ", " + std::to_string(meta->landcoverTiles) + " landcover";
   log->info(
       "imported {}: {} tiles ({} elevation, {} imagery{}), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
       "{:.2f} s ({:.0f} tiles/s) → {}",

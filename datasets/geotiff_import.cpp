@@ -19,6 +19,7 @@
 #include "datasets/dataset_finish.h"
 #include "datasets/deshading_plan.h"
 #include "datasets/import_journal.h"
+#include "datasets/landcover.h"
 #include "datasets/message.h"
 #include "datasets/tile_producer.h"
 #include "geo/gdal_quiet.h"
@@ -68,6 +69,9 @@ std::string fingerprint(const GeoTiffImportOptions& o) {
   j["bands"] = files(o.imagery.bands);
   j["band_numbers"] = o.imagery.bandNumbers;
   if (o.nir) j["nir"] = {files({o.nir->file}), o.nir->band};
+  if (o.landcover)
+    j["landcover"] = {files({o.landcover->file}), o.landcover->scheme ? toString(*o.landcover->scheme) : "auto",
+                      o.landcover->crs ? o.landcover->crs->wkt() : ""};
   j["crs"] = {o.demCrs ? o.demCrs->wkt() : "", o.imagery.assumeCrs ? o.imagery.assumeCrs->wkt() : ""};
   j["options"] = {o.demNodata.value_or(NAN), static_cast<int>(o.heightResampling), o.imageryDatetime,
                   o.imagerySun ? o.imagerySun->azimuthDeg : NAN, o.imagerySun ? o.imagerySun->elevationDeg : NAN,
@@ -119,6 +123,8 @@ struct Grids {
   const PreparedImagery* imagery;
   const SourceGrid* imageryGrid;
   const NdviSource* ndvi;
+  const SourceGrid* landcover;
+  std::optional<LandcoverScheme> scheme;
 };
 
 int chooseMaxZoom(const GeoTiffImportOptions& o, const Grids& g, double lat) {
@@ -143,6 +149,11 @@ DatasetMeta initialMeta(const GeoTiffImportOptions& o, const Grids& g, int maxZo
     const std::string paths = o.imagery.files.empty() ? joined(o.imagery.bands) : joined(o.imagery.files);
     meta.sources.push_back(sourceInfo("imagery", paths, *g.imageryGrid, g.imagery->description));
   }
+  if (g.landcover) {
+    meta.landcover = g.scheme;
+    meta.sources.push_back(sourceInfo("landcover", o.landcover->file, *g.landcover,
+                                      concat("classes of ", toString(*g.scheme), ", nearest class")));
+  }
   if (g.ndvi) {
     meta.ndvi = true;
     SourceInfo nir{"nir", o.nir->file, g.ndvi->nirCrs().name(), g.ndvi->description()};
@@ -163,6 +174,7 @@ Status countTiles(const GeoTiffImportOptions& o, const std::vector<geo::TileId>&
     meta.bytes += t.bytes;
     meta.imageryTiles += t.imagery;
     meta.ndviTiles += t.ndvi;
+    meta.landcoverTiles += t.landcover;
     if (!t.elevation) continue;
     ++meta.elevationTiles;
     withHeights.push_back(tiles[i]);
@@ -183,7 +195,7 @@ Result<std::optional<ImageryTiling>> planImagery(const GeoTiffImportOptions& o, 
                                                  const std::vector<geo::TileId>& tiles, RadiometryRecord& record,
                                                  const Logger& log) {
   if (!g.imagery) return std::optional<ImageryTiling>();
-  TileSources src{&g.dem, g.imagery, g.imageryGrid, nullptr, nullptr, o.heightResampling};
+  TileSources src{&g.dem, g.imagery, g.imageryGrid, nullptr, nullptr, nullptr, o.heightResampling};
   ImageryTiling tiling{g.imagery->linear, std::nullopt, o.directFraction};
   auto plan = planDeshading(
       o, record, tiling, tiles, g.dem.extent().centre(),
@@ -234,7 +246,8 @@ Result<DatasetMeta> importTiles(const GeoTiffImportOptions& o, const Grids& g, c
   progress.addTotal(tiles.size());
   progress.stage(concat("zoom ", maxZoom));
   std::vector<TileRecord> records(tiles.size());
-  const TileSources src{&g.dem, g.imagery, g.imageryGrid, *tiling ? &**tiling : nullptr, g.ndvi, o.heightResampling};
+  const TileSources src{&g.dem, g.imagery,   g.imageryGrid,    *tiling ? &**tiling : nullptr,
+                        g.ndvi, g.landcover, o.heightResampling};
   Status s = parallelFor(tiles.size(), o.threads, o.tasks, [&](size_t i) -> Status {
     if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
     if (const TileRecord* done = journal->done(tiles[i])) {
@@ -253,6 +266,49 @@ Result<DatasetMeta> importTiles(const GeoTiffImportOptions& o, const Grids& g, c
   if (o.cancel && o.cancel->load()) return fail(makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written"));
   if (auto done = journal->complete(o.out); !done) return fail(done.error());
   return result;
+}
+
+// The landcover source: opened (band 1), checked over its overview, its scheme stated or
+// detected there, unknown codes warned about once.
+struct LandcoverLayer {
+  std::shared_ptr<RasterSource> source;  // shared: grid points into it
+  std::shared_ptr<SourceGrid> grid;
+  LandcoverScheme scheme = LandcoverScheme::WorldCover;
+};
+
+Result<LandcoverLayer> openLandcover(const GeoTiffImportOptions::Landcover& in, const SourceGrid& dem,
+                                     uint64_t overviewPixels, const Logger& log) {
+  SourceOptions so;
+  so.flag = "--landcover";
+  so.crsFlag = "--landcover-crs";
+  so.assumeCrs = in.crs;
+  so.bands = {1};
+  auto src = RasterSource::open({in.file}, so);
+  if (!src) return src.error();
+  LandcoverLayer l;
+  l.source = std::make_shared<RasterSource>(std::move(*src));
+  auto grid = SourceGrid::make(*l.source);
+  if (!grid) return grid.error();
+  l.grid = std::make_shared<SourceGrid>(std::move(*grid));
+  if (!extentsOverlap(dem.extent(), l.grid->extent()))
+    return makeError(ErrorKind::InvalidInput, concat("the landcover ", in.file, " (", extentText(l.grid->extent()),
+                                                     ") and the DEM (", extentText(dem.extent()), ") do not overlap"));
+  auto overview = l.source->readOverview(overviewPixels);
+  if (!overview) return overview.error();
+  if (auto s = checkClassRaster(*overview); !s) return s.error();
+  const ClassHistogram histogram = classHistogram(*overview);
+  if (in.scheme) {
+    l.scheme = *in.scheme;
+  } else {
+    auto scheme = detectLandcoverScheme(histogram, in.file);
+    if (!scheme) return scheme.error();
+    l.scheme = *scheme;
+  }
+  const std::string unknown = unknownClassesWarning(unknownClasses(histogram, l.scheme), l.scheme);
+  if (!unknown.empty()) log->warn("{}: {}", in.file, unknown);
+  log->info("{}: landcover, {} classes, {} ({:.1f} m pixels)", in.file, toString(l.scheme), l.grid->crs().name(),
+            l.grid->pixelSizeM());
+  return l;
 }
 
 }  // namespace
@@ -324,8 +380,18 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
       log->info("{}: taken at {} (its metadata)", o.imagery.label(), *t);
       options.imageryDatetime = *t;
     }
-  const Grids grids{*demGrid, imagery ? &*imagery : nullptr, imageryGrid ? &*imageryGrid : nullptr,
-                    ndvi ? &*ndvi : nullptr};
+  std::optional<LandcoverLayer> landcover;
+  if (o.landcover) {
+    auto l = openLandcover(*o.landcover, *demGrid, overviewPixels, log);
+    if (!l) return l.error();
+    landcover = std::move(*l);
+  }
+  const Grids grids{*demGrid,
+                    imagery ? &*imagery : nullptr,
+                    imageryGrid ? &*imageryGrid : nullptr,
+                    ndvi ? &*ndvi : nullptr,
+                    landcover ? landcover->grid.get() : nullptr,
+                    landcover ? std::optional<LandcoverScheme>(landcover->scheme) : std::nullopt};
   return importTiles(options, grids, log, progress);
 }
 

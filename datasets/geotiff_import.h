@@ -31,6 +31,7 @@
 #include "datasets/dataset_format.h"
 #include "datasets/deshading.h"
 #include "datasets/imagery_source.h"
+#include "datasets/landcover_classes.h"
 #include "datasets/ndvi_source.h"
 #include "datasets/progress.h"
 #include "geo/crs.h"
@@ -54,6 +55,15 @@ struct GeoTiffImportOptions {
   std::optional<double> demNodata;  // --dem-nodata
   ImageryInput imagery;             // neither file nor bands: no imagery
   std::optional<NirInput> nir;      // --imagery-nir: an NDVI layer (needs imagery)
+  // --landcover FILE: a class raster (ESA WorldCover, NLCD codes) stored as the landcover layer,
+  // sampled by nearest class, never blended (landcover.h); its scheme stated
+  // (--landcover-scheme) or detected from its codes; its CRS stated with --landcover-crs.
+  struct Landcover {
+    std::string file;
+    std::optional<LandcoverScheme> scheme;
+    std::optional<geo::Crs> crs;
+  };
+  std::optional<Landcover> landcover;
   HeightResampling heightResampling = HeightResampling::Bilinear;
   // When the imagery was taken (--imagery-datetime, ISO 8601 with a zone; empty: unknown):
   // recorded in dataset.json, and the sun at the dataset's centre then de-shades the imagery.

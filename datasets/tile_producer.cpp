@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "datasets/dataset_finish.h"
+#include "datasets/landcover.h"
 #include "datasets/tile_codec.h"
 
 namespace vegstream::datasets {
@@ -56,6 +57,28 @@ Status writeNdvi(const fs::path& dir, const TileSources& src, const ImageryWindo
   return {};
 }
 
+// The landcover tile: the nearest class at each pixel centre (never blended; decimated windows are
+// read nearest too). Written when any pixel has a class.
+Status writeLandcover(const fs::path& dir, const geo::TileId& id, const SourceGrid& grid, TileRecord& out) {
+  const auto px = grid.tilePixelsToSource(id, kTileSize);
+  auto window = grid.windowFor(px, 0, kMaxWindowSide);
+  if (!window) return window.error();
+  if (!*window) return {};
+  if (auto s = checkClassRaster(**window); !s) return s;
+  LandcoverTile t;
+  t.id = id;
+  t.classes.resize(px.size());
+  for (size_t i = 0; i < px.size(); ++i) {
+    t.classes[i] = nearestClass(**window, px[i]);
+    out.landcover = out.landcover || t.classes[i] != 0;
+  }
+  if (!out.landcover) return {};
+  const fs::path p = landcoverTilePath(dir, id);
+  if (auto s = writeLandcoverTile(p, t); !s) return s;
+  out.bytes += fileBytes(p);
+  return {};
+}
+
 }  // namespace
 
 Status produceTile(const fs::path& dir, const geo::TileId& id, const TileSources& src, const GeoTiffImportOptions& o,
@@ -79,6 +102,8 @@ Status produceTile(const fs::path& dir, const geo::TileId& id, const TileSources
     if (auto s = writeHeightTile(p, h, o.encoding); !s) return s;
     out.bytes += fileBytes(p);
   }
+  if (src.landcover)
+    if (auto s = writeLandcover(dir, id, *src.landcover, out); !s) return s;
   if (!src.imagery) return {};
   std::optional<ImageryWindow> window;
   auto img = tileImagery(src, id, &window);

@@ -24,6 +24,7 @@ struct TileSources {
   const SourceGrid* imageryGrid = nullptr;
   const ImageryTiling* tiling = nullptr;
   const NdviSource* ndvi = nullptr;          // null: no NDVI layer
+  const SourceGrid* landcover = nullptr;     // null: no landcover layer
   HeightResampling resampling = HeightResampling::Bilinear;
 };
 

@@ -4,6 +4,7 @@
 // command-line tools (gdal-bin, from scripts/setup) out of the shared samples.
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <filesystem>
 #include <random>
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "datasets/dataset_reader.h"
+#include "datasets/landcover.h"
 #include "datasets/raster_source.h"
 #include "geo/crs.h"
 #include "geo/projection.h"
@@ -231,6 +233,79 @@ TEST_F(GdalImport, LosslessFormatsGiveTheGeoTiffsTiles) {
     ASSERT_TRUE(meta);
     EXPECT_EQ(meta->sources[0].driver, f.driver);
   }
+}
+
+// When the imagery was taken, as its metadata says (EXIF DateTimeOriginal with its offset, as a
+// drone mosaic carries it): recorded as imagery.datetime without --imagery-datetime.
+TEST_F(GdalImport, AcquisitionTimeFromTheImagerysMetadata) {
+  const fs::path rgb = work_ / "rgb_exif.tif";
+  run("gdal_translate -q -mo EXIF_DateTimeOriginal='2021:06:01 10:30:00' -mo EXIF_OffsetTimeOriginal=-07:00 '" +
+      sample("goleta/sba_rgb_wgs84_512x512.tif") + "' '" + rgb.string() + "'");
+  const fs::path out = work_ / "ds";
+  const auto r = runVegstream("import --dem '" + sample("goleta/sba_elev32_wgs84_512x512.tif") +
+                              "' --dem-crs EPSG:4326 --imagery '" + rgb.string() + "' --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  auto meta = readDatasetMeta(out);
+  ASSERT_TRUE(meta);
+  EXPECT_EQ(meta->imageryDatetime, "2021-06-01T10:30:00-07:00");
+  ASSERT_TRUE(meta->radiometry.has_value() && meta->radiometry->deshading.has_value());
+  EXPECT_EQ(meta->radiometry->deshading->source, "imagery datetime");
+}
+
+// A class raster made from the SRTM heights (WorldCover codes: tree cover above 2000 m, grassland
+// below, and an unknown code 7 below 1200 m), imported as the landcover layer: the scheme is
+// detected, the unknown code reported once with its count, every tile pixel is one of the
+// source's codes (never a blend), and the class at a point is the source's there.
+TEST_F(GdalImport, LandcoverLayerKeepsTheClassesAsTheyAre) {
+  const fs::path lc = work_ / "landcover.tif";
+  run("gdal_calc.py --quiet -A '" + sample("zion/srtm.tif") + "' --outfile '" + lc.string() +
+      "' --type Byte --NoDataValue 0 --calc '10*(A>2000)+30*(A<=2000)*(A>1200)+7*(A<=1200)'");
+  const fs::path out = work_ / "ds";
+  const auto r = runVegstream("import --dem '" + sample("zion/srtm.tif") + "' --landcover '" + lc.string() +
+                              "' --max-zoom 13 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("7"), std::string::npos) << r.err;
+  auto meta = readDatasetMeta(out);
+  ASSERT_TRUE(meta);
+  ASSERT_TRUE(meta->landcover.has_value());
+  EXPECT_EQ(*meta->landcover, LandcoverScheme::WorldCover);
+  EXPECT_GT(meta->landcoverTiles, 50u);
+  // Every pixel of every tile, at every zoom, is a code of the source.
+  int tiles = 0;
+  for (const auto& e : fs::recursive_directory_iterator(out / "landcover")) {
+    if (!e.is_regular_file()) continue;
+    const auto rel = fs::relative(e.path(), out / "landcover");
+    const geo::TileId id{std::stoi(rel.begin()->string()), std::stoi(std::next(rel.begin())->string()),
+                         std::stoi(rel.stem().string())};
+    auto t = readLandcoverTile(e.path(), id);
+    ASSERT_TRUE(t.ok()) << t.error().message;
+    for (const uint8_t c : t->classes) ASSERT_TRUE(c == 0 || c == 7 || c == 10 || c == 30) << int(c) << " in " << rel;
+    ++tiles;
+  }
+  EXPECT_GT(tiles, 50);
+  // Where the source is uniform (3 × 3 of one class), the layer has that class.
+  auto dem = readWholeRaster(sample("zion/srtm.tif"));
+  auto classes = readWholeRaster(lc.string());
+  auto reader = DatasetReader::open(out);
+  ASSERT_TRUE(dem && classes && reader);
+  std::mt19937 rng(41);
+  std::uniform_int_distribution<int> col(1, dem->width - 2), row(1, dem->height - 2);
+  int checked = 0;
+  for (int tries = 0; tries < 20000 && checked < 300; ++tries) {
+    const int i = col(rng), j = row(rng);
+    const float c = classes->at(i, j);
+    bool uniform = !std::isnan(c);
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) uniform = uniform && classes->at(i + di, j + dj) == c;
+    if (!uniform) continue;
+    const auto lonLat = classes->georef.pixelCentre(i, j);
+    const auto got = reader->landcoverAt(lonLat[1], lonLat[0]);
+    ASSERT_TRUE(got.ok()) << got.error().message;
+    ASSERT_TRUE(got->has_value());
+    EXPECT_EQ(static_cast<float>(**got), c) << lonLat[1] << ", " << lonLat[0];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300);
 }
 
 }  // namespace
