@@ -39,7 +39,8 @@
 // from height_m and their crown width from width_m):
 //   "form": "conifer" | "broadleaf",      required
 //   "density_ha": 180,                    required, > 0, ≤ 10000: trees per hectare where it is chosen
-//   "spacing_m": 3.5,                     required, > 0: no two trees closer; with the densest tree
+//   "spacing_m": 3.5,                     required, > 0: no two full-width trees closer (smaller crowns
+//                                         proportionally closer, tree_placement.h); with the densest tree
 //                                         species' density D: D · (spacing / 0.7)² ≤ 9000 (the
 //                                         placement grid's cells, tree_placement.h)
 //   "branch_levels": 2,                   2 … kMaxBranchLevels (3)               } optional, defaults

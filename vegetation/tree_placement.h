@@ -1,35 +1,48 @@
 #pragma once
-// View-independent tree placement (issue 20). Core seed ../shared/seeds/001_3eca9f2c7752e4fb.txt
-// §2.2 (every random number a Philox word of the seed's identity, so placement depends on nothing
-// but the ground) and §3.3 (species chosen by the colour score of the imagery under the seed, two
-// best competing by eq. 16–18, s′ modulating the size). The seed's plants are seeded per seed
-// triangle of a fixed bintree level; trees get this project's own coarser seed level instead: a
-// square grid anchored in the dataset's local ENU frame, one candidate tree per cell.
+// View-independent stands of trees (issue 20; stands, issue 41 item 4). Core seed
+// ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2 (every random number a Philox word of the seed's
+// identity, so placement depends on nothing but the ground) and §3.3 (species chosen by the colour
+// score of the imagery under the seed, two best competing by eq. 16–18, s′ modulating the size).
+// The seed's plants are seeded per seed triangle of a fixed bintree level; trees get this
+// project's own coarser seed level instead: a square grid anchored in the dataset's local ENU
+// frame, at most one tree per cell (vegetation/canopy_cells.h relies on it), standing in its cell.
 //
 // The grid (treeGridFor): cells of cellM = 100 √(0.9 / D) metres, D the densest tree species'
-// trees per hectare, so that species keeps 90 % of its cells; margin = the largest spacing_m,
-// at most 0.7 cellM (the catalog checks it, species_catalog.h). Cell (cx, cy) covers
-// [cx·cellM, (cx + 1)·cellM) × [cy·cellM, (cy + 1)·cellM) and holds at most one tree, placed at
-// a Philox-jittered point of [margin/2, cellM − margin/2]² inside it: two trees of neighbouring
-// cells are then at least `margin` apart on the axis that separates the cells, and no two trees
-// are ever closer than the largest spacing.
+// trees per hectare, so that species keeps about 90 % of its cells. Cell (cx, cy) covers
+// [cx·cellM, (cx + 1)·cellM) × [cy·cellM, (cy + 1)·cellM). Blocks of kClumpBlockCells² cells
+// carry the clumps.
 //
-// Per cell, every draw keyed by (cx, cy) alone:
-//   position   jitter (u, v) → the point above; the ground there (TreeGroundAt: colour, NDVI,
-//              height). No ground (outside the data, no imagery): no tree.
+// Per cell, every draw keyed by (cx, cy) or its block alone (so a cell's tree is a pure function
+// of the cells around it and the ground: local and view-independent):
+//   position   a uniform point of the cell pulled by kClumpPull towards its block's parent point
+//              (a Neyman–Scott-like clump, J. Neyman and E. L. Scott, JRSS B 20, 1958), clamped
+//              into the cell; the ground there (TreeGroundAt: colour, NDVI, height). No ground
+//              (outside the data, no imagery): no tree.
 //   species    chooseSpecies over the whole catalog (species_choice.h: grass, gravel, bare soil
 //              and trees compete as they do for plants) at hsvFromLinear(ground colour) with z;
 //              a winner that is not a tree (or none): no tree.
-//   keep       with probability density_ha(s) · cellM² / 10⁴ (≤ 0.9): so trees per hectare come
-//              to density_ha where the species wins.
-//   size       height = mix(height_m, u_h) · sPrimeFactor(kSPrimeHeightLo, s′), crown =
-//              mix(width_m, u_w) · sPrimeFactor(kSPrimeWidthLo, s′), as the plants scale by s′.
+//   keep       with probability min(1, p · kThinningMakeUp) · (1 + kGapAmplitude (1 − p) g), p =
+//              density_ha(s) · cellM² / 10⁴ the imagery's density (the species it picks), g the gap
+//              field (bilinear value noise over the blocks' corners, −1 … 1): stands get clumps
+//              and gaps, deepest where the imagery's stand is sparse; kThinningMakeUp gives back
+//              the share the thinning below takes (measured: density_ha holds within 5 %).
+//   size       treeSizeOf: a log-normal height per species (median √(min·max of height_m) scaled
+//              by s′, σ = kTreeHeightSigma: CV ≈ 0.3), clamped to [kTreeHeightFloor · min · 0.6,
+//              max]; the crown scales with height as (h / median)^kCrownHeightExponent times its
+//              own log-normal spread, clamped likewise into width_m.
 //   seed       one Philox word: the model variant, yaw, lean and branch angles (tree_model.h).
+// Then Matérn type II thinning (B. Matérn, Spatial Variation, 1960; the taller tree as the mark):
+// a cell's candidate goes when a candidate of one of its 8 neighbours, taller (ties: the larger
+// seed), stands closer than max(treeSpacingM) of the two — spacing_m for a full-width crown, less
+// for a smaller one: the spacing depends on size. Thinned candidates still suppress (type II), so
+// every decision reads one ring of cells only.
 // A renderer placing the cells tile by tile and `vegstream plants` placing a box get the same
-// trees, bit for bit (tests/vegetation/tree_placement_test.cpp).
+// trees, bit for bit (tests/vegetation/tree_placement_test.cpp). Measured on 9 ha of the Kolob
+// plateau's forest: vegetation/README.md.
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -52,8 +65,26 @@ using TreeGroundAt = std::function<TreeGroundSample(double x, double y)>;
 
 struct TreeGrid {
   double cellM = 0.0;    // cell side, metres
-  double marginM = 0.0;  // the least distance between two trees (the largest spacing_m)
+  double marginM = 0.0;  // the largest spacing_m (the hard core of two full-width crowns)
 };
+
+inline constexpr int32_t kClumpBlockCells = 3;    // a clump block is 3 × 3 cells (21 m for the default catalog)
+inline constexpr double kClumpPull = 0.35;        // the share of the way to the block's parent point
+inline constexpr float kGapAmplitude = 0.3f;      // the gap field's keep factor spans 1 ± this
+inline constexpr float kThinningMakeUp = 1.09f;   // keep share raised by what thinning takes (measured)
+inline constexpr float kTreeHeightSigma = 0.3f;   // log-normal σ of a species' heights
+inline constexpr float kTreeHeightFloor = 0.5f;   // heights and crowns no less than this share of the least
+inline constexpr float kCrownHeightExponent = 0.8f;  // crown ∝ height^0.8
+inline constexpr float kCrownSigma = 0.1f;        // log-normal σ of the crown about its allometric width
+
+struct TreeSize {
+  float heightM = 0.0f, crownM = 0.0f;
+};
+// A tree's size from two standard normal draws (zHeight, zCrown) and its s′ (above).
+TreeSize treeSizeOf(const Species& sp, float sPrime, float zHeight, float zCrown);
+
+// The least distance a tree keeps to a shorter neighbour: spacing_m · crownM / width_m.max.
+float treeSpacingM(const Species& sp, float crownM);
 
 // The catalog's grid; contract: the catalog has a tree species (hasTrees).
 TreeGrid treeGridFor(const SpeciesCatalog& catalog);

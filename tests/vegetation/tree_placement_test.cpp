@@ -16,6 +16,7 @@
 
 #include "vegetation/colour_score.h"
 #include "vegetation/species_catalog.h"
+#include "vegetation/stand_statistics.h"
 #include "vegetation/tree_placement.h"
 
 namespace vegstream::vegetation {
@@ -128,7 +129,8 @@ TEST(TreePlacement, DensityComesToDensityHaWithinFivePercent) {
   }
 }
 
-TEST(TreePlacement, NoTwoTreesAreCloserThanTheirSpacing) {
+// Matérn II (tree_placement.h): no two trees closer than the larger of their size-scaled spacings.
+TEST(TreePlacement, NoTwoTreesAreCloserThanTheirSizeScaledSpacing) {
   const std::vector<PlacedTree> trees = place(-150, -150, 150, 150, mixedGround());
   ASSERT_GT(trees.size(), 30000u);
   // Every pair within 10 m, through a hash of 10 m buckets (3 × 3 neighbourhood).
@@ -146,8 +148,8 @@ TEST(TreePlacement, NoTwoTreesAreCloserThanTheirSpacing) {
         for (size_t j : it->second) {
           if (j <= i) continue;
           const double d = std::hypot(trees[i].x - trees[j].x, trees[i].y - trees[j].y);
-          const double need = std::max(catalog().species[trees[i].species].tree.spacingM,
-                                       catalog().species[trees[j].species].tree.spacingM);
+          const double need = std::max(treeSpacingM(catalog().species[trees[i].species], trees[i].crownM),
+                                       treeSpacingM(catalog().species[trees[j].species], trees[j].crownM));
           ++pairs;
           nearest = std::min(nearest, d);
           worstMargin = std::min(worstMargin, d - need);
@@ -158,7 +160,7 @@ TEST(TreePlacement, NoTwoTreesAreCloserThanTheirSpacing) {
               trees.size(), pairs, nearest, worstMargin);
   EXPECT_GT(pairs, 10000u);
   EXPECT_EQ(tooClose, 0u);
-  EXPECT_GE(nearest, treeGridFor(catalog()).marginM);
+  EXPECT_LE(nearest, treeGridFor(catalog()).marginM) << "smaller trees stand closer than full-width ones";
 }
 
 TEST(TreePlacement, TreesGrowOnlyOnTheirColour) {
@@ -174,22 +176,60 @@ TEST(TreePlacement, TreesGrowOnlyOnTheirColour) {
   EXPECT_EQ(east, 0u);
   for (const PlacedTree& t : trees) {
     ASSERT_EQ(catalog().species[t.species].name, "conifer");
-    ASSERT_LT(t.x, 0.0 - 0.5 * g.marginM + 1e-9);
+    ASSERT_LT(t.x, 0.0);
+    ASSERT_LT(treeCellOf(g, t.x), 0);  // it stands in its own cell, a conifer one
   }
 }
 
-TEST(TreePlacement, SizesComeFromTheSpeciesRangesScaledBySPrime) {
+TEST(TreePlacement, SizesStayWithinTheSpeciesRangesScaledBySPrime) {
   const std::vector<PlacedTree> trees = place(-150, -150, 150, 150, mixedGround());
   ASSERT_FALSE(trees.empty());
   for (const PlacedTree& t : trees) {
     const Species& s = catalog().species[t.species];
     ASSERT_TRUE(isTree(s));
-    ASSERT_GE(t.heightM, s.heightM.min * kSPrimeHeightLo - 1e-4f);
+    ASSERT_GE(t.heightM, kTreeHeightFloor * s.heightM.min * kSPrimeHeightLo - 1e-4f);
     ASSERT_LE(t.heightM, s.heightM.max + 1e-4f);
-    ASSERT_GE(t.crownM, s.widthM.min * kSPrimeWidthLo - 1e-4f);
+    ASSERT_GE(t.crownM, kTreeHeightFloor * s.widthM.min * kSPrimeWidthLo - 1e-4f);
     ASSERT_LE(t.crownM, s.widthM.max + 1e-4f);
     ASSERT_GT(t.sPrime, 0.5f);  // the winner of two has at least half the score
     ASSERT_LE(t.sPrime, 1.0f);
+  }
+}
+
+// Issue 41 item 4: a uniform forest of the densest species (the one nearest a lattice: 90 % of its
+// cells hold a tree) is a stand: Clark–Evans R (stand_statistics.h) within 0.85–1.35; the old
+// jittered lattice gave about 1.5.
+TEST(TreePlacement, AUniformForestIsAStandNotALattice) {
+  const std::vector<PlacedTree> trees = place(0, 0, 150, 150, uniform("conifer"));
+  const double side = 150.0 * treeGridFor(catalog()).cellM;
+  std::vector<glm::dvec2> at;
+  for (const PlacedTree& t : trees) at.push_back({t.x, t.y});
+  const ClarkEvans ce = clarkEvans(at, 0.0, 0.0, side, side);
+  std::printf("[ figures  ] uniform conifer %.0f m square: %zu trees, Clark-Evans R %.3f (nearest %.2f m, expected %.2f m)\n",
+              side, ce.n, ce.r, ce.meanNearestM, ce.expectedM);
+  ASSERT_GT(ce.n, 15000u);
+  EXPECT_GE(ce.r, 0.85);
+  EXPECT_LE(ce.r, 1.35);
+}
+
+// Issue 41 item 4: heights vary per species (log-normal, CV ≥ 0.25) and the crown follows the height.
+TEST(TreePlacement, HeightsVaryPerSpeciesAndCrownsScaleWithHeight) {
+  const std::vector<PlacedTree> trees = place(-150, -150, 150, 150, mixedGround());
+  std::map<uint32_t, std::vector<PlacedTree>> bySpecies;
+  for (const PlacedTree& t : trees) bySpecies[t.species].push_back(t);
+  ASSERT_EQ(bySpecies.size(), 2u);
+  for (const auto& [s, v] : bySpecies) {
+    std::vector<double> h, c;
+    for (const PlacedTree& t : v) h.push_back(t.heightM), c.push_back(t.crownM);
+    double mh = 0, mc = 0, shc = 0, shh = 0, scc = 0;
+    for (size_t i = 0; i < h.size(); ++i) mh += h[i] / double(h.size()), mc += c[i] / double(c.size());
+    for (size_t i = 0; i < h.size(); ++i)
+      shc += (h[i] - mh) * (c[i] - mc), shh += (h[i] - mh) * (h[i] - mh), scc += (c[i] - mc) * (c[i] - mc);
+    const double corr = shc / std::sqrt(shh * scc), cv = coefficientOfVariation(h);
+    std::printf("[ figures  ] %s: %zu trees, height CV %.3f, mean %.1f m; crown mean %.1f m, corr(height, crown) %.3f\n",
+                catalog().species[s].name.c_str(), v.size(), cv, mh, mc, corr);
+    EXPECT_GE(cv, 0.25) << catalog().species[s].name;
+    EXPECT_GE(corr, 0.7) << catalog().species[s].name;
   }
 }
 
