@@ -75,12 +75,18 @@ class Handle {
   GDALDataset* d_ = nullptr;
 };
 
+// A local input must be a regular file before GDAL sees it: a FIFO would block the open, a
+// directory or a device is never a raster.
+Status checkLocalFile(const std::string& input) {
+  if (isUrl(input) || input.rfind("/vsi", 0) == 0) return {};
+  std::error_code ec;
+  if (!fs::exists(input, ec)) return makeError(ErrorKind::NotFound, concat(input, " does not exist"));
+  if (!fs::is_regular_file(input, ec)) return makeError(ErrorKind::InvalidInput, concat(input, ": not a regular file"));
+  return {};
+}
+
 Error openError(const std::string& input, const geo::GdalQuiet& quiet) {
-  if (!isUrl(input) && input.rfind("/vsi", 0) != 0) {
-    std::error_code ec;
-    if (!fs::exists(input, ec)) return makeError(ErrorKind::NotFound, concat(input, " does not exist"));
-    if (!fs::is_regular_file(input, ec)) return makeError(ErrorKind::InvalidInput, concat(input, ": not a regular file"));
-  }
+  if (auto s = checkLocalFile(input); !s) return s.error();
   return makeError(ErrorKind::InvalidInput,
                    concat(input, ": ", geo::gdalReason(quiet, "not a raster GDAL can read")));
 }
@@ -185,6 +191,8 @@ std::string gdalPathOf(const std::string& input) { return isUrl(input) ? "/vsicu
 
 Result<RasterSource> RasterSource::open(const std::vector<std::string>& inputs, const SourceOptions& options) {
   if (inputs.empty()) return makeError(ErrorKind::InvalidInput, concat(options.flag, ": no input given"));
+  for (const auto& in : inputs)
+    if (auto st = checkLocalFile(in); !st) return st.error();
   geo::GdalQuiet quiet;
   auto s = std::make_shared<Shared>();
   s->options = options;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fstream>
 
+#include <sys/stat.h>
+
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -44,6 +46,16 @@ TinyImage geoImage(uint16_t rasterType = 1) {
 TEST(GeoTiffBadInput, MissingFileIsNotFound) {
   const fs::path p = tmpFile("does_not_exist.tif");
   expectError(readWholeRaster(fs::path(p).string()), ErrorKind::NotFound, p, "does not exist");
+}
+
+TEST(GeoTiffBadInput, FifoAndDirectoryAreRefusedBeforeGdalOpensThem) {
+  // A FIFO would block GDAL's open forever; nothing writes to this one.
+  const fs::path fifo = tmpFile("pipe.tif");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expectError(readWholeRaster(fifo.string()), ErrorKind::InvalidInput, fifo, "not a regular file");
+  const fs::path dir = tmpFile("folder.tif");
+  fs::create_directories(dir);
+  expectError(readWholeRaster(dir.string()), ErrorKind::InvalidInput, dir, "not a regular file");
 }
 
 TEST(GeoTiffBadInput, TextFileNamedTifIsInvalid) {
