@@ -11,9 +11,9 @@
 
 namespace vegstream::render {
 
-AovImage decodeAov(uint32_t width, uint32_t height, const uint16_t* rgbaHalf, const float* depth,
+AovImage decodeAov(uint32_t width, uint32_t height, const uint32_t* packed, const float* depth,
                    const glm::dmat4& inverseProjection) {
-  assert(rgbaHalf && depth);
+  assert(packed && depth);
   AovImage a;
   a.width = width;
   a.height = height;
@@ -24,8 +24,8 @@ AovImage decodeAov(uint32_t width, uint32_t height, const uint16_t* rgbaHalf, co
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
       const size_t i = size_t{y} * width + x;
-      const float r = glm::unpackHalf1x16(rgbaHalf[4 * i]);
-      const float g = glm::unpackHalf1x16(rgbaHalf[4 * i + 1]);
+      const glm::vec3 rgb = glm::unpackF2x11_1x10(packed[i]);
+      const float r = rgb.r, g = rgb.g;
       const float covered = std::isfinite(g) ? std::clamp(g, 0.0f, 1.0f) : 0.0f;
       a.coverage[i] = covered;
       a.species[i] = covered > 0.0f && std::isfinite(r) ? std::round(std::max(r, 0.0f) / covered) : 0.0f;

@@ -18,9 +18,11 @@
 
 namespace vegstream::render {
 
-// rgbaHalf: width × height × 4 IEEE half floats; depth: width × height floats; both row-major
-// from the top. inverseProjection: the inverse of projection(camera, width / height).
-AovImage decodeAov(uint32_t width, uint32_t height, const uint16_t* rgbaHalf, const float* depth,
+// packed: width × height texels of the colour target's format (render_targets.h
+// kColorFormat, B10G11R11 unsigned floats: r in bits 0–10, g 11–21, b 22–31); depth: width ×
+// height floats; both row-major from the top. inverseProjection: the inverse of
+// projection(camera, width / height).
+AovImage decodeAov(uint32_t width, uint32_t height, const uint32_t* packed, const float* depth,
                    const glm::dmat4& inverseProjection);
 
 }  // namespace vegstream::render

@@ -1,5 +1,5 @@
 #pragma once
-// Offscreen colour + depth targets. The scene is drawn in linear HDR (half floats). With MSAA
+// Offscreen colour + depth targets. The scene is drawn in linear HDR (packed floats). With MSAA
 // (samples > 1) the multisampled attachments are resolved at the end of the frame's last
 // rendering scope — colour by averaging, depth by taking sample 0 — into single-sample images;
 // with samples == 1 the attachments are those images themselves. The tone map
@@ -11,8 +11,14 @@
 namespace vegstream::render {
 
 // The scene's colour: linear HDR radiance (render/tonemap_pass.h's units); MSAA resolve averages
-// it in linear light. Half floats store from compute directly (the deferred terrain shade).
-constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// it in linear light. Packed unsigned floats (11, 11 and 10 bits: 6, 6 and 5 bits of mantissa,
+// the range of half floats, no alpha, no negatives), stored from compute directly (the deferred
+// terrain shade, as `r11f_g11f_b10f`): four bytes a sample, as the 8-bit target before HDR. With
+// RGBA16F the 4× MSAA target was twice the bytes to clear, write and resolve: on the H100 at
+// 1080p the orbit flight's GPU frame went from 2.16 to 2.39 ms (p50) with the HDR passes, 0.1 ms
+// of it outside any pass (bench/README.md). The blue's 5 bits step 3 % in linear light, about 1
+// % in sRGB: the sky's gradient, its smoothest colour, is stored dithered (terrain_shade.glsl).
+constexpr VkFormat kColorFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 // The display target: tone-mapped, sRGB-encoded bytes (display-ready when read back). The tone
 // map stores through a UNORM view (sRGB formats have no storage) and encodes sRGB itself.
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_SRGB;

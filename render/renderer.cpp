@@ -214,8 +214,8 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   slot.timer->begin(cmd);
   slot.readAov = request.aov;
-  if (request.aov && !slot.aovReadback.get())  // four half floats a pixel; the slot's frame is done (waitSlot)
-    slot.aovReadback = createBuffer(*ctx, size_t{extent.width} * extent.height * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+  if (request.aov && !slot.aovReadback.get())  // one packed-float texel (4 bytes) a pixel; the slot's frame is done (waitSlot)
+    slot.aovReadback = createBuffer(*ctx, size_t{extent.width} * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                     MemoryUse::HostReadback, "AOV read-back");
   slot.readColor = request.readbackColor && !request.aov;
   slot.readDepth = request.readbackDepth || request.aov;  // recordPasses resolves the depth only for it
@@ -274,7 +274,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     r.depth = std::move(img);
   }
   if (slot.readAov && r.depth)
-    r.aov = decodeAov(e.width, e.height, static_cast<const uint16_t*>(slot.aovReadback.mapped), r.depth->depth.data(),
+    r.aov = decodeAov(e.width, e.height, static_cast<const uint32_t*>(slot.aovReadback.mapped), r.depth->depth.data(),
                       slot.aovInverseProjection);
   return r;
 }

@@ -5,7 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/exposure.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
-layout(set = 0, binding = 0, rgba16f) uniform readonly image2D hdr;
+layout(set = 0, binding = 0, r11f_g11f_b10f) uniform readonly image2D hdr;
 layout(set = 0, binding = 1, std430) buffer State { ExposureState state; };
 shared uint local[kExposureBins];
 

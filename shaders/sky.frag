@@ -8,5 +8,5 @@ layout(location = 0) out vec4 outColor;
 void main() {
   vec4 p = frame.invViewProj * vec4(inNdc, 0.5, 1.0);
   vec3 dir = normalize(p.xyz / p.w);
-  outColor = aovGround(vec4(skyColor(dir), 1.0));
+  outColor = aovGround(vec4(ditheredSky(skyColor(dir), uvec2(gl_FragCoord.xy)), 1.0));
 }

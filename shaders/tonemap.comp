@@ -6,7 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/exposure.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0, rgba16f) uniform readonly image2D hdr;
+layout(set = 0, binding = 0, r11f_g11f_b10f) uniform readonly image2D hdr;
 layout(set = 0, binding = 1, std430) readonly buffer State { ExposureState state; };
 layout(set = 0, binding = 2, rgba8) uniform writeonly image2D displayImage;
 layout(push_constant) uniform Push {

@@ -41,6 +41,18 @@ vec3 skyColor(vec3 dir) {
   return min(sky, vec3(60000.0));  // half floats
 }
 
+// The sky's colour dithered for the packed-float colour target (render/render_targets.h: 6, 6
+// and 5 bits of mantissa): scaled by 1 + (u − ½)·2^−m per channel, u a hash of the pixel in
+// [0, 1), so the gradient's steps (3 % for the blue) become a fine, fixed noise instead of bands.
+// Deterministic: the same pixel always gets the same u.
+vec3 ditheredSky(vec3 sky, uvec2 px) {
+  uint h = px.x * 0x8da6b343u ^ px.y * 0xd8163841u;
+  h = (h ^ (h >> 15)) * 0x2c1b3c6du;
+  h ^= h >> 12;
+  float u = float(h & 0xffffu) / 65536.0;
+  return sky * (vec3(1.0) + (u - 0.5) * vec3(1.0 / 64.0, 1.0 / 64.0, 1.0 / 32.0));
+}
+
 // The air between the camera and a point at `offset` (camera-relative, m): xyz the light it
 // scatters towards the camera, w its transmittance (the point is seen as colour · w + xyz).
 vec4 aerialPerspective(vec3 offset) {

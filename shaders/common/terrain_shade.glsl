@@ -30,11 +30,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef VEGSTREAM_RASTER  // terrain_raster.glsl: ids come from the compute rasteriser, not a target
 #ifdef VEGSTREAM_MULTISAMPLE
-layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
+layout(set = 3, binding = 4, r11f_g11f_b10f) uniform writeonly image2DMS target;
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, aovGround(c))
 const int kMaxSamples = 8;
 #else
-layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
+layout(set = 3, binding = 4, r11f_g11f_b10f) uniform writeonly image2D target;
 #define STORE_COLOUR(px, s, c) imageStore(target, px, aovGround(c))
 const int kMaxSamples = 1;
 #endif
@@ -42,7 +42,7 @@ const int kMaxSamples = 1;
 #ifdef VEGSTREAM_MULTISAMPLE
 layout(set = 3, binding = 0) uniform sampler2DMS visibility;
 layout(set = 3, binding = 5) uniform sampler2DMS depthSamples;
-layout(set = 3, binding = 4, rgba16f) uniform writeonly image2DMS target;
+layout(set = 3, binding = 4, r11f_g11f_b10f) uniform writeonly image2DMS target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, s))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, s).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, s, aovGround(c))
@@ -51,7 +51,7 @@ const int kMaxSamples = 8;
 #else
 layout(set = 3, binding = 0) uniform sampler2D visibility;
 layout(set = 3, binding = 5) uniform sampler2D depthSamples;
-layout(set = 3, binding = 4, rgba16f) uniform writeonly image2D target;
+layout(set = 3, binding = 4, r11f_g11f_b10f) uniform writeonly image2D target;
 #define LOAD_ID(px, s) packUnorm4x8(texelFetch(visibility, px, 0))
 #define LOAD_DEPTH(px, s) texelFetch(depthSamples, px, 0).r
 #define STORE_COLOUR(px, s, c) imageStore(target, px, aovGround(c))
@@ -115,8 +115,8 @@ void shadePixel(ivec2 px, uint ids[kMaxSamples], int samples) {
     if (same >= 0) {
       colours[s] = colours[same];
     } else {
-      vec3 c = ids[s] == 0u ? skyColor(normalize(dir)) : shadeTriangle(ids[s] - 1u, dir, dirX, dirY);
-      colours[s] = vec4(min(c, vec3(65000.0)), 1.0);  // linear HDR (half floats)
+      vec3 c = ids[s] == 0u ? ditheredSky(skyColor(normalize(dir)), uvec2(px)) : shadeTriangle(ids[s] - 1u, dir, dirX, dirY);
+      colours[s] = vec4(min(c, vec3(65000.0)), 1.0);  // linear HDR (render_targets.h)
     }
     STORE_COLOUR(px, s, colours[s]);
   }

@@ -55,10 +55,10 @@ TEST(FrameAovs, DecodesCoverageSpeciesAndDistance) {
     return float(clip.z / clip.w);
   };
   const std::vector<float> depth = {0.0f, depthAt(1, 0, 12.0), depthAt(0, 1, 40.0), depthAt(1, 1, 3.0)};
-  const auto h = [](float v) { return glm::packHalf1x16(v); };
-  const std::vector<uint16_t> rgba = {h(0), h(0), h(0), h(0), h(0), h(0), h(0), h(0),
-                                      h(0.5f * 4.0f), h(0.5f), h(0), h(0.5f), h(1.0f), h(1.0f), h(0), h(1.0f)};
-  const render::AovImage a = render::decodeAov(2, 2, rgba.data(), depth.data(), inv);
+  // The colour target's packed floats (render_targets.h), as the read-back holds them.
+  const auto p = [](float r, float g) { return glm::packF2x11_1x10(glm::vec3(r, g, 0.0f)); };
+  const std::vector<uint32_t> packed = {p(0, 0), p(0, 0), p(0.5f * 4.0f, 0.5f), p(1.0f, 1.0f)};
+  const render::AovImage a = render::decodeAov(2, 2, packed.data(), depth.data(), inv);
   EXPECT_EQ(a.distanceM[0], 0.0f);
   EXPECT_NEAR(a.distanceM[1], 12.0, 1e-3);
   EXPECT_NEAR(a.distanceM[2], 40.0, 1e-2);
