@@ -16,7 +16,9 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     const vegetation::Species& s = catalog.species[i];
     SpeciesGpu& g = b.species[i];
     g.reference = glm::vec4(s.score.reference, s.score.p);
-    g.weights = glm::vec4(s.score.weights, s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
+    // ln threshold; +1e30 keeps out a tree species that does not claim ground (species_choice.h).
+    const bool out = vegetation::isTree(s) && !s.tree.claimsGround;
+    g.weights = glm::vec4(s.score.weights, out ? 1e30f : s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
     // Tree species are seeded on their own grid (vegetation/tree_placement.h): to the plants' classify
     // pass they are bare soil (vegetation/plant_seeding.cpp rejects them alike).
     g.flags = {(s.bare || vegetation::isTree(s)) ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};

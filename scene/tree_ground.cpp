@@ -44,6 +44,37 @@ struct TreeGround::Data {
     const double bottom = h[f.i01] + (h[f.i11] - double(h[f.i01])) * f.fx;
     return top + (bottom - top) * f.fy;
   }
+
+  // Bilinear height at pixel coordinates (col, row); NaN outside the mosaic or where one of the
+  // four has none.
+  double heightAtPixel(double col, double row) const {
+    const int w = heights.width, h = heights.height;
+    if (!(col >= 0.0 && row >= 0.0 && col <= w - 1 && row <= h - 1)) return NAN;
+    const int c0 = std::min(static_cast<int>(col), w - 2), r0 = std::min(static_cast<int>(row), h - 2);
+    const size_t i00 = static_cast<size_t>(r0) * static_cast<size_t>(w) + static_cast<size_t>(c0);
+    return heightAt({i00, i00 + 1, i00 + static_cast<size_t>(w), i00 + static_cast<size_t>(w) + 1, col - c0, row - r0});
+  }
+
+  // The site at pixel (col, row) of height h at latitude latDeg (vegetation/tree_niche.h): the
+  // slope by central differences over a pixel each way, the relief against 8 points of a ring of
+  // kReliefRadiusM (NaN where the mosaic does not reach).
+  vegetation::TreeSite siteAt(double col, double row, double h, double latDeg) const {
+    vegetation::TreeSite site;
+    site.elevationM = static_cast<float>(h);
+    const double groundPixelM = heights.pixelM * std::cos(latDeg * 3.14159265358979323846 / 180.0);
+    const double dx = heightAtPixel(col + 1.0, row) - heightAtPixel(col - 1.0, row);
+    const double dy = heightAtPixel(col, row + 1.0) - heightAtPixel(col, row - 1.0);
+    const double grad = std::hypot(dx, dy) / (2.0 * groundPixelM);
+    if (std::isfinite(grad)) site.slopeDeg = static_cast<float>(std::atan(grad) * 180.0 / 3.14159265358979323846);
+    const double r = vegetation::kReliefRadiusM / groundPixelM;
+    double ring = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * 3.14159265358979323846 / 4.0;
+      ring += heightAtPixel(col + r * std::cos(a), row + r * std::sin(a));
+    }
+    if (std::isfinite(ring)) site.reliefM = static_cast<float>(h - ring / 8.0);
+    return site;
+  }
 };
 
 streaming::SnapshotLimits TreeGround::defaultLimits() {
@@ -108,6 +139,8 @@ vegetation::TreeGroundSample TreeGround::sample(double x, double y) const {
   out.linearRgb = colour;
   out.ndvi = ndvi;
   out.heightM = d.frame.toLocal({at.latDeg, at.lonDeg, h}).z;
+  out.site = d.siteAt(double(f.i00 % size_t(d.heights.width)) + f.fx, double(f.i00 / size_t(d.heights.width)) + f.fy, h,
+                      at.latDeg);
   return out;
 }
 

@@ -3,6 +3,7 @@
 // Parsing records the first problem with its field path and stops there, so a user sees one
 // message naming the file and the field, never an exception.
 #include "vegetation/species_catalog.h"
+#include "vegetation/tree_niche_parse.h"
 
 #include <algorithm>
 #include <cassert>
@@ -181,7 +182,7 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
       !ps.onlyKeys(t, p,
                    {"form", "density_ha", "spacing_m", "branch_levels", "branches", "twigs", "branch_angle_deg",
                     "trunk_radius_m", "taper", "leaf_size_m", "leaves_per_twig", "leaf_colour", "bark_colour",
-                    "translucency"}))
+                    "translucency", "niche", "claims_ground"}))
     return false;
   const auto form = t.find("form");
   if (form == t.end()) return ps.fail(p + ".form", "is missing (\"conifer\" or \"broadleaf\")");
@@ -211,6 +212,14 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
       !parseBounded(ps, t, "leaf_size_m", p, out.leafSizeM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
       !parseBounded(ps, t, "translucency", p, out.translucency, 0.0, false, 1.0, "in 0 … 1"))
     return false;
+  if (const auto claims = t.find("claims_ground"); claims != t.end()) {
+    if (!claims->is_boolean()) return ps.fail(p + ".claims_ground", "must be true or false");
+    out.claimsGround = claims->get<bool>();
+  }
+  if (const auto niche = t.find("niche"); niche != t.end()) {
+    std::string field, problem;
+    if (!parseTreeNiche(*niche, out.niche, field, problem)) return ps.fail(p + ".niche" + field, problem);
+  }
   for (const auto& [key, linear] : {std::pair{"leaf_colour", out.leafColour}, std::pair{"bark_colour", out.barkColour}}) {
     const auto c = t.find(key);
     if (c == t.end()) continue;

@@ -7,6 +7,11 @@
 namespace vegstream::vegetation {
 
 bool passesThreshold(const Species& s, float logScore) {
+  if (isTree(s) && !s.tree.claimsGround) return false;  // only among the trees (tree_niche.h)
+  return passesOwnThreshold(s, logScore);
+}
+
+bool passesOwnThreshold(const Species& s, float logScore) {
   // s ≥ t ⇔ ln s ≥ ln t: compared as logs because s itself overflows float for large p.
   return !(s.threshold > 0.0f) || !(logScore < std::log(s.threshold));
 }

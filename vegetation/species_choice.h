@@ -34,8 +34,12 @@ struct SpeciesCandidates {
   float secondRatio = 0.0f;                 // s1 / (s0 + s1), 0 when fewer than two are in
 };
 
-// Whether species `s` takes part at log score `logScore` (its threshold, eq. 16 score s ≥ t).
+// Whether species `s` takes part at log score `logScore` (its threshold, eq. 16 score s ≥ t). A
+// tree species that does not claim ground (TreeParams::claimsGround) never does: it grows only
+// among the trees (tree_niche.h); the GPU twin sees its threshold as +∞ (render/classify_layout).
 bool passesThreshold(const Species& s, float logScore);
+// The threshold alone, claimsGround aside (the choice among the trees).
+bool passesOwnThreshold(const Species& s, float logScore);
 
 // `ndvi`: the NDVI under the point, kNoNdvi (or NaN) where the dataset has none (colour_score.h).
 SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi = kNoNdvi);

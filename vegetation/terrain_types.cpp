@@ -10,7 +10,9 @@ std::vector<TerrainType> terrainTypesOf(const SpeciesCatalog& catalog) {
   assert(catalog.species.size() <= kMaxTerrainTypes);
   std::vector<TerrainType> out;
   out.reserve(catalog.species.size());
-  for (const Species& s : catalog.species) out.push_back({s.name, s.score, s.surface});
+  // A tree species that claims no ground (tree_niche.h) is no type of ground either.
+  for (const Species& s : catalog.species)
+    if (!isTree(s) || s.tree.claimsGround) out.push_back({s.name, s.score, s.surface});
   return out;
 }
 

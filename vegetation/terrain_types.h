@@ -27,7 +27,8 @@ struct TerrainType {
 // The GPU uniform block holds at most this many types (render/terrain_detail.h): one per species.
 inline constexpr size_t kMaxTerrainTypes = kMaxSpecies;
 
-// The catalog's species as terrain types, in order.
+// The catalog's species as terrain types, in order, but for the tree species that claim no ground
+// (TreeParams::claimsGround: they grow only among other trees, tree_niche.h).
 std::vector<TerrainType> terrainTypesOf(const SpeciesCatalog& catalog);
 // Those of the default catalog (config/species.json).
 std::span<const TerrainType> defaultTerrainTypes();

@@ -17,6 +17,7 @@
 
 #include "vegetation/philox.h"
 #include "vegetation/species_choice.h"
+#include "vegetation/tree_niche.h"
 
 namespace vegstream::vegetation {
 namespace {
@@ -25,7 +26,8 @@ namespace {
 // placed on the CPU only; 10 rounds (Random123's default) keep neighbouring cells' words free of
 // correlation.
 constexpr uint32_t kPositionKey = 0x54524530u, kChoiceKey = 0x54524531u, kSizeKey = 0x54524532u,
-                   kSeedKey = 0x54524533u, kClumpKey = 0x54524534u, kGapKey = 0x54524535u;
+                   kSeedKey = 0x54524533u, kClumpKey = 0x54524534u, kGapKey = 0x54524535u,
+                   kNicheKey = 0x54524536u;
 
 Philox2x32Out cellWords(int32_t cx, int32_t cy, uint32_t key) {
   return philox2x32<10>(static_cast<uint32_t>(cx), static_cast<uint32_t>(cy), key);
@@ -81,11 +83,13 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   candidatePoint(grid, cx, cy, x, y);
   const TreeGroundSample g = ground(x, y);
   if (!g.valid) return false;
-  const SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(g.linearRgb), u01(choice.x), g.ndvi);
-  if (pick.species < 0) return false;
-  const auto s = static_cast<size_t>(pick.species);
+  const glm::vec3 hsv = hsvFromLinear(g.linearRgb);
+  const SpeciesChoice pick = chooseSpecies(catalog, hsv, u01(choice.x), g.ndvi);
+  if (pick.species < 0 || !isTree(catalog.species[static_cast<size_t>(pick.species)])) return false;
+  const SpeciesChoice tree = chooseTreeSpecies(catalog, hsv, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x));
+  const auto s = static_cast<size_t>(tree.species >= 0 ? tree.species : pick.species);
   const Species& sp = catalog.species[s];
-  if (!isTree(sp) || !(keepU < keepWith(keepShare[s], gap))) return false;
+  if (!(keepU < keepWith(keepShare[s], gap))) return false;
   const Philox2x32Out size = cellWords(cx, cy, kSizeKey);
   const Philox2x32Out more = cellWords(cx, cy, kSizeKey + 0x100u);
   t = PlacedTree{};

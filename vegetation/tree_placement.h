@@ -20,7 +20,9 @@
 //              (outside the data, no imagery): no tree.
 //   species    chooseSpecies over the whole catalog (species_choice.h: grass, gravel, bare soil
 //              and trees compete as they do for plants) at hsvFromLinear(ground colour) with z;
-//              a winner that is not a tree (or none): no tree.
+//              a winner that is not a tree (or none): no tree. Else which tree: chooseTreeSpecies
+//              (tree_niche.h: colour plus the species' niche in elevation, slope and relief) with
+//              its own z; s′ stays the first choice's (the tree stand's border, not the species').
 //   keep       with probability min(1, p · kThinningMakeUp) · (1 + kGapAmplitude (1 − p) g), p =
 //              density_ha(s) · cellM² / 10⁴ the imagery's density (the species it picks), g the gap
 //              field (bilinear value noise over the blocks' corners, −1 … 1): stands get clumps
@@ -48,6 +50,7 @@
 #include <glm/vec3.hpp>
 
 #include "vegetation/species_catalog.h"
+#include "vegetation/tree_niche.h"
 #include "vegetation/tree_types.h"
 
 namespace vegstream::vegetation {
@@ -58,6 +61,7 @@ struct TreeGroundSample {
   glm::vec3 linearRgb{0.0f};  // the imagery colour, linear RGB (decoded from sRGB, bilinear)
   float ndvi = kNoNdvi;       // kNoNdvi where the dataset has none
   double heightM = 0.0;       // the ground's z in the local frame
+  TreeSite site;              // elevation, slope and relief there (tree_niche.h; NaN: unknown)
 };
 // (x, y): local ENU metres. Called once per cell that could hold a tree; must be a pure function
 // of (x, y) for the placement to be view-independent.

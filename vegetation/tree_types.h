@@ -5,6 +5,7 @@
 // they are (std430; shaders/common/tree_layout.glsl mirrors them).
 
 #include <cstdint>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -19,6 +20,14 @@ enum class TreeForm : uint32_t {
 // The most branch levels a model supports (trunk = level 0, then 1 … kMaxBranchLevels): the
 // vertex shader walks at most this many ancestors (002 §4.3 uses 4 hierarchy levels in all).
 inline constexpr uint32_t kMaxBranchLevels = 3;
+
+// Where a tree species belongs on the terrain (tree_niche.h): closed ranges, ±infinity for an
+// open end; the defaults accept every site.
+struct TreeNiche {
+  float elevationM[2] = {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+  float slopeDeg[2] = {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+  float reliefM[2] = {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+};
 
 // A tree species' model and placement parameters (catalog: the species' "tree" object; the
 // species' own height_m and width_m give each tree's height and crown width).
@@ -37,6 +46,10 @@ struct TreeParams {
   float leafColour[3] = {0.09f, 0.16f, 0.06f};  // leaf albedo, linear RGB (modulated by the imagery)
   float barkColour[3] = {0.16f, 0.11f, 0.08f};  // bark albedo, linear RGB
   float translucency = 0.5f;    // share of back-lit sun the leaves pass through (002 §3), 0 … 1
+  TreeNiche niche;              // where on the terrain it grows (catalog "niche"; default: anywhere)
+  // false: out of the first species choice (the plants' too), so its colour never makes ground a
+  // forest; it grows only where another tree species claimed the ground (tree_niche.h)
+  bool claimsGround = true;
 };
 
 // One placed tree: view-independent (tree_placement.h). Position in the dataset's local ENU

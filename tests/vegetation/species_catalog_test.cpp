@@ -58,7 +58,8 @@ TEST(SpeciesCatalog, TheShippedDefaultParses) {
     }
   EXPECT_EQ(densestGroundDensity(c), 400.0f);
   EXPECT_GE(farthestHorizon(c), 150.0f);
-  // Issue 20: two tree species, on their own grid and horizon; the plants' figures leave them out.
+  // Issue 20: tree species on their own grid and horizon; the plants' figures leave them out.
+  // Issue 41 item 4: six of them, two claiming the ground by colour (tree_niche.h).
   int trees = 0;
   for (const Species& s : c.species)
     if (isTree(s)) {
@@ -67,7 +68,10 @@ TEST(SpeciesCatalog, TheShippedDefaultParses) {
       EXPECT_GE(s.tree.branchLevels, 2u) << s.name;
       EXPECT_FLOAT_EQ(s.densityM2, s.tree.densityHa / 1e4f) << s.name;
     }
-  EXPECT_EQ(trees, 2);
+  EXPECT_EQ(trees, 6);
+  int claiming = 0;
+  for (const Species& s : c.species) claiming += isTree(s) && s.tree.claimsGround;
+  EXPECT_EQ(claiming, 2);
   EXPECT_EQ(farthestHorizon(c), 150.0f) << "the grass's: trees excluded";
   EXPECT_EQ(densestTreeDensityHa(c), 180.0f);
   EXPECT_FLOAT_EQ(largestTreeSpacing(c), 4.8f);

@@ -1,0 +1,55 @@
+#pragma once
+// Where on the terrain each tree species belongs (issue 41 item 4): its niche in elevation, slope
+// and relief, and the choice among the tree species that uses it. Core seed
+// ../shared/seeds/001_3eca9f2c7752e4fb.txt §3.3 chooses a species by its colour score alone
+// (eq. 16–18); this adds the site, as species-distribution models do with their environmental
+// envelopes (the "BIOCLIM" envelope of H. A. Nix, 1986, softened: a Gaussian fall-off outside the
+// range instead of a hard edge, as in J. Elith and J. R. Leathwick, "Species distribution models",
+// Annu. Rev. Ecol. Evol. Syst. 40, 2009, §"Model types").
+//
+// Two stages, so the GPU's plant seeding stays the colour choice it is: (1) chooseSpecies over the
+// whole catalog decides whether a point is a tree at all (the GPU makes the same decision for the
+// plants, rejecting a seed whose winner is a tree); (2) where it is, chooseTreeSpecies picks which
+// tree among the catalog's tree species by
+//
+//     l_i = ln s_i (eq. 16, colour and NDVI)  +  Σ_k −((distance of site_k outside the range_k) / soft_k)²
+//
+// over the species whose colour passes their threshold, the two best competing by eq. 17–18 with
+// its own uniform z. The site terms: elevation above mean sea level, slope
+// and relief, the ground's height minus the mean of a ring kReliefRadiusM around it (negative in
+// hollows and valley floors, positive on ridges). The soft widths, 50 m, 3° and 1.5 m, make a
+// niche nearly a hard range beyond twice them (a 100 m miss costs as much as a colour twice as far
+// from the reference at p = 6; colour log scores of forest colours differ by a few units). A term whose site value is unknown
+// (NaN: no heights around the point) counts 0, as does a species without a niche.
+//
+// Catalog (a tree species' "tree" object, species_catalog.h): "niche": { "elevation_m": [lo, hi],
+// "slope_deg": [lo, hi], "relief_m": [lo, hi] }, each optional, either end null for open, lo ≤ hi.
+
+#include <cmath>
+#include <limits>
+
+#include <glm/vec3.hpp>
+
+#include "vegetation/species_choice.h"
+
+namespace vegstream::vegetation {
+
+inline constexpr double kReliefRadiusM = 75.0;  // the ring the relief is measured against
+inline constexpr float kElevationSoftM = 50.0f, kSlopeSoftDeg = 3.0f, kReliefSoftM = 1.5f;
+
+// The site of a point; NaN where unknown.
+struct TreeSite {
+  float elevationM = std::numeric_limits<float>::quiet_NaN();  // above mean sea level
+  float slopeDeg = std::numeric_limits<float>::quiet_NaN();    // 0 … 90
+  float reliefM = std::numeric_limits<float>::quiet_NaN();     // height − mean height of the ring
+};
+
+// −Σ ((outside distance) / soft)² of `site` against `niche` (≤ 0; 0 inside or unknown).
+float logNicheFit(const TreeNiche& niche, const TreeSite& site);
+
+// Stage 2 above: the tree species at a point stage 1 found to be a tree, z uniform in [0, 1).
+// species −1 when no tree species passes its threshold there (keep stage 1's winner then).
+SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, const TreeSite& site,
+                                float z);
+
+}  // namespace vegstream::vegetation
