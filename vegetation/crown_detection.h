@@ -12,10 +12,14 @@
 // Contract:
 //   input   a raster of heights above ground (metres, row-major, NaN = no data), square pixels of
 //           pixelM ground metres. Rows and columns have no orientation requirement.
-//   smooth  a 3 × 3 Gaussian (1 2 1 / 2 4 2 / 1 2 1, /16) over the valid neighbours only.
+//   smooth  a 3 × 3 binomial (1 2 1 / 2 4 2 / 1 2 1) over the valid neighbours within 1 m of the
+//           centre (edge-preserving: a tall crown's edge does not leak into a small one beside it).
 //   tops    a pixel of smoothed height ≥ minHeightM whose window (a disc of radius
-//           windowRadiusM(h), h its smoothed height) holds no higher smoothed pixel; among equal
-//           heights the pixel first in row-major order wins, so a flat top yields one tree.
+//           windowRadiusM(h), h its smoothed height) holds no higher smoothed pixel on its own
+//           crown; among equal heights the pixel first in row-major order wins, so a flat top
+//           yields one tree. Our refinement of the fixed window: a higher pixel whose straight way
+//           from the top dips more than 0.3 m below the top stands on another crown (a small tree
+//           on a big one's shoulder is kept; noise after the smoothing is ~0.06 m).
 //   position  the top pixel's centre moved by a parabola through its 3 × 3 smoothed neighbours
 //           (at most half a pixel each way): (col + 0.5 + dx, row + 0.5 + dy) in the raster's
 //           continuous pixel coordinates.
