@@ -99,6 +99,10 @@ struct DatasetMeta {
   // datasets written before the layer existed).
   std::optional<LandcoverScheme> landcover;
   uint64_t landcoverTiles = 0;
+  // A canopy height layer (import --canopy-height, canopy.h): the zoom its heights were sampled
+  // at (lower zooms hold its pyramid); nullopt: none.
+  std::optional<int> canopyZoom;
+  uint64_t canopyTiles = 0;
   uint64_t bytes = 0;  // all tile files together
 };
 
