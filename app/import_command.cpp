@@ -396,7 +396,7 @@ int runImport(const ImportOptions& o, const Logger& log) {
         !o.bands.empty() || o.nirBand > 0 || !o.landcover.empty() || !o.canopyHeight.empty() ||
         !o.imageryDatetime.empty() || !o.imagerySun.empty() || o.radiometry != "auto")
       meta = userError(
-          "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime and "
+          "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime, --canopy-height and "
           "--imagery-sun go with --dem; use --xyz-imagery with --xyz-elevation");
     else
       meta = runXyz(o, log, progress);

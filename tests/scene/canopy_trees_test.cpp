@@ -20,7 +20,11 @@
 #include "datasets/dataset_format.h"
 #include "geo/crs.h"
 #include "geo/projection.h"
+#include "scene/canopy_trees.h"
+#include "scene/tree_field.h"
+#include "scene/tree_ground.h"
 #include "scene/trees_in_box.h"
+#include "streaming/open_tile_source.h"
 #include "tests/support/run_command.h"
 #include "tests/support/synthetic_chm.h"
 #include "tests/support/test_dirs.h"
@@ -185,6 +189,50 @@ TEST_F(CanopyImport, SameTreesTwiceAndInASubBox) {
     EXPECT_EQ(inSmall[i].at.latDeg, s->trees[i].at.latDeg);
     EXPECT_EQ(inSmall[i].heightM, s->trees[i].heightM);
   }
+}
+
+// The renderer's tree field places the same CHM trees as `plants` (treesInBox): every tree of
+// the CHM's box is drawn by a settled frame above it, at the same place with the same seed.
+TEST_F(CanopyImport, TheTreeFieldDrawsThePlantsTrees) {
+  const std::string ds = (*dir_ / "with").string();
+  auto source = streaming::openTileSource(ds, {});
+  ASSERT_TRUE(source);
+  auto meta = streaming::readMetaFrom(**source);
+  ASSERT_TRUE(meta);
+  const geo::GeoBounds& b = meta->bounds;
+  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});  // as scene.cpp
+  auto ground = TreeGround::load(**source, *meta, frame, TreeGround::defaultLimits());
+  ASSERT_TRUE(ground) << ground.error().message;
+  auto canopy = scene::CanopyTrees::load(**source, *meta, frame);
+  ASSERT_TRUE(canopy && *canopy);
+  const auto& cat = vegetation::defaultSpeciesCatalog();
+  std::vector<uint32_t> first(cat.species.size(), UINT32_MAX);
+  for (size_t s = 0, next = 0; s < first.size(); ++s)
+    if (vegetation::isTree(cat.species[s])) first[s] = static_cast<uint32_t>(next), next += 3;
+  TreeFieldOptions o;
+  o.lod.horizonM = 400.0f;
+  TreeField field(cat, ground->at(), o, first, 3, 4096);
+  field.setCanopy(*canopy);
+  const double cx0 = kX0 + kChmOffset, cy0 = kY0 + kChmOffset;
+  const geo::Geodetic centre = geo::fromProjected(utm(), {cx0 + 70.0, cy0 + 70.0}, 600.0);
+  const render::TreeRequest& r = field.prepare(frame.toLocal(centre), true);
+  std::vector<render::TreeInstanceGpu> drawn;
+  for (const render::TreePageUpload& u : r.uploads) drawn.insert(drawn.end(), u.instances, u.instances + u.count);
+  auto box = treesInBox(ds, lonLatBox(utm(), cx0, cy0, cx0 + kChmSide, cy0 + kChmSide), cat, {});
+  ASSERT_TRUE(box);
+  size_t same = 0;
+  for (const BoxTree& t : box->trees) {
+    const glm::dvec3 p = frame.toLocal(t.at);
+    for (const render::TreeInstanceGpu& g : drawn)
+      if (g.seed == t.seed && std::hypot(g.position[0] - p.x, g.position[1] - p.y) < 0.01 && g.heightM == t.heightM) {
+        ++same;
+        break;
+      }
+  }
+  std::printf("[ figures  ] tree field: %zu trees drawn; %zu of the %zu plants trees in the CHM's box among them\n",
+              drawn.size(), same, box->trees.size());
+  EXPECT_GT(box->trees.size(), 140u);
+  EXPECT_EQ(same, box->trees.size());
 }
 
 // Outside the CHM the imagery places the trees as in a dataset without one.
