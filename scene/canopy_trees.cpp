@@ -40,11 +40,19 @@ vegetation::SpeciesChoice treeSpeciesAt(const vegetation::SpeciesCatalog& catalo
 
 Result<std::shared_ptr<const CanopyTrees>> CanopyTrees::load(streaming::TileSource& source,
                                                              const datasets::DatasetMeta& meta,
-                                                             const geo::LocalFrame& frame) {
+                                                             const geo::LocalFrame& frame,
+                                                             const geo::GeoBounds* area) {
   if (!meta.canopyZoom) return std::shared_ptr<const CanopyTrees>();
   const int z = *meta.canopyZoom;
+  geo::GeoBounds read = meta.bounds;
+  if (area) {
+    const double dLat = kAreaMarginM / 111000.0;
+    const double dLon = dLat / std::max(0.05, std::cos(area->centre().y * 3.14159265358979323846 / 180.0));
+    read = {std::max(read.westDeg, area->westDeg - dLon), std::max(read.southDeg, area->southDeg - dLat),
+            std::min(read.eastDeg, area->eastDeg + dLon), std::min(read.northDeg, area->northDeg + dLat)};
+  }
   uint64_t count = 0;
-  for (const auto& r : geo::tileRangesCovering(meta.bounds, z)) count += static_cast<uint64_t>(r.count());
+  for (const auto& r : geo::tileRangesCovering(read, z)) count += static_cast<uint64_t>(r.count());
   if (count > kMaxCanopyTiles)
     return makeError(ErrorKind::InvalidInput,
                      source.describe() + ": the canopy layer covers " + std::to_string(count) + " tiles at zoom " +
@@ -52,7 +60,7 @@ Result<std::shared_ptr<const CanopyTrees>> CanopyTrees::load(streaming::TileSour
                          " the trees read at once; its trees are placed from the imagery instead");
   std::shared_ptr<CanopyTrees> c(new CanopyTrees(z, frame));
   c->detection_.pixelM = static_cast<float>(geo::groundResolution(frame.origin().latDeg, z, datasets::kTileSize));
-  for (const geo::TileId& id : geo::tilesCovering(meta.bounds, z)) {
+  for (const geo::TileId& id : geo::tilesCovering(read, z)) {
     const std::string path = datasets::canopyTilePath({}, id).generic_string();
     auto bytes = source.readText(path);
     if (!bytes) {

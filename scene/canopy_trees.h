@@ -37,14 +37,19 @@
 namespace vegstream::scene {
 
 inline constexpr uint64_t kMaxCanopyTiles = 2048;  // 256 MiB of 16-bit heights
+// Around a load's area: more than a tree cell, the cells' slack and the detection's margin.
+inline constexpr double kAreaMarginM = 250.0;
 
 class CanopyTrees {
  public:
-  // nullptr when the dataset has no canopy layer. Errors: a corrupt tile (named), more tiles than
+  // nullptr when the dataset has no canopy layer. `area`: only the tiles within kAreaMarginM of
+  // it are read (trees_in_box: the box; the trees of the area are the same as with the whole
+  // layer); null: the whole layer. Errors: a corrupt tile (named), more tiles than
   // kMaxCanopyTiles, Io from the source.
   static Result<std::shared_ptr<const CanopyTrees>> load(streaming::TileSource& source,
                                                          const datasets::DatasetMeta& meta,
-                                                         const geo::LocalFrame& frame);
+                                                         const geo::LocalFrame& frame,
+                                                         const geo::GeoBounds* area = nullptr);
 
   // Whether the layer has a height under the local point (x, y, z).
   bool covers(double x, double y, double z) const;

@@ -89,7 +89,7 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
   if (!ground) return ground.error();
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
-  auto canopy = CanopyTrees::load(*source, *meta, frame);
+  auto canopy = CanopyTrees::load(*source, *meta, frame, &box);
   if (!canopy) return canopy.error();
   placeTreesWithCanopy(canopy->get(), catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
   uint64_t count = 0;
