@@ -89,10 +89,8 @@ bool CanopyTrees::covers(double x, double y, double z) const {
   return !std::isnan(heightAt(static_cast<int64_t>(std::floor(t.x)), static_cast<int64_t>(std::floor(t.y))));
 }
 
-void CanopyTrees::treesInCells(const vegetation::SpeciesCatalog& catalog, const vegetation::TreeGrid& grid,
-                               int32_t cx0, int32_t cy0, int32_t cx1, int32_t cy1,
-                               const vegetation::TreeGroundAt& ground, std::vector<vegetation::PlacedTree>& out) const {
-  if (tiles_.empty() || cx0 >= cx1 || cy0 >= cy1) return;
+CanopyTrees::PixelWindow CanopyTrees::windowOver(const vegetation::TreeGrid& grid, int32_t cx0, int32_t cy0,
+                                                 int32_t cx1, int32_t cy1) const {
   const double n = datasets::kTileSize;
   // The global pixels under the cells (their corners at the frame's height 0, with slack), plus
   // the detection's margin.
@@ -105,15 +103,26 @@ void CanopyTrees::treesInCells(const vegetation::SpeciesCatalog& catalog, const 
     px0 = std::min(px0, t.x), py0 = std::min(py0, t.y), px1 = std::max(px1, t.x), py1 = std::max(py1, t.y);
   }
   const int m = vegetation::marginPixels(detection_);
-  const auto gx0 = static_cast<int64_t>(std::floor(px0)) - m, gy0 = static_cast<int64_t>(std::floor(py0)) - m;
-  const auto w = static_cast<int>(static_cast<int64_t>(std::ceil(px1)) + m - gx0);
-  const auto h = static_cast<int>(static_cast<int64_t>(std::ceil(py1)) + m - gy0);
-  std::vector<float> heights(size_t(w) * size_t(h));
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) heights[size_t(r) * size_t(w) + size_t(c)] = heightAt(gx0 + c, gy0 + r);
+  PixelWindow w;
+  w.gx0 = static_cast<int64_t>(std::floor(px0)) - m;
+  w.gy0 = static_cast<int64_t>(std::floor(py0)) - m;
+  w.w = static_cast<int>(static_cast<int64_t>(std::ceil(px1)) + m - w.gx0);
+  w.h = static_cast<int>(static_cast<int64_t>(std::ceil(py1)) + m - w.gy0);
+  w.heights.resize(size_t(w.w) * size_t(w.h));
+  for (int r = 0; r < w.h; ++r)
+    for (int c = 0; c < w.w; ++c) w.heights[size_t(r) * size_t(w.w) + size_t(c)] = heightAt(w.gx0 + c, w.gy0 + r);
+  return w;
+}
 
+void CanopyTrees::treesInCells(const vegetation::SpeciesCatalog& catalog, const vegetation::TreeGrid& grid,
+                               int32_t cx0, int32_t cy0, int32_t cx1, int32_t cy1,
+                               const vegetation::TreeGroundAt& ground, std::vector<vegetation::PlacedTree>& out) const {
+  if (tiles_.empty() || cx0 >= cx1 || cy0 >= cy1) return;
+  const double n = datasets::kTileSize;
+  const PixelWindow win = windowOver(grid, cx0, cy0, cx1, cy1);
+  const int64_t gx0 = win.gx0, gy0 = win.gy0;
   std::vector<std::tuple<int32_t, int32_t, vegetation::PlacedTree>> found;
-  for (const vegetation::DetectedCrown& crown : vegetation::detectCrowns(heights, w, h, detection_)) {
+  for (const vegetation::DetectedCrown& crown : vegetation::detectCrowns(win.heights, win.w, win.h, detection_)) {
     const glm::dvec2 tileXY{(double(gx0) + crown.col) / n, (double(gy0) + crown.row) / n};
     const glm::dvec2 ll = geo::tileXYToLonLat(tileXY, zoom_);
     // On the ground: the local point at height 0, the ground's z there, then the point again at

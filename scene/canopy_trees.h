@@ -64,6 +64,13 @@ class CanopyTrees {
  private:
   CanopyTrees(int zoom, const geo::LocalFrame& frame) : zoom_(zoom), frame_(frame) {}
   float heightAt(int64_t gx, int64_t gy) const;  // global pixel at zoom_; NaN: no data
+  struct PixelWindow {
+    int64_t gx0 = 0, gy0 = 0;  // global pixel of its top-left
+    int w = 0, h = 0;
+    std::vector<float> heights;  // w × h, NaN = no data
+  };
+  // The layer's pixels under cells [cx0, cx1) × [cy0, cy1) and the detection's margin around.
+  PixelWindow windowOver(const vegetation::TreeGrid& grid, int32_t cx0, int32_t cy0, int32_t cx1, int32_t cy1) const;
 
   int zoom_;
   geo::LocalFrame frame_;
