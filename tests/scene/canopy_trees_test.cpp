@@ -252,6 +252,41 @@ TEST_F(CanopyImport, OutsideTheChmTreesAreAsBefore) {
   }
 }
 
+// Where the CHM has no data (its west half here), the imagery places the trees as before; its
+// east half has the CHM's trees.
+TEST_F(CanopyImport, NodataInTheChmKeepsTheImageryTrees) {
+  const fs::path work = testing::testOutputDir();
+  const std::vector<testing::TrueTree> trees = testing::syntheticTrees(60, kChmSide, 51);
+  std::vector<float> chm = testing::rasterizeChm(trees, side_, 1.0, 0.15f, 52);
+  for (int r = 0; r < side_; ++r)
+    for (int c = 0; c < side_ / 2; ++c) chm[size_t(r) * side_ + size_t(c)] = -9999.0f;  // the grid's nodata
+  const double cx0 = kX0 + kChmOffset, cy0 = kY0 + kChmOffset;
+  const fs::path tif = writeChm(work, chm, side_, 1.0, 1.0, cx0, cy0, "half.tif");
+  const Inputs in{*dir_ / "dem.tif", *dir_ / "imagery.tif"};
+  const auto r = runVegstream(importArgs(in, work / "ds") + " --canopy-height " + q(tif));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto& cat = vegetation::defaultSpeciesCatalog();
+  const geo::GeoBounds west = lonLatBox(utm(), cx0 + 5, cy0 + 5, cx0 + 60, cy0 + 135);
+  auto half = treesInBox((work / "ds").string(), west, cat, {});
+  auto without = treesInBox((*dir_ / "without").string(), west, cat, {});
+  ASSERT_TRUE(half && without);
+  std::printf("[ figures  ] %zu trees under the CHM's nodata half (%zu without a CHM)\n", half->trees.size(),
+              without->trees.size());
+  ASSERT_GT(without->trees.size(), 10u);
+  ASSERT_EQ(half->trees.size(), without->trees.size());
+  for (size_t i = 0; i < half->trees.size(); ++i) {
+    EXPECT_EQ(half->trees[i].at.lonDeg, without->trees[i].at.lonDeg);
+    EXPECT_EQ(half->trees[i].seed, without->trees[i].seed);
+  }
+  const geo::GeoBounds east = lonLatBox(utm(), cx0 + 75, cy0 + 5, cx0 + 135, cy0 + 135);
+  auto chmTrees = treesInBox((work / "ds").string(), east, cat, {});
+  ASSERT_TRUE(chmTrees);
+  int expected = 0;
+  for (const auto& t : trees) expected += t.x >= 75 && t.x < 135 && t.y >= 5 && t.y < 135;
+  std::printf("[ figures  ] %zu trees in the CHM's data half, %d true trees there\n", chmTrees->trees.size(), expected);
+  EXPECT_NEAR(double(chmTrees->trees.size()), double(expected), 0.1 * expected + 1);
+}
+
 TEST_F(CanopyImport, InfoAndQueryReportTheLayer) {
   auto meta = datasets::readDatasetMeta(*dir_ / "with");
   ASSERT_TRUE(meta);
