@@ -192,6 +192,18 @@ Result<datasets::GeoTiffImportOptions> geoTiffOptions(const ImportOptions& o) {
   } else if (!o.landcoverCrs.empty() || o.landcoverScheme != "auto") {
     return userError("--landcover-scheme and --landcover-crs describe --landcover FILE, which was not given");
   }
+  if (!o.canopyHeight.empty()) {
+    datasets::GeoTiffImportOptions::Canopy c;
+    c.file = o.canopyHeight;
+    if (!o.canopyHeightCrs.empty()) {
+      auto e = crsOption("--canopy-height-crs", o.canopyHeightCrs);
+      if (!e) return e.error();
+      c.crs = *e;
+    }
+    g.canopy = std::move(c);
+  } else if (!o.canopyHeightCrs.empty()) {
+    return userError("--canopy-height-crs states the CRS of --canopy-height FILE, which was not given");
+  }
   auto enc = datasets::parseElevationEncoding(o.encoding);
   if (!enc) return enc.error();
   g.encoding = *enc;
@@ -290,6 +302,11 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
                   "The landcover codes: worldcover, nlcd, or auto (detected from the codes present)")
       ->capture_default_str();
   cmd->add_option("--landcover-crs", o.landcoverCrs, "The landcover raster's CRS when it has none or a wrong one");
+  cmd->add_option("--canopy-height", o.canopyHeight,
+                  "A canopy height model (heights of vegetation above the ground, metres or a declared foot unit; "
+                  "any format and CRS) → the canopy layer at its own resolution; trees stand at its crowns");
+  cmd->add_option("--canopy-height-crs", o.canopyHeightCrs,
+                  "The canopy height model's CRS when it has none or a wrong one");
   cmd->add_option("--imagery-nir-crs", o.imageryNirCrs,
                   "The NIR file's CRS (EPSG:N, WKT or PROJJSON) when it has none or a wrong one");
   cmd->add_option("--stretch", o.stretch,
@@ -376,10 +393,10 @@ int runImport(const ImportOptions& o, const Logger& log) {
     meta = g ? datasets::importGeoTiff(*g, log, progress) : Result<DatasetMeta>(g.error());
   } else {
     if (!o.imagery.empty() || !o.imageryBands.empty() || !o.stretch.empty() || !o.imageryNir.empty() ||
-        !o.bands.empty() || o.nirBand > 0 || !o.landcover.empty() ||
+        !o.bands.empty() || o.nirBand > 0 || !o.landcover.empty() || !o.canopyHeight.empty() ||
         !o.imageryDatetime.empty() || !o.imagerySun.empty() || o.radiometry != "auto")
       meta = userError(
-          "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime and "
+          "--imagery, --imagery-bands, --imagery-nir, --stretch, --radiometry, --imagery-datetime, --canopy-height and "
           "--imagery-sun go with --dem; use --xyz-imagery with --xyz-elevation");
     else
       meta = runXyz(o, log, progress);
@@ -396,6 +413,7 @@ int runImport(const ImportOptions& o, const Logger& log) {
   const double s = progress.seconds();
   std::string ndvi = meta->ndvi ? ", " + std::to_string(meta->ndviTiles) + " NDVI" : std::string();
   if (meta->landcover) ndvi += ", " + std::to_string(meta->landcoverTiles) + " landcover";
+  if (meta->canopyZoom) ndvi += ", " + std::to_string(meta->canopyTiles) + " canopy (zoom " + std::to_string(*meta->canopyZoom) + ")";
   log->info(
       "imported {}: {} tiles ({} elevation, {} imagery{}), zooms {}…{}, heights {:.1f}…{:.1f} m, {:.1f} MB, "
       "{:.2f} s ({:.0f} tiles/s) → {}",

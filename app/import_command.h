@@ -24,6 +24,7 @@ struct ImportOptions {
   std::string imageryNir, imageryNirCrs;  // near-infrared band → the NDVI layer
   int nirBand = 0;                        // --nir-band N (0: not given)
   std::string landcover, landcoverScheme = "auto", landcoverCrs;  // the landcover layer
+  std::string canopyHeight, canopyHeightCrs;                      // the canopy layer (a CHM)
   double demNodata = 0.0;
   std::string heightResampling = "bilinear";
   // Imagery radiometry and de-shading (datasets/radiometry.h, deshading_plan.h).

@@ -21,13 +21,13 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ZoomCounts {
-  uint64_t elevation = 0, imagery = 0, ndvi = 0, landcover = 0, bytes = 0;
+  uint64_t elevation = 0, imagery = 0, ndvi = 0, landcover = 0, canopy = 0, bytes = 0;
 };
 
-// Tiles on disk under DIR/{elevation,imagery,ndvi,landcover}/{z}/{x}/{y}.ext, per zoom.
+// Tiles on disk under DIR/{elevation,imagery,ndvi,landcover,canopy}/{z}/{x}/{y}.ext, per zoom.
 std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
   std::map<int, ZoomCounts> zooms;
-  for (const char* kind : {"elevation", "imagery", "ndvi", "landcover"}) {
+  for (const char* kind : {"elevation", "imagery", "ndvi", "landcover", "canopy"}) {
     std::error_code ec;
     const fs::path root = dir / kind;
     if (!fs::is_directory(root, ec)) continue;
@@ -37,7 +37,11 @@ std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
       const std::string zText = it->path().parent_path().parent_path().filename().string();
       if (zText.empty() || zText.find_first_not_of("0123456789") != std::string::npos || zText.size() > 2) continue;
       ZoomCounts& c = zooms[std::stoi(zText)];
-      (kind[0] == 'e' ? c.elevation : kind[0] == 'i' ? c.imagery : kind[0] == 'n' ? c.ndvi : c.landcover) += 1;
+      (kind[0] == 'e'   ? c.elevation
+       : kind[0] == 'i' ? c.imagery
+       : kind[0] == 'n' ? c.ndvi
+       : kind[0] == 'c' ? c.canopy
+                        : c.landcover) += 1;
       const auto size = it->file_size(ec);
       if (!ec) c.bytes += size;
     }
@@ -59,16 +63,19 @@ int runInfo(const InfoOptions& options, const Logger& log) {
     crsNames.insert(s.crs);
   }
   nlohmann::json perZoom = nlohmann::json::array();
-  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, landcoverOnDisk = 0, bytesOnDisk = 0;
+  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, landcoverOnDisk = 0, canopyOnDisk = 0,
+           bytesOnDisk = 0;
   for (const auto& [z, c] : countTiles(reader->dir())) {
     nlohmann::json zoom = {{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}};
     if (m.ndvi) zoom["ndvi"] = c.ndvi;
     if (m.landcover) zoom["landcover"] = c.landcover;
+    if (m.canopyZoom) zoom["canopy"] = c.canopy;
     perZoom.push_back(zoom);
     elevationOnDisk += c.elevation;
     imageryOnDisk += c.imagery;
     ndviOnDisk += c.ndvi;
     landcoverOnDisk += c.landcover;
+    canopyOnDisk += c.canopy;
     bytesOnDisk += c.bytes;
   }
   if (elevationOnDisk != m.elevationTiles || imageryOnDisk != m.imageryTiles)
@@ -91,6 +98,12 @@ int runInfo(const InfoOptions& options, const Logger& log) {
   // The landcover layer (import --landcover); null when the dataset has none.
   tiles["landcover"] = m.landcover ? nlohmann::json(m.landcoverTiles) : nlohmann::json(nullptr);
   if (m.landcover) tiles["on_disk"]["landcover"] = landcoverOnDisk;
+  // The canopy height layer (import --canopy-height); null when the dataset has none.
+  tiles["canopy"] = m.canopyZoom ? nlohmann::json(m.canopyTiles) : nlohmann::json(nullptr);
+  if (m.canopyZoom) tiles["on_disk"]["canopy"] = canopyOnDisk;
+  if (m.canopyZoom && canopyOnDisk != m.canopyTiles)
+    log->warn("{}: dataset.json counts {} canopy tiles, the directory holds {}", options.dataset, m.canopyTiles,
+              canopyOnDisk);
   // The TileJSON files beside the dataset (datasets/tilejson.h) that are there: datasets made
   // before they existed have none.
   nlohmann::json tileJson = nlohmann::json::object();

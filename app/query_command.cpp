@@ -88,6 +88,8 @@ int runQuery(const QueryOptions& options, const Logger& log) {
   if (!ndvi) return reportError(log, ndvi.error());
   auto landcover = reader->landcoverAt(options.latDeg, options.lonDeg);
   if (!landcover) return reportError(log, landcover.error());
+  auto canopy = reader->canopyAt(options.latDeg, options.lonDeg);
+  if (!canopy) return reportError(log, canopy.error());
 
   nlohmann::json out = {
       {"dataset", reader->meta().name}, {"lat", options.latDeg}, {"lon", options.lonDeg}, {"height_m", *height}};
@@ -107,6 +109,10 @@ int runQuery(const QueryOptions& options, const Logger& log) {
   else
     out["ndvi"] = nullptr;  // no NDVI layer (import --imagery-nir), or none at the point
   out["landcover"] = landcoverJson(*landcover, reader->meta());
+  // The canopy height layer (import --canopy-height), to its 0.1 m step; null without the layer
+  // or without a height at the point.
+  out["canopy_height_m"] = *canopy ? nlohmann::json(std::round(static_cast<double>(**canopy) * 10.0) / 10.0)
+                                   : nlohmann::json(nullptr);
   std::cout << out.dump(2) << "\n";
   return kExitOk;
 }

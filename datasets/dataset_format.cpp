@@ -18,6 +18,8 @@
 //     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
 //     "landcover": { "encoding": "class8", "scheme": "worldcover", "tiles": "landcover/{z}/{x}/{y}.png",
 //                    "tile_count": N }  (or null)
+//     "canopy":    { "encoding": "decimetre16", "zoom": Z, "tiles": "canopy/{z}/{x}/{y}.png",
+//                    "tile_count": N }  (or null; import --canopy-height, canopy.h)
 //     "attribution": "…", "sources": [ { "role", "path", "crs", "description" } ], "bytes": N }
 //
 // "ndvi" (import --imagery-nir) came after format version 1 was fixed: a dataset.json without
@@ -45,6 +47,7 @@ using nlohmann::json;
 constexpr const char* kMetaFile = "dataset.json";
 constexpr const char* kNdviEncoding = "ndvi8";
 constexpr const char* kLandcoverEncoding = "class8";
+constexpr const char* kCanopyEncoding = "decimetre16";
 
 const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
 
@@ -167,6 +170,20 @@ Status parseLandcover(const json& lc, const FieldReader& f, DatasetMeta& m) {
   return {};
 }
 
+// dataset.json's "canopy" object (not null) into m.canopyZoom / m.canopyTiles (issue 41 item 3).
+Status parseCanopy(const json& c, const FieldReader& f, DatasetMeta& m) {
+  if (!c.is_object()) return f.bad("canopy", "must be an object or null");
+  std::string encoding;
+  int64_t zoom = 0, count = 0;
+  VEG_TRY_ASSIGN(encoding, f.text(c, "encoding", "canopy.encoding"));
+  if (encoding != kCanopyEncoding) return f.bad("canopy.encoding", concat("is '", encoding, "'; expected ", kCanopyEncoding));
+  VEG_TRY_ASSIGN(zoom, f.integer(c, "zoom", "canopy.zoom", 0, 24));
+  VEG_TRY_ASSIGN(count, f.integer(c, "tile_count", "canopy.tile_count", 0, INT64_MAX));
+  m.canopyZoom = static_cast<int>(zoom);
+  m.canopyTiles = static_cast<uint64_t>(count);
+  return {};
+}
+
 Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
   DatasetMeta m;
@@ -246,6 +263,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
 
   if (auto lc = j.find("landcover"); lc != j.end() && !lc->is_null())
     if (Status s = parseLandcover(*lc, f, m); !s) return s.error();
+  if (auto c = j.find("canopy"); c != j.end() && !c->is_null())
+    if (Status s = parseCanopy(*c, f, m); !s) return s.error();
 
   VEG_TRY_ASSIGN(m.attribution, f.text(j, "attribution", "attribution"));
   const json* src = nullptr;
@@ -321,6 +340,12 @@ json toJson(const DatasetMeta& m) {
                  {"scheme", toString(*m.landcover)},
                  {"tiles", "landcover/{z}/{x}/{y}.png"},
                  {"tile_count", m.landcoverTiles}};
+  json canopy = nullptr;
+  if (m.canopyZoom)
+    canopy = {{"encoding", kCanopyEncoding},
+              {"zoom", *m.canopyZoom},
+              {"tiles", "canopy/{z}/{x}/{y}.png"},
+              {"tile_count", m.canopyTiles}};
   return json{{"format_version", m.formatVersion},
               {"name", m.name},
               {"bounds",
@@ -340,6 +365,7 @@ json toJson(const DatasetMeta& m) {
               {"imagery", imagery},
               {"ndvi", ndvi},
               {"landcover", landcover},
+              {"canopy", canopy},
               {"attribution", m.attribution},
               {"sources", sources},
               {"bytes", m.bytes}};

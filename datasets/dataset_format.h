@@ -10,6 +10,9 @@
 //                                         and red bands (tile_codec.h ndviToByte; 0 = no data)
 //   DIR/landcover/{z}/{x}/{y}.png         optional: 8-bit grey PNG, the class code as the source
 //                                         stores it (landcover.h; 0 = no data)
+//   DIR/canopy/{z}/{x}/{y}.png            optional: 16-bit grey PNG, canopy height in decimetres
+//                                         at canopy.zoom, its max pyramid below (canopy.h;
+//                                         65535 = no data)
 //
 // XYZ Web Mercator scheme, rows counted from the north, 256-pixel tiles, pixel (i, j) of a tile
 // sampled at its centre, so any static server can serve a dataset and QGIS/MapLibre read it.
@@ -99,6 +102,10 @@ struct DatasetMeta {
   // datasets written before the layer existed).
   std::optional<LandcoverScheme> landcover;
   uint64_t landcoverTiles = 0;
+  // A canopy height layer (import --canopy-height, canopy.h): the zoom its heights were sampled
+  // at (lower zooms hold its pyramid); nullopt: none.
+  std::optional<int> canopyZoom;
+  uint64_t canopyTiles = 0;
   uint64_t bytes = 0;  // all tile files together
 };
 

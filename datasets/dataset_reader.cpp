@@ -187,6 +187,22 @@ Result<std::shared_ptr<const LandcoverTile>> DatasetReader::landcoverTile(const 
   return entry.landcover;
 }
 
+Result<std::shared_ptr<const CanopyTile>> DatasetReader::canopyTile(const geo::TileId& id) {
+  const Key key{id, Layer::Canopy};
+  if (const Entry* e = cached(key)) return e->canopy;
+  Entry entry{key, nullptr, nullptr, nullptr};
+  const fs::path path = canopyTilePath(dir_, id);
+  std::error_code ec;
+  if (meta_.canopyZoom && fs::exists(path, ec)) {
+    auto tile = readCanopyTile(path, id, meta_.tileSize);  // checks the size
+    if (!tile) return tile.error();
+    entry.canopy = std::make_shared<const CanopyTile>(std::move(*tile));
+    ++decoded_;
+  }
+  insert(entry);
+  return entry.canopy;
+}
+
 Result<double> DatasetReader::heightAtZoom(double latDeg, double lonDeg, int z) {
   const int size = meta_.tileSize;
   const Footprint f = footprint(latDeg, lonDeg, z, size);
@@ -282,6 +298,21 @@ Result<std::optional<uint8_t>> DatasetReader::landcoverAt(double latDeg, double 
     if (code != 0) return std::optional<uint8_t>(code);
   }
   return std::optional<uint8_t>{};
+}
+
+// The pixel whose square holds the point, at the layer's own zoom.
+Result<std::optional<float>> DatasetReader::canopyAt(double latDeg, double lonDeg) {
+  if (!meta_.canopyZoom || !contains(latDeg, lonDeg)) return std::optional<float>{};
+  const int size = meta_.tileSize, z = *meta_.canopyZoom;
+  const glm::dvec2 t = geo::lonLatToTileXY({lonDeg, latDeg}, z);
+  const PixelRef p =
+      pixelRef(static_cast<int64_t>(std::floor(t.x * size)), static_cast<int64_t>(std::floor(t.y * size)), z, size);
+  if (!p.valid) return std::optional<float>{};
+  auto tile = canopyTile(p.tile);
+  if (!tile) return tile.error();
+  if (!*tile) return std::optional<float>{};
+  const float h = canopyHeightOf((*tile)->at(p.i, p.j));
+  return std::isnan(h) ? std::optional<float>{} : std::optional<float>(h);
 }
 
 }  // namespace vegstream::datasets

@@ -18,6 +18,7 @@
 
 #include "core/result.h"
 #include "datasets/dataset_format.h"
+#include "datasets/canopy.h"
 #include "datasets/landcover.h"
 #include "datasets/tile_codec.h"
 
@@ -54,6 +55,10 @@ class DatasetReader {
   // outside the bounds, or a dataset without the layer. Codes the scheme does not know are
   // returned as stored.
   Result<std::optional<uint8_t>> landcoverAt(double latDeg, double lonDeg);
+  // Canopy height above the ground (m, to the encoding's 0.1 m): the pixel whose square holds the
+  // point at the canopy layer's own zoom (canopy.h). nullopt: no height there, outside the bounds,
+  // or a dataset without the layer.
+  Result<std::optional<float>> canopyAt(double latDeg, double lonDeg);
 
   // One decoded tile; nullptr when the dataset has no such tile. A colour tile carries the NDVI
   // layer's tile in `ndvi` when the dataset has the layer (empty where that tile is missing);
@@ -62,6 +67,8 @@ class DatasetReader {
   Result<std::shared_ptr<const ColorTile>> colorTile(const geo::TileId& id);
   // The landcover layer's tile; nullptr when there is none (or no layer).
   Result<std::shared_ptr<const LandcoverTile>> landcoverTile(const geo::TileId& id);
+  // The canopy layer's tile; nullptr when there is none (or no layer).
+  Result<std::shared_ptr<const CanopyTile>> canopyTile(const geo::TileId& id);
 
   // Tiles decoded from disk so far (the LRU's misses), for tests.
   uint64_t tilesDecoded() const { return decoded_; }
@@ -70,7 +77,7 @@ class DatasetReader {
   DatasetReader(std::filesystem::path dir, DatasetMeta meta, size_t cachedTiles)
       : dir_(std::move(dir)), meta_(std::move(meta)), capacity_(cachedTiles) {}
 
-  enum class Layer : uint8_t { Height, Color, Landcover };
+  enum class Layer : uint8_t { Height, Color, Landcover, Canopy };
   struct Key {
     geo::TileId id;
     Layer layer = Layer::Height;
@@ -86,6 +93,7 @@ class DatasetReader {
     std::shared_ptr<const HeightTile> height;
     std::shared_ptr<const ColorTile> color;
     std::shared_ptr<const LandcoverTile> landcover;
+    std::shared_ptr<const CanopyTile> canopy = nullptr;
   };
   const Entry* cached(const Key& key);
   void insert(Entry entry);

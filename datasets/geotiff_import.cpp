@@ -17,6 +17,7 @@
 
 #include "core/parallel_for.h"
 #include "datasets/dataset_finish.h"
+#include "datasets/canopy_import.h"
 #include "datasets/deshading_plan.h"
 #include "datasets/import_journal.h"
 #include "datasets/landcover.h"
@@ -72,6 +73,7 @@ std::string fingerprint(const GeoTiffImportOptions& o) {
   if (o.landcover)
     j["landcover"] = {files({o.landcover->file}), o.landcover->scheme ? toString(*o.landcover->scheme) : "auto",
                       o.landcover->crs ? o.landcover->crs->wkt() : ""};
+  if (o.canopy) j["canopy"] = {files({o.canopy->file}), o.canopy->crs ? o.canopy->crs->wkt() : ""};
   j["crs"] = {o.demCrs ? o.demCrs->wkt() : "", o.imagery.assumeCrs ? o.imagery.assumeCrs->wkt() : ""};
   j["options"] = {o.demNodata.value_or(NAN), static_cast<int>(o.heightResampling), o.imageryDatetime,
                   o.imagerySun ? o.imagerySun->azimuthDeg : NAN, o.imagerySun ? o.imagerySun->elevationDeg : NAN,
@@ -125,6 +127,7 @@ struct Grids {
   const NdviSource* ndvi;
   const SourceGrid* landcover;
   std::optional<LandcoverScheme> scheme;
+  const CanopyLayer* canopy = nullptr;
 };
 
 int chooseMaxZoom(const GeoTiffImportOptions& o, const Grids& g, double lat) {
@@ -154,6 +157,8 @@ DatasetMeta initialMeta(const GeoTiffImportOptions& o, const Grids& g, int maxZo
     meta.sources.push_back(sourceInfo("landcover", o.landcover->file, *g.landcover,
                                       concat("classes of ", toString(*g.scheme), ", nearest class")));
   }
+  if (g.canopy)
+    meta.sources.push_back(sourceInfo("canopy", g.canopy->file, *g.canopy->grid, "canopy heights (m), bilinear"));
   if (g.ndvi) {
     meta.ndvi = true;
     SourceInfo nir{"nir", o.nir->file, g.ndvi->nirCrs().name(), g.ndvi->description()};
@@ -261,6 +266,11 @@ Result<DatasetMeta> importTiles(const GeoTiffImportOptions& o, const Grids& g, c
   });
   if (!s) return fail(s.error());
   if (auto c = countTiles(o, tiles, records, meta); !c) return fail(c.error());
+  if (g.canopy)
+    if (auto c = importCanopyTiles(journal->dir(), *g.canopy, g.dem.extent(), o.maxTiles, o.threads, o.tasks, progress,
+                                   meta);
+        !c)
+      return fail(c.error());
   auto result = finishDataset(journal->dir(), meta, progress, o.threads, o.jpegQuality, o.tasks);
   if (!result) return fail(result.error());
   if (o.cancel && o.cancel->load()) return fail(makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written"));
@@ -386,12 +396,19 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
     if (!l) return l.error();
     landcover = std::move(*l);
   }
+  std::optional<CanopyLayer> canopy;
+  if (o.canopy) {
+    auto c = openCanopy(o.canopy->file, o.canopy->crs, *demGrid, overviewPixels, log);
+    if (!c) return c.error();
+    canopy = std::move(*c);
+  }
   const Grids grids{*demGrid,
                     imagery ? &*imagery : nullptr,
                     imageryGrid ? &*imageryGrid : nullptr,
                     ndvi ? &*ndvi : nullptr,
                     landcover ? landcover->grid.get() : nullptr,
-                    landcover ? std::optional<LandcoverScheme>(landcover->scheme) : std::nullopt};
+                    landcover ? std::optional<LandcoverScheme>(landcover->scheme) : std::nullopt,
+                    canopy ? &*canopy : nullptr};
   return importTiles(options, grids, log, progress);
 }
 

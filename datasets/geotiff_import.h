@@ -64,6 +64,14 @@ struct GeoTiffImportOptions {
     std::optional<geo::Crs> crs;
   };
   std::optional<Landcover> landcover;
+  // --canopy-height FILE: a canopy height model (metres above the ground; a declared foot unit is
+  // converted) stored as the canopy layer at its own resolution (canopy_import.h); its CRS stated
+  // with --canopy-height-crs.
+  struct Canopy {
+    std::string file;
+    std::optional<geo::Crs> crs;
+  };
+  std::optional<Canopy> canopy;
   HeightResampling heightResampling = HeightResampling::Bilinear;
   // When the imagery was taken (--imagery-datetime, ISO 8601 with a zone; empty: unknown):
   // recorded in dataset.json, and the sun at the dataset's centre then de-shades the imagery.

@@ -98,6 +98,14 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   fo.cores = o.cores;
   m.treeField = std::make_unique<TreeField>(catalog, m.treeGround->at(), fo, std::move(firstModel), variants,
                                             m.renderer->treePageCapacity());
+  // Trees at the canopy layer's crowns (canopy_trees.h); a layer too large to read goes unused.
+  auto canopy = CanopyTrees::load(*m.source, meta, m.frame);
+  if (canopy)
+    m.treeField->setCanopy(std::move(*canopy));
+  else if (canopy.error().kind == ErrorKind::InvalidInput && log)
+    log->warn("{}", canopy.error().message);
+  else if (canopy.error().kind != ErrorKind::InvalidInput)
+    return canopy.error();
   m.info.treeModels = models;
   m.info.treeSetupMs = watch.elapsedMs();
   return {};

@@ -31,8 +31,8 @@ TreeField::TreeField(const vegetation::SpeciesCatalog& catalog, vegetation::Tree
 void TreeField::place(const TileKey& key, Tile& tile) {
   const auto n = static_cast<int32_t>(options_.tileCells);
   scratch_.clear();
-  vegetation::placeTreesInCells(*catalog_, grid_, key.first * n, key.second * n, (key.first + 1) * n,
-                                (key.second + 1) * n, ground_, scratch_);
+  placeTreesWithCanopy(canopy_.get(), *catalog_, grid_, key.first * n, key.second * n, (key.first + 1) * n,
+                       (key.second + 1) * n, ground_, scratch_);
   tile.trees.clear();
   tile.trees.reserve(scratch_.size());
   for (const vegetation::PlacedTree& t : scratch_) {

@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/tree_layout.h"
+#include "scene/canopy_trees.h"
 #include "vegetation/canopy_cells.h"
 #include "vegetation/species_catalog.h"
 #include "vegetation/tree_placement.h"
@@ -53,6 +54,8 @@ class TreeField {
   // under (vegetation/canopy_cells.h); after prepare().
   void fillCanopy(const glm::dvec3& cameraEnu, vegetation::CanopyTable& out);
   const vegetation::TreeGrid& grid() const { return grid_; }
+  // Trees at the canopy layer's crowns where it has heights (canopy_trees.h); before any prepare().
+  void setCanopy(std::shared_ptr<const CanopyTrees> canopy) { canopy_ = std::move(canopy); }
 
  private:
   using TileKey = std::pair<int32_t, int32_t>;
@@ -78,6 +81,7 @@ class TreeField {
   TreeFieldFigures figures_;
   std::vector<vegetation::PlacedTree> scratch_;
   std::vector<vegetation::CanopyTree> canopyTrees_;
+  std::shared_ptr<const CanopyTrees> canopy_;
 };
 
 }  // namespace vegstream::scene

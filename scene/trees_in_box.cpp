@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "geo/local_frame.h"
+#include "scene/canopy_trees.h"
 #include "scene/tree_ground.h"
 #include "scene/box_dataset.h"
 #include "vegetation/tree_placement.h"
@@ -88,7 +89,9 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
   if (!ground) return ground.error();
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
-  vegetation::placeTreesInCells(catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
+  auto canopy = CanopyTrees::load(*source, *meta, frame, &box);
+  if (!canopy) return canopy.error();
+  placeTreesWithCanopy(canopy->get(), catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
   uint64_t count = 0;
   for (const vegetation::PlacedTree& t : placed) {
     const geo::Geodetic at = frame.toGeodetic({t.x, t.y, t.z});

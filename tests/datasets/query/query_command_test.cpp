@@ -144,11 +144,12 @@ TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
   const json j = json::parse(now.out);
   EXPECT_TRUE(j.contains("ndvi") && j["ndvi"].is_null()) << now.out;
   EXPECT_TRUE(j.contains("landcover") && j["landcover"].is_null()) << now.out;
+  EXPECT_TRUE(j.contains("canopy_height_m") && j["canopy_height_m"].is_null()) << now.out;
   EXPECT_EQ(json::parse(before.out), j);
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{"color", "dataset", "height_m", "landcover", "lat", "lon", "ndvi",
-                                            "species", "species_bare", "species_candidates"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"canopy_height_m", "color", "dataset", "height_m", "landcover", "lat",
+                                            "lon", "ndvi", "species", "species_bare", "species_candidates"}));
   auto reader = datasets::DatasetReader::open(dir());
   ASSERT_TRUE(reader.ok());
   const double lat = std::stod(std::to_string(p.y)), lon = std::stod(std::to_string(p.x));
