@@ -86,6 +86,7 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
 
   auto ground = TreeGround::load(*source, *meta, frame, options.ground);
   if (!ground) return ground.error();
+  if (meta->landcover) ground->allowLandcover(landcoverMasks(catalog, *meta->landcover));
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
   vegetation::placeTreesInCells(catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
