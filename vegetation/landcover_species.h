@@ -24,6 +24,12 @@
 //   bare              gravel and bare soil                   (stones, nothing that lives)
 //   built, water,     nothing
 //   snow
+// Where it applies: the trees (tree_placement.h, through scene/tree_ground.h: `vegstream plants`
+// and a flight's tree field), the plants of `vegstream plants` (scene/plants_in_box.cpp) and
+// `vegstream query`. Not yet: the GPU classify pass of a flight's plants (it has the GLSL twin,
+// shaders/common/species_choice.glsl chooseSpeciesAllowed, but no landcover texels yet), so a
+// flight over a landcover dataset still grows its grass and gravel from the colour alone.
+//
 // Bare soil stays in every growing kind so that the colour can still say "nothing here" (a rock
 // outcrop inside a grassland class).
 
