@@ -13,6 +13,7 @@
 
 #include "app/exit_codes.h"
 #include "datasets/dataset_reader.h"
+#include "scene/landcover_masks.h"
 #include "vegetation/colour_score.h"
 #include "vegetation/species_choice.h"
 
@@ -23,9 +24,11 @@ namespace {
 // The species the colour score picks at a base colour and NDVI (core seed §3.3 eq. 16–18, the
 // NDVI term of colour_score.h; NaN: none): the best one and the probabilities of the two best,
 // deterministic (no z).
-nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c, float ndvi) {
+// `allowed`: the species the landcover class there allows (scene/landcover_masks.h).
+nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c, float ndvi,
+                           vegetation::SpeciesMask allowed) {
   const vegetation::SpeciesCandidates k =
-      speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]), ndvi);
+      speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]), ndvi, allowed);
   nlohmann::json out;
   if (k.first < 0) {  // every species under its threshold
     out["species"] = nullptr;
@@ -98,7 +101,10 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     char hex[8];
     std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", c[0], c[1], c[2]);
     out["color"] = {{"r", c[0]}, {"g", c[1]}, {"b", c[2]}, {"hex", hex}};
-    out.update(speciesJson(*catalog, c, ndvi->value_or(NAN)));
+    vegetation::SpeciesMask allowed = vegetation::kAllSpecies;  // the class there narrows the choice
+    if (*landcover && reader->meta().landcover)
+      allowed = scene::landcoverMasks(*catalog, *reader->meta().landcover)[**landcover];
+    out.update(speciesJson(*catalog, c, ndvi->value_or(NAN), allowed));
   } else {
     out["color"] = nullptr;  // no imagery: no colour to choose a species from
     out["species"] = nullptr;

@@ -39,12 +39,13 @@
 #include <string>
 #include <vector>
 
+#include "core/landcover_kind.h"
 #include "core/result.h"
 
 namespace vegstream::datasets {
 
 enum class LandcoverScheme { WorldCover, Nlcd };
-enum class LandcoverKind { Tree, Shrub, Grass, Crop, Bare, Built, Water, Snow, Wetland };
+using ::vegstream::LandcoverKind;  // core/landcover_kind.h: vegetation/ uses the kinds too
 
 struct LandcoverClass {
   uint8_t code = 0;

@@ -4,12 +4,17 @@
 
 #include "scene/plants_in_box.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <optional>
 
 #include "geo/xyz_tiles.h"
 #include "scene/settled_tiles.h"
 #include "scene/box_dataset.h"
+#include "scene/landcover_masks.h"
+#include "streaming/dataset_snapshot.h"
 #include "terrain/resident_heights.h"
 #include "terrain/seed_region.h"
 #include "terrain/seed_triangles.h"
@@ -31,12 +36,37 @@ const datasets::ColorTile* imageryOver(SettledTiles& tiles, const terrain::Bintr
   return r && r->colors ? r->colors.get() : nullptr;
 }
 
+// The species the landcover class under a point of an imagery tile allows (landcover_masks.h):
+// the landcover tile of the same id, read once, the texel whose square holds the point (classes
+// are never blended). Every species where the dataset has no layer.
+struct LandcoverLookup {
+  streaming::TileSource* source = nullptr;  // null: no landcover layer
+  LandcoverMasks masks{};
+  std::map<geo::TileId, std::vector<uint8_t>> tiles;
+  std::optional<Error> error;
+
+  vegetation::SpeciesMask at(const datasets::ColorTile& c, glm::vec2 uv) {
+    if (!source) return vegetation::kAllSpecies;
+    auto it = tiles.find(c.id);
+    if (it == tiles.end()) {
+      auto classes = streaming::loadLandcoverClasses(*source, c.id, c.size);
+      if (!classes && !error) error = classes.error();
+      it = tiles.emplace(c.id, classes ? std::move(*classes) : std::vector<uint8_t>{}).first;
+    }
+    if (it->second.empty()) return masks[0];  // no landcover tile here: no class
+    const int n = c.size;
+    const int x = std::clamp(static_cast<int>(std::floor(uv.x * float(n))), 0, n - 1);
+    const int y = std::clamp(static_cast<int>(std::floor(uv.y * float(n))), 0, n - 1);
+    return masks[it->second[static_cast<size_t>(y) * static_cast<size_t>(n) + static_cast<size_t>(x)]];
+  }
+};
+
 // Grows every seed triangle's plants and keeps those in the box (counting all of them).
 void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const terrain::SeedRegion& region,
           const geo::GeoBounds& box, const vegetation::SpeciesCatalog& catalog,
           const vegetation::SeedingOptions& seeding, std::span<const vegetation::CanopyTree> crowns,
           const vegetation::TreeGrid& treeGrid, SettledTiles& tiles, int maxZoom, uint64_t maxPlants,
-          PlantsInBox& out, uint64_t& count) {
+          LandcoverLookup& landcover, PlantsInBox& out, uint64_t& count) {
   std::vector<vegetation::PlantCluster> clusters;
   std::vector<vegetation::Plant> plants;
   // The crowns' table about a point near the triangles (a flight's is about its camera): the
@@ -67,7 +97,8 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
                                            c->ndvi.empty() ? nullptr : c->ndvi.data()};
     const vegetation::BaseColourAt colourAt = [&](glm::vec2 r) -> vegetation::GroundSample {
       const glm::vec2 at = uv[0] + r.x * (uv[1] - uv[0]) + r.y * (uv[2] - uv[0]);
-      return {vegetation::sampleImageryLinear(texels, at), vegetation::sampleImageryNdvi(texels, at)};
+      return {vegetation::sampleImageryLinear(texels, at), vegetation::sampleImageryNdvi(texels, at),
+              landcover.at(*c, at)};
     };
     const vegetation::SeedTriangleInput input{s.key, s.world, s.plantCount};
     clusters.clear();
@@ -149,9 +180,15 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   for (const BoxCrown& c : options.crowns) crowns.push_back({frame.toLocal(c.at), c.crownM});
   if (!vegetation::hasTrees(catalog)) crowns.clear();
   const vegetation::TreeGrid treeGrid = crowns.empty() ? vegetation::TreeGrid{} : vegetation::treeGridFor(catalog);
+  LandcoverLookup landcover;
+  if (meta->landcover) {
+    landcover.source = source.get();
+    landcover.masks = landcoverMasks(catalog, *meta->landcover);
+  }
   grow(grid, frame, region, box, catalog, vegetation::SeedingOptions{options.clusterSize}, crowns, treeGrid, tiles,
-       meta->maxZoom, maxPlants, out, count);
+       meta->maxZoom, maxPlants, landcover, out, count);
   if (tiles.error()) return *tiles.error();
+  if (landcover.error) return *landcover.error;
   if (count > maxPlants) return tooMany("the box grows " + plural(count, "plant"), count);
   return out;
 }

@@ -83,6 +83,7 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   const double modelsMs = watch.elapsedMs();
   auto ground = TreeGround::load(*m.source, meta, m.frame, limits);
   if (!ground) return ground.error();
+  if (meta.landcover) ground->allowLandcover(landcoverMasks(catalog, *meta.landcover));
   m.treeGround = std::make_unique<TreeGround>(std::move(*ground));
   const double groundMs = watch.elapsedMs() - modelsMs;
   if (Status s = m.renderer->setTreeModels(sets); !s) return s.error();

@@ -135,6 +135,11 @@ vegetation::TreeGroundSample TreeGround::sample(double x, double y) const {
     }
     if (weight > 0.0) ndvi = static_cast<float>(sum / weight);
   }
+  if (masks_ && !d.imagery.landcover.empty()) {
+    // The nearest pixel: the corner whose square holds the point (weights of 0.5 to the later).
+    const size_t cls = f.fy < 0.5 ? (f.fx < 0.5 ? f.i00 : f.i10) : (f.fx < 0.5 ? f.i01 : f.i11);
+    out.allowed = (*masks_)[d.imagery.landcover[cls]];
+  }
   out.valid = true;
   out.linearRgb = colour;
   out.ndvi = ndvi;
@@ -144,6 +149,8 @@ vegetation::TreeGroundSample TreeGround::sample(double x, double y) const {
   return out;
 }
 
+void TreeGround::allowLandcover(const LandcoverMasks& masks) { masks_ = std::make_shared<const LandcoverMasks>(masks); }
+
 vegetation::TreeGroundAt TreeGround::at() const {
   // A copy sharing the mosaics: valid however long the callback lives.
   return [ground = *this](double x, double y) { return ground.sample(x, y); };
@@ -152,7 +159,8 @@ vegetation::TreeGroundAt TreeGround::at() const {
 int TreeGround::zoom() const { return data_->heights.zoom; }
 double TreeGround::pixelM() const { return data_->heights.pixelM; }
 size_t TreeGround::bytes() const {
-  return data_->heights.heights.size() * sizeof(float) + data_->imagery.rgba.size() + data_->imagery.ndvi.size();
+  return data_->heights.heights.size() * sizeof(float) + data_->imagery.rgba.size() + data_->imagery.ndvi.size() +
+         data_->imagery.landcover.size();
 }
 
 }  // namespace vegstream::scene

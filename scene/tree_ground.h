@@ -16,6 +16,9 @@
 //            vegetation::sampleImageryLinear does within a tile);
 //   NDVI     bilinear over the four pixels, those without NDVI dropped and the rest renormalised
 //            (vegetation::sampleImageryNdvi); kNoNdvi where the dataset has none.
+//   allowed  with allowLandcover (a dataset with a landcover layer): the species the class of the
+//            mosaic pixel nearest the point allows (landcover_masks.h; classes are never blended);
+//            every species otherwise.
 // Invalid outside the mosaic's pixel centres, or where one of the four has no height or no imagery.
 
 #include <cstddef>
@@ -24,6 +27,7 @@
 #include "core/result.h"
 #include "datasets/dataset_format.h"
 #include "geo/local_frame.h"
+#include "scene/landcover_masks.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/tile_source.h"
 #include "vegetation/tree_placement.h"
@@ -45,6 +49,10 @@ class TreeGround {
   static Result<TreeGround> load(streaming::TileSource& source, const datasets::DatasetMeta& meta,
                                  const geo::LocalFrame& frame, const streaming::SnapshotLimits& limits);
 
+  // From now on (and in the callbacks at() gives after this), the species a sample allows follow
+  // the landcover class under it; no effect when the mosaics hold no landcover.
+  void allowLandcover(const LandcoverMasks& masks);
+
   vegetation::TreeGroundSample sample(double x, double y) const;
   // sample() as the placement's callback; it shares the mosaics, so it stays valid after this
   // object is moved or destroyed.
@@ -57,6 +65,7 @@ class TreeGround {
  private:
   struct Data;
   std::shared_ptr<const Data> data_;
+  std::shared_ptr<const LandcoverMasks> masks_;  // null: every species everywhere
 };
 
 }  // namespace vegstream::scene

@@ -87,6 +87,7 @@ Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& 
 
   auto ground = TreeGround::load(*source, *meta, frame, options.ground);
   if (!ground) return ground.error();
+  if (meta->landcover) ground->allowLandcover(landcoverMasks(catalog, *meta->landcover));
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
   auto canopy = CanopyTrees::load(*source, *meta, frame, &box);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "datasets/landcover.h"
 #include "datasets/tile_codec.h"
 #include "geo/projection.h"
 #include "geo/xyz_tiles.h"
@@ -103,6 +104,19 @@ Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::Datas
   return mosaic;
 }
 
+Result<std::vector<uint8_t>> loadLandcoverClasses(TileSource& source, const geo::TileId& id, int size) {
+  const std::string path = datasets::landcoverTilePath({}, id).generic_string();
+  auto bytes = source.readText(path);
+  if (!bytes) {
+    if (bytes.error().kind == ErrorKind::NotFound) return std::vector<uint8_t>{};
+    return bytes.error();
+  }
+  auto t = datasets::decodeLandcoverTile({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, id,
+                                         source.describe() + "/" + path, size);
+  if (!t) return t.error();
+  return std::move(t->classes);
+}
+
 Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
                                         const MercatorRaster& grid) {
   if (!meta.imagery)
@@ -111,6 +125,7 @@ Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::Data
   static_cast<MercatorRaster&>(mosaic) = grid;
   mosaic.rgba.assign(pixels(grid) * 4, 0);
   if (meta.ndvi) mosaic.ndvi.assign(pixels(grid), 0);
+  if (meta.landcover) mosaic.landcover.assign(pixels(grid), 0);
   // Both layers of one tile at once: the NDVI tile lies over the imagery tile pixel for pixel.
   auto loadImagery = [&](const geo::TileId& id) -> Result<std::optional<datasets::ColorTile>> {
     const std::string path = datasetRelativePath({TileLayer::Imagery, id}, meta);
@@ -140,6 +155,21 @@ Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::Data
     const size_t at = (static_cast<size_t>(py) * static_cast<size_t>(t.size) + static_cast<size_t>(px));
     for (size_t c = 0; c < 4; ++c) mosaic.rgba[4 * i + c] = t.rgba[4 * at + c];
     if (!t.ndvi.empty()) mosaic.ndvi[i] = t.ndvi[at];
+  });
+  if (!s) return s.error();
+  if (!meta.landcover) return mosaic;
+  // The landcover tiles of the same ids over the same pixels (a missing one: 0, no class).
+  auto loadClasses = [&](const geo::TileId& id) -> Result<std::optional<datasets::LandcoverTile>> {
+    auto classes = loadLandcoverClasses(source, id, datasets::kTileSize);
+    if (!classes) return classes.error();
+    if (classes->empty()) return std::optional<datasets::LandcoverTile>{};
+    datasets::LandcoverTile t;
+    t.id = id;
+    t.classes = std::move(*classes);
+    return std::optional<datasets::LandcoverTile>(std::move(t));
+  };
+  s = forEachTilePixel(mosaic, loadClasses, [&](const datasets::LandcoverTile& t, int px, int py, size_t i) {
+    mosaic.landcover[i] = t.at(px, py);
   });
   if (!s) return s.error();
   return mosaic;

@@ -48,12 +48,20 @@ struct ImageryMosaic : MercatorRaster {
   // width × height bytes in datasets::ndviToByte's encoding, 0 = no NDVI there; empty when the
   // dataset has no NDVI layer.
   std::vector<uint8_t> ndvi;
+  // width × height landcover class codes (datasets/landcover.h, the tiles of the same zoom: the
+  // mode pyramid's classes, never blended), 0 = no class there; empty when the dataset has no
+  // landcover layer.
+  std::vector<uint8_t> landcover;
 };
 
 // The dataset's imagery tiles of `grid.zoom` mosaicked on `grid` (a loadGroundHeights result, or
 // its MercatorRaster part): pixel for pixel the same Web Mercator pixels. A missing imagery tile
 // is transparent, a missing NDVI tile 0 (no NDVI). Blocking, like loadGroundHeights. Errors:
 // InvalidInput for a dataset without imagery or a corrupt tile (named), Io from the source.
+// The landcover tile `id`'s class codes (size × size, datasets/landcover.h), empty where the
+// source has no such tile. Errors: a corrupt tile (InvalidInput, named), Io from the source.
+Result<std::vector<uint8_t>> loadLandcoverClasses(TileSource& source, const geo::TileId& id, int size);
+
 Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
                                         const MercatorRaster& grid);
 

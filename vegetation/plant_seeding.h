@@ -124,9 +124,11 @@ glm::vec2 clusterCentre(uint64_t key, uint32_t cluster);
 // What the imagery says under a point: its colour (linear RGB) and, where the dataset has a
 // near-infrared layer, its NDVI (kNoNdvi otherwise). Made from a colour alone, NDVI is absent.
 struct GroundSample {
-  GroundSample(glm::vec3 linearColour, float ndviValue = kNoNdvi) : linear(linearColour), ndvi(ndviValue) {}
+  GroundSample(glm::vec3 linearColour, float ndviValue = kNoNdvi, SpeciesMask allowedSpecies = kAllSpecies)
+      : linear(linearColour), ndvi(ndviValue), allowed(allowedSpecies) {}
   glm::vec3 linear;
   float ndvi;
+  SpeciesMask allowed;  // the species the landcover class here allows (landcover_species.h)
 };
 
 // The ground under a point of the triangle given by (r′1, r′2).

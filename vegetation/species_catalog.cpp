@@ -18,6 +18,7 @@
 
 #include "core/text_file.h"
 #include "vegetation/blade_shape.h"
+#include "vegetation/landcover_table_json.h"
 
 namespace vegstream::vegetation {
 namespace {
@@ -394,7 +395,7 @@ Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceNam
   SpeciesCatalog out;
   if (!doc.is_object())
     return makeError(ErrorKind::InvalidInput, sourceName + ": must be a JSON object with \"species\": [...]");
-  if (!ps.onlyKeys(doc, "", {"about", "species"})) return ps.error();
+  if (!ps.onlyKeys(doc, "", {"about", "species", "landcover"})) return ps.error();
   if (const auto about = doc.find("about"); about != doc.end() && !about->is_string() && !about->is_object())
     return ps.failed("about", "must be a string or an object of strings (field → what it means)");
   const auto list = doc.find("species");
@@ -414,6 +415,11 @@ Result<SpeciesCatalog> readCatalog(const json& doc, const std::string& sourceNam
   }
   if (!anyPlant) return ps.failed("species", "every entry is bare soil: at least one must grow plants");
   if (Status s = checkTrees(ps, out); !s) return s.error();
+  if (const auto lc = doc.find("landcover"); lc != doc.end()) {
+    auto table = readLandcoverTable(*lc, out.species, sourceName);
+    if (!table) return table.error();
+    out.landcover = *table;
+  }
   return out;
 }
 

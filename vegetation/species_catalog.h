@@ -33,7 +33,10 @@
 //         "shadows": true,                                 optional (default true)
 //         "surface": "grass" | "rock" | "gravel" | "sand"  optional (default from the kind)
 //         "tree": { … }                                    required for kind "tree", else an error:
-//       }, … ] }
+//       }, … ],
+//   "landcover": { "tree": ["conifer", …], … }             optional: the species each landcover
+//                                                          kind allows (landcover_species.h)
+// }
 //
 // A tree species' "tree" object (issue 20; TreeParams in tree_types.h; its trees take their height
 // from height_m and their crown width from width_m):
@@ -59,12 +62,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/result.h"
 #include "vegetation/colour_score.h"
+#include "vegetation/landcover_species.h"
 #include "vegetation/tree_types.h"
 
 namespace vegstream::vegetation {
@@ -131,6 +136,7 @@ inline constexpr double kTreeSpacingPerCell = 0.7, kTreeCellShare = 0.9;
 inline bool isTree(const Species& s) { return !s.bare && s.kind == RendererKind::Tree; }
 
 inline constexpr size_t kMaxSpecies = 16;
+static_assert(kMaxSpecies <= 32, "landcover_species.h: one bit a species");
 
 // Eq. 18's s′ modulates a plant's size and stiffness (seed 001 §3.3: "to modulate certain plant
 // parameters, such as plant size or stiffness, to give a more natural appearance"): a plant of
@@ -142,6 +148,9 @@ inline float sPrimeFactor(float lo, float sPrime) { return lo + (1.0f - lo) * sP
 
 struct SpeciesCatalog {
   std::vector<Species> species;  // 1 … kMaxSpecies, at least one not bare
+  // The "landcover" table: per kind, the species it allows (bit i: species i); nullopt: the
+  // built-in default (landcover_species.h). Used only where a dataset has a landcover layer.
+  std::optional<LandcoverTable> landcover;
 };
 
 // The densest species that grows as a plant (not bare, not a tree), plants per m²: how many

@@ -16,9 +16,10 @@ bool passesOwnThreshold(const Species& s, float logScore) {
   return !(s.threshold > 0.0f) || !(logScore < std::log(s.threshold));
 }
 
-SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi) {
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, SpeciesMask allowed) {
   SpeciesCandidates c;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
+    if (((allowed >> i) & 1u) == 0u) continue;  // the landcover class does not allow it
     const Species& s = catalog.species[i];
     const float l = logColourScore(s.score, hsv, ndvi);
     if (!passesThreshold(s, l)) continue;
@@ -39,8 +40,8 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
   return c;
 }
 
-SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi) {
-  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi);
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, SpeciesMask allowed) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, allowed);
   SpeciesChoice out;
   if (c.first < 0) return out;  // nothing scores: rejected
   out.secondRatio = c.secondRatio;

@@ -14,6 +14,9 @@
 //   ratio = 1 / (1 + exp(d))                          = s1 / (s0 + s1), never overflows to NaN
 //   z < ratio → the second, s′ = ratio;  else the first, s′ = 1 − ratio     (eq. 18)
 // and a bare-soil winner → species −1 (the seed is rejected), as is "no species in".
+// `allowed` (landcover_species.h, issue 41): species i takes part only where bit i is set, tested
+// before its score (GLSL: `(allowed >> i) & 1u`); kAllSpecies where the dataset has no landcover
+// (then the choice is exactly what it was without the mask).
 
 #include <glm/vec3.hpp>
 
@@ -42,9 +45,11 @@ bool passesThreshold(const Species& s, float logScore);
 bool passesOwnThreshold(const Species& s, float logScore);
 
 // `ndvi`: the NDVI under the point, kNoNdvi (or NaN) where the dataset has none (colour_score.h).
-SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi = kNoNdvi);
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi = kNoNdvi,
+                                    SpeciesMask allowed = kAllSpecies);
 
 // z uniform in [0, 1) (u01 of a Philox word). Eq. 16–18 as described above.
-SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi = kNoNdvi);
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi = kNoNdvi,
+                            SpeciesMask allowed = kAllSpecies);
 
 }  // namespace vegstream::vegetation

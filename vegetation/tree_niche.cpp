@@ -25,12 +25,12 @@ float logNicheFit(const TreeNiche& niche, const TreeSite& site) {
 }
 
 SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, const TreeSite& site,
-                                float z) {
+                                float z, SpeciesMask allowed) {
   int first = -1, second = -1;
   float l0 = 0.0f, l1 = 0.0f;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const Species& s = catalog.species[i];
-    if (!isTree(s)) continue;
+    if (!isTree(s) || i >= 32 || !((allowed >> i) & 1u)) continue;
     const float colour = logColourScore(s.score, hsv, ndvi);
     if (!passesOwnThreshold(s, colour)) continue;
     const float l = colour + logNicheFit(s.tree.niche, site);

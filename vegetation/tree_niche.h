@@ -30,6 +30,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "vegetation/landcover_species.h"
 #include "vegetation/species_choice.h"
 
 namespace vegstream::vegetation {
@@ -47,9 +48,10 @@ struct TreeSite {
 // −Σ ((outside distance) / soft)² of `site` against `niche` (≤ 0; 0 inside or unknown).
 float logNicheFit(const TreeNiche& niche, const TreeSite& site);
 
-// Stage 2 above: the tree species at a point stage 1 found to be a tree, z uniform in [0, 1).
-// species −1 when no tree species passes its threshold there (keep stage 1's winner then).
+// Stage 2 above: the tree species at a point stage 1 found to be a tree, z uniform in [0, 1),
+// among those `allowed` (landcover_species.h). species −1 when no allowed tree species passes its
+// threshold there (keep stage 1's winner then).
 SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, const TreeSite& site,
-                                float z);
+                                float z, SpeciesMask allowed = kAllSpecies);
 
 }  // namespace vegstream::vegetation

@@ -62,6 +62,9 @@ struct TreeGroundSample {
   float ndvi = kNoNdvi;       // kNoNdvi where the dataset has none
   double heightM = 0.0;       // the ground's z in the local frame
   TreeSite site;              // elevation, slope and relief there (tree_niche.h; NaN: unknown)
+  // The species the landcover class here allows (landcover_species.h); all where the dataset has
+  // no landcover layer or no class here.
+  SpeciesMask allowed = kAllSpecies;
 };
 // (x, y): local ENU metres. Called once per cell that could hold a tree; must be a pure function
 // of (x, y) for the placement to be view-independent.

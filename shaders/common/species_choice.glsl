@@ -4,10 +4,13 @@
 //
 // `ndvi`: kNoNdvi where there is none. Returns (species index, s′), species −1 when the seed is rejected (bare soil, or no species
 // scores above its threshold).
-vec2 chooseSpecies(vec3 hsv, float ndvi, float z) {
+// `allowed`: bit i set where the landcover class under the plant allows species i
+// (vegetation/landcover_species.h; 0xffffffffu without landcover), tested before the score.
+vec2 chooseSpeciesAllowed(vec3 hsv, float ndvi, float z, uint allowed) {
   int best = -1, second = -1;
   float l0 = 0.0, l1 = 0.0;
   for (uint i = 0u; i < catalog.speciesCount.x; ++i) {
+    if (((allowed >> i) & 1u) == 0u) continue;  // the landcover class does not allow it
     Species sp = catalog.species[i];
     float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, sp.ground.zw, hsv, ndvi);
     if (l < sp.weights.w) continue;  // under its threshold: score 0
@@ -32,3 +35,5 @@ vec2 chooseSpecies(vec3 hsv, float ndvi, float z) {
   if (catalog.species[pick].flags.x != 0u) return vec2(-1.0, 0.0);
   return vec2(float(pick), sPrime);
 }
+
+vec2 chooseSpecies(vec3 hsv, float ndvi, float z) { return chooseSpeciesAllowed(hsv, ndvi, z, 0xffffffffu); }

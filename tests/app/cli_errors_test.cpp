@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -350,6 +351,34 @@ TEST(CliErrors, NoVulkanDeviceIsExitOneWithOneLine) {
   EXPECT_EQ(countLines(fly.err), 1) << fly.err;
   EXPECT_TRUE(mentionsVulkan(fly.err)) << fly.err;
   EXPECT_FALSE(fs::exists(out / "run.json"));
+}
+
+// A catalog whose landcover table (vegetation/landcover_species.h, issue 41 item 2) names a
+// species it does not have: one line naming the file and the field, exit 2, before any dataset
+// is opened (the dataset below does not exist), for query and plants alike.
+TEST(CliErrors, ALandcoverTableNamingAMissingSpeciesIsOneLine) {
+  const fs::path dir = ownDir();
+  const fs::path bad = dir / "landcover_species.json";
+  {
+    std::ofstream out(bad);
+    out << R"({ "species": [ { "name": "grass", "reference": { "h_deg": 88, "s": 0.3, "v": 0.2 },
+      "weights": { "h": 2, "s": 0.5, "v": 0.8 }, "p": 3, "kind": "grass",
+      "height_m": { "min": 0.2, "max": 0.5 }, "stiffness": { "min": 1, "max": 1.5 },
+      "width_m": { "min": 0.01, "max": 0.02 }, "colour_modulation": { "min": 0.9, "max": 1.1 } } ],
+      "landcover": { "grass": ["grass"], "tree": ["oak"] } })";
+  }
+  for (const std::string& command :
+       {"query " + q(dir / "no_dataset") + " --lat 37.4 --lon -113.0 --species " + q(bad),
+        "plants " + q(dir / "no_dataset") + " --bbox -113.01,37.4,-113.0,37.41 --layer trees --species " + q(bad)}) {
+    SCOPED_TRACE(command);
+    const auto r = runVegstream(command);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("landcover_species.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("landcover.tree[0]"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("no species named \"oak\""), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
 }
 
 }  // namespace
