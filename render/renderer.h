@@ -53,8 +53,10 @@ struct RendererOptions {
   // The shared simulation's trail store (render/simulation_pass.h): SimulationOptions::trailBudgetMb.
   uint64_t trailStoreBytes = uint64_t{16} << 20;
   // The trees' GPU memory (render/tree_pass.h): models, impostor atlas, visible lists and the
-  // instance pool, which gets what the rest leaves (`--tree-budget-mb`).
-  uint64_t treeBudgetBytes = uint64_t{128} << 20;
+  // instance pool, which gets what the rest leaves (`--tree-budget-mb`). 256 MiB: the default
+  // catalog's six tree species, three variants each, take about 100 MiB of meshes and impostors
+  // (tree_models.cpp); with 128 the default flight refused to start (issue 41 item 4).
+  uint64_t treeBudgetBytes = uint64_t{256} << 20;
   // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
   uint32_t shadowMapSize = 1024;
   GLFWwindow* window = nullptr;  // present to this window's surface when set

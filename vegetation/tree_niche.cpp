@@ -33,7 +33,7 @@ SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, fl
     if (!isTree(s) || i >= 32 || !((allowed >> i) & 1u)) continue;
     const float colour = logColourScore(s.score, hsv, ndvi);
     if (!passesOwnThreshold(s, colour)) continue;
-    const float l = colour + logNicheFit(s.tree.niche, site);
+    const float l = kTreeColourShare * colour + logNicheFit(s.tree.niche, site);
     const int idx = static_cast<int>(i);
     if (first < 0 || l > l0) {  // strictly greater: of equals the lower index stays ahead
       second = first;

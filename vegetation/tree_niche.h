@@ -12,7 +12,7 @@
 // plants, rejecting a seed whose winner is a tree); (2) where it is, chooseTreeSpecies picks which
 // tree among the catalog's tree species by
 //
-//     l_i = ln s_i (eq. 16, colour and NDVI)  +  Σ_k −((distance of site_k outside the range_k) / soft_k)²
+//     l_i = kTreeColourShare · ln s_i (eq. 16, colour and NDVI)  +  Σ_k −((distance of site_k outside range_k) / soft_k)²
 //
 // over the species whose colour passes their threshold, the two best competing by eq. 17–18 with
 // its own uniform z. The site terms: elevation above mean sea level, slope
@@ -37,6 +37,11 @@ namespace vegstream::vegetation {
 
 inline constexpr double kReliefRadiusM = 75.0;  // the ring the relief is measured against
 inline constexpr float kElevationSoftM = 50.0f, kSlopeSoftDeg = 3.0f, kReliefSoftM = 1.5f;
+// The colour's share in the choice among the trees: the forest's colour already made the point a
+// tree (stage 1); between tree species it only nudges, the site decides. At 1 the colour ruled:
+// on the Kolob plateau 74 % of 1462 trees in 9 ha came out as aspen, whose reference happened to
+// lie nearer the forest's colour than the pines' (measured before this share).
+inline constexpr float kTreeColourShare = 0.25f;
 
 // The site of a point; NaN where unknown.
 struct TreeSite {

@@ -72,8 +72,8 @@ std::string winnerAt(const TreeSite& site) {
 TEST(TreeNiche, UnderTheForestsColourEachSpeciesWinsOnItsOwnGround) {
   auto site = [](float e, float slope, float relief) { return TreeSite{e, slope, relief}; };
   EXPECT_EQ(winnerAt(site(2300, 5, 0.5f)), "conifer") << "the plateau";
-  EXPECT_EQ(winnerAt(site(2300, 30, 2)), "douglas fir") << "a steep slope of the plateau";
-  EXPECT_EQ(winnerAt(site(2350, 3, -4)), "aspen") << "a hollow of the high plateau";
+  EXPECT_EQ(winnerAt(site(2300, 36, 2)), "douglas fir") << "a steep slope of the plateau";
+  EXPECT_EQ(winnerAt(site(2350, 3, -9)), "aspen") << "a deep hollow of the high plateau";
   EXPECT_EQ(winnerAt(site(1700, 3, 3)), "pinyon-juniper") << "a dry bench at mid height";
   EXPECT_EQ(winnerAt(site(1250, 2, -3)), "broadleaf") << "the river's bottom";
 }
@@ -94,7 +94,7 @@ TEST(TreeNiche, ASpeciesThatClaimsNoGroundNeverWinsTheFirstChoice) {
 // The default catalog with `tree.niche` of its first tree species replaced by `niche`.
 Result<SpeciesCatalog> withNiche(const std::string& niche) {
   std::string text(defaultSpeciesCatalogJson());
-  const std::string key = "\"niche\": { \"elevation_m\": [1950, null], \"slope_deg\": [null, 25], \"relief_m\": [-1.5, null] }";
+  const std::string key = "\"niche\": { \"elevation_m\": [1950, null], \"slope_deg\": [null, 30], \"relief_m\": [-6, null] }";
   const size_t at = text.find(key);
   EXPECT_NE(at, std::string::npos);
   if (at != std::string::npos) text.replace(at, key.size(), "\"niche\": " + niche);
