@@ -24,13 +24,14 @@ float logNicheFit(const TreeNiche& niche, const TreeSite& site) {
          rangeFit(site.slopeDeg, niche.slopeDeg, kSlopeSoftDeg) + rangeFit(site.reliefM, niche.reliefM, kReliefSoftM);
 }
 
-SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, const TreeSite& site,
-                                float z, SpeciesMask allowed) {
+SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int firstChoice, glm::vec3 hsv, float ndvi,
+                                const TreeSite& site, float z, SpeciesMask allowed) {
   int first = -1, second = -1;
   float l0 = 0.0f, l1 = 0.0f;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const Species& s = catalog.species[i];
-    if (!isTree(s) || i >= 32 || !((allowed >> i) & 1u)) continue;
+    const bool candidate = static_cast<int>(i) == firstChoice || (!s.tree.claimsGround && i < 32 && ((allowed >> i) & 1u));
+    if (!isTree(s) || !candidate) continue;
     const float colour = logColourScore(s.score, hsv, ndvi);
     if (!passesOwnThreshold(s, colour)) continue;
     const float l = kTreeColourShare * colour + logNicheFit(s.tree.niche, site);

@@ -9,8 +9,10 @@
 //
 // Two stages, so the GPU's plant seeding stays the colour choice it is: (1) chooseSpecies over the
 // whole catalog decides whether a point is a tree at all (the GPU makes the same decision for the
-// plants, rejecting a seed whose winner is a tree); (2) where it is, chooseTreeSpecies picks which
-// tree among the catalog's tree species by
+// plants, rejecting a seed whose winner is a tree); (2) where it is, chooseTreeSpecies lets the
+// species that share the ground of others (claims_ground false) compete with that winner — the
+// winner and those species only: between two species that claim ground the colour has decided —
+// by
 //
 //     l_i = kTreeColourShare · ln s_i (eq. 16, colour and NDVI)  +  Σ_k −((distance of site_k outside range_k) / soft_k)²
 //
@@ -53,10 +55,10 @@ struct TreeSite {
 // −Σ ((outside distance) / soft)² of `site` against `niche` (≤ 0; 0 inside or unknown).
 float logNicheFit(const TreeNiche& niche, const TreeSite& site);
 
-// Stage 2 above: the tree species at a point stage 1 found to be a tree, z uniform in [0, 1),
-// among those `allowed` (landcover_species.h). species −1 when no allowed tree species passes its
-// threshold there (keep stage 1's winner then).
-SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, const TreeSite& site,
-                                float z, SpeciesMask allowed = kAllSpecies);
+// Stage 2 above at a point where stage 1 chose tree species `first`, z uniform in [0, 1): `first`
+// against the tree species that claim no ground, those `allowed` (landcover_species.h). species −1
+// when none passes its threshold there (keep `first` then).
+SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int first, glm::vec3 hsv, float ndvi,
+                                const TreeSite& site, float z, SpeciesMask allowed = kAllSpecies);
 
 }  // namespace vegstream::vegetation

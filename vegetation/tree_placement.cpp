@@ -87,7 +87,7 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   const SpeciesChoice pick = chooseSpecies(catalog, hsv, u01(choice.x), g.ndvi, g.allowed);
   if (pick.species < 0 || !isTree(catalog.species[static_cast<size_t>(pick.species)])) return false;
   const SpeciesChoice tree =
-      chooseTreeSpecies(catalog, hsv, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
+      chooseTreeSpecies(catalog, pick.species, hsv, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
   const auto s = static_cast<size_t>(tree.species >= 0 ? tree.species : pick.species);
   const Species& sp = catalog.species[s];
   if (!(keepU < keepWith(keepShare[s], gap))) return false;

@@ -114,23 +114,33 @@ geo::GeoBounds lonLatBox(const geo::Crs& utm, double x0, double y0, double x1, d
 
 class CanopyImport : public ::testing::Test {
  protected:
+  // The synthetic trees in every process (cheap, deterministic); the imports once, shared by the
+  // processes ctest runs side by side (testing::cachedFixture: made by one, read by all).
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::path(VEGSTREAM_TEST_TMP) / "canopy_trees_suite");
-    fs::remove_all(*dir_);
-    fs::create_directories(*dir_);
     truth_ = new std::vector<testing::TrueTree>(testing::syntheticTrees(150, kChmSide, 31));
     side_ = static_cast<int>(kChmSide);
-    const std::vector<float> chm = testing::rasterizeChm(*truth_, side_, 1.0, 0.15f, 32);
-    const Inputs in = writeGround(*dir_);
-    const fs::path tif = writeChm(*dir_, chm, side_, 1.0, 1.0, kX0 + kChmOffset, kY0 + kChmOffset, "chm.tif");
-    const auto with = runVegstream(importArgs(in, *dir_ / "with") + " --canopy-height " + q(tif));
-    ASSERT_EQ(with.exitCode, 0) << with.err;
-    const auto without = runVegstream(importArgs(in, *dir_ / "without"));
-    ASSERT_EQ(without.exitCode, 0) << without.err;
+  }
+  void SetUp() override {
+    if (dir_) return;
+    auto made = testing::cachedFixture("canopy-trees", testing::vegstreamKey(), [](const fs::path& dir) -> Status {
+      fs::create_directories(dir);
+      const std::vector<float> chm = testing::rasterizeChm(*truth_, side_, 1.0, 0.15f, 32);
+      const Inputs in = writeGround(dir);
+      const fs::path tif = writeChm(dir, chm, side_, 1.0, 1.0, kX0 + kChmOffset, kY0 + kChmOffset, "chm.tif");
+      const auto with = runVegstream(importArgs(in, dir / "with") + " --canopy-height " + q(tif));
+      if (with.exitCode != 0) return makeError(ErrorKind::Internal, "import with the CHM: " + with.err);
+      const auto without = runVegstream(importArgs(in, dir / "without"));
+      if (without.exitCode != 0) return makeError(ErrorKind::Internal, "import without it: " + without.err);
+      return {};
+    });
+    ASSERT_TRUE(made.ok()) << made.error().message;
+    dir_ = new fs::path(*made);
   }
   static void TearDownTestSuite() {
     delete dir_;
     delete truth_;
+    dir_ = nullptr;
+    truth_ = nullptr;
   }
   static geo::Crs utm() { return *geo::Crs::fromUserInput("EPSG:32633"); }
   static inline fs::path* dir_ = nullptr;

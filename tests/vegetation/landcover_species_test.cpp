@@ -34,7 +34,10 @@ TEST(LandcoverSpecies, TheDefaultFollowsTheSpeciesKinds) {
   const SpeciesCatalog& c = defaultSpeciesCatalog();
   ASSERT_FALSE(c.landcover) << "the shipped catalog relies on the built-in default";
   const SpeciesMask bare = bit(c, "pale sandstone") | bit(c, "grey rock") | bit(c, "sand");
-  const SpeciesMask trees = bit(c, "conifer") | bit(c, "broadleaf");
+  SpeciesMask trees = 0;  // every tree species, the ones that only share the ground (tree_niche.h) too
+  for (size_t i = 0; i < c.species.size(); ++i)
+    if (isTree(c.species[i])) trees |= SpeciesMask{1} << i;
+  EXPECT_EQ(trees & (bit(c, "conifer") | bit(c, "broadleaf") | bit(c, "aspen")), bit(c, "conifer") | bit(c, "broadleaf") | bit(c, "aspen"));
   const SpeciesMask herbs = bit(c, "grass") | bit(c, "dry tufts");
   EXPECT_EQ(allowed(c, LandcoverKind::Tree), trees | bare);
   EXPECT_EQ(allowed(c, LandcoverKind::Grass), herbs | bare);

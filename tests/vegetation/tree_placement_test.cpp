@@ -22,7 +22,17 @@
 namespace vegstream::vegetation {
 namespace {
 
-const SpeciesCatalog& catalog() { return defaultSpeciesCatalog(); }
+// The default catalog without the tree species that only share the ground of others
+// (claims_ground false: the choice among the trees, tree_niche.h, has its own tests in
+// tree_niche_test.cpp); what is left is the placement's mechanics per species.
+const SpeciesCatalog& catalog() {
+  static const SpeciesCatalog c = [] {
+    SpeciesCatalog out = defaultSpeciesCatalog();
+    std::erase_if(out.species, [](const Species& s) { return isTree(s) && !s.tree.claimsGround; });
+    return out;
+  }();
+  return c;
+}
 
 int indexOf(const std::string& name) {
   for (size_t i = 0; i < catalog().species.size(); ++i)
