@@ -12,10 +12,24 @@ bool passesThreshold(const Species& s, float logScore) {
 }
 
 SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi) {
+  return speciesCandidates(catalog, hsv, ndvi, kNoExg);
+}
+
+SpeciesCandidates speciesCandidatesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float ndvi) {
+  const GroundColour g = calibratedGround(catalog.calibration, linear);
+  return speciesCandidates(catalog, g.hsv, ndvi, g.exg);
+}
+
+SpeciesChoice chooseSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi) {
+  const GroundColour g = calibratedGround(catalog.calibration, linear);
+  return chooseSpecies(catalog, g.hsv, z, ndvi, g.exg);
+}
+
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, float exg) {
   SpeciesCandidates c;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const Species& s = catalog.species[i];
-    const float l = logColourScore(s.score, hsv, ndvi);
+    const float l = logColourScore(s.score, hsv, ndvi, exg);
     if (!passesThreshold(s, l)) continue;
     const int idx = static_cast<int>(i);
     // Strictly greater: of equal scores the lower index stays ahead.
@@ -35,7 +49,11 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
 }
 
 SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi) {
-  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi);
+  return chooseSpecies(catalog, hsv, z, ndvi, kNoExg);
+}
+
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, exg);
   SpeciesChoice out;
   if (c.first < 0) return out;  // nothing scores: rejected
   out.secondRatio = c.secondRatio;

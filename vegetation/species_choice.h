@@ -7,7 +7,7 @@
 //
 // The GLSL twin (render/classify, written against this) must follow chooseSpecies operation for
 // operation; its float operations, in order, per species i (index order 0, 1, …):
-//   l_i = logColourScore(score_i, hsv, ndvi)           (colour_score.h: −p · log(max(dist, 1e-4)))
+//   l_i = logColourScore(score_i, hsv, ndvi, exg)      (colour_score.h: −p · log(max(dist, 1e-4)))
 //   out when threshold_i > 0 and l_i < log(threshold_i)   (log(threshold) is the only other log)
 //   best two by strictly greater l: a tie keeps the lower index first (l0 ≥ l1)
 // then, with d = l0 − l1 ≥ 0 (one species in: ratio = 0):
@@ -36,6 +36,15 @@ struct SpeciesCandidates {
 
 // Whether species `s` takes part at log score `logScore` (its threshold, eq. 16 score s ≥ t).
 bool passesThreshold(const Species& s, float logScore);
+
+// From the imagery's linear colour under a point: the catalog's calibration applied
+// (colour_calibration.h), HSV and ExG of the result, then the choice below with both.
+SpeciesCandidates speciesCandidatesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float ndvi = kNoNdvi);
+SpeciesChoice chooseSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi = kNoNdvi);
+
+// `exg`: kNoExg leaves the excess-green term out (callers that only have HSV).
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, float exg);
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg);
 
 // `ndvi`: the NDVI under the point, kNoNdvi (or NaN) where the dataset has none (colour_score.h).
 SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi = kNoNdvi);

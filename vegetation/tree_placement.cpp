@@ -81,7 +81,7 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   candidatePoint(grid, cx, cy, x, y);
   const TreeGroundSample g = ground(x, y);
   if (!g.valid) return false;
-  const SpeciesChoice pick = chooseSpecies(catalog, hsvFromLinear(g.linearRgb), u01(choice.x), g.ndvi);
+  const SpeciesChoice pick = chooseSpeciesAt(catalog, g.linearRgb, u01(choice.x), g.ndvi);
   if (pick.species < 0) return false;
   const auto s = static_cast<size_t>(pick.species);
   const Species& sp = catalog.species[s];

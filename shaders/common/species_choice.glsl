@@ -2,14 +2,16 @@
 // eq. 16–18: the GLSL twin of vegetation/species_choice.cpp (operation for operation). Needs
 // colour_score.glsl and a `catalog` uniform block (classify_layout.glsl's Species array).
 //
-// `ndvi`: kNoNdvi where there is none. Returns (species index, s′), species −1 when the seed is rejected (bare soil, or no species
-// scores above its threshold).
-vec2 chooseSpecies(vec3 hsv, float ndvi, float z) {
+// `ground`: HSV (xyz) and ExG (w) of the calibrated colour (colour_calibration.glsl's
+// calibratedGround); `ndvi`: kNoNdvi where there is none. Returns (species index, s′), species −1
+// when the seed is rejected (bare soil, or no species scores above its threshold).
+vec2 chooseSpecies(vec4 ground, float ndvi, float z) {
   int best = -1, second = -1;
   float l0 = 0.0, l1 = 0.0;
   for (uint i = 0u; i < catalog.speciesCount.x; ++i) {
     Species sp = catalog.species[i];
-    float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, sp.ground.zw, hsv, ndvi);
+    float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, sp.ground.zw, sp.index.xy, ground.xyz,
+                             ndvi, ground.w);
     if (l < sp.weights.w) continue;  // under its threshold: score 0
     if (best < 0 || l > l0) {
       second = best;
