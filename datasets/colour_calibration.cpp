@@ -37,7 +37,7 @@ void compose(ColourCalibrationRecord& c, const ColourReference& ref) {
   const double k = c.chromaGain, e = c.exposure;
   // Levels: y = g ⊙ x + d, d_c = B_c − g_c lo_c.
   std::array<double, 3> d{};
-  for (size_t i = 0; i < 3; ++i) d[i] = ref.black[i] - c.gains[i] * c.black[i];
+  for (size_t i = 0; i < 3; ++i) d[i] = ref.black[i] - c.gains[i] * c.black[i];  // B − g lo
   for (size_t r = 0; r < 3; ++r) {
     double off = 0.0;
     for (size_t col = 0; col < 3; ++col) {
@@ -47,6 +47,44 @@ void compose(ColourCalibrationRecord& c, const ColourReference& ref) {
     }
     c.offset[r] = off;
   }
+}
+
+
+// Luminance and chroma (max − min) / Y of every pixel through levels g ⊙ (x − lo) + B.
+void measure(const std::array<std::vector<double>, 3>& ch, const std::array<double, 3>& gains,
+             const std::array<double, 3>& lo, const std::array<double, 3>& black, std::vector<double>& lum,
+             std::vector<double>& chroma) {
+  const size_t n = ch[0].size();
+  lum.resize(n);
+  chroma.resize(n);
+  for (size_t p = 0; p < n; ++p) {
+    std::array<double, 3> y{};
+    for (size_t i = 0; i < 3; ++i) y[i] = black[i] + gains[i] * (ch[i][p] - lo[i]);
+    lum[p] = kLuma[0] * y[0] + kLuma[1] * y[1] + kLuma[2] * y[2];
+    const double spread = std::max({y[0], y[1], y[2]}) - std::min({y[0], y[1], y[2]});
+    chroma[p] = lum[p] > 1e-6 ? spread / lum[p] : -1.0;
+  }
+}
+
+// The grey balance: per channel, the median of y_c / Y over the near-neutral pixels (chroma in
+// the lowest kNeutralPercent of the non-dark ones), after the levels.
+std::array<double, 3> greyBalance(const std::array<std::vector<double>, 3>& ch, const ColourCalibrationRecord& c,
+                                  const std::array<double, 3>& black, const std::vector<double>& lum,
+                                  const std::vector<double>& chroma, double dark) {
+  std::vector<double> cs;
+  for (size_t p = 0; p < lum.size(); ++p)
+    if (lum[p] > dark && chroma[p] >= 0.0) cs.push_back(chroma[p]);
+  if (cs.size() < 16) return {1.0, 1.0, 1.0};
+  const double cut = percentileOf(cs, kNeutralPercent);
+  std::array<double, 3> out{};
+  for (size_t i = 0; i < 3; ++i) {
+    std::vector<double> r;
+    for (size_t p = 0; p < lum.size(); ++p)
+      if (lum[p] > dark && chroma[p] >= 0.0 && chroma[p] <= cut)
+        r.push_back((black[i] + c.gains[i] * (ch[i][p] - c.black[i])) / lum[p]);
+    out[i] = r.empty() ? 1.0 : percentileOf(r, 50.0);
+  }
+  return out;
 }
 
 }  // namespace
@@ -66,16 +104,19 @@ ColourCalibrationRecord estimateColourCalibration(const std::vector<float>& line
     c.white[i] = percentileOf(v, kWhitePercent);
   }
   c.gains = guardedGains(c, ref);
-  std::vector<double> lum(c.pixels), chroma(c.pixels);
-  for (size_t p = 0; p < c.pixels; ++p) {
-    std::array<double, 3> y{};
-    for (size_t i = 0; i < 3; ++i) y[i] = ref.black[i] + c.gains[i] * (ch[i][p] - c.black[i]);
-    lum[p] = kLuma[0] * y[0] + kLuma[1] * y[1] + kLuma[2] * y[2];
-    const double spread = std::max({y[0], y[1], y[2]}) - std::min({y[0], y[1], y[2]});
-    chroma[p] = lum[p] > 1e-6 ? spread / lum[p] : -1.0;
-  }
+  std::vector<double> lum, chroma;
+  measure(ch, c.gains, c.black, ref.black, lum, chroma);
   std::vector<double> sortedLum = lum;
-  const double dark = std::max(percentileOf(sortedLum, kDarkPercent), 1e-6);
+  double dark = std::max(percentileOf(sortedLum, kDarkPercent), 1e-6);
+  // Grey balance onto the reference's: the near-neutral pixels' colour is the illuminant's.
+  c.grey = greyBalance(ch, c, ref.black, lum, chroma, dark);
+  for (size_t i = 0; i < 3; ++i) {
+    const double w = std::clamp(ref.grey[i] / c.grey[i], 1.0 / kMaxGreyGain, kMaxGreyGain);
+    c.gains[i] *= w;
+  }
+  measure(ch, c.gains, c.black, ref.black, lum, chroma);
+  sortedLum = lum;
+  dark = std::max(percentileOf(sortedLum, kDarkPercent), 1e-6);
   c.medianLuminance = percentileOf(sortedLum, 50.0);
   std::vector<double> bright;
   for (size_t p = 0; p < c.pixels; ++p)

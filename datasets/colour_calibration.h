@@ -17,6 +17,13 @@
 //      Guard: the channels' gains (W_c − B_c) / (hi_c − lo_c) are kept within kMaxChannelGainRatio
 //      of their geometric mean, so a scene of one colour (a field filling the frame) is not
 //      turned fully grey; a range below 1e-4 counts as 1e-4.
+//   1b. grey balance: the near-neutral pixels (the kNeutralPercent least chromatic of the
+//      non-dark ones, after the levels) are taken to be grey under the scene's light (a robust
+//      grey-world on near-greys: roads, roofs, bare ground); per channel the median of y_c / Y over
+//      them, n_c, is brought to the reference's, y_c ← y_c · n*_c / n_c (each factor clamped to
+//      1/kMaxGreyGain … kMaxGreyGain). It takes out casts that the extremes do not show (a tint
+//      in the mid-tones, a per-channel tone curve). Still equivariant: it is measured after the
+//      levels.
 //   2. chroma, around the luminance Y = 0.2126 R + 0.7152 G + 0.0722 B (Rec. 709):
 //      z = Y + k (y − Y), k = C* / median over the non-dark pixels (Y above its kDarkPercent
 //      percentile) of (max y − min y) / Y, clamped to [kMinChroma, kMaxChroma]. Y is unchanged,
@@ -46,6 +53,7 @@ namespace vegstream::datasets {
 
 inline constexpr double kBlackPercent = 1.0, kWhitePercent = 99.0, kDarkPercent = 10.0;
 inline constexpr double kMaxChannelGainRatio = 2.0;
+inline constexpr double kNeutralPercent = 30.0, kMaxGreyGain = 1.5;
 inline constexpr double kMinChroma = 0.4, kMaxChroma = 3.0;
 inline constexpr double kMinExposure = 0.1, kMaxExposure = 10.0;
 
@@ -57,6 +65,7 @@ inline constexpr std::array<double, 3> kReferenceBlack{0.0, 0.0, 0.0};
 inline constexpr std::array<double, 3> kReferenceWhite{1.0, 1.0, 1.0};
 inline constexpr double kReferenceChroma = 0.33258;
 inline constexpr double kReferenceLuminance = 0.055635;
+inline constexpr std::array<double, 3> kReferenceGrey{1.0, 1.0, 1.0};
 
 inline constexpr const char* kColourCalibrationMethod = "levels-chroma-exposure-1";
 
@@ -69,7 +78,8 @@ struct ColourCalibrationRecord {
   // The statistics it came from.
   uint64_t pixels = 0;                  // valid pixels measured
   std::array<double, 3> black{}, white{};  // lo_c, hi_c (linear)
-  std::array<double, 3> gains{};        // levels' gains after the guard
+  std::array<double, 3> gains{};        // levels' gains after the guard, times the grey balance's
+  std::array<double, 3> grey{1, 1, 1};  // the near-neutral pixels' y_c / Y after the levels
   double medianChroma = 0.0;            // after levels, before k
   double medianLuminance = 0.0;         // after levels
   double chromaGain = 1.0, exposure = 1.0;  // k, e
@@ -79,6 +89,7 @@ struct ColourCalibrationRecord {
 struct ColourReference {
   std::array<double, 3> black = kReferenceBlack, white = kReferenceWhite;
   double chroma = kReferenceChroma, luminance = kReferenceLuminance;
+  std::array<double, 3> grey = kReferenceGrey;
 };
 
 // Estimated from interleaved linear RGB (NaN = no data; values clamped to 0 … 1). nullopt-like:

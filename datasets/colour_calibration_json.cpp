@@ -48,6 +48,7 @@ json colourCalibrationJson(const ColourCalibrationRecord& c) {
             {"black", c.black},
             {"white", c.white},
             {"gains", c.gains},
+            {"grey", c.grey},
             {"median_chroma", c.medianChroma},
             {"median_luminance", c.medianLuminance},
             {"chroma_gain", c.chromaGain},
@@ -69,7 +70,7 @@ Result<ColourCalibrationRecord> parseColourCalibration(const json& j, const std:
   auto px = st->find("pixels");
   if (px == st->end() || !px->is_number_unsigned()) return bad(source, ".statistics.pixels", "must be a count ≥ 0");
   c.pixels = px->get<uint64_t>();
-  for (auto [key, out] : {std::pair{"black", &c.black}, {"white", &c.white}, {"gains", &c.gains}})
+  for (auto [key, out] : {std::pair{"black", &c.black}, {"white", &c.white}, {"gains", &c.gains}, {"grey", &c.grey}})
     if (Status s = numbers(*st, key, ".statistics.", source, 1e6, *out); !s) return s.error();
   for (auto [key, out] : {std::pair{"median_chroma", &c.medianChroma}, {"median_luminance", &c.medianLuminance},
                           {"chroma_gain", &c.chromaGain}, {"exposure", &c.exposure}})

@@ -88,6 +88,7 @@ class ZionVariants : public ::testing::Test {
   // The renderings and their imports, made once for the test processes (cachedFixture).
   void SetUp() override {
     auto dir = cachedFixture("calibration-zion-variants", vegstreamKey(), [](const fs::path& d) -> Status {
+      fs::create_directories(d);
       const BandWindow w = readBands({zion("landsat_b4.tif"), zion("landsat_b3.tif"), zion("landsat_b2.tif")}, kX0,
                                      kY0, kSide, kSide);
       if (w.bands.size() != 3) return makeError(ErrorKind::Internal, "cannot read the Zion bands");

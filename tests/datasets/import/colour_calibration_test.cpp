@@ -82,7 +82,8 @@ TEST(ColourCalibration, TheReferenceSceneIsTheIdentityAndOneColourStaysGuarded) 
   // Its own levels as the reference's: the levels are the identity, and the medians measured
   // after them are the scene's own (how kReference* were measured on the Zion sample).
   const auto own = estimateColourCalibration(a, ColourReference{c.black, c.white, 1.0, 1.0});
-  const ColourReference self{c.black, c.white, own.medianChroma, own.medianLuminance};
+  const auto balanced = estimateColourCalibration(a, ColourReference{c.black, c.white, 1.0, 1.0, own.grey});
+  const ColourReference self{c.black, c.white, balanced.medianChroma, balanced.medianLuminance, own.grey};
   // Its own statistics as the reference: the identity.
   const auto id = estimateColourCalibration(a, self);
   for (size_t i = 0; i < 9; ++i) EXPECT_NEAR(id.matrix[i], i % 4 == 0 ? 1.0 : 0.0, 1e-9) << i;
