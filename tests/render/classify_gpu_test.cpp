@@ -191,9 +191,8 @@ TEST_F(ClassifyGpu, MatchesTheCppReferenceGroupForGroupAndWithin1mm) {
       for (const auto& [key, g] : m)
         for (const auto& [s2, m2] : cpuBySpecies)
           if (s2 > s && m2.count(key)) ++crossFading;
-    // Measured 10 (identity) and 1 (calibrated) since the excess-green term (issue 41) moved the
-    // test imagery's species; before it, more than 10.
-    EXPECT_GE(crossFading, catalog.calibration.isIdentity() ? 10u : 1u);
+    // Through the calibration the test imagery's species move (issue 41): fewer cross-fades there.
+    EXPECT_GT(crossFading, catalog.calibration.isIdentity() ? 10u : 0u);
 
     // Roots of every plant, GPU (seeding.glsl) against the C++ (double), for the grass buffer.
     const uint32_t grass = 0, groups = std::min(figures.groups[grass], capacity);
