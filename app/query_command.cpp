@@ -13,6 +13,7 @@
 
 #include "app/exit_codes.h"
 #include "datasets/dataset_reader.h"
+#include "scene/dataset_calibration.h"
 #include "scene/landcover_masks.h"
 #include "vegetation/colour_score.h"
 #include "vegetation/species_choice.h"
@@ -23,13 +24,15 @@ namespace {
 
 // The species the colour score picks at a base colour and NDVI (core seed §3.3 eq. 16–18, the
 // NDVI term of colour_score.h; NaN: none): the best one and the probabilities of the two best,
-// deterministic (no z).
+// deterministic (no z); through the dataset's colour calibration (the catalog's), as plants see it.
 // `allowed`: the species the landcover class there allows (scene/landcover_masks.h).
 nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const datasets::Rgb8& c, float ndvi,
                            vegetation::SpeciesMask allowed) {
-  const vegetation::SpeciesCandidates k =
-      speciesCandidates(catalog, vegetation::hsvFromSrgb8(c[0], c[1], c[2]), ndvi, allowed);
+  const glm::vec3 linear(vegetation::srgbDecode(c[0] / 255.0f), vegetation::srgbDecode(c[1] / 255.0f),
+                         vegetation::srgbDecode(c[2] / 255.0f));
+  const vegetation::SpeciesCandidates k = speciesCandidatesAt(catalog, linear, ndvi, allowed);
   nlohmann::json out;
+  out["excess_green"] = std::round(vegetation::calibratedGround(catalog.calibration, linear).exg * 1e4) / 1e4;
   if (k.first < 0) {  // every species under its threshold
     out["species"] = nullptr;
     out["species_bare"] = true;
@@ -104,7 +107,7 @@ int runQuery(const QueryOptions& options, const Logger& log) {
     vegetation::SpeciesMask allowed = vegetation::kAllSpecies;  // the class there narrows the choice
     if (*landcover && reader->meta().landcover)
       allowed = scene::landcoverMasks(*catalog, *reader->meta().landcover)[**landcover];
-    out.update(speciesJson(*catalog, c, ndvi->value_or(NAN), allowed));
+    out.update(speciesJson(scene::calibratedCatalog(*catalog, reader->meta()), c, ndvi->value_or(NAN), allowed));
   } else {
     out["color"] = nullptr;  // no imagery: no colour to choose a species from
     out["species"] = nullptr;

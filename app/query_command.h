@@ -7,6 +7,8 @@
 //   "species_bare": whether that is bare soil (a seed there grows nothing),
 //   "species_candidates": [{"name", "bare", "probability"}, …] the two best and the chance each
 //   is drawn, s_i / (s0 + s1).
+//   "excess_green": ExG of the colour through the dataset's colour calibration (4 decimals;
+//   vegetation/colour_calibration.h): the species choice sees that calibrated colour, as plants do.
 //   "ndvi": the NDVI layer's value (4 decimals) or null,
 //   "landcover": {"code", "name", "kind", "scheme"} of the landcover layer's class at the point
 //   (nearest pixel; name and kind null for a code the scheme does not know) or null.

@@ -14,7 +14,8 @@
 //                                    "dark_object_reflectance": 0.01,
 //                                    "deshading": { "source": "imagery datetime", "sun_azimuth_deg": …,
 //                                                   "sun_elevation_deg": …, "direct_fraction": 0.8,
-//                                                   "note": "…" } } (optional) }  (or null)
+//                                                   "note": "…" } } (optional),
+//                    "colour_calibration": { … } (optional: colour_calibration_json.h) }  (or null)
 //     "ndvi":      { "encoding": "ndvi8", "tiles": "ndvi/{z}/{x}/{y}.png", "tile_count": N }  (or null)
 //     "landcover": { "encoding": "class8", "scheme": "worldcover", "tiles": "landcover/{z}/{x}/{y}.png",
 //                    "tile_count": N }  (or null)
@@ -37,6 +38,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "datasets/colour_calibration_json.h"
 #include "datasets/message.h"
 
 namespace vegstream::datasets {
@@ -56,6 +58,7 @@ const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg 
 class FieldReader {
  public:
   explicit FieldReader(std::string sourceName) : source_(std::move(sourceName)) {}
+  const std::string& source() const { return source_; }
 
   Error bad(const std::string& field, const std::string& problem) const {
     return makeError(ErrorKind::InvalidInput, concat("'", source_, "': field '", field, "' ", problem));
@@ -248,6 +251,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
       VEG_TRY_ASSIGN(m.imageryDatetime, f.text(*im, "datetime", "imagery.datetime"));
     if (auto r = im->find("radiometry"); r != im->end() && !r->is_null())
       VEG_TRY_ASSIGN(m.radiometry, parseRadiometry(*r, f));
+    if (auto c = im->find("colour_calibration"); c != im->end() && !c->is_null())
+      VEG_TRY_ASSIGN(m.colourCalibration, parseColourCalibration(*c, f.source()));
   }
 
   if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null()) {
@@ -331,6 +336,7 @@ json toJson(const DatasetMeta& m) {
                {"tile_count", m.imageryTiles}};
     if (!m.imageryDatetime.empty()) imagery["datetime"] = m.imageryDatetime;
     if (m.radiometry) imagery["radiometry"] = radiometryJson(*m.radiometry);
+    if (m.colourCalibration) imagery["colour_calibration"] = colourCalibrationJson(*m.colourCalibration);
   }
   json ndvi = nullptr;
   if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};

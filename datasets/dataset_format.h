@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "datasets/colour_calibration.h"
 #include "datasets/landcover_classes.h"
 #include "geo/bounds.h"
 #include "geo/xyz_tiles.h"
@@ -91,6 +92,8 @@ struct DatasetMeta {
   // geo/datetime.h where it is used); empty: unknown. dataset.json's "imagery.datetime".
   std::string imageryDatetime;
   std::optional<RadiometryRecord> radiometry;  // dataset.json's "imagery.radiometry" (optional)
+  // The colour calibration the species choice sees (colour_calibration.h); nullopt: identity.
+  std::optional<ColourCalibrationRecord> colourCalibration;  // "imagery.colour_calibration"
   int tileSize = kTileSize;
   std::string attribution;
   std::vector<SourceInfo> sources;

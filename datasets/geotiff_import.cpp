@@ -149,6 +149,7 @@ DatasetMeta initialMeta(const GeoTiffImportOptions& o, const Grids& g, int maxZo
     meta.imagery = o.imageryFormat;
     meta.imageryDatetime = o.imageryDatetime;
     meta.radiometry = g.imagery->radiometry;
+    meta.colourCalibration = g.imagery->colourCalibration;
     const std::string paths = o.imagery.files.empty() ? joined(o.imagery.bands) : joined(o.imagery.files);
     meta.sources.push_back(sourceInfo("imagery", paths, *g.imageryGrid, g.imagery->description));
   }

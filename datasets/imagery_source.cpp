@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "datasets/message.h"
+#include "datasets/srgb.h"
 
 namespace vegstream::datasets {
 namespace {
@@ -192,6 +193,15 @@ ImageryValues valuesOf(const Raster& r) {
 
 }  // namespace
 
+// The colour calibration of the overview as the tiles will hold it: converted, in linear light.
+ColourCalibrationRecord PreparedImagery::calibrationOf(const PreparedImagery& p, Raster overview) {
+  p.convert(overview);
+  if (!p.linear)
+    for (float& v : overview.samples)
+      if (!std::isnan(v)) v = srgbDecode(std::clamp(v, 0.0f, 255.0f) / 255.0f);
+  return estimateColourCalibration(overview.samples);
+}
+
 Result<PreparedImagery> PreparedImagery::open(const ImageryInput& input, const Logger& /*log*/) {
   assert(input.files.empty() != input.bands.empty());
   auto sources = openSources(input);
@@ -234,6 +244,7 @@ Result<PreparedImagery> PreparedImagery::open(const ImageryInput& input, const L
   } else {
     out.description = "8-bit sRGB colour as stored";
   }
+  out.colourCalibration = calibrationOf(out, overview);
   return out;
 }
 

@@ -22,6 +22,7 @@
 #include "datasets/raster_source.h"
 #include "datasets/source_grid.h"
 #include "datasets/radiometry.h"
+#include "datasets/colour_calibration.h"
 
 namespace vegstream::datasets {
 
@@ -76,12 +77,14 @@ class PreparedImagery {
       {{0.0, 255.0}, {0.0, 255.0}, {0.0, 255.0}}};  // stretch: per band, the values mapped to 0 and 255
   bool stretched = false;
   RadiometryRecord radiometry;   // for dataset.json (deshading filled in by the importer)
+  ColourCalibrationRecord colourCalibration;  // from the converted overview (colour_calibration.h)
   std::string radiometryChoice;  // what was chosen and why, for the importer's log
   std::string description;       // for dataset.json's sources
 
  private:
   Raster merged(std::vector<Raster> parts) const;  // 3 channels of raw values, NaN = no data
   void convert(Raster& r) const;                    // raw values → the chosen meaning
+  static ColourCalibrationRecord calibrationOf(const PreparedImagery& p, Raster overview);
 
   std::vector<RasterSource> sources_;  // one file (or mosaic), or three band files
   RadiometryMethod method_ = RadiometryMethod::Srgb;

@@ -12,6 +12,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
   assert(catalog.species.size() <= vegetation::kMaxSpecies);
   SpeciesBlock b;
   b.count[0] = static_cast<uint32_t>(catalog.species.size());
+  b.calibration = catalog.calibration.rows;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const vegetation::Species& s = catalog.species[i];
     SpeciesGpu& g = b.species[i];
@@ -24,6 +25,7 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     g.flags = {(s.bare || vegetation::isTree(s)) ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
     g.marker.w = s.phototropism;
     g.ground = {s.densityM2, s.horizonM, s.score.ndviReference, s.score.ndviWeight};
+    g.index = {s.score.exgReference, s.score.exgWeight, 0.0f, 0.0f};
     g.heightStiffness = {s.heightM.min, s.heightM.max, s.stiffness.min, s.stiffness.max};
     g.widthColour = {s.widthM.min, s.widthM.max, s.colourModulation.min, s.colourModulation.max};
     // Markers in the species' own reference colour, brightened so dark species stay visible.

@@ -54,15 +54,18 @@ struct SpeciesGpu {
   glm::vec4 widthColour{0.0f};      // width min/max (m), colour modulation min/max
   glm::vec4 marker{0.0f};           // linear RGB of the classification markers, w: phototropism
   glm::vec4 ground{0.0f};           // x: plants per m², y: horizon (m), z: NDVI reference, w: NDVI weight
+  glm::vec4 index{0.0f};            // x: excess-green reference, y: its weight
 };
-static_assert(sizeof(SpeciesGpu) == 112);
+static_assert(sizeof(SpeciesGpu) == 128);
 
 struct SpeciesBlock {
   std::array<SpeciesGpu, vegetation::kMaxSpecies> species{};
   std::array<uint32_t, 4> count{};  // x: species in the catalog
+  std::array<glm::vec4, 3> calibration{};  // the catalog's colour calibration, rows (xyz M, w offset)
 };
+static_assert(sizeof(SpeciesBlock) == 128 * vegetation::kMaxSpecies + 16 + 48);
 
-// The catalog as the GPU reads it.
+// The catalog (and its colour calibration) as the GPU reads it.
 SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog);
 
 }  // namespace vegstream::render

@@ -11,28 +11,38 @@
 #include "vegetation/colour_score.h"
 #include "vegetation/philox.h"
 #include "vegetation/species_choice.h"
+#include "vegetation/tree_niche.h"
 
 namespace vegstream::scene {
 namespace {
 
-constexpr uint32_t kCanopySeedKey = 0xC4A0B7u;  // the Philox key of a canopy tree's seed
+constexpr uint32_t kCanopySeedKey = 0xC4A0B7u;   // the Philox key of a canopy tree's seed
+constexpr uint32_t kCanopyNicheKey = 0xC4A0B8u;  // … of its choice among the trees
 constexpr double kSlackM = 10.0;                // around the cells: the frame's tilt, rounding
 
-// The imagery's species at the ground (eq. 16–18); a winner that is no tree gives way to the tree
-// species of best colour score.
+// The imagery's species at the ground as the placement chooses it (tree_placement.h): the
+// calibrated colour among the species the landcover class allows, a winner that is no tree giving
+// way to the claiming tree species of best colour score (the CHM says a tree stands here); then
+// the choice among the trees by colour and niche (tree_niche.h). −1: the class allows no tree.
 vegetation::SpeciesChoice treeSpeciesAt(const vegetation::SpeciesCatalog& catalog,
-                                        const vegetation::TreeGroundSample& g, float z) {
-  const glm::vec3 hsv = vegetation::hsvFromLinear(g.linearRgb);
-  vegetation::SpeciesChoice pick = vegetation::chooseSpecies(catalog, hsv, z, g.ndvi);
-  if (pick.species >= 0 && vegetation::isTree(catalog.species[static_cast<size_t>(pick.species)])) return pick;
-  pick = {};
-  float best = -INFINITY;
-  for (size_t s = 0; s < catalog.species.size(); ++s) {
-    if (!vegetation::isTree(catalog.species[s])) continue;
-    const float l = vegetation::logColourScore(catalog.species[s].score, hsv, g.ndvi);
-    if (l > best) best = l, pick.species = static_cast<int>(s);
+                                        const vegetation::TreeGroundSample& g, float z, float zNiche) {
+  namespace veg = vegetation;
+  const veg::GroundColour colour = veg::calibratedGround(catalog.calibration, g.linearRgb);
+  veg::SpeciesChoice pick = veg::chooseSpecies(catalog, colour.hsv, z, g.ndvi, colour.exg, g.allowed);
+  if (pick.species < 0 || !veg::isTree(catalog.species[static_cast<size_t>(pick.species)])) {
+    pick = {};
+    float best = -INFINITY;
+    for (size_t s = 0; s < catalog.species.size() && s < 32; ++s) {
+      const veg::Species& sp = catalog.species[s];
+      if (!veg::isTree(sp) || !sp.tree.claimsGround || ((g.allowed >> s) & 1u) == 0u) continue;
+      const float l = veg::logColourScore(sp.score, colour.hsv, g.ndvi, colour.exg);
+      if (l > best) best = l, pick.species = static_cast<int>(s);
+    }
+    if (pick.species < 0) return pick;
+    pick.sPrime = 1.0f;
   }
-  pick.sPrime = 1.0f;
+  const veg::SpeciesChoice tree = veg::chooseTreeSpecies(catalog, pick.species, colour, g.ndvi, g.site, zNiche, g.allowed);
+  if (tree.species >= 0) pick.species = tree.species;
   return pick;
 }
 
@@ -138,7 +148,8 @@ void CanopyTrees::treesInCells(const vegetation::SpeciesCatalog& catalog, const 
     const auto ix = static_cast<uint32_t>(gx0 + static_cast<int64_t>(std::floor(crown.col)));
     const auto iy = static_cast<uint32_t>(gy0 + static_cast<int64_t>(std::floor(crown.row)));
     const vegetation::Philox2x32Out words = vegetation::philox(ix, iy, kCanopySeedKey ^ static_cast<uint32_t>(zoom_));
-    const vegetation::SpeciesChoice pick = treeSpeciesAt(catalog, g, float(words.y >> 8) * (1.0f / 16777216.0f));
+    const vegetation::Philox2x32Out niche = vegetation::philox(ix, iy, kCanopyNicheKey ^ static_cast<uint32_t>(zoom_));
+    const vegetation::SpeciesChoice pick = treeSpeciesAt(catalog, g, vegetation::u01(words.y), vegetation::u01(niche.x));
     if (pick.species < 0) continue;
     vegetation::PlacedTree t;
     t.x = p.x;

@@ -2,6 +2,7 @@
 // through the streamer → clusters and species from the imagery colour → plants, kept where
 // their root lies in the box.
 
+#include "scene/dataset_calibration.h"
 #include "scene/plants_in_box.h"
 
 #include <algorithm>
@@ -118,11 +119,12 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
 }  // namespace
 
 Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds& box,
-                                const vegetation::SpeciesCatalog& catalog, const PlantsInBoxOptions& options) {
+                                const vegetation::SpeciesCatalog& givenCatalog, const PlantsInBoxOptions& options) {
   auto opened = openBoxDataset(dataset, box, options.boxName);
   if (!opened) return opened.error();
   const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
   const datasets::DatasetMeta* meta = &opened->meta;
+  const vegetation::SpeciesCatalog catalog = calibratedCatalog(givenCatalog, *meta);  // the imagery's calibration
   const geo::GeoBounds& b = meta->bounds;
 
   // The renderer's grid, seed level and roots (StreamedTerrain): the same triangles, keys and

@@ -1,3 +1,4 @@
+#include "scene/dataset_calibration.h"
 #include "scene/scene.h"
 
 #include <algorithm>
@@ -42,6 +43,7 @@ struct Scene::Impl {
   std::unique_ptr<TreeGround> treeGround;
   std::unique_ptr<TreeField> treeField;
   SceneFrameFigures figures;
+  vegetation::SpeciesCatalog catalog;  // the catalog with the dataset's colour calibration (trees point at it)
 
   double width() const { return static_cast<double>(renderer->width()); }
   double height() const { return static_cast<double>(renderer->height()); }
@@ -175,14 +177,15 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
       return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
     if (Status s = impl->renderer->setImageryLayers(info.imageryLayers, meta->ndvi); !s) return s.error();
   }
-  if (options.species)
-    if (Status s = impl->renderer->setSpeciesCatalog(*options.species); !s) return s.error();
+  impl->catalog = calibratedCatalog(options.species ? *options.species : vegetation::defaultSpeciesCatalog(), *meta);
+  if (options.species || !impl->catalog.calibration.isIdentity())
+    if (Status s = impl->renderer->setSpeciesCatalog(impl->catalog); !s) return s.error();
   if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
     return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) +
                                                   ": must be 1 … " + std::to_string(vegetation::kMaxClusterSize));
   // The catalog decides how dense plants grow and how far the farthest can be seen: the seed
   // triangles' counts stop there (terrain/seed_triangles.h), each species at its own.
-  const vegetation::SpeciesCatalog& catalog = options.species ? *options.species : vegetation::defaultSpeciesCatalog();
+  const vegetation::SpeciesCatalog& catalog = impl->catalog;
   terrain::SeedOptions& seeds = impl->options.terrain.seeds;
   seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
   seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));

@@ -2,6 +2,7 @@
 // covering the box in the flight's frame, placed (vegetation/tree_placement.h, core seed
 // ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2, §3.3) and kept where the trunk stands in the box.
 
+#include "scene/dataset_calibration.h"
 #include "scene/trees_in_box.h"
 
 #include <algorithm>
@@ -59,11 +60,12 @@ CellRange cellsCovering(const geo::GeoBounds& box, const geo::LocalFrame& frame,
 }  // namespace
 
 Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& box,
-                              const vegetation::SpeciesCatalog& catalog, const TreesInBoxOptions& options) {
+                              const vegetation::SpeciesCatalog& givenCatalog, const TreesInBoxOptions& options) {
   auto opened = openBoxDataset(dataset, box, options.boxName);
   if (!opened) return opened.error();
   const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
   const datasets::DatasetMeta* meta = &opened->meta;
+  const vegetation::SpeciesCatalog catalog = calibratedCatalog(givenCatalog, *meta);  // the imagery's calibration
   const geo::GeoBounds& b = meta->bounds;
   TreesInBox out;
   out.datasetName = meta->name;

@@ -9,11 +9,13 @@ layout(local_size_x = 64) in;
 
 #include "philox.glsl"
 #include "colour_score.glsl"
+#include "colour_calibration.glsl"
 #include "classify_layout.glsl"
 
 layout(set = 0, binding = 0, std140) uniform SpeciesBlock {
   Species species[kMaxSpecies];
   uvec4 speciesCount;
+  vec4 calibration[3];  // the dataset's colour calibration (colour_calibration.glsl): rows of M, w offset
 } catalog;
 layout(set = 0, binding = 1, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Order { uint order[]; };
@@ -105,11 +107,15 @@ float imageryNdvi(int layer, vec2 uv) {
   return weight > 0.0 ? sum / weight : kNoNdvi;
 }
 
-// The base colour (HSV) and NDVI under r.
-vec4 baseGround(vec4 uv01, vec2 uv2, int layer, vec2 r) {
+// The calibrated base colour under r: HSV and ExG (calibratedGround), and the NDVI.
+struct Ground {
+  vec4 colour;
+  float ndvi;
+};
+Ground baseGround(vec4 uv01, vec2 uv2, int layer, vec2 r) {
   vec2 uv0 = uv01.xy;
   vec2 uv = uv0 + r.x * (uv01.zw - uv0) + r.y * (uv2 - uv0);
-  return vec4(hsvFromLinear(imageryLinear(layer, uv)), imageryNdvi(layer, uv));
+  return Ground(calibratedGround(catalog.calibration, imageryLinear(layer, uv)), imageryNdvi(layer, uv));
 }
 
 // vegetation::speciesPlantCount and speciesHorizonFade: the fade of a group of species `sp`,
@@ -192,12 +198,12 @@ void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint 
         philoxU01(philoxDraw(uvec2(t.keyLo, t.keyHi), cluster, kSlotCanopy + firstSeed).x) < kCanopyThinning * cover)
       return;
   }
-  vec4 now = baseGround(t.uv01, t.uv2, t.layer, r);
-  vec2 pick = chooseSpecies(now.xyz, now.w, z);
+  Ground now = baseGround(t.uv01, t.uv2, t.layer, r);
+  vec2 pick = chooseSpecies(now.colour, now.ndvi, z);
   float w = t.imageryBlend;
   if (t.previousLayer >= 0 && w < 1.0) {
-    vec4 then = baseGround(t.previousUv01, t.previousUv2, t.previousLayer, r);
-    vec2 before = chooseSpecies(then.xyz, then.w, z);
+    Ground then = baseGround(t.previousUv01, t.previousUv2, t.previousLayer, r);
+    vec2 before = chooseSpecies(then.colour, then.ndvi, z);
     if (before.x == pick.x) {
       pick.y = mix(before.y, pick.y, w);
       w = 1.0;

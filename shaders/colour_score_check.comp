@@ -7,15 +7,21 @@
 #define TERRAIN_DETAIL_SET 0
 #include "colour_score.glsl"
 #include "terrain_detail.glsl"
+#include "colour_calibration.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 2, std430) readonly buffer Inputs {
   vec4 linearRgb[];  // rgb: linear colour; a: unused
 } inputs;
-// Per colour, 6 vec4: HSV + the log score of type 0; type weights 0–3, 4–7, 8–11, 12–15;
-// surface weights.
+// Per colour, 8 vec4: HSV + the log score of type 0; type weights 0–3, 4–7, 8–11, 12–15;
+// surface weights; calibratedGround (HSV, ExG) through `calibration`; the log score of type 0
+// with its NDVI term off and the ExG term of `calibration.exg` on the calibrated colour.
 layout(set = 0, binding = 3, std430) writeonly buffer Outputs {
   vec4 values[];
 } outputs;
+layout(set = 0, binding = 4, std140) uniform Calibration {
+  vec4 rows[3];  // vegetation/colour_calibration.h
+  vec4 exg;      // x: ExG reference, y: its weight
+} calibration;
 layout(push_constant) uniform Push {
   uint count;
 } push;
@@ -25,7 +31,12 @@ void main() {
   vec3 hsv = hsvFromLinear(inputs.linearRgb[i].rgb);
   float w[kMaxTerrainTypes];
   terrainTypeWeights(hsv, w);
-  outputs.values[6 * i + 0] = vec4(hsv, logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, hsv));
-  for (int k = 0; k < 4; ++k) outputs.values[6 * i + 1 + k] = vec4(w[4 * k], w[4 * k + 1], w[4 * k + 2], w[4 * k + 3]);
-  outputs.values[6 * i + 5] = detailSurfaceWeights(hsv);
+  outputs.values[8 * i + 0] = vec4(hsv, logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, hsv));
+  for (int k = 0; k < 4; ++k) outputs.values[8 * i + 1 + k] = vec4(w[4 * k], w[4 * k + 1], w[4 * k + 2], w[4 * k + 3]);
+  outputs.values[8 * i + 5] = detailSurfaceWeights(hsv);
+  vec4 ground = calibratedGround(calibration.rows, inputs.linearRgb[i].rgb);
+  outputs.values[8 * i + 6] = ground;
+  float l = logColourScore(detail.reference[0].xyz, detail.weights[0].xyz, detail.reference[0].w, vec2(0.0),
+                           calibration.exg.xy, ground.xyz, kNoNdvi, ground.w);
+  outputs.values[8 * i + 7] = vec4(l, 0.0, 0.0, 0.0);
 }

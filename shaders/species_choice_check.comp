@@ -30,5 +30,5 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.count) return;
   ChoiceInput c = inputs[i];
-  results[i] = chooseSpeciesAllowed(c.hsvNdvi.xyz, c.hsvNdvi.w, uintBitsToFloat(c.zAllowed.x), c.zAllowed.y);
+  results[i] = chooseSpeciesAllowed(vec4(c.hsvNdvi.xyz, -2.0 /* kNoExg: no ExG term */), c.hsvNdvi.w, uintBitsToFloat(c.zAllowed.x), c.zAllowed.y);
 }

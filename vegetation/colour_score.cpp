@@ -64,16 +64,17 @@ float weightedHsvDistance(glm::vec3 a, glm::vec3 b, glm::vec3 w) {
   return std::sqrt(dh * dh + ds * ds + dv * dv);
 }
 
-float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi) {
+float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi, float exg) {
   const float dh = hueDistance(params.reference.x, hsv.x) * params.weights.x;
   const float ds = (params.reference.y - hsv.y) * params.weights.y;
   const float dv = (params.reference.z - hsv.z) * params.weights.z;
   const float dn = hasNdvi(ndvi) ? (params.ndviReference - ndvi) * params.ndviWeight : 0.0f;
-  return std::sqrt(dh * dh + ds * ds + dv * dv + dn * dn);
+  const float de = hasExg(exg) ? (params.exgReference - exg) * params.exgWeight : 0.0f;
+  return std::sqrt(dh * dh + ds * ds + dv * dv + dn * dn + de * de);
 }
 
-float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi) {
-  const float dist = std::max(weightedDistance(params, hsv, ndvi), kMinColourDistance);
+float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi, float exg) {
+  const float dist = std::max(weightedDistance(params, hsv, ndvi, exg), kMinColourDistance);
   return -params.p * std::log(dist);
 }
 

@@ -18,6 +18,11 @@
 // looking like dark forest. Where there is no NDVI (kNoNdvi, or NaN) the term is 0: datasets
 // without near-infrared score exactly as before.
 //
+// Excess green (issue 41): the ExG of the calibrated colour (colour_calibration.h), −1 … 2, gives
+// a fifth term (e_i − e_b) · w_e,i, so green vegetation is told from grey and red ground by an
+// index that colour casts do not move, with or without near-infrared. Callers that pass only HSV
+// (kNoExg) get no term: the score as before.
+//
 // Blend weights over a set of types are s_i / Σ_j s_j, computed as exp(ln s_i − max ln s) /
 // Σ exp(ln s_j − max ln s): the same numbers without overflow for large p.
 //
@@ -46,12 +51,17 @@ struct ColourScoreParams {
   float p = 2.0f;             // exponent, > 0
   float ndviReference = 0.0f; // the NDVI the type grows on (−1 … 1)
   float ndviWeight = 0.0f;    // ≥ 0; 0 ignores NDVI
+  float exgReference = 0.0f;  // the excess green the type grows on (−1 … 2)
+  float exgWeight = 0.0f;     // ≥ 0; 0 ignores it
 };
 
 // "No NDVI here" (any value below −1.5, and NaN, means the same). The GLSL twin uses the same
 // number, because a shader cannot rely on NaN.
 inline constexpr float kNoNdvi = -2.0f;
 inline bool hasNdvi(float ndvi) { return ndvi >= -1.5f; }
+// "No excess green given" (ExG is ≥ −1): the term is 0.
+inline constexpr float kNoExg = -2.0f;
+inline bool hasExg(float exg) { return exg >= -1.5f; }
 
 // Distances below this are treated as this (score (1e-4)^−p instead of infinity).
 inline constexpr float kMinColourDistance = 1e-4f;
@@ -75,11 +85,11 @@ glm::vec3 hsvFromSrgb8(uint8_t r, uint8_t g, uint8_t b);
 float hueDistance(float a, float b);
 // ‖(Δh, Δs, Δv) ⊙ weights‖ with the wrapped hue difference (not clamped).
 float weightedHsvDistance(glm::vec3 hsvA, glm::vec3 hsvB, glm::vec3 weights);
-// The same with the NDVI term when `ndvi` is present: ‖(Δh, Δs, Δv, Δn) ⊙ (w, w_n)‖.
-float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi);
+// The same with the NDVI and ExG terms where present: ‖(Δh, Δs, Δv, Δn, Δe) ⊙ (w, w_n, w_e)‖.
+float weightedDistance(const ColourScoreParams& params, glm::vec3 hsv, float ndvi, float exg = kNoExg);
 
 // ln s_i = −p · ln max(distance, kMinColourDistance): finite for every input.
-float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi = kNoNdvi);
+float logColourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi = kNoNdvi, float exg = kNoExg);
 // s_i of eq. 16 (may be +inf in float only for extreme p; use logColourScore to compare).
 float colourScore(const ColourScoreParams& params, glm::vec3 hsv, float ndvi = kNoNdvi);
 

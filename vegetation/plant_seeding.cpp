@@ -101,7 +101,7 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
   // plant, as bare soil (so the forest floor under the crowns has no grass; render/classify_layout
   // packs tree species as bare for the GPU alike).
   const auto choose = [&](const GroundSample& g, float z) {
-    SpeciesChoice c = chooseSpecies(catalog, hsvFromLinear(g.linear), z, g.ndvi, g.allowed);
+    SpeciesChoice c = chooseSpeciesAt(catalog, g.linear, z, g.ndvi, g.allowed);
     if (c.species >= 0 && isTree(catalog.species[size_t(c.species)])) c.species = -1;
     return c;
   };

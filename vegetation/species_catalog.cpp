@@ -18,6 +18,7 @@
 
 #include "core/text_file.h"
 #include "vegetation/blade_shape.h"
+#include "vegetation/colour_calibration.h"
 #include "vegetation/landcover_table_json.h"
 
 namespace vegstream::vegetation {
@@ -130,14 +131,14 @@ bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::v
   if (!ps.object(*it, p)) return false;
   const json& r = *it;
   if (r.contains("srgb")) {
-    if (!ps.onlyKeys(r, p, {"srgb", "ndvi"})) return ps.fail(p, "give either srgb or h_deg, s, v");
+    if (!ps.onlyKeys(r, p, {"srgb", "ndvi", "exg"})) return ps.fail(p, "give either srgb or h_deg, s, v");
     if (!parseReferenceNdvi(ps, r, p, ndvi, ndviGiven)) return false;
     int v[3] = {};
     if (!parseHexColour(r["srgb"], v)) return ps.fail(p + ".srgb", "must be a colour \"#rrggbb\"");
     hsv = hsvFromSrgb8(static_cast<uint8_t>(v[0]), static_cast<uint8_t>(v[1]), static_cast<uint8_t>(v[2]));
     return true;
   }
-  if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb", "ndvi"})) return false;
+  if (!ps.onlyKeys(r, p, {"h_deg", "s", "v", "srgb", "ndvi", "exg"})) return false;
   if (!parseReferenceNdvi(ps, r, p, ndvi, ndviGiven)) return false;
   float h = 0.0f;
   if (!ps.number(r, "h_deg", p, h) || !ps.number(r, "s", p, hsv.y) || !ps.number(r, "v", p, hsv.z)) return false;
@@ -146,6 +147,19 @@ bool parseReference(Parser& ps, const json& obj, const std::string& path, glm::v
   if (hsv.z < 0.0f || hsv.z > 1.0f) return ps.fail(p + ".v", "must be in 0 … 1 (got " + fmt(hsv.z) + ")");
   hsv.x = h / 360.0f;
   if (hsv.x >= 1.0f) hsv.x -= 1.0f;  // 360° is 0°: hues live in [0, 1) like hsvFromSrgb's
+  return true;
+}
+
+// reference.exg: optional, −1 … 2; by default the excess green of the reference colour itself
+// (colour_calibration.h), so a catalog gets the index term by giving only weights.exg.
+bool parseReferenceExg(Parser& ps, const json& obj, const std::string& path, ColourScoreParams& score) {
+  const glm::vec3 srgb = srgbFromHsv(score.reference);
+  score.exgReference = excessGreen({srgbDecode(srgb.r), srgbDecode(srgb.g), srgbDecode(srgb.b)});
+  const std::string p = Parser::join(path, "reference");
+  const json& r = obj["reference"];
+  if (!ps.number(r, "exg", p, score.exgReference, false)) return false;
+  if (score.exgReference < -1.0f || score.exgReference > 2.0f)
+    return ps.fail(p + ".exg", "must be in −1 … 2 (got " + fmt(score.exgReference) + ")");
   return true;
 }
 
@@ -265,16 +279,17 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
 
   bool ndviGiven = false;
   if (!parseReference(ps, obj, path, out.score.reference, out.score.ndviReference, ndviGiven)) return false;
+  if (!parseReferenceExg(ps, obj, path, out.score)) return false;
   const std::string wp = path + ".weights";
   const auto w = obj.find("weights");
   if (w == obj.end()) return ps.fail(wp, "is missing");
-  if (!ps.object(*w, wp) || !ps.onlyKeys(*w, wp, {"h", "s", "v", "ndvi"})) return false;
+  if (!ps.object(*w, wp) || !ps.onlyKeys(*w, wp, {"h", "s", "v", "ndvi", "exg"})) return false;
   glm::vec3& wt = out.score.weights;
   if (!ps.number(*w, "h", wp, wt.x) || !ps.number(*w, "s", wp, wt.y) || !ps.number(*w, "v", wp, wt.z) ||
-      !ps.number(*w, "ndvi", wp, out.score.ndviWeight, false))
+      !ps.number(*w, "ndvi", wp, out.score.ndviWeight, false) || !ps.number(*w, "exg", wp, out.score.exgWeight, false))
     return false;
-  for (const auto& [k, v] :
-       {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z}, std::pair{"ndvi", out.score.ndviWeight}})
+  for (const auto& [k, v] : {std::pair{"h", wt.x}, std::pair{"s", wt.y}, std::pair{"v", wt.z},
+                             std::pair{"ndvi", out.score.ndviWeight}, std::pair{"exg", out.score.exgWeight}})
     if (v < 0.0f) return ps.fail(wp + "." + k, "must be ≥ 0 (got " + fmt(v) + ")");
   if (out.score.ndviWeight > 0.0f && !ndviGiven)
     return ps.fail(path + ".reference.ndvi", "is missing: weights.ndvi is " + fmt(out.score.ndviWeight) +

@@ -14,11 +14,15 @@
 //       { "name": "grass",                                 unique, non-empty
 //         "about": "…free text…",                          optional
 //         "reference": { "h_deg": 86, "s": 0.3, "v": 0.33 }   HSV: hue 0 … 360°, s, v in 0 … 1
-//                   or { "srgb": "#4a5042" },              8-bit sRGB of an imagery pixel
+//                   or { "srgb": "#4a5042" },              8-bit sRGB of an imagery pixel, both
+//                                                          of the calibrated colour (colour_calibration.h)
 //           optional in either form: "ndvi": 0.4           the NDVI it grows on, −1 … 1
+//                                    "exg": 0.3            the excess green, −1 … 2 (default:
+//                                                          the reference colour's own)
 //         "weights": { "h": 2, "s": 0.8, "v": 0.6 },       ≥ 0, not all 0
 //           optional: "ndvi": 2                            ≥ 0 (needs reference.ndvi); counts
 //                                                          only where the dataset has NDVI
+//                     "exg": 1                             ≥ 0 (default 0): the excess-green term
 //         "p": 3,                                          > 0, ≤ 64
 //         "threshold": 0,                                  optional, ≥ 0 (0: none)
 //         "bare": false,                                   optional
@@ -68,6 +72,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "vegetation/colour_calibration.h"
 #include "vegetation/colour_score.h"
 #include "vegetation/landcover_species.h"
 #include "vegetation/tree_types.h"
@@ -151,6 +156,10 @@ struct SpeciesCatalog {
   // The "landcover" table: per kind, the species it allows (bit i: species i); nullopt: the
   // built-in default (landcover_species.h). Used only where a dataset has a landcover layer.
   std::optional<LandcoverTable> landcover;
+  // The dataset's colour calibration (colour_calibration.h): not part of the JSON; whoever opens
+  // a dataset sets it (scene/dataset_calibration.h) before choosing species on its imagery, so
+  // the GPU pass and every CPU path see the same calibrated colours. Identity by default.
+  ColourCalibration calibration;
 };
 
 // The densest species that grows as a plant (not bare, not a tree), plants per m²: how many

@@ -16,12 +16,25 @@ bool passesOwnThreshold(const Species& s, float logScore) {
   return !(s.threshold > 0.0f) || !(logScore < std::log(s.threshold));
 }
 
-SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, SpeciesMask allowed) {
+SpeciesCandidates speciesCandidatesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float ndvi,
+                                      SpeciesMask allowed) {
+  const GroundColour g = calibratedGround(catalog.calibration, linear);
+  return speciesCandidates(catalog, g.hsv, ndvi, g.exg, allowed);
+}
+
+SpeciesChoice chooseSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi,
+                              SpeciesMask allowed) {
+  const GroundColour g = calibratedGround(catalog.calibration, linear);
+  return chooseSpecies(catalog, g.hsv, z, ndvi, g.exg, allowed);
+}
+
+SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi, float exg,
+                                    SpeciesMask allowed) {
   SpeciesCandidates c;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     if (((allowed >> i) & 1u) == 0u) continue;  // the landcover class does not allow it
     const Species& s = catalog.species[i];
-    const float l = logColourScore(s.score, hsv, ndvi);
+    const float l = logColourScore(s.score, hsv, ndvi, exg);
     if (!passesThreshold(s, l)) continue;
     const int idx = static_cast<int>(i);
     // Strictly greater: of equal scores the lower index stays ahead.
@@ -40,8 +53,9 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
   return c;
 }
 
-SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, SpeciesMask allowed) {
-  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, allowed);
+SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg,
+                            SpeciesMask allowed) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, exg, allowed);
   SpeciesChoice out;
   if (c.first < 0) return out;  // nothing scores: rejected
   out.secondRatio = c.secondRatio;

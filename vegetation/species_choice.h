@@ -7,7 +7,7 @@
 //
 // The GLSL twin (render/classify, written against this) must follow chooseSpecies operation for
 // operation; its float operations, in order, per species i (index order 0, 1, …):
-//   l_i = logColourScore(score_i, hsv, ndvi)           (colour_score.h: −p · log(max(dist, 1e-4)))
+//   l_i = logColourScore(score_i, hsv, ndvi, exg)      (colour_score.h: −p · log(max(dist, 1e-4)))
 //   out when threshold_i > 0 and l_i < log(threshold_i)   (log(threshold) is the only other log)
 //   best two by strictly greater l: a tie keeps the lower index first (l0 ≥ l1)
 // then, with d = l0 − l1 ≥ 0 (one species in: ratio = 0):
@@ -44,12 +44,24 @@ bool passesThreshold(const Species& s, float logScore);
 // The threshold alone, claimsGround aside (the choice among the trees).
 bool passesOwnThreshold(const Species& s, float logScore);
 
-// `ndvi`: the NDVI under the point, kNoNdvi (or NaN) where the dataset has none (colour_score.h).
+// From the imagery's linear colour under a point: the catalog's calibration applied
+// (colour_calibration.h), HSV and ExG of the result, then the choice below with both.
+SpeciesCandidates speciesCandidatesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float ndvi = kNoNdvi,
+                                      SpeciesMask allowed = kAllSpecies);
+SpeciesChoice chooseSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi = kNoNdvi,
+                              SpeciesMask allowed = kAllSpecies);
+
+// `ndvi`: the NDVI under the point, kNoNdvi (or NaN) where the dataset has none (colour_score.h);
+// `exg`: its excess green, kNoExg leaves the term out (callers that only have HSV).
 SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv, float ndvi = kNoNdvi,
-                                    SpeciesMask allowed = kAllSpecies);
+                                    float exg = kNoExg, SpeciesMask allowed = kAllSpecies);
 
 // z uniform in [0, 1) (u01 of a Philox word). Eq. 16–18 as described above.
 SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi = kNoNdvi,
-                            SpeciesMask allowed = kAllSpecies);
+                            float exg = kNoExg, SpeciesMask allowed = kAllSpecies);
+
+// A mask where the ExG belongs would convert silently to float: refused at compile time.
+SpeciesCandidates speciesCandidates(const SpeciesCatalog&, glm::vec3, float, SpeciesMask) = delete;
+SpeciesChoice chooseSpecies(const SpeciesCatalog&, glm::vec3, float, float, SpeciesMask) = delete;
 
 }  // namespace vegstream::vegetation

@@ -24,7 +24,7 @@ float logNicheFit(const TreeNiche& niche, const TreeSite& site) {
          rangeFit(site.slopeDeg, niche.slopeDeg, kSlopeSoftDeg) + rangeFit(site.reliefM, niche.reliefM, kReliefSoftM);
 }
 
-SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int firstChoice, glm::vec3 hsv, float ndvi,
+SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int firstChoice, const GroundColour& ground, float ndvi,
                                 const TreeSite& site, float z, SpeciesMask allowed) {
   int first = -1, second = -1;
   float l0 = 0.0f, l1 = 0.0f;
@@ -32,7 +32,7 @@ SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int firstChoice, 
     const Species& s = catalog.species[i];
     const bool candidate = static_cast<int>(i) == firstChoice || (!s.tree.claimsGround && i < 32 && ((allowed >> i) & 1u));
     if (!isTree(s) || !candidate) continue;
-    const float colour = logColourScore(s.score, hsv, ndvi);
+    const float colour = logColourScore(s.score, ground.hsv, ndvi, ground.exg);
     if (!passesOwnThreshold(s, colour)) continue;
     const float l = kTreeColourShare * colour + logNicheFit(s.tree.niche, site);
     const int idx = static_cast<int>(i);

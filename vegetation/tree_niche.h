@@ -58,7 +58,8 @@ float logNicheFit(const TreeNiche& niche, const TreeSite& site);
 // Stage 2 above at a point where stage 1 chose tree species `first`, z uniform in [0, 1): `first`
 // against the tree species that claim no ground, those `allowed` (landcover_species.h). species −1
 // when none passes its threshold there (keep `first` then).
-SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int first, glm::vec3 hsv, float ndvi,
+// `colour`: the calibrated ground colour there (colour_calibration.h; exg kNoExg: no ExG term).
+SpeciesChoice chooseTreeSpecies(const SpeciesCatalog& catalog, int first, const GroundColour& colour, float ndvi,
                                 const TreeSite& site, float z, SpeciesMask allowed = kAllSpecies);
 
 }  // namespace vegstream::vegetation

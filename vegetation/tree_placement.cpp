@@ -83,11 +83,11 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   candidatePoint(grid, cx, cy, x, y);
   const TreeGroundSample g = ground(x, y);
   if (!g.valid) return false;
-  const glm::vec3 hsv = hsvFromLinear(g.linearRgb);
-  const SpeciesChoice pick = chooseSpecies(catalog, hsv, u01(choice.x), g.ndvi, g.allowed);
+  const GroundColour colour = calibratedGround(catalog.calibration, g.linearRgb);
+  const SpeciesChoice pick = chooseSpecies(catalog, colour.hsv, u01(choice.x), g.ndvi, colour.exg, g.allowed);
   if (pick.species < 0 || !isTree(catalog.species[static_cast<size_t>(pick.species)])) return false;
   const SpeciesChoice tree =
-      chooseTreeSpecies(catalog, pick.species, hsv, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
+      chooseTreeSpecies(catalog, pick.species, colour, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
   const auto s = static_cast<size_t>(tree.species >= 0 ? tree.species : pick.species);
   const Species& sp = catalog.species[s];
   if (!(keepU < keepWith(keepShare[s], gap))) return false;

@@ -36,4 +36,5 @@ struct Species {
   vec4 widthColour;
   vec4 marker;
   vec4 ground;           // x plants per m², y horizon (m), z NDVI reference, w NDVI weight
+  vec4 index;            // x excess-green reference, y its weight (colour_score.h)
 };

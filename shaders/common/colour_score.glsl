@@ -80,6 +80,19 @@ float logColourScore(vec3 reference, vec3 weights, float p, vec2 ndviRefWeight, 
   return -p * log(dist);
 }
 
+// With the excess-green term too (colour_score.h; exgRefWeight = (reference, weight); an exg
+// below −1.5 means none given): the sum in the CPU's order, dn² then de².
+float logColourScore(vec3 reference, vec3 weights, float p, vec2 ndviRefWeight, vec2 exgRefWeight, vec3 hsv,
+                     float ndvi, float exg) {
+  float dh = hueDistance(reference.x, hsv.x) * weights.x;
+  float ds = (reference.y - hsv.y) * weights.y;
+  float dv = (reference.z - hsv.z) * weights.z;
+  float dn = ndvi >= -1.5 ? (ndviRefWeight.x - ndvi) * ndviRefWeight.y : 0.0;
+  float de = exg >= -1.5 ? (exgRefWeight.x - exg) * exgRefWeight.y : 0.0;
+  float dist = max(sqrt(dh * dh + ds * ds + dv * dv + dn * dn + de * de), kMinColourDistance);
+  return -p * log(dist);
+}
+
 float colourScore(vec3 reference, vec3 weights, float p, vec3 hsv) {
   return exp(logColourScore(reference, weights, p, hsv));
 }

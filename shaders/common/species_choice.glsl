@@ -2,17 +2,19 @@
 // eq. 16–18: the GLSL twin of vegetation/species_choice.cpp (operation for operation). Needs
 // colour_score.glsl and a `catalog` uniform block (classify_layout.glsl's Species array).
 //
-// `ndvi`: kNoNdvi where there is none. Returns (species index, s′), species −1 when the seed is rejected (bare soil, or no species
-// scores above its threshold).
+// `ground`: HSV (xyz) and ExG (w) of the calibrated colour (colour_calibration.glsl's
+// calibratedGround); `ndvi`: kNoNdvi where there is none. Returns (species index, s′), species −1
+// when the seed is rejected (bare soil, or no species scores above its threshold).
 // `allowed`: bit i set where the landcover class under the plant allows species i
 // (vegetation/landcover_species.h; 0xffffffffu without landcover), tested before the score.
-vec2 chooseSpeciesAllowed(vec3 hsv, float ndvi, float z, uint allowed) {
+vec2 chooseSpeciesAllowed(vec4 ground, float ndvi, float z, uint allowed) {
   int best = -1, second = -1;
   float l0 = 0.0, l1 = 0.0;
   for (uint i = 0u; i < catalog.speciesCount.x; ++i) {
     if (((allowed >> i) & 1u) == 0u) continue;  // the landcover class does not allow it
     Species sp = catalog.species[i];
-    float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, sp.ground.zw, hsv, ndvi);
+    float l = logColourScore(sp.reference.xyz, sp.weights.xyz, sp.reference.w, sp.ground.zw, sp.index.xy, ground.xyz,
+                             ndvi, ground.w);
     if (l < sp.weights.w) continue;  // under its threshold: score 0
     if (best < 0 || l > l0) {
       second = best;
@@ -36,4 +38,4 @@ vec2 chooseSpeciesAllowed(vec3 hsv, float ndvi, float z, uint allowed) {
   return vec2(float(pick), sPrime);
 }
 
-vec2 chooseSpecies(vec3 hsv, float ndvi, float z) { return chooseSpeciesAllowed(hsv, ndvi, z, 0xffffffffu); }
+vec2 chooseSpecies(vec4 ground, float ndvi, float z) { return chooseSpeciesAllowed(ground, ndvi, z, 0xffffffffu); }

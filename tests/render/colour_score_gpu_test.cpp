@@ -20,6 +20,7 @@
 #include "render/terrain_detail.h"
 #include "render/vk_check.h"
 #include "shaders/colour_score_check.comp.h"
+#include "vegetation/colour_calibration.h"
 #include "vegetation/terrain_types.h"
 
 namespace vegstream::render::testing {
@@ -63,24 +64,46 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   GpuBuffer inputs = createBuffer(ctx, sizeof(glm::vec4) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                   MemoryUse::HostUpload, "check inputs");
   std::memcpy(inputs.mapped, colours.data(), sizeof(glm::vec4) * count);
-  const VkDeviceSize outBytes = sizeof(glm::vec4) * 6 * count;
+  const VkDeviceSize outBytes = sizeof(glm::vec4) * 8 * count;
+  // A calibration that is not the identity (a blue cast taken out, chroma raised) and an ExG term.
+  veg::ColourCalibration calibration;
+  calibration.rows = {glm::vec4(1.4f, 0.08f, -0.05f, -0.01f), glm::vec4(-0.02f, 1.2f, 0.04f, 0.005f),
+                      glm::vec4(-0.1f, 0.15f, 0.7f, 0.02f)};
+  struct CalibrationBlock {
+    std::array<glm::vec4, 3> rows;
+    glm::vec4 exg;
+  } calib{calibration.rows, glm::vec4(0.3f, 1.5f, 0.0f, 0.0f)};
+  GpuBuffer calibUniform =
+      createBuffer(ctx, sizeof(calib), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload, "check calibration");
+  std::memcpy(calibUniform.mapped, &calib, sizeof(calib));
   GpuBuffer outputs =
       createBuffer(ctx, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback, "check outputs");
 
   const CheckBinding bindings[] = {{1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms.get(), sizeof(block)},
                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, inputs.get()},
-                                   {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()}};
+                                   {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.get()},
+                                   {4, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, calibUniform.get(), sizeof(calib)}};
   runComputeCheck(ctx, spv_colour_score_check_comp, bindings, std::as_bytes(std::span(&count, 1)), count,
                   "colour score check");
-  std::vector<glm::vec4> gpu(6 * count);
+  std::vector<glm::vec4> gpu(8 * count);
   std::memcpy(gpu.data(), outputs.mapped, outBytes);
 
   const auto types = veg::defaultTerrainTypes();
   const auto params = veg::scoreParams(types);
-  float worstHsv = 0.0f, worstWeight = 0.0f, worstLog = 0.0f;
+  float worstHsv = 0.0f, worstWeight = 0.0f, worstLog = 0.0f, worstCal = 0.0f;
   for (uint32_t i = 0; i < count; ++i) {
     const glm::vec3 hsv = veg::hsvFromLinear(glm::vec3(colours[i]));
-    const glm::vec4* g = &gpu[6 * size_t{i}];
+    const glm::vec4* g = &gpu[8 * size_t{i}];
+    // The calibrated ground colour and its ExG, and a score with the ExG term.
+    const veg::GroundColour cal = veg::calibratedGround(calibration, glm::vec3(colours[i]));
+    worstCal = std::max({worstCal, veg::hueDistance(cal.hsv.x, g[6].x), std::abs(cal.hsv.y - g[6].y),
+                         std::abs(cal.hsv.z - g[6].z), std::abs(cal.exg - g[6].w)});
+    veg::ColourScoreParams withExg = params[0];
+    withExg.ndviWeight = 0.0f;
+    withExg.exgReference = calib.exg.x;
+    withExg.exgWeight = calib.exg.y;
+    const float logExg = veg::logColourScore(withExg, cal.hsv, veg::kNoNdvi, cal.exg);
+    worstLog = std::max(worstLog, std::abs(logExg - g[7].x) / std::max(1.0f, std::abs(logExg)));
     worstHsv =
         std::max({worstHsv, veg::hueDistance(hsv.x, g[0].x), std::abs(hsv.y - g[0].y), std::abs(hsv.z - g[0].z)});
     // The score of type 0 (as a logarithm: it spans many orders of magnitude), relative.
@@ -98,8 +121,10 @@ TEST_F(ColourScoreGpu, ShaderMatchesTheCppWithin1e4) {
   }
   EXPECT_LT(worstHsv, 1e-4f);
   EXPECT_LT(worstLog, 1e-4f);
-  std::printf("colour score CPU vs GPU over %u colours: HSV %.2g, log score %.2g (relative), weights %.2g\n", count,
-              double(worstHsv), double(worstLog), double(worstWeight));
+  EXPECT_LT(worstCal, 1e-4f);
+  std::printf("colour score CPU vs GPU over %u colours: HSV %.2g, log score %.2g (relative), weights %.2g, "
+              "calibrated HSV + ExG %.2g\n",
+              count, double(worstHsv), double(worstLog), double(worstWeight), double(worstCal));
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ TEST_F(LandcoverChoiceGpu, ShaderChoosesAsTheCppWithinEachClass) {
     const ChoiceInput& c = inputs[i];
     float z = 0.0f;
     std::memcpy(&z, &c.zAllowed.x, 4);
-    veg::SpeciesChoice cpu = veg::chooseSpecies(catalog, glm::vec3(c.hsvNdvi), z, c.hsvNdvi.w, c.zAllowed.y);
+    veg::SpeciesChoice cpu = veg::chooseSpecies(catalog, glm::vec3(c.hsvNdvi), z, c.hsvNdvi.w, veg::kNoExg, c.zAllowed.y);
     // The classify pass packs trees as bare (they grow on their own grid): the plants see −1.
     if (cpu.species >= 0 && veg::isTree(catalog.species[size_t(cpu.species)])) cpu.species = -1;
     if (std::abs(z - cpu.secondRatio) < 1e-4f) {  // z on the knife edge of eq. 18: float exp may differ

@@ -102,12 +102,12 @@ TEST(LandcoverSpecies, TheChoiceStaysWithinTheAllowedSpecies) {
     const glm::vec3 hsv(u01(r.x), u01(r.y), u01(s.x) * 0.6f);
     const float z = u01(s.y);
     const SpeciesChoice all = chooseSpecies(c, hsv, z);
-    const SpeciesChoice unmasked = chooseSpecies(c, hsv, z, kNoNdvi, kAllSpecies);
+    const SpeciesChoice unmasked = chooseSpecies(c, hsv, z, kNoNdvi, kNoExg, kAllSpecies);
     EXPECT_EQ(all.species, unmasked.species);
     EXPECT_EQ(all.sPrime, unmasked.sPrime);
-    const SpeciesChoice inTree = chooseSpecies(c, hsv, z, kNoNdvi, tree);
-    const SpeciesChoice inGrass = chooseSpecies(c, hsv, z, kNoNdvi, grass);
-    const SpeciesChoice inBuilt = chooseSpecies(c, hsv, z, kNoNdvi, allowed(c, LandcoverKind::Built));
+    const SpeciesChoice inTree = chooseSpecies(c, hsv, z, kNoNdvi, kNoExg, tree);
+    const SpeciesChoice inGrass = chooseSpecies(c, hsv, z, kNoNdvi, kNoExg, grass);
+    const SpeciesChoice inBuilt = chooseSpecies(c, hsv, z, kNoNdvi, kNoExg, allowed(c, LandcoverKind::Built));
     EXPECT_EQ(inBuilt.species, -1);
     if (inTree.species >= 0) {
       EXPECT_TRUE(isTree(c.species[size_t(inTree.species)])) << c.species[size_t(inTree.species)].name;
@@ -118,7 +118,7 @@ TEST(LandcoverSpecies, TheChoiceStaysWithinTheAllowedSpecies) {
       EXPECT_TRUE(k == RendererKind::Grass || k == RendererKind::Flowers) << c.species[size_t(inGrass.species)].name;
       ++herbs;
     }
-    const SpeciesCandidates cand = speciesCandidates(c, hsv, kNoNdvi, tree);
+    const SpeciesCandidates cand = speciesCandidates(c, hsv, kNoNdvi, kNoExg, tree);
     if (cand.first >= 0) {
       EXPECT_NE(tree & (SpeciesMask{1} << cand.first), 0u);
     }

@@ -58,7 +58,7 @@ std::string winnerAt(const TreeSite& site, const char* first = "conifer") {
   const Species& conifer = catalog().species[static_cast<size_t>(indexOf("conifer"))];
   std::map<int, int> wins;
   for (int k = 0; k < 2000; ++k) {
-    const SpeciesChoice c = chooseTreeSpecies(catalog(), indexOf(first), conifer.score.reference + glm::vec3(-0.02f, 0.0f, 0.03f), 0.4f, site, (float(k) + 0.5f) / 2000.0f);
+    const SpeciesChoice c = chooseTreeSpecies(catalog(), indexOf(first), GroundColour{conifer.score.reference + glm::vec3(-0.02f, 0.0f, 0.03f), kNoExg}, 0.4f, site, (float(k) + 0.5f) / 2000.0f);
     EXPECT_GE(c.species, 0);
     EXPECT_TRUE(isTree(catalog().species[static_cast<size_t>(c.species)]));
     wins[c.species] += 1;
