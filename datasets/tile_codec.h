@@ -35,6 +35,9 @@ struct ColorTile {
   // encoding of ndviToByte, 0 = no NDVI there. Empty: the dataset has no NDVI layer, or no NDVI
   // tile here.
   std::vector<uint8_t> ndvi;
+  // The landcover layer's class codes over the same area (landcover.h): size × size bytes, 0 = no
+  // class there. Empty: no landcover layer, or no landcover tile here.
+  std::vector<uint8_t> landcover;
 };
 
 // NDVI (−1 … 1) ↔ one byte: v = 128 + round(127 · ndvi), so 1 … 255 (step 1/127 ≈ 0.008), and

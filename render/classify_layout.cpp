@@ -13,6 +13,8 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
   SpeciesBlock b;
   b.count[0] = static_cast<uint32_t>(catalog.species.size());
   b.calibration = catalog.calibration.rows;
+  for (size_t code = 0; code < 256; ++code)
+    b.landcoverMasks[code / 4][code % 4] = catalog.landcoverCodes ? (*catalog.landcoverCodes)[code] : vegetation::kAllSpecies;
   for (size_t i = 0; i < catalog.species.size(); ++i) {
     const vegetation::Species& s = catalog.species[i];
     SpeciesGpu& g = b.species[i];

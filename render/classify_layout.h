@@ -62,8 +62,10 @@ struct SpeciesBlock {
   std::array<SpeciesGpu, vegetation::kMaxSpecies> species{};
   std::array<uint32_t, 4> count{};  // x: species in the catalog
   std::array<glm::vec4, 3> calibration{};  // the catalog's colour calibration, rows (xyz M, w offset)
+  // The catalog's landcoverCodes (code c at [c / 4][c % 4]); every bit set without them.
+  std::array<std::array<uint32_t, 4>, 64> landcoverMasks{};
 };
-static_assert(sizeof(SpeciesBlock) == 128 * vegetation::kMaxSpecies + 16 + 48);
+static_assert(sizeof(SpeciesBlock) == 128 * vegetation::kMaxSpecies + 16 + 48 + 1024);
 
 // The catalog (and its colour calibration) as the GPU reads it.
 SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog);

@@ -33,7 +33,7 @@ constexpr VkDeviceSize kCounterBytes = (3 * kSpeciesSlots + 2) * sizeof(uint32_t
 constexpr VkDeviceSize kIndirectBytes = kSpeciesSlots * sizeof(VkDrawIndirectCommand);
 
 struct ClassifyPush {
-  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades, ndvi;
+  uint32_t orderFirst, triangleCount, capacity, clusterSize, threadBase, speciesCapacity, cull, hardFades, companions;
   uint32_t pad[3];                            // std430: the vec4 array starts at 48
   std::array<float, kSpeciesSlots> thinning;  // overflow thinning pressure per species
 };
@@ -130,7 +130,7 @@ void ClassifyPass::ensureCapacity(Slot& s, size_t triangles, size_t orderEntries
   if (changed) s.boundImagery = VK_NULL_HANDLE;  // rewrite the set
 }
 
-void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView ndvi) {
+void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView companions) {
   writeUniformBuffer(*ctx_, s.classifySet, species_.get(), sizeof(SpeciesBlock), 0);
   writeStorageBuffer(*ctx_, s.classifySet, s.triangles.get(), 1);
   writeStorageBuffer(*ctx_, s.classifySet, s.order.get(), 2);
@@ -138,14 +138,14 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView ndvi) {
   writeStorageBuffer(*ctx_, s.classifySet, s.records.get(), 4);
   writeSampledImage(*ctx_, s.classifySet, sampler_.get(), imagery, 5);
   writeStorageBuffer(*ctx_, s.classifySet, s.visible.get(), 6);
-  writeSampledImage(*ctx_, s.classifySet, sampler_.get(), ndvi, 7);
+  writeSampledImage(*ctx_, s.classifySet, sampler_.get(), companions, 7);
   writeStorageBuffer(*ctx_, s.classifySet, s.canopy.get(), 8);
   s.boundImagery = imagery;
-  s.boundNdvi = ndvi;
+  s.boundCompanions = companions;
 }
 
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
-                                       uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
+                                       uint32_t clusterSize, VkImageView imagery, VkImageView companions, uint32_t companionFlags,
                                        uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
                                        const CullHook& cull, const vegetation::CanopyTable* canopy) {
   assert(clusterSize >= 1 && clusterSize <= vegetation::kMaxClusterSize);
@@ -175,7 +175,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
     std::memcpy(canopyBytes + sizeof(header), canopy->entries.data(),
                 canopy->entries.size() * sizeof(vegetation::CanopyEntry));
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
-  if (s.boundImagery != imagery || s.boundNdvi != ndvi) writeSets(s, imagery, ndvi);
+  if (s.boundImagery != imagery || s.boundCompanions != companions) writeSets(s, imagery, companions);
 
   if (cull && !triangles.empty()) {
     // visible[] is read by the slot's previous classify dispatches (finished: its fence) and
@@ -209,7 +209,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
                               options_.clustersPerSpecies,
                               cull && !triangles.empty() ? 1u : 0u,
                               fades_ ? 0u : 1u,
-                              hasNdvi ? 1u : 0u,
+                              companionFlags,
                               {},
                               thinning_};
       vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);

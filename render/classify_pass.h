@@ -52,7 +52,8 @@ class ClassifyPass {
 
   // Outside rendering: uploads `triangles`, bins them and records the dispatches for slot
   // `slot`. `imagery` is the imagery array the triangles' layers index, viewed as UNORM (the
-  // sRGB bytes; shader-readable); `ndvi` its NDVI array, read only when `hasNdvi`.
+  // sRGB bytes; shader-readable); `companions` its NDVI + landcover
+  // array (TerrainPass::companionView), read as `companionFlags` says (ImageryCompanions::flags).
   // The indirect draws get one vertex per group (a patch) for the species in `patchMask` (bit s:
   // species s is drawn by a plant pipeline), `verticesPerGroup` for the others (markers).
   // With `cull`, the triangles it marks hidden are not expanded (no cluster, no group, no draw).
@@ -60,7 +61,7 @@ class ClassifyPass {
   // crown thin out (vegetation/canopy_cells.h).
   // Returns the CPU-side figures (the GPU's counts come from readFigures after the fence).
   VegetationFigures record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
-                           uint32_t clusterSize, VkImageView imagery, VkImageView ndvi, bool hasNdvi,
+                           uint32_t clusterSize, VkImageView imagery, VkImageView companions, uint32_t companionFlags,
                            uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
                            const CullHook& cull = {}, const vegetation::CanopyTable* canopy = nullptr);
 
@@ -92,10 +93,10 @@ class ClassifyPass {
     GrowingBuffer visible;  // per triangle, written by the cull hook
     GpuBuffer canopy;   // vegetation::CanopyHeader and kCanopyCells² entries (host-upload)
     VkDescriptorSet classifySet = VK_NULL_HANDLE, finishSet = VK_NULL_HANDLE;
-    VkImageView boundImagery = VK_NULL_HANDLE, boundNdvi = VK_NULL_HANDLE;
+    VkImageView boundImagery = VK_NULL_HANDLE, boundCompanions = VK_NULL_HANDLE;
   };
   void ensureCapacity(Slot& s, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
-  void writeSets(Slot& s, VkImageView imagery, VkImageView ndvi);
+  void writeSets(Slot& s, VkImageView imagery, VkImageView companions);
 
   const Context* ctx_;
   ClassifyOptions options_;

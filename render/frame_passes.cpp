@@ -162,7 +162,7 @@ void Renderer::Impl::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slot
     };
   }
   slot.vegetation = classify->record(cmd, slotIndex, plants.triangles, plants.clusterSize,
-                                     terrainPass->imageryBytesView(), terrainPass->ndviView(), terrainPass->hasNdvi(),
+                                     terrainPass->imageryBytesView(), terrainPass->companionView(), terrainPass->companions().flags(),
                                      PlantMarkerPass::verticesPerGroup(plants.clusterSize), patchMask, retire, cull,
                                      plants.canopy);
   slot.vegetation->occlusionCulling = plants.occlusionCulling;  // counts stay 0 without triangles

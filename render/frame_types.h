@@ -80,6 +80,19 @@ struct ImageryUpload {
   // 256 × 256 NDVI bytes (datasets/tile_codec.h) for the layer, or null: none there. Used only
   // when the imagery array was sized with NDVI (Renderer::setImageryLayers).
   const uint8_t* ndvi = nullptr;
+  // 256 × 256 landcover class codes (datasets/landcover.h; 0 = no class) for the layer, or null:
+  // none there. Used only when the imagery array was sized with landcover.
+  const uint8_t* landcover = nullptr;
+};
+
+// The layers that travel with each imagery layer (Renderer::setImageryLayers): in one RG8 array
+// beside the imagery, R the NDVI byte, G the landcover class code (0 in both: none).
+struct ImageryCompanions {
+  bool ndvi = false;
+  bool landcover = false;
+  bool any() const { return ndvi || landcover; }
+  // The classify pass's push constant (classify.comp): bit 0 NDVI, bit 1 landcover.
+  uint32_t flags() const { return (ndvi ? 1u : 0u) | (landcover ? 2u : 0u); }
 };
 
 // What the classify pass did in one frame (render/classify_pass.h): the CPU's bin layout and the

@@ -338,7 +338,7 @@ BladePath Renderer::bladePath() const { return impl_->bladePath; }
 bool Renderer::hasWindow() const { return impl_->swapchain != nullptr; }
 const ValidationLog* Renderer::validationLog() const { return impl_->validationLog.get(); }
 
-Status Renderer::setImageryLayers(uint32_t layers, bool ndvi) {
+Status Renderer::setImageryLayers(uint32_t layers, ImageryCompanions companions) {
   if (layers < 1 || layers > maxImageryLayers())
     return makeError(ErrorKind::InvalidInput, "imagery layers: " + std::to_string(layers) + " is outside 1 … " +
                                                   std::to_string(maxImageryLayers()) + " for " + device().name);
@@ -346,7 +346,7 @@ Status Renderer::setImageryLayers(uint32_t layers, bool ndvi) {
     // The imagery descriptor is rewritten: no frame in flight may still read it.
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
     impl_->terrainPass->setImageryLayers(
-        layers, ndvi, [&](GpuImage&& old) { impl_->deletions.defer(impl_->nextFrame - 1, std::move(old)); });
+        layers, companions, [&](GpuImage&& old) { impl_->deletions.defer(impl_->nextFrame - 1, std::move(old)); });
     return {};
   });
 }

@@ -88,9 +88,10 @@ class Renderer {
 
   // The imagery texture array gets `layers` 256 × 256 layers (FrameRequest::imageryUploads fill
   // them); waits for frames in flight. 1 … maxImageryLayers(), else an InvalidInput error.
-  // With `ndvi` each layer also holds its tile's NDVI (ImageryUpload::ndvi), which the species
-  // choice then reads (a dataset imported with --imagery-nir).
-  Status setImageryLayers(uint32_t layers, bool ndvi = false);
+  // With companions each layer also holds its tile's NDVI (ImageryUpload::ndvi: a dataset
+  // imported with --imagery-nir) and landcover classes (::landcover: --landcover), which the
+  // species choice then reads (the classes through the catalog's landcoverCodes).
+  Status setImageryLayers(uint32_t layers, ImageryCompanions companions = {});
   uint32_t imageryLayers() const;
   uint32_t maxImageryLayers() const;  // the device's maxImageArrayLayers
   // The species the classify pass sorts plants into (the default catalog until set); waits for

@@ -29,7 +29,16 @@ static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes o
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkShaderStageFlags kSampledBy = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
-constexpr VkDeviceSize kNdviBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize;
+constexpr VkDeviceSize kCompanionBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 2;
+
+// One layer's companion texels (RG8): NDVI byte, landcover class code; 0 where a layer is absent.
+void interleaveCompanions(uint8_t* dst, const uint8_t* ndvi, const uint8_t* landcover) {
+  constexpr size_t n = size_t{kImageryTileSize} * kImageryTileSize;
+  for (size_t i = 0; i < n; ++i) {
+    dst[2 * i] = ndvi ? ndvi[i] : 0;
+    dst[2 * i + 1] = landcover ? landcover[i] : 0;
+  }
+}
 
 // A mesh's vertices and indices when flattened: its own and its chunks' (terrain_mesh.h).
 struct MeshSize {
@@ -167,21 +176,22 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   }
 
   // One layer until the scene says how many it streams, so the descriptor is always valid.
-  setImageryLayers(1, false, [](GpuImage&&) {});
+  setImageryLayers(1, {}, [](GpuImage&&) {});
 }
 
-void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage& retire) {
+void TerrainPass::setImageryLayers(uint32_t layers, ImageryCompanions companions, const RetireImage& retire) {
   assert(layers >= 1);
   if (imagery_.image) retire(std::move(imagery_));
-  if (ndvi_.image) retire(std::move(ndvi_));
+  if (companionArray_.image) retire(std::move(companionArray_));
   imagery_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, layers, VK_FORMAT_R8G8B8A8_SRGB,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain imagery array", 1,
                               VK_FORMAT_R8G8B8A8_UNORM);
-  const uint32_t ndviLayers = ndvi ? layers : 1;
-  ndvi_ = createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, ndviLayers, VK_FORMAT_R8_UNORM,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain NDVI array");
+  const uint32_t companionLayers = companions.any() ? layers : 1;
+  companionArray_ =
+      createImageArray(*ctx_, {kImageryTileSize, kImageryTileSize}, companionLayers, VK_FORMAT_R8G8_UNORM,
+                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "terrain NDVI + landcover array");
   layers_ = layers;
-  withNdvi_ = ndvi;
+  companions_ = companions;
   // Every layer starts shader-readable (never sampled before its upload: the streamer hands out
   // a layer only with its tile), so uploads can move one layer at a time.
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
@@ -189,14 +199,14 @@ void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    // The NDVI array starts at 0 ("none"): the terrain samples it for every layer, and a dataset
-    // without NDVI never uploads any.
-    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, ndviLayers};
-    transitionImageRange(cmd, ndvi_.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    // The companion array starts at 0 ("none"): the terrain samples it for every layer, and a
+    // dataset without companions never uploads any.
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, companionLayers};
+    transitionImageRange(cmd, companionArray_.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkClearColorValue zero{};
-    vkCmdClearColorImage(cmd, ndvi_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
-    transitionImageRange(cmd, ndvi_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    vkCmdClearColorImage(cmd, companionArray_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
+    transitionImageRange(cmd, companionArray_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
                          VK_ACCESS_2_TRANSFER_WRITE_BIT,
                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -204,14 +214,14 @@ void TerrainPass::setImageryLayers(uint32_t layers, bool ndvi, const RetireImage
   });
   // The caller guarantees no frame in flight uses the set (the renderer waits for idle first).
   writeSampledImage(*ctx_, imagerySet_, sampler_.get(), imagery_.view.get());
-  writeSampledImage(*ctx_, imagerySet_, sampler_.get(), ndvi_.view.get(), 1);
+  writeSampledImage(*ctx_, imagerySet_, sampler_.get(), companionArray_.view.get(), 1);
 }
 
 void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const ImageryUpload> uploads,
                                 const RetireBuffer& retire) {
   if (uploads.empty()) return;
   const auto s = static_cast<size_t>(slot);
-  const VkDeviceSize perTile = kTileBytes + (withNdvi_ ? kNdviBytes : 0);
+  const VkDeviceSize perTile = kTileBytes + (companions_.any() ? kCompanionBytes : 0);
   staging_[s].ensure(perTile * uploads.size(), GrowingBuffer::kNoCeiling, retire);
   auto* staging = static_cast<uint8_t*>(staging_[s].buffer().mapped);
   VkDeviceSize offset = 0;
@@ -220,14 +230,11 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
     std::memcpy(staging + offset, u.rgba, kTileBytes);
     recordImageUpload(cmd, staging_[s].buffer(), imagery_, u.layer, offset);
     offset += kTileBytes;
-    if (!withNdvi_) continue;
-    // A tile without NDVI clears the layer's (0: none), so no earlier tile's NDVI lingers.
-    if (u.ndvi)
-      std::memcpy(staging + offset, u.ndvi, kNdviBytes);
-    else
-      std::memset(staging + offset, 0, kNdviBytes);
-    recordImageUpload(cmd, staging_[s].buffer(), ndvi_, u.layer, offset);
-    offset += kNdviBytes;
+    if (!companions_.any()) continue;
+    // A tile without NDVI or classes clears the layer's (0: none), so no earlier tile's lingers.
+    interleaveCompanions(staging + offset, u.ndvi, u.landcover);
+    recordImageUpload(cmd, staging_[s].buffer(), companionArray_, u.layer, offset);
+    offset += kCompanionBytes;
   }
 }
 
@@ -336,7 +343,7 @@ TerrainGeometry TerrainPass::geometry(int slot) const {
 }
 
 uint64_t TerrainPass::gpuBytes() const {
-  uint64_t bytes = imagery_.bytes + ndvi_.bytes + detail_.gpuBytes();
+  uint64_t bytes = imagery_.bytes + companionArray_.bytes + detail_.gpuBytes();
   for (size_t s = 0; s < kSlots; ++s)
     bytes += vertices_[s].size() + indices_[s].size() + staging_[s].size() + pieces_[s].size() +
              deviceVertices_[s].size() + deviceIndices_[s].size();

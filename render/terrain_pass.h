@@ -88,13 +88,15 @@ class TerrainPass {
 
   // A new imagery array of `layers` layers (≥ 1; contents undefined until uploaded). The old one
   // goes to `retire`, which keeps it alive until the frames that use it have finished.
-  // With `ndvi`, a parallel R8 array holds each layer's NDVI (ImageryUpload::ndvi) for the
-  // classify pass; without, a one-layer placeholder keeps its descriptor valid.
-  void setImageryLayers(uint32_t layers, bool ndvi, const RetireImage& retire);
+  // With companions, a parallel RG8 array holds each layer's NDVI (R, ImageryUpload::ndvi) and
+  // landcover classes (G, ::landcover) for the classify pass and the terrain's detail; without,
+  // a one-layer placeholder keeps its descriptor valid.
+  void setImageryLayers(uint32_t layers, ImageryCompanions companions, const RetireImage& retire);
   uint32_t imageryLayers() const { return layers_; }
-  bool hasNdvi() const { return withNdvi_; }
-  // The NDVI array (R8 UNORM: datasets/tile_codec.h's bytes), shader-readable like the imagery.
-  VkImageView ndviView() const { return ndvi_.view.get(); }
+  ImageryCompanions companions() const { return companions_; }
+  // The companion array (RG8 UNORM: the NDVI byte of datasets/tile_codec.h, the class code of
+  // datasets/landcover.h as code / 255), shader-readable like the imagery.
+  VkImageView companionView() const { return companionArray_.view.get(); }
   // The imagery array seen as UNORM (the sRGB bytes undecoded; shader-readable after
   // recordUploads), for the classify pass, which decodes them exactly as the CPU does.
   VkImageView imageryBytesView() const { return imagery_.alternateView.get(); }
@@ -146,8 +148,8 @@ class TerrainPass {
   Pipeline pipeline_;            // forward shading
   Pipeline visibilityPipeline_;  // deferred: triangle ids only (null when not deferred)
   GpuImage imagery_;
-  GpuImage ndvi_;
-  bool withNdvi_ = false;
+  GpuImage companionArray_;  // RG8: NDVI, landcover class
+  ImageryCompanions companions_;
   uint32_t layers_ = 0;
   std::array<GrowingBuffer, kSlots> vertices_, indices_, pieces_, staging_;  // host-visible
   std::array<GrowingBuffer, kSlots> deviceVertices_, deviceIndices_;

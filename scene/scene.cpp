@@ -175,10 +175,11 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   if (info.hasImagery) {
     if (info.imageryLayers == 0)
       return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
-    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers, meta->ndvi); !s) return s.error();
+    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers, {meta->ndvi, meta->landcover.has_value()}); !s) return s.error();
   }
   impl->catalog = calibratedCatalog(options.species ? *options.species : vegetation::defaultSpeciesCatalog(), *meta);
-  if (options.species || !impl->catalog.calibration.isIdentity())
+  if (meta->landcover) impl->catalog.landcoverCodes = landcoverMasks(impl->catalog, *meta->landcover);
+  if (options.species || !impl->catalog.calibration.isIdentity() || impl->catalog.landcoverCodes)
     if (Status s = impl->renderer->setSpeciesCatalog(impl->catalog); !s) return s.error();
   if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
     return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) +
@@ -280,7 +281,8 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   for (const streaming::Upload& u : m.planned)
     if (u.tile && u.tile->colors) {
       const datasets::ColorTile& c = *u.tile->colors;
-      m.uploads.push_back({u.slot, c.rgba.data(), c.ndvi.empty() ? nullptr : c.ndvi.data()});
+      m.uploads.push_back({u.slot, c.rgba.data(), c.ndvi.empty() ? nullptr : c.ndvi.data(),
+                           c.landcover.empty() ? nullptr : c.landcover.data()});
     }
   m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
   fig.streamingMs = stage.elapsedMs() - waitMs;

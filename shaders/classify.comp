@@ -16,6 +16,9 @@ layout(set = 0, binding = 0, std140) uniform SpeciesBlock {
   Species species[kMaxSpecies];
   uvec4 speciesCount;
   vec4 calibration[3];  // the dataset's colour calibration (colour_calibration.glsl): rows of M, w offset
+  // The species each landcover class code allows (code c: [c / 4][c % 4]; scene/landcover_masks.h),
+  // read when pc.companions has bit 1.
+  uvec4 landcoverMasks[64];
 } catalog;
 layout(set = 0, binding = 1, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Order { uint order[]; };
@@ -31,9 +34,10 @@ layout(set = 0, binding = 5) uniform sampler2DArray imagery;
 // Per seed triangle, bit s set when species s's plants on it may show, 0 when none can (the Hi-Z
 // occlusion test, hiz_cull.comp); read only when pc.cull is 1.
 layout(set = 0, binding = 6, std430) readonly buffer Visible { uint visible[]; };
-// The NDVI of each imagery layer (R8 UNORM, datasets/tile_codec.h's bytes; 0 = none), read only
-// when pc.ndvi is 1 (the dataset has a near-infrared layer).
-layout(set = 0, binding = 7) uniform sampler2DArray ndviLayers;
+// Each imagery layer's companions (RG8 UNORM, render/terrain_pass.h): R the NDVI byte of
+// datasets/tile_codec.h (0 = none), read when pc.companions has bit 0 (a near-infrared layer);
+// G the landcover class code / 255 (0 = no class), read when it has bit 1 (a landcover layer).
+layout(set = 0, binding = 7) uniform sampler2DArray companionLayers;
 // The crowns near the camera (vegetation/canopy_cells.h): a toroidal table of the tree grid's
 // cells about the camera's, each the tree of one cell (its centre relative to the camera, its
 // crown radius, which cell it is).
@@ -59,7 +63,7 @@ layout(push_constant) uniform Push {
   uint speciesCapacity;
   uint cull;           // 1: skip triangles with visible[t] == 0
   uint hardFades;      // 1: a group is drawn whole or not at all (the fades off, for comparison)
-  uint ndvi;           // 1: ndviLayers holds the imagery layers' NDVI
+  uint companions;     // bit 0: companionLayers holds NDVI, bit 1: landcover classes
   vec4 thinning[4];    // per species, the overflow thinning's pressure (0: keep every group)
 } pc;
 
@@ -88,7 +92,7 @@ vec3 imageryLinear(int layer, vec2 uv) {
 
 // vegetation::sampleImageryNdvi: bilinear over the same texels, those without NDVI dropped.
 float imageryNdvi(int layer, vec2 uv) {
-  if (pc.ndvi == 0u) return kNoNdvi;
+  if ((pc.companions & 1u) == 0u) return kNoNdvi;
   const float n = 256.0;
   float x = uv.x * n - 0.5, y = uv.y * n - 0.5;
   float fx0 = floor(x), fy0 = floor(y);
@@ -98,7 +102,7 @@ float imageryNdvi(int layer, vec2 uv) {
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       ivec2 p = clamp(ivec2(x0 + i, y0 + j), ivec2(0), ivec2(255));
-      float v = ndviOfTexel(texelFetch(ndviLayers, ivec3(p, layer), 0).r);
+      float v = ndviOfTexel(texelFetch(companionLayers, ivec3(p, layer), 0).r);
       if (v == kNoNdvi) continue;
       float w = (i == 1 ? fx : 1.0 - fx) * (j == 1 ? fy : 1.0 - fy);
       sum += w * v;
@@ -107,15 +111,27 @@ float imageryNdvi(int layer, vec2 uv) {
   return weight > 0.0 ? sum / weight : kNoNdvi;
 }
 
-// The calibrated base colour under r: HSV and ExG (calibratedGround), and the NDVI.
+// The species the landcover class at uv allows: the texel whose square holds the point (classes
+// are never blended; scene/plants_in_box.cpp alike); every species without a landcover layer.
+uint landcoverAllowed(int layer, vec2 uv) {
+  if ((pc.companions & 2u) == 0u) return 0xffffffffu;
+  ivec2 p = clamp(ivec2(floor(uv * 256.0)), ivec2(0), ivec2(255));
+  uint code = uint(round(texelFetch(companionLayers, ivec3(p, layer), 0).g * 255.0));
+  return catalog.landcoverMasks[code >> 2u][code & 3u];
+}
+
+// The calibrated base colour under r: HSV and ExG (calibratedGround), the NDVI and the species
+// the landcover class allows.
 struct Ground {
   vec4 colour;
   float ndvi;
+  uint allowed;
 };
 Ground baseGround(vec4 uv01, vec2 uv2, int layer, vec2 r) {
   vec2 uv0 = uv01.xy;
   vec2 uv = uv0 + r.x * (uv01.zw - uv0) + r.y * (uv2 - uv0);
-  return Ground(calibratedGround(catalog.calibration, imageryLinear(layer, uv)), imageryNdvi(layer, uv));
+  return Ground(calibratedGround(catalog.calibration, imageryLinear(layer, uv)), imageryNdvi(layer, uv),
+                landcoverAllowed(layer, uv));
 }
 
 // vegetation::speciesPlantCount and speciesHorizonFade: the fade of a group of species `sp`,
@@ -199,11 +215,11 @@ void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint 
       return;
   }
   Ground now = baseGround(t.uv01, t.uv2, t.layer, r);
-  vec2 pick = chooseSpecies(now.colour, now.ndvi, z);
+  vec2 pick = chooseSpeciesAllowed(now.colour, now.ndvi, z, now.allowed);
   float w = t.imageryBlend;
   if (t.previousLayer >= 0 && w < 1.0) {
     Ground then = baseGround(t.previousUv01, t.previousUv2, t.previousLayer, r);
-    vec2 before = chooseSpecies(then.colour, then.ndvi, z);
+    vec2 before = chooseSpeciesAllowed(then.colour, then.ndvi, z, then.allowed);
     if (before.x == pick.x) {
       pick.y = mix(before.y, pick.y, w);
       w = 1.0;

@@ -7,6 +7,8 @@
 #include <cassert>
 #include <exception>
 
+#include "datasets/landcover.h"
+
 namespace vegstream::streaming::detail {
 
 DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
@@ -33,7 +35,7 @@ void DecodePipeline::pushLocked(Completion&& c) {
 }
 
 void DecodePipeline::onFetched(const TileKey& key, const std::string& name, FetchResult&& result,
-                               std::vector<uint8_t> ndviBytes, const std::string& ndviName) {
+                               CompanionBytes companions) {
   std::lock_guard lock(mu_);
   if (closed_) return;
   if (cancelled_.erase(result.id) > 0) return;  // the frame thread no longer wants it
@@ -44,8 +46,8 @@ void DecodePipeline::onFetched(const TileKey& key, const std::string& name, Fetc
   switch (result.outcome) {
     case FetchOutcome::Ok:
       c.kind = Completion::Kind::Fetched;
-      c.bytes = result.bytes.size() + ndviBytes.size();
-      jobs_.push_back(Job{result.id, key, name, std::move(result.bytes), std::move(ndviBytes), ndviName});
+      c.bytes = result.bytes.size() + companions.size();
+      jobs_.push_back(Job{result.id, key, name, std::move(result.bytes), std::move(companions)});
       if (tasks_ < maxConcurrent_) {
         ++tasks_;
         runner_.post([self = shared_from_this()] { self->drain(); });
@@ -94,6 +96,25 @@ std::size_t DecodePipeline::decodesQueued() const {
   return jobs_.size() + decoding_.size();
 }
 
+// The companion layers' tiles of imagery tile `tile` (paired_fetch.h), each checked as its own
+// layer's tile of the same id; absent bytes leave that layer empty.
+Status DecodePipeline::decodeCompanions(const Job& job, datasets::ColorTile& tile) {
+  const auto& ndvi = job.companions.bytes[static_cast<size_t>(Companion::Ndvi)];
+  if (!ndvi.empty()) {
+    auto v = datasets::decodeNdviTile(ndvi, job.key.id, job.companions.names[static_cast<size_t>(Companion::Ndvi)]);
+    if (!v) return v.error();
+    tile.ndvi = std::move(*v);
+  }
+  const auto& landcover = job.companions.bytes[static_cast<size_t>(Companion::Landcover)];
+  if (!landcover.empty()) {
+    auto v = datasets::decodeLandcoverTile(landcover, job.key.id,
+                                           job.companions.names[static_cast<size_t>(Companion::Landcover)]);
+    if (!v) return v.error();
+    tile.landcover = std::move(v->classes);
+  }
+  return {};
+}
+
 Completion DecodePipeline::decode(Job& job) const {
   Completion c;
   c.id = job.id;
@@ -108,13 +129,11 @@ Completion DecodePipeline::decode(Job& job) const {
       }
     } else {
       auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
-      Result<std::vector<uint8_t>> ndvi = std::vector<uint8_t>{};
-      if (t && !job.ndviBytes.empty()) ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName);
-      if (t && ndvi) {
-        t->ndvi = std::move(*ndvi);
+      Status companions = t ? decodeCompanions(job, *t) : Status{};
+      if (t && companions) {
         c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());
       } else {
-        c.message = t ? ndvi.error().message : t.error().message;
+        c.message = t ? companions.error().message : t.error().message;
       }
     }
   } catch (const std::exception& e) {  // out of memory in the decoder: a failed tile, not a dead thread

@@ -31,6 +31,7 @@
 
 #include "core/task_runner.h"
 #include "datasets/tile_codec.h"
+#include "streaming/paired_fetch.h"
 #include "streaming/tile_key.h"
 #include "streaming/tile_source.h"
 #include "streaming/tile_streamer.h"
@@ -66,10 +67,9 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
   DecodePipeline& operator=(const DecodePipeline&) = delete;
 
   // Any thread (the source's): the result of request `id` for `key`; `name` names it in errors.
-  // An imagery tile may come with its NDVI tile's bytes (paired_fetch.h), decoded into
-  // ColorTile::ndvi; `ndviName` names that file.
-  void onFetched(const TileKey& key, const std::string& name, FetchResult&& result,
-                 std::vector<uint8_t> ndviBytes = {}, const std::string& ndviName = {});
+  // An imagery tile may come with its companion layers' bytes (paired_fetch.h: NDVI, landcover),
+  // decoded into ColorTile::ndvi and ::landcover.
+  void onFetched(const TileKey& key, const std::string& name, FetchResult&& result, CompanionBytes companions = {});
 
   // Frame thread.
   void cancel(RequestId id);
@@ -86,11 +86,11 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
     TileKey key;
     std::string name;
     std::vector<uint8_t> bytes;
-    std::vector<uint8_t> ndviBytes;  // empty: no NDVI
-    std::string ndviName;
+    CompanionBytes companions;  // empty bytes: none of that layer
   };
   void drain();  // a decode task: one job, then posted again while jobs are queued
   Completion decode(Job& job) const;
+  static Status decodeCompanions(const Job& job, datasets::ColorTile& tile);
   void pushLocked(Completion&& c);
 
   const datasets::ElevationEncoding encoding_;

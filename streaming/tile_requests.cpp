@@ -64,7 +64,7 @@ void TileStreamer::Impl::cancelRequest(RequestId id) {
   pipeline->cancel(id);              // first: nothing about it reaches the table any more
   if (atSource) {  // then free the source's worker(s)
     source->cancel(id);
-    if (key.layer == TileLayer::Imagery && meta.ndvi) source->cancel(detail::companionId(id));
+    if (key.layer == TileLayer::Imagery) detail::cancelCompanions(*source, meta, id);
   }
   ++stats.requestsCancelled;
   if (!wanted.contains(key)) table.erase(key);
@@ -85,10 +85,12 @@ void TileStreamer::Impl::issue(const TileKey& key, Entry& e) {
   active.emplace(id, key);
   ++stats.requestsIssued;
   std::string path = datasetRelativePath(key, meta);
-  if (key.layer == TileLayer::Imagery && meta.ndvi) {
-    const std::string ndviPath = datasets::ndviTilePath({}, key.id).generic_string();
-    detail::startPairedFetch(*source, id, key, path, ndviPath, pipeline);
-    return;
+  if (key.layer == TileLayer::Imagery) {
+    std::vector<detail::CompanionFile> companions = detail::companionsOf(meta, key.id);
+    if (!companions.empty()) {
+      detail::startPairedFetch(*source, id, key, path, std::move(companions), pipeline);
+      return;
+    }
   }
   source->start(id, path, [pipe = pipeline, key, path](FetchResult&& r) { pipe->onFetched(key, path, std::move(r)); });
 }

@@ -37,7 +37,7 @@ TileStreamer::~TileStreamer() {
   for (const auto& [id, key] : impl_->active)
     if (impl_->table[key].state == TileState::Requested) {
       impl_->source->cancel(id);
-      if (key.layer == TileLayer::Imagery && impl_->meta.ndvi) impl_->source->cancel(detail::companionId(id));
+      if (key.layer == TileLayer::Imagery) detail::cancelCompanions(*impl_->source, impl_->meta, id);
     }
 }
 

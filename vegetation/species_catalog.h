@@ -63,6 +63,7 @@
 // Every key not listed is an error (a typo must not pass silently), and every error names the
 // source and the field path: "species.json: species[2].height_m.max: must be ≥ min (got 0.1 < 0.3)".
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -160,6 +161,10 @@ struct SpeciesCatalog {
   // a dataset sets it (scene/dataset_calibration.h) before choosing species on its imagery, so
   // the GPU pass and every CPU path see the same calibrated colours. Identity by default.
   ColourCalibration calibration;
+  // The dataset's landcover class codes → the species each allows (scene/landcover_masks.h), set
+  // like `calibration` by whoever opens a dataset with a landcover layer, for the GPU's choice
+  // (render/classify_layout.h); nullopt: no layer, every species everywhere. Not part of the JSON.
+  std::optional<std::array<SpeciesMask, 256>> landcoverCodes;
 };
 
 // The densest species that grows as a plant (not bare, not a tree), plants per m²: how many
