@@ -26,14 +26,16 @@ Result<fs::path> ensureZionSample(const fs::path& samplesDir, const fs::path& da
   const fs::path zion = samplesDir / "zion";
   const bool withNir = fs::exists(zion / "landsat_b5.tif", ec);
   if (fs::exists(datasetDir / "dataset.json", ec)) {
-    // An import made before the near-infrared layer (issue 18) or the reflectance radiometry
-    // (issue 39) existed is this program's own cache: imported again, so the species use NDVI
-    // and the tiles hold albedo. Anything else there is left alone.
+    // An import made before the near-infrared layer (issue 18), the reflectance radiometry
+    // (issue 39) or the colour calibration (issue 41) existed is this program's own cache:
+    // imported again, so the species use NDVI and the calibrated colours and the tiles hold
+    // albedo. Anything else there is left alone.
     auto meta = datasets::readDatasetMeta(datasetDir);
     if (!meta || meta->name != "zion") return datasetDir;
-    const bool stale = (!meta->ndvi && withNir) || !meta->radiometry || meta->imageryDatetime.empty();
+    const bool stale = (!meta->ndvi && withNir) || !meta->radiometry || meta->imageryDatetime.empty() ||
+                       !meta->colourCalibration;
     if (!stale) return datasetDir;
-    log->info("{} was imported by an older vegstream (no NDVI layer or no reflectance): importing the Zion sample "
+    log->info("{} was imported by an older vegstream (no NDVI layer, reflectance or colour calibration): importing the Zion sample "
               "again",
               datasetDir.string());
     fs::remove_all(datasetDir, ec);

@@ -24,7 +24,8 @@ SpeciesBlock packSpecies(const vegetation::SpeciesCatalog& catalog) {
     g.weights = glm::vec4(s.score.weights, out ? 1e30f : s.threshold > 0.0f ? std::log(s.threshold) : -1e30f);
     // Tree species are seeded on their own grid (vegetation/tree_placement.h): to the plants' classify
     // pass they are bare soil (vegetation/plant_seeding.cpp rejects them alike).
-    g.flags = {(s.bare || vegetation::isTree(s)) ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u, 0u};
+    g.flags = {(s.bare || vegetation::isTree(s)) ? 1u : 0u, static_cast<uint32_t>(s.kind), s.shadows ? 1u : 0u,
+               vegetation::isTree(s) ? 1u : 0u};
     g.marker.w = s.phototropism;
     g.ground = {s.densityM2, s.horizonM, s.score.ndviReference, s.score.ndviWeight};
     g.index = {s.score.exgReference, s.score.exgWeight, 0.0f, 0.0f};

@@ -215,11 +215,11 @@ void classifyGroup(uint tri, SeedTriangle t, uint cluster, uint firstSeed, uint 
       return;
   }
   Ground now = baseGround(t.uv01, t.uv2, t.layer, r);
-  vec2 pick = chooseSpeciesAllowed(now.colour, now.ndvi, z, now.allowed);
+  vec2 pick = choosePlantSpecies(now.colour, now.ndvi, z, now.allowed);
   float w = t.imageryBlend;
   if (t.previousLayer >= 0 && w < 1.0) {
     Ground then = baseGround(t.previousUv01, t.previousUv2, t.previousLayer, r);
-    vec2 before = chooseSpeciesAllowed(then.colour, then.ndvi, z, then.allowed);
+    vec2 before = choosePlantSpecies(then.colour, then.ndvi, z, then.allowed);
     if (before.x == pick.x) {
       pick.y = mix(before.y, pick.y, w);
       w = 1.0;

@@ -98,12 +98,10 @@ void classifyTriangle(const SeedTriangleInput& triangle, uint32_t triangleIndex,
     out.push_back({triangleIndex, c, firstSeed, count, static_cast<uint32_t>(pick.species), pick.sPrime, fade});
   };
   // Trees grow on their own grid (tree_placement.h): a seed that picks a tree species grows no
-  // plant, as bare soil (so the forest floor under the crowns has no grass; render/classify_layout
-  // packs tree species as bare for the GPU alike).
+  // plant where the tree would stand (the forest floor), else the other of the two best
+  // (choosePlantSpecies; render/classify_layout flags tree species for the GPU's twin).
   const auto choose = [&](const GroundSample& g, float z) {
-    SpeciesChoice c = chooseSpeciesAt(catalog, g.linear, z, g.ndvi, g.allowed);
-    if (c.species >= 0 && isTree(catalog.species[size_t(c.species)])) c.species = -1;
-    return c;
+    return choosePlantSpeciesAt(catalog, g.linear, z, g.ndvi, g.allowed);
   };
   // The vertices relative to the canopy's camera, as the GPU has them (SeedTriangleGpu).
   glm::vec3 rel[3]{};

@@ -2,6 +2,7 @@
 // float maths in the order species_choice.h documents, so the GLSL twin gives the same choice.
 #include "vegetation/species_choice.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vegstream::vegetation {
@@ -67,6 +68,41 @@ SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float 
     return out;
   }
   out.species = picked;
+  return out;
+}
+
+float treeStandShare(float sPrime) {
+  const float t = std::clamp((sPrime - kStandShareLo) / (kStandShareHi - kStandShareLo), 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+SpeciesChoice choosePlantSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi,
+                                   SpeciesMask allowed) {
+  const GroundColour g = calibratedGround(catalog.calibration, linear);
+  return choosePlantSpecies(catalog, g.hsv, z, ndvi, g.exg, allowed);
+}
+
+SpeciesChoice choosePlantSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg,
+                                 SpeciesMask allowed) {
+  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, exg, allowed);
+  SpeciesChoice out;
+  if (c.first < 0) return out;
+  out.secondRatio = c.secondRatio;
+  const bool second = z < c.secondRatio;
+  int picked = second ? c.second : c.first;
+  const int other = second ? c.first : c.second;
+  out.sPrime = second ? c.secondRatio : 1.0f - c.secondRatio;
+  const float u = second ? z / c.secondRatio : (z - c.secondRatio) / (1.0f - c.secondRatio);
+  const auto treeOrBare = [&](int s) {
+    const Species& sp = catalog.species[static_cast<size_t>(s)];
+    return sp.bare || isTree(sp);
+  };
+  if (isTree(catalog.species[static_cast<size_t>(picked)])) {
+    if (other < 0 || u < treeStandShare(out.sPrime)) return {-1, out.sPrime, out.secondRatio};  // forest floor
+    picked = other;
+    out.sPrime = 1.0f - out.sPrime;
+  }
+  out.species = treeOrBare(picked) ? -1 : picked;
   return out;
 }
 

@@ -60,6 +60,26 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
 SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi = kNoNdvi,
                             float exg = kNoExg, SpeciesMask allowed = kAllSpecies);
 
+// Where the colour's choice is a tree species, how likely a tree stands there, from its share s′
+// of the two best: smoothstep(kStandShareLo, kStandShareHi, s′). Eq. 18 lets the second best win
+// with its share — which scatters plants nicely at a border, but would stand a tree in every
+// sixth cell of a meadow whose colour gives the forest a 15 % share. Trees stand where the colour
+// clearly says forest (tree_placement.h); elsewhere the ground keeps its plants
+// (choosePlantSpecies). GLSL twin: treeStandShare in species_choice.glsl.
+inline constexpr float kStandShareLo = 0.25f, kStandShareHi = 0.75f;
+float treeStandShare(float sPrime);
+
+// The plants' choice (plant_seeding.h), whose trees grow on their own grid: chooseSpecies, and
+// where it picks a tree species the seed is forest floor (rejected) with the probability the tree
+// stands there (treeStandShare(s′)); else it takes the other of the two best, with share 1 − s′
+// (rejected when there is none or it is bare or a tree too). That draw is z's place within the
+// interval eq. 18 chose — z / ratio, or (z − ratio) / (1 − ratio) — uniform, with no new word.
+// GLSL twin: choosePlantSpecies in species_choice.glsl, operation for operation.
+SpeciesChoice choosePlantSpeciesAt(const SpeciesCatalog& catalog, glm::vec3 linear, float z, float ndvi = kNoNdvi,
+                                   SpeciesMask allowed = kAllSpecies);
+SpeciesChoice choosePlantSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg,
+                                 SpeciesMask allowed);
+
 // A mask where the ExG belongs would convert silently to float: refused at compile time.
 SpeciesCandidates speciesCandidates(const SpeciesCatalog&, glm::vec3, float, SpeciesMask) = delete;
 SpeciesChoice chooseSpecies(const SpeciesCatalog&, glm::vec3, float, float, SpeciesMask) = delete;

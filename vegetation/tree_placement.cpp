@@ -27,7 +27,7 @@ namespace {
 // correlation.
 constexpr uint32_t kPositionKey = 0x54524530u, kChoiceKey = 0x54524531u, kSizeKey = 0x54524532u,
                    kSeedKey = 0x54524533u, kClumpKey = 0x54524534u, kGapKey = 0x54524535u,
-                   kNicheKey = 0x54524536u;
+                   kNicheKey = 0x54524536u, kStandKey = 0x54524537u;
 
 Philox2x32Out cellWords(int32_t cx, int32_t cy, uint32_t key) {
   return philox2x32<10>(static_cast<uint32_t>(cx), static_cast<uint32_t>(cy), key);
@@ -52,18 +52,27 @@ float keepWith(float share, float gap) {
   return std::min(share * kThinningMakeUp, 1.0f) * (1.0f + kGapAmplitude * (1.0f - std::min(share, 1.0f)) * gap);
 }
 
-// The candidate's point: uniform in its cell, pulled towards its block's parent point, kept in the cell.
+// The candidate's point (tree_placement.h: position): uniform in its cell, pulled towards the
+// nearest clump parent of the 3 × 3 blocks around it, as seen from the cell (clamped into it).
 void candidatePoint(const TreeGrid& grid, int32_t cx, int32_t cy, double& x, double& y) {
   const Philox2x32Out at = cellWords(cx, cy, kPositionKey);
-  const int32_t bx = floorDiv(cx, kClumpBlockCells), by = floorDiv(cy, kClumpBlockCells);
-  const Philox2x32Out parent = cellWords(bx, by, kClumpKey);
   const double block = grid.cellM * kClumpBlockCells;
-  const double px = (double(bx) + double(u01(parent.x))) * block, py = (double(by) + double(u01(parent.y))) * block;
   const double x0 = double(cx) * grid.cellM, y0 = double(cy) * grid.cellM;
   const double ux = x0 + double(u01(at.x)) * grid.cellM, uy = y0 + double(u01(at.y)) * grid.cellM;
+  const auto bx = static_cast<int32_t>(std::floor(ux / block)), by = static_cast<int32_t>(std::floor(uy / block));
+  double px = ux, py = uy, best = INFINITY;
+  for (int32_t j = by - 1; j <= by + 1; ++j)
+    for (int32_t i = bx - 1; i <= bx + 1; ++i) {
+      const Philox2x32Out parent = cellWords(i, j, kClumpKey);
+      const double qx = (double(i) + double(u01(parent.x))) * block, qy = (double(j) + double(u01(parent.y))) * block;
+      const double d = (qx - ux) * (qx - ux) + (qy - uy) * (qy - uy);
+      if (d < best) best = d, px = qx, py = qy;
+    }
   const double inset = 1e-3 * grid.cellM;  // strictly inside the cell: treeCellOf(x) is the cell
-  x = std::clamp(ux + kClumpPull * (px - ux), x0 + inset, x0 + grid.cellM - inset);
-  y = std::clamp(uy + kClumpPull * (py - uy), y0 + inset, y0 + grid.cellM - inset);
+  const double tx = std::clamp(px, x0 + inset, x0 + grid.cellM - inset);
+  const double ty = std::clamp(py, y0 + inset, y0 + grid.cellM - inset);
+  x = std::clamp(ux + kClumpPull * (tx - ux), x0 + inset, x0 + grid.cellM - inset);
+  y = std::clamp(uy + kClumpPull * (ty - uy), y0 + inset, y0 + grid.cellM - inset);
 }
 
 // A standard normal from two words (Box–Muller).
@@ -86,6 +95,7 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   const GroundColour colour = calibratedGround(catalog.calibration, g.linearRgb);
   const SpeciesChoice pick = chooseSpecies(catalog, colour.hsv, u01(choice.x), g.ndvi, colour.exg, g.allowed);
   if (pick.species < 0 || !isTree(catalog.species[static_cast<size_t>(pick.species)])) return false;
+  if (!(u01(cellWords(cx, cy, kStandKey).x) < treeStandShare(pick.sPrime))) return false;
   const SpeciesChoice tree =
       chooseTreeSpecies(catalog, pick.species, colour, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
   const auto s = static_cast<size_t>(tree.species >= 0 ? tree.species : pick.species);

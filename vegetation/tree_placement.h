@@ -14,15 +14,23 @@
 //
 // Per cell, every draw keyed by (cx, cy) or its block alone (so a cell's tree is a pure function
 // of the cells around it and the ground: local and view-independent):
-//   position   a uniform point of the cell pulled by kClumpPull towards its block's parent point
-//              (a Neyman–Scott-like clump, J. Neyman and E. L. Scott, JRSS B 20, 1958), clamped
-//              into the cell; the ground there (TreeGroundAt: colour, NDVI, height). No ground
-//              (outside the data, no imagery): no tree.
+//   position   a uniform point u of the cell pulled by kClumpPull towards the nearest parent point
+//              (one uniform point per block; the 3 × 3 blocks around u), that parent clamped into
+//              the cell first (a Neyman–Scott-like clump, J. Neyman and E. L. Scott, JRSS B 20,
+//              1958). The nearest parent, not the block's own: cells pulled towards their own
+//              block's parent gather about every block's centre — clumps on a 21 m lattice, rows
+//              from above. Half way (0.5): the cell's points pulled to either side then tile it
+//              evenly, where 0.35 gathered them in the middle (another lattice, at 7 m). The
+//              ground there (TreeGroundAt: colour, NDVI, height). No ground (outside the data,
+//              no imagery): no tree.
 //   species    chooseSpecies over the whole catalog (species_choice.h: grass, gravel, bare soil
 //              and trees compete as they do for plants) at hsvFromLinear(ground colour) with z;
 //              a winner that is not a tree (or none): no tree. Else which tree: chooseTreeSpecies
 //              (tree_niche.h: colour plus the species' niche in elevation, slope and relief) with
 //              its own z; s′ stays the first choice's (the tree stand's border, not the species').
+//   stand      kept with probability treeStandShare(s′) (species_choice.h): a tree stands where
+//              the colour clearly says forest, thinning out across an even edge, and not in a
+//              meadow whose colour gives the forest a 15 % share (its plants grow there instead).
 //   keep       with probability min(1, p · kThinningMakeUp) · (1 + kGapAmplitude (1 − p) g), p =
 //              density_ha(s) · cellM² / 10⁴ the imagery's density (the species it picks), g the gap
 //              field (bilinear value noise over the blocks' corners, −1 … 1): stands get clumps
@@ -76,7 +84,7 @@ struct TreeGrid {
 };
 
 inline constexpr int32_t kClumpBlockCells = 3;    // a clump block is 3 × 3 cells (21 m for the default catalog)
-inline constexpr double kClumpPull = 0.35;        // the share of the way to the block's parent point
+inline constexpr double kClumpPull = 0.5;         // the share of the way to the nearest parent point
 inline constexpr float kGapAmplitude = 0.3f;      // the gap field's keep factor spans 1 ± this
 inline constexpr float kThinningMakeUp = 1.09f;   // keep share raised by what thinning takes (measured)
 inline constexpr float kTreeHeightSigma = 0.3f;   // log-normal σ of a species' heights

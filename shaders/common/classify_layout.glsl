@@ -31,7 +31,7 @@ struct PlantCluster {
 struct Species {
   vec4 reference;        // HSV, w: p
   vec4 weights;          // w: ln threshold
-  uvec4 flags;           // x bare, y kind, z casts planar shadows
+  uvec4 flags;           // x bare (or a tree), y kind, z casts planar shadows, w a tree
   vec4 heightStiffness;
   vec4 widthColour;
   vec4 marker;

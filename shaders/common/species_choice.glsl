@@ -7,7 +7,9 @@
 // when the seed is rejected (bare soil, or no species scores above its threshold).
 // `allowed`: bit i set where the landcover class under the plant allows species i
 // (vegetation/landcover_species.h; 0xffffffffu without landcover), tested before the score.
-vec2 chooseSpeciesAllowed(vec4 ground, float ndvi, float z, uint allowed) {
+
+// The two best (vegetation::speciesCandidates): x first, y second (−1: none), z ratio s1 / (s0 + s1).
+vec3 speciesCandidates(vec4 ground, float ndvi, uint allowed) {
   int best = -1, second = -1;
   float l0 = 0.0, l1 = 0.0;
   for (uint i = 0u; i < catalog.speciesCount.x; ++i) {
@@ -26,15 +28,48 @@ vec2 chooseSpeciesAllowed(vec4 ground, float ndvi, float z, uint allowed) {
       l1 = l;
     }
   }
-  if (best < 0) return vec2(-1.0, 0.0);
   float ratio = second < 0 ? 0.0 : 1.0 / (1.0 + exp(l0 - l1));
-  int pick = best;
+  return vec3(float(best), float(second), ratio);
+}
+
+vec2 chooseSpeciesAllowed(vec4 ground, float ndvi, float z, uint allowed) {
+  vec3 c = speciesCandidates(ground, ndvi, allowed);
+  if (c.x < 0.0) return vec2(-1.0, 0.0);
+  float ratio = c.z;
+  int pick = int(c.x);
   float sPrime = 1.0 - ratio;
   if (z < ratio) {
-    pick = second;
+    pick = int(c.y);
     sPrime = ratio;
   }
   if (catalog.species[pick].flags.x != 0u) return vec2(-1.0, 0.0);
+  return vec2(float(pick), sPrime);
+}
+
+// vegetation::treeStandShare.
+const float kStandShareLo = 0.25, kStandShareHi = 0.75;
+float treeStandShare(float sPrime) {
+  float t = clamp((sPrime - kStandShareLo) / (kStandShareHi - kStandShareLo), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// vegetation::choosePlantSpecies: a tree's pick is forest floor where the tree would stand, else
+// the other of the two best.
+vec2 choosePlantSpecies(vec4 ground, float ndvi, float z, uint allowed) {
+  vec3 c = speciesCandidates(ground, ndvi, allowed);
+  if (c.x < 0.0) return vec2(-1.0, 0.0);
+  float ratio = c.z;
+  bool second = z < ratio;
+  int pick = second ? int(c.y) : int(c.x);
+  int other = second ? int(c.x) : int(c.y);
+  float sPrime = second ? ratio : 1.0 - ratio;
+  float u = second ? z / ratio : (z - ratio) / (1.0 - ratio);
+  if (catalog.species[pick].flags.w != 0u) {  // a tree
+    if (other < 0 || u < treeStandShare(sPrime)) return vec2(-1.0, 0.0);
+    pick = other;
+    sPrime = 1.0 - sPrime;
+  }
+  if (catalog.species[pick].flags.x != 0u) return vec2(-1.0, 0.0);  // bare, or a tree too
   return vec2(float(pick), sPrime);
 }
 

@@ -1,13 +1,15 @@
 // Issue 39 items 5–7 at eye height, through the real executable on lavapipe: the Kolob meadow at
 // 1.7 m looking east (the gallery's `meadow`), 320 × 180, the Landsat scene's own time, with and
 // without vegetation, each with its measurement AOVs (snapshot --aov: scene/frame_aovs.h).
-//   - coverage: where the bare frame's depth says the ground is 30–100 m away, the vegetation
-//     covers ≥ 80 % of the samples (grass to the horizon at grazing angles). Issue 39 also asks
-//     ≥ 95 % for 5–30 m: printed, not met today (0.88): the reflectance imagery classifies much of
-//     the meadow as sparse dry tufts (25 plants per m²) beside the grass (400), and the holes are
-//     theirs — issue 41's classification in a dataset-normalised colour space is the fix;
+//   - coverage: where the bare frame's depth says the ground is 5–30 m away, the vegetation
+//     covers ≥ 95 % of the samples, and ≥ 80 % for 30–100 m (grass to the horizon at grazing
+//     angles). 5–30 m was 0.88 before issue 41's colour calibration: the reflectance imagery
+//     classified much of the meadow as sparse dry tufts (25 plants per m²) beside the grass (400);
+//     calibrated, it is grass (measured 0.988);
 //   - far ground: beyond 60 m, the mean colour with vegetation is within CIEDE2000 3 of the
-//     bare ground's (core seed 001 §2.4: the vegetation keeps the ground's colour from afar);
+//     bare ground's (core seed 001 §2.4: the vegetation keeps the ground's colour from afar),
+//     over the pixels no tree covers (the species AOV): the tree line at the clearing's far end
+//     is forest, not ground — its colour from above is issue 41 item 6's;
 //   - no dark band: every row's ground 5–150 m away (the grass's horizon; the tree line beyond
 //     it is not ground) has a mean luminance with vegetation within a factor of 1.5 of the bare
 //     ground's in the same row (the band of issue 39 was 0.3×, the flower heads' carpet 2.7×);
@@ -28,6 +30,7 @@
 
 #include "tests/support/ciede2000.h"
 #include "tests/support/read_rgb.h"
+#include "vegetation/species_catalog.h"
 #include "tests/support/run_command.h"
 #include "tests/support/test_dirs.h"
 #include "tests/support/zion_sample.h"
@@ -117,14 +120,21 @@ TEST(EyeHeight, MeadowIsCoveredAndKeepsTheGroundsColourToTheHorizon) {
   std::printf("coverage: 5–30 m %.3f (%d px), 30–100 m %.3f (%d px)\n", covNear, near, covMid, mid);
   ASSERT_GT(near, 1000);
   ASSERT_GT(mid, 300);
-  EXPECT_GT(covNear, 0.5) << "the near meadow is mostly covered";
+  EXPECT_GE(covNear, 0.95) << "the near meadow is covered";
   EXPECT_GE(covMid, 0.80);
 
-  // Far ground (> 60 m) with against without vegetation.
+  // Far ground (> 60 m) with against without vegetation, where no tree stands in front.
+  const vegetation::SpeciesCatalog& catalog = vegetation::defaultSpeciesCatalog();
+  const auto treeAt = [&](size_t i) {
+    const auto s = static_cast<size_t>(full.species[i]);
+    return s > 0 && s <= catalog.species.size() && vegetation::isTree(catalog.species[s - 1]);
+  };
   std::array<double, 3> a{}, b{};
-  int far = 0;
+  int far = 0, trees = 0;
   for (size_t i = 0; i < kPixels; ++i)
-    if (bare.depth[i] > 60.0f) {
+    if (bare.depth[i] > 60.0f && treeAt(i)) {
+      ++trees;
+    } else if (bare.depth[i] > 60.0f) {
       const auto fa = linearAt(full, i), fb = linearAt(bare, i);
       for (size_t k = 0; k < 3; ++k) a[k] += fa[k], b[k] += fb[k];
       ++far;
@@ -132,8 +142,8 @@ TEST(EyeHeight, MeadowIsCoveredAndKeepsTheGroundsColourToTheHorizon) {
   ASSERT_GT(far, 300);
   for (size_t k = 0; k < 3; ++k) a[k] /= far, b[k] /= far;
   const double eFar = testing::ciede2000(testing::labFromLinear(a[0], a[1], a[2]), testing::labFromLinear(b[0], b[1], b[2]));
-  std::printf("far ground (> 60 m, %d px): with %.4f %.4f %.4f, bare %.4f %.4f %.4f: ΔE00 %.2f\n", far, a[0], a[1],
-              a[2], b[0], b[1], b[2], eFar);
+  std::printf("far ground (> 60 m, %d px, %d more under trees): with %.4f %.4f %.4f, bare %.4f %.4f %.4f: ΔE00 %.2f\n",
+              far, trees, a[0], a[1], a[2], b[0], b[1], b[2], eFar);
   EXPECT_LE(eFar, 3.0);
 
   // No dark band: each row's ground (bare depth ≥ 5 m) with vegetation against the bare row.

@@ -17,6 +17,7 @@
 #include "geo/crs.h"
 #include "geo/projection.h"
 #include "import_test_util.h"
+#include "scene/dataset_calibration.h"
 #include "vegetation/colour_score.h"
 #include "vegetation/species_choice.h"
 
@@ -142,7 +143,8 @@ TEST_F(ZionNirImport, QueryNdviMatchesGdal) {
   ASSERT_TRUE(meta);
   const std::vector<Point> points = gridPoints(meta->bounds, *gdal);
   ASSERT_GE(points.size(), 100u);
-  const vegetation::SpeciesCatalog& catalog = vegetation::defaultSpeciesCatalog();
+  // The catalog as query sees it: with the dataset's colour calibration (issue 41 item 1).
+  const vegetation::SpeciesCatalog catalog = scene::calibratedCatalog(vegetation::defaultSpeciesCatalog(), *meta);
   std::vector<double> diffs;
   for (const Point& p : points) {  // each query is a process start, ~0.25 s
     const auto r = runVegstream("query " + out_.string() + " --lat " + p.lat + " --lon " + p.lon);
@@ -153,11 +155,12 @@ TEST_F(ZionNirImport, QueryNdviMatchesGdal) {
       continue;
     }
     diffs.push_back(std::abs(j["ndvi"].get<double>() - p.gdal));
-    // The species query prints are chosen with the NDVI (vegetation::speciesCandidates).
+    // The species query prints are chosen with the NDVI, through the calibration
+    // (vegetation::speciesCandidatesAt).
     const auto& c = j["color"];
-    const auto k = vegetation::speciesCandidates(
-        catalog, vegetation::hsvFromSrgb8(c["r"].get<uint8_t>(), c["g"].get<uint8_t>(), c["b"].get<uint8_t>()),
-        j["ndvi"].get<float>());
+    const auto lin = [&](const char* k) { return vegetation::srgbDecode(c[k].get<uint8_t>() / 255.0f); };
+    const auto k = vegetation::speciesCandidatesAt(catalog, glm::vec3(lin("r"), lin("g"), lin("b")),
+                                                   j["ndvi"].get<float>());
     if (k.first < 0) {
       EXPECT_TRUE(j["species"].is_null()) << r.out;
     } else {
