@@ -1,34 +1,12 @@
 #ifndef TREE_SHADING_GLSL
 #define TREE_SHADING_GLSL
 // How tree fragments look (issue 20), shared by the models (tree.frag) and the impostors
-// (tree_impostor.frag): the cards' procedural outlines, alpha to coverage computed into the
+// (tree_impostor.frag): alpha to coverage computed into the
 // sample mask (as plant.frag: the fixed-function path resolves to wrong colours on lavapipe), and
 // the lighting — ambient + Lambert for bark and the lit side of leaves, and for leaves lit from
 // behind the sun through the leaf (seed 002 §3.3: L_t, here with a constant average translucency
 // ρ_t per species instead of the measured maps and the multi-dipole). Needs frame_uniforms.glsl
 // and atmosphere.glsl.
-
-// A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
-// needles, narrowing to the tip; broadleaf: a clump of three leaves.
-float treeCardShape(vec2 uv, float form) {
-  if (form < 0.5) {
-    float across = abs(uv.x - 0.5) * 2.0;
-    float width = 1.0 - 0.4 * uv.y;  // the card itself is this trapezoid (vegetation/tree_model.cpp kConiferTipWidth)
-    float needles = 0.5 + 0.5 * sin((uv.y * 9.0 + across * 3.0) * 6.2831853);
-    float inside = width - across;
-    return clamp(inside * 6.0, 0.0, 1.0) * mix(0.42, 1.0, needles) * smoothstep(0.0, 0.08, uv.y);
-  }
-  float a = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    float ang = 1.0 + 2.0944 * float(i);
-    vec2 c = vec2(0.5, 0.5) + 0.2 * vec2(cos(ang), sin(ang));
-    vec2 axis = normalize(c - vec2(0.5, 0.35));
-    vec2 q = uv - c;
-    vec2 e = vec2(dot(q, axis), dot(q, vec2(-axis.y, axis.x))) / vec2(0.3, 0.22);
-    a = max(a, 1.0 - dot(e, e));
-  }
-  return clamp(a * 4.0, 0.0, 1.0);
-}
 
 // k of the n samples for coverage `alpha`, rotated and dithered per pixel (plant.frag's scheme);
 // 0 when nothing covers.
