@@ -18,7 +18,8 @@
 // has a time-out and each request a deadline over all its attempts and back-offs (counted from
 // its first launch, not from start(): queued requests do not use it up). Redirects are followed
 // by hand, at most 5, to http(s) only, and to the base URL's host only unless allowRedirects.
-// A tile answered 2xx with a textual Content-Type (an HTML error page) is retried, then Failed.
+// A tile image (.png, .jpg, .webp) answered 2xx with a textual Content-Type (an HTML error page)
+// is retried, then Failed.
 //
 // With a cache directory, Ok tiles are also written to a DiskTileCache — only once they pass the
 // tile check (setTileCheck; the scene always sets one, streaming/tile_check.h; without one only

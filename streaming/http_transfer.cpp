@@ -3,6 +3,17 @@
 #include "streaming/http_transfer.h"
 
 namespace vegstream::streaming::detail {
+namespace {
+
+// A tile image by its name ("imagery/12/758/1608.jpg"): a textual answer for it is an error page.
+bool isImagePath(const std::string& path) {
+  const size_t dot = path.rfind('.');
+  if (dot == std::string::npos) return false;
+  const std::string ext = path.substr(dot + 1);
+  return ext == "png" || ext == "jpg" || ext == "jpeg" || ext == "webp";
+}
+
+}  // namespace
 
 void configureAttempt(CURL* e, Transfer& t, const HttpSourceOptions& o, double nowS) {
   t.body.clear();
@@ -41,7 +52,7 @@ datasets::AttemptEnd readAttemptEnd(Transfer& t, CURLcode code, uint64_t maxBody
   end.bodyCap = maxBodyBytes;
   const char* type = nullptr;
   if (curl_easy_getinfo(t.easy, CURLINFO_CONTENT_TYPE, &type) == CURLE_OK && type != nullptr) end.contentType = type;
-  end.binaryExpected = t.isTile;
+  end.binaryExpected = t.isTile && isImagePath(t.path);
   t.lastProblem = datasets::describeAttempt(end, t.errorBuffer);
   if (code == CURLE_FILESIZE_EXCEEDED)
     t.lastProblem = "the announced body exceeds " + std::to_string(maxBodyBytes) + " bytes";

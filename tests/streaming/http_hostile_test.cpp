@@ -141,7 +141,9 @@ TEST_F(HostileServer, BodiesAreCappedAnnouncedOrNot) {
     // The endless body was read up to the cap and no further (plus what the sockets buffer);
     // the 10 GB announcement was refused at the headers.
     const uint64_t sent = server_->bytesSent() - sentBefore;
-    if (a == FaultAction::EndlessBody) EXPECT_GE(sent, o.maxBodyBytes);
+    if (a == FaultAction::EndlessBody) {
+      EXPECT_GE(sent, o.maxBodyBytes);
+    }
     EXPECT_LT(sent, o.maxBodyBytes + (16u << 20)) << "read far past the cap";
   }
   // dataset.json without end: one error naming it, exit 2 for the command line.
