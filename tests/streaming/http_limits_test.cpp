@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "datasets/http_fetch.h"
 #include "datasets/http_limits.h"
 #include "datasets/http_retry_policy.h"
 #include "streaming/dataset_snapshot.h"
@@ -156,6 +157,49 @@ TEST_F(GroundLoad, StalledAndBadTilesBecomeNoDataWithinTheDeadline) {
   EXPECT_EQ(none.error().kind, ErrorKind::InvalidInput);
   EXPECT_NE(none.error().message.find("deadline"), std::string::npos) << none.error().message;
   EXPECT_NE(none.error().message.find(server_->baseUrl()), std::string::npos) << none.error().message;
+}
+
+// The importer's URL fetches (datasets/http_fetch.h) meet the same hostile answers: capped,
+// ended by their deadline, and not led to another host or protocol.
+TEST_F(GroundLoad, TheImportersFetcherKeepsTheSameLimits) {
+  datasets::HttpFetchOptions o;
+  o.maxBodyBytes = 1u << 20;
+  o.lowSpeedTimeS = 1;
+  o.requestDeadlineMs = 2500;
+  o.maxAttempts = 100;
+  o.backoffBaseMs = 10;
+  o.backoffMaxMs = 40;
+  datasets::HttpFetcher fetcher(o);
+  const auto list = elevationTiles();
+  const std::string base = server_->baseUrl() + "/";
+  auto expectFailure = [&](const std::string& tile, std::vector<Fault> faults, const std::string& why, double maxS) {
+    server_->scheduleForPath(tile, std::move(faults));
+    const auto t0 = Clock::now();
+    auto r = fetcher.get(base + tile);
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    ASSERT_FALSE(r.ok()) << tile;
+    EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput);
+    EXPECT_NE(r.error().message.find(why), std::string::npos) << r.error().message;
+    EXPECT_LT(s, maxS) << r.error().message;
+  };
+  expectFailure(list.at(0), {{FaultAction::EndlessBody}}, "exceeds 1048576 bytes", 5.0);
+  expectFailure(list.at(1), {{FaultAction::HugeLength}}, "exceeds 1048576 bytes", 5.0);
+  expectFailure(list.at(2), std::vector<Fault>(100, Fault{FaultAction::Stall}), "deadline", 2 * 2.5);
+  expectFailure(list.at(3), {{FaultAction::Redirect, 0, "ftp://127.0.0.1/x"}}, "only http:// and https://", 5.0);
+  expectFailure(list.at(4), {{FaultAction::Redirect, 0, "http://localhost:" + std::to_string(server_->port()) + "/" + list.at(5)}},
+                "another host", 5.0);
+  EXPECT_EQ(server_->requestsFor(list.at(5)), 0u);
+  // The same host is followed; with allowRedirects another host is too.
+  server_->scheduleForPath(list.at(6), {{FaultAction::Redirect, 0, "/" + list.at(5)}});
+  auto same = fetcher.get(base + list.at(6));
+  ASSERT_TRUE(same.ok() && *same) << (same.ok() ? "missing" : same.error().message);
+  EXPECT_EQ(**same, fileBytes(dir() / list.at(5)));
+  o.allowRedirects = true;
+  datasets::HttpFetcher open(o);
+  server_->scheduleForPath(list.at(7), {{FaultAction::Redirect, 0, "http://localhost:" + std::to_string(server_->port()) + "/" + list.at(5)}});
+  auto other = open.get(base + list.at(7));
+  ASSERT_TRUE(other.ok() && *other) << (other.ok() ? "missing" : other.error().message);
+  EXPECT_EQ(**other, fileBytes(dir() / list.at(5)));
 }
 
 }  // namespace
