@@ -274,6 +274,7 @@ Result<DatasetMeta> runXyz(const ImportOptions& o, const Logger& log, datasets::
     x.bounds = *b;
   }
   x.threads = o.threads;
+  x.http.allowRedirects = o.allowRedirects;
   x.cancel = &gInterrupted;
   return datasets::importXyzTiles(x, log, progress);
 }
@@ -346,6 +347,9 @@ CLI::App* addImportCommand(CLI::App& cli, ImportOptions& o) {
                   "split into the 256 of the next zoom)");
   cmd->add_option("--xyz-imagery", o.xyzImagery,
                   "Imagery tiles (with --xyz-elevation), in any of --xyz-elevation's forms");
+  cmd->add_flag("--allow-redirects", o.allowRedirects,
+                "URL templates and PMTiles URLs: follow HTTP redirects to other hosts too (without it, only to "
+                "the URL's own host; never to anything but http:// or https://)");
   cmd->add_option("--bounds", o.bounds,
                   "W,S,E,N degrees: the area of an XYZ import; required for URL templates, else overrides an "
                   "archive's bounds");

@@ -35,6 +35,7 @@ struct ImportOptions {
   std::string deshading = "on";
   // XYZ form (templates by path or URL, MBTiles, PMTiles; datasets/xyz_source.h).
   std::string xyzElevation, xyzImagery;
+  bool allowRedirects = false;  // URL sources: follow HTTP redirects to other hosts too
   std::string bounds;  // "W,S,E,N" degrees: the area of an XYZ import (required for URL templates)
   // Both.
   std::string out, name, attribution;

@@ -45,7 +45,16 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Seed triangles (plants) only within this distance, metres (each species also stops at its "
                  "catalog horizon_m)")
       ->capture_default_str();
-  cmd.add_option("--http-cache", o.httpCache, "Directory of an on-disk cache for tiles fetched over HTTP");
+  cmd.add_option("--http-cache", o.httpCache,
+                 "Directory of an on-disk cache for tiles fetched over HTTP (only tiles that decode as the "
+                 "dataset's are kept)");
+  cmd.add_flag("--allow-redirects", o.allowRedirects,
+               "Follow HTTP redirects to other hosts too (without it, only to the dataset URL's own host; "
+               "never to anything but http:// or https://)");
+  cmd.add_option("--http-timeout-s", o.httpTimeoutS,
+                 "Give up a file fetched over HTTP after this many seconds, all its retries included (it is then "
+                 "drawn from its parent tile); an attempt that stalls is retried after 5 s")
+      ->capture_default_str();
   cmd.add_option("--plant-density", o.plantDensity,
                  "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1), pixels of a 1080-line view "
                  "whatever the window: the level of detail that thins plants with distance; near the camera "
@@ -135,6 +144,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   if (!(o.plantShadowM > 0.0 && o.plantShadowM <= 10000.0))
     return bad("--plant-shadow-m " + std::to_string(o.plantShadowM) +
                ": must be more than 0 and at most 10000 metres");
+  if (!(o.httpTimeoutS >= 1.0 && o.httpTimeoutS <= 3600.0))
+    return bad("--http-timeout-s " + numberText(o.httpTimeoutS) + ": must be 1 … 3600 seconds");
   if (!o.species.empty()) {
     auto catalog = vegetation::loadSpeciesCatalog(o.species);
     if (!catalog) return catalog.error();
@@ -176,6 +187,8 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   if (!bladePath) return bad("--blade-path " + o.bladePath + ": must be auto, tessellation, compute or mesh");
   scene.renderer.bladePath = *bladePath;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
+  scene.httpAllowRedirects = o.allowRedirects;
+  scene.httpRequestDeadlineMs = std::lround(o.httpTimeoutS * 1000.0);
   return {};
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The streaming and terrain options that `fly` and `record` share (--cpu-budget-mb,
-// --gpu-budget-mb, --streaming, --no-look-ahead, --terrain-error-px, --http-cache, …), and how
+// --gpu-budget-mb, --streaming, --no-look-ahead, --terrain-error-px, --http-cache, --allow-redirects, …), and how
 // they become SceneOptions. One definition, so both commands spell and check them alike.
 
 #include <cstdint>
@@ -29,6 +29,8 @@ struct StreamingCli {
   double terrainDetail = 1.0;            // close-up detail textures, 0 (bare imagery) … 1
   double seedHorizonM = 250.0;           // seed triangles within this distance (and each species' own)
   std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none
+  bool allowRedirects = false;           // follow HTTP redirects to other hosts too
+  double httpTimeoutS = 30.0;            // one HTTP request, all its retries included
   // Plants (issue 7): density ρ and n_max of eq. 1, cluster size C, species catalog.
   double plantDensity = 0.1;   // ρ: plants per reference pixel² (1080 lines) of projected seed-triangle area
   std::string plantFades = "on";

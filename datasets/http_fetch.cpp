@@ -10,6 +10,7 @@
 
 #include <curl/curl.h>
 
+#include "datasets/http_limits.h"
 #include "datasets/http_retry_policy.h"
 #include "datasets/message.h"
 
@@ -19,19 +20,6 @@ namespace {
 void initCurlOnce() {
   static std::once_flag once;
   std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
-}
-
-struct Body {
-  std::vector<uint8_t> bytes;
-  uint64_t limit = 0;
-};
-
-size_t appendBody(char* data, size_t size, size_t count, void* user) {
-  auto* b = static_cast<Body*>(user);
-  const size_t n = size * count;
-  if (b->bytes.size() + n > b->limit) return 0;  // aborts the transfer (CURLE_WRITE_ERROR)
-  b->bytes.insert(b->bytes.end(), reinterpret_cast<uint8_t*>(data), reinterpret_cast<uint8_t*>(data) + n);
-  return n;
 }
 
 uint64_t requestKey(const std::string& url, const std::optional<ByteRange>& range) {
@@ -44,8 +32,16 @@ uint64_t requestKey(const std::string& url, const std::optional<ByteRange>& rang
 struct Attempt {
   AttemptEnd end;
   std::string problem;
-  Body body;
+  CappedBody body;
+  std::string redirectUrl;  // a 3xx's resolved Location
 };
+
+using SteadyTime = std::chrono::steady_clock::time_point;
+constexpr int kMaxRedirects = 5;
+
+double msLeft(SteadyTime deadline) {
+  return std::chrono::duration<double, std::milli>(deadline - std::chrono::steady_clock::now()).count();
+}
 
 }  // namespace
 
@@ -78,21 +74,22 @@ HttpFetcher::~HttpFetcher() = default;
 namespace {
 
 Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRange>& range,
-                    const HttpFetchOptions& o) {
+                    const HttpFetchOptions& o, SteadyTime deadline) {
   Attempt a;
   a.body.limit = o.maxBodyBytes;
   char errorBuffer[CURL_ERROR_SIZE] = {};
   curl_easy_reset(e);
   curl_easy_setopt(e, CURLOPT_URL, url.c_str());
-  curl_easy_setopt(e, CURLOPT_WRITEFUNCTION, appendBody);
+  curl_easy_setopt(e, CURLOPT_WRITEFUNCTION, appendCappedBody);
   curl_easy_setopt(e, CURLOPT_WRITEDATA, &a.body);
   curl_easy_setopt(e, CURLOPT_ERRORBUFFER, errorBuffer);
-  curl_easy_setopt(e, CURLOPT_NOSIGNAL, 1L);
-  curl_easy_setopt(e, CURLOPT_CONNECTTIMEOUT_MS, o.connectTimeoutMs);
-  curl_easy_setopt(e, CURLOPT_TIMEOUT_MS, o.totalTimeoutMs);
-  curl_easy_setopt(e, CURLOPT_FOLLOWLOCATION, 1L);
-  curl_easy_setopt(e, CURLOPT_MAXREDIRS, 5L);
-  curl_easy_setopt(e, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(o.maxBodyBytes));
+  TransferLimits limits;
+  limits.maxBodyBytes = o.maxBodyBytes;
+  limits.connectTimeoutMs = o.connectTimeoutMs;
+  limits.attemptTimeoutMs = attemptTimeoutWithin(o.totalTimeoutMs, msLeft(deadline));
+  limits.lowSpeedBytesPerS = o.lowSpeedBytesPerS;
+  limits.lowSpeedTimeS = o.lowSpeedTimeS;
+  applyTransferLimits(e, limits);
   curl_easy_setopt(e, CURLOPT_TCP_KEEPALIVE, 1L);
   curl_easy_setopt(e, CURLOPT_USERAGENT, "vegstream");
   std::string rangeText;
@@ -106,12 +103,18 @@ Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRan
   curl_easy_getinfo(e, CURLINFO_CONTENT_LENGTH_DOWNLOAD_T, &length);
   a.end.contentLength = length;
   a.end.bodyBytes = a.body.bytes.size();
-  if (a.end.code == CURLE_WRITE_ERROR && a.body.bytes.size() >= o.maxBodyBytes) {
-    a.end.code = CURLE_FILESIZE_EXCEEDED;  // our own limit: not worth a retry
-    a.problem = concat("the body exceeds ", o.maxBodyBytes, " bytes");
-  } else {
+  a.end.bodyExceeded = a.body.exceeded;
+  a.end.bodyCap = o.maxBodyBytes;
+  const char* type = nullptr;
+  if (curl_easy_getinfo(e, CURLINFO_CONTENT_TYPE, &type) == CURLE_OK && type != nullptr) a.end.contentType = type;
+  a.end.binaryExpected = true;  // tiles and archives: never a document
+  const char* location = nullptr;
+  if (curl_easy_getinfo(e, CURLINFO_REDIRECT_URL, &location) == CURLE_OK && location != nullptr)
+    a.redirectUrl = location;
+  if (a.end.code == CURLE_FILESIZE_EXCEEDED)
+    a.problem = concat("the announced body exceeds ", o.maxBodyBytes, " bytes");
+  else
     a.problem = describeAttempt(a.end, errorBuffer);
-  }
   return a;
 }
 
@@ -125,8 +128,24 @@ Result<std::optional<std::vector<uint8_t>>> HttpFetcher::get(const std::string& 
                                  : concat("GET ", url);
   CURL* e = pool_->take();
   if (e == nullptr) return makeError(ErrorKind::Io, concat(what, ": libcurl could not make a handle"));
+  const SteadyTime deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.requestDeadlineMs);
+  auto failed = [&](const std::string& problem, int attempts) {
+    curl_easy_cleanup(e);  // a handle whose connection went wrong is not kept
+    return makeError(ErrorKind::InvalidInput,
+                     concat(what, ": ", problem, " (", attempts, attempts == 1 ? " attempt)" : " attempts)"));
+  };
+  std::string target = url;
+  int redirects = 0;
   for (int attempt = 1;; ++attempt) {
-    Attempt a = attemptOnce(e, url, range, options_);
+    Attempt a = attemptOnce(e, target, range, options_, deadline);
+    if (a.end.code == CURLE_OK && isRedirectStatus(a.end.httpStatus)) {
+      auto next = redirectTarget(target, a.redirectUrl, options_.allowRedirects);
+      if (!next) return failed(next.error().message, attempt);
+      if (++redirects > kMaxRedirects) return failed(concat("more than ", kMaxRedirects, " redirects"), attempt);
+      target = *next;
+      --attempt;  // a redirect is not a failed attempt
+      continue;
+    }
     const AttemptVerdict verdict = judgeAttempt(a.end);
     if (verdict == AttemptVerdict::Ok) {
       pool_->give(e);
@@ -143,13 +162,13 @@ Result<std::optional<std::vector<uint8_t>>> HttpFetcher::get(const std::string& 
       pool_->give(e);
       return std::optional<std::vector<uint8_t>>();
     }
-    if (verdict == AttemptVerdict::Fail || attempt >= options_.maxAttempts) {
-      curl_easy_cleanup(e);  // a handle whose connection went wrong is not kept
-      return makeError(ErrorKind::InvalidInput,
-                       concat(what, ": ", a.problem, " (", attempt, attempt == 1 ? " attempt)" : " attempts)"));
-    }
-    options_.sleepMs(backoffDelayMs(attempt + 1, requestKey(url, range), options_.backoffBaseMs,
-                                    options_.backoffMaxMs));
+    if (verdict == AttemptVerdict::Fail || attempt >= options_.maxAttempts) return failed(a.problem, attempt);
+    const long delay =
+        backoffDelayMs(attempt + 1, requestKey(url, range), options_.backoffBaseMs, options_.backoffMaxMs);
+    if (msLeft(deadline) < static_cast<double>(delay) + 1.0)
+      return failed(concat(a.problem, "; the request's deadline of ", options_.requestDeadlineMs, " ms passed"),
+                    attempt);
+    options_.sleepMs(delay);
   }
 }
 

@@ -9,6 +9,11 @@
 // fewer, at the end of the file): a server that answers 200 with the whole file is refused,
 // since every tile would download the whole archive.
 //
+// Limits (http_limits.h): the body is capped both as announced and as received, a stalled or
+// trickling attempt is aborted (low-speed limit), each attempt has a time-out and the request a
+// deadline over all its attempts and back-offs. Redirects are followed by hand, at most 5, only
+// to http(s) and only to the same host unless allowRedirects.
+//
 // Thread-safe: any number of importer workers call get() at once; each call borrows an easy
 // handle from a small pool, so connections are kept alive between calls. The back-off waits
 // through `sleepMs` (injected; default: the calling thread sleeps) — a batch import has nothing
@@ -28,10 +33,14 @@ namespace vegstream::datasets {
 struct HttpFetchOptions {
   int maxAttempts = 4;
   long connectTimeoutMs = 10'000;
-  long totalTimeoutMs = 120'000;
+  long totalTimeoutMs = 120'000;     // one attempt
+  long requestDeadlineMs = 300'000;  // all attempts and back-offs of one get()
+  long lowSpeedBytesPerS = 1'024;    // an attempt slower than this …
+  long lowSpeedTimeS = 10;           // … for this long is aborted and retried
   long backoffBaseMs = 250;
   long backoffMaxMs = 4'000;
-  uint64_t maxBodyBytes = 256ull << 20;  // no tile or directory is this large: refused
+  uint64_t maxBodyBytes = 256ull << 20;  // no tile or directory is this large: refused (announced or received)
+  bool allowRedirects = false;           // follow redirects to other hosts too (http(s) only, always)
   std::function<void(long ms)> sleepMs;  // null: std::this_thread::sleep_for
 };
 

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 
+#include "datasets/http_limits.h"
+
 namespace vegstream::datasets {
 
 AttemptVerdict judgeAttempt(const AttemptEnd& end) {
+  if (end.bodyExceeded) return AttemptVerdict::Fail;  // our own cap: the same server sends it again
   switch (end.code) {
     case CURLE_OK: break;
     // Set-up errors of our own: the same request fails the same way every time.
@@ -28,10 +31,12 @@ AttemptVerdict judgeAttempt(const AttemptEnd& end) {
   // libcurl reports a short body as CURLE_PARTIAL_FILE when it knows the length; check anyway,
   // a truncated tile must never be handed to the decoder as if it were whole.
   if (end.contentLength >= 0 && static_cast<uint64_t>(end.contentLength) != end.bodyBytes) return AttemptVerdict::Retry;
+  if (end.binaryExpected && textualContentType(end.contentType)) return AttemptVerdict::Retry;
   return AttemptVerdict::Ok;
 }
 
 std::string describeAttempt(const AttemptEnd& end, const char* curlErrorBuffer) {
+  if (end.bodyExceeded) return "the body exceeds " + std::to_string(end.bodyCap) + " bytes";
   if (end.code != CURLE_OK) {
     std::string s = curl_easy_strerror(end.code);
     if (curlErrorBuffer != nullptr && curlErrorBuffer[0] != '\0') {
@@ -43,6 +48,9 @@ std::string describeAttempt(const AttemptEnd& end, const char* curlErrorBuffer) 
   if (end.contentLength >= 0 && static_cast<uint64_t>(end.contentLength) != end.bodyBytes)
     return "HTTP " + std::to_string(end.httpStatus) + " with " + std::to_string(end.bodyBytes) +
            " bytes of the announced " + std::to_string(end.contentLength);
+  if (end.binaryExpected && textualContentType(end.contentType))
+    return "HTTP " + std::to_string(end.httpStatus) + " with Content-Type " + end.contentType.substr(0, 80) +
+           ", not a tile";
   return "HTTP " + std::to_string(end.httpStatus);
 }
 

@@ -12,6 +12,7 @@
 #include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
+#include "streaming/tile_check.h"
 #include "scene/tree_field.h"
 #include "scene/tree_ground.h"
 #include "terrain/snapshot_grid.h"
@@ -126,12 +127,17 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   auto tasks = std::make_unique<ThreadPool>();
   streaming::OpenSourceOptions so;
   so.http.cacheDir = options.httpCacheDir;
+  so.http.allowRedirects = options.httpAllowRedirects;
+  so.http.requestDeadlineMs = options.httpRequestDeadlineMs;
   so.log = log;
   so.tasks = tasks.get();
   auto source = streaming::openTileSource(options.dataset, so);
   if (!source) return source.error();
   auto meta = streaming::readMetaFrom(**source);
   if (!meta) return meta.error();
+  // Only tiles that decode as this dataset's are kept in the HTTP cache (tile_check.h).
+  if (auto* http = dynamic_cast<streaming::HttpTileSource*>(source->get()))
+    http->setTileCheck(streaming::tileCheckFor(*meta, http->describe()));
   const geo::GeoBounds& b = meta->bounds;
   const double centreLat = 0.5 * (b.southDeg + b.northDeg), centreLon = b.centre().x;
   auto sun = resolveSunClock(options.datetime, meta->imageryDatetime, streaming::datasetJsonName(**source), centreLat,
@@ -151,6 +157,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   impl->source = std::move(*source);  // the source goes before the pool its tasks run on
   streaming::SnapshotLimits limits;
   limits.maxHeightPixels = options.groundMaxPixels;
+  limits.log = log;
   auto ground = streaming::loadGroundHeights(*impl->source, *meta, limits);
   if (!ground) return ground.error();
   impl->ground = terrain::heightGridFrom(*ground);

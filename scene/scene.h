@@ -71,6 +71,8 @@ struct SceneOptions {
   bool lookAhead = true;       // prefetch the tiles of the poses expected next
   float terrainDetail = 1.0f;  // close-up detail textures, 0 (bare imagery) … 1
   std::optional<std::filesystem::path> httpCacheDir;
+  bool httpAllowRedirects = false;  // --allow-redirects: follow redirects to other hosts (http(s) only)
+  long httpRequestDeadlineMs = 30'000;  // --http-timeout-s: one HTTP request, all its retries included
   uint64_t groundMaxPixels = 4'000'000;  // the ground mosaic for path altitudes
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
   bool plants = true;

@@ -95,7 +95,7 @@ Result<TreeGround> TreeGround::load(streaming::TileSource& source, const dataset
                                     const geo::LocalFrame& frame, const streaming::SnapshotLimits& limits) {
   auto heights = streaming::loadGroundHeights(source, meta, limits);
   if (!heights) return heights.error();
-  auto imagery = streaming::loadGroundImagery(source, meta, *heights);
+  auto imagery = streaming::loadGroundImagery(source, meta, *heights, limits);
   if (!imagery) return imagery.error();
   return TreeGround(std::move(*heights), std::move(*imagery), frame);
 }

@@ -9,6 +9,7 @@
 #include "datasets/tile_codec.h"
 #include "geo/projection.h"
 #include "geo/xyz_tiles.h"
+#include "streaming/ground_fetch.h"
 #include "streaming/tile_key.h"
 
 namespace vegstream::streaming {
@@ -48,31 +49,74 @@ int finestZoomWithin(const datasets::DatasetMeta& meta, uint64_t maxPixels, int 
   return z;
 }
 
-// Calls visit(tile, colInTile, rowInTile, mosaicIndex) for every mosaic pixel, tile by tile, so
-// each tile is decoded once.
-template <typename LoadTile, typename Visit>
-Status forEachTilePixel(const MercatorRaster& g, LoadTile&& load, Visit&& visit) {
+// The global pixel (from the west / north edge of the world) of the grid's first column / row.
+std::pair<int64_t, int64_t> gridOrigin(const MercatorRaster& g) {
   const double half = geo::kWebMercatorHalfWorldM;
-  const auto gcol0 = static_cast<int64_t>(std::llround((g.x0 + half) / g.pixelM - 0.5));
-  const auto grow0 = static_cast<int64_t>(std::llround((half - g.y0) / g.pixelM - 0.5));
+  return {static_cast<int64_t>(std::llround((g.x0 + half) / g.pixelM - 0.5)),
+          static_cast<int64_t>(std::llround((half - g.y0) / g.pixelM - 0.5))};
+}
+
+// The tiles of zoom g.zoom under the grid, row by row.
+std::vector<geo::TileId> tilesUnder(const MercatorRaster& g) {
+  std::vector<geo::TileId> ids;
+  if (g.width <= 0 || g.height <= 0) return ids;
+  const auto [gcol0, grow0] = gridOrigin(g);
   const int n = datasets::kTileSize;
-  for (int64_t ty = grow0 / n; ty <= (grow0 + g.height - 1) / n; ++ty) {
-    for (int64_t tx = gcol0 / n; tx <= (gcol0 + g.width - 1) / n; ++tx) {
-      const geo::TileId id{g.zoom, static_cast<int>(tx), static_cast<int>(ty)};
-      auto loaded = load(id);
-      if (!loaded) return loaded.error();
-      if (!*loaded) continue;  // no tile: no data there
-      for (int py = 0; py < n; ++py) {
-        const int64_t row = ty * n + py - grow0;
-        if (row < 0 || row >= g.height) continue;
-        for (int px = 0; px < n; ++px) {
-          const int64_t col = tx * n + px - gcol0;
-          if (col < 0 || col >= g.width) continue;
-          visit(**loaded, px, py, static_cast<size_t>(row) * static_cast<size_t>(g.width) + static_cast<size_t>(col));
-        }
-      }
+  for (int64_t ty = grow0 / n; ty <= (grow0 + g.height - 1) / n; ++ty)
+    for (int64_t tx = gcol0 / n; tx <= (gcol0 + g.width - 1) / n; ++tx)
+      ids.push_back({g.zoom, static_cast<int>(tx), static_cast<int>(ty)});
+  return ids;
+}
+
+// Calls visit(colInTile, rowInTile, mosaicIndex) for every mosaic pixel of tile `id`.
+template <typename Visit>
+void forEachPixelOf(const MercatorRaster& g, const geo::TileId& id, Visit&& visit) {
+  const auto [gcol0, grow0] = gridOrigin(g);
+  const int n = datasets::kTileSize;
+  for (int py = 0; py < n; ++py) {
+    const int64_t row = int64_t(id.y) * n + py - grow0;
+    if (row < 0 || row >= g.height) continue;
+    for (int px = 0; px < n; ++px) {
+      const int64_t col = int64_t(id.x) * n + px - gcol0;
+      if (col < 0 || col >= g.width) continue;
+      visit(px, py, static_cast<size_t>(row) * static_cast<size_t>(g.width) + static_cast<size_t>(col));
     }
   }
+}
+
+// Fetches the files of `tiles` (pathOf(id)) as one batch (ground_fetch.h) and hands each one
+// that arrived to use(id, bytes, name), which decodes and pastes it. A file the source does not
+// have is no data there. A file that failed (retries and deadline spent, or that does not
+// decode) is no data too, with one warning for the layer: one bad answer does not end the run.
+// Only when every file failed is it an error (the first failure): there is no ground at all.
+template <typename PathOf, typename Use>
+Status loadLayer(TileSource& source, const std::vector<geo::TileId>& tiles, const SnapshotLimits& limits,
+                 PathOf&& pathOf, Use&& use) {
+  std::vector<std::string> paths;
+  for (const geo::TileId& id : tiles) paths.push_back(pathOf(id));
+  size_t failed = 0, loaded = 0;
+  std::optional<Error> first;
+  BatchFetchOptions batch;
+  batch.deadlineMs = limits.deadlineMs;
+  fetchBatch(source, paths, batch, [&](size_t i, FetchResult&& r) {
+    Status s;
+    if (r.outcome == FetchOutcome::Missing) return;
+    if (r.outcome == FetchOutcome::Ok)
+      s = use(tiles[i], std::span<const uint8_t>(r.bytes), source.describe() + "/" + paths[i]);
+    else
+      s = makeError(ErrorKind::InvalidInput, r.message);  // the source the user named does not deliver
+    if (s) {
+      ++loaded;
+      return;
+    }
+    ++failed;
+    if (!first) first = s.error();
+  });
+  if (failed == 0) return {};
+  if (loaded == 0) return *first;
+  if (limits.log)
+    limits.log->warn("ground: {} of {} tiles failed and are taken as no data (first: {})", failed, tiles.size(),
+                     first->message);
   return {};
 }
 
@@ -84,23 +128,17 @@ Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::Datas
   const int hz = finestZoomWithin(meta, limits.maxHeightPixels, limits.maxSide);
   static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, hz);
   mosaic.heights.assign(pixels(mosaic), std::numeric_limits<float>::quiet_NaN());
-  auto loadHeight = [&](const geo::TileId& id) -> Result<std::optional<datasets::HeightTile>> {
-    const std::string path = datasetRelativePath({TileLayer::Height, id}, meta);
-    auto bytes = source.readText(path);
-    if (!bytes) {
-      if (bytes.error().kind == ErrorKind::NotFound) return std::optional<datasets::HeightTile>{};
-      return bytes.error();
-    }
-    const auto* data = reinterpret_cast<const uint8_t*>(bytes->data());
-    auto t =
-        datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding, source.describe() + "/" + path);
+  auto pathOf = [&](const geo::TileId& id) { return datasetRelativePath({TileLayer::Height, id}, meta); };
+  auto use = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
+    auto t = datasets::decodeHeightTile(bytes, id, meta.elevationEncoding, name);
     if (!t) return t.error();
-    return std::optional<datasets::HeightTile>(std::move(*t));
+    if (t->size != datasets::kTileSize)
+      return makeError(ErrorKind::InvalidInput, name + ": " + std::to_string(t->size) + " pixels a side, not " +
+                                                    std::to_string(datasets::kTileSize));
+    forEachPixelOf(mosaic, id, [&](int px, int py, size_t i) { mosaic.heights[i] = t->at(px, py); });
+    return {};
   };
-  Status s = forEachTilePixel(mosaic, loadHeight, [&](const datasets::HeightTile& t, int px, int py, size_t i) {
-    mosaic.heights[i] = t.at(px, py);
-  });
-  if (!s) return s.error();
+  if (Status s = loadLayer(source, tilesUnder(mosaic), limits, pathOf, use); !s) return s.error();
   return mosaic;
 }
 
@@ -118,7 +156,7 @@ Result<std::vector<uint8_t>> loadLandcoverClasses(TileSource& source, const geo:
 }
 
 Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
-                                        const MercatorRaster& grid) {
+                                        const MercatorRaster& grid, const SnapshotLimits& limits) {
   if (!meta.imagery)
     return makeError(ErrorKind::InvalidInput, source.describe() + ": the dataset has no imagery");
   ImageryMosaic mosaic;
@@ -126,52 +164,45 @@ Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::Data
   mosaic.rgba.assign(pixels(grid) * 4, 0);
   if (meta.ndvi) mosaic.ndvi.assign(pixels(grid), 0);
   if (meta.landcover) mosaic.landcover.assign(pixels(grid), 0);
-  // Both layers of one tile at once: the NDVI tile lies over the imagery tile pixel for pixel.
-  auto loadImagery = [&](const geo::TileId& id) -> Result<std::optional<datasets::ColorTile>> {
-    const std::string path = datasetRelativePath({TileLayer::Imagery, id}, meta);
-    auto bytes = source.readText(path);
-    if (!bytes) {
-      if (bytes.error().kind == ErrorKind::NotFound) return std::optional<datasets::ColorTile>{};
-      return bytes.error();
-    }
-    auto t = datasets::decodeColorTile({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, id,
-                                       source.describe() + "/" + path);
-    if (!t) return t.error();
-    if (meta.ndvi) {
-      const std::string ndviPath = datasets::ndviTilePath({}, id).generic_string();
-      auto ndviBytes = source.readText(ndviPath);
-      if (ndviBytes) {
-        auto n = datasets::decodeNdviTile({reinterpret_cast<const uint8_t*>(ndviBytes->data()), ndviBytes->size()},
-                                          id, source.describe() + "/" + ndviPath, t->size);
-        if (!n) return n.error();
-        t->ndvi = std::move(*n);
-      } else if (ndviBytes.error().kind != ErrorKind::NotFound) {
-        return ndviBytes.error();
-      }
-    }
-    return std::optional<datasets::ColorTile>(std::move(*t));
+  const int n = datasets::kTileSize;
+  auto sizeProblem = [n](const std::string& name, int size) {
+    return makeError(ErrorKind::InvalidInput,
+                     name + ": " + std::to_string(size) + " pixels a side, not " + std::to_string(n));
   };
-  Status s = forEachTilePixel(mosaic, loadImagery, [&](const datasets::ColorTile& t, int px, int py, size_t i) {
-    const size_t at = (static_cast<size_t>(py) * static_cast<size_t>(t.size) + static_cast<size_t>(px));
-    for (size_t c = 0; c < 4; ++c) mosaic.rgba[4 * i + c] = t.rgba[4 * at + c];
-    if (!t.ndvi.empty()) mosaic.ndvi[i] = t.ndvi[at];
-  });
-  if (!s) return s.error();
+  std::vector<geo::TileId> withImagery;  // the NDVI tiles lie over these, pixel for pixel
+  auto imageryPath = [&](const geo::TileId& id) { return datasetRelativePath({TileLayer::Imagery, id}, meta); };
+  auto useImagery = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
+    auto t = datasets::decodeColorTile(bytes, id, name);
+    if (!t) return t.error();
+    if (t->size != n) return sizeProblem(name, t->size);
+    forEachPixelOf(mosaic, id, [&](int px, int py, size_t i) {
+      const size_t at = static_cast<size_t>(py) * static_cast<size_t>(n) + static_cast<size_t>(px);
+      for (size_t c = 0; c < 4; ++c) mosaic.rgba[4 * i + c] = t->rgba[4 * at + c];
+    });
+    withImagery.push_back(id);
+    return {};
+  };
+  if (Status s = loadLayer(source, tilesUnder(mosaic), limits, imageryPath, useImagery); !s) return s.error();
+  if (meta.ndvi && !withImagery.empty()) {
+    auto ndviPath = [](const geo::TileId& id) { return datasets::ndviTilePath({}, id).generic_string(); };
+    auto useNdvi = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
+      auto v = datasets::decodeNdviTile(bytes, id, name, n);
+      if (!v) return v.error();
+      forEachPixelOf(mosaic, id, [&](int px, int py, size_t i) { mosaic.ndvi[i] = (*v)[size_t(py) * size_t(n) + size_t(px)]; });
+      return {};
+    };
+    if (Status s = loadLayer(source, withImagery, limits, ndviPath, useNdvi); !s) return s.error();
+  }
   if (!meta.landcover) return mosaic;
   // The landcover tiles of the same ids over the same pixels (a missing one: 0, no class).
-  auto loadClasses = [&](const geo::TileId& id) -> Result<std::optional<datasets::LandcoverTile>> {
-    auto classes = loadLandcoverClasses(source, id, datasets::kTileSize);
-    if (!classes) return classes.error();
-    if (classes->empty()) return std::optional<datasets::LandcoverTile>{};
-    datasets::LandcoverTile t;
-    t.id = id;
-    t.classes = std::move(*classes);
-    return std::optional<datasets::LandcoverTile>(std::move(t));
+  auto landcoverPath = [](const geo::TileId& id) { return datasets::landcoverTilePath({}, id).generic_string(); };
+  auto useLandcover = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
+    auto t = datasets::decodeLandcoverTile(bytes, id, name, n);
+    if (!t) return t.error();
+    forEachPixelOf(mosaic, id, [&](int px, int py, size_t i) { mosaic.landcover[i] = t->at(px, py); });
+    return {};
   };
-  s = forEachTilePixel(mosaic, loadClasses, [&](const datasets::LandcoverTile& t, int px, int py, size_t i) {
-    mosaic.landcover[i] = t.at(px, py);
-  });
-  if (!s) return s.error();
+  if (Status s = loadLayer(source, tilesUnder(mosaic), limits, landcoverPath, useLandcover); !s) return s.error();
   return mosaic;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/log.h"
 #include "core/result.h"
 #include "datasets/dataset_format.h"
 #include "streaming/tile_source.h"
@@ -31,13 +32,18 @@ struct HeightMosaic : MercatorRaster {
 struct SnapshotLimits {
   uint64_t maxHeightPixels = 1'000'000;
   int maxSide = 4096;
+  long deadlineMs = 60'000;  // each layer's tiles, fetched as one batch (ground_fetch.h)
+  Logger log;                // the warning about tiles that failed; null: none
 };
 
 // Heights of a whole dataset at one zoom, read through a tile source: the finest zoom within
 // the limits (never finer than the dataset's max zoom), cropped to the dataset's bounds. A tile
 // the source does not have is nodata. Blocking: for what must be known before a flight starts —
-// the ground under scripted paths (terrain-relative altitudes) — never on the frame path. Errors
-// name the source's file or URL.
+// the ground under scripted paths (terrain-relative altitudes) — never on the frame path. The
+// tiles are fetched at once, like the streamer's (retries, per-request deadlines, caps), within
+// limits.deadlineMs; a tile that still fails, or does not decode as a tile of the dataset's size,
+// is nodata too, with one warning (limits.log) for all of them: only when every tile fails is it
+// an error (InvalidInput, the first failure, naming the file or URL).
 Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
                                        const SnapshotLimits& limits);
 
@@ -56,13 +62,14 @@ struct ImageryMosaic : MercatorRaster {
 
 // The dataset's imagery tiles of `grid.zoom` mosaicked on `grid` (a loadGroundHeights result, or
 // its MercatorRaster part): pixel for pixel the same Web Mercator pixels. A missing imagery tile
-// is transparent, a missing NDVI tile 0 (no NDVI). Blocking, like loadGroundHeights. Errors:
-// InvalidInput for a dataset without imagery or a corrupt tile (named), Io from the source.
+// is transparent, a missing NDVI tile 0 (no NDVI). Blocking, and failed tiles are handled, like
+// loadGroundHeights'. Errors: InvalidInput for a dataset without imagery, or when every tile of a
+// layer failed (the first failure, named).
 // The landcover tile `id`'s class codes (size × size, datasets/landcover.h), empty where the
 // source has no such tile. Errors: a corrupt tile (InvalidInput, named), Io from the source.
 Result<std::vector<uint8_t>> loadLandcoverClasses(TileSource& source, const geo::TileId& id, int size);
 
 Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::DatasetMeta& meta,
-                                        const MercatorRaster& grid);
+                                        const MercatorRaster& grid, const SnapshotLimits& limits = {});
 
 }  // namespace vegstream::streaming

@@ -183,6 +183,17 @@ Status DiskTileCache::put(const std::string& key, std::span<const uint8_t> bytes
   return {};
 }
 
+void DiskTileCache::remove(const std::string& key) {
+  const fs::path rel = relativeFileFor(key);
+  std::lock_guard lock(mutex_);
+  std::error_code ec;
+  fs::remove(dir_ / rel, ec);
+  if (ec && log_) log_->warn("tile cache: cannot remove {}: {}", (dir_ / rel).string(), ec.message());
+  if (entries_.count(rel.generic_string()) != 0) ++stats_.evictions;
+  forgetLocked(rel);
+  stats_.files = entries_.size();
+}
+
 DiskCacheStats DiskTileCache::stats() const {
   std::lock_guard lock(mutex_);
   return stats_;

@@ -51,6 +51,9 @@ class DiskTileCache {
   // Stores `bytes` under `key` (replacing an older copy), then evicts down to the budget.
   Status put(const std::string& key, std::span<const uint8_t> bytes);
 
+  // Removes the copy of `key`, if any (a cached tile that no longer passes the tile check).
+  void remove(const std::string& key);
+
   DiskCacheStats stats() const;
   uint64_t budgetBytes() const { return budgetBytes_; }
   const std::filesystem::path& dir() const { return dir_; }

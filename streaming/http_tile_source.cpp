@@ -21,87 +21,31 @@
 
 #include <curl/curl.h>
 
+#include "datasets/http_limits.h"
 #include "datasets/http_retry_policy.h"
 #include "streaming/disk_tile_cache.h"
+#include "streaming/http_transfer.h"
+#include "streaming/http_url.h"
 
 namespace vegstream::streaming {
 namespace {
 using datasets::AttemptEnd;
 using datasets::AttemptVerdict;
 using datasets::backoffDelayMs;
-using datasets::describeAttempt;
 using datasets::judgeAttempt;
+using detail::configureAttempt;
+using detail::readAttemptEnd;
+using detail::Transfer;
 
-constexpr curl_off_t kMaxBodyBytes = 256ll << 20;  // no tile is this large: a server gone wrong
-constexpr long kIdlePollMs = 1000;                 // upper bound of one curl_multi_poll wait
-
-void initCurlOnce() {
-  static std::once_flag once;
-  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
-}
-
-// One request from start() to its callback, across all its attempts.
-struct Transfer {
-  uint64_t seq = 0;  // start order: queued transfers launch in this order
-  RequestId id = 0;
-  bool isTile = true;  // start()ed (counted, cancellable, cached) or readText()'s
-  std::string url;
-  std::string cacheKey;  // the URL without its scheme
-  FetchCallback done;
-  int attempts = 0;
-  double notBeforeS = 0.0;  // back-off: not launched again before this (clock seconds)
-  CURL* easy = nullptr;     // non-null while running
-  std::vector<uint8_t> body;
-  char errorBuffer[CURL_ERROR_SIZE] = {};
-  std::string lastProblem;
-};
+constexpr long kIdlePollMs = 1000;  // upper bound of one curl_multi_poll wait
+constexpr int kMaxRedirects = 5;  // per request
 
 struct Command {
   std::unique_ptr<Transfer> start;  // null: cancel `cancelId`
   RequestId cancelId = 0;
 };
 
-size_t appendBody(char* data, size_t size, size_t count, void* user) {
-  auto* t = static_cast<Transfer*>(user);
-  t->body.insert(t->body.end(), reinterpret_cast<uint8_t*>(data), reinterpret_cast<uint8_t*>(data) + size * count);
-  return size * count;
-}
-
-std::string percentEncodePath(const std::string& path) {
-  static const char* hex = "0123456789ABCDEF";
-  std::string out;
-  for (char c : path) {
-    const auto u = static_cast<unsigned char>(c);
-    const bool keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' ||
-                      c == '.' || c == '_' || c == '~' || c == '/';
-    if (keep) {
-      out += c;
-    } else {
-      out += '%';
-      out += hex[u >> 4];
-      out += hex[u & 15];
-    }
-  }
-  return out;
-}
-
 }  // namespace
-
-Status checkHttpUrl(const std::string& url) {
-  initCurlOnce();
-  CURLU* u = curl_url();
-  const CURLUcode rc = curl_url_set(u, CURLUPART_URL, url.c_str(), 0);
-  char* scheme = nullptr;
-  char* host = nullptr;
-  bool good = rc == CURLUE_OK && curl_url_get(u, CURLUPART_SCHEME, &scheme, 0) == CURLUE_OK &&
-              curl_url_get(u, CURLUPART_HOST, &host, 0) == CURLUE_OK;
-  if (good) good = (std::string(scheme) == "http" || std::string(scheme) == "https") && host[0] != '\0';
-  curl_free(scheme);
-  curl_free(host);
-  curl_url_cleanup(u);
-  if (!good) return makeError(ErrorKind::InvalidInput, "'" + url + "' is not an http:// or https:// URL with a host");
-  return {};
-}
 
 struct HttpTileSource::Impl {
   enum class Loop { NotStarted, Running, Done };
@@ -121,6 +65,7 @@ struct HttpTileSource::Impl {
   std::unordered_set<RequestId> live;  // started tiles not yet called back
   SourceCounters counters;
   HttpTransportStats transport;
+  std::shared_ptr<const TileCheck> tileCheck;  // null: none set
 
   // I/O thread only.
   std::map<uint64_t, std::unique_ptr<Transfer>> transfers;  // by seq: queued, backing off, running
@@ -168,6 +113,9 @@ struct HttpTileSource::Impl {
   void launch(Transfer& t);
   void drainFinished();
   void endAttempt(Transfer& t, CURLcode code);
+  bool followRedirect(Transfer& t, const AttemptEnd& end);
+  Status checkTile(const Transfer& t, std::span<const uint8_t> bytes);
+  void retryOrFail(Transfer& t);
   void stopRunning(Transfer& t);
   void complete(uint64_t seq, FetchOutcome outcome, std::string message);
   long pollTimeoutMs(double nowS) const;
@@ -214,11 +162,28 @@ void HttpTileSource::Impl::accept(std::unique_ptr<Transfer> t) {
   if (isTile) seqOfTile[t->id] = seq;
   std::optional<std::vector<uint8_t>> cached;
   if (isTile && cache) cached = cache->get(t->cacheKey);
+  if (cached) {
+    if (Status s = checkTile(*t, *cached); !s) {  // a copy from an older run, or a bad disk: fetch it again
+      log->warn("tile cache: dropped {}: {}", t->cacheKey, s.error().message);
+      cache->remove(t->cacheKey);
+      cached.reset();
+    }
+  }
   transfers.emplace(seq, std::move(t));
   if (cached) {
-    transfers[seq]->body = std::move(*cached);
+    transfers[seq]->body.bytes = std::move(*cached);
     complete(seq, FetchOutcome::Ok, {});
   }
+}
+
+Status HttpTileSource::Impl::checkTile(const Transfer& t, std::span<const uint8_t> bytes) {
+  std::shared_ptr<const TileCheck> check;
+  {
+    std::lock_guard lock(mutex);
+    check = tileCheck;
+  }
+  if (!check) return {};
+  return (*check)(t.path, bytes);
 }
 
 void HttpTileSource::Impl::launchReady(double nowS) {
@@ -231,26 +196,9 @@ void HttpTileSource::Impl::launchReady(double nowS) {
 void HttpTileSource::Impl::launch(Transfer& t) {
   CURL* e = curl_easy_init();
   assert(e != nullptr);
-  t.body.clear();
-  t.errorBuffer[0] = '\0';
-  curl_easy_setopt(e, CURLOPT_URL, t.url.c_str());
-  curl_easy_setopt(e, CURLOPT_PRIVATE, &t);
-  curl_easy_setopt(e, CURLOPT_WRITEFUNCTION, appendBody);
-  curl_easy_setopt(e, CURLOPT_WRITEDATA, &t);
-  curl_easy_setopt(e, CURLOPT_ERRORBUFFER, t.errorBuffer);
-  curl_easy_setopt(e, CURLOPT_NOSIGNAL, 1L);
-  curl_easy_setopt(e, CURLOPT_CONNECTTIMEOUT_MS, opt.connectTimeoutMs);
-  curl_easy_setopt(e, CURLOPT_TIMEOUT_MS, opt.totalTimeoutMs);
-  curl_easy_setopt(e, CURLOPT_FOLLOWLOCATION, 1L);
-  curl_easy_setopt(e, CURLOPT_MAXREDIRS, 5L);
-  curl_easy_setopt(e, CURLOPT_MAXFILESIZE_LARGE, kMaxBodyBytes);
-  curl_easy_setopt(e, CURLOPT_HTTP_VERSION, static_cast<long>(CURL_HTTP_VERSION_2TLS));
-  // Over TLS, wait for ALPN to say whether the connection being set up multiplexes (HTTP/2)
-  // rather than opening another. Never over plain http: HTTP/1.1 is known only once the first
-  // answer arrives, and every other transfer would wait for it.
-  if (t.url.rfind("https://", 0) == 0) curl_easy_setopt(e, CURLOPT_PIPEWAIT, 1L);
-  curl_easy_setopt(e, CURLOPT_TCP_KEEPALIVE, 1L);
-  curl_easy_setopt(e, CURLOPT_USERAGENT, "vegstream");
+  const double nowS = clock->nowS();
+  if (t.attempts == 0 && t.redirects == 0) t.deadlineS = nowS + static_cast<double>(opt.requestDeadlineMs) / 1000.0;
+  configureAttempt(e, t, opt, nowS);
   t.easy = e;
   ++t.attempts;
   ++running;
@@ -270,35 +218,60 @@ void HttpTileSource::Impl::drainFinished() {
 }
 
 void HttpTileSource::Impl::endAttempt(Transfer& t, CURLcode code) {
-  AttemptEnd end;
-  end.code = code;
-  curl_easy_getinfo(t.easy, CURLINFO_RESPONSE_CODE, &end.httpStatus);
-  curl_off_t length = -1;
-  curl_easy_getinfo(t.easy, CURLINFO_CONTENT_LENGTH_DOWNLOAD_T, &length);
-  end.contentLength = length;
-  end.bodyBytes = t.body.size();
-  t.lastProblem = describeAttempt(end, t.errorBuffer);
+  const AttemptEnd end = readAttemptEnd(t, code, opt.maxBodyBytes);
+  if (code == CURLE_OK && datasets::isRedirectStatus(end.httpStatus) && followRedirect(t, end)) return;
   stopRunning(t);
 
-  const AttemptVerdict verdict = judgeAttempt(end);
-  if (verdict == AttemptVerdict::Ok) {
-    if (t.isTile && cache) {
-      if (Status s = cache->put(t.cacheKey, t.body); !s) log->warn("tile cache: {}", s.error().message);
+  AttemptVerdict verdict = judgeAttempt(end);
+  if (verdict == AttemptVerdict::Ok && t.isTile && cache) {
+    if (Status s = checkTile(t, t.body.bytes); !s) {
+      t.lastProblem = "not the tile it claims to be: " + s.error().message;
+      verdict = AttemptVerdict::Retry;  // a proxy's error page may be gone next time; never cached
+    } else if (Status put = cache->put(t.cacheKey, t.body.bytes); !put) {
+      log->warn("tile cache: {}", put.error().message);
     }
+  }
+  if (verdict == AttemptVerdict::Ok) {
     complete(t.seq, FetchOutcome::Ok, {});
   } else if (verdict == AttemptVerdict::Missing) {
-    complete(t.seq, FetchOutcome::Missing, "GET " + t.url + ": " + t.lastProblem);
+    complete(t.seq, FetchOutcome::Missing, "GET " + t.requestUrl + ": " + t.lastProblem);
   } else if (verdict == AttemptVerdict::Retry && t.attempts < opt.maxAttempts) {
-    const long delay = backoffDelayMs(t.attempts + 1, t.seq, opt.backoffBaseMs, opt.backoffMaxMs);
-    log->debug("GET {}: {}; attempt {} in {} ms", t.url, t.lastProblem, t.attempts + 1, delay);
-    t.notBeforeS = clock->nowS() + static_cast<double>(delay) / 1000.0;
-    if (t.isTile) {
-      std::lock_guard lock(mutex);
-      ++counters.retries;
-    }
+    retryOrFail(t);
   } else {
     complete(t.seq, FetchOutcome::Failed,
-             "GET " + t.url + ": " + t.lastProblem + " (" + std::to_string(t.attempts) + " attempts)");
+             "GET " + t.requestUrl + ": " + t.lastProblem + " (" + std::to_string(t.attempts) + " attempts)");
+  }
+}
+
+// A 3xx: true when the transfer goes on at the redirect's target (relaunched at once, not an
+// attempt); false when the redirect is refused, with t.lastProblem saying why (then Failed).
+bool HttpTileSource::Impl::followRedirect(Transfer& t, const AttemptEnd& end) {
+  const std::optional<std::string> target = detail::redirectHop(t, end.httpStatus, opt.allowRedirects, kMaxRedirects);
+  if (!target) return false;
+  stopRunning(t);
+  log->debug("GET {}: HTTP {} to {}", t.requestUrl, end.httpStatus, *target);
+  t.url = *target;
+  ++t.redirects;
+  --t.attempts;  // launch() counts it again
+  t.notBeforeS = 0.0;
+  return true;
+}
+
+// After a retryable attempt: the next one after a back-off, unless that passes the deadline.
+void HttpTileSource::Impl::retryOrFail(Transfer& t) {
+  const long delay = backoffDelayMs(t.attempts + 1, t.seq, opt.backoffBaseMs, opt.backoffMaxMs);
+  const double nowS = clock->nowS();
+  if (nowS + static_cast<double>(delay) / 1000.0 >= t.deadlineS) {
+    complete(t.seq, FetchOutcome::Failed,
+             "GET " + t.requestUrl + ": " + t.lastProblem + " (" + std::to_string(t.attempts) +
+                 " attempts; the request's deadline of " + std::to_string(opt.requestDeadlineMs) + " ms passed)");
+    return;
+  }
+  log->debug("GET {}: {}; attempt {} in {} ms", t.requestUrl, t.lastProblem, t.attempts + 1, delay);
+  t.notBeforeS = nowS + static_cast<double>(delay) / 1000.0;
+  if (t.isTile) {
+    std::lock_guard lock(mutex);
+    ++counters.retries;
   }
 }
 
@@ -325,7 +298,7 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
   r.message = std::move(message);
   r.attempts = t->attempts;
   r.fromCache = outcome == FetchOutcome::Ok && t->attempts == 0;
-  if (outcome == FetchOutcome::Ok) r.bytes = std::move(t->body);
+  if (outcome == FetchOutcome::Ok) r.bytes = std::move(t->body.bytes);
   if (outcome == FetchOutcome::Missing || outcome == FetchOutcome::Failed) log->debug("{}", r.message);
   if (t->isTile) {
     seqOfTile.erase(t->id);
@@ -418,7 +391,8 @@ std::string HttpTileSource::urlFor(const std::string& relativePath) const {
 Result<std::string> HttpTileSource::readText(const std::string& relativePath) {
   auto t = std::make_unique<Transfer>();
   t->isTile = false;
-  t->url = urlFor(relativePath);
+  t->url = t->requestUrl = urlFor(relativePath);
+  t->path = relativePath;
   // Shared, so that set_value never runs on a promise this frame has already destroyed.
   auto promise = std::make_shared<std::promise<FetchResult>>();
   std::future<FetchResult> future = promise->get_future();
@@ -432,13 +406,16 @@ Result<std::string> HttpTileSource::readText(const std::string& relativePath) {
     case FetchOutcome::Cancelled: return makeError(ErrorKind::Io, "GET " + url + ": " + r.message);
     case FetchOutcome::Failed: break;
   }
-  return makeError(ErrorKind::Io, r.message);
+  // As the importer's URL sources (datasets/http_fetch.h): the URL the user named does not
+  // deliver, after every retry — a message naming it, exit 2.
+  return makeError(ErrorKind::InvalidInput, r.message);
 }
 
 void HttpTileSource::start(RequestId id, const std::string& relativePath, FetchCallback done) {
   auto t = std::make_unique<Transfer>();
   t->id = id;
-  t->url = urlFor(relativePath);
+  t->url = t->requestUrl = urlFor(relativePath);
+  t->path = relativePath;
   t->cacheKey = t->url.substr(t->url.find("://") + 3);
   t->done = std::move(done);
   impl_->post(Command{std::move(t), 0});
@@ -449,6 +426,11 @@ void HttpTileSource::cancel(RequestId id) { impl_->post(Command{nullptr, id}); }
 std::size_t HttpTileSource::inFlight() const {
   std::lock_guard lock(impl_->mutex);
   return impl_->live.size();
+}
+
+void HttpTileSource::setTileCheck(TileCheck check) {
+  std::lock_guard lock(impl_->mutex);
+  impl_->tileCheck = check ? std::make_shared<const TileCheck>(std::move(check)) : nullptr;
 }
 
 SourceCounters HttpTileSource::counters() const {

@@ -13,8 +13,20 @@
 // and truncated bodies are retried after an exponential back-off with jitter, up to
 // maxAttempts tries in all; 404/410 end as Missing and other 4xx as Failed at once.
 //
-// With a cache directory, Ok tiles are also written to a DiskTileCache, and a start() whose
-// file is cached is answered from it (FetchResult::fromCache) without touching the network.
+// Limits (datasets/http_limits.h): a body is capped as announced and as received (maxBodyBytes),
+// an attempt that stalls or trickles is aborted (low-speed limit) and retried, each attempt
+// has a time-out and each request a deadline over all its attempts and back-offs (counted from
+// its first launch, not from start(): queued requests do not use it up). Redirects are followed
+// by hand, at most 5, to http(s) only, and to the base URL's host only unless allowRedirects.
+// A tile image (.png, .jpg, .webp) answered 2xx with a textual Content-Type (an HTML error page)
+// is retried, then Failed.
+//
+// With a cache directory, Ok tiles are also written to a DiskTileCache — only once they pass the
+// tile check (setTileCheck; the scene always sets one, streaming/tile_check.h; without one only
+// the transport checks above guard the cache) — and a start() whose file is cached
+// is answered from it (FetchResult::fromCache) without touching the network, after the same
+// check: a cached copy that fails it is removed and the tile fetched again. A network answer that
+// fails the check is retried like a truncated body, then Failed: it is never cached.
 // readText() never uses the cache: dataset.json is always read fresh.
 //
 // Callbacks run on the I/O task, exactly once per start(). The destructor cancels what is
@@ -33,6 +45,8 @@
 #include "core/clock.h"
 #include "core/log.h"
 #include "core/task_runner.h"
+#include "streaming/http_url.h"  // checkHttpUrl
+#include "streaming/tile_check.h"
 #include "streaming/tile_source.h"
 
 namespace vegstream::streaming {
@@ -42,6 +56,11 @@ struct HttpSourceOptions {
   int maxInFlight = 8;                            // transfers running at once (≥ 1)
   long connectTimeoutMs = 5000;                   // per attempt
   long totalTimeoutMs = 20000;                    // per attempt, connect included
+  long requestDeadlineMs = 30000;                 // all attempts and back-offs of one request
+  long lowSpeedBytesPerS = 1024;                  // an attempt slower than this …
+  long lowSpeedTimeS = 5;                         // … for this long is aborted (a stall): retried
+  uint64_t maxBodyBytes = 16ull << 20;            // announced or received: no tile is this large
+  bool allowRedirects = false;                    // follow redirects to other hosts (http(s) only, always)
   int maxAttempts = 4;                            // tries in all (≥ 1): 1 = no retry
   long backoffBaseMs = 100;                       // delay before the 2nd attempt; doubles each time …
   long backoffMaxMs = 3000;                       // … up to this, then jittered down to half of it at most
@@ -76,6 +95,8 @@ class HttpTileSource final : public TileSource {
   void cancel(RequestId id) override;
   std::size_t inFlight() const override;
   SourceCounters counters() const override;
+  // What the disk cache keeps from now on (see above); any thread. Null: transport checks only.
+  void setTileCheck(TileCheck check);
 
   HttpTransportStats transportStats() const;
   // The URL a relative path is fetched from (characters outside RFC 3986's unreserved set and
@@ -90,8 +111,5 @@ class HttpTileSource final : public TileSource {
   std::unique_ptr<ThreadPool> ownPool_;  // only without an injected runner; outlives impl_'s loop
   std::shared_ptr<Impl> impl_;           // shared with the I/O task
 };
-
-// OK when `url` is an http:// or https:// URL with a host, else InvalidInput naming it.
-Status checkHttpUrl(const std::string& url);
 
 }  // namespace vegstream::streaming

@@ -201,7 +201,7 @@ TEST_F(FaultServer, NotFoundAndReadTextFollowThePolicy) {
       {{FaultAction::Status500}, {FaultAction::Status500}, {FaultAction::Status500}, {FaultAction::Status500}});
   auto failed = source->readText("no.json");
   ASSERT_FALSE(failed.ok());
-  EXPECT_EQ(failed.error().kind, ErrorKind::Io);
+  EXPECT_EQ(failed.error().kind, ErrorKind::InvalidInput);  // the URL named does not deliver: exit 2
   EXPECT_NE(failed.error().message.find("no.json"), std::string::npos);
   EXPECT_EQ(server_->requestsFor("no.json"), 4u);
   auto missing = source->readText("no.json");

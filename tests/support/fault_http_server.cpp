@@ -22,16 +22,26 @@ namespace fs = std::filesystem;
 namespace {
 using Clock = std::chrono::steady_clock;
 
+constexpr size_t kEndlessChunk = 64 * 1024;  // zeros written per refill of an endless body
+const char* const kHtmlPage =
+    "<!DOCTYPE html><html><head><title>502 Bad Gateway</title></head><body><h1>Bad Gateway</h1>"
+    "<p>The proxy server received an invalid response from an upstream server.</p></body></html>\n";
+
 void setNonBlocking(int fd) { ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK); }
 
-std::string response(int status, const char* reason, const std::string& body, size_t announcedLength) {
+// An answer's head; announcedLength < 0: no Content-Length (the body ends when the connection does).
+std::string head(int status, const char* reason, long long announcedLength,
+                 const char* type = "application/octet-stream", const std::string& extra = {}) {
   std::ostringstream o;
-  o << "HTTP/1.1 " << status << ' ' << reason << "\r\n"
-    << "Content-Length: " << announcedLength << "\r\n"
-    << "Content-Type: application/octet-stream\r\n"
-    << "Connection: keep-alive\r\n\r\n"
-    << body;
+  o << "HTTP/1.1 " << status << ' ' << reason << "\r\n";
+  if (announcedLength >= 0) o << "Content-Length: " << announcedLength << "\r\n";
+  o << "Content-Type: " << type << "\r\n" << extra
+    << (announcedLength >= 0 ? "Connection: keep-alive\r\n\r\n" : "Connection: close\r\n\r\n");
   return o.str();
+}
+
+std::string response(int status, const char* reason, const std::string& body, size_t announcedLength) {
+  return head(status, reason, static_cast<long long>(announcedLength)) + body;
 }
 
 }  // namespace
@@ -47,6 +57,9 @@ struct FaultHttpServer::Connection {
   std::string out;
   size_t sent = 0;
   bool closeAfterWrite = false;
+  bool endless = false;           // refill `out` with zeros whenever it is sent
+  int trickleMs = 0;              // > 0: one byte, then this pause
+  Clock::time_point nextSendAt;   // trickling: not before this
   bool active = false;  // a request received and not yet answered
   bool closed = false;
 };
@@ -95,6 +108,12 @@ void FaultHttpServer::setDefault(Fault fault) {
   std::lock_guard lock(mutex_);
   default_ = fault;
 }
+void FaultHttpServer::clearFaults() {
+  std::lock_guard lock(mutex_);
+  byPath_.clear();
+  byNumber_.clear();
+  default_ = Fault{};
+}
 uint64_t FaultHttpServer::requestsFor(const std::string& path) const {
   std::lock_guard lock(mutex_);
   auto it = counts_.find(path);
@@ -115,6 +134,10 @@ int FaultHttpServer::maxConcurrent() const {
 uint64_t FaultHttpServer::abandoned() const {
   std::lock_guard lock(mutex_);
   return abandoned_;
+}
+uint64_t FaultHttpServer::bytesSent() const {
+  std::lock_guard lock(mutex_);
+  return bytesSent_;
 }
 
 bool FaultHttpServer::waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const {
@@ -159,22 +182,117 @@ void FaultHttpServer::onRequest(Connection& c, const std::string& path) {
   c.readyAt = Clock::now() + std::chrono::milliseconds(c.fault.delayMs);
 }
 
+// Ends a connection; a request still unanswered counts as abandoned unless we chose to drop it.
+void FaultHttpServer::finish(Connection& c, bool byClient) {
+  if (c.active) {
+    std::lock_guard lock(mutex_);
+    --active_;
+    abandoned_ += byClient ? 1 : 0;
+    c.active = false;
+    ++generation_;
+    changed_.notify_all();
+  }
+  ::close(c.fd);
+  c.closed = true;
+}
+
+void FaultHttpServer::answer(Connection& c) {
+  const Fault& f = c.fault;
+  const FaultAction a = f.action;
+  if (a == FaultAction::Reset) {
+    linger l{1, 0};
+    ::setsockopt(c.fd, SOL_SOCKET, SO_LINGER, &l, sizeof(l));
+    finish(c, false);
+    return;
+  }
+  if (a == FaultAction::Stall) {
+    c.readyAt = Clock::time_point::max();  // never: the client gives up and closes
+    return;
+  }
+  std::string body;
+  bool found = false;
+  if (c.path.find("..") == std::string::npos) {
+    std::ifstream file(root_ / c.path, std::ios::binary);
+    if (file && fs::is_regular_file(root_ / c.path)) {
+      body.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+      found = true;
+    }
+  }
+  c.sent = 0;
+  c.state = Connection::State::Writing;
+  c.trickleMs = 0;
+  c.endless = false;
+  switch (a) {
+    case FaultAction::Status500: c.out = response(500, "Internal Server Error", "error\n", 6); return;
+    case FaultAction::Status503: c.out = response(503, "Service Unavailable", "busy\n", 5); return;
+    case FaultAction::HtmlPage:
+    case FaultAction::HtmlAsImage: {
+      const std::string page = kHtmlPage;
+      c.out = head(200, "OK", static_cast<long long>(page.size()), a == FaultAction::HtmlPage ? "text/html" : "image/png") + page;
+      return;
+    }
+    case FaultAction::EndlessBody:
+    case FaultAction::HugeLength:
+      c.out = head(200, "OK", a == FaultAction::HugeLength ? 10'000'000'000LL : -1);
+      c.endless = true;
+      c.closeAfterWrite = true;
+      return;
+    case FaultAction::Redirect:
+      c.out = head(302, "Found", 0, "text/html", "Location: " + f.location + "\r\n");
+      return;
+    default: break;
+  }
+  if (a == FaultAction::NotFound || !found) {
+    c.out = response(404, "Not Found", "missing\n", 8);
+  } else if (a == FaultAction::Truncate) {
+    c.out = response(200, "OK", body.substr(0, body.size() / 2), body.size());
+    c.closeAfterWrite = true;
+  } else {
+    c.out = response(200, "OK", body, body.size());
+    if (a == FaultAction::Slowloris) c.trickleMs = std::max(1, f.trickleMs);
+  }
+}
+
+// Writes what it may of c.out; at its end, refills an endless body or finishes the answer.
+bool FaultHttpServer::writeSome(Connection& c, Clock::time_point now) {
+  if (c.trickleMs > 0 && now < c.nextSendAt) return true;
+  const size_t want = c.trickleMs > 0 ? std::min<size_t>(1, c.out.size() - c.sent) : c.out.size() - c.sent;
+  const ssize_t n = ::send(c.fd, c.out.data() + c.sent, want, MSG_NOSIGNAL);
+  if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+    finish(c, true);
+    return false;
+  }
+  if (n > 0) {
+    c.sent += static_cast<size_t>(n);
+    c.nextSendAt = now + std::chrono::milliseconds(c.trickleMs);
+    std::lock_guard lock(mutex_);
+    bytesSent_ += static_cast<uint64_t>(n);
+  }
+  if (c.sent < c.out.size()) return true;
+  if (c.endless) {
+    c.out.assign(kEndlessChunk, '\0');
+    c.sent = 0;
+    return true;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    --active_;
+    c.active = false;
+    ++generation_;
+    changed_.notify_all();
+  }
+  if (c.closeAfterWrite) {
+    finish(c, false);
+    return false;
+  }
+  c.state = Connection::State::Reading;
+  c.out.clear();
+  c.trickleMs = 0;
+  return true;
+}
+
 void FaultHttpServer::run() {
   std::vector<std::unique_ptr<Connection>> conns;
-
-  // Ends a connection; a request still unanswered counts as abandoned unless we chose to drop it.
-  auto finish = [&](Connection& c, bool byClient) {
-    if (c.active) {
-      std::lock_guard lock(mutex_);
-      --active_;
-      abandoned_ += byClient ? 1 : 0;
-      c.active = false;
-      ++generation_;
-      changed_.notify_all();
-    }
-    ::close(c.fd);
-    c.closed = true;
-  };
   // Takes the next complete request out of c.in, if there is one.
   auto takeRequest = [&](Connection& c) {
     const size_t end = c.in.find("\r\n\r\n");
@@ -187,48 +305,17 @@ void FaultHttpServer::run() {
     if (!target.empty() && target[0] == '/') target.erase(0, 1);
     onRequest(c, target);
   };
-  // The answer to the fault of the request being answered, or a reset.
-  auto answer = [&](Connection& c) {
-    const FaultAction a = c.fault.action;
-    if (a == FaultAction::Reset) {
-      linger l{1, 0};
-      ::setsockopt(c.fd, SOL_SOCKET, SO_LINGER, &l, sizeof(l));
-      finish(c, false);
-      return;
-    }
-    std::string body;
-    bool found = false;
-    if (c.path.find("..") == std::string::npos) {
-      std::ifstream f(root_ / c.path, std::ios::binary);
-      if (f && fs::is_regular_file(root_ / c.path)) {
-        body.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-        found = true;
-      }
-    }
-    if (a == FaultAction::Status500)
-      c.out = response(500, "Internal Server Error", "error\n", 6);
-    else if (a == FaultAction::Status503)
-      c.out = response(503, "Service Unavailable", "busy\n", 5);
-    else if (a == FaultAction::NotFound || !found)
-      c.out = response(404, "Not Found", "missing\n", 8);
-    else if (a == FaultAction::Truncate) {
-      c.out = response(200, "OK", body.substr(0, body.size() / 2), body.size());
-      c.closeAfterWrite = true;
-    } else
-      c.out = response(200, "OK", body, body.size());
-    c.sent = 0;
-    c.state = Connection::State::Writing;
-  };
-
   while (!stop_) {
     std::vector<pollfd> fds{{listenFd_, POLLIN, 0}, {wakeFds_[0], POLLIN, 0}};
     auto now = Clock::now();
     int timeoutMs = 100;
     for (auto& c : conns) {
-      const short events = c->state == Connection::State::Writing ? short(POLLIN | POLLOUT) : short(POLLIN);
-      fds.push_back({c->fd, events, 0});
-      if (c->state == Connection::State::Waiting) {
-        const auto ms = std::chrono::ceil<std::chrono::milliseconds>(c->readyAt - now).count();
+      const bool writing = c->state == Connection::State::Writing && (c->trickleMs == 0 || now >= c->nextSendAt);
+      fds.push_back({c->fd, writing ? short(POLLIN | POLLOUT) : short(POLLIN), 0});
+      const bool waiting = c->state == Connection::State::Waiting && c->readyAt != Clock::time_point::max();
+      if (waiting || (c->state == Connection::State::Writing && c->trickleMs > 0)) {
+        const auto at = waiting ? c->readyAt : c->nextSendAt;
+        const auto ms = std::chrono::ceil<std::chrono::milliseconds>(at - now).count();
         timeoutMs = std::min(timeoutMs, static_cast<int>(std::max<long long>(0, ms)));
       }
     }
@@ -262,30 +349,9 @@ void FaultHttpServer::run() {
       }
       if (c.state == Connection::State::Reading) takeRequest(c);
       if (c.state == Connection::State::Waiting && Clock::now() >= c.readyAt) answer(c);
-      if (!c.closed && c.state == Connection::State::Writing) {
-        const ssize_t n = ::send(c.fd, c.out.data() + c.sent, c.out.size() - c.sent, MSG_NOSIGNAL);
-        if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
-          finish(c, true);
-          continue;
-        }
-        if (n > 0) c.sent += static_cast<size_t>(n);
-        if (c.sent == c.out.size()) {
-          {
-            std::lock_guard lock(mutex_);
-            --active_;
-            c.active = false;
-            ++generation_;
-            changed_.notify_all();
-          }
-          if (c.closeAfterWrite) {
-            finish(c, false);
-            continue;
-          }
-          c.state = Connection::State::Reading;
-          c.out.clear();
-          takeRequest(c);  // a request that came while we were busy
-        }
-      }
+      if (!c.closed && c.state == Connection::State::Writing && writeSome(c, Clock::now()) &&
+          c.state == Connection::State::Reading)
+        takeRequest(c);  // a request that came while we were busy
     }
     conns.erase(std::remove_if(conns.begin(), conns.end(), [](const auto& c) { return c->closed; }), conns.end());
   }

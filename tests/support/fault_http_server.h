@@ -35,15 +35,26 @@ enum class FaultAction {
   NotFound,  // 404 even when the file exists
   Truncate,  // announce the whole Content-Length, send half the body, close
   Reset,     // SO_LINGER 0 and close: the client sees a connection reset, no answer
+  // Hostile answers (issue 42):
+  HtmlPage,     // 200, Content-Type text/html, an HTML error page (a proxy's "tile")
+  HtmlAsImage,  // the same page, but Content-Type image/png: only decoding can tell
+  EndlessBody,  // 200 without Content-Length, then zeros for ever (until the client closes)
+  HugeLength,   // 200 announcing a Content-Length of 10 GB, then zeros for ever
+  Slowloris,    // the file's answer, one byte every trickleMs (bytes trickling, never stalled)
+  Stall,        // the request is read and never answered (until the client closes)
+  Redirect,     // 302 to Fault::location
 };
 
 struct Fault {
   FaultAction action = FaultAction::Serve;
   int delayMs = 0;
+  std::string location;  // Redirect: the Location header, as given
+  int trickleMs = 200;   // Slowloris: the pause between two bytes
 };
 
 class FaultHttpServer {
  public:
+  using Clock = std::chrono::steady_clock;
   explicit FaultHttpServer(std::filesystem::path root);  // listens at once on a free port
   ~FaultHttpServer();                                    // closes everything, joins the thread
   FaultHttpServer(const FaultHttpServer&) = delete;
@@ -55,12 +66,14 @@ class FaultHttpServer {
   void scheduleForPath(const std::string& path, std::vector<Fault> faults);
   void scheduleForRequest(uint64_t requestNumber, Fault fault);
   void setDefault(Fault fault);
+  void clearFaults();  // every fault scheduled and the default: a healthy server again
 
   uint64_t requestsFor(const std::string& path) const;
   uint64_t totalRequests() const;
   uint64_t connectionsAccepted() const;
   int maxConcurrent() const;   // most requests being answered at one moment
   uint64_t abandoned() const;  // requests whose client closed before the answer was complete
+  uint64_t bytesSent() const;  // every byte written to any connection (headers included)
   // Waits until done() — a condition on the counters above — holds, checking it again each time
   // the server changes them (no polling); false if it still does not hold after `limit`.
   bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const;
@@ -69,6 +82,9 @@ class FaultHttpServer {
   struct Connection;
   void run();
   void onRequest(Connection& c, const std::string& path);
+  void answer(Connection& c);                    // the fault's answer, or a reset
+  bool writeSome(Connection& c, Clock::time_point now);  // false once the connection is gone
+  void finish(Connection& c, bool byClient);
   Fault faultFor(const std::string& path);
 
   std::filesystem::path root_;
@@ -82,7 +98,7 @@ class FaultHttpServer {
   std::map<uint64_t, Fault> byNumber_;
   Fault default_;
   std::map<std::string, uint64_t> counts_;
-  uint64_t total_ = 0, accepted_ = 0, abandoned_ = 0;
+  uint64_t total_ = 0, accepted_ = 0, abandoned_ = 0, bytesSent_ = 0;
   int active_ = 0, maxActive_ = 0;
   uint64_t generation_ = 0;                  // bumped (under mutex_) whenever a counter changes
   mutable std::condition_variable changed_;  // notified with it
