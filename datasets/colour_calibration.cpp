@@ -28,7 +28,9 @@ std::array<double, 3> guardedGains(const ColourCalibrationRecord& c, const Colou
     logMean += std::log(g[i]) / 3.0;
   }
   const double mean = std::exp(logMean);
-  for (double& x : g) x = std::clamp(x, mean / kMaxChannelGainRatio, mean * kMaxChannelGainRatio);
+  for (double& x : g)
+    x = std::clamp(std::clamp(x, mean / kMaxChannelGainRatio, mean * kMaxChannelGainRatio), 1.0 / kMaxLevelsGain,
+                   kMaxLevelsGain);
   return g;
 }
 
@@ -103,6 +105,9 @@ ColourCalibrationRecord estimateColourCalibration(const std::vector<float>& line
     c.black[i] = percentileOf(v, kBlackPercent);
     c.white[i] = percentileOf(v, kWhitePercent);
   }
+  double spread = 0.0;
+  for (size_t i = 0; i < 3; ++i) spread = std::max(spread, c.white[i] - c.black[i]);
+  if (spread < kMinSpread) return c;  // one colour: no measure of the levels, the identity
   c.gains = guardedGains(c, ref);
   std::vector<double> lum, chroma;
   measure(ch, c.gains, c.black, ref.black, lum, chroma);

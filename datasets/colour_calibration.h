@@ -16,7 +16,9 @@
 //      exposure, stretch, haze) gives the same y: the levels are equivariant to them.
 //      Guard: the channels' gains (W_c − B_c) / (hi_c − lo_c) are kept within kMaxChannelGainRatio
 //      of their geometric mean, so a scene of one colour (a field filling the frame) is not
-//      turned fully grey; a range below 1e-4 counts as 1e-4.
+//      turned fully grey; a range below 1e-4 counts as 1e-4. A scene whose channels all span less
+//      than kMinSpread (a flat synthetic image, one colour filling the frame) carries no measure
+//      of its levels: the identity. Every gain stays within 1/kMaxLevelsGain … kMaxLevelsGain.
 //   1b. grey balance: the near-neutral pixels (the kNeutralPercent least chromatic of the
 //      non-dark ones, after the levels) are taken to be grey under the scene's light (a robust
 //      grey-world on near-greys: roads, roofs, bare ground); per channel the median of y_c / Y over
@@ -53,6 +55,7 @@ namespace vegstream::datasets {
 
 inline constexpr double kBlackPercent = 1.0, kWhitePercent = 99.0, kDarkPercent = 10.0;
 inline constexpr double kMaxChannelGainRatio = 2.0;
+inline constexpr double kMinSpread = 0.02, kMaxLevelsGain = 16.0;
 inline constexpr double kNeutralPercent = 30.0, kMaxGreyGain = 1.5;
 inline constexpr double kMinChroma = 0.4, kMaxChroma = 3.0;
 inline constexpr double kMinExposure = 0.1, kMaxExposure = 10.0;

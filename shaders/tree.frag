@@ -34,7 +34,7 @@ void main() {
   gl_SampleMask[0] = -1;
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
-  float alpha = treeSharpCoverage(leaf ? treeCardShape(vUv, m.bark.w) : 1.0, 0.5);
+  float alpha = treeSharpCoverage(leaf ? treeCardShape(vUv, m.bark.w, push.mode == 1u ? 0.0 : 1.0) : 1.0, 0.5);
   if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
     if (any(greaterThan(abs(vCell), vec2(1.0)))) discard;  // outside this view's cell
     uint mask = treeSampleMask(alpha, push.samples, 0.5);

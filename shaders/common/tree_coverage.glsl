@@ -17,11 +17,12 @@ float treeSharpCoverage(float alpha, float edge) {
 // hash of its row and side): no two rows repeat, so a card reads as a spray rather than as the
 // regular chevrons of a sine. Where a row is finer than about a pixel (fwidth of the row
 // coordinate: the card seen from afar, its mip level as it were) the needles give way to their
-// mean coverage, so a distant crown keeps the coverage it has up close. Call in uniform control
-// flow (fwidth).
+// mean coverage, so a distant crown keeps the coverage it has up close; `fine` 0 takes the mean
+// everywhere (the shadow maps: a needle's shadow is finer than their texels, and a lone tree's
+// shadow must stay one piece). Call in uniform control flow (fwidth).
 const float kNeedleRows = 11.0;
 float needleHash(float row, float side) { return fract(sin(row * 12.9898 + side * 78.233) * 43758.5453); }
-float coniferNeedles(vec2 uv) {
+float coniferNeedles(vec2 uv, float fine) {
   float across = abs(uv.x - 0.5) * 2.0;
   float side = uv.x < 0.5 ? 0.0 : 1.0;
   float width = 1.0 - 0.4 * uv.y;  // the card itself is this trapezoid (vegetation/tree_model.cpp kConiferTipWidth)
@@ -33,15 +34,16 @@ float coniferNeedles(vec2 uv) {
   float f = v - row - 0.5 + 0.25 * (h - 0.5) - 0.35 * (g - 0.5) * across;  // phase and lean of this needle
   float len = mix(0.55, 1.0, g) * width;
   float needle = (1.0 - smoothstep(0.26, 0.4, abs(f))) * (1.0 - smoothstep(len - 0.1, len, across));
-  float detail = 1.0 - smoothstep(0.35, 0.9, fwidth(v));
+  float detail = fine * (1.0 - smoothstep(0.35, 0.9, fwidth(v)));
   float mean = 0.62 * (1.0 - smoothstep(0.75, 1.0, across / max(width, 1e-3)));
   return inside * max(twig, mix(mean, needle, detail));
 }
 
 // A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
-// needles, narrowing to the tip; broadleaf: a clump of three leaves. Call in uniform control flow.
-float treeCardShape(vec2 uv, float form) {
-  float needles = coniferNeedles(uv);  // before the branch: fwidth in uniform control flow
+// needles, narrowing to the tip; broadleaf: a clump of three leaves. `fine`: coniferNeedles'.
+// Call in uniform control flow.
+float treeCardShape(vec2 uv, float form, float fine) {
+  float needles = coniferNeedles(uv, fine);  // before the branch: fwidth in uniform control flow
   if (form < 0.5) return needles;
   float a = 0.0;
   for (int i = 0; i < 3; ++i) {
