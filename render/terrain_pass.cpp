@@ -216,14 +216,16 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
   auto* staging = static_cast<uint8_t*>(staging_[s].buffer().mapped);
   VkDeviceSize offset = 0;
   for (const ImageryUpload& u : uploads) {
-    assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
-    std::memcpy(staging + offset, u.rgba, kTileBytes);
+    assert(u.layer < layers_ && "the streamer's slots fit the array it sized");
+    // The tile-size check at the upload: only whole 256 × 256 tiles are copied.
+    if (u.rgba.size() != kTileBytes || (!u.ndvi.empty() && u.ndvi.size() != kNdviBytes)) continue;
+    std::memcpy(staging + offset, u.rgba.data(), kTileBytes);
     recordImageUpload(cmd, staging_[s].buffer(), imagery_, u.layer, offset);
     offset += kTileBytes;
     if (!withNdvi_) continue;
     // A tile without NDVI clears the layer's (0: none), so no earlier tile's NDVI lingers.
-    if (u.ndvi)
-      std::memcpy(staging + offset, u.ndvi, kNdviBytes);
+    if (!u.ndvi.empty())
+      std::memcpy(staging + offset, u.ndvi.data(), kNdviBytes);
     else
       std::memset(staging + offset, 0, kNdviBytes);
     recordImageUpload(cmd, staging_[s].buffer(), ndvi_, u.layer, offset);

@@ -39,13 +39,21 @@ MercatorRaster gridFor(const geo::GeoBounds& bounds, int z) {
 
 uint64_t pixels(const MercatorRaster& g) { return static_cast<uint64_t>(g.width) * static_cast<uint64_t>(g.height); }
 
-int finestZoomWithin(const datasets::DatasetMeta& meta, uint64_t maxPixels, int maxSide) {
-  int z = meta.minZoom;
+// The finest zoom whose grid fits the limits; when not even min_zoom's does (a dataset.json
+// whose min_zoom is 16 over a whole park), InvalidInput before anything is allocated.
+Result<int> finestZoomWithin(TileSource& source, const datasets::DatasetMeta& meta, const SnapshotLimits& limits) {
+  int z = -1;
   for (int candidate = meta.minZoom; candidate <= meta.maxZoom; ++candidate) {
     const MercatorRaster g = gridFor(meta.bounds, candidate);
-    if (pixels(g) <= maxPixels && g.width <= maxSide && g.height <= maxSide) z = candidate;
+    if (pixels(g) <= limits.maxHeightPixels && g.width <= limits.maxSide && g.height <= limits.maxSide) z = candidate;
   }
-  return z;
+  if (z >= 0) return z;
+  const MercatorRaster g = gridFor(meta.bounds, meta.minZoom);
+  return makeError(ErrorKind::InvalidInput,
+                   source.describe() + "/dataset.json: at its min_zoom " + std::to_string(meta.minZoom) +
+                       " the dataset's bounds are " + std::to_string(g.width) + "x" + std::to_string(g.height) +
+                       " pixels; the ground mosaic stops at " + std::to_string(limits.maxHeightPixels) +
+                       " pixels and " + std::to_string(limits.maxSide) + " a side (give a smaller min_zoom)");
 }
 
 // Calls visit(tile, colInTile, rowInTile, mosaicIndex) for every mosaic pixel, tile by tile, so
@@ -81,8 +89,9 @@ Status forEachTilePixel(const MercatorRaster& g, LoadTile&& load, Visit&& visit)
 Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
                                        const SnapshotLimits& limits) {
   HeightMosaic mosaic;
-  const int hz = finestZoomWithin(meta, limits.maxHeightPixels, limits.maxSide);
-  static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, hz);
+  const auto hz = finestZoomWithin(source, meta, limits);
+  if (!hz) return hz.error();
+  static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, *hz);
   mosaic.heights.assign(pixels(mosaic), std::numeric_limits<float>::quiet_NaN());
   auto loadHeight = [&](const geo::TileId& id) -> Result<std::optional<datasets::HeightTile>> {
     const std::string path = datasetRelativePath({TileLayer::Height, id}, meta);
@@ -93,7 +102,8 @@ Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::Datas
     }
     const auto* data = reinterpret_cast<const uint8_t*>(bytes->data());
     auto t =
-        datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding, source.describe() + "/" + path);
+        datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding, datasets::kTileSize,
+                                   source.describe() + "/" + path);
     if (!t) return t.error();
     return std::optional<datasets::HeightTile>(std::move(*t));
   };
@@ -135,7 +145,7 @@ Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::Data
       return bytes.error();
     }
     auto t = datasets::decodeColorTile({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, id,
-                                       source.describe() + "/" + path);
+                                       datasets::kTileSize, source.describe() + "/" + path);
     if (!t) return t.error();
     if (meta.ndvi) {
       const std::string ndviPath = datasets::ndviTilePath({}, id).generic_string();

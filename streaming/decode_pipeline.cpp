@@ -9,9 +9,9 @@
 
 namespace vegstream::streaming::detail {
 
-DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
-                               HeightExtraFn heightExtra)
-    : encoding_(encoding), heightExtra_(std::move(heightExtra)), runner_(runner), maxConcurrent_(maxConcurrent) {
+DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int tileSize, TaskRunner& runner,
+                               int maxConcurrent, HeightExtraFn heightExtra)
+    : encoding_(encoding), tileSize_(tileSize), heightExtra_(std::move(heightExtra)), runner_(runner), maxConcurrent_(maxConcurrent) {
   assert(maxConcurrent >= 1);
 }
 
@@ -40,6 +40,7 @@ void DecodePipeline::onFetched(const TileKey& key, const std::string& name, Fetc
   Completion c;
   c.id = result.id;
   c.attempts = result.attempts;
+  c.permanent = result.permanent;
   c.message = std::move(result.message);
   switch (result.outcome) {
     case FetchOutcome::Ok:
@@ -99,7 +100,7 @@ Completion DecodePipeline::decode(Job& job) const {
   c.id = job.id;
   try {
     if (job.key.layer == TileLayer::Height) {
-      auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, job.name);
+      auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, tileSize_, job.name);
       if (t) {
         c.heights = std::make_shared<const datasets::HeightTile>(std::move(t).value());
         if (heightExtra_) c.extra = heightExtra_(*c.heights);
@@ -107,9 +108,9 @@ Completion DecodePipeline::decode(Job& job) const {
         c.message = t.error().message;
       }
     } else {
-      auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
+      auto t = datasets::decodeColorTile(job.bytes, job.key.id, tileSize_, job.name);
       Result<std::vector<uint8_t>> ndvi = std::vector<uint8_t>{};
-      if (t && !job.ndviBytes.empty()) ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName);
+      if (t && !job.ndviBytes.empty()) ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName, tileSize_);
       if (t && ndvi) {
         t->ndvi = std::move(*ndvi);
         c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());

@@ -33,6 +33,7 @@ std::optional<FetchResult> joined(Join& j, std::vector<uint8_t>& ndviBytes) {
       out.outcome = FetchOutcome::Failed;
       out.bytes.clear();
       out.message = j.ndvi->message.empty() ? "the tile's NDVI could not be fetched" : j.ndvi->message;
+      out.permanent = j.ndvi->permanent;
       break;
   }
   out.attempts = std::max(out.attempts, j.ndvi->attempts);
