@@ -11,12 +11,10 @@
 
 namespace vegstream {
 
-inline constexpr size_t kPrintableChars = 80;   // a value from data
+inline constexpr size_t kPrintableChars = 80;       // a value from data
 inline constexpr size_t kPrintablePathChars = 400;  // a path: long ones are real
 
 std::string printable(std::string_view text, size_t maxChars = kPrintableChars);
-inline std::string printablePath(const std::filesystem::path& p) {
-  return printable(p.string(), kPrintablePathChars);
-}
+inline std::string printablePath(const std::filesystem::path& p) { return printable(p.string(), kPrintablePathChars); }
 
 }  // namespace vegstream

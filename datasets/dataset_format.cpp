@@ -121,7 +121,8 @@ Result<DeshadingRecord> parseDeshading(const json& d, const FieldReader& f) {
   DeshadingRecord r;
   VEG_TRY_ASSIGN(r.source, f.text(d, "source", at + ".source"));
   if (r.source != "imagery datetime" && r.source != "given" && r.source != "estimated" && r.source != "none")
-    return f.bad(at + ".source", concat("is '", printable(r.source), "'; expected imagery datetime, given, estimated or none"));
+    return f.bad(at + ".source",
+                 concat("is '", printable(r.source), "'; expected imagery datetime, given, estimated or none"));
   if (auto n = d.find("note"); n != d.end() && !n->is_null()) VEG_TRY_ASSIGN(r.note, f.text(d, "note", at + ".note"));
   if (r.source == "none") return r;
   VEG_TRY_ASSIGN(r.sunAzimuthDeg, f.number(d, "sun_azimuth_deg", at + ".sun_azimuth_deg", 0.0, 360.0));
@@ -167,7 +168,8 @@ Status parseLandcover(const json& lc, const FieldReader& f, DatasetMeta& m) {
     return f.bad("landcover.encoding", concat("is '", printable(encoding), "'; expected ", kLandcoverEncoding));
   VEG_TRY_ASSIGN(scheme, f.text(lc, "scheme", "landcover.scheme"));
   auto parsed = parseLandcoverScheme(scheme);
-  if (!parsed || !*parsed) return f.bad("landcover.scheme", concat("is '", printable(scheme), "'; expected worldcover or nlcd"));
+  if (!parsed || !*parsed)
+    return f.bad("landcover.scheme", concat("is '", printable(scheme), "'; expected worldcover or nlcd"));
   VEG_TRY_ASSIGN(count, f.integer(lc, "tile_count", "landcover.tile_count", 0, INT64_MAX));
   m.landcover = **parsed;
   m.landcoverTiles = static_cast<uint64_t>(count);
@@ -180,7 +182,8 @@ Status parseCanopy(const json& c, const FieldReader& f, DatasetMeta& m) {
   std::string encoding;
   int64_t zoom = 0, count = 0;
   VEG_TRY_ASSIGN(encoding, f.text(c, "encoding", "canopy.encoding"));
-  if (encoding != kCanopyEncoding) return f.bad("canopy.encoding", concat("is '", printable(encoding), "'; expected ", kCanopyEncoding));
+  if (encoding != kCanopyEncoding)
+    return f.bad("canopy.encoding", concat("is '", printable(encoding), "'; expected ", kCanopyEncoding));
   VEG_TRY_ASSIGN(zoom, f.integer(c, "zoom", "canopy.zoom", 0, 24));
   VEG_TRY_ASSIGN(count, f.integer(c, "tile_count", "canopy.tile_count", 0, INT64_MAX));
   m.canopyZoom = static_cast<int>(zoom);
@@ -228,7 +231,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   std::string enc;
   VEG_TRY_ASSIGN(enc, f.text(*e, "encoding", "elevation.encoding"));
   auto parsed = parseElevationEncoding(enc);
-  if (!parsed) return f.bad("elevation.encoding", concat("is '", printable(enc), "'; expected terrarium or terrain-rgb"));
+  if (!parsed)
+    return f.bad("elevation.encoding", concat("is '", printable(enc), "'; expected terrarium or terrain-rgb"));
   m.elevationEncoding = *parsed;
   int64_t count = 0;
   VEG_TRY_ASSIGN(count, f.integer(*e, "tile_count", "elevation.tile_count", 0, INT64_MAX));
@@ -420,7 +424,8 @@ Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::str
   try {
     return parseMeta(j, FieldReader(sourceName));
   } catch (const json::exception& e) {
-    return makeError(ErrorKind::InvalidInput, concat("'", printablePath(sourceName), "': ", jsonExceptionText(e.what())));
+    return makeError(ErrorKind::InvalidInput,
+                     concat("'", printablePath(sourceName), "': ", jsonExceptionText(e.what())));
   }
 }
 

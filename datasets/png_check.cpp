@@ -179,8 +179,9 @@ Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const st
       if (data[10] != 0 || data[11] != 0) return corrupt(name, "IHDR compression or filter method does not exist");
       if (auto p = headerProblem(h)) return corrupt(name, *p);
       if (h.width > maxSide || h.height > maxSide)  // before any inflate: the header bounds the work
-        return makeError(ErrorKind::InvalidInput, concat("tile '", name, "' is ", h.width, "x", h.height,
-                                                         " pixels; a tile here is at most ", maxSide, " pixels a side"));
+        return makeError(ErrorKind::InvalidInput,
+                         concat("tile '", name, "' is ", h.width, "x", h.height, " pixels; a tile here is at most ",
+                                maxSide, " pixels a side"));
       header = h;
     } else if (t == "PLTE") {
       if (havePalette || !idat.empty() || haveTrns) return corrupt(name, "PLTE is out of place");

@@ -130,7 +130,8 @@ Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::st
   // sees only the chunks it needs of a sound file (png_check.h).
   std::vector<uint8_t> checkedBytes;
   if (std::strcmp(*format, "tile.png") == 0) {
-    auto checked = checkedPng(bytes, name, expectedSize == kAnyTileSize ? kMaxTileSide : expectedSize);
+    const int maxSide = expectedSize == kAnyTileSize ? kMaxTileSide : std::clamp(expectedSize, 1, kMaxTileSide);
+    auto checked = checkedPng(bytes, name, static_cast<uint32_t>(maxSide));
     if (!checked) return checked.error();
     checkedBytes = std::move(*checked);
     bytes = checkedBytes;

@@ -51,7 +51,8 @@ struct Reader {
   Error fail(const std::string& field, const std::string& problem, const std::string& lineOf) const {
     std::string where = source;
     if (auto lc = positions.find(lineOf)) where += ":" + std::to_string(lc->line) + ":" + std::to_string(lc->column);
-    return makeError(ErrorKind::InvalidInput, where + ": " + (field.empty() ? "" : printable(field, 200) + ": ") + problem);
+    return makeError(ErrorKind::InvalidInput,
+                     where + ": " + (field.empty() ? "" : printable(field, 200) + ": ") + problem);
   }
 
   static std::string child(const std::string& path, const std::string& key) {
@@ -67,7 +68,8 @@ struct Reader {
         list += (list.empty() ? "" : ", ") + k;
         if (hint.empty() && editDistance(key, k) <= 2) hint = " (did you mean \"" + k + "\"?)";
       }
-      return fail(child(path, key), "unknown key \"" + printable(key) + "\"" + hint + "; known keys: " + list, child(path, key));
+      return fail(child(path, key), "unknown key \"" + printable(key) + "\"" + hint + "; known keys: " + list,
+                  child(path, key));
     }
     return std::nullopt;
   }
@@ -117,7 +119,8 @@ struct Reader {
     if (!s) return s.error();
     if (*s == "terrain") return AltRef::Terrain;
     if (*s == "msl") return AltRef::Msl;
-    return fail(child(path, "alt_ref"), "\"" + printable(*s) + "\" is not one of \"terrain\", \"msl\"", child(path, "alt_ref"));
+    return fail(child(path, "alt_ref"), "\"" + printable(*s) + "\" is not one of \"terrain\", \"msl\"",
+                child(path, "alt_ref"));
   }
 
   // The array at obj[key] (required unless optional), its elements objects.
@@ -205,7 +208,8 @@ Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const st
   else if (type == "rotor")
     w.type = WindSourceSpec::Type::Rotor;
   else
-    return r.fail(f + ".type", "\"" + printable(type) + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"", f + ".type");
+    return r.fail(f + ".type", "\"" + printable(type) + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"",
+                  f + ".type");
   VEG_TRY_ASSIGN(w.radiusM, r.number(obj, f, "radius_m"));
   VEG_TRY_ASSIGN(w.strengthMps, r.number(obj, f, "strength_mps"));
   if (w.type == WindSourceSpec::Type::Fan) {

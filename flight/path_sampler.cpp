@@ -142,8 +142,9 @@ Status checkRecordable(double durationS, double fps, double warmupS, const std::
   const double warmup = std::round(warmupS * fps);
   if (frames <= kMaxRecordedFrames && warmup <= static_cast<double>(kMaxRecordedFrames - frames)) return {};
   char text[320];
-  std::snprintf(text, sizeof(text), "%.6g s at %.6g fps is %.6g frames; a recording holds at most %zu (%.4g s at this fps)",
-                durationS, fps, std::floor(durationS * fps) + 1.0 + warmup, kMaxRecordedFrames,
+  std::snprintf(text, sizeof(text),
+                "%.6g s at %.6g fps is %.6g frames; a recording holds at most %zu (%.4g s at this fps)", durationS, fps,
+                std::floor(durationS * fps) + 1.0 + warmup, kMaxRecordedFrames,
                 static_cast<double>(kMaxRecordedFrames - 1) / fps);
   return makeError(ErrorKind::InvalidInput, sourceName + ": " + text);
 }

@@ -94,7 +94,8 @@ Result<RecordTable> RecordTable::parseCsv(const std::string& text, const std::st
       double v = 0.0;
       const auto [end, ec] = std::from_chars(cells[c].data(), cells[c].data() + cells[c].size(), v);
       if (ec != std::errc() || end != cells[c].data() + cells[c].size() || !std::isfinite(v))
-        return fail(lineNo, "column " + printable(table.columns_[c].name) + ": \"" + printable(cells[c]) + "\" is not a number");
+        return fail(lineNo, "column " + printable(table.columns_[c].name) + ": \"" + printable(cells[c]) +
+                                "\" is not a number");
       row[c] = v;
     }
   }

@@ -101,9 +101,8 @@ Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::Datas
       return bytes.error();
     }
     const auto* data = reinterpret_cast<const uint8_t*>(bytes->data());
-    auto t =
-        datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding, datasets::kTileSize,
-                                   source.describe() + "/" + path);
+    auto t = datasets::decodeHeightTile({data, bytes->size()}, id, meta.elevationEncoding, datasets::kTileSize,
+                                        source.describe() + "/" + path);
     if (!t) return t.error();
     return std::optional<datasets::HeightTile>(std::move(*t));
   };

@@ -11,7 +11,8 @@ namespace vegstream::streaming::detail {
 
 DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int tileSize, TaskRunner& runner,
                                int maxConcurrent, HeightExtraFn heightExtra)
-    : encoding_(encoding), tileSize_(tileSize), heightExtra_(std::move(heightExtra)), runner_(runner), maxConcurrent_(maxConcurrent) {
+    : encoding_(encoding), tileSize_(tileSize), heightExtra_(std::move(heightExtra)), runner_(runner),
+      maxConcurrent_(maxConcurrent) {
   assert(maxConcurrent >= 1);
 }
 
@@ -110,7 +111,8 @@ Completion DecodePipeline::decode(Job& job) const {
     } else {
       auto t = datasets::decodeColorTile(job.bytes, job.key.id, tileSize_, job.name);
       Result<std::vector<uint8_t>> ndvi = std::vector<uint8_t>{};
-      if (t && !job.ndviBytes.empty()) ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName, tileSize_);
+      if (t && !job.ndviBytes.empty())
+        ndvi = datasets::decodeNdviTile(job.ndviBytes, job.key.id, job.ndviName, tileSize_);
       if (t && ndvi) {
         t->ndvi = std::move(*ndvi);
         c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());

@@ -318,7 +318,8 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
     const std::string v = sf->is_string() ? sf->get<std::string>() : "";
     const auto at = std::find(std::begin(kNames), std::end(kNames), v);
     if (at == std::end(kNames))
-      return ps.fail(path + ".surface", "must be \"grass\", \"rock\", \"gravel\" or \"sand\" (got " + jsonValueText(*sf) + ")");
+      return ps.fail(path + ".surface",
+                     "must be \"grass\", \"rock\", \"gravel\" or \"sand\" (got " + jsonValueText(*sf) + ")");
     out.surface = static_cast<DetailSurface>(at - std::begin(kNames));
   }
   if (const auto sh = obj.find("shadows"); sh != obj.end()) {

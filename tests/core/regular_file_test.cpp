@@ -89,8 +89,7 @@ TEST(RegularFile, AFilePastItsCeilingIsRefusedBeforeReading) {
   EXPECT_LT(secondsSince(t0), 2.0);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput);
-  EXPECT_NE(r.error().message.find("a dataset.json is at most 4194304 bytes"), std::string::npos)
-      << r.error().message;
+  EXPECT_NE(r.error().message.find("a dataset.json is at most 4194304 bytes"), std::string::npos) << r.error().message;
   fs::resize_file(f, kDatasetJsonCeiling.maxBytes);  // exactly the ceiling is fine
   EXPECT_TRUE(readRegularFile(f, kDatasetJsonCeiling).ok());
 }

@@ -182,11 +182,8 @@ TEST(DatasetJson, ErrorsNeitherEchoControlCharactersNorLongValues) {
 TEST(DatasetJson, AProjjsonNestedDeeperThanAnyRealOneIsRefusedNotDumped) {
   const fs::path d = freshDir("meta_deep");
   nlohmann::json j = soundMeta(d);
-  j["sources"] = nlohmann::json::array({nlohmann::json::object({{"role", "elevation"},
-                                                                {"path", "x.tif"},
-                                                                {"crs", "x"},
-                                                                {"description", "x"},
-                                                                {"crs_projjson", "DEEP"}})});
+  j["sources"] = nlohmann::json::array({nlohmann::json::object(
+      {{"role", "elevation"}, {"path", "x.tif"}, {"crs", "x"}, {"description", "x"}, {"crs_projjson", "DEEP"}})});
   // Spliced in as text: nlohmann's own dump() of it would recurse 100 000 levels in the test too.
   const size_t depth = 100000;
   std::string text = j.dump();
@@ -195,8 +192,7 @@ TEST(DatasetJson, AProjjsonNestedDeeperThanAnyRealOneIsRefusedNotDumped) {
   write(d / "dataset.json", text);
   auto r = readDatasetMeta(d);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(message(r.error()).find("sources[0].crs_projjson' is nested more than 64 levels deep"),
-            std::string::npos)
+  EXPECT_NE(message(r.error()).find("sources[0].crs_projjson' is nested more than 64 levels deep"), std::string::npos)
       << message(r.error());
 }
 

@@ -99,7 +99,8 @@ TEST(TileDecodersFuzz, ElevationPng) {
   const fs::path file = dir / "elevation.png";
   ASSERT_TRUE(datasets::writeHeightTile(file, syntheticHeights(), datasets::ElevationEncoding::Terrarium).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeHeightTile(b, {12, 2138, 1447}, datasets::ElevationEncoding::Terrarium, datasets::kTileSize, "fuzz/e.png");
+    auto r = datasets::decodeHeightTile(b, {12, 2138, 1447}, datasets::ElevationEncoding::Terrarium,
+                                        datasets::kTileSize, "fuzz/e.png");
     if (r.ok()) {
       EXPECT_EQ(r->heights.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size));
     }

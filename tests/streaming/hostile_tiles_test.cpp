@@ -92,8 +92,7 @@ TEST_F(HostileTiles, TheStreamerFailsEachHostileTileOnceAndDrawsItsParent) {
     EXPECT_EQ(captured.linesMentioning(toString(k)), 1) << captured.text.str();
   }
   EXPECT_TRUE(s.failure(wrongSize)->undecodable);
-  EXPECT_NE(s.failure(wrongSize)->message.find("is 200x200 pixels; dataset.json says tiles are 256"),
-            std::string::npos)
+  EXPECT_NE(s.failure(wrongSize)->message.find("is 200x200 pixels; dataset.json says tiles are 256"), std::string::npos)
       << s.failure(wrongSize)->message;
   EXPECT_NE(s.failure(fifo)->message.find("FIFO"), std::string::npos) << s.failure(fifo)->message;
   EXPECT_NE(s.failure(zero)->message.find("is a device"), std::string::npos) << s.failure(zero)->message;
@@ -113,7 +112,8 @@ TEST_F(HostileTiles, TheSnapshotMosaicRefusesATileOfAnotherSize) {
   small.heights.assign(16 * 16, 1.8e3f);
   for (int z = meta().minZoom; z <= meta().maxZoom; ++z)
     for (const TileKey& k : tilesAt(copy, meta(), TileLayer::Height, z))
-      ASSERT_TRUE(datasets::writeHeightTile(copy / datasetRelativePath(k, meta()), small, meta().elevationEncoding).ok());
+      ASSERT_TRUE(
+          datasets::writeHeightTile(copy / datasetRelativePath(k, meta()), small, meta().elevationEncoding).ok());
   LocalTileSource source(copy);
   auto heights = loadGroundHeights(source, meta(), {});
   ASSERT_FALSE(heights.ok()) << "zoom " << heights->zoom;

@@ -95,7 +95,8 @@ TEST_F(StreamerLocal, SettleMakesEveryWantedTileResidentWithTheHeightsOfReadHeig
     const auto tile = s.get(k);
     ASSERT_TRUE(tile) << toString(k);
     if (k.layer == TileLayer::Height) {
-      auto ref = datasets::readHeightTile(dir() / datasetRelativePath(k, meta()), k.id, meta().elevationEncoding, datasets::kTileSize);
+      auto ref = datasets::readHeightTile(dir() / datasetRelativePath(k, meta()), k.id, meta().elevationEncoding,
+                                          datasets::kTileSize);
       ASSERT_TRUE(ref) << ref.error().message;
       ASSERT_TRUE(tile->heights);
       ASSERT_EQ(tile->heights->heights.size(), ref->heights.size());

@@ -143,7 +143,8 @@ TEST(TileCodec, CorruptAndMissingTilesNameTheFile) {
 TEST(TileCodec, GrandCanyonTerrariumAndTerrainRgbAgree) {
   const fs::path root = VEGSTREAM_DATASETS_DIR "/grandcanyon-xyz";
   auto a = readHeightTile(root / "terrarium/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::Terrarium, kTileSize);
-  auto b = readHeightTile(root / "terrain-rgb/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::TerrainRgb, kTileSize);
+  auto b =
+      readHeightTile(root / "terrain-rgb/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::TerrainRgb, kTileSize);
   ASSERT_TRUE(a) << a.error().message;
   ASSERT_TRUE(b) << b.error().message;
   ASSERT_EQ(a->size, b->size);

@@ -66,7 +66,9 @@ std::vector<Hostile> hostileDatasets() {
        },
        "a dataset.json is at most 4194304 bytes"},
       {"dataset_json_syntax",
-       [](const fs::path& d, const auto&) { std::ofstream(d / "dataset.json", std::ios::trunc) << "{\n \"name\": x\n}"; },
+       [](const fs::path& d, const auto&) {
+         std::ofstream(d / "dataset.json", std::ios::trunc) << "{\n \"name\": x\n}";
+       },
        "is not valid JSON: parse error at line 2, column"},
       {"elevation_tile_fifo", [](const fs::path& d, const auto&) { replaceByFifo(elevation(d)); }, "is a FIFO"},
       {"elevation_tile_dev_zero",
@@ -102,8 +104,7 @@ TEST_P(HostileQuery, OneLineExitTwoInMilliseconds) {
   GetParam().make(copy, meta());
   const glm::dvec2 p = geo::tileXYToLonLat({759.3137, 1608.7071}, 12);
   const auto t0 = Clock::now();
-  const auto r =
-      runVegstream("query " + q(copy) + " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x));
+  const auto r = runVegstream("query " + q(copy) + " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x));
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 5.0);  // the process, start to end
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(countLines(r.err), 1) << r.err;
@@ -131,8 +132,8 @@ TEST_F(GrandCanyon, SpeciesCatalogsThatAttackTheErrorTextGetOneEscapedBoundedLin
   fs::create_directories(d);
   const size_t depth = 100000;  // the error text's dump() recursed once per level: SIGSEGV
   std::ofstream(d / "deep.json") << catalogWithKind(std::string(depth, '[') + std::string(depth, ']'));
-  std::ofstream(d / "escape.json") << catalogWithKind("\"\\u001b]0;owned\\u0007\\u001b[2J" +
-                                                      std::string(10000, 'k') + "\"");
+  std::ofstream(d / "escape.json") << catalogWithKind("\"\\u001b]0;owned\\u0007\\u001b[2J" + std::string(10000, 'k') +
+                                                      "\"");
   ASSERT_EQ(::mkfifo((d / "fifo.json").c_str(), 0600), 0);
   const glm::dvec2 p = geo::tileXYToLonLat({759.3137, 1608.7071}, 12);
   const std::string at = " --lat " + std::to_string(p.y) + " --lon " + std::to_string(p.x);
