@@ -8,6 +8,7 @@
 //
 // Templates on the JSON type (nlohmann::json), so core itself depends on no JSON library.
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -24,6 +25,22 @@ inline std::string jsonExceptionText(std::string_view what) {
   if (what.rfind("[json.exception.", 0) == 0)
     if (const auto tag = what.find("] "); tag != std::string_view::npos) what.remove_prefix(tag + 2);
   return printable(what, 2 * kPrintableChars);
+}
+
+// A parse error as "line L, column C: what went wrong", L and C (1-based) counted here from the
+// error's byte offset (nlohmann's own column is 0 when the token before a line break broke the
+// parse), the rest of nlohmann's text bounded and escaped. `byte`: parse_error::byte.
+inline std::string jsonParseErrorText(std::string_view text, size_t byte, std::string_view what) {
+  const size_t at = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < at; ++i) {
+    column = text[i] == '\n' ? 1 : column + 1;
+    line += text[i] == '\n';
+  }
+  std::string reason = jsonExceptionText(what);
+  if (reason.rfind("parse error", 0) == 0)  // "parse error at line 3, column 0: …": ours instead
+    if (const auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
+  return "line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + reason;
 }
 
 template <typename Json>

@@ -416,8 +416,10 @@ Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::str
   json j;
   try {
     j = json::parse(jsonText);
-  } catch (const json::exception& e) {
-    // nlohmann's parse errors name the line and column ("parse error at line 3, column 5: …").
+  } catch (const json::parse_error& e) {
+    return makeError(ErrorKind::InvalidInput, concat("'", printablePath(sourceName), "' is not valid JSON: ",
+                                                     jsonParseErrorText(jsonText, e.byte, e.what())));
+  } catch (const json::exception& e) {  // a number no double holds ("1e9999"): no position
     return makeError(ErrorKind::InvalidInput,
                      concat("'", printablePath(sourceName), "' is not valid JSON: ", jsonExceptionText(e.what())));
   }

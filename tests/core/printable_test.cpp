@@ -77,5 +77,16 @@ TEST(JsonText, ParseErrorsAreBoundedAndNameTheLine) {
   }
 }
 
+TEST(JsonText, ParseErrorPositionsAreCountedFromTheByte) {
+  const std::string text = "{\n  \"a\": 1 2\n}";  // nlohmann says "line 2, column 0" here
+  try {
+    const json parsed = json::parse(text);
+    FAIL() << parsed.size() << " two numbers in a row are not JSON";
+  } catch (const json::parse_error& e) {
+    const std::string t = jsonParseErrorText(text, e.byte, e.what());
+    EXPECT_EQ(t.rfind("line 2, column 10: syntax error while parsing object", 0), 0u) << t;
+  }
+}
+
 }  // namespace
 }  // namespace vegstream

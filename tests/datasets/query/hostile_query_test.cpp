@@ -69,7 +69,7 @@ std::vector<Hostile> hostileDatasets() {
        [](const fs::path& d, const auto&) {
          std::ofstream(d / "dataset.json", std::ios::trunc) << "{\n \"name\": x\n}";
        },
-       "is not valid JSON: parse error at line 2, column"},
+       "is not valid JSON: line 2, column 10: syntax error"},
       {"elevation_tile_fifo", [](const fs::path& d, const auto&) { replaceByFifo(elevation(d)); }, "is a FIFO"},
       {"elevation_tile_dev_zero",
        [](const fs::path& d, const auto&) {
