@@ -93,6 +93,8 @@ int runRecord(RecordOptions o, const Logger& log) {
     return reportError(log, s.error());
   auto path = flight::loadFlightPath(o.path);
   if (!path) return reportError(log, path.error());
+  if (Status s = flight::checkRecordable(path->duration(), o.fps, o.warmupS, o.path); !s)
+    return reportError(log, s.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, &*path);
 
   if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)

@@ -85,7 +85,7 @@ void BM_Frame(benchmark::State& state) {
   const auto which = static_cast<Case>(state.range(0));
   const std::array<uint8_t, 3> c = testing::referenceColour("grass");
   const std::vector<uint8_t> tile = testing::flatTile(c[0], c[1], c[2]);
-  const ImageryUpload upload{0, tile.data()};
+  const ImageryUpload upload{0, tile};
   terrain::TerrainMesh plane = testing::flatPlane(testing::kField, 8, 0.0f);
   for (auto& v : plane.vertices) v.uv = testing::fieldUv(v.position.x, v.position.y);
   TerrainDraw draw{&plane};

@@ -86,7 +86,7 @@ void BM_DecodeHeightPng(benchmark::State& state) {
   if (!zion().ok) return state.SkipWithError("no Zion dataset");
   const auto bytes = zion().bytesOfLargest(TileLayer::Height);
   for (auto _ : state) {
-    auto t = datasets::decodeHeightTile(bytes, {}, zion().meta.elevationEncoding, "bench");
+    auto t = datasets::decodeHeightTile(bytes, {}, zion().meta.elevationEncoding, datasets::kTileSize, "bench");
     if (!t) return state.SkipWithError(t.error().message.c_str());
     benchmark::DoNotOptimize(t->heights.data());
   }
@@ -99,7 +99,7 @@ void BM_DecodeImageryJpeg(benchmark::State& state) {
   if (!zion().ok) return state.SkipWithError("no Zion dataset");
   const auto bytes = zion().bytesOfLargest(TileLayer::Imagery);
   for (auto _ : state) {
-    auto t = datasets::decodeColorTile(bytes, {}, "bench");
+    auto t = datasets::decodeColorTile(bytes, {}, datasets::kTileSize, "bench");
     if (!t) return state.SkipWithError(t.error().message.c_str());
     benchmark::DoNotOptimize(t->rgba.data());
   }

@@ -37,7 +37,7 @@ void BM_FrameWithImageryUploads(benchmark::State& state) {
   req.camera.position = {0, 0, 100};
   for (auto _ : state) {
     uploads.clear();
-    for (uint32_t i = 0; i < tiles; ++i) uploads.push_back({layer++ % 256, rgba.data()});
+    for (uint32_t i = 0; i < tiles; ++i) uploads.push_back({layer++ % 256, rgba});
     req.imageryUploads = uploads;
     auto f = renderer()->renderFrame(req);
     if (!f) state.SkipWithError(f.error().message.c_str());

@@ -1,17 +1,12 @@
-#include "core/text_file.h"
+// readTextFile (text_file.h): the checked opener's bytes as text.
 
-#include <fstream>
-#include <sstream>
+#include "core/text_file.h"
 
 namespace vegstream {
 
-Result<std::string> readTextFile(const std::filesystem::path& file, const std::string& missingHint) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return makeError(ErrorKind::NotFound, file.string() + ": " + missingHint);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return makeError(ErrorKind::Io, file.string() + ": could not read the file");
-  return text.str();
+Result<std::string> readTextFile(const std::filesystem::path& file, const std::string& missingHint,
+                                 const FileCeiling& ceiling) {
+  return readRegularFile(file, ceiling, missingHint);
 }
 
 }  // namespace vegstream

@@ -63,7 +63,8 @@ Status writeCanopyTile(const fs::path& path, const CanopyTile& tile) {
 
 Result<CanopyTile> decodeCanopyTile(std::span<const uint8_t> bytes, const geo::TileId& id,
                                     const std::string& nameForErrors, int expectedSize) {
-  auto checked = checkedPng(bytes, nameForErrors);  // also refuses what is no PNG
+  // Also refuses what is no PNG, and a header larger than the tile size before any inflate.
+  auto checked = checkedPng(bytes, nameForErrors, static_cast<uint32_t>(std::max(expectedSize, 0)));
   if (!checked) return checked.error();
   OIIO::Filesystem::IOMemReader proxy(checked->data(), checked->size());
   auto in = ImageInput::open("tile.png", nullptr, &proxy);

@@ -38,6 +38,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
+#include "core/printable.h"
+#include "core/regular_file.h"
 #include "datasets/colour_calibration_json.h"
 #include "datasets/message.h"
 
@@ -50,6 +53,7 @@ constexpr const char* kMetaFile = "dataset.json";
 constexpr const char* kNdviEncoding = "ndvi8";
 constexpr const char* kLandcoverEncoding = "class8";
 constexpr const char* kCanopyEncoding = "decimetre16";
+constexpr int kMaxProjjsonDepth = 64;  // real PROJJSON nests about 6 deep
 
 const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
 
@@ -61,7 +65,7 @@ class FieldReader {
   const std::string& source() const { return source_; }
 
   Error bad(const std::string& field, const std::string& problem) const {
-    return makeError(ErrorKind::InvalidInput, concat("'", source_, "': field '", field, "' ", problem));
+    return makeError(ErrorKind::InvalidInput, concat("'", printablePath(source_), "': field '", field, "' ", problem));
   }
 
   Result<const json*> get(const json& obj, const std::string& key, const std::string& field) const {
@@ -120,7 +124,8 @@ Result<DeshadingRecord> parseDeshading(const json& d, const FieldReader& f) {
   DeshadingRecord r;
   VEG_TRY_ASSIGN(r.source, f.text(d, "source", at + ".source"));
   if (r.source != "imagery datetime" && r.source != "given" && r.source != "estimated" && r.source != "none")
-    return f.bad(at + ".source", concat("is '", r.source, "'; expected imagery datetime, given, estimated or none"));
+    return f.bad(at + ".source",
+                 concat("is '", printable(r.source), "'; expected imagery datetime, given, estimated or none"));
   if (auto n = d.find("note"); n != d.end() && !n->is_null()) VEG_TRY_ASSIGN(r.note, f.text(d, "note", at + ".note"));
   if (r.source == "none") return r;
   VEG_TRY_ASSIGN(r.sunAzimuthDeg, f.number(d, "sun_azimuth_deg", at + ".sun_azimuth_deg", 0.0, 360.0));
@@ -135,7 +140,7 @@ Result<RadiometryRecord> parseRadiometry(const json& r, const FieldReader& f) {
   RadiometryRecord m;
   VEG_TRY_ASSIGN(m.method, f.text(r, "method", at + ".method"));
   if (m.method != "reflectance" && m.method != "srgb" && m.method != "stretch")
-    return f.bad(at + ".method", concat("is '", m.method, "'; expected reflectance, srgb or stretch"));
+    return f.bad(at + ".method", concat("is '", printable(m.method), "'; expected reflectance, srgb or stretch"));
   constexpr double kBig = 1e12;
   VEG_TRY_ASSIGN(m.scale, optionalNumber(r, "scale", at + ".scale", 0.0, kBig, f));
   VEG_TRY_ASSIGN(m.offset, optionalNumber(r, "offset", at + ".offset", -kBig, kBig, f));
@@ -163,10 +168,11 @@ Status parseLandcover(const json& lc, const FieldReader& f, DatasetMeta& m) {
   int64_t count = 0;
   VEG_TRY_ASSIGN(encoding, f.text(lc, "encoding", "landcover.encoding"));
   if (encoding != kLandcoverEncoding)
-    return f.bad("landcover.encoding", concat("is '", encoding, "'; expected ", kLandcoverEncoding));
+    return f.bad("landcover.encoding", concat("is '", printable(encoding), "'; expected ", kLandcoverEncoding));
   VEG_TRY_ASSIGN(scheme, f.text(lc, "scheme", "landcover.scheme"));
   auto parsed = parseLandcoverScheme(scheme);
-  if (!parsed || !*parsed) return f.bad("landcover.scheme", concat("is '", scheme, "'; expected worldcover or nlcd"));
+  if (!parsed || !*parsed)
+    return f.bad("landcover.scheme", concat("is '", printable(scheme), "'; expected worldcover or nlcd"));
   VEG_TRY_ASSIGN(count, f.integer(lc, "tile_count", "landcover.tile_count", 0, INT64_MAX));
   m.landcover = **parsed;
   m.landcoverTiles = static_cast<uint64_t>(count);
@@ -179,7 +185,8 @@ Status parseCanopy(const json& c, const FieldReader& f, DatasetMeta& m) {
   std::string encoding;
   int64_t zoom = 0, count = 0;
   VEG_TRY_ASSIGN(encoding, f.text(c, "encoding", "canopy.encoding"));
-  if (encoding != kCanopyEncoding) return f.bad("canopy.encoding", concat("is '", encoding, "'; expected ", kCanopyEncoding));
+  if (encoding != kCanopyEncoding)
+    return f.bad("canopy.encoding", concat("is '", printable(encoding), "'; expected ", kCanopyEncoding));
   VEG_TRY_ASSIGN(zoom, f.integer(c, "zoom", "canopy.zoom", 0, 24));
   VEG_TRY_ASSIGN(count, f.integer(c, "tile_count", "canopy.tile_count", 0, INT64_MAX));
   m.canopyZoom = static_cast<int>(zoom);
@@ -227,7 +234,8 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   std::string enc;
   VEG_TRY_ASSIGN(enc, f.text(*e, "encoding", "elevation.encoding"));
   auto parsed = parseElevationEncoding(enc);
-  if (!parsed) return f.bad("elevation.encoding", concat("is '", enc, "'; expected terrarium or terrain-rgb"));
+  if (!parsed)
+    return f.bad("elevation.encoding", concat("is '", printable(enc), "'; expected terrarium or terrain-rgb"));
   m.elevationEncoding = *parsed;
   int64_t count = 0;
   VEG_TRY_ASSIGN(count, f.integer(*e, "tile_count", "elevation.tile_count", 0, INT64_MAX));
@@ -244,7 +252,7 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     else if (fmt == "png")
       m.imagery = ImageryFormat::Png;
     else
-      return f.bad("imagery.format", concat("is '", fmt, "'; expected jpeg or png"));
+      return f.bad("imagery.format", concat("is '", printable(fmt), "'; expected jpeg or png"));
     VEG_TRY_ASSIGN(count, f.integer(*im, "tile_count", "imagery.tile_count", 0, INT64_MAX));
     m.imageryTiles = static_cast<uint64_t>(count);
     if (auto dt = im->find("datetime"); dt != im->end() && !dt->is_null())
@@ -260,7 +268,7 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     std::string ndviEnc;
     VEG_TRY_ASSIGN(ndviEnc, f.text(*nd, "encoding", "ndvi.encoding"));
     if (ndviEnc != kNdviEncoding)
-      return f.bad("ndvi.encoding", concat("is '", ndviEnc, "'; expected ", kNdviEncoding));
+      return f.bad("ndvi.encoding", concat("is '", printable(ndviEnc), "'; expected ", kNdviEncoding));
     VEG_TRY_ASSIGN(count, f.integer(*nd, "tile_count", "ndvi.tile_count", 0, INT64_MAX));
     m.ndvi = true;
     m.ndviTiles = static_cast<uint64_t>(count);
@@ -285,7 +293,12 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
     VEG_TRY_ASSIGN(info.crs, f.text(s, "crs", at + ".crs"));
     VEG_TRY_ASSIGN(info.description, f.text(s, "description", at + ".description"));
     if (s.contains("crs_epsg") && s["crs_epsg"].is_string()) info.crsCode = s["crs_epsg"].get<std::string>();
-    if (s.contains("crs_projjson") && s["crs_projjson"].is_object()) info.crsProjjson = s["crs_projjson"].dump();
+    if (s.contains("crs_projjson") && s["crs_projjson"].is_object()) {
+      // dump() recurses once per level: a PROJJSON nested deeper than any real one is refused.
+      if (!jsonDepthAtMost(s["crs_projjson"], kMaxProjjsonDepth))
+        return f.bad(at + ".crs_projjson", concat("is nested more than ", kMaxProjjsonDepth, " levels deep"));
+      info.crsProjjson = s["crs_projjson"].dump();
+    }
     if (s.contains("resolution_m") && s["resolution_m"].is_number()) info.resolutionM = s["resolution_m"].get<double>();
     if (s.contains("driver") && s["driver"].is_string()) info.driver = s["driver"].get<std::string>();
     m.sources.push_back(std::move(info));
@@ -392,26 +405,35 @@ Result<ElevationEncoding> parseElevationEncoding(const std::string& text) {
 Result<DatasetMeta> readDatasetMeta(const fs::path& datasetDir) {
   const fs::path file = datasetDir / kMetaFile;
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
-    if (!fs::exists(datasetDir, ec)) return makeError(ErrorKind::NotFound, concat(datasetDir, " does not exist"));
+  if (!fs::exists(datasetDir, ec)) return makeError(ErrorKind::NotFound, concat(datasetDir, " does not exist"));
+  // Only a regular file of at most the ceiling is read (a FIFO, a directory or a 200 MB file is
+  // refused at once, core/regular_file.h).
+  auto text = readRegularFile(file, kDatasetJsonCeiling);
+  if (!text && text.error().kind == ErrorKind::NotFound)
     return makeError(ErrorKind::NotFound, concat(datasetDir, " is not a vegstream dataset: it has no dataset.json"));
-  }
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (!in && !in.eof()) return makeError(ErrorKind::Io, concat("cannot read ", file));
-  return parseDatasetMeta(ss.str(), file.string());
+  if (!text) return text.error();
+  return parseDatasetMeta(*text, file.string());
 }
 
 Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::string& sourceName) {
-  // Without exceptions a broken text (a number no double holds, "1e9999", included) is discarded;
-  // the walk checks every type before reading, and the catch keeps a missed case an error value.
-  json j = json::parse(jsonText, nullptr, false);
-  if (j.is_discarded()) return makeError(ErrorKind::InvalidInput, concat("'", sourceName, "' is not valid JSON"));
+  // A broken text (a number no double holds, "1e9999", included) is a parse error naming the line
+  // and column; the walk checks every type before reading, and the catch keeps a missed case an
+  // error value.
+  json j;
+  try {
+    j = json::parse(jsonText);
+  } catch (const json::parse_error& e) {
+    return makeError(ErrorKind::InvalidInput, concat("'", printablePath(sourceName), "' is not valid JSON: ",
+                                                     jsonParseErrorText(jsonText, e.byte, e.what())));
+  } catch (const json::exception& e) {  // a number no double holds ("1e9999"): no position
+    return makeError(ErrorKind::InvalidInput,
+                     concat("'", printablePath(sourceName), "' is not valid JSON: ", jsonExceptionText(e.what())));
+  }
   try {
     return parseMeta(j, FieldReader(sourceName));
   } catch (const json::exception& e) {
-    return makeError(ErrorKind::InvalidInput, concat("'", sourceName, "': ", e.what()));
+    return makeError(ErrorKind::InvalidInput,
+                     concat("'", printablePath(sourceName), "': ", jsonExceptionText(e.what())));
   }
 }
 

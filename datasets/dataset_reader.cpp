@@ -120,11 +120,8 @@ Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::T
   const fs::path path = elevationTilePath(dir_, id);
   std::error_code ec;
   if (fs::exists(path, ec)) {
-    auto tile = readHeightTile(path, id, meta_.elevationEncoding);
+    auto tile = readHeightTile(path, id, meta_.elevationEncoding, meta_.tileSize);  // checks the size
     if (!tile) return tile.error();
-    if (tile->size != meta_.tileSize)
-      return makeError(ErrorKind::InvalidInput, fmt::format("{}: tile is {} pixels wide, dataset.json says {}",
-                                                            path.string(), tile->size, meta_.tileSize));
     entry.height = std::make_shared<const HeightTile>(std::move(*tile));
     ++decoded_;
   }
@@ -141,11 +138,8 @@ Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::Til
   if (meta_.imagery) {
     const fs::path path = imageryTilePath(dir_, id, *meta_.imagery);
     if (fs::exists(path, ec)) {
-      auto t = readColorTile(path, id);
+      auto t = readColorTile(path, id, meta_.tileSize);  // checks the size
       if (!t) return t.error();
-      if (t->size != meta_.tileSize)
-        return makeError(ErrorKind::InvalidInput, fmt::format("{}: tile is {} pixels wide, dataset.json says {}",
-                                                              path.string(), t->size, meta_.tileSize));
       tile = std::move(*t);
     }
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/regular_file.h"
 #include "datasets/message.h"
 
 namespace vegstream::datasets {
@@ -20,11 +21,11 @@ uint64_t key(const geo::TileId& id) {
   return (static_cast<uint64_t>(id.z) << 58) | (static_cast<uint64_t>(id.x) << 29) | static_cast<uint64_t>(id.y);
 }
 
+// The journal through the checked opener (core/regular_file.h); empty when it is missing or is
+// not a regular file of at most the table ceiling (then nothing is resumed from it).
 std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  auto text = readRegularFile(p, kTableFileCeiling);
+  return text ? std::move(*text) : std::string();
 }
 
 // Each complete line of the journal; a torn last line (no '\n') is dropped.

@@ -145,7 +145,7 @@ bool isLetter(uint8_t c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z
 
 }  // namespace
 
-Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name) {
+Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name, uint32_t maxSide) {
   std::vector<uint8_t> kept(bytes.begin(), bytes.begin() + 8);  // the signature
   kept.reserve(bytes.size());
   std::optional<Header> header;
@@ -178,6 +178,10 @@ Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const st
       h.interlace = data[12];
       if (data[10] != 0 || data[11] != 0) return corrupt(name, "IHDR compression or filter method does not exist");
       if (auto p = headerProblem(h)) return corrupt(name, *p);
+      if (h.width > maxSide || h.height > maxSide)  // before any inflate: the header bounds the work
+        return makeError(ErrorKind::InvalidInput,
+                         concat("tile '", name, "' is ", h.width, "x", h.height, " pixels; a tile here is at most ",
+                                maxSide, " pixels a side"));
       header = h;
     } else if (t == "PLTE") {
       if (havePalette || !idat.empty() || haveTrns) return corrupt(name, "PLTE is out of place");

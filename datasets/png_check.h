@@ -25,7 +25,8 @@
 namespace vegstream::datasets {
 
 // `bytes` starts with the PNG signature (the caller sniffed it). Errors are InvalidInput and
-// name `name` ("tile 'NAME' is corrupt (…)").
-Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name);
+// name `name` ("tile 'NAME' is corrupt (…)"). A header wider or taller than `maxSide` pixels is
+// refused as soon as IHDR is read, before a byte is inflated ("tile 'NAME' is WxH pixels; …").
+Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name, uint32_t maxSide);
 
 }  // namespace vegstream::datasets

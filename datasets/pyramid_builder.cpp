@@ -130,7 +130,7 @@ Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const g
                                                     const std::set<geo::TileId>& present, const DatasetMeta& meta) {
   auto read = readChildren<HeightTile>(parentId, present, [&](const geo::TileId& id) {
     const fs::path p = elevationTilePath(dir, id);
-    return checkTileSize(readHeightTile(p, id, meta.elevationEncoding), p, meta);
+    return checkTileSize(readHeightTile(p, id, meta.elevationEncoding, meta.tileSize), p, meta);
   });
   if (!read) return read.error();
   if (!*read) return std::optional<HeightTile>{};
@@ -157,7 +157,7 @@ Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo
                                                   const std::set<geo::TileId>& present, const DatasetMeta& meta) {
   auto read = readChildren<ColorTile>(parentId, present, [&](const geo::TileId& id) {
     const fs::path p = imageryTilePath(dir, id, *meta.imagery);
-    return checkTileSize(readColorTile(p, id), p, meta);
+    return checkTileSize(readColorTile(p, id, meta.tileSize), p, meta);
   });
   if (!read) return read.error();
   if (!*read) return std::optional<ColorTile>{};

@@ -8,8 +8,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <new>
 #include <span>
@@ -19,6 +17,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/atomic_file.h"
+#include "core/printable.h"
+#include "core/regular_file.h"
 #include "datasets/message.h"
 #include "datasets/png_check.h"
 
@@ -31,7 +31,6 @@ using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
 constexpr int64_t kMaxCode = (int64_t{1} << 24) - 1;
-constexpr int kMaxTileSide = 4096;
 
 // Built by appending: GCC 12 at -O3 gives a false -Wrestrict on "'" + std::string.
 std::string quoted(const fs::path& path) {
@@ -104,7 +103,26 @@ Result<const char*> sniffFormat(std::span<const uint8_t> bytes, const std::strin
   return invalidTile(name, concat("is not a PNG or JPEG image (", bytes.size(), " bytes of something else)"));
 }
 
-Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+// The header against what the caller expects (dataset.json's tile_size, or any size up to
+// kMaxTileSide when kAnyTileSize): checked before a pixel is allocated or decoded.
+Status checkSpec(const ImageSpec& spec, const std::string& name, int expectedSize, bool requireEightBit) {
+  if (spec.width != spec.height || spec.width <= 0 || spec.width > kMaxTileSide || spec.depth != 1)
+    return invalidTile(name, concat("is ", spec.width, "x", spec.height,
+                                    " pixels; a tile must be square and at most 4096 pixels a side"));
+  if (expectedSize != kAnyTileSize && spec.width != expectedSize)
+    return invalidTile(name, concat("is ", spec.width, "x", spec.height, " pixels; dataset.json says tiles are ",
+                                    expectedSize, " pixels a side"));
+  if (spec.nchannels < 1 || spec.nchannels > 4)
+    return invalidTile(name, concat("has ", spec.nchannels, " channels; expected 1 to 4"));
+  if (requireEightBit && spec.format != TypeDesc::UINT8)
+    return invalidTile(name, concat("has ", spec.format.c_str(), " samples; encoded heights need 8-bit RGB(A)"));
+  if (requireEightBit && spec.nchannels < 3)
+    return invalidTile(name, concat("has ", spec.nchannels, " channel(s); encoded heights need 8-bit RGB(A)"));
+  return {};
+}
+
+Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit,
+                                   int expectedSize) {
   auto format = sniffFormat(bytes, name);
   if (!format) return format.error();
   // libpng prints its own "libpng error: …" line on stderr before OIIO reports a failure, which
@@ -112,7 +130,8 @@ Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::st
   // sees only the chunks it needs of a sound file (png_check.h).
   std::vector<uint8_t> checkedBytes;
   if (std::strcmp(*format, "tile.png") == 0) {
-    auto checked = checkedPng(bytes, name);
+    const int maxSide = expectedSize == kAnyTileSize ? kMaxTileSide : std::clamp(expectedSize, 1, kMaxTileSide);
+    auto checked = checkedPng(bytes, name, static_cast<uint32_t>(maxSide));
     if (!checked) return checked.error();
     checkedBytes = std::move(*checked);
     bytes = checkedBytes;
@@ -122,13 +141,7 @@ Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::st
   auto in = ImageInput::open(*format, nullptr, &proxy);
   if (!in) return invalidTile(name, concat("is not a readable PNG/JPEG: ", firstLine(OIIO::geterror())));
   const ImageSpec spec = in->spec();
-  if (spec.width != spec.height || spec.width <= 0 || spec.width > kMaxTileSide || spec.depth != 1)
-    return invalidTile(name, concat("is ", spec.width, "x", spec.height,
-                                    " pixels; a tile must be square and at most 4096 pixels a side"));
-  if (spec.nchannels < 1 || spec.nchannels > 4)
-    return invalidTile(name, concat("has ", spec.nchannels, " channels; expected 1 to 4"));
-  if (requireEightBit && spec.format != TypeDesc::UINT8)
-    return invalidTile(name, concat("has ", spec.format.c_str(), " samples; encoded heights need 8-bit RGB(A)"));
+  if (Status s = checkSpec(spec, name, expectedSize, requireEightBit); !s) return s.error();
   const int n = spec.nchannels;
   const size_t pixels = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height);
   std::vector<uint8_t> raw(pixels * static_cast<size_t>(n));
@@ -160,9 +173,10 @@ Result<Rgba8> decodeRgba8Unguarded(std::span<const uint8_t> bytes, const std::st
 
 // Any exception out of the image libraries (a corrupt file must never end the program, nor a
 // decode worker) becomes an error naming the tile.
-Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit) {
+Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& name, bool requireEightBit,
+                          int expectedSize) {
   try {
-    return decodeRgba8Unguarded(bytes, name, requireEightBit);
+    return decodeRgba8Unguarded(bytes, name, requireEightBit, expectedSize);
   } catch (const std::bad_alloc&) {
     return makeError(ErrorKind::Io, concat("tile '", name, "': out of memory while decoding"));
   } catch (const std::exception& e) {
@@ -170,21 +184,15 @@ Result<Rgba8> decodeRgba8(std::span<const uint8_t> bytes, const std::string& nam
   }
 }
 
-// The whole file; NotFound when it does not exist, Io when it cannot be read.
+// The whole file through the checked opener (core/regular_file.h): NotFound when it does not
+// exist; InvalidInput when it is no regular file or past the tile ceiling; Io when a read fails.
 Result<std::vector<uint8_t>> readFileBytes(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    std::string m = "tile ";
-    m += quoted(path);
-    m += " does not exist";
+  auto bytes = readRegularFileBytes(path, kTileFileCeiling);
+  if (!bytes && bytes.error().kind == ErrorKind::NotFound) {
+    std::string m = "tile '";
+    m += printablePath(path);
+    m += "' does not exist";
     return makeError(ErrorKind::NotFound, m);
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad() || !in.is_open()) {
-    std::string m = "cannot read ";
-    m += quoted(path);
-    return makeError(ErrorKind::Io, m);
   }
   return bytes;
 }
@@ -244,8 +252,8 @@ Status writeColorTile(const fs::path& path, const ColorTile& tile, ImageryFormat
 }
 
 Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
-                                    const std::string& nameForErrors) {
-  auto px = decodeRgba8(bytes, nameForErrors, true);
+                                    int expectedSize, const std::string& nameForErrors) {
+  auto px = decodeRgba8(bytes, nameForErrors, true, expectedSize);
   if (!px) return px.error();
   HeightTile t;
   t.id = id;
@@ -259,9 +267,9 @@ Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::T
   return t;
 }
 
-Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, int expectedSize,
                                   const std::string& nameForErrors) {
-  auto px = decodeRgba8(bytes, nameForErrors, false);
+  auto px = decodeRgba8(bytes, nameForErrors, false, expectedSize);
   if (!px) return px.error();
   ColorTile t;
   t.id = id;
@@ -286,7 +294,7 @@ Status writeGrey8Tile(const fs::path& path, int size, std::span<const uint8_t> b
 
 Result<std::vector<uint8_t>> decodeGrey8Tile(std::span<const uint8_t> bytes, const std::string& nameForErrors,
                                              int expectedSize, const char* layer) {
-  auto px = decodeRgba8(bytes, nameForErrors, false);
+  auto px = decodeRgba8(bytes, nameForErrors, false, expectedSize);
   if (!px) return px.error();
   // Only the grey PNG that writeGrey8Tile makes: an RGB or 16-bit image would be read as some
   // other quantity and silently give wrong values.
@@ -319,16 +327,17 @@ Result<std::vector<uint8_t>> readNdviTile(const fs::path& path, const geo::TileI
   return decodeNdviTile(*bytes, id, path.string(), expectedSize);
 }
 
-Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, ElevationEncoding encoding) {
+Result<HeightTile> readHeightTile(const fs::path& path, const geo::TileId& id, ElevationEncoding encoding,
+                                  int expectedSize) {
   auto bytes = readFileBytes(path);
   if (!bytes) return bytes.error();
-  return decodeHeightTile(*bytes, id, encoding, path.string());
+  return decodeHeightTile(*bytes, id, encoding, expectedSize, path.string());
 }
 
-Result<ColorTile> readColorTile(const fs::path& path, const geo::TileId& id) {
+Result<ColorTile> readColorTile(const fs::path& path, const geo::TileId& id, int expectedSize) {
   auto bytes = readFileBytes(path);
   if (!bytes) return bytes.error();
-  return decodeColorTile(*bytes, id, path.string());
+  return decodeColorTile(*bytes, id, expectedSize, path.string());
 }
 
 }  // namespace vegstream::datasets

@@ -54,18 +54,31 @@ Status writeHeightTile(const std::filesystem::path& path, const HeightTile& tile
 Status writeColorTile(const std::filesystem::path& path, const ColorTile& tile, ImageryFormat format,
                       int jpegQuality = 90);
 
-// Decoding checks size and channels; a corrupt or truncated file is an InvalidInput error that
-// names the path. Paletted and greyscale PNGs are expanded to RGB(A).
-Result<HeightTile> readHeightTile(const std::filesystem::path& path, const geo::TileId& id, ElevationEncoding encoding);
-Result<ColorTile> readColorTile(const std::filesystem::path& path, const geo::TileId& id);
+// The most pixels a side of any tile (dataset.json's tile_size stops here too): the decoders
+// refuse a larger header before they inflate a row.
+inline constexpr int kMaxTileSide = 4096;
+// expectedSize for a tile that belongs to no dataset yet (an XYZ source's 256 or 512 tiles, whose
+// importer checks the size itself): any square size up to kMaxTileSide.
+inline constexpr int kAnyTileSize = 0;
+
+// Decoding is bounded by what it checked: the image's header (for a PNG, before anything is
+// inflated) must say square, `expectedSize` pixels a side (dataset.json's tile_size: pass
+// DatasetMeta::tileSize, so a 200×200 tile in a dataset of 256 is refused, never over-read by a
+// consumer), 1 to 4 channels (heights: 8-bit RGB or RGBA); only then are pixels allocated. A
+// mismatching, corrupt or truncated tile is an InvalidInput error that names the path.
+// Paletted and greyscale PNGs are expanded to RGB(A). The files are read through the checked
+// opener (core/regular_file.h: only regular files, at most kTileFileCeiling).
+Result<HeightTile> readHeightTile(const std::filesystem::path& path, const geo::TileId& id, ElevationEncoding encoding,
+                                  int expectedSize);
+Result<ColorTile> readColorTile(const std::filesystem::path& path, const geo::TileId& id, int expectedSize);
 
 // The same decoders on a file's bytes already in memory (the streamer's decode workers; the
 // read* functions above read the file and call these). The format comes from the bytes' magic
 // number (PNG, JPEG, WebP); errors are InvalidInput and name `nameForErrors` (the tile's path or
 // URL). Thread-safe: any number of threads may decode at once.
 Result<HeightTile> decodeHeightTile(std::span<const uint8_t> bytes, const geo::TileId& id, ElevationEncoding encoding,
-                                    const std::string& nameForErrors);
-Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id,
+                                    int expectedSize, const std::string& nameForErrors);
+Result<ColorTile> decodeColorTile(std::span<const uint8_t> bytes, const geo::TileId& id, int expectedSize,
                                   const std::string& nameForErrors);
 
 // One-channel 8-bit layers (NDVI, landcover.h): `size` × `size` bytes written as a grey PNG

@@ -3,12 +3,12 @@
 // expression; {-y} rows are flipped to XYZ rows (tile_template.h).
 
 #include <algorithm>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <regex>
 #include <system_error>
 
+#include "core/regular_file.h"
 #include "datasets/message.h"
 #include "datasets/tile_template.h"
 #include "datasets/xyz_source.h"
@@ -67,19 +67,11 @@ class TileDirectorySource final : public XyzSource {
 }  // namespace
 
 Result<std::optional<std::vector<uint8_t>>> readTileFile(const fs::path& path, uint64_t maxBytes) {
-  std::error_code ec;
-  const auto status = fs::status(path, ec);
-  if (status.type() == fs::file_type::not_found) return std::optional<std::vector<uint8_t>>();
-  if (!fs::is_regular_file(status)) return makeError(ErrorKind::InvalidInput, concat("tile ", path, " is not a file"));
-  const uint64_t size = fs::file_size(path, ec);
-  if (ec) return makeError(ErrorKind::Io, concat("cannot read tile ", path, ": ", ec.message()));
-  if (size > maxBytes)
-    return makeError(ErrorKind::InvalidInput, concat("tile ", path, " has ", size, " bytes; tiles stop at ", maxBytes));
-  std::vector<uint8_t> bytes(size);
-  std::ifstream in(path, std::ios::binary);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
-    return makeError(ErrorKind::Io, concat("cannot read tile ", path));
-  return std::optional<std::vector<uint8_t>>(std::move(bytes));
+  // The checked opener (core/regular_file.h): only a regular file, at most maxBytes.
+  auto bytes = readRegularFileBytes(path, FileCeiling{"a source tile", maxBytes});
+  if (!bytes && bytes.error().kind == ErrorKind::NotFound) return std::optional<std::vector<uint8_t>>();
+  if (!bytes) return bytes.error();
+  return std::optional<std::vector<uint8_t>>(std::move(*bytes));
 }
 
 Result<std::vector<XyzTileFile>> findXyzTiles(const std::string& text) {

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
 
+#include "core/regular_file.h"
 #include "datasets/message.h"
 #include "datasets/tile_template.h"
 
@@ -57,14 +57,9 @@ bool endsWith(const std::string& s, const char* suffix) {
   return true;
 }
 
-// The first 16 bytes of a local file (fewer when it is shorter); empty when it cannot be read.
-std::string firstBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(16, '\0');
-  in.read(head.data(), 16);
-  head.resize(static_cast<size_t>(std::max<std::streamsize>(in.gcount(), 0)));
-  return head;
-}
+// The first 16 bytes of a local file (fewer when it is shorter), through the checked opener: a
+// directory, FIFO or device is an error naming it (core/regular_file.h), never a hang.
+Result<std::string> firstBytes(const fs::path& path) { return readRegularFileHead(path, 16); }
 
 }  // namespace
 
@@ -94,7 +89,9 @@ Result<std::unique_ptr<XyzSource>> openXyzSource(const std::string& text, const 
     return makeError(ErrorKind::NotFound, concat("tile source '", text, "' does not exist (expected a template "
                                                                         "DIR/{z}/{x}/{y}.png, an .mbtiles or a "
                                                                         ".pmtiles file)"));
-  const std::string head = firstBytes(text);
+  const auto firstSixteen = firstBytes(text);
+  if (!firstSixteen) return firstSixteen.error();
+  const std::string& head = *firstSixteen;
   if (head.rfind("SQLite format 3", 0) == 0) return openMbtilesSource(text);
   if (head.rfind("PMTiles", 0) == 0) return openPmtilesSource(text, http);
   return makeError(ErrorKind::InvalidInput,

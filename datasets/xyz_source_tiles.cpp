@@ -57,7 +57,7 @@ Result<std::vector<HeightTile>> readSourceHeightTiles(XyzSource& source, const g
   auto bytes = source.read(id);
   if (!bytes) return bytes.error();
   if (!*bytes) return std::vector<HeightTile>();
-  auto tile = decodeHeightTile(**bytes, id, encoding, source.tileName(id));
+  auto tile = decodeHeightTile(**bytes, id, encoding, kAnyTileSize, source.tileName(id));
   if (!tile) return tile.error();
   if (auto s = checkSize(source, id, tile->size); !s) return s.error();
   if (tile->size == kLargeSourceTileSize) return splitHeightTile(*tile);
@@ -68,7 +68,7 @@ Result<std::vector<ColorTile>> readSourceColorTiles(XyzSource& source, const geo
   auto bytes = source.read(id);
   if (!bytes) return bytes.error();
   if (!*bytes) return std::vector<ColorTile>();
-  auto tile = decodeColorTile(**bytes, id, source.tileName(id));
+  auto tile = decodeColorTile(**bytes, id, kAnyTileSize, source.tileName(id));
   if (!tile) return tile.error();
   if (auto s = checkSize(source, id, tile->size); !s) return s.error();
   if (tile->size == kLargeSourceTileSize) return splitColorTile(*tile);
@@ -80,7 +80,7 @@ Result<std::optional<int>> probeSourceTileSize(XyzSource& source, const std::vec
     auto bytes = source.read(id);
     if (!bytes) return bytes.error();
     if (!*bytes) continue;
-    auto tile = decodeColorTile(**bytes, id, source.tileName(id));
+    auto tile = decodeColorTile(**bytes, id, kAnyTileSize, source.tileName(id));
     if (!tile) return tile.error();
     if (auto s = checkSize(source, id, tile->size); !s) return s.error();
     return std::optional<int>(tile->size);

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_text.h"
 #include "core/text_file.h"
 
 #include "flight/json_positions.h"
@@ -50,7 +51,8 @@ struct Reader {
   Error fail(const std::string& field, const std::string& problem, const std::string& lineOf) const {
     std::string where = source;
     if (auto lc = positions.find(lineOf)) where += ":" + std::to_string(lc->line) + ":" + std::to_string(lc->column);
-    return makeError(ErrorKind::InvalidInput, where + ": " + (field.empty() ? "" : field + ": ") + problem);
+    return makeError(ErrorKind::InvalidInput,
+                     where + ": " + (field.empty() ? "" : printable(field, 200) + ": ") + problem);
   }
 
   static std::string child(const std::string& path, const std::string& key) {
@@ -66,7 +68,8 @@ struct Reader {
         list += (list.empty() ? "" : ", ") + k;
         if (hint.empty() && editDistance(key, k) <= 2) hint = " (did you mean \"" + k + "\"?)";
       }
-      return fail(child(path, key), "unknown key \"" + key + "\"" + hint + "; known keys: " + list, child(path, key));
+      return fail(child(path, key), "unknown key \"" + printable(key) + "\"" + hint + "; known keys: " + list,
+                  child(path, key));
     }
     return std::nullopt;
   }
@@ -116,7 +119,8 @@ struct Reader {
     if (!s) return s.error();
     if (*s == "terrain") return AltRef::Terrain;
     if (*s == "msl") return AltRef::Msl;
-    return fail(child(path, "alt_ref"), "\"" + *s + "\" is not one of \"terrain\", \"msl\"", child(path, "alt_ref"));
+    return fail(child(path, "alt_ref"), "\"" + printable(*s) + "\" is not one of \"terrain\", \"msl\"",
+                child(path, "alt_ref"));
   }
 
   // The array at obj[key] (required unless optional), its elements objects.
@@ -179,7 +183,7 @@ Result<Collider> readCollider(const Reader& r, const json& obj, const std::strin
   else if (shape == "capsule")
     c.shape = Collider::Shape::Capsule;
   else
-    return r.fail(f + ".shape", "\"" + shape + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
+    return r.fail(f + ".shape", "\"" + printable(shape) + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
   VEG_TRY_ASSIGN(c.radiusM, r.number(obj, f, "radius_m"));
   if (c.shape == Collider::Shape::Capsule) {
     VEG_TRY_ASSIGN(c.lengthM, r.number(obj, f, "length_m"));
@@ -204,7 +208,8 @@ Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const st
   else if (type == "rotor")
     w.type = WindSourceSpec::Type::Rotor;
   else
-    return r.fail(f + ".type", "\"" + type + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"", f + ".type");
+    return r.fail(f + ".type", "\"" + printable(type) + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"",
+                  f + ".type");
   VEG_TRY_ASSIGN(w.radiusM, r.number(obj, f, "radius_m"));
   VEG_TRY_ASSIGN(w.strengthMps, r.number(obj, f, "strength_mps"));
   if (w.type == WindSourceSpec::Type::Fan) {
@@ -215,7 +220,7 @@ Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const st
     VEG_TRY_ASSIGN(direction, r.number(obj, f, "direction_deg"));
     w.directionDeg = direction;
   } else if (obj.contains("direction_deg")) {
-    return r.fail(f + ".direction_deg", "only a fan has a direction (a " + type + " blows all around)",
+    return r.fail(f + ".direction_deg", "only a fan has a direction (a " + printable(type) + " blows all around)",
                   f + ".direction_deg");
   }
   VEG_TRY_ASSIGN(w.keyframes, readObjectKeys(r, obj, f));
@@ -320,6 +325,7 @@ Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sou
     std::string what = e.what();
     const auto colon = what.find(": ");
     if (colon != std::string::npos) what = what.substr(colon + 2);
+    what = printable(what, 2 * kPrintableChars);
     return makeError(ErrorKind::InvalidInput, sourceName + ":" + std::to_string(lc.line) + ":" +
                                                   std::to_string(lc.column) + ": malformed JSON: " + what);
   } catch (const json::exception& e) {
@@ -335,13 +341,13 @@ Result<FlightPath> parseFlightPath(std::string_view text, const std::string& sou
         where += ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
       }
     }
-    return makeError(ErrorKind::InvalidInput, where + ": malformed JSON: " + what);
+    return makeError(ErrorKind::InvalidInput, where + ": malformed JSON: " + printable(what, 2 * kPrintableChars));
   }
   // The walk checks every type before reading; a missed case stays an error value, not an abort.
   try {
     return readFlightPath(doc, text, sourceName);
   } catch (const json::exception& e) {
-    return makeError(ErrorKind::InvalidInput, sourceName + ": " + e.what());
+    return makeError(ErrorKind::InvalidInput, sourceName + ": " + jsonExceptionText(e.what()));
   }
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 
 namespace vegstream::flight {
 namespace {
@@ -130,7 +132,21 @@ std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const Gro
 
 std::size_t frameCount(double durationS, double fps) {
   assert(fps > 0.0 && durationS >= 0.0);
-  return static_cast<std::size_t>(std::floor(durationS * fps + 1e-9)) + 1;
+  const double steps = std::floor(durationS * fps + 1e-9);
+  if (!(steps < 1e18)) return SIZE_MAX;  // no cast of a value size_t cannot hold
+  return static_cast<std::size_t>(steps) + 1;
+}
+
+Status checkRecordable(double durationS, double fps, double warmupS, const std::string& sourceName) {
+  const std::size_t frames = frameCount(durationS, fps);
+  const double warmup = std::round(warmupS * fps);
+  if (frames <= kMaxRecordedFrames && warmup <= static_cast<double>(kMaxRecordedFrames - frames)) return {};
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "%.6g s at %.6g fps is %.6g frames; a recording holds at most %zu (%.4g s at this fps)", durationS, fps,
+                std::floor(durationS * fps) + 1.0 + warmup, kMaxRecordedFrames,
+                static_cast<double>(kMaxRecordedFrames - 1) / fps);
+  return makeError(ErrorKind::InvalidInput, sourceName + ": " + text);
 }
 
 }  // namespace vegstream::flight

@@ -7,10 +7,12 @@
 // turn from 170° to −170° passes through 180°, not 0°.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "core/result.h"
 #include "flight/flight_path.h"
 #include "flight/ground_height.h"
 #include "flight/monotone_cubic.h"
@@ -90,6 +92,16 @@ std::vector<FlightSample> lookAheadSamples(const PathSampler& sampler, const Gro
                                            double horizonS = 3.0, double stepS = 0.5);
 
 // Frames of a fixed-step playback at `fps`: t = 0, 1/fps, … up to and including the path's end.
+// Saturates at SIZE_MAX (a path the validator allows, t ≤ 10⁹ s, at a high fps).
 std::size_t frameCount(double durationS, double fps);
+
+// The most frames one recording holds. A recording keeps every frame's figures in memory until
+// its tables are written (a few hundred bytes a frame, reserved up front), so this ceiling —
+// 4.6 hours at 60 fps, about 1 GB of figures at most — is checked before anything is reserved:
+// a longer path is refused in one line, not recorded in pieces.
+inline constexpr std::size_t kMaxRecordedFrames = 1'000'000;
+// InvalidInput naming `sourceName` when a path of `durationS` at `fps` (warm-up included) is
+// more frames than kMaxRecordedFrames.
+Status checkRecordable(double durationS, double fps, double warmupS, const std::string& sourceName);
 
 }  // namespace vegstream::flight

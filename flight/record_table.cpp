@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/printable.h"
 #include "core/text_file.h"
 
 namespace vegstream::flight {
@@ -93,7 +94,8 @@ Result<RecordTable> RecordTable::parseCsv(const std::string& text, const std::st
       double v = 0.0;
       const auto [end, ec] = std::from_chars(cells[c].data(), cells[c].data() + cells[c].size(), v);
       if (ec != std::errc() || end != cells[c].data() + cells[c].size() || !std::isfinite(v))
-        return fail(lineNo, "column " + table.columns_[c].name + ": \"" + std::string(cells[c]) + "\" is not a number");
+        return fail(lineNo, "column " + printable(table.columns_[c].name) + ": \"" + printable(cells[c]) +
+                                "\" is not a number");
       row[c] = v;
     }
   }
@@ -101,7 +103,7 @@ Result<RecordTable> RecordTable::parseCsv(const std::string& text, const std::st
 }
 
 Result<RecordTable> RecordTable::loadCsv(const std::filesystem::path& file) {
-  auto text = readTextFile(file);
+  auto text = readTextFile(file, "no such file", kTableFileCeiling);
   if (!text) return text.error();
   return parseCsv(*text, file.string());
 }

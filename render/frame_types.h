@@ -73,16 +73,18 @@ struct TerrainDraw {
 // Copies a tile into an imagery layer before the frame draws. `rgba` (256 × 256 × 4 bytes)
 // must stay alive until submitFrame returns. The copy waits for every earlier command on the
 // queue, so a frame still in flight that draws the layer's old tile finishes first (the
-// streamer also delays slot reuse).
+// streamer also delays slot reuse). The upload copies only what it checked: an `rgba` of any
+// other size (or an `ndvi` neither empty nor 256 × 256) is skipped, never over-read — the
+// streamer's decoders already refuse such tiles (datasets/tile_codec.h), this is the last guard.
 struct ImageryUpload {
   uint32_t layer = 0;
-  const uint8_t* rgba = nullptr;
-  // 256 × 256 NDVI bytes (datasets/tile_codec.h) for the layer, or null: none there. Used only
+  std::span<const uint8_t> rgba;
+  // 256 × 256 NDVI bytes (datasets/tile_codec.h) for the layer, or empty: none there. Used only
   // when the imagery array was sized with NDVI (Renderer::setImageryLayers).
-  const uint8_t* ndvi = nullptr;
-  // 256 × 256 landcover class codes (datasets/landcover.h; 0 = no class) for the layer, or null:
+  std::span<const uint8_t> ndvi;
+  // 256 × 256 landcover class codes (datasets/landcover.h; 0 = no class) for the layer, or empty:
   // none there. Used only when the imagery array was sized with landcover.
-  const uint8_t* landcover = nullptr;
+  std::span<const uint8_t> landcover;
 };
 
 // The layers that travel with each imagery layer (Renderer::setImageryLayers): in one RG8 array

@@ -32,11 +32,11 @@ constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTil
 constexpr VkDeviceSize kCompanionBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 2;
 
 // One layer's companion texels (RG8): NDVI byte, landcover class code; 0 where a layer is absent.
-void interleaveCompanions(uint8_t* dst, const uint8_t* ndvi, const uint8_t* landcover) {
+void interleaveCompanions(uint8_t* dst, std::span<const uint8_t> ndvi, std::span<const uint8_t> landcover) {
   constexpr size_t n = size_t{kImageryTileSize} * kImageryTileSize;
   for (size_t i = 0; i < n; ++i) {
-    dst[2 * i] = ndvi ? ndvi[i] : 0;
-    dst[2 * i + 1] = landcover ? landcover[i] : 0;
+    dst[2 * i] = ndvi.empty() ? 0 : ndvi[i];
+    dst[2 * i + 1] = landcover.empty() ? 0 : landcover[i];
   }
 }
 
@@ -226,8 +226,13 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
   auto* staging = static_cast<uint8_t*>(staging_[s].buffer().mapped);
   VkDeviceSize offset = 0;
   for (const ImageryUpload& u : uploads) {
-    assert(u.rgba != nullptr && u.layer < layers_ && "the streamer's slots fit the array it sized");
-    std::memcpy(staging + offset, u.rgba, kTileBytes);
+    assert(u.layer < layers_ && "the streamer's slots fit the array it sized");
+    // The tile-size check at the upload: only whole 256 × 256 tiles are copied.
+    constexpr size_t kLayerBytes = size_t{kImageryTileSize} * kImageryTileSize;
+    if (u.rgba.size() != kTileBytes || (!u.ndvi.empty() && u.ndvi.size() != kLayerBytes) ||
+        (!u.landcover.empty() && u.landcover.size() != kLayerBytes))
+      continue;
+    std::memcpy(staging + offset, u.rgba.data(), kTileBytes);
     recordImageUpload(cmd, staging_[s].buffer(), imagery_, u.layer, offset);
     offset += kTileBytes;
     if (!companions_.any()) continue;

@@ -169,6 +169,9 @@ Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path
   assert(options.framesInFlight >= 1 && options.framesInFlight <= FrameDriver::kMaxInFlight);
   assert(driver.framesInFlight() == 0 && "playback starts with no frame in flight");
   const flight::PathSampler sampler(path);
+  // The ceiling before anything is reserved (the command line checked it already, naming the file).
+  if (Status s = flight::checkRecordable(sampler.duration(), options.fps, options.warmupS, path.name); !s)
+    return s.error();
   const std::size_t n = flight::frameCount(sampler.duration(), options.fps);
 
   Recording rec;

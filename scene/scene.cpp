@@ -288,8 +288,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   for (const streaming::Upload& u : m.planned)
     if (u.tile && u.tile->colors) {
       const datasets::ColorTile& c = *u.tile->colors;
-      m.uploads.push_back({u.slot, c.rgba.data(), c.ndvi.empty() ? nullptr : c.ndvi.data(),
-                           c.landcover.empty() ? nullptr : c.landcover.data()});
+      m.uploads.push_back({u.slot, c.rgba, c.ndvi, c.landcover});
     }
   m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
   fig.streamingMs = stage.elapsedMs() - waitMs;

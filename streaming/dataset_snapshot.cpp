@@ -40,13 +40,21 @@ MercatorRaster gridFor(const geo::GeoBounds& bounds, int z) {
 
 uint64_t pixels(const MercatorRaster& g) { return static_cast<uint64_t>(g.width) * static_cast<uint64_t>(g.height); }
 
-int finestZoomWithin(const datasets::DatasetMeta& meta, uint64_t maxPixels, int maxSide) {
-  int z = meta.minZoom;
+// The finest zoom whose grid fits the limits; when not even min_zoom's does (a dataset.json
+// whose min_zoom is 16 over a whole park), InvalidInput before anything is allocated.
+Result<int> finestZoomWithin(TileSource& source, const datasets::DatasetMeta& meta, const SnapshotLimits& limits) {
+  int z = -1;
   for (int candidate = meta.minZoom; candidate <= meta.maxZoom; ++candidate) {
     const MercatorRaster g = gridFor(meta.bounds, candidate);
-    if (pixels(g) <= maxPixels && g.width <= maxSide && g.height <= maxSide) z = candidate;
+    if (pixels(g) <= limits.maxHeightPixels && g.width <= limits.maxSide && g.height <= limits.maxSide) z = candidate;
   }
-  return z;
+  if (z >= 0) return z;
+  const MercatorRaster g = gridFor(meta.bounds, meta.minZoom);
+  return makeError(ErrorKind::InvalidInput,
+                   source.describe() + "/dataset.json: at its min_zoom " + std::to_string(meta.minZoom) +
+                       " the dataset's bounds are " + std::to_string(g.width) + "x" + std::to_string(g.height) +
+                       " pixels; the ground mosaic stops at " + std::to_string(limits.maxHeightPixels) +
+                       " pixels and " + std::to_string(limits.maxSide) + " a side (give a smaller min_zoom)");
 }
 
 // The global pixel (from the west / north edge of the world) of the grid's first column / row.
@@ -125,12 +133,13 @@ Status loadLayer(TileSource& source, const std::vector<geo::TileId>& tiles, cons
 Result<HeightMosaic> loadGroundHeights(TileSource& source, const datasets::DatasetMeta& meta,
                                        const SnapshotLimits& limits) {
   HeightMosaic mosaic;
-  const int hz = finestZoomWithin(meta, limits.maxHeightPixels, limits.maxSide);
-  static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, hz);
+  const auto hz = finestZoomWithin(source, meta, limits);
+  if (!hz) return hz.error();
+  static_cast<MercatorRaster&>(mosaic) = gridFor(meta.bounds, *hz);
   mosaic.heights.assign(pixels(mosaic), std::numeric_limits<float>::quiet_NaN());
   auto pathOf = [&](const geo::TileId& id) { return datasetRelativePath({TileLayer::Height, id}, meta); };
   auto use = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
-    auto t = datasets::decodeHeightTile(bytes, id, meta.elevationEncoding, name);
+    auto t = datasets::decodeHeightTile(bytes, id, meta.elevationEncoding, datasets::kTileSize, name);
     if (!t) return t.error();
     if (t->size != datasets::kTileSize)
       return makeError(ErrorKind::InvalidInput, name + ": " + std::to_string(t->size) + " pixels a side, not " +
@@ -172,7 +181,7 @@ Result<ImageryMosaic> loadGroundImagery(TileSource& source, const datasets::Data
   std::vector<geo::TileId> withImagery;  // the NDVI tiles lie over these, pixel for pixel
   auto imageryPath = [&](const geo::TileId& id) { return datasetRelativePath({TileLayer::Imagery, id}, meta); };
   auto useImagery = [&](const geo::TileId& id, std::span<const uint8_t> bytes, const std::string& name) -> Status {
-    auto t = datasets::decodeColorTile(bytes, id, name);
+    auto t = datasets::decodeColorTile(bytes, id, datasets::kTileSize, name);
     if (!t) return t.error();
     if (t->size != n) return sizeProblem(name, t->size);
     forEachPixelOf(mosaic, id, [&](int px, int py, size_t i) {

@@ -29,6 +29,8 @@ struct HeightMosaic : MercatorRaster {
   std::vector<float> heights;  // NaN = nodata
 };
 
+// The ceiling of the ground mosaics (checked before allocating: 4 bytes a height pixel, 6 an
+// imagery pixel). A dataset whose coarsest zoom already exceeds it is refused.
 struct SnapshotLimits {
   uint64_t maxHeightPixels = 1'000'000;
   int maxSide = 4096;

@@ -11,9 +11,10 @@
 
 namespace vegstream::streaming::detail {
 
-DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
-                               HeightExtraFn heightExtra)
-    : encoding_(encoding), heightExtra_(std::move(heightExtra)), runner_(runner), maxConcurrent_(maxConcurrent) {
+DecodePipeline::DecodePipeline(datasets::ElevationEncoding encoding, int tileSize, TaskRunner& runner,
+                               int maxConcurrent, HeightExtraFn heightExtra)
+    : encoding_(encoding), tileSize_(tileSize), heightExtra_(std::move(heightExtra)), runner_(runner),
+      maxConcurrent_(maxConcurrent) {
   assert(maxConcurrent >= 1);
 }
 
@@ -42,6 +43,7 @@ void DecodePipeline::onFetched(const TileKey& key, const std::string& name, Fetc
   Completion c;
   c.id = result.id;
   c.attempts = result.attempts;
+  c.permanent = result.permanent;
   c.message = std::move(result.message);
   switch (result.outcome) {
     case FetchOutcome::Ok:
@@ -98,17 +100,18 @@ std::size_t DecodePipeline::decodesQueued() const {
 
 // The companion layers' tiles of imagery tile `tile` (paired_fetch.h), each checked as its own
 // layer's tile of the same id; absent bytes leave that layer empty.
-Status DecodePipeline::decodeCompanions(const Job& job, datasets::ColorTile& tile) {
+Status DecodePipeline::decodeCompanions(const Job& job, datasets::ColorTile& tile) const {
   const auto& ndvi = job.companions.bytes[static_cast<size_t>(Companion::Ndvi)];
   if (!ndvi.empty()) {
-    auto v = datasets::decodeNdviTile(ndvi, job.key.id, job.companions.names[static_cast<size_t>(Companion::Ndvi)]);
+    auto v = datasets::decodeNdviTile(ndvi, job.key.id, job.companions.names[static_cast<size_t>(Companion::Ndvi)],
+                                      tileSize_);
     if (!v) return v.error();
     tile.ndvi = std::move(*v);
   }
   const auto& landcover = job.companions.bytes[static_cast<size_t>(Companion::Landcover)];
   if (!landcover.empty()) {
     auto v = datasets::decodeLandcoverTile(landcover, job.key.id,
-                                           job.companions.names[static_cast<size_t>(Companion::Landcover)]);
+                                           job.companions.names[static_cast<size_t>(Companion::Landcover)], tileSize_);
     if (!v) return v.error();
     tile.landcover = std::move(v->classes);
   }
@@ -120,7 +123,7 @@ Completion DecodePipeline::decode(Job& job) const {
   c.id = job.id;
   try {
     if (job.key.layer == TileLayer::Height) {
-      auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, job.name);
+      auto t = datasets::decodeHeightTile(job.bytes, job.key.id, encoding_, tileSize_, job.name);
       if (t) {
         c.heights = std::make_shared<const datasets::HeightTile>(std::move(t).value());
         if (heightExtra_) c.extra = heightExtra_(*c.heights);
@@ -128,7 +131,7 @@ Completion DecodePipeline::decode(Job& job) const {
         c.message = t.error().message;
       }
     } else {
-      auto t = datasets::decodeColorTile(job.bytes, job.key.id, job.name);
+      auto t = datasets::decodeColorTile(job.bytes, job.key.id, tileSize_, job.name);
       Status companions = t ? decodeCompanions(job, *t) : Status{};
       if (t && companions) {
         c.colors = std::make_shared<const datasets::ColorTile>(std::move(t).value());

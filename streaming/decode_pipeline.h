@@ -42,7 +42,7 @@ struct Completion {
   enum class Kind {
     Fetched,       // the bytes arrived (a decode job is queued): Requested → Decoding
     Missing,       // final
-    FetchFailed,   // final for this request (the tile may be asked again later)
+    FetchFailed,   // final for this request (asked again later unless `permanent`)
     Cancelled,     // the source cancelled it on its own (e.g. while shutting down)
     Decoded,       // final: heights or colors set
     DecodeFailed,  // final: corrupt bytes
@@ -51,6 +51,7 @@ struct Completion {
   RequestId id = 0;
   uint64_t bytes = 0;   // Fetched: payload size
   int attempts = 0;     // fetch attempts the source made
+  bool permanent = false;  // FetchFailed: never to be asked again (FetchResult::permanent)
   std::string message;  // Missing / FetchFailed / DecodeFailed: why, naming the file
   std::shared_ptr<const datasets::HeightTile> heights;
   std::shared_ptr<const datasets::ColorTile> colors;
@@ -60,7 +61,9 @@ struct Completion {
 class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
  public:
   // Made through std::make_shared (its tasks hold it). `maxConcurrent` ≥ 1.
-  DecodePipeline(datasets::ElevationEncoding encoding, TaskRunner& runner, int maxConcurrent,
+  // Every tile is decoded only when its header says `tileSize` pixels a side (dataset.json's
+  // tile_size, tile_codec.h): anything else is DecodeFailed, never an over-read downstream.
+  DecodePipeline(datasets::ElevationEncoding encoding, int tileSize, TaskRunner& runner, int maxConcurrent,
                  HeightExtraFn heightExtra = {});
   ~DecodePipeline();  // stop() must have been called (asserted)
   DecodePipeline(const DecodePipeline&) = delete;
@@ -90,10 +93,11 @@ class DecodePipeline : public std::enable_shared_from_this<DecodePipeline> {
   };
   void drain();  // a decode task: one job, then posted again while jobs are queued
   Completion decode(Job& job) const;
-  static Status decodeCompanions(const Job& job, datasets::ColorTile& tile);
+  Status decodeCompanions(const Job& job, datasets::ColorTile& tile) const;
   void pushLocked(Completion&& c);
 
   const datasets::ElevationEncoding encoding_;
+  const int tileSize_;
   const HeightExtraFn heightExtra_;
   mutable std::mutex mu_;
   std::condition_variable completionsCv_;  // settle() waits here

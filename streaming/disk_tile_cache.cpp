@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "core/atomic_file.h"
+#include "core/regular_file.h"
 
 namespace vegstream::streaming {
 namespace fs = std::filesystem;
@@ -38,12 +39,12 @@ std::string sanitiseSegment(std::string_view segment) {
   return out;
 }
 
+// Through the checked opener (core/regular_file.h): anything but a regular tile-sized file is a
+// miss, never a hang or an endless read.
 std::optional<std::vector<uint8_t>> readWholeFile(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return std::nullopt;
-  return bytes;
+  auto bytes = readRegularFileBytes(file, kTileFileCeiling);
+  if (!bytes) return std::nullopt;
+  return std::move(*bytes);
 }
 
 }  // namespace

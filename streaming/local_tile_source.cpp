@@ -7,19 +7,13 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cerrno>
 #include <condition_variable>
-#include <cstring>
 #include <deque>
 #include <mutex>
 #include <unordered_set>
 #include <vector>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include "core/text_file.h"
+#include "core/regular_file.h"
 
 namespace vegstream::streaming {
 namespace {
@@ -40,46 +34,19 @@ bool isInsideRoot(const std::string& relativePath) {
   return std::none_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".."; });
 }
 
-std::string quotedPath(const fs::path& p) {
-  std::string s(1, '\'');
-  s += p.string();
-  s += '\'';
-  return s;
-}
-
-// Reads the whole file with POSIX calls (one open, one fstat, reads until the size is in).
+// Reads the whole file through the checked opener (core/regular_file.h): a missing file is
+// Missing; no regular file, one past the tile ceiling, or a failed read is Failed, at once.
 FetchResult readWholeFile(const fs::path& path) {
   FetchResult r;
   r.attempts = 1;
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    const int err = errno;
-    r.outcome = err == ENOENT || err == ENOTDIR ? FetchOutcome::Missing : FetchOutcome::Failed;
-    r.message = quotedPath(path) + ": " + std::strerror(err);
+  auto bytes = readRegularFileBytes(path, kTileFileCeiling, "no such file");
+  if (!bytes) {
+    r.outcome = bytes.error().kind == ErrorKind::NotFound ? FetchOutcome::Missing : FetchOutcome::Failed;
+    r.permanent = bytes.error().kind == ErrorKind::InvalidInput;  // what the path is: no retry changes it
+    r.message = bytes.error().message;
     return r;
   }
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    r.outcome = FetchOutcome::Failed;
-    r.message = quotedPath(path) + ": not a regular file";
-    ::close(fd);
-    return r;
-  }
-  r.bytes.resize(static_cast<size_t>(st.st_size));
-  size_t got = 0;
-  while (got < r.bytes.size()) {
-    const ssize_t n = ::read(fd, r.bytes.data() + got, r.bytes.size() - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      r.outcome = FetchOutcome::Failed;
-      r.message = quotedPath(path) + (n < 0 ? ": " + std::string(std::strerror(errno)) : ": file shrank while read");
-      r.bytes.clear();
-      ::close(fd);
-      return r;
-    }
-    got += static_cast<size_t>(n);
-  }
-  ::close(fd);
+  r.bytes = std::move(*bytes);
   r.outcome = FetchOutcome::Ok;
   return r;
 }
@@ -201,7 +168,9 @@ std::string LocalTileSource::describe() const { return "dir " + impl_->root.stri
 Result<std::string> LocalTileSource::readText(const std::string& relativePath) {
   if (!isInsideRoot(relativePath))
     return makeError(ErrorKind::InvalidInput, "'" + relativePath + "' is not a path inside the dataset directory");
-  return readTextFile(impl_->root / relativePath);
+  // dataset.json has its own ceiling; everything else read this way is a tile (the snapshot).
+  const bool meta = fs::path(relativePath).filename() == "dataset.json";
+  return readRegularFile(impl_->root / relativePath, meta ? kDatasetJsonCeiling : kTileFileCeiling);
 }
 
 void LocalTileSource::start(RequestId id, const std::string& relativePath, FetchCallback done) {

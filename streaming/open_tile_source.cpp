@@ -42,7 +42,15 @@ Result<datasets::DatasetMeta> readMetaFrom(TileSource& source) {
       return makeError(ErrorKind::NotFound, source.describe() + " is not a vegstream dataset: " + text.error().message);
     return text.error();
   }
-  return datasets::parseDatasetMeta(*text, datasetJsonName(source));
+  auto meta = datasets::parseDatasetMeta(*text, datasetJsonName(source));
+  if (!meta) return meta.error();
+  // The streamer's GPU slots, the snapshot's mosaic and the canopy layer are laid out for
+  // kTileSize: a dataset of other tiles is refused here, in one line, not over-read later.
+  if (meta->tileSize != datasets::kTileSize)
+    return makeError(ErrorKind::InvalidInput, "'" + datasetJsonName(source) + "': field 'tile_size' is " +
+                                                  std::to_string(meta->tileSize) + "; vegstream streams tiles of " +
+                                                  std::to_string(datasets::kTileSize) + " pixels only");
+  return meta;
 }
 
 std::string datasetJsonName(const TileSource& source) {

@@ -35,7 +35,8 @@ bool isHttpLocation(const std::string& location);
 // read here (readMetaFrom does that).
 Result<std::shared_ptr<TileSource>> openTileSource(const std::string& location, const OpenSourceOptions& options);
 
-// readText("dataset.json") → parseDatasetMeta, the errors naming the source's file or URL.
+// readText("dataset.json") → parseDatasetMeta, the errors naming the source's file or URL; a
+// tile_size other than datasets::kTileSize is InvalidInput (what streams is laid out for it).
 Result<datasets::DatasetMeta> readMetaFrom(TileSource& source);
 
 // How errors name the source's dataset.json: "DIR/dataset.json" or "URL/dataset.json".

@@ -43,6 +43,7 @@ std::optional<FetchResult> joined(Join& j, CompanionBytes& companions) {
           out.outcome = FetchOutcome::Failed;
           out.bytes.clear();
           out.message = r.message.empty() ? "a companion file of the tile could not be fetched" : r.message;
+          out.permanent = r.permanent;
         }
         break;
     }

@@ -50,12 +50,12 @@ TileCheck tileCheckFor(const datasets::DatasetMeta& meta, const std::string& sou
     switch (layer) {
       case Layer::None: return {};
       case Layer::Elevation: {
-        auto t = datasets::decodeHeightTile(bytes, id, encoding, name);
+        auto t = datasets::decodeHeightTile(bytes, id, encoding, size, name);
         if (!t) return t.error();
         return sizeIs(t->size, size, name);
       }
       case Layer::Imagery: {
-        auto t = datasets::decodeColorTile(bytes, id, name);
+        auto t = datasets::decodeColorTile(bytes, id, size, name);
         if (!t) return t.error();
         return sizeIs(t->size, size, name);
       }

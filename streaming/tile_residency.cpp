@@ -125,6 +125,13 @@ void TileStreamer::Impl::takeCompletions(double timeS, bool inRequestOrder) {
         log->debug("tile {} is missing ({}): its parent is drawn", toString(key), c.message);
         break;
       case Completion::Kind::FetchFailed:
+        if (c.permanent) {  // not a tile a retry can fetch (no regular file, past the ceiling)
+          e.state = TileState::Failed;
+          ++stats.requestsFailed;
+          e.failure = TileStreamer::Failure{c.message, false};
+          log->warn("tile {} cannot be read: {}; its parent is drawn", toString(key), c.message);
+          break;
+        }
         e.state = TileState::FailedTemporarily;
         e.failedAtS = timeS;
         ++e.failures;

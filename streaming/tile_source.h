@@ -32,6 +32,10 @@ struct FetchResult {
   std::string message;  // why, for Missing / Failed: names the path or URL
   int attempts = 0;     // tries made (1 = no retry)
   bool fromCache = false;
+  // Failed for good: a fact about the file that no retry changes (a directory, a FIFO or a
+  // device where the tile should be, or a file past the tile ceiling: core/regular_file.h).
+  // The streamer then never asks again, as for Missing, but warns once and keeps the reason.
+  bool permanent = false;
 };
 
 // Called exactly once per started request, with any outcome, on a thread of the source's.

@@ -108,7 +108,8 @@ struct TileStreamer::Impl {
       runner = ownPool.get();
     }
     const int decodes = options.decodeThreads > 0 ? options.decodeThreads : std::max(1, runner->concurrency() - 1);
-    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, *runner, decodes, options.heightExtra);
+    pipeline = std::make_shared<detail::DecodePipeline>(meta.elevationEncoding, meta.tileSize, *runner, decodes,
+                                                        options.heightExtra);
   }
 
   static constexpr uint64_t kGpuSlotBytes = uint64_t(datasets::kTileSize) * datasets::kTileSize * 4;

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_text.h"
 #include "core/text_file.h"
 #include "vegetation/blade_shape.h"
 #include "vegetation/colour_calibration.h"
@@ -36,7 +37,8 @@ class Parser {
   explicit Parser(std::string source) : source_(std::move(source)) {}
 
   bool fail(const std::string& path, const std::string& problem) {
-    if (!error_) error_ = makeError(ErrorKind::InvalidInput, source_ + ": " + path + ": " + problem);
+    // The path holds keys from the file: escaped and bounded like any value from data.
+    if (!error_) error_ = makeError(ErrorKind::InvalidInput, source_ + ": " + printable(path, 200) + ": " + problem);
     return false;
   }
   const Error& error() const { return *error_; }
@@ -207,7 +209,7 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
   else if (f == "broadleaf")
     out.form = TreeForm::Broadleaf;
   else
-    return ps.fail(p + ".form", "must be \"conifer\" or \"broadleaf\" (got " + form->dump() + ")");
+    return ps.fail(p + ".form", "must be \"conifer\" or \"broadleaf\" (got " + jsonValueText(*form) + ")");
   if (!parseBounded(ps, t, "density_ha", p, out.densityHa, 0.0, true, 10000.0, "> 0 and ≤ 10000 trees per hectare",
                     true) ||
       !parseBounded(ps, t, "spacing_m", p, out.spacingM, 0.0, true, 100.0, "> 0 and ≤ 100 metres", true))
@@ -255,7 +257,7 @@ bool parseKind(Parser& ps, const json& obj, const std::string& path, RendererKin
       kind = c;
       return true;
     }
-  return ps.fail(p, "must be \"grass\", \"gravel\", \"flowers\" or \"tree\" (got " + it->dump() + ")");
+  return ps.fail(p, "must be \"grass\", \"gravel\", \"flowers\" or \"tree\" (got " + jsonValueText(*it) + ")");
 }
 
 bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species& out) {
@@ -331,7 +333,8 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
     const std::string v = sf->is_string() ? sf->get<std::string>() : "";
     const auto at = std::find(std::begin(kNames), std::end(kNames), v);
     if (at == std::end(kNames))
-      return ps.fail(path + ".surface", "must be \"grass\", \"rock\", \"gravel\" or \"sand\" (got " + sf->dump() + ")");
+      return ps.fail(path + ".surface",
+                     "must be \"grass\", \"rock\", \"gravel\" or \"sand\" (got " + jsonValueText(*sf) + ")");
     out.surface = static_cast<DetailSurface>(at - std::begin(kNames));
   }
   if (const auto sh = obj.find("shadows"); sh != obj.end()) {
@@ -367,11 +370,7 @@ bool parseSpecies(Parser& ps, const json& obj, const std::string& path, Species&
 }
 
 // nlohmann's message without its "[json.exception.parse_error.101] " tag.
-std::string jsonProblem(const json::exception& e) {
-  const std::string what = e.what();
-  const auto tag = what.find("] ");
-  return what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos ? what.substr(tag + 2) : what;
-}
+std::string jsonProblem(const json::exception& e) { return jsonExceptionText(e.what()); }
 
 // What concerns the tree species together: each tree horizon reaches at least as far as every
 // other growing species' (issue 20: the forest outlasts the meadow), and each spacing fits the

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include "tests/app/record_test_data.h"
 
@@ -449,6 +450,12 @@ TEST_P(RecordBadInput, OneMessageExitTwoNothingWritten) {
   writeFile("record_outside.json", R"({"keyframes": [
   {"t": 0, "lat": 46.55, "lon": 7.95, "alt_m": 300, "heading": 0, "pitch": -20},
   {"t": 2, "lat": 47.20, "lon": 7.95, "alt_m": 300, "heading": 0, "pitch": -20}]})");
+  // A path the validator accepts (t ≤ 10⁹ s) that is 600 M frames at 60 fps (issue 42: reserving
+  // them was a bad_alloc, "internal error"); and a FIFO where the path should be (open() blocked).
+  writeFile("record_long.json", R"({"keyframes": [
+  {"t": 0, "lat": 46.55, "lon": 7.95, "alt_m": 300, "heading": 0, "pitch": -20},
+  {"t": 1e7, "lat": 46.56, "lon": 7.95, "alt_m": 300, "heading": 0, "pitch": -20}]})");
+  if (const fs::path fifo = recordTmp("record_fifo.json"); !fs::exists(fifo)) ::mkfifo(fifo.c_str(), 0600);
   const fs::path out = freshRecordDir(std::string("record_bad_") + GetParam().name);
   const auto r = runVegstream("record " + fill(GetParam().args) + " --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -465,6 +472,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"malformed_path", "{DS} {SMALL} --path '{TMP}/record_malformed.json'", "record_malformed.json:1:"},
         BadRecord{"path_outside", "{DS} {SMALL} --path '{TMP}/record_outside.json'", "leaves the dataset"},
         BadRecord{"missing_path", "{DS} {SMALL} --path /no/such/path.json", "/no/such/path.json"},
+        BadRecord{"path_too_long", "{DS} {SMALL} --path '{TMP}/record_long.json'",
+                  "record_long.json: 1e+07 s at 60 fps is 6e+08 frames; a recording holds at most 1000000"},
+        BadRecord{"path_fifo", "{DS} {SMALL} --path '{TMP}/record_fifo.json'", "record_fifo.json: is a FIFO"},
         BadRecord{"missing_dataset", "/no/such/dataset {SMALL} --path {PATH}", "/no/such/dataset"},
         BadRecord{"not_a_dataset", "'{TMP}' {SMALL} --path {PATH}", "dataset.json"},
         BadRecord{"bad_size", "{DS} --path {PATH} --msaa 1 --size big", "--size"},

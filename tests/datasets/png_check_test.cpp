@@ -4,6 +4,7 @@
 // check and decodes to the pixels it holds; each way of being broken that libpng would print
 // about is refused with a message naming the tile.
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -153,13 +154,13 @@ TEST(PngCheck, EveryKindOfSoundPngPassesAndDecodes) {
       Parts p = partsOf(im);
       p.splitIdat = p.ancillary = variant == 1;
       const std::vector<uint8_t> png = assemble(im, p);
-      const auto checked = checkedPng(png, "t.png");
+      const auto checked = checkedPng(png, "t.png", kMaxTileSide);
       ASSERT_TRUE(checked.ok()) << describe(im) << ": " << checked.error().message;
       EXPECT_LE(checked->size(), png.size());
       if (variant == 1) {
         EXPECT_LT(checked->size(), png.size()) << "the ancillary chunks are dropped";
       }
-      const auto decoded = decodeColorTile(png, {}, "t.png");
+      const auto decoded = decodeColorTile(png, {}, static_cast<int>(im.size), "t.png");
       ASSERT_TRUE(decoded.ok()) << describe(im) << ": " << decoded.error().message;
       ASSERT_EQ(decoded->size, static_cast<int>(im.size));
       if (im.bitDepth == 8 && (im.colourType == 6 || im.colourType == 2)) {
@@ -231,11 +232,42 @@ TEST(PngCheck, WhatLibpngWouldPrintAboutIsRefusedNamingTheTile) {
     p.idat = deflate(rawData(i));
   });
   for (const Case& c : cases) {
-    const auto r = checkedPng(c.png, "tiles/1/2/3.png");
+    const auto r = checkedPng(c.png, "tiles/1/2/3.png", kMaxTileSide);
     ASSERT_FALSE(r.ok()) << c.what;
     EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput) << c.what;
     EXPECT_NE(r.error().message.find("tiles/1/2/3.png"), std::string::npos) << c.what << ": " << r.error().message;
   }
+}
+
+// A header that claims 100 000 × 100 000 pixels (40 GB of rows) is refused as soon as IHDR is
+// read, before a byte is inflated: the check takes milliseconds, and a tile bigger than the
+// dataset's size is refused at the same point.
+TEST(PngCheck, TheSideLimitAppliesToTheHeaderBeforeAnyInflate) {
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::vector<uint8_t> ihdr;
+  put32(ihdr, 100000);
+  put32(ihdr, 100000);
+  ihdr.insert(ihdr.end(), {8, 6, 0, 0, 0});
+  chunk(png, "IHDR", ihdr);
+  // A zlib stream of zero rows that inflates without end: the old check inflated all of it.
+  std::vector<uint8_t> zeros(size_t{1} << 20, 0);
+  chunk(png, "IDAT", deflate(zeros));
+  chunk(png, "IEND", {});
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = checkedPng(png, "imagery/14/1/2.png", kMaxTileSide);
+  const auto decoded = decodeColorTile(png, {}, kTileSize, "imagery/14/1/2.png");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("is 100000x100000 pixels; a tile here is at most 4096"), std::string::npos)
+      << r.error().message;
+  ASSERT_FALSE(decoded.ok());
+  EXPECT_NE(decoded.error().message.find("at most 256 pixels a side"), std::string::npos) << decoded.error().message;
+
+  Image small;
+  small.size = 300;
+  const auto bigger = checkedPng(assemble(small, partsOf(small)), "t.png", 256);
+  ASSERT_FALSE(bigger.ok());
+  EXPECT_NE(bigger.error().message.find("is 300x300 pixels"), std::string::npos) << bigger.error().message;
 }
 
 }  // namespace

@@ -99,7 +99,8 @@ TEST(TileDecodersFuzz, ElevationPng) {
   const fs::path file = dir / "elevation.png";
   ASSERT_TRUE(datasets::writeHeightTile(file, syntheticHeights(), datasets::ElevationEncoding::Terrarium).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeHeightTile(b, {12, 2138, 1447}, datasets::ElevationEncoding::Terrarium, "fuzz/e.png");
+    auto r = datasets::decodeHeightTile(b, {12, 2138, 1447}, datasets::ElevationEncoding::Terrarium,
+                                        datasets::kTileSize, "fuzz/e.png");
     if (r.ok()) {
       EXPECT_EQ(r->heights.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size));
     }
@@ -113,7 +114,7 @@ TEST(TileDecodersFuzz, ImageryPng) {
   const fs::path file = dir / "imagery.png";
   ASSERT_TRUE(datasets::writeColorTile(file, syntheticColours(), datasets::ImageryFormat::Png).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, "fuzz/i.png");
+    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, datasets::kTileSize, "fuzz/i.png");
     if (r.ok()) {
       EXPECT_EQ(r->rgba.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size) * 4);
     }
@@ -127,7 +128,7 @@ TEST(TileDecodersFuzz, ImageryJpeg) {
   const fs::path file = dir / "imagery.jpg";
   ASSERT_TRUE(datasets::writeColorTile(file, syntheticColours(), datasets::ImageryFormat::Jpeg, 85).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, "fuzz/i.jpg");
+    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, datasets::kTileSize, "fuzz/i.jpg");
     if (r.ok()) {
       EXPECT_EQ(r->rgba.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size) * 4);
     }

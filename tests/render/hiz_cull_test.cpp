@@ -135,7 +135,7 @@ struct Frames {
 Frames renderWall(Renderer& r, float wallTop) {
   const std::array<uint8_t, 3> c = referenceColour("grass");
   const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
-  const ImageryUpload upload{0, tile.data()};
+  const ImageryUpload upload{0, tile};
   terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
   for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
   const terrain::TerrainMesh w = wall(wallTop);

@@ -37,7 +37,7 @@ inline FieldResult renderField(Renderer& r, const std::string& referenceOf, Plan
   {
     const std::array<uint8_t, 3> c = referenceColour(referenceOf);
     const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
-    const ImageryUpload upload{0, tile.data()};
+    const ImageryUpload upload{0, tile};
     terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
     for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
     TerrainDraw draw{&plane};
@@ -73,7 +73,7 @@ inline bool renderPlantsFrame(Renderer& r, const PlantDrawOptions& plantDraw, co
                               const std::function<void(std::vector<SeedTriangleGpu>&)>& adjust = {}) {
   const std::array<uint8_t, 3> c = referenceColour("grass");
   const std::vector<uint8_t> tile = flatTile(c[0], c[1], c[2]);
-  const ImageryUpload upload{0, tile.data()};
+  const ImageryUpload upload{0, tile};
   terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
   for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
   TerrainDraw draw{&plane};

@@ -264,7 +264,7 @@ TEST_F(RenderTest, ImageryLayersColourTheDrawsThatNameThem) {
     return rgba;
   };
   const std::vector<uint8_t> red = tile(255, 0), green = tile(0, 255);
-  const ImageryUpload uploads[] = {{2, red.data()}, {3, green.data()}};
+  const ImageryUpload uploads[] = {{2, red}, {3, green}};
   terrain::TerrainMesh plane = flatPlane(4'000.0, 4, 0.0f);
   for (auto& v : plane.vertices) v.uv = {v.position.x / 4'000.0f + 0.5f, 0.5f - v.position.y / 4'000.0f};
   FrameRequest req = lookingAt({0, 0, 500.0}, {0, 0, -1}, {0, 1, 0});

@@ -43,7 +43,7 @@ class TerrainDetailTest : public GpuTest {
       tile[i + 2] = rgb.b;
       tile[i + 3] = 255;
     }
-    const ImageryUpload upload{1, tile.data()};
+    const ImageryUpload upload{1, tile};
     TerrainDraw draw{&plane};
     draw.imageryLayer = 1;
     FrameRequest req;

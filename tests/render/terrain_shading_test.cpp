@@ -85,7 +85,7 @@ class TerrainShadingTest : public GpuTest {
     EXPECT_EQ(r->terrainShading(), shading);
     EXPECT_TRUE(r->setImageryLayers(1).ok());
     const std::vector<uint8_t> tile = checkerTile();
-    const ImageryUpload upload{0, tile.data()};
+    const ImageryUpload upload{0, tile};
     FrameRequest req = lookingAt({40.0, -1'400.0, 260.0}, {0.1, 1.0, -0.28});
     req.imageryUploads = {&upload, 1};
     req.terrain = draws;
@@ -189,7 +189,7 @@ TEST_F(TerrainShadingTest, TheComputeRasterIsWatertightAndClipsAtTheNearPlane) {
   TerrainDraw draw{&dense};
   draw.imageryLayer = 0;
   const std::vector<uint8_t> tile = checkerTile();
-  const ImageryUpload upload{0, tile.data()};
+  const ImageryUpload upload{0, tile};
   struct View {
     glm::dvec3 position, forward;
     const char* what;

@@ -322,7 +322,7 @@ TEST_F(TreeRenderTest, SunShadowDarkensTheGroundBehindTheTree) {
   for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
   TerrainDraw draw{&plane};
   draw.imageryLayer = 0;
-  const ImageryUpload upload{0, tile.data()};
+  const ImageryUpload upload{0, tile};
   const glm::dvec3 sun = glm::normalize(glm::dvec3(-1.0, 0.0, 0.9));  // towards the sun: west, 42° up
   const std::vector<TreeInstanceGpu> trees = {treeAt(0.0f, 0.0f)};
   const glm::dvec3 camera{8.0, -30.0, 28.0};

@@ -140,7 +140,7 @@ struct LoneTree {
   std::vector<uint8_t> tile = flatTile(150, 140, 120);
   terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
   TerrainDraw draw{&plane};
-  ImageryUpload upload{0, tile.data()};
+  ImageryUpload upload{0, tile};
   std::vector<TreeInstanceGpu> trees;
 
   LoneTree() {

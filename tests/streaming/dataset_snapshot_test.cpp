@@ -88,7 +88,8 @@ TEST(GroundImagery, MosaicsTheImageryAndNdviOnTheHeightsPixels) {
       } else {
         auto cached = decoded.find(at.tile);
         if (cached == decoded.end()) {
-          auto tile = datasets::readColorTile(dir / datasetRelativePath({TileLayer::Imagery, at.tile}, *meta), at.tile);
+          auto tile = datasets::readColorTile(dir / datasetRelativePath({TileLayer::Imagery, at.tile}, *meta), at.tile,
+                                              datasets::kTileSize);
           ASSERT_TRUE(tile.ok()) << tile.error().message;
           cached = decoded.emplace(at.tile, std::move(tile->rgba)).first;
         }

@@ -191,8 +191,8 @@ using TileDecode = SyntheticDataset;
 TEST_F(TileDecode, FromMemoryEqualsFromFile) {
   const auto k = tilesAt(dir(), meta(), TileLayer::Height, meta().maxZoom)[0];
   const fs::path file = dir() / datasetRelativePath(k, meta());
-  auto a = datasets::decodeHeightTile(fileBytes(file), k.id, meta().elevationEncoding, "x");
-  auto b = datasets::readHeightTile(file, k.id, meta().elevationEncoding);
+  auto a = datasets::decodeHeightTile(fileBytes(file), k.id, meta().elevationEncoding, datasets::kTileSize, "x");
+  auto b = datasets::readHeightTile(file, k.id, meta().elevationEncoding, datasets::kTileSize);
   ASSERT_TRUE(a) << a.error().message;
   ASSERT_TRUE(b);
   EXPECT_EQ(a->size, 256);
@@ -211,7 +211,7 @@ TEST_F(TileDecode, CorruptOrTruncatedBytesAreInvalidInputNamingTheTile) {
   fs::create_directories(jpegFile.parent_path());
   ASSERT_TRUE(datasets::writeColorTile(jpegFile, c, datasets::ImageryFormat::Jpeg));
   auto jpeg = fileBytes(jpegFile);
-  ASSERT_TRUE(datasets::decodeColorTile(jpeg, {}, "t.jpg"));
+  ASSERT_TRUE(datasets::decodeColorTile(jpeg, {}, datasets::kTileSize, "t.jpg"));
 
   const std::string name = "imagery/14/1/2.png";
   std::vector<std::vector<uint8_t>> bad;
@@ -223,11 +223,11 @@ TEST_F(TileDecode, CorruptOrTruncatedBytesAreInvalidInputNamingTheTile) {
   bad.push_back({'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
   bad.push_back({});
   for (size_t i = 0; i < bad.size(); ++i) {
-    auto r = datasets::decodeColorTile(bad[i], {}, name);
+    auto r = datasets::decodeColorTile(bad[i], {}, datasets::kTileSize, name);
     ASSERT_FALSE(r) << "case " << i;
     EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput) << i;
     EXPECT_NE(r.error().message.find(name), std::string::npos) << r.error().message;
-    auto h = datasets::decodeHeightTile(bad[i], {}, meta().elevationEncoding, name);
+    auto h = datasets::decodeHeightTile(bad[i], {}, meta().elevationEncoding, datasets::kTileSize, name);
     EXPECT_FALSE(h) << "case " << i;
   }
   fs::remove_all(jpegFile.parent_path());

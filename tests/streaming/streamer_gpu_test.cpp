@@ -152,7 +152,7 @@ TEST_F(ZionStreaming, WholeRegionSettlesWithTheHeightsAndColoursOfTheCodec) {
     ASSERT_TRUE(tile) << toString(k);
     const fs::path file = dir() / datasetRelativePath(k, meta);
     if (k.layer == TileLayer::Height) {
-      auto ref = datasets::readHeightTile(file, k.id, meta.elevationEncoding);
+      auto ref = datasets::readHeightTile(file, k.id, meta.elevationEncoding, datasets::kTileSize);
       ASSERT_TRUE(ref);
       size_t same = 0;
       for (size_t i = 0; i < ref->heights.size(); ++i)
@@ -160,7 +160,7 @@ TEST_F(ZionStreaming, WholeRegionSettlesWithTheHeightsAndColoursOfTheCodec) {
                 (std::isnan(tile->heights->heights[i]) && std::isnan(ref->heights[i]));
       EXPECT_EQ(same, ref->heights.size()) << toString(k);
     } else {
-      auto ref = datasets::readColorTile(file, k.id);
+      auto ref = datasets::readColorTile(file, k.id, datasets::kTileSize);
       ASSERT_TRUE(ref);
       EXPECT_EQ(tile->colors->rgba, ref->rgba) << toString(k);
     }

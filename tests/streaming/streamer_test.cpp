@@ -95,7 +95,8 @@ TEST_F(StreamerLocal, SettleMakesEveryWantedTileResidentWithTheHeightsOfReadHeig
     const auto tile = s.get(k);
     ASSERT_TRUE(tile) << toString(k);
     if (k.layer == TileLayer::Height) {
-      auto ref = datasets::readHeightTile(dir() / datasetRelativePath(k, meta()), k.id, meta().elevationEncoding);
+      auto ref = datasets::readHeightTile(dir() / datasetRelativePath(k, meta()), k.id, meta().elevationEncoding,
+                                          datasets::kTileSize);
       ASSERT_TRUE(ref) << ref.error().message;
       ASSERT_TRUE(tile->heights);
       ASSERT_EQ(tile->heights->heights.size(), ref->heights.size());
@@ -103,7 +104,7 @@ TEST_F(StreamerLocal, SettleMakesEveryWantedTileResidentWithTheHeightsOfReadHeig
         ASSERT_TRUE(tile->heights->heights[i] == ref->heights[i] ||
                     (std::isnan(tile->heights->heights[i]) && std::isnan(ref->heights[i])));
     } else {
-      auto ref = datasets::readColorTile(dir() / datasetRelativePath(k, meta()), k.id);
+      auto ref = datasets::readColorTile(dir() / datasetRelativePath(k, meta()), k.id, datasets::kTileSize);
       ASSERT_TRUE(ref) << ref.error().message;
       ASSERT_TRUE(tile->colors);
       EXPECT_EQ(tile->colors->rgba, ref->rgba);

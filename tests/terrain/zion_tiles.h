@@ -31,7 +31,8 @@ class ZionTiles {
   const datasets::HeightTile& tile(const geo::TileId& id) {
     auto it = tiles_.find(id);
     if (it == tiles_.end()) {
-      auto t = datasets::readHeightTile(datasets::elevationTilePath(dir_, id), id, meta_.elevationEncoding);
+      auto t = datasets::readHeightTile(datasets::elevationTilePath(dir_, id), id, meta_.elevationEncoding,
+                                        datasets::kTileSize);
       if (!t) throw std::runtime_error("no Zion tile " + geo::toString(id) + ": " + t.error().message);
       it = tiles_.emplace(id, std::move(*t)).first;
     }

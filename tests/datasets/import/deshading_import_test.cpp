@@ -96,7 +96,7 @@ Spread ringSpread(const fs::path& dataset) {
   if (!meta) return s;
   double sum = 0.0, sq = 0.0;
   for (const auto& id : geo::tilesCovering(meta->bounds, meta->maxZoom)) {
-    auto tile = readColorTile(imageryTilePath(dataset, id, *meta->imagery), id);
+    auto tile = readColorTile(imageryTilePath(dataset, id, *meta->imagery), id, kTileSize);
     if (!tile) continue;
     for (int j = 0; j < tile->size; ++j)
       for (int i = 0; i < tile->size; ++i) {

@@ -95,7 +95,7 @@ class DatasetSampler {
     const geo::TileId id{z, static_cast<int>(t.x), static_cast<int>(t.y)};
     auto it = colours_.find(id);
     if (it == colours_.end()) {
-      auto c = readColorTile(imageryTilePath(dir_, id, *meta_.imagery), id);
+      auto c = readColorTile(imageryTilePath(dir_, id, *meta_.imagery), id, meta_.tileSize);
       it = colours_.emplace(id, c ? std::optional<ColorTile>(std::move(*c)) : std::nullopt).first;
     }
     if (!it->second) return std::nullopt;
@@ -112,7 +112,7 @@ class DatasetSampler {
     const geo::TileId id{meta_.maxZoom, static_cast<int>(gx / n), static_cast<int>(gy / n)};
     auto it = heights_.find(id);
     if (it == heights_.end()) {
-      auto h = readHeightTile(elevationTilePath(dir_, id), id, meta_.elevationEncoding);
+      auto h = readHeightTile(elevationTilePath(dir_, id), id, meta_.elevationEncoding, meta_.tileSize);
       it = heights_.emplace(id, h ? std::optional<HeightTile>(std::move(*h)) : std::nullopt).first;
     }
     if (!it->second) return NAN;

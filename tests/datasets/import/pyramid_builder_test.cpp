@@ -48,14 +48,14 @@ TEST(PyramidBuilder, ParentIsTheMeanOfValidChildren) {
   EXPECT_EQ(meta.imageryTiles, 2u);
   EXPECT_GT(meta.bytes, 0u);
 
-  auto p = readHeightTile(elevationTilePath(d, {9, 100, 200}), {9, 100, 200}, meta.elevationEncoding);
+  auto p = readHeightTile(elevationTilePath(d, {9, 100, 200}), {9, 100, 200}, meta.elevationEncoding, kTileSize);
   ASSERT_TRUE(p) << p.error().message;
   // NW quadrant pixel (i, j) ← child pixels x = 2i, 2i+1 with (2i+1, 2j) missing: mean of
   // 100+2i, 100+2i, 100+2i+1 = 100 + 2i + 1/3.
   EXPECT_NEAR(p->at(10, 10), 100 + 20 + 1.0 / 3.0, 1.0 / 256.0);
   EXPECT_TRUE(std::isnan(p->at(200, 10)));  // NE child missing
   EXPECT_NEAR(p->at(130, 200), 100 + 2 * (130 - 128) + 1.0 / 3.0, 1.0 / 256.0);
-  auto c = readColorTile(imageryTilePath(d, {9, 100, 200}, ImageryFormat::Png), {9, 100, 200});
+  auto c = readColorTile(imageryTilePath(d, {9, 100, 200}, ImageryFormat::Png), {9, 100, 200}, kTileSize);
   ASSERT_TRUE(c);
   EXPECT_EQ(c->rgba[(size_t(10) * 256 + 10) * 4 + 0], 21);  // mean of 20, 21, 20, 21 rounded
   EXPECT_EQ(c->rgba[(size_t(10) * 256 + 200) * 4 + 3], 0);

@@ -67,7 +67,7 @@ TEST_P(EncodingRoundTrip, TileFileKeepsHeightsAndNodataMask) {
   // One file per encoding: ctest may run the parameterised cases at the same time.
   const fs::path p = tmpDir("heights") / ("t" + std::to_string(static_cast<int>(enc)) + ".png");
   ASSERT_TRUE(writeHeightTile(p, t, enc));
-  auto back = readHeightTile(p, t.id, enc);
+  auto back = readHeightTile(p, t.id, enc, kTileSize);
   ASSERT_TRUE(back) << back.error().message;
   ASSERT_EQ(back->size, 256);
   int backNodata = 0;
@@ -98,11 +98,11 @@ TEST(TileCodec, ColourPngIsLosslessAndJpegClose) {
     }
   const fs::path d = tmpDir("colour");
   ASSERT_TRUE(writeColorTile(d / "a.png", t, ImageryFormat::Png));
-  auto png = readColorTile(d / "a.png", t.id);
+  auto png = readColorTile(d / "a.png", t.id, kTileSize);
   ASSERT_TRUE(png);
   EXPECT_EQ(png->rgba, t.rgba);
   ASSERT_TRUE(writeColorTile(d / "a.jpg", t, ImageryFormat::Jpeg, 90));
-  auto jpg = readColorTile(d / "a.jpg", t.id);
+  auto jpg = readColorTile(d / "a.jpg", t.id, kTileSize);
   ASSERT_TRUE(jpg);
   double sum = 0.0;
   for (size_t i = 0; i < t.rgba.size(); ++i) sum += std::abs(int(jpg->rgba[i]) - int(t.rgba[i]));
@@ -117,7 +117,7 @@ TEST(TileCodec, CorruptAndMissingTilesNameTheFile) {
   const auto size = fs::file_size(d / "good.png");
   fs::copy_file(d / "good.png", d / "cut.png");
   fs::resize_file(d / "cut.png", size / 2);
-  auto cut = readHeightTile(d / "cut.png", {}, ElevationEncoding::Terrarium);
+  auto cut = readHeightTile(d / "cut.png", {}, ElevationEncoding::Terrarium, kTileSize);
   ASSERT_FALSE(cut);
   EXPECT_EQ(cut.error().kind, ErrorKind::InvalidInput);
   EXPECT_NE(cut.error().message.find("cut.png"), std::string::npos) << cut.error().message;
@@ -128,22 +128,23 @@ TEST(TileCodec, CorruptAndMissingTilesNameTheFile) {
     f.seekp(static_cast<std::streamoff>(size / 2));
     f.put('\x5a');
   }
-  auto flip = readHeightTile(d / "flip.png", {}, ElevationEncoding::Terrarium);
+  auto flip = readHeightTile(d / "flip.png", {}, ElevationEncoding::Terrarium, kTileSize);
   ASSERT_FALSE(flip);
   EXPECT_NE(flip.error().message.find("CRC"), std::string::npos) << flip.error().message;
   std::ofstream(d / "text.png") << "not a png";
-  auto text = readHeightTile(d / "text.png", {}, ElevationEncoding::Terrarium);
+  auto text = readHeightTile(d / "text.png", {}, ElevationEncoding::Terrarium, kTileSize);
   ASSERT_FALSE(text);
   EXPECT_NE(text.error().message.find("text.png"), std::string::npos);
-  auto missing = readColorTile(d / "none.png", {});
+  auto missing = readColorTile(d / "none.png", {}, kTileSize);
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().kind, ErrorKind::NotFound);
 }
 
 TEST(TileCodec, GrandCanyonTerrariumAndTerrainRgbAgree) {
   const fs::path root = VEGSTREAM_DATASETS_DIR "/grandcanyon-xyz";
-  auto a = readHeightTile(root / "terrarium/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::Terrarium);
-  auto b = readHeightTile(root / "terrain-rgb/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::TerrainRgb);
+  auto a = readHeightTile(root / "terrarium/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::Terrarium, kTileSize);
+  auto b =
+      readHeightTile(root / "terrain-rgb/12/759/1608.png", {12, 759, 1608}, ElevationEncoding::TerrainRgb, kTileSize);
   ASSERT_TRUE(a) << a.error().message;
   ASSERT_TRUE(b) << b.error().message;
   ASSERT_EQ(a->size, b->size);

@@ -138,8 +138,8 @@ inline LinearRgb tileFootprintMean(const std::filesystem::path& dataset, const D
   const double dLat = 2.0 * kFootprintHalfNorthM / 111000.0, dLon = 2.0 * dLat;
   const geo::GeoBounds box{p.lonDeg - dLon, p.latDeg - dLat, p.lonDeg + dLon, p.latDeg + dLat};
   for (const auto& id : geo::tilesCovering(box, meta.maxZoom)) {
-    auto tile = readColorTile(imageryTilePath(dataset, id, *meta.imagery), id);
-    auto heights = readHeightTile(elevationTilePath(dataset, id), id, meta.elevationEncoding);
+    auto tile = readColorTile(imageryTilePath(dataset, id, *meta.imagery), id, kTileSize);
+    auto heights = readHeightTile(elevationTilePath(dataset, id), id, meta.elevationEncoding, kTileSize);
     if (!tile || (relight && !heights)) continue;
     const double pixelM = geo::groundResolution(p.latDeg, id.z, tile->size);
     for (int j = 0; j < tile->size; ++j)

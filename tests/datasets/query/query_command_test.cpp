@@ -28,7 +28,7 @@ double handBilinear(double lat, double lon) {
     const geo::TileId id{12, tx, ty};
     auto tile = datasets::readHeightTile(
         grandCanyonDir() / "terrain-rgb/12" / std::to_string(tx) / (std::to_string(ty) + ".png"), id,
-        datasets::ElevationEncoding::TerrainRgb);
+        datasets::ElevationEncoding::TerrainRgb, datasets::kTileSize);
     EXPECT_TRUE(tile.ok());
     return double{tile->at(static_cast<int>(gxi - tx * 256L), static_cast<int>(gyi - ty * 256L))};
   };

@@ -25,7 +25,7 @@ TEST_F(GrandCanyon, DecodedHeightsWithinKnownRange) {
       const geo::TileId id{12, x, y};
       auto t = datasets::readHeightTile(
           grandCanyonDir() / "terrain-rgb/12" / std::to_string(x) / (std::to_string(y) + ".png"), id,
-          ElevationEncoding::TerrainRgb);
+          ElevationEncoding::TerrainRgb, datasets::kTileSize);
       ASSERT_TRUE(t.ok()) << t.error().message;
       for (float h : t->heights) {
         ASSERT_FALSE(std::isnan(h));
@@ -45,9 +45,10 @@ TEST_F(GrandCanyon, DecodedHeightsWithinKnownRange) {
 // 0.9997, tile means 0.49 m apart), and each encoding carries the other's heights within 0.2 m.
 TEST_F(GrandCanyon, TerrariumAndTerrainRgbAgree) {
   const geo::TileId id{12, 759, 1608};
-  auto rgb =
-      datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12/759/1608.png", id, ElevationEncoding::TerrainRgb);
-  auto ter = datasets::readHeightTile(grandCanyonDir() / "terrarium/12/759/1608.png", id, ElevationEncoding::Terrarium);
+  auto rgb = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb/12/759/1608.png", id,
+                                      ElevationEncoding::TerrainRgb, datasets::kTileSize);
+  auto ter = datasets::readHeightTile(grandCanyonDir() / "terrarium/12/759/1608.png", id, ElevationEncoding::Terrarium,
+                                      datasets::kTileSize);
   ASSERT_TRUE(rgb.ok()) << rgb.error().message;
   ASSERT_TRUE(ter.ok()) << ter.error().message;
   ASSERT_EQ(rgb->heights.size(), ter->heights.size());
@@ -84,8 +85,10 @@ TEST_F(GrandCanyon, ImportedTilesEqualTheSourceTiles) {
     for (int y : {1608, 1609}) {
       const geo::TileId id{12, x, y};
       const fs::path rel = fs::path("12") / std::to_string(x) / (std::to_string(y) + ".png");
-      auto src = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb" / rel, id, ElevationEncoding::TerrainRgb);
-      auto dst = datasets::readHeightTile(datasets::elevationTilePath(dir(), id), id, meta().elevationEncoding);
+      auto src = datasets::readHeightTile(grandCanyonDir() / "terrain-rgb" / rel, id, ElevationEncoding::TerrainRgb,
+                                          datasets::kTileSize);
+      auto dst = datasets::readHeightTile(datasets::elevationTilePath(dir(), id), id, meta().elevationEncoding,
+                                          datasets::kTileSize);
       ASSERT_TRUE(src.ok() && dst.ok());
       EXPECT_EQ(src->heights, dst->heights) << geo::toString(id);
     }
@@ -97,11 +100,13 @@ TEST_F(GrandCanyon, LowerZoomsAreMeansOfTheirChildren) {
   EXPECT_EQ(meta().elevationTiles, 5u);
   EXPECT_EQ(meta().imageryTiles, 5u);
   const geo::TileId top{11, 379, 804};
-  auto parent = datasets::readHeightTile(datasets::elevationTilePath(dir(), top), top, meta().elevationEncoding);
+  auto parent = datasets::readHeightTile(datasets::elevationTilePath(dir(), top), top, meta().elevationEncoding,
+                                         datasets::kTileSize);
   ASSERT_TRUE(parent.ok()) << parent.error().message;
   double maxDiff = 0.0, parentSum = 0.0, childSum = 0.0;
   for (const geo::TileId& c : geo::children(top)) {
-    auto child = datasets::readHeightTile(datasets::elevationTilePath(dir(), c), c, meta().elevationEncoding);
+    auto child = datasets::readHeightTile(datasets::elevationTilePath(dir(), c), c, meta().elevationEncoding,
+                                          datasets::kTileSize);
     ASSERT_TRUE(child.ok()) << child.error().message;
     const int ox = (c.x - 2 * top.x) * 128, oy = (c.y - 2 * top.y) * 128;
     for (int j = 0; j < 128; ++j)
@@ -122,7 +127,7 @@ TEST_F(GrandCanyon, LowerZoomsAreMeansOfTheirChildren) {
 
 TEST_F(GrandCanyon, PalettedImageryDecodesToRgb) {
   const geo::TileId id{12, 759, 1609};
-  auto src = datasets::readColorTile(grandCanyonDir() / "map/12/759/1609.png", id);
+  auto src = datasets::readColorTile(grandCanyonDir() / "map/12/759/1609.png", id, datasets::kTileSize);
   ASSERT_TRUE(src.ok()) << src.error().message;
   std::set<uint32_t> colours;
   size_t nonGrey = 0;
@@ -133,7 +138,7 @@ TEST_F(GrandCanyon, PalettedImageryDecodesToRgb) {
   EXPECT_GT(colours.size(), 8u);  // a palette expanded to many colours, not palette indices
   EXPECT_GT(nonGrey, 0u);
   ASSERT_TRUE(meta().imagery.has_value());
-  auto dst = datasets::readColorTile(datasets::imageryTilePath(dir(), id, *meta().imagery), id);
+  auto dst = datasets::readColorTile(datasets::imageryTilePath(dir(), id, *meta().imagery), id, datasets::kTileSize);
   ASSERT_TRUE(dst.ok()) << dst.error().message;
   EXPECT_EQ(src->rgba, dst->rgba);
 }

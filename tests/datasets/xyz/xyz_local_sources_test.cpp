@@ -45,7 +45,7 @@ TEST_F(XyzSources, StitchedTilesOf512PixelsGiveTheSameTiles) {
     big.rgba.assign(512 * 512 * 4, 0);
     for (const auto& c : geo::children(top)) {
       const fs::path from = site_ / layer / "12" / std::to_string(c.x) / (std::to_string(c.y) + ".png");
-      auto t = datasets::readColorTile(from, c);
+      auto t = datasets::readColorTile(from, c, datasets::kTileSize);
       ASSERT_TRUE(t.ok()) << t.error().message;
       ASSERT_EQ(t->size, 256);
       const int ox = (c.x - 2 * top.x) * 256, oy = (c.y - 2 * top.y) * 256;
