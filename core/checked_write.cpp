@@ -7,7 +7,6 @@
 
 #include <cerrno>
 #include <cstring>
-#include <vector>
 
 namespace vegstream {
 namespace fs = std::filesystem;
@@ -70,21 +69,17 @@ Status syncPath(const fs::path& path, const fs::path& nameForErrors) {
 }
 
 Status syncDirectoryTree(const fs::path& dir, const fs::path& nameForErrors) {
-  std::error_code ec;
-  std::vector<fs::path> dirs;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
-    if (it->is_symlink(ec)) continue;
-    if (it->is_directory(ec)) {
-      dirs.push_back(it->path());
-    } else if (it->is_regular_file(ec)) {
-      if (Status s = syncPath(it->path(), nameForErrors); !s) return s;
-    }
+  // One syncfs(2) of the file system holding `dir` flushes every file and directory under it,
+  // far cheaper than an fsync per tile of a dataset.
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return writeError(nameForErrors, errno);
+  if (::syncfs(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return writeError(nameForErrors, err);
   }
-  if (ec) return makeError(ErrorKind::Io, "cannot list '" + dir.string() + "': " + ec.message());
-  for (auto d = dirs.rbegin(); d != dirs.rend(); ++d)
-    if (Status s = syncPath(*d, nameForErrors); !s) return s;
-  return syncPath(dir, nameForErrors);
+  if (const int err = closeChecked(fd); err != 0) return writeError(nameForErrors, err);
+  return {};
 }
 
 }  // namespace vegstream

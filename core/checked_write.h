@@ -31,7 +31,7 @@ Status writeAllText(const std::filesystem::path& file, std::string_view text,
 // fsync(2) of an existing file or directory (opened read-only). Errors name `nameForErrors`.
 Status syncPath(const std::filesystem::path& path, const std::filesystem::path& nameForErrors);
 
-// syncPath of every regular file and directory under `dir`, then of `dir` itself.
+// Flushes every file and directory under `dir` to disk (syncfs of its file system).
 Status syncDirectoryTree(const std::filesystem::path& dir, const std::filesystem::path& nameForErrors);
 
 }  // namespace vegstream
