@@ -1,7 +1,8 @@
 // Issue 42, items 4 and 8, through the real executable: a full disk (RLIMIT_FSIZE) leaves the
 // user's earlier output byte-identical, exit 1, one line naming the file and the reason, no
 // temporary; a second import to the same --out is refused while one runs; SIGKILL at seeded
-// moments of an import leaves a whole dataset or none, and the next run cleans up after it.
+// moments of an import leaves a whole dataset or none, and the next run cleans up after it; of a
+// snapshot, the earlier still or the new one whole.
 
 #include <chrono>
 #include <filesystem>
@@ -65,16 +66,18 @@ int linesWith(const std::string& text, const std::string& needle) {
 
 std::vector<std::string> importArgs(const fs::path& out) { return {"import", "--dem", kSrtm, "--out", out.string()}; }
 
+std::vector<std::string> snapshotArgs(const fs::path& still) {
+  return {"snapshot", recordDataset().string(), "--lat", "46.55", "--lon", "7.95", "--alt", "30", "--heading", "0",
+          "--pitch", "-20", "--size", "160x90", "--out", still.string()};
+}
+
 TEST(FullDisk, SnapshotKeepsTheEarlierStillAndSaysWhy) {
   const fs::path dir = testOutputDir() / "stills";
   fs::create_directories(dir);
   const fs::path still = dir / "still.png", sidecar = dir / "still.json";
   std::ofstream(still, std::ios::binary) << "the user's earlier still";
   std::ofstream(sidecar, std::ios::binary) << "{\"earlier\": true}\n";
-  const auto r = runVegstreamLimited({"snapshot", recordDataset().string(), "--lat", "46.55", "--lon", "7.95",
-                                      "--alt", "30", "--heading", "0", "--pitch", "-20", "--size", "160x90", "--out",
-                                      still.string()},
-                                     8 * 1024, testOutputDir() / "capture");
+  const auto r = runVegstreamLimited(snapshotArgs(still), 8 * 1024, testOutputDir() / "capture");
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_EQ(linesWith(r.err, "file too large"), 1) << r.err;
   EXPECT_EQ(linesWith(r.err, still.string()), 1) << r.err;
@@ -164,6 +167,36 @@ TEST(KillSafety, ImportKilledAtTenMomentsLeavesAWholeDatasetOrNone) {
     EXPECT_EQ(leftovers(parent), std::vector<std::string>{});
     fs::remove_all(out);
   }
+}
+
+// SIGKILL at 5 seeded moments of a snapshot over an earlier still: the still and its sidecar are
+// each the earlier file or the new one whole (runs are identical on one driver); the next
+// complete run removes the temporaries the killed ones left.
+TEST(KillSafety, SnapshotKilledLeavesTheEarlierStillOrTheNewOne) {
+  const fs::path dir = testOutputDir() / "stills";
+  fs::create_directories(dir);
+  const fs::path still = dir / "still.png", sidecar = dir / "still.json";
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(waitExit(spawnVegstream(snapshotArgs(still))), 0);
+  const auto fullRun = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
+  const std::string newStill = bytesOf(still), newSidecar = bytesOf(sidecar);
+  ASSERT_GT(newStill.size(), 100u);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> moment(0.0, 1.1);
+  for (int k = 0; k < 5; ++k) {
+    std::ofstream(still, std::ios::binary) << "earlier still";
+    std::ofstream(sidecar, std::ios::binary) << "earlier sidecar";
+    const auto delay = std::chrono::microseconds(static_cast<int64_t>(moment(rng) * fullRun.count()));
+    SCOPED_TRACE("kill " + std::to_string(k) + " after " + std::to_string(delay.count() / 1000) + " ms");
+    const int code = runVegstreamKilledAfter(snapshotArgs(still), delay);
+    EXPECT_TRUE(code == 0 || code == 128 + SIGKILL) << code;
+    const std::string s = bytesOf(still), j = bytesOf(sidecar);
+    EXPECT_TRUE(s == "earlier still" || s == newStill) << s.size() << " bytes";
+    EXPECT_TRUE(j == "earlier sidecar" || j == newSidecar) << j;
+  }
+  ASSERT_EQ(waitExit(spawnVegstream(snapshotArgs(still))), 0);
+  EXPECT_EQ(bytesOf(still), newStill);
+  EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
 }
 
 }  // namespace
