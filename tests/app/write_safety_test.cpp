@@ -77,7 +77,7 @@ TEST(FullDisk, SnapshotKeepsTheEarlierStillAndSaysWhy) {
   const fs::path still = dir / "still.png", sidecar = dir / "still.json";
   std::ofstream(still, std::ios::binary) << "the user's earlier still";
   std::ofstream(sidecar, std::ios::binary) << "{\"earlier\": true}\n";
-  const auto r = runVegstreamLimited(snapshotArgs(still), 8 * 1024, testOutputDir() / "capture");
+  const auto r = runVegstreamLimited(snapshotArgs(still), 2 * 1024, testOutputDir() / "capture");
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_EQ(linesWith(r.err, "file too large"), 1) << r.err;
   EXPECT_EQ(linesWith(r.err, still.string()), 1) << r.err;
