@@ -16,6 +16,7 @@
 #include "app/exit_codes.h"
 #include "datasets/deshading_plan.h"
 #include "datasets/geotiff_import.h"
+#include "datasets/import_journal.h"
 #include "datasets/progress.h"
 #include "datasets/xyz_import.h"
 #include "geo/crs.h"
@@ -385,6 +386,8 @@ int runImport(const ImportOptions& o, const Logger& log) {
   if (o.dem.empty() == o.xyzElevation.empty())
     return reportError(log,
                        userError("import needs exactly one of --dem FILE or --xyz-elevation 'DIR/{z}/{x}/{y}.png'"));
+  auto lock = datasets::lockImportOutput(o.out);
+  if (!lock) return reportError(log, lock.error());
   gInterrupted = false;
   auto previousInt = std::signal(SIGINT, onInterrupt);
   auto previousTerm = std::signal(SIGTERM, onInterrupt);

@@ -3,6 +3,8 @@
 
 #include "app/ogr_tables.h"
 
+#include "core/checked_write.h"
+
 #include <atomic>
 #include <fcntl.h>
 #include <memory>
@@ -173,14 +175,6 @@ void removeStaged(const fs::path& staged) {
   for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(fs::path(staged.string() + suffix), ec);
 }
 
-Status syncFile(const fs::path& path, const std::string& name) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return failure(name, "cannot open the written file to sync it");
-  const bool ok = ::fsync(fd) == 0;
-  ::close(fd);
-  return ok ? Status{} : failure(name, "fsync failed");
-}
-
 Status checkShape(TableFormat f, const TableFile& file) {
   if (file.tables.empty()) return makeError(ErrorKind::Internal, file.path.string() + ": no table to write");
   if (f != TableFormat::GeoPackage && file.tables.size() != 1)
@@ -208,7 +202,7 @@ Status writeTableFiles(TableFormat format, std::span<const TableFile> files) {
     } else {
       staged[i] = stagedName(files[i].path, driverOf(format).extension);
       s = writeDataset(format, staged[i].string(), files[i]);
-      if (s) s = syncFile(staged[i], files[i].path.string());
+      if (s) s = syncPath(staged[i], files[i].path);
     }
     if (!s) {
       removeAll();

@@ -41,13 +41,7 @@ int runPath(const PathOptions& o, const Logger& log) {
   auto path = flight::makePathFromTemplate(o.templateName, shared->meta().bounds, ground);
   if (!path) return reportError(log, path.error());
   const std::string text = flight::flightPathToJson(*path);
-  if (Status s = writeFileAtomically(o.out,
-                                     [&](const fs::path& tmp) -> Status {
-                                       std::ofstream f(tmp, std::ios::binary);
-                                       f << text;
-                                       return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
-                                     });
-      !s)
+  if (Status s = writeTextAtomically(o.out, text); !s)
     return reportError(log, s.error());
   log->info("{}: {} over {} ({:.0f} s, {} keyframes)", o.out, o.templateName, shared->meta().name, path->duration(),
             path->keyframes.size());

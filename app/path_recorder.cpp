@@ -50,12 +50,7 @@ Result<flight::FlightPath> PathRecorder::stop(double nowS, const flight::FlightS
 
 Status saveFlightPath(const flight::FlightPath& path, const std::filesystem::path& file) {
   const std::string text = flight::flightPathToJson(path);
-  return writeFileAtomically(file, [&](const std::filesystem::path& tmp) -> Status {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    f.close();
-    return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
-  });
+  return writeTextAtomically(file, text);
 }
 
 }  // namespace vegstream::app

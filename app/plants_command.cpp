@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <unistd.h>
 #include <vector>
 
@@ -141,14 +142,10 @@ int writeJson(const PlantsOptions& o, const Grown& g, const vegetation::SpeciesC
     std::cout.flush();
     return std::cout ? kExitOk : reportError(log, makeError(ErrorKind::Io, "stdout: write failed"));
   }
-  const Status s = writeFileAtomically(o.output, [&](const fs::path& tmp) -> Status {
-    std::ofstream f(tmp, std::ios::binary);
-    write(f);
-    f.close();
-    if (!f) return makeError(ErrorKind::Io, "write failed");
-    return {};
-  });
-  if (!s) return reportError(log, userError("--output " + o.output + ": " + s.error().message));
+  std::ostringstream text;
+  write(text);
+  const Status s = writeTextAtomically(o.output, text.str());
+  if (!s) return reportError(log, s.error());
   return kExitOk;
 }
 

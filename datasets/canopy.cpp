@@ -10,6 +10,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/atomic_file.h"
+#include "datasets/encoded_image.h"
 #include "datasets/message.h"
 #include "datasets/png_check.h"
 #include "datasets/tile_codec.h"
@@ -17,7 +18,6 @@
 namespace vegstream::datasets {
 namespace fs = std::filesystem;
 using OIIO::ImageInput;
-using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
@@ -49,16 +49,11 @@ uint16_t canopyCodeOf(float heightM) {
 float canopyHeightOf(uint16_t code) { return code == kNoCanopy ? NAN : static_cast<float>(code) * 0.1f; }
 
 Status writeCanopyTile(const fs::path& path, const CanopyTile& tile) {
-  return writeFileAtomically(path, [&](const fs::path& tmp) -> Status {
-    auto out = ImageOutput::create("png");
-    if (!out) return makeError(ErrorKind::Io, concat("cannot write ", path, ": ", firstLine(OIIO::geterror())));
-    ImageSpec spec(tile.size, tile.size, 1, TypeDesc::UINT16);
-    spec.attribute("png:compressionLevel", 3);
-    const bool ok = out->open(tmp.string(), spec) && out->write_image(TypeDesc::UINT16, tile.decimetres.data());
-    const bool closed = out->close();
-    if (!ok || !closed) return makeError(ErrorKind::Io, concat("cannot write ", path, ": ", firstLine(out->geterror())));
-    return {};
-  });
+  ImageSpec spec(tile.size, tile.size, 1, TypeDesc::UINT16);
+  spec.attribute("png:compressionLevel", 3);
+  auto bytes = encodeImage("png", spec, tile.decimetres.data(), path);
+  if (!bytes) return bytes.error();
+  return writeBytesAtomically(path, *bytes);
 }
 
 Result<CanopyTile> decodeCanopyTile(std::span<const uint8_t> bytes, const geo::TileId& id,

@@ -440,13 +440,7 @@ Result<DatasetMeta> parseDatasetMeta(const std::string& jsonText, const std::str
 Status writeDatasetMeta(const fs::path& datasetDir, const DatasetMeta& meta) {
   const fs::path file = datasetDir / kMetaFile;
   const std::string text = toJson(meta).dump(2) + "\n";
-  return writeFileAtomically(file, [&](const fs::path& tmp) -> Status {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) return makeError(ErrorKind::Io, concat("cannot write ", file));
-    return {};
-  });
+  return writeTextAtomically(file, text);
 }
 
 fs::path elevationTilePath(const fs::path& datasetDir, const geo::TileId& id) {

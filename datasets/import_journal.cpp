@@ -11,6 +11,8 @@
 
 #include "core/atomic_file.h"
 #include "core/regular_file.h"
+#include "core/checked_write.h"
+#include "core/file_lock.h"
 #include "datasets/message.h"
 
 namespace vegstream::datasets {
@@ -65,6 +67,20 @@ void removeTemporaries(const fs::path& dir) {
 
 }  // namespace
 
+fs::path importLockFileFor(const fs::path& out) {
+  fs::path abs = fs::absolute(out).lexically_normal();
+  if (abs.filename().empty()) abs = abs.parent_path();
+  return abs.parent_path() / ("." + abs.filename().string() + ".lock");
+}
+
+Result<FileLock> lockImportOutput(const fs::path& out) {
+  const fs::path lockFile = importLockFileFor(out);
+  std::error_code ec;
+  fs::create_directories(lockFile.parent_path(), ec);
+  if (ec) return makeError(ErrorKind::Io, concat("cannot create ", lockFile.parent_path(), ": ", ec.message()));
+  return FileLock::acquire(lockFile, concat("--out ", out));
+}
+
 fs::path partialDirFor(const fs::path& out) {
   fs::path abs = fs::absolute(out).lexically_normal();
   if (abs.filename().empty()) abs = abs.parent_path();
@@ -87,16 +103,11 @@ Result<ImportJournal> ImportJournal::open(const fs::path& out, const std::string
     fs::remove_all(j.dir_, ec);
     fs::create_directories(j.dir_, ec);
     if (ec) return makeError(ErrorKind::Io, concat("cannot create ", j.dir_, ": ", ec.message()));
-    if (auto s = writeFileAtomically(stamp, [&](const fs::path& tmp) -> Status {
-          std::ofstream f(tmp, std::ios::binary);
-          f << fingerprint;
-          return f.good() ? Status{} : makeError(ErrorKind::Io, concat("cannot write ", tmp));
-        });
-        !s)
+    if (auto s = writeTextAtomically(stamp, fingerprint); !s)
       return s.error();
   }
   j.file_ = std::fopen(journal.c_str(), "ab");
-  if (!j.file_) return makeError(ErrorKind::Io, concat("cannot open ", journal, " for writing"));
+  if (!j.file_) return makeError(ErrorKind::Io, concat("cannot open ", journal, " for writing: ", ioReason(errno)));
   return j;
 }
 
@@ -121,7 +132,7 @@ Status ImportJournal::record(const geo::TileId& id, const TileRecord& r) {
                               r.maxH, r.bytes);
   std::lock_guard lock(mutex_);
   if (std::fwrite(line, 1, static_cast<size_t>(n), file_) != static_cast<size_t>(n) || std::fflush(file_) != 0)
-    return makeError(ErrorKind::Io, concat("cannot append to ", dir_ / "journal.txt"));
+    return makeError(ErrorKind::Io, concat("cannot append to ", dir_ / "journal.txt", ": ", ioReason(errno)));
   return {};
 }
 
@@ -132,9 +143,10 @@ Status ImportJournal::complete(const fs::path& out) {
   fs::remove(dir_ / "journal.txt", ec);
   fs::remove(dir_ / "import.json", ec);
   if (fs::exists(out, ec) && fs::is_directory(out, ec) && fs::is_empty(out, ec)) fs::remove(out, ec);
+  if (Status s = syncDirectoryTree(dir_, out); !s) return s;
   fs::rename(dir_, out, ec);
   if (ec) return makeError(ErrorKind::Io, concat("cannot rename ", dir_, " to ", out, ": ", ec.message()));
-  return {};
+  return syncPath(out.parent_path().empty() ? fs::path(".") : fs::absolute(out).parent_path(), out);
 }
 
 void ImportJournal::discard() {

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <string>
 
+#include "core/file_lock.h"
 #include "core/result.h"
 #include "geo/xyz_tiles.h"
 
@@ -29,6 +30,13 @@ struct TileRecord {
 };
 
 std::filesystem::path partialDirFor(const std::filesystem::path& out);
+
+// One import at a time per --out: `.NAME.lock` beside `out` (core/file_lock.h), held for the
+// whole import. A second import to the same --out is refused (InvalidInput naming it and the
+// holder's PID) instead of removing or resuming the first one's partial directory. The kernel
+// drops the lock of a killed import, so the next run proceeds and cleans what that one left.
+std::filesystem::path importLockFileFor(const std::filesystem::path& out);
+Result<FileLock> lockImportOutput(const std::filesystem::path& out);
 
 class ImportJournal {
  public:

@@ -60,13 +60,7 @@ std::vector<TileJsonFile> tileJsonFiles(const DatasetMeta& m) {
 Status writeTileJsons(const fs::path& datasetDir, const DatasetMeta& meta) {
   for (const TileJsonFile& f : tileJsonFiles(meta)) {
     const fs::path file = datasetDir / f.fileName;
-    const Status s = writeFileAtomically(file, [&](const fs::path& tmp) -> Status {
-      std::ofstream out(tmp, std::ios::binary);
-      out << f.text;
-      out.close();
-      if (!out) return makeError(ErrorKind::Io, concat("cannot write ", file));
-      return {};
-    });
+    const Status s = writeTextAtomically(file, f.text);
     if (!s) return s;
   }
   return {};

@@ -252,11 +252,7 @@ Status writeSummary(const fs::path& dir) {
   if (!frames) return frames.error();
   auto text = makeSummaryJson(*recText, (dir / kRecordingJson).string(), *frames);
   if (!text) return text.error();
-  return writeFileAtomically(dir / kSummaryJson, [&](const fs::path& tmp) -> Status {
-    std::ofstream f(tmp, std::ios::binary);
-    f << *text;
-    return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + tmp.string());
-  });
+  return writeTextAtomically(dir / kSummaryJson, *text);
 }
 
 }  // namespace vegstream::flight

@@ -1,25 +1,22 @@
+// Read-back frames as PNG (png_writer.h): encoded in memory, then written atomically and checked.
+
 #include "render/png_writer.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/atomic_file.h"
+#include "render/encoded_image.h"
 
 namespace vegstream::render {
 
+Result<std::vector<uint8_t>> encodePng(const ColorImage& image, const std::filesystem::path& nameForErrors) {
+  OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  return encodeImage("png", spec, image.rgba.data(), nameForErrors);
+}
+
 Status writePng(const std::filesystem::path& path, const ColorImage& image) {
-  return writeFileAtomically(path, [&](const std::filesystem::path& tmp) -> Status {
-    // The temporary name does not end in .png, so name the format explicitly.
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out) return makeError(ErrorKind::Internal, "OpenImageIO has no PNG writer");
-    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    if (!out->open(tmp.string(), spec))
-      return makeError(ErrorKind::Io, "cannot write " + path.string() + ": " + out->geterror());
-    const bool ok = out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data());
-    const bool closed = out->close();
-    if (!ok || !closed) return makeError(ErrorKind::Io, "cannot write " + path.string() + ": " + out->geterror());
-    return {};
-  });
+  auto bytes = encodePng(image, path);
+  if (!bytes) return bytes.error();
+  return writeBytesAtomically(path, *bytes);
 }
 
 }  // namespace vegstream::render

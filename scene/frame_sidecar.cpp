@@ -2,7 +2,6 @@
 
 #include "scene/frame_sidecar.h"
 
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -58,22 +57,15 @@ std::string frameSidecarJson(const FrameRecord& f, uint32_t width, uint32_t heig
 }
 
 Status writeFrameWithSidecar(const fs::path& png, const render::ColorImage& image, const std::string& sidecarJson) {
-  const fs::path sidecar = sidecarPathFor(png);
-  bool pngWritten = false;
-  const Status s = writeFileAtomically(sidecar, [&](const fs::path& tmp) -> Status {
-    std::ofstream f(tmp, std::ios::binary);
-    f << sidecarJson;
-    f.close();
-    if (!f) return makeError(ErrorKind::Io, "cannot write " + sidecar.string());
-    if (Status written = render::writePng(png, image); !written) return written;
-    pngWritten = true;
-    return {};
-  });
-  if (!s && pngWritten) {
-    std::error_code ec;
-    fs::remove(png, ec);
-  }
-  return s;
+  auto bytes = render::encodePng(image, png);
+  if (!bytes) return bytes.error();
+  auto stagedPng = StagedFile::stage(png, *bytes);
+  if (!stagedPng) return stagedPng.error();
+  const std::span<const uint8_t> text(reinterpret_cast<const uint8_t*>(sidecarJson.data()), sidecarJson.size());
+  auto stagedSidecar = StagedFile::stage(sidecarPathFor(png), text);
+  if (!stagedSidecar) return stagedSidecar.error();
+  if (Status s = stagedPng->commit(); !s) return s;
+  return stagedSidecar->commit();
 }
 
 }  // namespace vegstream::scene

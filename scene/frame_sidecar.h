@@ -25,9 +25,10 @@ std::filesystem::path sidecarPathFor(const std::filesystem::path& png);
 // The sidecar's text for a frame of width × height that `scene` drew.
 std::string frameSidecarJson(const FrameRecord& frame, uint32_t width, uint32_t height, const Scene& scene);
 
-// Writes `png` and its sidecar: each to a temporary file renamed into place, the sidecar only
-// once the PNG is in place and the PNG removed again if the sidecar cannot be put beside it, so
-// a failure leaves neither half-written (an earlier pair may then be gone).
+// Writes `png` and its sidecar: both are staged (written, checked, fsynced under temporary
+// names, core/atomic_file.h) before either is renamed into place, so a failure while writing
+// (a full disk) leaves an earlier pair exactly as it was. Only a failed rename between the two
+// (or a kill there) can leave a new PNG beside an older sidecar.
 Status writeFrameWithSidecar(const std::filesystem::path& png, const render::ColorImage& image,
                              const std::string& sidecarJson);
 

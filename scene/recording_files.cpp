@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Status writeText(const fs::path& file, const std::string& text) {
-  std::ofstream f(file, std::ios::binary);
-  f << text;
-  return f ? Status{} : makeError(ErrorKind::Io, "cannot write " + file.string());
-}
+Status writeText(const fs::path& file, const std::string& text) { return writeTextAtomically(file, text); }
 
 const char* styleName(render::PlantStyle style) {
   switch (style) {

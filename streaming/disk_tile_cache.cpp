@@ -166,13 +166,7 @@ Status DiskTileCache::put(const std::string& key, std::span<const uint8_t> bytes
   if (bytes.size() > budgetBytes_) return {};  // would evict everything and itself
   const fs::path rel = relativeFileFor(key);
   const fs::path file = dir_ / rel;
-  Status written = writeFileAtomically(file, [&](const fs::path& tmp) -> Status {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) return makeError(ErrorKind::Io, "cannot write the cached tile " + tmp.string());
-    return {};
-  });
+  Status written = writeBytesAtomically(file, bytes);
   if (!written) return written;
   std::lock_guard lock(mutex_);
   forgetLocked(rel);

@@ -7,6 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <string>
+
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "datasets/tile_codec.h"
 #include "tests/support/test_dirs.h"
@@ -159,6 +165,52 @@ TEST(TileCodec, GrandCanyonTerrariumAndTerrainRgbAgree) {
   EXPECT_LE(std::abs(signedSum / double(a->heights.size())), 1.0);
   EXPECT_GE(lo, 439.0 - 0.1);
   EXPECT_LE(hi, 2184.0 + 0.1);
+}
+
+// A full disk while a tile is written (RLIMIT_FSIZE in a child, SIGXFSZ ignored: write(2) gets
+// EFBIG as it gets ENOSPC on a full disk): the tile already there stays byte-identical, the
+// error names it and the reason (not "corrupt"), no temporary is left, and the process is not
+// ended by libjpeg's default error handler (the JPEG is encoded in memory, datasets/encoded_image.h).
+TEST(TileCodec, FullDiskKeepsTheOldTileAndSaysWhy) {
+  const fs::path dir = testing::testOutputDir();
+  ColorTile tile;
+  tile.size = 256;
+  tile.rgba.resize(256 * 256 * 4);
+  for (size_t i = 0; i < tile.rgba.size(); ++i) tile.rgba[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>((i * 7) % 251);
+  for (const ImageryFormat format : {ImageryFormat::Jpeg, ImageryFormat::Png}) {
+    const fs::path file = dir / (format == ImageryFormat::Jpeg ? "tile.jpg" : "tile.png");
+    ASSERT_TRUE(writeColorTile(file, tile, format).ok());
+    std::ifstream in(file, std::ios::binary);
+    const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{1024, 1024};
+      ::setrlimit(RLIMIT_FSIZE, &limit);
+      const Status s = writeColorTile(file, tile, format);
+      const std::string message = s ? std::string() : s.error().message;
+      if (::write(fds[1], message.data(), message.size()) < 0) ::_exit(3);
+      ::_exit(s ? 0 : 1);
+    }
+    ::close(fds[1]);
+    std::string message;
+    char buf[256];
+    for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) message.append(buf, static_cast<size_t>(n));
+    ::close(fds[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status << " " << message;
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("file too large"), std::string::npos) << message;
+    EXPECT_EQ(message.find("corrupt"), std::string::npos) << message;
+    std::ifstream again(file, std::ios::binary);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()), old);
+    for (const auto& e : fs::directory_iterator(dir))
+      EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+    EXPECT_TRUE(readColorTile(file, tile.id).ok());
+  }
 }
 
 }  // namespace
