@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "classify_readback.h"
 #include "gpu_test_fixture.h"
 #include "render/classify_pass.h"
 #include "render/context.h"
@@ -49,7 +50,7 @@ std::array<veg::SpeciesMask, 256> masks() {
   return m;
 }
 
-using Groups = std::map<std::tuple<uint32_t, uint32_t, uint32_t>, uint32_t>;  // group → species
+using Groups = ClassifyGroups;  // group → species
 
 class ClassifyLandcoverGpu : public GpuTest {};
 
@@ -90,29 +91,9 @@ TEST_F(ClassifyLandcoverGpu, ClassesNarrowTheChoiceAsOnTheCpu) {
   const uint32_t capacity = pass.clustersPerSpecies();
   GpuBuffer recordsHost = createBuffer(ctx, VkDeviceSize{capacity} * kSpeciesSlots * sizeof(PlantClusterGpu),
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "test records");
+  const ClassifyUploads uploads{imagery, companionImage, staging, rgba.size()};
   const auto runGpu = [&](uint32_t flags) {
-    VegetationFigures f;
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      recordImageUpload(cmd, staging, imagery, 0, 0);
-      recordImageUpload(cmd, staging, companionImage, 0, rgba.size());
-      f = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), companionImage.view.get(), flags,
-                      3 * kClusterSize, 0, [](GpuBuffer&&) {});
-    });
-    pass.readFigures(0, f);
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      const VkBufferCopy all{0, 0, recordsHost.size};
-      vkCmdCopyBuffer(cmd, pass.records(0), recordsHost.get(), 1, &all);
-      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    });
-    EXPECT_FALSE(f.overflow);
-    Groups groups;
-    const auto* records = static_cast<const PlantClusterGpu*>(recordsHost.mapped);
-    for (uint32_t s = 0; s < 2; ++s)
-      for (uint32_t i = 0; i < std::min(f.groups[s], capacity); ++i) {
-        const PlantClusterGpu& r = records[size_t{s} * capacity + i];
-        groups[{r.triangle, r.cluster, r.firstSeed}] = s;
-      }
-    return groups;
+    return classifyOnce(ctx, pass, uploads, scene.gpu, kClusterSize, flags, 2, recordsHost);
   };
   const Groups gpuWith = runGpu(2u), gpuWithout = runGpu(0u);
 

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "classify_readback.h"
 #include "gpu_test_fixture.h"
 #include "render/classify_pass.h"
 #include "render/context.h"
@@ -88,32 +89,15 @@ TEST_F(ClassifyNdviGpu, NdviSeparatesPlantsFromShadowedRockOfTheSameColourAsTheC
     const float x = scene.gpu[tri].v0.x;
     return x < 96.0f ? 0 : (x > 104.0f && x < 154.0f) ? 1 : x > 164.0f ? 2 : -1;  // −1: a zone's edge
   };
-  const auto runGpu = [&](bool withNdvi) {
-    VegetationFigures f;
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      recordImageUpload(cmd, staging, imagery, 0, 0);
-      recordImageUpload(cmd, staging, ndviImage, 0, rgba.size());
-      f = pass.record(cmd, 0, scene.gpu, kClusterSize, imagery.alternateView.get(), ndviImage.view.get(), withNdvi,
-                      3 * kClusterSize, 0, [](GpuBuffer&&) {});
-    });
-    pass.readFigures(0, f);
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      const VkBufferCopy all{0, 0, recordsHost.size};
-      vkCmdCopyBuffer(cmd, pass.records(0), recordsHost.get(), 1, &all);
-      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    });
-    EXPECT_FALSE(f.overflow);
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, int> groups;
-    const auto* records = static_cast<const PlantClusterGpu*>(recordsHost.mapped);
-    for (uint32_t i = 0; i < std::min(f.groups[0], capacity); ++i)
-      groups[{records[i].triangle, records[i].cluster, records[i].firstSeed}] = 1;
-    return groups;
+  const ClassifyUploads uploads{imagery, ndviImage, staging, rgba.size()};
+  const auto runGpu = [&](bool withNdvi) {  // the plants' groups (species 0)
+    return classifyOnce(ctx, pass, uploads, scene.gpu, kClusterSize, withNdvi ? 1u : 0u, 1, recordsHost);
   };
   const auto gpuWith = runGpu(true), gpuWithout = runGpu(false);
 
   // The CPU reference with the same NDVI texels.
   const veg::ImageryTexels texels{rgba.data(), kTile, ndvi.data()};
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, int> cpu;
+  ClassifyGroups cpu;
   std::map<int, size_t> items;
   for (size_t i = 0; i < scene.cpu.size(); ++i) {
     const SeedTriangleGpu& t = scene.gpu[i];
@@ -124,7 +108,7 @@ TEST_F(ClassifyNdviGpu, NdviSeparatesPlantsFromShadowedRockOfTheSameColourAsTheC
     };
     std::vector<veg::PlantCluster> groups;
     veg::classifyTriangle(scene.cpu[i], static_cast<uint32_t>(i), catalog, {kClusterSize}, ground, groups);
-    for (const veg::PlantCluster& g : groups) cpu[{g.triangle, g.cluster, g.firstSeed}] = 1;
+    for (const veg::PlantCluster& g : groups) cpu[{g.triangle, g.cluster, g.firstSeed}] = g.species;
     items[zoneOf(static_cast<uint32_t>(i))] += veg::classifyItems(scene.cpu[i].plantCount, kClusterSize);
   }
 

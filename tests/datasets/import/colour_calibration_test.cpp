@@ -88,17 +88,28 @@ TEST(ColourCalibration, TheReferenceSceneIsTheIdentityAndOneColourStaysGuarded) 
   const auto id = estimateColourCalibration(a, self);
   for (size_t i = 0; i < 9; ++i) EXPECT_NEAR(id.matrix[i], i % 4 == 0 ? 1.0 : 0.0, 1e-9) << i;
   for (double o : id.offset) EXPECT_NEAR(o, 0.0, 1e-9);
-  // A field of one green: the levels' gains stay within kMaxChannelGainRatio of each other, the
-  // chroma and exposure gains within their clamps.
+  // A field of one green with a little texture (0.024 between its darkest and brightest red):
+  // the levels' gains stay within kMaxChannelGainRatio of each other and within kMaxLevelsGain
+  // (times the grey balance's kMaxGreyGain),
+  // the chroma and exposure gains within their clamps.
   std::vector<float> green;
-  for (int i = 0; i < 1000; ++i) green.insert(green.end(), {0.05f + 1e-5f * float(i % 7), 0.09f + 1e-5f * float(i % 5), 0.03f});
+  for (int i = 0; i < 1000; ++i) green.insert(green.end(), {0.05f + 4e-3f * float(i % 7), 0.09f + 1e-5f * float(i % 5), 0.03f});
   const auto g = estimateColourCalibration(green);
+  for (double x : g.gains) {  // the levels' gain times the grey balance's
+    EXPECT_LE(x, kMaxLevelsGain * kMaxGreyGain);
+    EXPECT_GE(x, 1.0 / (kMaxLevelsGain * kMaxGreyGain));
+  }
   const double hi = std::max({g.gains[0], g.gains[1], g.gains[2]}), lo = std::min({g.gains[0], g.gains[1], g.gains[2]});
   EXPECT_LE(hi / lo, kMaxChannelGainRatio * kMaxChannelGainRatio + 1e-9);
   EXPECT_GE(g.chromaGain, kMinChroma);
   EXPECT_LE(g.chromaGain, kMaxChroma);
   EXPECT_GE(g.exposure, kMinExposure);
   EXPECT_LE(g.exposure, kMaxExposure);
+  // One flat colour (every channel spans less than kMinSpread: a synthetic test scene): no
+  // measure of the levels, the identity.
+  std::vector<float> flat;
+  for (int i = 0; i < 1000; ++i) flat.insert(flat.end(), {0.05f + 1e-5f * float(i % 7), 0.09f, 0.03f});
+  EXPECT_EQ(estimateColourCalibration(flat).matrix, (std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}));
   // Too few pixels (NaN is no data): the identity.
   const auto few = estimateColourCalibration({0.1f, 0.2f, 0.3f, NAN, NAN, NAN});
   EXPECT_EQ(few.pixels, 1u);
