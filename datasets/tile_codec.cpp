@@ -32,14 +32,6 @@ using OIIO::TypeDesc;
 
 constexpr int64_t kMaxCode = (int64_t{1} << 24) - 1;
 
-// Built by appending: GCC 12 at -O3 gives a false -Wrestrict on "'" + std::string.
-std::string quoted(const fs::path& path) {
-  std::string s(1, '\'');
-  s += path.string();
-  s += '\'';
-  return s;
-}
-
 std::string firstLine(std::string s) {
   if (auto nl = s.find('\n'); nl != std::string::npos) s.resize(nl);
   return s.empty() ? "unknown error" : s;

@@ -148,7 +148,7 @@ TEST(KillSafety, ImportKilledAtTenMomentsLeavesAWholeDatasetOrNone) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> moment(0.0, 1.1);
   for (int k = 0; k < 10; ++k) {
-    const auto delay = std::chrono::microseconds(static_cast<int64_t>(moment(rng) * fullRun.count()));
+    const auto delay = std::chrono::microseconds(static_cast<int64_t>(moment(rng) * static_cast<double>(fullRun.count())));
     SCOPED_TRACE("kill " + std::to_string(k) + " after " + std::to_string(delay.count() / 1000) + " ms");
     const int code = runVegstreamKilledAfter(importArgs(out), delay);
     EXPECT_TRUE(code == 0 || code == 128 + SIGKILL) << code;
@@ -186,7 +186,7 @@ TEST(KillSafety, SnapshotKilledLeavesTheEarlierStillOrTheNewOne) {
   for (int k = 0; k < 5; ++k) {
     std::ofstream(still, std::ios::binary) << "earlier still";
     std::ofstream(sidecar, std::ios::binary) << "earlier sidecar";
-    const auto delay = std::chrono::microseconds(static_cast<int64_t>(moment(rng) * fullRun.count()));
+    const auto delay = std::chrono::microseconds(static_cast<int64_t>(moment(rng) * static_cast<double>(fullRun.count())));
     SCOPED_TRACE("kill " + std::to_string(k) + " after " + std::to_string(delay.count() / 1000) + " ms");
     const int code = runVegstreamKilledAfter(snapshotArgs(still), delay);
     EXPECT_TRUE(code == 0 || code == 128 + SIGKILL) << code;

@@ -209,7 +209,7 @@ TEST(TileCodec, FullDiskKeepsTheOldTileAndSaysWhy) {
     EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()), old);
     for (const auto& e : fs::directory_iterator(dir))
       EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
-    EXPECT_TRUE(readColorTile(file, tile.id).ok());
+    EXPECT_TRUE(readColorTile(file, tile.id, tile.size).ok());
   }
 }
 

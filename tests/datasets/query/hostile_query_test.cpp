@@ -115,7 +115,7 @@ TEST_P(HostileQuery, OneLineExitTwoInMilliseconds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, HostileQuery, ::testing::ValuesIn(hostileDatasets()),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& p) { return std::string(p.param.name); });
 
 // The embedded default catalog's text with the first species' "kind" replaced by `kindText`.
 std::string catalogWithKind(const std::string& kindText) {
