@@ -73,8 +73,11 @@ def main():
             for p in s["recording"].get("gpu_passes", []):
                 if p not in passes:
                     passes.append(p)
+            # A recording at another fps than the first (--only NAME:FPS) says so.
+            fps = s["recording"].get("fps")
+            at = f" ({fps} fps)" if fps != first["fps"] else ""
             # Recordings made before --frames-in-flight ran one frame at a time.
-            print(f"| {n} | {s['recording']['path']['name']} | {s['frames']} | "
+            print(f"| {n} | {s['recording']['path']['name']}{at} | {s['frames']} | "
                   f"{s['recording'].get('frames_in_flight', 1)} | "
                   f"{fmt(pct(t, 'gpu_frame_ms', 'p50'))} / {fmt(pct(t, 'gpu_frame_ms', 'p99'))} | "
                   f"{fmt(pct(t, 'cpu_frame_ms', 'p50'))} / {fmt(pct(t, 'cpu_frame_ms', 'p99'))} | "
