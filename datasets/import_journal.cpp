@@ -76,6 +76,11 @@ fs::path importLockFileFor(const fs::path& out) {
 Result<FileLock> lockImportOutput(const fs::path& out) {
   const fs::path lockFile = importLockFileFor(out);
   std::error_code ec;
+  // The user's mistake (a file where a folder of --out should be) before any I/O error.
+  fs::path p = lockFile.parent_path();
+  while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path()) p = p.parent_path();
+  if (!fs::is_directory(p, ec))
+    return makeError(ErrorKind::InvalidInput, concat("--out ", out, " cannot be created: ", p, " is not a directory"));
   fs::create_directories(lockFile.parent_path(), ec);
   if (ec) return makeError(ErrorKind::Io, concat("cannot create ", lockFile.parent_path(), ": ", ec.message()));
   return FileLock::acquire(lockFile, concat("--out ", out));

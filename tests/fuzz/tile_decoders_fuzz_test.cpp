@@ -100,7 +100,7 @@ TEST(TileDecodersFuzz, ElevationPng) {
   ASSERT_TRUE(datasets::writeHeightTile(file, syntheticHeights(), datasets::ElevationEncoding::Terrarium).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
     auto r = datasets::decodeHeightTile(b, {12, 2138, 1447}, datasets::ElevationEncoding::Terrarium,
-                                        datasets::kTileSize, "fuzz/e.png");
+                                        kSide, "fuzz/e.png");
     if (r.ok()) {
       EXPECT_EQ(r->heights.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size));
     }
@@ -114,7 +114,7 @@ TEST(TileDecodersFuzz, ImageryPng) {
   const fs::path file = dir / "imagery.png";
   ASSERT_TRUE(datasets::writeColorTile(file, syntheticColours(), datasets::ImageryFormat::Png).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, datasets::kTileSize, "fuzz/i.png");
+    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, kSide, "fuzz/i.png");
     if (r.ok()) {
       EXPECT_EQ(r->rgba.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size) * 4);
     }
@@ -128,7 +128,7 @@ TEST(TileDecodersFuzz, ImageryJpeg) {
   const fs::path file = dir / "imagery.jpg";
   ASSERT_TRUE(datasets::writeColorTile(file, syntheticColours(), datasets::ImageryFormat::Jpeg, 85).ok());
   const auto decode = [](const std::vector<uint8_t>& b) {
-    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, datasets::kTileSize, "fuzz/i.jpg");
+    auto r = datasets::decodeColorTile(b, {12, 2138, 1447}, kSide, "fuzz/i.jpg");
     if (r.ok()) {
       EXPECT_EQ(r->rgba.size(), static_cast<size_t>(r->size) * static_cast<size_t>(r->size) * 4);
     }

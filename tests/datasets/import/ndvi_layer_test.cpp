@@ -95,7 +95,7 @@ TEST(NdviTileCodec, GreyPngRoundTripAndRgbRefused) {
   // A grey PNG of the wrong size, and a JPEG.
   auto small = decodeNdviTile(fileBytesOf(p), t.id, p.string(), 512);
   ASSERT_FALSE(small);
-  EXPECT_NE(small.error().message.find("256 pixels wide"), std::string::npos) << small.error().message;
+  EXPECT_NE(small.error().message.find("is 256x256 pixels; dataset.json says tiles are 512 pixels a side"), std::string::npos) << small.error().message;
   const fs::path j = d / "rgb.jpg";
   ASSERT_TRUE(writeColorTile(j, rgb, ImageryFormat::Jpeg));
   EXPECT_FALSE(decodeNdviTile(fileBytesOf(j), t.id, j.string()));

@@ -71,7 +71,7 @@ TEST(LandcoverTileCodec, GreyPngRoundTripAndOtherImagesRefused) {
   EXPECT_FALSE(readLandcoverTile(j, t.id));
   auto wide = readLandcoverTile(p, t.id, 512);
   ASSERT_FALSE(wide);
-  EXPECT_NE(wide.error().message.find("landcover tiles are 512 pixels wide"), std::string::npos)
+  EXPECT_NE(wide.error().message.find("is 256x256 pixels; dataset.json says tiles are 512 pixels a side"), std::string::npos)
       << wide.error().message;
   std::vector<uint8_t> cut = fileBytesOf(p);
   cut.resize(cut.size() / 2);
