@@ -120,16 +120,12 @@ int runWindow(const FlyOptions& o, scene::Scene& scene, const flight::FlightPath
 int runFly(FlyOptions o, const Logger& log) {
   scene::SceneOptions so;
   const bool windowWanted = !o.headless && displayAvailable();
-  if (Status s = applyStreamingOptions(
-          o.streaming, windowWanted ? scene::StreamingMode::Realtime : scene::StreamingMode::Settled, so);
-      !s)
+  const auto mode = windowWanted ? scene::StreamingMode::Realtime : scene::StreamingMode::Settled;
+  if (Status s = applyStreamingAndTreeOptions(o.streaming, mode, o.treeCli, so); !s)
     return reportError(log, s.error());
   if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
   auto sun = checkSunOptions(o.sunCli);
   if (!sun) return reportError(log, sun.error());
-  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
-    return reportError(log, s.error());
-  applyTreeOptions(o.treeCli, so);
   // A window flies in real time: ROAM's queue work stops after 2 ms a frame and carries on in the
   // next (recordings and headless frames stay deterministic, bounded by operations only).
   if (windowWanted) so.terrain.roam.maxQueueMs = 2.0;

@@ -193,13 +193,9 @@ int runPlants(const PlantsOptions& o, const Logger& log) {
   if (!plan) return reportError(log, plan.error());
   auto box = parseBbox(o.bbox);
   if (!box) return reportError(log, box.error());
-  const vegetation::SpeciesCatalog* catalog = &vegetation::defaultSpeciesCatalog();
-  Result<vegetation::SpeciesCatalog> custom = vegetation::SpeciesCatalog{};
-  if (!o.speciesFile.empty()) {
-    custom = vegetation::loadSpeciesCatalog(o.speciesFile);
-    if (!custom) return reportError(log, custom.error());
-    catalog = &*custom;
-  }
+  const Result<vegetation::SpeciesCatalog> loaded = vegetation::loadSpeciesCatalogOrDefault(o.speciesFile);
+  if (!loaded) return reportError(log, loaded.error());
+  const vegetation::SpeciesCatalog* catalog = &*loaded;
   auto grown = grow(o, *box, *catalog, log);
   if (!grown) return reportError(log, grown.error());
   const auto f = formatNumber;

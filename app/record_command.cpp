@@ -89,17 +89,13 @@ int runRecord(RecordOptions o, const Logger& log) {
 
   // Every option before any file is read: a mistake is named even when the path is missing too.
   scene::SceneOptions so;
-  if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
+  if (Status s = applyStreamingAndTreeOptions(o.streaming, scene::StreamingMode::Settled, o.treeCli, so); !s)
     return reportError(log, s.error());
   auto path = flight::loadFlightPath(o.path);
   if (!path) return reportError(log, path.error());
   if (Status s = flight::checkRecordable(path->duration(), o.fps, o.warmupS, o.path); !s)
     return reportError(log, s.error());
   o.simulation = resolveSimulationOptions(o.simulationCli, &*path);
-
-  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
-    return reportError(log, s.error());
-  applyTreeOptions(o.treeCli, so);
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());
   if (!streaming::isHttpLocation(*dataset)) {  // a local dataset is checked against the path before the GPU is touched

@@ -22,6 +22,14 @@ Result<std::string> resolveDataset(const std::string& given, const std::string& 
   return sample->string();
 }
 
+Status applyStreamingAndTreeOptions(const StreamingCli& streaming, scene::StreamingMode defaultMode,
+                                    const TreeCli& trees, scene::SceneOptions& so) {
+  if (Status s = applyStreamingOptions(streaming, defaultMode, so); !s) return s;
+  if (Status s = checkTreeOptions(trees, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s) return s;
+  applyTreeOptions(trees, so);
+  return {};
+}
+
 void applyRendererOptions(const RendererCli& cli, const Logger& log, scene::SceneOptions& so) {
   so.logger = log;
   so.renderer.width = cli.width;

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "app/streaming_cli.h"
+#include "app/tree_cli.h"
 #include "core/log.h"
 #include "core/result.h"
 #include "flight/flight_path.h"
@@ -20,6 +22,12 @@ namespace vegstream::app {
 // into out/datasets/synthetic (sample_dataset.h).
 Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log,
                                    bool syntheticFallback = false);
+
+// The options `fly`, `record` and `snapshot` take first, before any file but --species is read:
+// the streaming options (defaultMode where --streaming names none) and the tree options, checked
+// against the catalog the scene will grow (--species, or the default).
+Status applyStreamingAndTreeOptions(const StreamingCli& streaming, scene::StreamingMode defaultMode,
+                                    const TreeCli& trees, scene::SceneOptions& so);
 
 struct RendererCli {
   uint32_t width = 640, height = 360;

@@ -149,11 +149,8 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   if (!aovs) return reportError(log, aovs.error());
 
   scene::SceneOptions so;
-  if (Status s = applyStreamingOptions(o.streaming, scene::StreamingMode::Settled, so); !s)
+  if (Status s = applyStreamingAndTreeOptions(o.streaming, scene::StreamingMode::Settled, o.treeCli, so); !s)
     return reportError(log, s.error());
-  if (Status s = checkTreeOptions(o.treeCli, so.species ? *so.species : vegetation::defaultSpeciesCatalog()); !s)
-    return reportError(log, s.error());
-  applyTreeOptions(o.treeCli, so);
   so.mode = scene::StreamingMode::Settled;  // a still shows the finest tiles its view wants
   auto dataset = resolveDataset(o.dataset, o.samplesDir, log);
   if (!dataset) return reportError(log, dataset.error());

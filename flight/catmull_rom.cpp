@@ -1,4 +1,5 @@
 #include "flight/catmull_rom.h"
+#include "flight/cubic_hermite.h"
 
 #include <algorithm>
 #include <cassert>
@@ -43,30 +44,20 @@ CentripetalCatmullRom::CentripetalCatmullRom(std::vector<glm::dvec3> points, dou
   }
 }
 
-std::size_t CentripetalCatmullRom::segment(double s) const {
-  const auto it = std::upper_bound(knots_.begin(), knots_.end(), s);
-  const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, it - knots_.begin() - 1));
-  return std::min(i, knots_.size() - 2);
-}
+std::size_t CentripetalCatmullRom::segment(double s) const { return hermiteSegment(knots_, s); }
 
 glm::dvec3 CentripetalCatmullRom::position(double s) const {
   s = std::clamp(s, knots_.front(), knots_.back());
   const std::size_t i = segment(s);
   const double h = knots_[i + 1] - knots_[i];
-  const double u = (s - knots_[i]) / h;
-  const double u2 = u * u, u3 = u2 * u;
-  return (2 * u3 - 3 * u2 + 1) * points_[i] + (u3 - 2 * u2 + u) * h * tangents_[i] +
-         (-2 * u3 + 3 * u2) * points_[i + 1] + (u3 - u2) * h * tangents_[i + 1];
+  return hermiteValue(points_[i], tangents_[i], points_[i + 1], tangents_[i + 1], h, (s - knots_[i]) / h);
 }
 
 glm::dvec3 CentripetalCatmullRom::derivative(double s) const {
   s = std::clamp(s, knots_.front(), knots_.back());
   const std::size_t i = segment(s);
   const double h = knots_[i + 1] - knots_[i];
-  const double u = (s - knots_[i]) / h;
-  const double u2 = u * u;
-  return ((6 * u2 - 6 * u) * points_[i] + (6 * u - 6 * u2) * points_[i + 1]) / h + (3 * u2 - 4 * u + 1) * tangents_[i] +
-         (3 * u2 - 2 * u) * tangents_[i + 1];
+  return hermiteDerivative(points_[i], tangents_[i], points_[i + 1], tangents_[i + 1], h, (s - knots_[i]) / h);
 }
 
 }  // namespace vegstream::flight

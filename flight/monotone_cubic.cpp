@@ -1,4 +1,5 @@
 #include "flight/monotone_cubic.h"
+#include "flight/cubic_hermite.h"
 
 #include <algorithm>
 #include <cassert>
@@ -44,31 +45,21 @@ MonotoneCubic::MonotoneCubic(std::vector<double> x, std::vector<double> y)
   d_[n - 1] = endSlope(h[n - 2], h[n - 3], m[n - 2], m[n - 3]);
 }
 
-std::size_t MonotoneCubic::segment(double x) const {
-  const auto it = std::upper_bound(x_.begin(), x_.end(), x);
-  const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, it - x_.begin() - 1));
-  return std::min(i, x_.size() - 2);
-}
+std::size_t MonotoneCubic::segment(double x) const { return hermiteSegment(x_, x); }
 
 double MonotoneCubic::value(double x) const {
   if (x_.size() == 1 || x <= x_.front()) return y_.front();
   if (x >= x_.back()) return y_.back();
   const std::size_t i = segment(x);
   const double h = x_[i + 1] - x_[i];
-  const double u = (x - x_[i]) / h;
-  const double u2 = u * u, u3 = u2 * u;
-  return (2 * u3 - 3 * u2 + 1) * y_[i] + (u3 - 2 * u2 + u) * h * d_[i] + (-2 * u3 + 3 * u2) * y_[i + 1] +
-         (u3 - u2) * h * d_[i + 1];
+  return hermiteValue(y_[i], d_[i], y_[i + 1], d_[i + 1], h, (x - x_[i]) / h);
 }
 
 double MonotoneCubic::derivative(double x) const {
   if (x_.size() == 1 || x < x_.front() || x > x_.back()) return 0.0;
   const std::size_t i = segment(x);
   const double h = x_[i + 1] - x_[i];
-  const double u = (x - x_[i]) / h;
-  const double u2 = u * u;
-  return ((6 * u2 - 6 * u) * y_[i] + (6 * u - 6 * u2) * y_[i + 1]) / h + (3 * u2 - 4 * u + 1) * d_[i] +
-         (3 * u2 - 2 * u) * d_[i + 1];
+  return hermiteDerivative(y_[i], d_[i], y_[i + 1], d_[i + 1], h, (x - x_[i]) / h);
 }
 
 }  // namespace vegstream::flight

@@ -511,6 +511,11 @@ Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file) {
   return parseSpeciesCatalog(*text, file.string());
 }
 
+Result<SpeciesCatalog> loadSpeciesCatalogOrDefault(const std::filesystem::path& file) {
+  if (file.empty()) return defaultSpeciesCatalog();
+  return loadSpeciesCatalog(file);
+}
+
 const SpeciesCatalog& defaultSpeciesCatalog() {
   static const SpeciesCatalog catalog = [] {
     auto parsed = parseSpeciesCatalog(defaultSpeciesCatalogJson(), "config/species.json (embedded)");

@@ -184,6 +184,10 @@ Result<SpeciesCatalog> parseSpeciesCatalog(std::string_view json, const std::str
 // NotFound when the file is missing; InvalidInput for bad JSON or fields (named).
 Result<SpeciesCatalog> loadSpeciesCatalog(const std::filesystem::path& file);
 
+// The catalog a command's --species names, or the default one where it names none (`file`
+// empty): loadSpeciesCatalog's errors, else a copy.
+Result<SpeciesCatalog> loadSpeciesCatalogOrDefault(const std::filesystem::path& file);
+
 // config/species.json as embedded at build time, parsed once (a bad shipped file is a build
 // defect: the tests parse it, and this asserts).
 const SpeciesCatalog& defaultSpeciesCatalog();
