@@ -36,12 +36,14 @@ nlohmann::json speciesJson(const vegetation::SpeciesCatalog& catalog, const data
   if (k.first < 0) {  // every species under its threshold
     out["species"] = nullptr;
     out["species_bare"] = true;
+    out["canopy_cover"] = 0.0;
     out["species_candidates"] = nlohmann::json::array();
     return out;
   }
   const auto& best = catalog.species[static_cast<size_t>(k.first)];
   out["species"] = best.name;
   out["species_bare"] = best.bare;
+  out["canopy_cover"] = std::round(vegetation::canopyCoverOf(catalog, k) * 1e4) / 1e4;
   out["species_candidates"] = nlohmann::json::array();
   out["species_candidates"].push_back(
       {{"name", best.name}, {"bare", best.bare}, {"probability", 1.0f - k.secondRatio}});
@@ -68,13 +70,9 @@ nlohmann::json landcoverJson(const std::optional<uint8_t>& code, const datasets:
 
 int runQuery(const QueryOptions& options, const Logger& log) {
   // The catalog first: a bad --species file is reported before any dataset I/O.
-  const vegetation::SpeciesCatalog* catalog = &vegetation::defaultSpeciesCatalog();
-  Result<vegetation::SpeciesCatalog> custom = vegetation::SpeciesCatalog{};
-  if (!options.speciesFile.empty()) {
-    custom = vegetation::loadSpeciesCatalog(options.speciesFile);
-    if (!custom) return reportError(log, custom.error());
-    catalog = &*custom;
-  }
+  const Result<vegetation::SpeciesCatalog> loaded = vegetation::loadSpeciesCatalogOrDefault(options.speciesFile);
+  if (!loaded) return reportError(log, loaded.error());
+  const vegetation::SpeciesCatalog* catalog = &*loaded;
   auto reader = datasets::DatasetReader::open(options.dataset);
   if (!reader) return reportError(log, reader.error());
   auto height = reader->heightAt(options.latDeg, options.lonDeg);

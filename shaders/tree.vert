@@ -141,7 +141,7 @@ void main() {
   p += offset;
 
   float sz = t.heightM / m.shape.x;
-  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 1.6 * sz);
+  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 2.5 * sz);
   vec3 world = treeRotate(vec3(p.xy * sxy, p.z * sz), seed);
   vec3 rel = (t.position - trees.camera.xyz) + world;
   vNormal = treeRotate(normalize(vec3(n.xy / sxy, n.z / sz)), seed);

@@ -56,7 +56,15 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
 
 SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi, float exg,
                             SpeciesMask allowed) {
-  const SpeciesCandidates c = speciesCandidates(catalog, hsv, ndvi, exg, allowed);
+  return chooseAmong(catalog, speciesCandidates(catalog, hsv, ndvi, exg, allowed), z);
+}
+
+float canopyCoverOf(const SpeciesCatalog& catalog, const SpeciesCandidates& c) {
+  const auto tree = [&](int s) { return s >= 0 && isTree(catalog.species[static_cast<size_t>(s)]); };
+  return (tree(c.first) ? 1.0f - c.secondRatio : 0.0f) + (tree(c.second) ? c.secondRatio : 0.0f);
+}
+
+SpeciesChoice chooseAmong(const SpeciesCatalog& catalog, const SpeciesCandidates& c, float z) {
   SpeciesChoice out;
   if (c.first < 0) return out;  // nothing scores: rejected
   out.secondRatio = c.secondRatio;

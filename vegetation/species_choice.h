@@ -60,8 +60,21 @@ SpeciesCandidates speciesCandidates(const SpeciesCatalog& catalog, glm::vec3 hsv
 SpeciesChoice chooseSpecies(const SpeciesCatalog& catalog, glm::vec3 hsv, float z, float ndvi = kNoNdvi,
                             float exg = kNoExg, SpeciesMask allowed = kAllSpecies);
 
-// Where the colour's choice is a tree species, how likely a tree stands there, from its share s′
-// of the two best: smoothstep(kStandShareLo, kStandShareHi, s′). Eq. 18 lets the second best win
+// The imagery's canopy cover at a colour: the share of the two best (eq. 17–18) that are tree
+// species — both trees: 1, neither: 0, one: its share. A 30 m pixel of closed forest scores the
+// forest's colour (cover near 1), a meadow with scattered trees gives the trees the share its
+// colour leans their way. Tree placement stands trees by it and closes their crowns by it
+// (tree_placement.h); `query` reports it (canopy_cover).
+float canopyCoverOf(const SpeciesCatalog& catalog, const SpeciesCandidates& c);
+
+// z's choice between two candidates already scored (eq. 18; chooseSpecies = speciesCandidates,
+// then this).
+SpeciesChoice chooseAmong(const SpeciesCatalog& catalog, const SpeciesCandidates& c, float z);
+
+// Where the colour's choice is a tree species, how likely a tree stands there, from the trees'
+// share of the two best (s′ of the tree where the other is not a tree; tree placement passes
+// canopyCoverOf, which is the same there and 1 where both are trees):
+// smoothstep(kStandShareLo, kStandShareHi, share). Eq. 18 lets the second best win
 // with its share — which scatters plants nicely at a border, but would stand a tree in every
 // sixth cell of a meadow whose colour gives the forest a 15 % share. Trees stand where the colour
 // clearly says forest (tree_placement.h); elsewhere the ground keeps its plants

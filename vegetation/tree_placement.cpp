@@ -93,9 +93,11 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   const TreeGroundSample g = ground(x, y);
   if (!g.valid) return false;
   const GroundColour colour = calibratedGround(catalog.calibration, g.linearRgb);
-  const SpeciesChoice pick = chooseSpecies(catalog, colour.hsv, u01(choice.x), g.ndvi, colour.exg, g.allowed);
+  const SpeciesCandidates cands = speciesCandidates(catalog, colour.hsv, g.ndvi, colour.exg, g.allowed);
+  const SpeciesChoice pick = chooseAmong(catalog, cands, u01(choice.x));
   if (pick.species < 0 || !isTree(catalog.species[static_cast<size_t>(pick.species)])) return false;
-  if (!(u01(cellWords(cx, cy, kStandKey).x) < treeStandShare(pick.sPrime))) return false;
+  const float cover = canopyCoverOf(catalog, cands);
+  if (!(u01(cellWords(cx, cy, kStandKey).x) < treeStandShare(cover))) return false;
   const SpeciesChoice tree =
       chooseTreeSpecies(catalog, pick.species, colour, g.ndvi, g.site, u01(cellWords(cx, cy, kNicheKey).x), g.allowed);
   const auto s = static_cast<size_t>(tree.species >= 0 ? tree.species : pick.species);
@@ -111,7 +113,8 @@ bool candidateOf(const SpeciesCatalog& catalog, const TreeGrid& grid, std::span<
   t.seed = cellWords(cx, cy, kSeedKey).x;
   const TreeSize z = treeSizeOf(sp, pick.sPrime, normalOf(size.x, size.y), normalOf(more.x, more.y));
   t.heightM = z.heightM;
-  t.crownM = z.crownM;
+  t.crownM = z.crownM;  // open-grown: the hard core below; closed after it (placeTreesInCells)
+  t.canopyCover = cover;
   t.sPrime = pick.sPrime;
   t.groundLinear = g.linearRgb;
   return true;
@@ -145,7 +148,18 @@ int32_t treeCellOf(const TreeGrid& grid, double x) {
   return static_cast<int32_t>(c);
 }
 
-float treeSpacingM(const Species& sp, float crownM) { return sp.tree.spacingM * crownM / sp.widthM.max; }
+float treeSpacingM(const Species& sp, float crownM) {
+  return sp.tree.spacingM * std::min(crownM, sp.widthM.max) / sp.widthM.max;
+}
+
+float closedCrownM(const Species& sp, float crownM, float cover, float sPrime) {
+  assert(sp.tree.densityHa > 0.0f && sp.widthM.min > 0.0f);
+  const float cap = kClosedCrownCap * sp.widthM.max;
+  const float fill = std::min(kCrownClosure * 100.0f / std::sqrt(sp.tree.densityHa), cap);
+  const float median = std::sqrt(sp.widthM.min * sp.widthM.max) * sPrimeFactor(kSPrimeWidthLo, sPrime);
+  const float grow = std::max(fill / median, 1.0f);
+  return std::min(crownM * (1.0f + std::clamp(cover, 0.0f, 1.0f) * (grow - 1.0f)), std::max(crownM, cap));
+}
 
 void placeTreesInCells(const SpeciesCatalog& catalog, const TreeGrid& grid, int32_t cx0, int32_t cy0, int32_t cx1,
                        int32_t cy1, const TreeGroundAt& ground, std::vector<PlacedTree>& out) {
@@ -185,7 +199,10 @@ void placeTreesInCells(const SpeciesCatalog& catalog, const TreeGrid& grid, int3
                                        treeSpacingM(catalog.species[o.species], o.crownM));
           beaten = taller && std::hypot(o.x - t.x, o.y - t.y) < core;
         }
-      if (!beaten) out.push_back(t);
+      if (beaten) continue;
+      out.push_back(t);
+      out.back().openCrownM = t.crownM;
+      out.back().crownM = closedCrownM(catalog.species[t.species], t.crownM, t.canopyCover, t.sPrime);
     }
 }
 

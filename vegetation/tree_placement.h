@@ -28,9 +28,11 @@
 //              a winner that is not a tree (or none): no tree. Else which tree: chooseTreeSpecies
 //              (tree_niche.h: colour plus the species' niche in elevation, slope and relief) with
 //              its own z; s′ stays the first choice's (the tree stand's border, not the species').
-//   stand      kept with probability treeStandShare(s′) (species_choice.h): a tree stands where
-//              the colour clearly says forest, thinning out across an even edge, and not in a
-//              meadow whose colour gives the forest a 15 % share (its plants grow there instead).
+//   stand      kept with probability treeStandShare(C) (species_choice.h), C = canopyCoverOf the
+//              two best (the imagery's canopy cover: 1 where both are trees, the tree's share where
+//              one is): a tree stands where the colour clearly says forest, thinning out across an
+//              even edge, and not in a meadow whose colour gives the forest a 15 % share (its
+//              plants grow there instead).
 //   keep       with probability min(1, p · kThinningMakeUp) · (1 + kGapAmplitude (1 − p) g), p =
 //              density_ha(s) · cellM² / 10⁴ the imagery's density (the species it picks), g the gap
 //              field (bilinear value noise over the blocks' corners, −1 … 1): stands get clumps
@@ -39,7 +41,11 @@
 //   size       treeSizeOf: a log-normal height per species (median √(min·max of height_m) scaled
 //              by s′, σ = kTreeHeightSigma: CV ≈ 0.3), clamped to [kTreeHeightFloor · min · 0.6,
 //              max]; the crown scales with height as (h / median)^kCrownHeightExponent times its
-//              own log-normal spread, clamped likewise into width_m.
+//              own log-normal spread, clamped likewise into width_m. Then the canopy closes as
+//              the imagery says (closedCrownM): crowns grow by C of the way to a median of
+//              kCrownClosure times the species' closed-stand spacing 100 / √density_ha — trees
+//              of closed forest reach their neighbours, those at the edge keep their open-grown
+//              crowns (issue 41 item 6).
 //   seed       one Philox word: the model variant, yaw, lean and branch angles (tree_model.h).
 // Then Matérn type II thinning (B. Matérn, Spatial Variation, 1960; the taller tree as the mark):
 // a cell's candidate goes when a candidate of one of its 8 neighbours, taller (ties: the larger
@@ -98,7 +104,21 @@ struct TreeSize {
 // A tree's size from two standard normal draws (zHeight, zCrown) and its s′ (above).
 TreeSize treeSizeOf(const Species& sp, float sPrime, float zHeight, float zCrown);
 
-// The least distance a tree keeps to a shorter neighbour: spacing_m · crownM / width_m.max.
+// The crown of a tree whose imagery says canopy cover `cover` (0 … 1): crownM · (1 + cover ·
+// (g − 1)), g = max(1, fill / m), m = √(width_m.min · width_m.max) · sPrimeFactor(kSPrimeWidthLo,
+// s′) the median crown treeSizeOf draws about, fill = min(kCrownClosure · 100 /
+// √density_ha, kClosedCrownCap · width_m.max), and no wider than that cap. In closed forest the
+// species' median crown becomes `fill`: crowns touch (the stand's spacing times kCrownClosure,
+// the overlap a near-regular stand needs to hide the ground between three crowns) and keep their
+// spread and their allometry with height; no crown passes 1.5 times the species' widest
+// open-grown one (a woodland species of sparse stands does not balloon where its colour says
+// closed). The hard core below keeps to the open-grown size.
+inline constexpr float kCrownClosure = 1.7f;
+inline constexpr float kClosedCrownCap = 1.5f;
+float closedCrownM(const Species& sp, float crownM, float cover, float sPrime);
+
+// The least distance a tree keeps to a shorter neighbour: spacing_m · min(crownM, width_m.max) /
+// width_m.max.
 float treeSpacingM(const Species& sp, float crownM);
 
 // The catalog's grid; contract: the catalog has a tree species (hasTrees).

@@ -60,7 +60,9 @@ struct PlacedTree {
   uint32_t seed = 0;      // Philox word: the model variant, yaw, lean and branch angles
   float heightM = 0.0f;   // full height
   float crownM = 0.0f;    // crown width
+  float openCrownM = 0.0f;  // its crown width before the canopy closed (tree_placement.h closedCrownM)
   float sPrime = 1.0f;    // eq. 18 share of the species at its colour
+  float canopyCover = 0.0f;  // the imagery's canopy cover under it (species_choice.h canopyCoverOf)
   // The imagery's colour under the tree (linear albedo): seen from afar the crowns average to it
   // (issue 39 item 5, core seed §2.4's blend into the terrain it grows from).
   glm::vec3 groundLinear{0.0f};

@@ -73,8 +73,8 @@ TEST(SpeciesCatalog, TheShippedDefaultParses) {
   for (const Species& s : c.species) claiming += isTree(s) && s.tree.claimsGround;
   EXPECT_EQ(claiming, 2);
   EXPECT_EQ(farthestHorizon(c), 150.0f) << "the grass's: trees excluded";
-  EXPECT_EQ(densestTreeDensityHa(c), 180.0f);
-  EXPECT_FLOAT_EQ(largestTreeSpacing(c), 4.8f);
+  EXPECT_EQ(densestTreeDensityHa(c), 260.0f);
+  EXPECT_FLOAT_EQ(largestTreeSpacing(c), 4.1f);
   EXPECT_EQ(farthestTreeHorizon(c), 3000.0f);
   EXPECT_TRUE(hasTrees(c));
 }

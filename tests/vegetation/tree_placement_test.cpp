@@ -16,6 +16,7 @@
 
 #include "vegetation/colour_score.h"
 #include "vegetation/species_catalog.h"
+#include "vegetation/species_choice.h"
 #include "vegetation/stand_statistics.h"
 #include "vegetation/tree_placement.h"
 
@@ -78,8 +79,8 @@ bool sameBits(const PlacedTree& a, const PlacedTree& b) {
 
 TEST(TreePlacement, TheGridComesFromTheDensestSpeciesAndTheLargestSpacing) {
   const TreeGrid g = treeGridFor(catalog());
-  EXPECT_NEAR(g.cellM, 100.0 * std::sqrt(0.9 / 180.0), 1e-9);  // the conifer, 180 per ha: 7.07 m
-  EXPECT_FLOAT_EQ(static_cast<float>(g.marginM), 4.8f);         // the broadleaf's spacing
+  EXPECT_NEAR(g.cellM, 100.0 * std::sqrt(0.9 / 260.0), 1e-9);  // the conifer, 260 per ha: 5.88 m
+  EXPECT_FLOAT_EQ(static_cast<float>(g.marginM), 4.1f);         // the broadleaf's spacing
   EXPECT_LE(g.marginM, 0.7 * g.cellM);
   EXPECT_EQ(treeCellOf(g, -0.001), -1);
   EXPECT_EQ(treeCellOf(g, 0.0), 0);
@@ -158,8 +159,8 @@ TEST(TreePlacement, NoTwoTreesAreCloserThanTheirSizeScaledSpacing) {
         for (size_t j : it->second) {
           if (j <= i) continue;
           const double d = std::hypot(trees[i].x - trees[j].x, trees[i].y - trees[j].y);
-          const double need = std::max(treeSpacingM(catalog().species[trees[i].species], trees[i].crownM),
-                                       treeSpacingM(catalog().species[trees[j].species], trees[j].crownM));
+          const double need = std::max(treeSpacingM(catalog().species[trees[i].species], trees[i].openCrownM),
+                                       treeSpacingM(catalog().species[trees[j].species], trees[j].openCrownM));
           ++pairs;
           nearest = std::min(nearest, d);
           worstMargin = std::min(worstMargin, d - need);
@@ -200,7 +201,7 @@ TEST(TreePlacement, SizesStayWithinTheSpeciesRangesScaledBySPrime) {
     ASSERT_GE(t.heightM, kTreeHeightFloor * s.heightM.min * kSPrimeHeightLo - 1e-4f);
     ASSERT_LE(t.heightM, s.heightM.max + 1e-4f);
     ASSERT_GE(t.crownM, kTreeHeightFloor * s.widthM.min * kSPrimeWidthLo - 1e-4f);
-    ASSERT_LE(t.crownM, s.widthM.max + 1e-4f);
+    ASSERT_LE(t.crownM, kClosedCrownCap * s.widthM.max + 1e-4f);  // closed crowns: closedCrownM
     ASSERT_GT(t.sPrime, 0.5f);  // the winner of two has at least half the score
     ASSERT_LE(t.sPrime, 1.0f);
   }
@@ -241,6 +242,48 @@ TEST(TreePlacement, HeightsVaryPerSpeciesAndCrownsScaleWithHeight) {
     EXPECT_GE(cv, 0.25) << catalog().species[s].name;
     EXPECT_GE(corr, 0.7) << catalog().species[s].name;
   }
+}
+
+// The share of a 100 m square at the centre of `trees` that their crowns (disks of crownM) cover,
+// on a 0.25 m raster.
+double crownCover(const std::vector<PlacedTree>& trees, double cx, double cy) {
+  const int n = 400;
+  const double step = 0.25, x0 = cx - 50.0, y0 = cy - 50.0;
+  std::vector<uint8_t> hit(size_t(n) * n, 0);
+  for (const PlacedTree& t : trees) {
+    const double r = 0.5 * t.crownM;
+    for (int j = std::max(0, int((t.y - r - y0) / step)); j < std::min(n, int((t.y + r - y0) / step) + 1); ++j)
+      for (int i = std::max(0, int((t.x - r - x0) / step)); i < std::min(n, int((t.x + r - x0) / step) + 1); ++i) {
+        const double dx = x0 + (i + 0.5) * step - t.x, dy = y0 + (j + 0.5) * step - t.y;
+        if (dx * dx + dy * dy <= r * r) hit[size_t(j) * n + size_t(i)] = 1;
+      }
+  }
+  return double(std::count(hit.begin(), hit.end(), uint8_t{1})) / double(hit.size());
+}
+
+// Issue 41 item 6: where the imagery's colour says closed forest (canopyCoverOf 1), the crowns
+// close over the ground; the same trees at canopy cover 0 keep their open-grown crowns.
+TEST(TreePlacement, ClosedForestCrownsCoverTheGround) {
+  const TreeGrid g = treeGridFor(catalog());
+  const std::vector<PlacedTree> trees = place(0, 0, 40, 40, uniform("conifer"));
+  const double mid = 20.0 * g.cellM;
+  const double closed = crownCover(trees, mid, mid);
+  std::vector<PlacedTree> open = trees;
+  const Species& conifer = catalog().species[static_cast<size_t>(indexOf("conifer"))];
+  const GroundColour colour = calibratedGround(catalog().calibration, groundOf("conifer").linearRgb);
+  const float cover = canopyCoverOf(catalog(), speciesCandidates(catalog(), colour.hsv, groundOf("conifer").ndvi, colour.exg));
+  for (PlacedTree& t : open) {
+    ASSERT_FLOAT_EQ(t.canopyCover, cover);
+    ASSERT_FLOAT_EQ(closedCrownM(conifer, t.openCrownM, cover, t.sPrime), t.crownM);
+    ASSERT_FLOAT_EQ(closedCrownM(conifer, t.openCrownM, 0.0f, t.sPrime), t.openCrownM);  // no cover: as grown
+    t.crownM = t.openCrownM;
+  }
+  const double openCover = crownCover(open, mid, mid);
+  std::printf("[ figures  ] uniform conifer colour (canopy cover %.3f): %zu trees, crowns cover %.3f of 1 ha "
+              "(open-grown crowns: %.3f)\n", cover, trees.size(), closed, openCover);
+  EXPECT_GE(cover, 0.99f);
+  EXPECT_GE(closed, 0.85);
+  EXPECT_LT(openCover, closed - 0.2);
 }
 
 TEST(TreePlacement, GroundWithoutDataGrowsNone) {
