@@ -5,7 +5,19 @@ add_library(vegstream_options INTERFACE)
 # -Wno-restrict: GCC 12 at -O3 reports a false overlap in std::string concatenation
 # (GCC bug 105651) for ordinary code like `"literal" + s`.
 target_compile_options(vegstream_options INTERFACE
-  -Wall -Wextra -Wshadow -Wconversion -Werror -Wno-missing-field-initializers -Wno-restrict)
+  -Wall -Wextra -Wshadow -Wconversion -Werror -Wno-missing-field-initializers)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  target_compile_options(vegstream_options INTERFACE -Wno-restrict)
+endif()
+# The libFuzzer build (VEGSTREAM_FUZZ, clang): every project library instrumented for coverage
+# and checked by ASan + UBSan (an UB report aborts, so libFuzzer keeps the input). Warnings stay
+# on but are not errors there: clang warns about things GCC does not, and the GCC build is the
+# one that keeps the code warning-free.
+if(VEGSTREAM_FUZZ)
+  target_compile_options(vegstream_options INTERFACE
+    -Wno-error -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g)
+  target_link_options(vegstream_options INTERFACE -fsanitize=address,undefined)
+endif()
 target_compile_definitions(vegstream_options INTERFACE
   GLM_FORCE_DEPTH_ZERO_TO_ONE GLM_FORCE_RADIANS)
 if(VEGSTREAM_SANITIZE)

@@ -4,6 +4,7 @@
 #include "datasets/png_check.h"
 
 #include <array>
+#include <algorithm>
 #include <cstring>
 #include <optional>
 
@@ -146,6 +147,11 @@ bool isLetter(uint8_t c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z
 }  // namespace
 
 Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name, uint32_t maxSide) {
+  // Not every caller sniffs first (decodeCanopyTile does not): a body shorter than the signature
+  // was read past its end (found by fuzz/, http_response).
+  static constexpr uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
+    return corrupt(name, "no PNG signature: not a PNG");
   std::vector<uint8_t> kept(bytes.begin(), bytes.begin() + 8);  // the signature
   kept.reserve(bytes.size());
   std::optional<Header> header;

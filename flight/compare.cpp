@@ -73,7 +73,9 @@ Result<std::vector<CompareRow>> compareSummaries(const std::string& summaryA, co
   std::vector<CompareRow> rows;
   for (const auto& [k, v] : fa) rows.push_back({k, v, std::nan("")});
   for (const auto& [k, v] : fb) {
-    auto it = std::find_if(rows.begin(), rows.end(), [&](const CompareRow& r) { return r.key == k; });
+    // A named copy of the key: clang before 16 cannot capture a structured binding.
+    const auto& key = k;
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const CompareRow& r) { return r.key == key; });
     if (it != rows.end())
       it->b = v;
     else

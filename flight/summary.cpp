@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 
 namespace vegstream::flight {
 namespace fs = std::filesystem;
@@ -145,6 +146,12 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
   json rec = json::parse(recordingJson, nullptr, false);
   if (rec.is_discarded() || !rec.is_object())
     return makeError(ErrorKind::InvalidInput, recordingSource + ": not a JSON object");
+  // The recording is copied into the summary and dumped, both recursive in nlohmann: a value
+  // nested thousands deep would overflow the stack (found by fuzz/, recording_json).
+  constexpr size_t kMaxRecordingDepth = 64;
+  if (!jsonDepthAtMost(rec, kMaxRecordingDepth))
+    return makeError(ErrorKind::InvalidInput, recordingSource + ": nested deeper than " +
+                                                  std::to_string(kMaxRecordingDepth) + " levels");
   for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
     if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
 
