@@ -144,7 +144,7 @@ float speciesFade(Species sp, SeedTriangle t, uint cluster, uint seed) {
 }
 
 // vegetation::canopyCover: the same float operations in the same order.
-const uint kCanopyCells = 80u;  // vegetation::kCanopyCells
+const uint kCanopyCells = 90u;  // vegetation::kCanopyCells
 const float kCanopyThinning = 0.85;
 const float kCanopyEdge = 0.4;
 uint canopyCellId(int cx, int cy) { return (uint(cx) & 0xFFFFu) | (uint(cy) << 16); }

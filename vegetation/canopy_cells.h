@@ -28,7 +28,7 @@
 
 namespace vegstream::vegetation {
 
-inline constexpr uint32_t kCanopyCells = 80;  // 80 × 7.07 m: ±283 m about the camera's cell, past the plants' 250 m
+inline constexpr uint32_t kCanopyCells = 90;  // 90 × 5.88 m: ±265 m about the camera's cell, past the plants' 250 m
 inline constexpr float kCanopyThinning = 0.85f;       // the share of groups dropped under a crown's middle
 inline constexpr float kCanopyEdge = 0.4f;            // the outer share of the radius the cover falls over
 inline constexpr uint32_t kNoCanopyCell = 0xFFFFFFFFu;

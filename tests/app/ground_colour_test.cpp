@@ -79,9 +79,14 @@ TEST(GroundColour, NadirFramesKeepTheGroundsColourWithAndWithoutVegetation) {
     const auto g = ground.srgb8(), f = full.srgb8(), b = bare.srgb8();
     std::printf("%-10s (%3d,%3d,%3d)  (%3d,%3d,%3d)  %5.2f  (%3d,%3d,%3d)  %5.2f  %5.2f\n", p.name, g[0], g[1], g[2], f[0],
                 f[1], f[2], eFull, b[0], b[1], b[2], eBare, eVegetation);
-    EXPECT_LT(eFull, 5.0);
+    EXPECT_LT(eFull, 5.0);  // issue 41 item 6: the forest's colour from above within ΔE00 5 of the imagery's
     EXPECT_LT(eBare, 5.0);
-    EXPECT_LE(eVegetation, 3.0);
+    // The plants keep the ground's colour (issue 39). Where the imagery shows closed forest the
+    // canopy now closes (issue 41 item 6): the view is crowns, not ground, and only the colour
+    // against the imagery (above) applies there.
+    if (std::string(p.name) != "forest") {
+      EXPECT_LE(eVegetation, 3.0);
+    }
   }
 }
 

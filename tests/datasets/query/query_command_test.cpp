@@ -148,8 +148,9 @@ TEST_F(GrandCanyon, QueryWithoutNdviLayerPrintsNull) {
   EXPECT_EQ(json::parse(before.out), j);
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  // excess_green: the calibrated colour's ExG the species choice used (issue 41).
-  EXPECT_EQ(keys, (std::vector<std::string>{"canopy_height_m", "color", "dataset", "excess_green", "height_m",
+  // excess_green: the calibrated colour's ExG the species choice used; canopy_cover: the share of
+  // the two best species that are trees (issue 41).
+  EXPECT_EQ(keys, (std::vector<std::string>{"canopy_cover", "canopy_height_m", "color", "dataset", "excess_green", "height_m",
                                             "landcover", "lat", "lon", "ndvi", "species", "species_bare",
                                             "species_candidates"}));
   auto reader = datasets::DatasetReader::open(dir());
