@@ -149,7 +149,8 @@ int32_t treeCellOf(const TreeGrid& grid, double x) {
 }
 
 float treeSpacingM(const Species& sp, float crownM) {
-  return sp.tree.spacingM * std::min(crownM, sp.widthM.max) / sp.widthM.max;
+  assert(crownM <= sp.widthM.max * (1.0f + 1e-6f) && "the hard core sees open-grown crowns (treeSizeOf clamps them)");
+  return sp.tree.spacingM * crownM / sp.widthM.max;
 }
 
 float closedCrownM(const Species& sp, float crownM, float cover, float sPrime) {

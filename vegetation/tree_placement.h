@@ -117,8 +117,8 @@ inline constexpr float kCrownClosure = 1.7f;
 inline constexpr float kClosedCrownCap = 1.5f;
 float closedCrownM(const Species& sp, float crownM, float cover, float sPrime);
 
-// The least distance a tree keeps to a shorter neighbour: spacing_m · min(crownM, width_m.max) /
-// width_m.max.
+// The least distance a tree keeps to a shorter neighbour: spacing_m · crownM / width_m.max, for
+// open-grown crowns (at most width_m.max; the closed crown comes after the hard core).
 float treeSpacingM(const Species& sp, float crownM);
 
 // The catalog's grid; contract: the catalog has a tree species (hasTrees).
