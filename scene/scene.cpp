@@ -227,6 +227,7 @@ render::Lighting Scene::lightingAt(double timeS) const {
 }
 
 bool Scene::waitForTileArrivals(std::chrono::milliseconds timeout) { return impl_->streamer->waitForArrivals(timeout); }
+streaming::TileStreamer::IoProgress Scene::tileIoProgress() const { return impl_->streamer->ioProgress(); }
 
 double Scene::groundHeight(double latDeg, double lonDeg) const { return impl_->ground.sampleLonLat(lonDeg, latDeg); }
 

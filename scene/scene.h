@@ -154,6 +154,9 @@ class Scene {
   // `timeout` passes; true when one has. Lets a caller hold a pose until its tiles are in
   // without sleeping (TileStreamer::waitForArrivals).
   bool waitForTileArrivals(std::chrono::milliseconds timeout);
+  // Any thread: the streamer's tile I/O under way (TileStreamer::ioProgress), for a caller that
+  // steps a manual clock and lets each step's I/O settle before the next frame.
+  streaming::TileStreamer::IoProgress tileIoProgress() const;
 
   // Camera and lighting for a sample, without streaming or terrain (for tests of the pose); the
   // sun of flight time 0.

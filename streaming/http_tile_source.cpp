@@ -303,7 +303,6 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
   if (t->isTile) {
     seqOfTile.erase(t->id);
     std::lock_guard lock(mutex);
-    live.erase(t->id);
     switch (outcome) {
       case FetchOutcome::Ok:
         ++counters.requestsCompleted;
@@ -316,6 +315,12 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
     if (r.fromCache) ++counters.cacheHits;
   }
   t->done(std::move(r));
+  // Live until its callback has returned (as LocalTileSource): a caller that sees inFlight()
+  // drop knows the result was handed on (tile_source.h).
+  if (t->isTile) {
+    std::lock_guard lock(mutex);
+    live.erase(t->id);
+  }
 }
 
 long HttpTileSource::Impl::pollTimeoutMs(double nowS) const {

@@ -70,7 +70,7 @@ class TileSource {
   // Best effort: a request not yet completed ends with Cancelled (its callback still runs).
   virtual void cancel(RequestId id) = 0;
 
-  // Requests started and not yet called back.
+  // Requests started whose callback has not yet returned. Any thread.
   virtual std::size_t inFlight() const = 0;
 
   virtual SourceCounters counters() const = 0;

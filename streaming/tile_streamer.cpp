@@ -48,6 +48,9 @@ const StreamingFrameStats& TileStreamer::frameStats() const { return impl_->stat
 bool TileStreamer::waitForArrivals(std::chrono::milliseconds timeout) {
   return impl_->pipeline->waitForCompletions(timeout);
 }
+TileStreamer::IoProgress TileStreamer::ioProgress() const {
+  return {impl_->source->inFlight(), impl_->source->counters(), impl_->pipeline->decodesQueued()};
+}
 uint32_t TileStreamer::gpuSlotCount() const { return impl_->slots.count(); }
 
 void TileStreamer::update(std::span<const TileWant> wants, double timeS) {

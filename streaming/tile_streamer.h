@@ -188,6 +188,17 @@ class TileStreamer {
   // and want the next frame to have something new, without sleeping.
   bool waitForArrivals(std::chrono::milliseconds timeout);
 
+  // Any thread: how far the tile I/O has got — requests at the source whose callback has not
+  // returned, the source's counters, and fetched files queued or being decoded. For a caller
+  // that steps a manual clock (tests) and waits for the I/O of one step to settle before the
+  // next frame, so that when a tile arrives depends on that clock, not on the wall's.
+  struct IoProgress {
+    std::size_t sourceInFlight = 0;
+    SourceCounters source;
+    std::size_t decoding = 0;
+  };
+  IoProgress ioProgress() const;
+
   // Keys that became CPU-resident or left the CPU since the last call, in the order it happened
   // (a key may appear twice): how the terrain learns that the heights under it changed.
   std::vector<TileKey> takeResidencyChanges();

@@ -7,7 +7,9 @@
 // flight (--frames-in-flight 1, the serial playback) must give what three give.
 //
 // Each test works in its own directory, <VEGSTREAM_TEST_TMP>/<suite>.<test>/, so the suite can
-// run in parallel; each imports the Zion sample there (a few seconds).
+// run in parallel. The Zion sample (tests/support/zion_sample.h) and the default recording that
+// each test holds its own against are made once, by whichever test process comes first
+// (cachedFixture), and only read after.
 
 #include <algorithm>
 #include <filesystem>
@@ -20,6 +22,8 @@
 
 #include "tests/support/nginx_server.h"
 #include "tests/support/run_command.h"
+#include "tests/support/test_dirs.h"
+#include "tests/support/zion_sample.h"
 
 namespace vegstream {
 namespace {
@@ -44,24 +48,36 @@ fs::path benchmarkPath() {
   return path.lexically_normal();
 }
 
-// The Zion sample (SRTM + Landsat 4/3/2) imported into `dir`/zion, as the README does it.
-fs::path importZion(const fs::path& dir) {
-  const fs::path out = dir / "zion";
-  const std::string z = std::string(VEGSTREAM_DATASETS_DIR) + "/zion/";
-  const auto r = runVegstream("import --dem " + z + "srtm.tif --imagery-bands " + z + "landsat_b4.tif," + z +
-                              "landsat_b3.tif," + z + "landsat_b2.tif --radiometry reflectance --imagery-datetime 2015-08-18T17:58:00Z --out '" + out.string() + "'");
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  return out;
-}
-
 constexpr int kFramesEvery = 10;
 
 // benchmark-30s at 160x90, 4 fps (121 frames), every 10th frame saved; `extra`: more options.
+testing::CommandResult recordCommand(const std::string& dataset, const fs::path& out, const std::string& extra = "") {
+  return runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" + out.string() +
+                      "' --size 160x90 --msaa 1 --fps 4 --frames-every " + std::to_string(kFramesEvery) +
+                      " --no-plots" + extra);
+}
 void record(const std::string& dataset, const fs::path& out, const std::string& extra = "") {
-  const auto r = runVegstream("record '" + dataset + "' --path '" + benchmarkPath().string() + "' --out '" +
-                              out.string() + "' --size 160x90 --msaa 1 --fps 4 --frames-every " +
-                              std::to_string(kFramesEvery) + " --no-plots" + extra);
+  const auto r = recordCommand(dataset, out, extra);
   ASSERT_EQ(r.exitCode, 0) << r.err;
+}
+
+// The imported sample and its default recording (settled, look-ahead, three frames in flight):
+// what every test compares its own recording with.
+struct Reference {
+  fs::path dataset, recording;
+};
+Reference reference() {
+  auto zion = testing::zionSampleDataset();
+  EXPECT_TRUE(zion.ok()) << zion.error().message;
+  if (!zion.ok()) return {};
+  auto rec = testing::cachedFixture("benchmark-30s-recording", testing::vegstreamKey(),
+                                    [&](const fs::path& dir) -> Status {
+                                      const auto r = recordCommand(zion->string(), dir);
+                                      if (r.exitCode == 0) return {};
+                                      return makeError(ErrorKind::Internal, "vegstream record: " + r.err);
+                                    });
+  EXPECT_TRUE(rec.ok()) << rec.error().message;
+  return {*zion, rec.ok() ? *rec : fs::path()};
 }
 
 struct Table {
@@ -145,38 +161,35 @@ void expectSameFrames(const fs::path& a, const fs::path& b) {
 
 TEST(RecordDeterminism, TwoRecordingsOfBenchmark30sHaveTheSameCountsAndFrames) {
   const fs::path dir = testDir();
-  const fs::path zion = importZion(dir);
-  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
-  record(zion.string(), dir / "first");
-  record(zion.string(), dir / "second");
-  expectSameCounts(dir / "first", dir / "second");
-  expectSameFrames(dir / "first", dir / "second");
+  const Reference ref = reference();
+  ASSERT_TRUE(fs::exists(ref.recording / "frames.csv"));
+  record(ref.dataset.string(), dir / "second");
+  expectSameCounts(ref.recording, dir / "second");
+  expectSameFrames(ref.recording, dir / "second");
 }
 
 TEST(RecordDeterminism, OneFrameInFlightGivesWhatThreeGive) {
   const fs::path dir = testDir();
-  const fs::path zion = importZion(dir);
-  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
-  record(zion.string(), dir / "serial", " --frames-in-flight 1");
-  record(zion.string(), dir / "pipelined");  // the default: 3
-  expectSameCounts(dir / "serial", dir / "pipelined");
-  expectSameFrames(dir / "serial", dir / "pipelined");
+  const Reference ref = reference();
+  ASSERT_TRUE(fs::exists(ref.recording / "frames.csv"));
+  record(ref.dataset.string(), dir / "serial", " --frames-in-flight 1");
+  expectSameCounts(dir / "serial", ref.recording);
+  expectSameFrames(dir / "serial", ref.recording);
   // recording.json says how each was played (its wall times depend on it).
   EXPECT_NE(readBytes(dir / "serial" / "recording.json").find("\"frames_in_flight\": 1"), std::string::npos);
-  EXPECT_NE(readBytes(dir / "pipelined" / "recording.json").find("\"frames_in_flight\": 3"), std::string::npos);
+  EXPECT_NE(readBytes(ref.recording / "recording.json").find("\"frames_in_flight\": 3"), std::string::npos);
 }
 
 TEST(RecordDeterminism, ARecordingOverNginxEqualsOneFromTheDirectory) {
   const fs::path dir = testDir();
-  const fs::path zion = importZion(dir);
-  ASSERT_TRUE(fs::exists(zion / "dataset.json"));
-  auto nginx = testing::NginxServer::start(zion, dir / "nginx");
+  const Reference ref = reference();
+  ASSERT_TRUE(fs::exists(ref.recording / "frames.csv"));
+  auto nginx = testing::NginxServer::start(ref.dataset, dir / "nginx");
   ASSERT_TRUE(nginx.ok()) << nginx.error().message;
-  record(zion.string(), dir / "local");
   record((*nginx)->baseUrl(), dir / "http");
   EXPECT_GT((*nginx)->accessLog().size(), 50u) << "the tiles really came over HTTP";
-  expectSameCounts(dir / "local", dir / "http");
-  expectSameFrames(dir / "local", dir / "http");
+  expectSameCounts(ref.recording, dir / "http");
+  expectSameFrames(ref.recording, dir / "http");
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ TEST_F(FaultServer, MixedFaultsEndOkOrFailedAndCountsAddUp) {
   EXPECT_EQ(c.retries, retries);
   EXPECT_GE(c.retries, n / 2);
   EXPECT_LE(server_->maxConcurrent(), o.maxInFlight);
-  EXPECT_EQ(source->inFlight(), 0u);
+  EXPECT_EQ(testing::inFlightAfterCallbacks(*source), 0u);
 }
 
 TEST_F(FaultServer, NeverMoreThanMaxInFlightAtTheServer) {
@@ -176,7 +176,7 @@ TEST_F(FaultServer, CancelIsPromptAndStopsTheTransfer) {
   const SourceCounters c = source->counters();
   EXPECT_EQ(c.requestsStarted, 2u);
   EXPECT_EQ(c.requestsCancelled, 2u);
-  EXPECT_EQ(source->inFlight(), 0u);
+  EXPECT_EQ(testing::inFlightAfterCallbacks(*source), 0u);
   EXPECT_TRUE(results.eachOnce(1, 2));
 }
 

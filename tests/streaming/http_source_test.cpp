@@ -94,7 +94,7 @@ TEST_F(NginxSource, EveryTileIsByteIdenticalToItsFile) {
   EXPECT_EQ(c.requestsCompleted, n);
   EXPECT_EQ(c.retries, 0u);
   EXPECT_EQ(c.bytesRead, bytes);
-  EXPECT_EQ(source->inFlight(), 0u);
+  EXPECT_EQ(testing::inFlightAfterCallbacks(*source), 0u);
   EXPECT_LE(source->transportStats().connectionsOpened, 8u) << "one connection per transfer slot at most";
   std::cout << "nginx loopback: " << n << " tiles, " << bytes / 1024 << " KiB in " << seconds
             << " s = " << static_cast<double>(n) / seconds << " tiles/s, " << static_cast<double>(bytes) / seconds / 1e6

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -31,6 +32,15 @@ inline std::filesystem::path httpTestTmp(const std::string& name) {
   std::filesystem::remove_all(p);
   std::filesystem::create_directories(p);
   return p;
+}
+
+// The source's in-flight count once every callback has returned: it drops just after the last
+// callback (tile_source.h), so a test that has seen every result waits for it (up to 1 s).
+inline std::size_t inFlightAfterCallbacks(const streaming::TileSource& source) {
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  while (source.inFlight() > 0 && std::chrono::steady_clock::now() < limit)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return source.inFlight();
 }
 
 inline std::vector<uint8_t> fileBytes(const std::filesystem::path& p) {

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -53,7 +55,7 @@ struct FaultHttpServer::Connection {
   std::string in;
   std::string path;  // of the request being answered
   Fault fault;
-  Clock::time_point readyAt;
+  double readyAtS = 0.0;  // on the delay clock; infinity: never
   std::string out;
   size_t sent = 0;
   bool closeAfterWrite = false;
@@ -64,7 +66,8 @@ struct FaultHttpServer::Connection {
   bool closed = false;
 };
 
-FaultHttpServer::FaultHttpServer(fs::path root) : root_(std::move(root)) {
+FaultHttpServer::FaultHttpServer(fs::path root, const vegstream::Clock* delayClock)
+    : root_(std::move(root)), delayClock_(delayClock ? delayClock : &wallClock_) {
   listenFd_ = ::socket(AF_INET, SOCK_STREAM, 0);
   assert(listenFd_ >= 0);
   sockaddr_in a{};
@@ -135,6 +138,26 @@ uint64_t FaultHttpServer::abandoned() const {
   std::lock_guard lock(mutex_);
   return abandoned_;
 }
+int FaultHttpServer::activeRequests() const {
+  std::lock_guard lock(mutex_);
+  return active_;
+}
+int FaultHttpServer::answersBeingWritten() const {
+  std::lock_guard lock(mutex_);
+  return writing_;
+}
+double FaultHttpServer::delayNowS() const { return delayClock_->nowS(); }
+bool FaultHttpServer::settleClock(std::chrono::milliseconds limit) {
+  uint64_t asked = 0;
+  {
+    std::lock_guard lock(mutex_);
+    asked = ++clockMoves_;
+  }
+  const char byte = 1;
+  [[maybe_unused]] const ssize_t n = ::write(wakeFds_[1], &byte, 1);
+  std::unique_lock lock(mutex_);
+  return changed_.wait_for(lock, limit, [&] { return clockMovesSeen_ >= asked; });
+}
 uint64_t FaultHttpServer::bytesSent() const {
   std::lock_guard lock(mutex_);
   return bytesSent_;
@@ -179,7 +202,7 @@ void FaultHttpServer::onRequest(Connection& c, const std::string& path) {
   ++generation_;
   changed_.notify_all();
   c.state = Connection::State::Waiting;
-  c.readyAt = Clock::now() + std::chrono::milliseconds(c.fault.delayMs);
+  c.readyAtS = delayNowS() + c.fault.delayMs / 1000.0;
 }
 
 // Ends a connection; a request still unanswered counts as abandoned unless we chose to drop it.
@@ -206,7 +229,7 @@ void FaultHttpServer::answer(Connection& c) {
     return;
   }
   if (a == FaultAction::Stall) {
-    c.readyAt = Clock::time_point::max();  // never: the client gives up and closes
+    c.readyAtS = std::numeric_limits<double>::infinity();  // never: the client gives up and closes
     return;
   }
   std::string body;
@@ -308,19 +331,29 @@ void FaultHttpServer::run() {
   while (!stop_) {
     std::vector<pollfd> fds{{listenFd_, POLLIN, 0}, {wakeFds_[0], POLLIN, 0}};
     auto now = Clock::now();
+    const double delayNow = delayNowS();
     int timeoutMs = 100;
     for (auto& c : conns) {
       const bool writing = c->state == Connection::State::Writing && (c->trickleMs == 0 || now >= c->nextSendAt);
       fds.push_back({c->fd, writing ? short(POLLIN | POLLOUT) : short(POLLIN), 0});
-      const bool waiting = c->state == Connection::State::Waiting && c->readyAt != Clock::time_point::max();
-      if (waiting || (c->state == Connection::State::Writing && c->trickleMs > 0)) {
-        const auto at = waiting ? c->readyAt : c->nextSendAt;
-        const auto ms = std::chrono::ceil<std::chrono::milliseconds>(at - now).count();
+      if (c->state == Connection::State::Waiting && std::isfinite(c->readyAtS))
+        timeoutMs = std::min(timeoutMs, static_cast<int>(std::clamp(std::ceil((c->readyAtS - delayNow) * 1000.0), 0.0, 100.0)));
+      if (c->state == Connection::State::Writing && c->trickleMs > 0) {
+        const auto ms = std::chrono::ceil<std::chrono::milliseconds>(c->nextSendAt - now).count();
         timeoutMs = std::min(timeoutMs, static_cast<int>(std::max<long long>(0, ms)));
       }
     }
     ::poll(fds.data(), fds.size(), timeoutMs);
     if (stop_) break;
+    uint64_t clockMove = 0;  // the settleClock() this pass answers: every request is looked at below
+    if (fds[1].revents & POLLIN) {
+      char drain[64];
+      [[maybe_unused]] const ssize_t n = ::read(wakeFds_[0], drain, sizeof(drain));
+    }
+    {
+      std::lock_guard lock(mutex_);
+      clockMove = clockMoves_;
+    }
 
     if (fds[0].revents & POLLIN) {
       for (int fd; (fd = ::accept(listenFd_, nullptr, nullptr)) >= 0;) {
@@ -348,12 +381,21 @@ void FaultHttpServer::run() {
         if (n > 0) c.in.append(buf, static_cast<size_t>(n));
       }
       if (c.state == Connection::State::Reading) takeRequest(c);
-      if (c.state == Connection::State::Waiting && Clock::now() >= c.readyAt) answer(c);
+      if (c.state == Connection::State::Waiting && delayNowS() >= c.readyAtS) answer(c);
       if (!c.closed && c.state == Connection::State::Writing && writeSome(c, Clock::now()) &&
           c.state == Connection::State::Reading)
         takeRequest(c);  // a request that came while we were busy
     }
     conns.erase(std::remove_if(conns.begin(), conns.end(), [](const auto& c) { return c->closed; }), conns.end());
+    const int writing = static_cast<int>(std::count_if(
+        conns.begin(), conns.end(), [](const auto& c) { return c->state == Connection::State::Writing; }));
+    std::lock_guard lock(mutex_);
+    if (clockMove > clockMovesSeen_ || writing != writing_) {
+      clockMovesSeen_ = std::max(clockMovesSeen_, clockMove);
+      writing_ = writing;
+      ++generation_;
+      changed_.notify_all();
+    }
   }
   for (auto& c : conns) finish(*c, true);
 }

@@ -12,6 +12,10 @@
 // requests) wins; else the next one queued for its path (consumed in order); else the default
 // fault (Serve unless setDefault says otherwise). Paths are given as the tile source sees them
 // ("elevation/1/2/3.png"). A delay applies before the fault's own action.
+//
+// Delays run on the wall clock, or on a clock the test gives (a ManualClock): then a request is
+// answered once that clock has passed its delay, and settleClock() after each move of it returns
+// when the server has begun every answer that became due (no wall-clock pacing in the test).
 
 #include <atomic>
 #include <cstdint>
@@ -25,6 +29,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "core/clock.h"
 
 namespace vegstream::testing {
 
@@ -55,7 +61,9 @@ struct Fault {
 class FaultHttpServer {
  public:
   using Clock = std::chrono::steady_clock;
-  explicit FaultHttpServer(std::filesystem::path root);  // listens at once on a free port
+  // Listens at once on a free port. `delayClock` (outlives the server): what Fault::delayMs is
+  // counted on; null: the wall clock.
+  explicit FaultHttpServer(std::filesystem::path root, const vegstream::Clock* delayClock = nullptr);
   ~FaultHttpServer();                                    // closes everything, joins the thread
   FaultHttpServer(const FaultHttpServer&) = delete;
   FaultHttpServer& operator=(const FaultHttpServer&) = delete;
@@ -74,6 +82,11 @@ class FaultHttpServer {
   int maxConcurrent() const;   // most requests being answered at one moment
   uint64_t abandoned() const;  // requests whose client closed before the answer was complete
   uint64_t bytesSent() const;  // every byte written to any connection (headers included)
+  int activeRequests() const;   // requests received whose answer is not finished nor abandoned
+  int answersBeingWritten() const;  // answers begun and not yet wholly sent (as of run()'s last pass)
+  // After the test moved the delay clock: wakes the server and waits (up to `limit`) until it
+  // has looked at every request against the clock's new time, so every answer due has begun.
+  bool settleClock(std::chrono::milliseconds limit);
   // Waits until done() — a condition on the counters above — holds, checking it again each time
   // the server changes them (no polling); false if it still does not hold after `limit`.
   bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds limit) const;
@@ -84,10 +97,13 @@ class FaultHttpServer {
   void onRequest(Connection& c, const std::string& path);
   void answer(Connection& c);                    // the fault's answer, or a reset
   bool writeSome(Connection& c, Clock::time_point now);  // false once the connection is gone
+  double delayNowS() const;  // the delay clock's time
   void finish(Connection& c, bool byClient);
   Fault faultFor(const std::string& path);
 
   std::filesystem::path root_;
+  vegstream::SteadyClock wallClock_;
+  const vegstream::Clock* delayClock_;
   int listenFd_ = -1;
   int wakeFds_[2] = {-1, -1};
   int port_ = 0;
@@ -100,6 +116,8 @@ class FaultHttpServer {
   std::map<std::string, uint64_t> counts_;
   uint64_t total_ = 0, accepted_ = 0, abandoned_ = 0, bytesSent_ = 0;
   int active_ = 0, maxActive_ = 0;
+  int writing_ = 0;
+  uint64_t clockMoves_ = 0, clockMovesSeen_ = 0;  // settleClock(): asked, and looked at by run()
   uint64_t generation_ = 0;                  // bumped (under mutex_) whenever a counter changes
   mutable std::condition_variable changed_;  // notified with it
 
