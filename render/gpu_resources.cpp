@@ -1,15 +1,19 @@
 #include "render/gpu_resources.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "render/vk_check.h"
 
 namespace vegstream::render {
 namespace {
+std::atomic<uint64_t> gDeviceBytes{0};
+
 // One dedicated, named allocation for a buffer or image's requirements.
-DeviceMemory allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
+DeviceAllocation allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
                       const std::string& name) {
   VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   mai.allocationSize = req.size;
@@ -17,9 +21,29 @@ DeviceMemory allocate(const Context& ctx, const VkMemoryRequirements& req, VkMem
   VkDeviceMemory mem;
   vkCheck(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem), "vkAllocateMemory");
   ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, mem, name + " memory");
-  return DeviceMemory(ctx.device(), mem);
+  return DeviceAllocation(DeviceMemory(ctx.device(), mem), req.size);
 }
 }  // namespace
+
+DeviceAllocation::DeviceAllocation(DeviceMemory memory, VkDeviceSize bytes)
+    : memory_(std::move(memory)), bytes_(bytes) {
+  gDeviceBytes.fetch_add(bytes_, std::memory_order_relaxed);
+}
+DeviceAllocation::DeviceAllocation(DeviceAllocation&& o) noexcept
+    : memory_(std::move(o.memory_)), bytes_(std::exchange(o.bytes_, 0)) {}
+DeviceAllocation& DeviceAllocation::operator=(DeviceAllocation&& o) noexcept {
+  if (this != &o) {
+    reset();
+    memory_ = std::move(o.memory_);
+    bytes_ = std::exchange(o.bytes_, 0);
+  }
+  return *this;
+}
+void DeviceAllocation::reset() {
+  memory_.reset();
+  gDeviceBytes.fetch_sub(std::exchange(bytes_, 0), std::memory_order_relaxed);
+}
+uint64_t deviceMemoryInUse() { return gDeviceBytes.load(std::memory_order_relaxed); }
 
 GpuBuffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                        const std::string& name) {

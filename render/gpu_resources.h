@@ -10,9 +10,33 @@
 
 namespace vegstream::render {
 
+// Device memory whose size counts in a process-wide total while it lives: every buffer's and
+// image's memory is one (the allocation below), so deviceMemoryInUse() is what vegstream holds
+// on the GPU (the soak's figure, scripts/soak).
+class DeviceAllocation {
+ public:
+  DeviceAllocation() = default;
+  DeviceAllocation(DeviceMemory memory, VkDeviceSize bytes);
+  ~DeviceAllocation() { reset(); }
+  DeviceAllocation(DeviceAllocation&& o) noexcept;
+  DeviceAllocation& operator=(DeviceAllocation&& o) noexcept;
+  DeviceAllocation(const DeviceAllocation&) = delete;
+  DeviceAllocation& operator=(const DeviceAllocation&) = delete;
+
+  VkDeviceMemory get() const { return memory_.get(); }
+  VkDeviceSize bytes() const { return bytes_; }
+  void reset();
+
+ private:
+  DeviceMemory memory_;
+  VkDeviceSize bytes_ = 0;
+};
+// Bytes of every DeviceAllocation alive in this process. Any thread.
+uint64_t deviceMemoryInUse();
+
 struct GpuBuffer {
   Buffer buffer;
-  DeviceMemory memory;
+  DeviceAllocation memory;
   VkDeviceSize size = 0;
   void* mapped = nullptr;  // persistently mapped when host-visible
 
@@ -38,7 +62,7 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
 
 struct GpuImage {
   Image image;
-  DeviceMemory memory;
+  DeviceAllocation memory;
   ImageView view;
   ImageView alternateView;  // the same texels in the format asked for as `alsoViewAs` (else null)
   VkFormat format = VK_FORMAT_UNDEFINED;
