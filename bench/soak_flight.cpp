@@ -57,7 +57,8 @@ struct Args {
 double number(const std::string& flag, const char* text) {
   char* end = nullptr;
   const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(v) || v <= 0.0) usage(flag + " " + text + ": not a positive number");
+  if (end == text || *end != '\0' || !std::isfinite(v) || v <= 0.0)
+    usage(flag + " " + text + ": not a positive number");
   return v;
 }
 
@@ -66,20 +67,31 @@ Args parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     const bool hasValue = i + 1 < argc;
-    if (f == "--validate") a.validate = true;
-    else if (!f.starts_with("--")) a.dataset = f;
-    else if (!hasValue) usage(f + ": a value is missing");
-    else if (f == "--path") a.path = argv[++i];
-    else if (f == "--samples") a.samples = argv[++i];
-    else if (f == "--http-cache") a.cache = argv[++i];
-    else if (f == "--minutes") a.minutes = number(f, argv[++i]);
-    else if (f == "--every-s") a.everyS = number(f, argv[++i]);
-    else if (f == "--cpu-budget-mb") a.cpuBudgetMb = number(f, argv[++i]);
-    else if (f == "--gpu-budget-mb") a.gpuBudgetMb = number(f, argv[++i]);
+    if (f == "--validate")
+      a.validate = true;
+    else if (!f.starts_with("--"))
+      a.dataset = f;
+    else if (!hasValue)
+      usage(f + ": a value is missing");
+    else if (f == "--path")
+      a.path = argv[++i];
+    else if (f == "--samples")
+      a.samples = argv[++i];
+    else if (f == "--http-cache")
+      a.cache = argv[++i];
+    else if (f == "--minutes")
+      a.minutes = number(f, argv[++i]);
+    else if (f == "--every-s")
+      a.everyS = number(f, argv[++i]);
+    else if (f == "--cpu-budget-mb")
+      a.cpuBudgetMb = number(f, argv[++i]);
+    else if (f == "--gpu-budget-mb")
+      a.gpuBudgetMb = number(f, argv[++i]);
     else if (f == "--size") {
       if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2 || a.width < 16 || a.height < 16)
         usage(std::string("--size ") + argv[i] + ": not WxH");
-    } else usage(f + ": unknown option");
+    } else
+      usage(f + ": unknown option");
   }
   if (a.dataset.empty() || a.path.empty() || a.samples.empty() || a.minutes <= 0.0)
     usage("DATASET, --path, --minutes and --samples are required");
@@ -120,7 +132,8 @@ double pingPong(double s, double duration) {
 
 constexpr const char* kHeader =
     "wall_s,frames,rss_bytes,hwm_bytes,fds,gpu_bytes,cache_bytes,requests_started,requests_completed,"
-    "requests_missing,requests_failed,requests_cancelled,retries,cache_hits,requests_in_flight,bytes_read,tiles_resident_cpu,"
+    "requests_missing,requests_failed,requests_cancelled,retries,cache_hits,requests_in_flight,bytes_read,tiles_"
+    "resident_cpu,"
     "bytes_resident_cpu,tiles_resident_gpu,bytes_resident_gpu,slowest_frame_ms";
 
 void writeRow(std::FILE* out, double wallS, uint64_t frames, const scene::Scene& scene, const std::string& cache,
@@ -128,17 +141,17 @@ void writeRow(std::FILE* out, double wallS, uint64_t frames, const scene::Scene&
   const auto io = scene.tileIoProgress();
   const auto& st = scene.lastFrameFigures().streaming;
   const auto& c = io.source;
-  std::fprintf(out, "%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%zu,%llu,%llu,%llu,%llu,%llu,%.2f\n",
-               wallS, (unsigned long long)frames, (unsigned long long)statusBytes("VmRSS"),
-               (unsigned long long)statusBytes("VmHWM"), (unsigned long long)openFiles(),
-               (unsigned long long)render::deviceMemoryInUse(), (unsigned long long)directoryBytes(cache),
-               (unsigned long long)c.requestsStarted, (unsigned long long)c.requestsCompleted,
-               (unsigned long long)c.requestsMissing, (unsigned long long)c.requestsFailed,
-               (unsigned long long)c.requestsCancelled, (unsigned long long)c.retries, (unsigned long long)c.cacheHits,
-               io.sourceInFlight,
-               (unsigned long long)c.bytesRead, (unsigned long long)st.tilesResidentCpu,
-               (unsigned long long)st.bytesResidentCpu, (unsigned long long)st.tilesResidentGpu,
-               (unsigned long long)st.bytesResidentGpu, slowestMs);
+  std::fprintf(
+      out, "%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%zu,%llu,%llu,%llu,%llu,%llu,%.2f\n",
+      wallS, (unsigned long long)frames, (unsigned long long)statusBytes("VmRSS"),
+      (unsigned long long)statusBytes("VmHWM"), (unsigned long long)openFiles(),
+      (unsigned long long)render::deviceMemoryInUse(), (unsigned long long)directoryBytes(cache),
+      (unsigned long long)c.requestsStarted, (unsigned long long)c.requestsCompleted,
+      (unsigned long long)c.requestsMissing, (unsigned long long)c.requestsFailed,
+      (unsigned long long)c.requestsCancelled, (unsigned long long)c.retries, (unsigned long long)c.cacheHits,
+      io.sourceInFlight, (unsigned long long)c.bytesRead, (unsigned long long)st.tilesResidentCpu,
+      (unsigned long long)st.bytesResidentCpu, (unsigned long long)st.tilesResidentGpu,
+      (unsigned long long)st.bytesResidentGpu, slowestMs);
   std::fflush(out);
 }
 

@@ -14,7 +14,7 @@ std::atomic<uint64_t> gDeviceBytes{0};
 
 // One dedicated, named allocation for a buffer or image's requirements.
 DeviceAllocation allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
-                      const std::string& name) {
+                          const std::string& name) {
   VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, flags);

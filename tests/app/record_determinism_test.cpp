@@ -70,12 +70,12 @@ Reference reference() {
   auto zion = testing::zionSampleDataset();
   EXPECT_TRUE(zion.ok()) << zion.error().message;
   if (!zion.ok()) return {};
-  auto rec = testing::cachedFixture("benchmark-30s-recording", testing::vegstreamKey(),
-                                    [&](const fs::path& dir) -> Status {
-                                      const auto r = recordCommand(zion->string(), dir);
-                                      if (r.exitCode == 0) return {};
-                                      return makeError(ErrorKind::Internal, "vegstream record: " + r.err);
-                                    });
+  auto rec =
+      testing::cachedFixture("benchmark-30s-recording", testing::vegstreamKey(), [&](const fs::path& dir) -> Status {
+        const auto r = recordCommand(zion->string(), dir);
+        if (r.exitCode == 0) return {};
+        return makeError(ErrorKind::Internal, "vegstream record: " + r.err);
+      });
   EXPECT_TRUE(rec.ok()) << rec.error().message;
   return {*zion, rec.ok() ? *rec : fs::path()};
 }

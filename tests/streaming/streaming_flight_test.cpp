@@ -131,8 +131,8 @@ class SteppedFlight : public StreamingFlight {
 
   // [t0, t0 + seconds] of `path`, a frame every kStepS of flight and server time, after a warm
   // start (frames held at t0, the clock still moving, until the first pose's tiles are in).
-  RealtimeFigures fly(scene::Scene& scene, testing::FaultHttpServer& server,
-                      const flight::FlightPath& path, double seconds, double t0) {
+  RealtimeFigures fly(scene::Scene& scene, testing::FaultHttpServer& server, const flight::FlightPath& path,
+                      double seconds, double t0) {
     const flight::PathSampler sampler(path);
     const auto ground = scene.groundFunction();
     RealtimeFigures f;

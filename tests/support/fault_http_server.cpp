@@ -37,8 +37,8 @@ std::string head(int status, const char* reason, long long announcedLength,
   std::ostringstream o;
   o << "HTTP/1.1 " << status << ' ' << reason << "\r\n";
   if (announcedLength >= 0) o << "Content-Length: " << announcedLength << "\r\n";
-  o << "Content-Type: " << type << "\r\n" << extra
-    << (announcedLength >= 0 ? "Connection: keep-alive\r\n\r\n" : "Connection: close\r\n\r\n");
+  o << "Content-Type: " << type << "\r\n"
+    << extra << (announcedLength >= 0 ? "Connection: keep-alive\r\n\r\n" : "Connection: close\r\n\r\n");
   return o.str();
 }
 
@@ -59,10 +59,10 @@ struct FaultHttpServer::Connection {
   std::string out;
   size_t sent = 0;
   bool closeAfterWrite = false;
-  bool endless = false;           // refill `out` with zeros whenever it is sent
-  int trickleMs = 0;              // > 0: one byte, then this pause
-  Clock::time_point nextSendAt;   // trickling: not before this
-  bool active = false;  // a request received and not yet answered
+  bool endless = false;          // refill `out` with zeros whenever it is sent
+  int trickleMs = 0;             // > 0: one byte, then this pause
+  Clock::time_point nextSendAt;  // trickling: not before this
+  bool active = false;           // a request received and not yet answered
   bool closed = false;
 };
 
@@ -251,7 +251,9 @@ void FaultHttpServer::answer(Connection& c) {
     case FaultAction::HtmlPage:
     case FaultAction::HtmlAsImage: {
       const std::string page = kHtmlPage;
-      c.out = head(200, "OK", static_cast<long long>(page.size()), a == FaultAction::HtmlPage ? "text/html" : "image/png") + page;
+      c.out =
+          head(200, "OK", static_cast<long long>(page.size()), a == FaultAction::HtmlPage ? "text/html" : "image/png") +
+          page;
       return;
     }
     case FaultAction::EndlessBody:
@@ -260,9 +262,7 @@ void FaultHttpServer::answer(Connection& c) {
       c.endless = true;
       c.closeAfterWrite = true;
       return;
-    case FaultAction::Redirect:
-      c.out = head(302, "Found", 0, "text/html", "Location: " + f.location + "\r\n");
-      return;
+    case FaultAction::Redirect: c.out = head(302, "Found", 0, "text/html", "Location: " + f.location + "\r\n"); return;
     default: break;
   }
   if (a == FaultAction::NotFound || !found) {
@@ -337,7 +337,8 @@ void FaultHttpServer::run() {
       const bool writing = c->state == Connection::State::Writing && (c->trickleMs == 0 || now >= c->nextSendAt);
       fds.push_back({c->fd, writing ? short(POLLIN | POLLOUT) : short(POLLIN), 0});
       if (c->state == Connection::State::Waiting && std::isfinite(c->readyAtS))
-        timeoutMs = std::min(timeoutMs, static_cast<int>(std::clamp(std::ceil((c->readyAtS - delayNow) * 1000.0), 0.0, 100.0)));
+        timeoutMs =
+            std::min(timeoutMs, static_cast<int>(std::clamp(std::ceil((c->readyAtS - delayNow) * 1000.0), 0.0, 100.0)));
       if (c->state == Connection::State::Writing && c->trickleMs > 0) {
         const auto ms = std::chrono::ceil<std::chrono::milliseconds>(c->nextSendAt - now).count();
         timeoutMs = std::min(timeoutMs, static_cast<int>(std::max<long long>(0, ms)));

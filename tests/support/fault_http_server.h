@@ -64,7 +64,7 @@ class FaultHttpServer {
   // Listens at once on a free port. `delayClock` (outlives the server): what Fault::delayMs is
   // counted on; null: the wall clock.
   explicit FaultHttpServer(std::filesystem::path root, const vegstream::Clock* delayClock = nullptr);
-  ~FaultHttpServer();                                    // closes everything, joins the thread
+  ~FaultHttpServer();  // closes everything, joins the thread
   FaultHttpServer(const FaultHttpServer&) = delete;
   FaultHttpServer& operator=(const FaultHttpServer&) = delete;
 
@@ -79,10 +79,10 @@ class FaultHttpServer {
   uint64_t requestsFor(const std::string& path) const;
   uint64_t totalRequests() const;
   uint64_t connectionsAccepted() const;
-  int maxConcurrent() const;   // most requests being answered at one moment
-  uint64_t abandoned() const;  // requests whose client closed before the answer was complete
-  uint64_t bytesSent() const;  // every byte written to any connection (headers included)
-  int activeRequests() const;   // requests received whose answer is not finished nor abandoned
+  int maxConcurrent() const;        // most requests being answered at one moment
+  uint64_t abandoned() const;       // requests whose client closed before the answer was complete
+  uint64_t bytesSent() const;       // every byte written to any connection (headers included)
+  int activeRequests() const;       // requests received whose answer is not finished nor abandoned
   int answersBeingWritten() const;  // answers begun and not yet wholly sent (as of run()'s last pass)
   // After the test moved the delay clock: wakes the server and waits (up to `limit`) until it
   // has looked at every request against the clock's new time, so every answer due has begun.
@@ -95,9 +95,9 @@ class FaultHttpServer {
   struct Connection;
   void run();
   void onRequest(Connection& c, const std::string& path);
-  void answer(Connection& c);                    // the fault's answer, or a reset
+  void answer(Connection& c);                            // the fault's answer, or a reset
   bool writeSome(Connection& c, Clock::time_point now);  // false once the connection is gone
-  double delayNowS() const;  // the delay clock's time
+  double delayNowS() const;                              // the delay clock's time
   void finish(Connection& c, bool byClient);
   Fault faultFor(const std::string& path);
 
@@ -118,8 +118,8 @@ class FaultHttpServer {
   int active_ = 0, maxActive_ = 0;
   int writing_ = 0;
   uint64_t clockMoves_ = 0, clockMovesSeen_ = 0;  // settleClock(): asked, and looked at by run()
-  uint64_t generation_ = 0;                  // bumped (under mutex_) whenever a counter changes
-  mutable std::condition_variable changed_;  // notified with it
+  uint64_t generation_ = 0;                       // bumped (under mutex_) whenever a counter changes
+  mutable std::condition_variable changed_;       // notified with it
 
   std::thread thread_;
 };
