@@ -8,7 +8,8 @@
 //   /proc/self/fd), gpu_bytes (render::deviceMemoryInUse: every device allocation alive),
 //   cache_bytes (the --http-cache directory's files), the tile source's counters (started,
 //   completed, missing, failed, cancelled, retries, cache hits, in flight, bytes), resident tiles and bytes
-//   (CPU and GPU), and the slowest frame of the interval (ms).
+//   (CPU and GPU), the slowest frame of the interval (ms), and heap_bytes (malloc's in-use bytes:
+//   RSS growing while they stay flat is the allocator's free memory, not a leak).
 //
 //   soak_flight DATASET --path PATH.json --minutes M --samples OUT.csv
 //               [--size WxH] [--cpu-budget-mb MB] [--gpu-budget-mb MB] [--http-cache DIR]
@@ -27,6 +28,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <malloc.h>
 
 #include "flight/flight_path_json.h"
 #include "flight/path_sampler.h"
@@ -124,6 +127,13 @@ uint64_t directoryBytes(const std::string& dir) {
   return bytes;
 }
 
+// Bytes malloc has handed out and not had back (mallinfo2: in-use chunks and mmapped blocks):
+// what the program holds on the heap, where RSS also counts what the allocator keeps free.
+uint64_t heapBytes() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<uint64_t>(m.uordblks) + static_cast<uint64_t>(m.hblkhd);
+}
+
 // Flight time of wall second `s` on a path of `duration` flown forth and back.
 double pingPong(double s, double duration) {
   const double lap = std::fmod(s, 2.0 * duration);
@@ -134,7 +144,7 @@ constexpr const char* kHeader =
     "wall_s,frames,rss_bytes,hwm_bytes,fds,gpu_bytes,cache_bytes,requests_started,requests_completed,"
     "requests_missing,requests_failed,requests_cancelled,retries,cache_hits,requests_in_flight,bytes_read,tiles_"
     "resident_cpu,"
-    "bytes_resident_cpu,tiles_resident_gpu,bytes_resident_gpu,slowest_frame_ms";
+    "bytes_resident_cpu,tiles_resident_gpu,bytes_resident_gpu,slowest_frame_ms,heap_bytes";
 
 void writeRow(std::FILE* out, double wallS, uint64_t frames, const scene::Scene& scene, const std::string& cache,
               double slowestMs) {
@@ -142,7 +152,8 @@ void writeRow(std::FILE* out, double wallS, uint64_t frames, const scene::Scene&
   const auto& st = scene.lastFrameFigures().streaming;
   const auto& c = io.source;
   std::fprintf(
-      out, "%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%zu,%llu,%llu,%llu,%llu,%llu,%.2f\n",
+      out,
+      "%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%zu,%llu,%llu,%llu,%llu,%llu,%.2f,%llu\n",
       wallS, (unsigned long long)frames, (unsigned long long)statusBytes("VmRSS"),
       (unsigned long long)statusBytes("VmHWM"), (unsigned long long)openFiles(),
       (unsigned long long)render::deviceMemoryInUse(), (unsigned long long)directoryBytes(cache),
@@ -151,7 +162,7 @@ void writeRow(std::FILE* out, double wallS, uint64_t frames, const scene::Scene&
       (unsigned long long)c.requestsCancelled, (unsigned long long)c.retries, (unsigned long long)c.cacheHits,
       io.sourceInFlight, (unsigned long long)c.bytesRead, (unsigned long long)st.tilesResidentCpu,
       (unsigned long long)st.bytesResidentCpu, (unsigned long long)st.tilesResidentGpu,
-      (unsigned long long)st.bytesResidentGpu, slowestMs);
+      (unsigned long long)st.bytesResidentGpu, slowestMs, (unsigned long long)heapBytes());
   std::fflush(out);
 }
 

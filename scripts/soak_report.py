@@ -33,7 +33,9 @@ def window_means(rows, key, minutes):
 
 def flatness(rows, minutes):
     out = {}
-    for key, slack in (("rss_bytes", 0.05), ("gpu_bytes", 0.05), ("fds", None)):
+    for key, slack in (("rss_bytes", 0.05), ("heap_bytes", 0.05), ("gpu_bytes", 0.05), ("fds", None)):
+        if key not in rows[0]:
+            continue
         w = window_means(rows, key, minutes)
         if w is None:
             out[key] = {"ok": False, "why": "too few samples"}
@@ -71,6 +73,8 @@ def plot(rows, path, title):
     fig, axes = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
     mib = 1.0 / (1 << 20)
     axes[0].plot(t, [r["rss_bytes"] * mib for r in rows], label="resident (VmRSS)")
+    if "heap_bytes" in rows[0]:
+        axes[0].plot(t, [r["heap_bytes"] * mib for r in rows], label="heap in use (mallinfo2)")
     axes[0].plot(t, [r["bytes_resident_cpu"] * mib for r in rows], label="decoded tiles")
     axes[0].set_ylabel("MiB")
     axes[1].plot(t, [r["gpu_bytes"] * mib for r in rows], label="GPU allocations")
