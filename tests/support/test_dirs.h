@@ -96,6 +96,17 @@ inline const std::string& vegstreamKey() {
   return key;
 }
 
+// Key of fixtures made by the vegstream executable alone, from the command-line `arguments`:
+// "vegstream-<hash of vegstream><hash of the arguments>". The test program does not enter it, so
+// every program of a folder (they share VEGSTREAM_TEST_TMP) uses the one made first.
+inline std::string executableKey(const std::string& arguments) {
+  uint64_t h = 1469598103934665603ull;
+  for (const char c : arguments) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
+  return "vegstream-" + fileKey(VEGSTREAM_EXE) + hex;
+}
+
 // The fixture `name` of build `key` ("<maker>-<hash>"), made by `make(dir)` (which creates dir;
 // its parent exists) when no process made it before. One maker at a time (flock: the other
 // processes wait for it instead of making it again), into a staging directory renamed into
