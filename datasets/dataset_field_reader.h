@@ -71,7 +71,7 @@ class FieldReader {
 
 // An optional number: absent or null → nullopt; otherwise checked like number().
 inline Result<std::optional<double>> optionalNumber(const json& obj, const std::string& key, const std::string& field,
-                                             double lo, double hi, const FieldReader& f) {
+                                                    double lo, double hi, const FieldReader& f) {
   auto it = obj.find(key);
   if (it == obj.end() || it->is_null()) return std::optional<double>{};
   auto v = f.number(obj, key, field, lo, hi);

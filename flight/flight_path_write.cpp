@@ -70,8 +70,8 @@ std::string windJson(const WindSection& w) {
     const char* type = src.type == WindSourceSpec::Type::Fan         ? "\"fan\""
                        : src.type == WindSourceSpec::Type::Whirlwind ? "\"whirlwind\""
                                                                      : "\"rotor\"";
-    out += "      {\"name\": " + str(src.name) + ", \"type\": " + type + ", \"radius_m\": " +
-           fmt(src.radiusM, 3) + ", \"strength_mps\": " + fmt(src.strengthMps, 3) +
+    out += "      {\"name\": " + str(src.name) + ", \"type\": " + type + ", \"radius_m\": " + fmt(src.radiusM, 3) +
+           ", \"strength_mps\": " + fmt(src.strengthMps, 3) +
            (src.directionDeg ? ", \"direction_deg\": " + fmt(*src.directionDeg, 3) : "") +
            ",\n       \"keyframes\": [\n";
     out += objectKeys(src.keyframes, "         ");

@@ -22,11 +22,11 @@ DescriptorSetLayout createFrameSetLayout(const Context& ctx) {
       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sun's shadow map
-      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the compute raster's terrain depth
-      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the Hi-Z pyramid
-      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sky-view LUT
-      {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the aerial-perspective volume
+      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},  // the sun's shadow map
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},          // the compute raster's terrain depth
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},          // the Hi-Z pyramid
+      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},  // the sky-view LUT
+      {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},  // the aerial-perspective volume
       {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the sky light (render/atmosphere_pass.h)
   return createLayout(ctx, frameBindings, "frame set layout");
 }
@@ -71,8 +71,8 @@ void createFrameSlot(const Context& ctx, FrameSlot& s, int index, VkDeviceSize p
   s.timer = std::make_unique<GpuTimer>(ctx, kMaxPasses, "frame" + tag);
   s.colorReadback = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                  "colour read-back" + tag);
-  s.depthReadback = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
-                                 "depth read-back" + tag);
+  s.depthReadback =
+      createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "depth read-back" + tag);
 }
 
 void readSlotImages(const FrameSlot& slot, VkExtent2D e, FrameResult& r) {

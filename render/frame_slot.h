@@ -38,14 +38,14 @@ struct FrameSlot {
   uint64_t frameIndex = 0;
   bool submitted = false;
   bool readColor = false, readDepth = false;
-  bool readAov = false;             // an AOV frame: aovReadback holds the resolved float target
+  bool readAov = false;                  // an AOV frame: aovReadback holds the resolved float target
   glm::dmat4 aovInverseProjection{1.0};  // its camera's, for the distances
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
   std::optional<VegetationFigures> vegetation;
-  bool bladesExpanded = false;  // the compute blade path drew this frame's plants
-  bool treesDrawn = false;      // the tree pass classified this frame's trees
-  bool hizEarly = false;        // the Hi-Z pyramid is built right after the terrain (before the trees)
+  bool bladesExpanded = false;            // the compute blade path drew this frame's plants
+  bool treesDrawn = false;                // the tree pass classified this frame's trees
+  bool hizEarly = false;                  // the Hi-Z pyramid is built right after the terrain (before the trees)
   std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
 };
 

@@ -18,7 +18,7 @@ using detail::configureAttempt;
 using detail::readAttemptEnd;
 
 constexpr long kIdlePollMs = 1000;  // upper bound of one curl_multi_poll wait
-constexpr int kMaxRedirects = 5;  // per request
+constexpr int kMaxRedirects = 5;    // per request
 
 }  // namespace
 

@@ -71,11 +71,10 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
   const auto it = obj.find("tree");
   if (it == obj.end()) return ps.fail(p, "is missing (a tree species needs its model: form, density_ha, spacing_m, …)");
   const json& t = *it;
-  if (!ps.object(t, p) ||
-      !ps.onlyKeys(t, p,
-                   {"form", "density_ha", "spacing_m", "branch_levels", "branches", "twigs", "branch_angle_deg",
-                    "trunk_radius_m", "taper", "leaf_size_m", "leaves_per_twig", "leaf_colour", "bark_colour",
-                    "translucency", "niche", "claims_ground"}))
+  if (!ps.object(t, p) || !ps.onlyKeys(t, p,
+                                       {"form", "density_ha", "spacing_m", "branch_levels", "branches", "twigs",
+                                        "branch_angle_deg", "trunk_radius_m", "taper", "leaf_size_m", "leaves_per_twig",
+                                        "leaf_colour", "bark_colour", "translucency", "niche", "claims_ground"}))
     return false;
   const auto form = t.find("form");
   if (form == t.end()) return ps.fail(p + ".form", "is missing (\"conifer\" or \"broadleaf\")");
@@ -91,8 +90,8 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
       !parseBounded(ps, t, "spacing_m", p, out.spacingM, 0.0, true, 100.0, "> 0 and ≤ 100 metres", true))
     return false;
   // branch_levels: its own message above the maximum, the limit being the model's, not taste.
-  if (const auto levels = t.find("branch_levels"); levels != t.end() && levels->is_number() &&
-                                                    levels->get<double>() > kMaxBranchLevels)
+  if (const auto levels = t.find("branch_levels");
+      levels != t.end() && levels->is_number() && levels->get<double>() > kMaxBranchLevels)
     return ps.fail(p + ".branch_levels", "more branch levels than the model supports (at most " +
                                              std::to_string(kMaxBranchLevels) + ", got " + fmt(levels->get<double>()) +
                                              ")");
@@ -101,7 +100,8 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
       !parseCount(ps, t, "leaves_per_twig", p, out.leavesPerTwig, 1, 256) ||
       !parseBounded(ps, t, "branch_angle_deg", p, out.branchAngleDeg, 10.0, false, 120.0, "in 10 … 120 degrees") ||
       !parseBounded(ps, t, "trunk_radius_m", p, out.trunkRadiusM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
-      !parseBounded(ps, t, "taper", p, out.taper, 0.1, false, 0.8, "in 0.1 … 0.8") ||  // the bending shape fits the beam within 1 % there
+      !parseBounded(ps, t, "taper", p, out.taper, 0.1, false, 0.8,
+                    "in 0.1 … 0.8") ||  // the bending shape fits the beam within 1 % there
       !parseBounded(ps, t, "leaf_size_m", p, out.leafSizeM, 0.0, true, 5.0, "> 0 and ≤ 5 metres") ||
       !parseBounded(ps, t, "translucency", p, out.translucency, 0.0, false, 1.0, "in 0 … 1"))
     return false;
@@ -113,7 +113,8 @@ bool parseTree(Parser& ps, const json& obj, const std::string& path, TreeParams&
     std::string field, problem;
     if (!parseTreeNiche(*niche, out.niche, field, problem)) return ps.fail(p + ".niche" + field, problem);
   }
-  for (const auto& [key, linear] : {std::pair{"leaf_colour", out.leafColour}, std::pair{"bark_colour", out.barkColour}}) {
+  for (const auto& [key, linear] :
+       {std::pair{"leaf_colour", out.leafColour}, std::pair{"bark_colour", out.barkColour}}) {
     const auto c = t.find(key);
     if (c == t.end()) continue;
     int rgb[3] = {};
@@ -139,10 +140,10 @@ bool parseKind(Parser& ps, const json& obj, const std::string& path, RendererKin
 // The name, the optional about (a string) and bare.
 bool parseIdentity(Parser& ps, const json& obj, const std::string& path, Species& out) {
   if (!ps.object(obj, path)) return false;
-  if (!ps.onlyKeys(obj, path,
-                   {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
-                    "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows", "surface",
-                    "tree"}))
+  if (!ps.onlyKeys(
+          obj, path,
+          {"name", "about", "reference", "weights", "p", "threshold", "bare", "kind", "height_m", "stiffness",
+           "width_m", "colour_modulation", "phototropism", "density_m2", "horizon_m", "shadows", "surface", "tree"}))
     return false;
   const auto name = obj.find("name");
   if (name == obj.end()) return ps.fail(path + ".name", "is missing");
@@ -217,7 +218,7 @@ bool parsePlantShape(Parser& ps, const json& obj, const std::string& path, Speci
   for (const auto& r : ranges)
     if (need || obj.contains(r.key))
       if (!ps.range(obj, r.key, path, *r.range, r.lo, r.loOpen, r.hi, r.what)) return false;
-  out.surface = out.bare                              ? DetailSurface::Rock
+  out.surface = out.bare                                                             ? DetailSurface::Rock
                 : out.kind == RendererKind::Tree || out.kind == RendererKind::Gravel ? DetailSurface::Gravel
                                                                                      : DetailSurface::Grass;
   if (const auto sf = obj.find("surface"); sf != obj.end()) {

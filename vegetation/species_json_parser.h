@@ -117,8 +117,8 @@ inline bool parseHexColour(const json& v, int (&rgb)[3]) {
 }
 
 // An optional whole number in [lo, hi] (default kept when absent).
-inline bool parseCount(Parser& ps, const json& obj, std::string_view key, const std::string& path, uint32_t& out, uint32_t lo,
-                uint32_t hi) {
+inline bool parseCount(Parser& ps, const json& obj, std::string_view key, const std::string& path, uint32_t& out,
+                       uint32_t lo, uint32_t hi) {
   const auto it = obj.find(key);
   if (it == obj.end()) return true;
   const std::string p = Parser::join(path, key);
@@ -132,8 +132,8 @@ inline bool parseCount(Parser& ps, const json& obj, std::string_view key, const 
 }
 
 // An optional number in [lo, hi], or (lo, hi] when loOpen (default kept when absent).
-inline bool parseBounded(Parser& ps, const json& obj, std::string_view key, const std::string& path, float& out, double lo,
-                  bool loOpen, double hi, const char* what, bool required = false) {
+inline bool parseBounded(Parser& ps, const json& obj, std::string_view key, const std::string& path, float& out,
+                         double lo, bool loOpen, double hi, const char* what, bool required = false) {
   if (!ps.number(obj, key, path, out, required)) return false;
   if ((loOpen ? !(out > lo) : !(out >= lo)) || out > hi)
     return ps.fail(Parser::join(path, key), std::string("must be ") + what + " (got " + fmt(out) + ")");
