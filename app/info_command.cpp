@@ -49,6 +49,70 @@ std::map<int, ZoomCounts> countTiles(const fs::path& dir) {
   return zooms;
 }
 
+// Every zoom's counts as JSON (the layers the dataset has), and their sum into total.
+nlohmann::json perZoomJson(const std::map<int, ZoomCounts>& zooms, const datasets::DatasetMeta& m, ZoomCounts& total) {
+  nlohmann::json perZoom = nlohmann::json::array();
+  for (const auto& [z, c] : zooms) {
+    nlohmann::json zoom = {{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}};
+    if (m.ndvi) zoom["ndvi"] = c.ndvi;
+    if (m.landcover) zoom["landcover"] = c.landcover;
+    if (m.canopyZoom) zoom["canopy"] = c.canopy;
+    perZoom.push_back(zoom);
+    total.elevation += c.elevation;
+    total.imagery += c.imagery;
+    total.ndvi += c.ndvi;
+    total.landcover += c.landcover;
+    total.canopy += c.canopy;
+    total.bytes += c.bytes;
+  }
+  return perZoom;
+}
+
+// A warning for each layer whose tiles on disk are not what dataset.json counts.
+void warnMismatches(const std::string& dataset, const datasets::DatasetMeta& m, const ZoomCounts& onDisk,
+                    const Logger& log) {
+  if (onDisk.elevation != m.elevationTiles || onDisk.imagery != m.imageryTiles)
+    log->warn("{}: dataset.json counts {} elevation and {} imagery tiles, the directory holds {} and {}", dataset,
+              m.elevationTiles, m.imageryTiles, onDisk.elevation, onDisk.imagery);
+  if (onDisk.ndvi != m.ndviTiles)
+    log->warn("{}: dataset.json counts {} NDVI tiles, the directory holds {}", dataset, m.ndviTiles, onDisk.ndvi);
+  if (onDisk.landcover != m.landcoverTiles)
+    log->warn("{}: dataset.json counts {} landcover tiles, the directory holds {}", dataset, m.landcoverTiles,
+              onDisk.landcover);
+  if (m.canopyZoom && onDisk.canopy != m.canopyTiles)
+    log->warn("{}: dataset.json counts {} canopy tiles, the directory holds {}", dataset, m.canopyTiles,
+              onDisk.canopy);
+}
+
+// "tiles": dataset.json's counts, per zoom and on disk.
+nlohmann::json tilesJson(const datasets::DatasetMeta& m, const nlohmann::json& perZoom, const ZoomCounts& onDisk) {
+  nlohmann::json tiles = {{"elevation", m.elevationTiles},
+                         {"imagery", m.imageryTiles},
+                         {"per_zoom", perZoom},
+                         {"on_disk", {{"elevation", onDisk.elevation}, {"imagery", onDisk.imagery}}}};
+  // The NDVI layer (import --imagery-nir); null when the dataset has none.
+  tiles["ndvi"] = m.ndvi ? nlohmann::json(m.ndviTiles) : nlohmann::json(nullptr);
+  if (m.ndvi) tiles["on_disk"]["ndvi"] = onDisk.ndvi;
+  // The landcover layer (import --landcover); null when the dataset has none.
+  tiles["landcover"] = m.landcover ? nlohmann::json(m.landcoverTiles) : nlohmann::json(nullptr);
+  if (m.landcover) tiles["on_disk"]["landcover"] = onDisk.landcover;
+  // The canopy height layer (import --canopy-height); null when the dataset has none.
+  tiles["canopy"] = m.canopyZoom ? nlohmann::json(m.canopyTiles) : nlohmann::json(nullptr);
+  if (m.canopyZoom) tiles["on_disk"]["canopy"] = onDisk.canopy;
+  return tiles;
+}
+
+// The TileJSON files beside the dataset (datasets/tilejson.h) that are there: datasets made
+// before they existed have none.
+nlohmann::json tileJsonJson(const datasets::DatasetMeta& m, const fs::path& dir) {
+  nlohmann::json tileJson = nlohmann::json::object();
+  for (const datasets::TileJsonFile& f : datasets::tileJsonFiles(m)) {
+    std::error_code ec;
+    if (fs::is_regular_file(dir / f.fileName, ec)) tileJson[f.layer] = f.fileName;
+  }
+  return tileJson;
+}
+
 }  // namespace
 
 int runInfo(const InfoOptions& options, const Logger& log) {
@@ -62,55 +126,9 @@ int runInfo(const InfoOptions& options, const Logger& log) {
     sources.push_back({{"role", s.role}, {"path", s.path}, {"crs", s.crs}, {"description", s.description}});
     crsNames.insert(s.crs);
   }
-  nlohmann::json perZoom = nlohmann::json::array();
-  uint64_t elevationOnDisk = 0, imageryOnDisk = 0, ndviOnDisk = 0, landcoverOnDisk = 0, canopyOnDisk = 0,
-           bytesOnDisk = 0;
-  for (const auto& [z, c] : countTiles(reader->dir())) {
-    nlohmann::json zoom = {{"zoom", z}, {"elevation", c.elevation}, {"imagery", c.imagery}, {"bytes", c.bytes}};
-    if (m.ndvi) zoom["ndvi"] = c.ndvi;
-    if (m.landcover) zoom["landcover"] = c.landcover;
-    if (m.canopyZoom) zoom["canopy"] = c.canopy;
-    perZoom.push_back(zoom);
-    elevationOnDisk += c.elevation;
-    imageryOnDisk += c.imagery;
-    ndviOnDisk += c.ndvi;
-    landcoverOnDisk += c.landcover;
-    canopyOnDisk += c.canopy;
-    bytesOnDisk += c.bytes;
-  }
-  if (elevationOnDisk != m.elevationTiles || imageryOnDisk != m.imageryTiles)
-    log->warn("{}: dataset.json counts {} elevation and {} imagery tiles, the directory holds {} and {}",
-              options.dataset, m.elevationTiles, m.imageryTiles, elevationOnDisk, imageryOnDisk);
-  if (ndviOnDisk != m.ndviTiles)
-    log->warn("{}: dataset.json counts {} NDVI tiles, the directory holds {}", options.dataset, m.ndviTiles,
-              ndviOnDisk);
-  if (landcoverOnDisk != m.landcoverTiles)
-    log->warn("{}: dataset.json counts {} landcover tiles, the directory holds {}", options.dataset, m.landcoverTiles,
-              landcoverOnDisk);
-
-  nlohmann::json tiles = {{"elevation", m.elevationTiles},
-                         {"imagery", m.imageryTiles},
-                         {"per_zoom", perZoom},
-                         {"on_disk", {{"elevation", elevationOnDisk}, {"imagery", imageryOnDisk}}}};
-  // The NDVI layer (import --imagery-nir); null when the dataset has none.
-  tiles["ndvi"] = m.ndvi ? nlohmann::json(m.ndviTiles) : nlohmann::json(nullptr);
-  if (m.ndvi) tiles["on_disk"]["ndvi"] = ndviOnDisk;
-  // The landcover layer (import --landcover); null when the dataset has none.
-  tiles["landcover"] = m.landcover ? nlohmann::json(m.landcoverTiles) : nlohmann::json(nullptr);
-  if (m.landcover) tiles["on_disk"]["landcover"] = landcoverOnDisk;
-  // The canopy height layer (import --canopy-height); null when the dataset has none.
-  tiles["canopy"] = m.canopyZoom ? nlohmann::json(m.canopyTiles) : nlohmann::json(nullptr);
-  if (m.canopyZoom) tiles["on_disk"]["canopy"] = canopyOnDisk;
-  if (m.canopyZoom && canopyOnDisk != m.canopyTiles)
-    log->warn("{}: dataset.json counts {} canopy tiles, the directory holds {}", options.dataset, m.canopyTiles,
-              canopyOnDisk);
-  // The TileJSON files beside the dataset (datasets/tilejson.h) that are there: datasets made
-  // before they existed have none.
-  nlohmann::json tileJson = nlohmann::json::object();
-  for (const datasets::TileJsonFile& f : datasets::tileJsonFiles(m)) {
-    std::error_code ec;
-    if (fs::is_regular_file(reader->dir() / f.fileName, ec)) tileJson[f.layer] = f.fileName;
-  }
+  ZoomCounts onDisk;
+  const nlohmann::json perZoom = perZoomJson(countTiles(reader->dir()), m, onDisk);
+  warnMismatches(options.dataset, m, onDisk, log);
   const nlohmann::json out = {
       {"name", m.name},
       {"path", fs::absolute(reader->dir()).lexically_normal().string()},
@@ -130,11 +148,11 @@ int runInfo(const InfoOptions& options, const Logger& log) {
       {"elevation_encoding", datasets::toString(m.elevationEncoding)},
       {"imagery_format", m.imagery ? nlohmann::json(datasets::toString(*m.imagery)) : nlohmann::json(nullptr)},
       {"landcover_scheme", m.landcover ? nlohmann::json(datasets::toString(*m.landcover)) : nlohmann::json(nullptr)},
-      {"tiles", tiles},
+      {"tiles", tilesJson(m, perZoom, onDisk)},
       {"bytes", m.bytes},
-      {"bytes_on_disk", bytesOnDisk},
+      {"bytes_on_disk", onDisk.bytes},
       {"attribution", m.attribution},
-      {"tilejson", tileJson}};
+      {"tilejson", tileJsonJson(m, reader->dir())}};
   std::cout << out.dump(2) << "\n";
   return kExitOk;
 }

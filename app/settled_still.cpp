@@ -40,6 +40,38 @@ std::string stillChanging(const scene::SceneFrameFigures& f, const scene::SceneF
   return why;
 }
 
+namespace {
+
+// The still's frame again with the wind simulated simulationTimeS into a flight held at the
+// pose: the still's image and record become that frame's.
+Status stillAtSimulationTime(scene::FrameDriver& driver, const flight::FlightSample& pose, double timeS,
+                             double simulationTimeS, SettledStill& still) {
+  // The simulation's own steps, each as many fixed sub-steps as one step may run (a quarter
+  // second): the sub-steps are counted from t = 0 whatever the steps' size
+  // (simulation/simulation.h), so the state at S is the one a 60 fps flight reaches.
+  const double chunkS = double(simulation::shader::kMaxSubsteps) / simulation::shader::kSubstepsPerS;
+  const auto steps = static_cast<int>(std::floor(simulationTimeS / chunkS));
+  scene::FrameInput input;
+  input.pose = pose;
+  input.timeS = timeS;
+  input.sunTimeS = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    input.simulationTimeS = k * chunkS;
+    if (Status s = driver.advanceSimulation(input); !s) return s.error();
+  }
+  input.simulationTimeS = simulationTimeS;
+  input.readbackColor = true;
+  auto frame = driver.run(input);
+  if (!frame) return frame.error();
+  if (frame->color) still.image = std::move(*frame->color);
+  frame->color.reset();
+  still.record = *frame;
+  still.plants = frame->vegetation && frame->vegetation->gpuCounts ? frame->vegetation->plantsTotal : still.plants;
+  return {};
+}
+
+}  // namespace
+
 Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::FlightSample& pose, const Logger& log,
                                         int maxFrames, double simulationTimeS, bool aov) {
   scene::FrameDriver driver(scene);
@@ -77,28 +109,8 @@ Result<SettledStill> renderSettledStill(scene::Scene& scene, const flight::Fligh
   last.simulationTimeS = 0.0;
   last.sunTimeS = 0.0;
   if (simulationTimeS > 0.0) {
-    // The simulation's own steps, each as many fixed sub-steps as one step may run (a quarter
-    // second): the sub-steps are counted from t = 0 whatever the steps' size
-    // (simulation/simulation.h), so the state at S is the one a 60 fps flight reaches.
-    const double chunkS = double(simulation::shader::kMaxSubsteps) / simulation::shader::kSubstepsPerS;
-    const auto steps = static_cast<int>(std::floor(simulationTimeS / chunkS));
-    scene::FrameInput input;
-    input.pose = pose;
-    input.timeS = stepS * (still.frames - 1);
-    input.sunTimeS = 0.0;
-    for (int k = 1; k <= steps; ++k) {
-      input.simulationTimeS = k * chunkS;
-      if (Status s = driver.advanceSimulation(input); !s) return s.error();
-    }
-    input.simulationTimeS = simulationTimeS;
+    if (Status s = stillAtSimulationTime(driver, pose, last.timeS, simulationTimeS, still); !s) return s.error();
     last.simulationTimeS = simulationTimeS;
-    input.readbackColor = true;
-    auto frame = driver.run(input);
-    if (!frame) return frame.error();
-    if (frame->color) still.image = std::move(*frame->color);
-    frame->color.reset();
-    still.record = *frame;
-    still.plants = frame->vegetation && frame->vegetation->gpuCounts ? frame->vegetation->plantsTotal : still.plants;
   }
   if (still.image.rgba.empty()) return makeError(ErrorKind::Internal, "the renderer returned no colour read-back");
   if (aov) {

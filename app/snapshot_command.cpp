@@ -131,15 +131,60 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
   return cmd;
 }
 
+namespace {
+
+// --size, --msaa, the pose's numbers and the simulation's options (resolved into o.simulation).
+Status checkSnapshotOptions(SnapshotOptions& o, uint32_t& width, uint32_t& height) {
+  if (!parseFrameSize(o.size, width, height))
+    return userError("--size " + o.size + ": expected WxH with each side 1 … 16384, e.g. 1280x720");
+  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
+    return userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16");
+  if (Status s = checkPoseNumbers(o); !s) return s;
+  if (Status s = checkSimulationOptions(o.simulationCli); !s) return s;
+  o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
+  return {};
+}
+
+// The camera at the pose, once the scene covers it and the ground under it is known.
+Result<flight::FlightSample> snapshotPose(const SnapshotOptions& o, scene::Scene& scene, const std::string& dataset) {
+  if (Status s = checkCoverage(o, scene.info().bounds, dataset); !s) return s.error();
+  const double ground = scene.groundHeight(o.latDeg, o.lonDeg);
+  if (std::isnan(ground))
+    return userError("--lat " + numberText(o.latDeg) + " --lon " + numberText(o.lonDeg) + ": dataset " + dataset +
+                     " has no elevation data there");
+  const double heightMsl = o.altRef == "msl" ? o.altM : ground + o.altM;
+  if (heightMsl - ground < kMinClearanceM)
+    return userError("--alt " + numberText(o.altM) + " (above sea level): the camera must be at least 0.5 m "
+                     "above the ground, which is at " + numberText(ground) + " m there");
+  flight::FlightSample pose;
+  pose.position = {o.latDeg, o.lonDeg, heightMsl};
+  pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
+  pose.pitchDeg = o.pitchDeg;
+  pose.heightAboveGroundM = heightMsl - ground;
+  return pose;
+}
+
+// The run's summary: what was drawn, how long it took to settle, and the sun.
+void logSnapshot(const SnapshotOptions& o, const SettledStill& still, const scene::Scene& scene, bool plantsOn,
+                 uint32_t width, uint32_t height, const flight::FlightSample& pose, const Logger& log) {
+  const std::string plants = !plantsOn            ? "no plants"
+                             : still.plantsCounted ? std::to_string(still.plants) + " plants drawn"
+                                                   : "plants not counted on this device";
+  const std::string frames = still.settled ? std::to_string(still.frames) + " frames to settle"
+                                           : "not settled after " + std::to_string(still.frames) + " frames";
+  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
+            height, pose.heightAboveGroundM, still.terrainTriangles, plants, frames);
+  const geo::SolarPosition& sunAt = still.record.sun;
+  log->info("sidecar {}: sun at {} ({} date-time), azimuth {:.2f}°, elevation {:.2f}°",
+            scene::sidecarPathFor(o.out).string(), geo::formatIsoDateTime(still.record.datetime),
+            scene::toString(scene.sunClock().source), sunAt.azimuthDeg, sunAt.elevationDeg);
+}
+
+}  // namespace
+
 int runSnapshot(SnapshotOptions o, const Logger& log) {
   uint32_t width = 0, height = 0;
-  if (!parseFrameSize(o.size, width, height))
-    return reportError(log, userError("--size " + o.size + ": expected WxH with each side 1 … 16384, e.g. 1280x720"));
-  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16)
-    return reportError(log, userError("--msaa " + std::to_string(o.msaa) + ": samples per pixel must be 1, 2, 4, 8 or 16"));
-  if (Status s = checkPoseNumbers(o); !s) return reportError(log, s.error());
-  if (Status s = checkSimulationOptions(o.simulationCli); !s) return reportError(log, s.error());
-  o.simulation = resolveSimulationOptions(o.simulationCli, nullptr);
+  if (Status s = checkSnapshotOptions(o, width, height); !s) return reportError(log, s.error());
   auto sun = checkSunOptions(o.sunCli);
   if (!sun) return reportError(log, sun.error());
   if (!std::isfinite(o.timeS) || o.timeS < 0.0 || o.timeS > kMaxSimulationTimeS)
@@ -167,23 +212,10 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   auto opened = scene::Scene::open(so);
   if (!opened) return reportError(log, opened.error());
   scene::Scene& scene = **opened;
-  if (Status s = checkCoverage(o, scene.info().bounds, *dataset); !s) return reportError(log, s.error());
-  const double ground = scene.groundHeight(o.latDeg, o.lonDeg);
-  if (std::isnan(ground))
-    return reportError(log, userError("--lat " + numberText(o.latDeg) + " --lon " + numberText(o.lonDeg) + ": dataset " + *dataset +
-                                      " has no elevation data there"));
-  const double heightMsl = o.altRef == "msl" ? o.altM : ground + o.altM;
-  if (heightMsl - ground < kMinClearanceM)
-    return reportError(log, userError("--alt " + numberText(o.altM) + " (above sea level): the camera must be at least 0.5 m "
-                                      "above the ground, which is at " + numberText(ground) + " m there"));
+  auto pose = snapshotPose(o, scene, *dataset);
+  if (!pose) return reportError(log, pose.error());
   logSceneOpened(scene, log);
-
-  flight::FlightSample pose;
-  pose.position = {o.latDeg, o.lonDeg, heightMsl};
-  pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
-  pose.pitchDeg = o.pitchDeg;
-  pose.heightAboveGroundM = heightMsl - ground;
-  auto still = renderSettledStill(scene, pose, log, 40, o.timeS, aovs->any());
+  auto still = renderSettledStill(scene, *pose, log, 40, o.timeS, aovs->any());
   if (!still) return reportError(log, still.error());
   if (!still->settled)
     log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
@@ -198,17 +230,7 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   const render::ValidationLog* validation = scene.renderer().validationLog();
   const int validationErrors = validation ? validation->errors() : 0;
   if (validationErrors > 0) log->error("validation reported {} errors", validationErrors);
-  const std::string plants = !so.plants             ? "no plants"
-                             : still->plantsCounted ? std::to_string(still->plants) + " plants drawn"
-                                                    : "plants not counted on this device";
-  const std::string frames = still->settled ? std::to_string(still->frames) + " frames to settle"
-                                            : "not settled after " + std::to_string(still->frames) + " frames";
-  log->info("snapshot written to {}: {}x{}, {:.1f} m above the ground, {} terrain triangles, {} ({})", o.out, width,
-            height, pose.heightAboveGroundM, still->terrainTriangles, plants, frames);
-  const geo::SolarPosition& sunAt = still->record.sun;
-  log->info("sidecar {}: sun at {} ({} date-time), azimuth {:.2f}°, elevation {:.2f}°",
-            scene::sidecarPathFor(o.out).string(), geo::formatIsoDateTime(still->record.datetime),
-            scene::toString(scene.sunClock().source), sunAt.azimuthDeg, sunAt.elevationDeg);
+  logSnapshot(o, *still, scene, so.plants, width, height, *pose, log);
   return validationErrors > 0 ? kExitFailure : kExitOk;
 }
 

@@ -1,3 +1,5 @@
+// The streaming, terrain and plant options shared by fly, record and snapshot (streaming_cli.h):
+// registered on a command, checked, and applied to the scene's options.
 #include "app/streaming_cli.h"
 
 #include <cmath>
@@ -9,8 +11,13 @@
 #include "vegetation/species_catalog.h"
 
 namespace vegstream::app {
+namespace {
 
-void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
+Error bad(const std::string& m) { return makeError(ErrorKind::InvalidInput, m); }
+uint64_t bytes(double mb) { return static_cast<uint64_t>(std::llround(mb * 1024.0 * 1024.0)); }
+
+// The memory budgets, --streaming and the terrain's options.
+void addTerrainOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
   cmd.add_option("--cpu-budget-mb", o.cpuBudgetMb, "Memory for decoded tiles, MiB (never exceeded)")
       ->capture_default_str();
   cmd.add_option("--gpu-budget-mb", o.gpuBudgetMb, "GPU memory for imagery tiles, MiB (never exceeded)")
@@ -45,6 +52,10 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Seed triangles (plants) only within this distance, metres (each species also stops at its "
                  "catalog horizon_m)")
       ->capture_default_str();
+}
+
+// Fetching over HTTP.
+void addHttpOptions(CLI::App& cmd, StreamingCli& o) {
   cmd.add_option("--http-cache", o.httpCache,
                  "Directory of an on-disk cache for tiles fetched over HTTP (only tiles that decode as the "
                  "dataset's are kept)");
@@ -55,6 +66,10 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "Give up a file fetched over HTTP after this many seconds, all its retries included (it is then "
                  "drawn from its parent tile); an attempt that stalls is retried after 5 s")
       ->capture_default_str();
+}
+
+// Seeding and drawing the plants.
+void addPlantOptions(CLI::App& cmd, StreamingCli& o) {
   cmd.add_option("--plant-density", o.plantDensity,
                  "Plants per pixel² of a seed triangle's projected area (ρ of eq. 1), pixels of a 1080-line view "
                  "whatever the window: the level of detail that thins plants with distance; near the camera "
@@ -102,9 +117,8 @@ void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
       ->capture_default_str();
 }
 
-Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
-  auto bad = [](const std::string& m) { return makeError(ErrorKind::InvalidInput, m); };
-  auto bytes = [](double mb) { return static_cast<uint64_t>(std::llround(mb * 1024.0 * 1024.0)); };
+// Every number and word in range, in the order of the options.
+Status checkStreamingOptions(const StreamingCli& o) {
   if (!(o.cpuBudgetMb >= 1.0 && o.cpuBudgetMb <= 1e6))
     return bad("--cpu-budget-mb " + std::to_string(o.cpuBudgetMb) + ": must be 1 … 1000000 MiB");
   if (!(o.gpuBudgetMb >= 0.25 && o.gpuBudgetMb <= 1e6))
@@ -146,11 +160,11 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
                ": must be more than 0 and at most 10000 metres");
   if (!(o.httpTimeoutS >= 1.0 && o.httpTimeoutS <= 3600.0))
     return bad("--http-timeout-s " + numberText(o.httpTimeoutS) + ": must be 1 … 3600 seconds");
-  if (!o.species.empty()) {
-    auto catalog = vegetation::loadSpeciesCatalog(o.species);
-    if (!catalog) return catalog.error();
-    scene.species = std::make_shared<const vegetation::SpeciesCatalog>(std::move(*catalog));
-  }
+  return {};
+}
+
+// The budgets, the streaming mode and the terrain's options into scene.
+void applyTerrainOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
   scene.streaming.cpuBudgetBytes = bytes(o.cpuBudgetMb);
   scene.streaming.gpuBudgetBytes = bytes(o.gpuBudgetMb);
   scene.streaming.uploadBytesPerFrame = bytes(o.uploadMbPerFrame);
@@ -170,6 +184,10 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;
   scene.terrain.seeds.contourAlpha = o.plantContour;
+}
+
+// The plants' options into scene; the blade path must be one this build knows.
+Status applyPlantOptions(const StreamingCli& o, scene::SceneOptions& scene) {
   scene.clusterSize = static_cast<uint32_t>(o.clusterSize);
   scene.plants = !o.noPlants;
   scene.plantStyle = o.plantStyle == "markers"  ? render::PlantStyle::Markers
@@ -186,6 +204,26 @@ Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode default
   const auto bladePath = render::parseBladePath(o.bladePath);
   if (!bladePath) return bad("--blade-path " + o.bladePath + ": must be auto, tessellation, compute or mesh");
   scene.renderer.bladePath = *bladePath;
+  return {};
+}
+
+}  // namespace
+
+void addStreamingOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
+  addTerrainOptions(cmd, o, withMode);
+  addHttpOptions(cmd, o);
+  addPlantOptions(cmd, o);
+}
+
+Status applyStreamingOptions(const StreamingCli& o, scene::StreamingMode defaultMode, scene::SceneOptions& scene) {
+  if (Status s = checkStreamingOptions(o); !s) return s;
+  if (!o.species.empty()) {
+    auto catalog = vegetation::loadSpeciesCatalog(o.species);
+    if (!catalog) return catalog.error();
+    scene.species = std::make_shared<const vegetation::SpeciesCatalog>(std::move(*catalog));
+  }
+  applyTerrainOptions(o, defaultMode, scene);
+  if (Status s = applyPlantOptions(o, scene); !s) return s;
   if (!o.httpCache.empty()) scene.httpCacheDir = o.httpCache;
   scene.httpAllowRedirects = o.allowRedirects;
   scene.httpRequestDeadlineMs = std::lround(o.httpTimeoutS * 1000.0);

@@ -41,162 +41,21 @@
 #include "core/json_text.h"
 #include "core/printable.h"
 #include "core/regular_file.h"
-#include "datasets/colour_calibration_json.h"
+#include "datasets/dataset_field_reader.h"
+#include "datasets/dataset_layers_json.h"
 #include "datasets/message.h"
 
 namespace vegstream::datasets {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
+using namespace dataset_json;
 
 constexpr const char* kMetaFile = "dataset.json";
-constexpr const char* kNdviEncoding = "ndvi8";
-constexpr const char* kLandcoverEncoding = "class8";
-constexpr const char* kCanopyEncoding = "decimetre16";
 constexpr int kMaxProjjsonDepth = 64;  // real PROJJSON nests about 6 deep
 
-const char* imageryExtension(ImageryFormat f) { return f == ImageryFormat::Jpeg ? "jpg" : "png"; }
-
-// Field access that names the source (a file or a URL) and the field ("imagery.format") in
-// every error.
-class FieldReader {
- public:
-  explicit FieldReader(std::string sourceName) : source_(std::move(sourceName)) {}
-  const std::string& source() const { return source_; }
-
-  Error bad(const std::string& field, const std::string& problem) const {
-    return makeError(ErrorKind::InvalidInput, concat("'", printablePath(source_), "': field '", field, "' ", problem));
-  }
-
-  Result<const json*> get(const json& obj, const std::string& key, const std::string& field) const {
-    auto it = obj.find(key);
-    if (it == obj.end()) return bad(field, "is missing");
-    return &*it;
-  }
-  Result<double> number(const json& obj, const std::string& key, const std::string& field, double lo, double hi) const {
-    auto v = get(obj, key, field);
-    if (!v) return v.error();
-    if (!(*v)->is_number()) return bad(field, "must be a number");
-    const double d = (*v)->get<double>();
-    if (!(d >= lo && d <= hi)) return bad(field, concat("is ", d, "; expected ", lo, " … ", hi));
-    return d;
-  }
-  Result<int64_t> integer(const json& obj, const std::string& key, const std::string& field, int64_t lo,
-                          int64_t hi) const {
-    auto v = get(obj, key, field);
-    if (!v) return v.error();
-    if (!(*v)->is_number_integer()) return bad(field, "must be an integer");
-    const int64_t i = (*v)->is_number_unsigned() ? static_cast<int64_t>((*v)->get<uint64_t>()) : (*v)->get<int64_t>();
-    if (i < lo || i > hi) return bad(field, concat("is ", i, "; expected ", lo, " … ", hi));
-    return i;
-  }
-  Result<std::string> text(const json& obj, const std::string& key, const std::string& field) const {
-    auto v = get(obj, key, field);
-    if (!v) return v.error();
-    if (!(*v)->is_string()) return bad(field, "must be a string");
-    return (*v)->get<std::string>();
-  }
-
- private:
-  std::string source_;
-};
-
-#define VEG_TRY_ASSIGN(target, expr) \
-  do {                               \
-    auto r_ = (expr);                \
-    if (!r_) return r_.error();      \
-    target = std::move(*r_);         \
-  } while (0)
-
-// An optional number: absent or null → nullopt; otherwise checked like number().
-Result<std::optional<double>> optionalNumber(const json& obj, const std::string& key, const std::string& field,
-                                             double lo, double hi, const FieldReader& f) {
-  auto it = obj.find(key);
-  if (it == obj.end() || it->is_null()) return std::optional<double>{};
-  auto v = f.number(obj, key, field, lo, hi);
-  if (!v) return v.error();
-  return std::optional<double>(*v);
-}
-
-Result<DeshadingRecord> parseDeshading(const json& d, const FieldReader& f) {
-  const std::string at = "imagery.radiometry.deshading";
-  if (!d.is_object()) return f.bad(at, "must be an object");
-  DeshadingRecord r;
-  VEG_TRY_ASSIGN(r.source, f.text(d, "source", at + ".source"));
-  if (r.source != "imagery datetime" && r.source != "given" && r.source != "estimated" && r.source != "none")
-    return f.bad(at + ".source",
-                 concat("is '", printable(r.source), "'; expected imagery datetime, given, estimated or none"));
-  if (auto n = d.find("note"); n != d.end() && !n->is_null()) VEG_TRY_ASSIGN(r.note, f.text(d, "note", at + ".note"));
-  if (r.source == "none") return r;
-  VEG_TRY_ASSIGN(r.sunAzimuthDeg, f.number(d, "sun_azimuth_deg", at + ".sun_azimuth_deg", 0.0, 360.0));
-  VEG_TRY_ASSIGN(r.sunElevationDeg, f.number(d, "sun_elevation_deg", at + ".sun_elevation_deg", -90.0, 90.0));
-  VEG_TRY_ASSIGN(r.directFraction, f.number(d, "direct_fraction", at + ".direct_fraction", 0.0, 1.0));
-  return r;
-}
-
-Result<RadiometryRecord> parseRadiometry(const json& r, const FieldReader& f) {
-  const std::string at = "imagery.radiometry";
-  if (!r.is_object()) return f.bad(at, "must be an object");
-  RadiometryRecord m;
-  VEG_TRY_ASSIGN(m.method, f.text(r, "method", at + ".method"));
-  if (m.method != "reflectance" && m.method != "srgb" && m.method != "stretch")
-    return f.bad(at + ".method", concat("is '", printable(m.method), "'; expected reflectance, srgb or stretch"));
-  constexpr double kBig = 1e12;
-  VEG_TRY_ASSIGN(m.scale, optionalNumber(r, "scale", at + ".scale", 0.0, kBig, f));
-  VEG_TRY_ASSIGN(m.offset, optionalNumber(r, "offset", at + ".offset", -kBig, kBig, f));
-  VEG_TRY_ASSIGN(m.darkObjectPercentile,
-                 optionalNumber(r, "dark_object_percentile", at + ".dark_object_percentile", 0.0, 100.0, f));
-  VEG_TRY_ASSIGN(m.darkObjectReflectance,
-                 optionalNumber(r, "dark_object_reflectance", at + ".dark_object_reflectance", 0.0, 1.0, f));
-  if (auto d = r.find("dark_object"); d != r.end() && !d->is_null()) {
-    if (!d->is_array() || d->size() != 3) return f.bad(at + ".dark_object", "must be an array of 3 numbers");
-    std::array<double, 3> v{};
-    for (size_t i = 0; i < 3; ++i) {
-      if (!(*d)[i].is_number()) return f.bad(at + ".dark_object", "must be an array of 3 numbers");
-      v[i] = (*d)[i].get<double>();
-    }
-    m.darkObject = v;
-  }
-  if (auto d = r.find("deshading"); d != r.end() && !d->is_null()) VEG_TRY_ASSIGN(m.deshading, parseDeshading(*d, f));
-  return m;
-}
-
-// dataset.json's "landcover" object (not null) into m.landcover / m.landcoverTiles.
-Status parseLandcover(const json& lc, const FieldReader& f, DatasetMeta& m) {
-  if (!lc.is_object()) return f.bad("landcover", "must be an object or null");
-  std::string encoding, scheme;
-  int64_t count = 0;
-  VEG_TRY_ASSIGN(encoding, f.text(lc, "encoding", "landcover.encoding"));
-  if (encoding != kLandcoverEncoding)
-    return f.bad("landcover.encoding", concat("is '", printable(encoding), "'; expected ", kLandcoverEncoding));
-  VEG_TRY_ASSIGN(scheme, f.text(lc, "scheme", "landcover.scheme"));
-  auto parsed = parseLandcoverScheme(scheme);
-  if (!parsed || !*parsed)
-    return f.bad("landcover.scheme", concat("is '", printable(scheme), "'; expected worldcover or nlcd"));
-  VEG_TRY_ASSIGN(count, f.integer(lc, "tile_count", "landcover.tile_count", 0, INT64_MAX));
-  m.landcover = **parsed;
-  m.landcoverTiles = static_cast<uint64_t>(count);
-  return {};
-}
-
-// dataset.json's "canopy" object (not null) into m.canopyZoom / m.canopyTiles (issue 41 item 3).
-Status parseCanopy(const json& c, const FieldReader& f, DatasetMeta& m) {
-  if (!c.is_object()) return f.bad("canopy", "must be an object or null");
-  std::string encoding;
-  int64_t zoom = 0, count = 0;
-  VEG_TRY_ASSIGN(encoding, f.text(c, "encoding", "canopy.encoding"));
-  if (encoding != kCanopyEncoding)
-    return f.bad("canopy.encoding", concat("is '", printable(encoding), "'; expected ", kCanopyEncoding));
-  VEG_TRY_ASSIGN(zoom, f.integer(c, "zoom", "canopy.zoom", 0, 24));
-  VEG_TRY_ASSIGN(count, f.integer(c, "tile_count", "canopy.tile_count", 0, INT64_MAX));
-  m.canopyZoom = static_cast<int>(zoom);
-  m.canopyTiles = static_cast<uint64_t>(count);
-  return {};
-}
-
-Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
-  if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
-  DatasetMeta m;
+// format_version, name, bounds, the zooms, tile_size and the height range.
+Status parseHeader(const json& j, const FieldReader& f, DatasetMeta& m) {
   int64_t version = 0;
   VEG_TRY_ASSIGN(version, f.integer(j, "format_version", "format_version", 1, 1'000'000));
   if (version != kDatasetFormatVersion)
@@ -227,7 +86,11 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   VEG_TRY_ASSIGN(m.minHeightM, f.number(j, "min_height_m", "min_height_m", -11000.0, 9000.0));
   VEG_TRY_ASSIGN(m.maxHeightM, f.number(j, "max_height_m", "max_height_m", -11000.0, 9000.0));
   if (m.minHeightM > m.maxHeightM) return f.bad("min_height_m", "is greater than max_height_m");
+  return {};
+}
 
+// "elevation": its encoding and tile count.
+Status parseElevation(const json& j, const FieldReader& f, DatasetMeta& m) {
   const json* e = nullptr;
   VEG_TRY_ASSIGN(e, f.get(j, "elevation", "elevation"));
   if (!e->is_object()) return f.bad("elevation", "must be an object");
@@ -240,39 +103,42 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   int64_t count = 0;
   VEG_TRY_ASSIGN(count, f.integer(*e, "tile_count", "elevation.tile_count", 0, INT64_MAX));
   m.elevationTiles = static_cast<uint64_t>(count);
+  return {};
+}
+
+// One entry of "sources" (at "sources[i]"); the optional keys are taken when of the right type.
+Result<SourceInfo> parseSource(const json& s, const std::string& at, const FieldReader& f) {
+  if (!s.is_object()) return f.bad(at, "must be an object");
+  SourceInfo info;
+  VEG_TRY_ASSIGN(info.role, f.text(s, "role", at + ".role"));
+  VEG_TRY_ASSIGN(info.path, f.text(s, "path", at + ".path"));
+  VEG_TRY_ASSIGN(info.crs, f.text(s, "crs", at + ".crs"));
+  VEG_TRY_ASSIGN(info.description, f.text(s, "description", at + ".description"));
+  if (s.contains("crs_epsg") && s["crs_epsg"].is_string()) info.crsCode = s["crs_epsg"].get<std::string>();
+  if (s.contains("crs_projjson") && s["crs_projjson"].is_object()) {
+    // dump() recurses once per level: a PROJJSON nested deeper than any real one is refused.
+    if (!jsonDepthAtMost(s["crs_projjson"], kMaxProjjsonDepth))
+      return f.bad(at + ".crs_projjson", concat("is nested more than ", kMaxProjjsonDepth, " levels deep"));
+    info.crsProjjson = s["crs_projjson"].dump();
+  }
+  if (s.contains("resolution_m") && s["resolution_m"].is_number()) info.resolutionM = s["resolution_m"].get<double>();
+  if (s.contains("driver") && s["driver"].is_string()) info.driver = s["driver"].get<std::string>();
+  return info;
+}
+
+Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
+  if (!j.is_object()) return f.bad("(top level)", "must be a JSON object");
+  DatasetMeta m;
+  if (Status st = parseHeader(j, f, m); !st) return st.error();
+  if (Status st = parseElevation(j, f, m); !st) return st.error();
 
   const json* im = nullptr;
   VEG_TRY_ASSIGN(im, f.get(j, "imagery", "imagery"));
-  if (!im->is_null()) {
-    if (!im->is_object()) return f.bad("imagery", "must be an object or null");
-    std::string fmt;
-    VEG_TRY_ASSIGN(fmt, f.text(*im, "format", "imagery.format"));
-    if (fmt == "jpeg")
-      m.imagery = ImageryFormat::Jpeg;
-    else if (fmt == "png")
-      m.imagery = ImageryFormat::Png;
-    else
-      return f.bad("imagery.format", concat("is '", printable(fmt), "'; expected jpeg or png"));
-    VEG_TRY_ASSIGN(count, f.integer(*im, "tile_count", "imagery.tile_count", 0, INT64_MAX));
-    m.imageryTiles = static_cast<uint64_t>(count);
-    if (auto dt = im->find("datetime"); dt != im->end() && !dt->is_null())
-      VEG_TRY_ASSIGN(m.imageryDatetime, f.text(*im, "datetime", "imagery.datetime"));
-    if (auto r = im->find("radiometry"); r != im->end() && !r->is_null())
-      VEG_TRY_ASSIGN(m.radiometry, parseRadiometry(*r, f));
-    if (auto c = im->find("colour_calibration"); c != im->end() && !c->is_null())
-      VEG_TRY_ASSIGN(m.colourCalibration, parseColourCalibration(*c, f.source()));
-  }
+  if (!im->is_null())
+    if (Status st = parseImagery(*im, f, m); !st) return st.error();
 
-  if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null()) {
-    if (!nd->is_object()) return f.bad("ndvi", "must be an object or null");
-    std::string ndviEnc;
-    VEG_TRY_ASSIGN(ndviEnc, f.text(*nd, "encoding", "ndvi.encoding"));
-    if (ndviEnc != kNdviEncoding)
-      return f.bad("ndvi.encoding", concat("is '", printable(ndviEnc), "'; expected ", kNdviEncoding));
-    VEG_TRY_ASSIGN(count, f.integer(*nd, "tile_count", "ndvi.tile_count", 0, INT64_MAX));
-    m.ndvi = true;
-    m.ndviTiles = static_cast<uint64_t>(count);
-  }
+  if (auto nd = j.find("ndvi"); nd != j.end() && !nd->is_null())
+    if (Status st = parseNdvi(*nd, f, m); !st) return st.error();
 
   if (auto lc = j.find("landcover"); lc != j.end() && !lc->is_null())
     if (Status s = parseLandcover(*lc, f, m); !s) return s.error();
@@ -284,52 +150,17 @@ Result<DatasetMeta> parseMeta(const json& j, const FieldReader& f) {
   VEG_TRY_ASSIGN(src, f.get(j, "sources", "sources"));
   if (!src->is_array()) return f.bad("sources", "must be an array");
   for (size_t i = 0; i < src->size(); ++i) {
-    const json& s = (*src)[i];
-    const std::string at = concat("sources[", i, "]");
-    if (!s.is_object()) return f.bad(at, "must be an object");
     SourceInfo info;
-    VEG_TRY_ASSIGN(info.role, f.text(s, "role", at + ".role"));
-    VEG_TRY_ASSIGN(info.path, f.text(s, "path", at + ".path"));
-    VEG_TRY_ASSIGN(info.crs, f.text(s, "crs", at + ".crs"));
-    VEG_TRY_ASSIGN(info.description, f.text(s, "description", at + ".description"));
-    if (s.contains("crs_epsg") && s["crs_epsg"].is_string()) info.crsCode = s["crs_epsg"].get<std::string>();
-    if (s.contains("crs_projjson") && s["crs_projjson"].is_object()) {
-      // dump() recurses once per level: a PROJJSON nested deeper than any real one is refused.
-      if (!jsonDepthAtMost(s["crs_projjson"], kMaxProjjsonDepth))
-        return f.bad(at + ".crs_projjson", concat("is nested more than ", kMaxProjjsonDepth, " levels deep"));
-      info.crsProjjson = s["crs_projjson"].dump();
-    }
-    if (s.contains("resolution_m") && s["resolution_m"].is_number()) info.resolutionM = s["resolution_m"].get<double>();
-    if (s.contains("driver") && s["driver"].is_string()) info.driver = s["driver"].get<std::string>();
+    VEG_TRY_ASSIGN(info, parseSource((*src)[i], concat("sources[", i, "]"), f));
     m.sources.push_back(std::move(info));
   }
+  int64_t count = 0;
   VEG_TRY_ASSIGN(count, f.integer(j, "bytes", "bytes", 0, INT64_MAX));
   m.bytes = static_cast<uint64_t>(count);
   return m;
 }
 
 #undef VEG_TRY_ASSIGN
-
-json radiometryJson(const RadiometryRecord& r) {
-  json j = {{"method", r.method}};
-  if (r.scale) j["scale"] = *r.scale;
-  if (r.offset) j["offset"] = *r.offset;
-  if (r.darkObject) j["dark_object"] = *r.darkObject;
-  if (r.darkObjectPercentile) j["dark_object_percentile"] = *r.darkObjectPercentile;
-  if (r.darkObjectReflectance) j["dark_object_reflectance"] = *r.darkObjectReflectance;
-  if (r.deshading) {
-    const DeshadingRecord& d = *r.deshading;
-    json dj = {{"source", d.source}};
-    if (d.source != "none") {
-      dj["sun_azimuth_deg"] = d.sunAzimuthDeg;
-      dj["sun_elevation_deg"] = d.sunElevationDeg;
-      dj["direct_fraction"] = d.directFraction;
-    }
-    if (!d.note.empty()) dj["note"] = d.note;
-    j["deshading"] = dj;
-  }
-  return j;
-}
 
 json toJson(const DatasetMeta& m) {
   json sources = json::array();
@@ -342,29 +173,6 @@ json toJson(const DatasetMeta& m) {
     if (!s.driver.empty()) one["driver"] = s.driver;
     sources.push_back(std::move(one));
   }
-  json imagery = nullptr;
-  if (m.imagery) {
-    imagery = {{"format", toString(*m.imagery)},
-               {"tiles", concat("imagery/{z}/{x}/{y}.", imageryExtension(*m.imagery))},
-               {"tile_count", m.imageryTiles}};
-    if (!m.imageryDatetime.empty()) imagery["datetime"] = m.imageryDatetime;
-    if (m.radiometry) imagery["radiometry"] = radiometryJson(*m.radiometry);
-    if (m.colourCalibration) imagery["colour_calibration"] = colourCalibrationJson(*m.colourCalibration);
-  }
-  json ndvi = nullptr;
-  if (m.ndvi) ndvi = {{"encoding", kNdviEncoding}, {"tiles", "ndvi/{z}/{x}/{y}.png"}, {"tile_count", m.ndviTiles}};
-  json landcover = nullptr;
-  if (m.landcover)
-    landcover = {{"encoding", kLandcoverEncoding},
-                 {"scheme", toString(*m.landcover)},
-                 {"tiles", "landcover/{z}/{x}/{y}.png"},
-                 {"tile_count", m.landcoverTiles}};
-  json canopy = nullptr;
-  if (m.canopyZoom)
-    canopy = {{"encoding", kCanopyEncoding},
-              {"zoom", *m.canopyZoom},
-              {"tiles", "canopy/{z}/{x}/{y}.png"},
-              {"tile_count", m.canopyTiles}};
   return json{{"format_version", m.formatVersion},
               {"name", m.name},
               {"bounds",
@@ -381,10 +189,10 @@ json toJson(const DatasetMeta& m) {
                {{"encoding", toString(m.elevationEncoding)},
                 {"tiles", "elevation/{z}/{x}/{y}.png"},
                 {"tile_count", m.elevationTiles}}},
-              {"imagery", imagery},
-              {"ndvi", ndvi},
-              {"landcover", landcover},
-              {"canopy", canopy},
+              {"imagery", imageryJson(m)},
+              {"ndvi", ndviJson(m)},
+              {"landcover", landcoverJson(m)},
+              {"canopy", canopyJson(m)},
               {"attribution", m.attribution},
               {"sources", sources},
               {"bytes", m.bytes}};

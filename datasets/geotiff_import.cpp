@@ -20,7 +20,7 @@
 #include "datasets/canopy_import.h"
 #include "datasets/deshading_plan.h"
 #include "datasets/import_journal.h"
-#include "datasets/landcover.h"
+#include "datasets/landcover_layer.h"
 #include "datasets/message.h"
 #include "datasets/tile_producer.h"
 #include "geo/gdal_quiet.h"
@@ -279,47 +279,33 @@ Result<DatasetMeta> importTiles(const GeoTiffImportOptions& o, const Grids& g, c
   return result;
 }
 
-// The landcover source: opened (band 1), checked over its overview, its scheme stated or
-// detected there, unknown codes warned about once.
-struct LandcoverLayer {
-  std::shared_ptr<RasterSource> source;  // shared: grid points into it
-  std::shared_ptr<SourceGrid> grid;
-  LandcoverScheme scheme = LandcoverScheme::WorldCover;
+// The imagery of a --dem import, its grid, and the NDVI source over that grid.
+struct ImageryInputs {
+  std::optional<PreparedImagery> imagery;
+  std::optional<SourceGrid> grid;
+  std::optional<NdviSource> ndvi;
 };
 
-Result<LandcoverLayer> openLandcover(const GeoTiffImportOptions::Landcover& in, const SourceGrid& dem,
-                                     uint64_t overviewPixels, const Logger& log) {
-  SourceOptions so;
-  so.flag = "--landcover";
-  so.crsFlag = "--landcover-crs";
-  so.assumeCrs = in.crs;
-  so.bands = {1};
-  auto src = RasterSource::open({in.file}, so);
-  if (!src) return src.error();
-  LandcoverLayer l;
-  l.source = std::make_shared<RasterSource>(std::move(*src));
-  auto grid = SourceGrid::make(*l.source);
+// Opens the imagery (and the near-infrared raster when given) into out; an error when it does
+// not overlap the DEM.
+Status openImagery(const GeoTiffImportOptions& o, const std::string& demLabel, const SourceGrid& demGrid,
+                   const Logger& log, ImageryInputs& out) {
+  auto prepared = PreparedImagery::open(o.imagery, log);
+  if (!prepared) return prepared.error();
+  out.imagery = std::move(*prepared);
+  auto grid = SourceGrid::make(out.imagery->source());
   if (!grid) return grid.error();
-  l.grid = std::make_shared<SourceGrid>(std::move(*grid));
-  if (!extentsOverlap(dem.extent(), l.grid->extent()))
-    return makeError(ErrorKind::InvalidInput, concat("the landcover ", in.file, " (", extentText(l.grid->extent()),
-                                                     ") and the DEM (", extentText(dem.extent()), ") do not overlap"));
-  auto overview = l.source->readOverview(overviewPixels);
-  if (!overview) return overview.error();
-  if (auto s = checkClassRaster(*overview); !s) return s.error();
-  const ClassHistogram histogram = classHistogram(*overview);
-  if (in.scheme) {
-    l.scheme = *in.scheme;
-  } else {
-    auto scheme = detectLandcoverScheme(histogram, in.file);
-    if (!scheme) return scheme.error();
-    l.scheme = *scheme;
+  out.grid = std::move(*grid);
+  if (!extentsOverlap(demGrid.extent(), out.grid->extent()))
+    return makeError(ErrorKind::InvalidInput,
+                     concat("the DEM ", demLabel, " (", extentText(demGrid.extent()), ") and the imagery ",
+                            o.imagery.label(), " (", extentText(out.grid->extent()), ") do not overlap"));
+  if (o.nir) {
+    auto n = NdviSource::open(*o.nir, *out.grid, log);
+    if (!n) return n.error();
+    out.ndvi = std::move(*n);
   }
-  const std::string unknown = unknownClassesWarning(unknownClasses(histogram, l.scheme), l.scheme);
-  if (!unknown.empty()) log->warn("{}: {}", in.file, unknown);
-  log->info("{}: landcover, {} classes, {} ({:.1f} m pixels)", in.file, toString(l.scheme), l.grid->crs().name(),
-            l.grid->pixelSizeM());
-  return l;
+  return {};
 }
 
 }  // namespace
@@ -365,26 +351,10 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   auto demGrid = SourceGrid::make(*dem);
   if (!demGrid) return demGrid.error();
 
-  std::optional<PreparedImagery> imagery;
-  std::optional<SourceGrid> imageryGrid;
-  std::optional<NdviSource> ndvi;
-  if (o.imagery.given()) {
-    auto prepared = PreparedImagery::open(o.imagery, log);
-    if (!prepared) return prepared.error();
-    imagery = std::move(*prepared);
-    auto grid = SourceGrid::make(imagery->source());
-    if (!grid) return grid.error();
-    imageryGrid = std::move(*grid);
-    if (!extentsOverlap(demGrid->extent(), imageryGrid->extent()))
-      return makeError(ErrorKind::InvalidInput,
-                       concat("the DEM ", dem->label(), " (", extentText(demGrid->extent()), ") and the imagery ",
-                              o.imagery.label(), " (", extentText(imageryGrid->extent()), ") do not overlap"));
-    if (o.nir) {
-      auto n = NdviSource::open(*o.nir, *imageryGrid, log);
-      if (!n) return n.error();
-      ndvi = std::move(*n);
-    }
-  }
+  ImageryInputs in;  // stays where it is: its grid points into its imagery's source
+  if (o.imagery.given())
+    if (Status st = openImagery(o, dem->label(), *demGrid, log, in); !st) return st.error();
+  const std::optional<PreparedImagery>& imagery = in.imagery;
   GeoTiffImportOptions options = o;
   if (options.imageryDatetime.empty() && imagery)
     if (auto t = imagery->source().acquisitionDatetime()) {
@@ -405,8 +375,8 @@ Result<DatasetMeta> importGeoTiff(const GeoTiffImportOptions& o, const Logger& l
   }
   const Grids grids{*demGrid,
                     imagery ? &*imagery : nullptr,
-                    imageryGrid ? &*imageryGrid : nullptr,
-                    ndvi ? &*ndvi : nullptr,
+                    in.grid ? &*in.grid : nullptr,
+                    in.ndvi ? &*in.ndvi : nullptr,
                     landcover ? landcover->grid.get() : nullptr,
                     landcover ? std::optional<LandcoverScheme>(landcover->scheme) : std::nullopt,
                     canopy ? &*canopy : nullptr};

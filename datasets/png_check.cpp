@@ -144,6 +144,61 @@ std::optional<std::string> imageDataProblem(const Header& h, const std::vector<s
 
 bool isLetter(uint8_t c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 
+// What the chunks so far said.
+struct ChunkWalk {
+  std::optional<Header> header;
+  bool havePalette = false, haveTrns = false, idatDone = false;
+  uint32_t paletteEntries = 0;
+  std::vector<std::span<const uint8_t>> idat;
+};
+
+// One chunk of type t (its type bytes at `type`, its data `data`) checked against what came before.
+Status checkChunk(ChunkWalk& w, const std::string& t, const uint8_t* type, std::span<const uint8_t> data,
+                  const std::string& name, uint32_t maxSide) {
+  const auto len = static_cast<uint32_t>(data.size());
+  if (t == "IHDR") {
+    if (w.header) return corrupt(name, "a second IHDR chunk");
+    if (len != 13) return corrupt(name, "IHDR is not 13 bytes");
+    Header h;
+    h.width = be32(&data[0]);
+    h.height = be32(&data[4]);
+    h.bitDepth = data[8];
+    h.colourType = data[9];
+    h.interlace = data[12];
+    if (data[10] != 0 || data[11] != 0) return corrupt(name, "IHDR compression or filter method does not exist");
+    if (auto p = headerProblem(h)) return corrupt(name, *p);
+    if (h.width > maxSide || h.height > maxSide)  // before any inflate: the header bounds the work
+      return makeError(ErrorKind::InvalidInput,
+                       concat("tile '", name, "' is ", h.width, "x", h.height, " pixels; a tile here is at most ",
+                              maxSide, " pixels a side"));
+    w.header = h;
+  } else if (t == "PLTE") {
+    if (w.havePalette || !w.idat.empty() || w.haveTrns) return corrupt(name, "PLTE is out of place");
+    if (w.header->colourType == 0 || w.header->colourType == 4) return corrupt(name, "PLTE in a greyscale image");
+    if (len == 0 || len % 3 != 0 || len / 3 > 256) return corrupt(name, "PLTE length is not 3 × 1 … 256");
+    if (w.header->colourType == 3 && len / 3 > (1u << w.header->bitDepth))
+      return corrupt(name, "PLTE has more entries than the bit depth can index");
+    w.havePalette = true;
+    w.paletteEntries = len / 3;
+  } else if (t == "tRNS") {
+    if (w.haveTrns || !w.idat.empty()) return corrupt(name, "tRNS is out of place");
+    const int ct = w.header->colourType;
+    const bool ok = (ct == 0 && len == 2) || (ct == 2 && len == 6) ||
+                    (ct == 3 && w.havePalette && len >= 1 && len <= w.paletteEntries);
+    if (!ok) return corrupt(name, "tRNS does not fit the colour type");
+    w.haveTrns = true;
+  } else if (t == "IDAT") {
+    if (w.idatDone) return corrupt(name, "IDAT chunks are not consecutive");
+    if (w.header->colourType == 3 && !w.havePalette) return corrupt(name, "a paletted image without PLTE");
+    w.idat.push_back(data);
+  } else if (t == "IEND") {
+    if (len != 0) return corrupt(name, "IEND is not empty");
+  } else if (!(type[0] & 0x20)) {
+    return corrupt(name, concat("unknown critical chunk ", t));
+  }
+  return {};
+}
+
 }  // namespace
 
 Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const std::string& name, uint32_t maxSide) {
@@ -154,10 +209,7 @@ Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const st
     return corrupt(name, "no PNG signature: not a PNG");
   std::vector<uint8_t> kept(bytes.begin(), bytes.begin() + 8);  // the signature
   kept.reserve(bytes.size());
-  std::optional<Header> header;
-  bool havePalette = false, haveTrns = false, idatDone = false;
-  uint32_t paletteEntries = 0;
-  std::vector<std::span<const uint8_t>> idat;
+  ChunkWalk w;
   size_t at = 8;
   for (;;) {
     if (at + 12 > bytes.size()) return corrupt(name, "the PNG ends before its IEND chunk: truncated");
@@ -172,54 +224,15 @@ Result<std::vector<uint8_t>> checkedPng(std::span<const uint8_t> bytes, const st
     if (!isLetter(type[0]) || !isLetter(type[1]) || !isLetter(type[2]) || !isLetter(type[3]))
       return corrupt(name, "a PNG chunk type is not four letters");
     const bool keep = t == "IHDR" || t == "PLTE" || t == "tRNS" || t == "IDAT" || t == "IEND";
-    if (!header && t != "IHDR") return corrupt(name, "the PNG does not start with IHDR");
-    if (t == "IHDR") {
-      if (header) return corrupt(name, "a second IHDR chunk");
-      if (len != 13) return corrupt(name, "IHDR is not 13 bytes");
-      Header h;
-      h.width = be32(&data[0]);
-      h.height = be32(&data[4]);
-      h.bitDepth = data[8];
-      h.colourType = data[9];
-      h.interlace = data[12];
-      if (data[10] != 0 || data[11] != 0) return corrupt(name, "IHDR compression or filter method does not exist");
-      if (auto p = headerProblem(h)) return corrupt(name, *p);
-      if (h.width > maxSide || h.height > maxSide)  // before any inflate: the header bounds the work
-        return makeError(ErrorKind::InvalidInput,
-                         concat("tile '", name, "' is ", h.width, "x", h.height, " pixels; a tile here is at most ",
-                                maxSide, " pixels a side"));
-      header = h;
-    } else if (t == "PLTE") {
-      if (havePalette || !idat.empty() || haveTrns) return corrupt(name, "PLTE is out of place");
-      if (header->colourType == 0 || header->colourType == 4) return corrupt(name, "PLTE in a greyscale image");
-      if (len == 0 || len % 3 != 0 || len / 3 > 256) return corrupt(name, "PLTE length is not 3 × 1 … 256");
-      if (header->colourType == 3 && len / 3 > (1u << header->bitDepth))
-        return corrupt(name, "PLTE has more entries than the bit depth can index");
-      havePalette = true;
-      paletteEntries = len / 3;
-    } else if (t == "tRNS") {
-      if (haveTrns || !idat.empty()) return corrupt(name, "tRNS is out of place");
-      const int ct = header->colourType;
-      const bool ok = (ct == 0 && len == 2) || (ct == 2 && len == 6) ||
-                      (ct == 3 && havePalette && len >= 1 && len <= paletteEntries);
-      if (!ok) return corrupt(name, "tRNS does not fit the colour type");
-      haveTrns = true;
-    } else if (t == "IDAT") {
-      if (idatDone) return corrupt(name, "IDAT chunks are not consecutive");
-      if (header->colourType == 3 && !havePalette) return corrupt(name, "a paletted image without PLTE");
-      idat.push_back(data);
-    } else if (t == "IEND") {
-      if (len != 0) return corrupt(name, "IEND is not empty");
-    } else if (!(type[0] & 0x20)) {
-      return corrupt(name, concat("unknown critical chunk ", t));
-    }
-    if (!idat.empty() && t != "IDAT") idatDone = true;
+    if (!w.header && t != "IHDR") return corrupt(name, "the PNG does not start with IHDR");
+    if (Status c = checkChunk(w, t, type, data, name, maxSide); !c) return c.error();
+    if (!w.idat.empty() && t != "IDAT") w.idatDone = true;
     if (keep) kept.insert(kept.end(), &bytes[at], &bytes[at + 12 + len]);
     at += 12 + len;
     if (t == "IEND") break;
   }
-  if (idat.empty()) return corrupt(name, "the PNG has no image data (IDAT)");
-  if (auto p = imageDataProblem(*header, idat)) return corrupt(name, *p);
+  if (w.idat.empty()) return corrupt(name, "the PNG has no image data (IDAT)");
+  if (auto p = imageDataProblem(*w.header, w.idat)) return corrupt(name, *p);
   return kept;
 }
 

@@ -244,102 +244,115 @@ Result<std::optional<LandcoverTile>> downsampleLandcover(const fs::path& dir, co
   return std::optional<LandcoverTile>(std::move(out));
 }
 
+// Each layer's tiles at the zoom being reduced.
+struct LayerTiles {
+  std::set<geo::TileId> elevation, imagery, ndvi, landcover;
+};
+
+// What one parent tile got: the layers written, and their bytes.
+struct ParentWrites {
+  bool elevation = false, imagery = false, ndvi = false, landcover = false;
+  uint64_t bytes = 0;
+};
+
+// Writes parent tile id of every layer from its children in `tiles` (a layer with no valid child
+// gets none).
+Status buildParent(const fs::path& dir, const geo::TileId& id, const LayerTiles& tiles, const DatasetMeta& meta,
+                   const PyramidOptions& options, ParentWrites& out) {
+  auto h = downsampleHeights(dir, id, tiles.elevation, meta);
+  if (!h) return h.error();
+  if (*h) {
+    const fs::path p = elevationTilePath(dir, id);
+    if (auto w = writeHeightTile(p, **h, meta.elevationEncoding); !w) return w;
+    out.bytes += fileBytes(p);
+    out.elevation = true;
+  }
+  if (meta.imagery) {
+    auto c = downsampleColour(dir, id, tiles.imagery, meta);
+    if (!c) return c.error();
+    if (*c) {
+      const fs::path p = imageryTilePath(dir, id, *meta.imagery);
+      if (auto w = writeColorTile(p, **c, *meta.imagery, options.jpegQuality); !w) return w;
+      out.bytes += fileBytes(p);
+      out.imagery = true;
+    }
+  }
+  if (meta.ndvi) {
+    auto n = downsampleNdvi(dir, id, tiles.ndvi, meta);
+    if (!n) return n.error();
+    if (*n) {
+      const fs::path p = ndviTilePath(dir, id);
+      if (auto w = writeNdviTile(p, **n); !w) return w;
+      out.bytes += fileBytes(p);
+      out.ndvi = true;
+    }
+  }
+  if (meta.landcover) {
+    auto l = downsampleLandcover(dir, id, tiles.landcover, meta);
+    if (!l) return l.error();
+    if (*l) {
+      const fs::path p = landcoverTilePath(dir, id);
+      if (auto w = writeLandcoverTile(p, **l); !w) return w;
+      out.bytes += fileBytes(p);
+      out.landcover = true;
+    }
+  }
+  return {};
+}
+
+// The parents written become the tiles of the next zoom down, and are counted in meta.
+void keepWritten(const std::vector<geo::TileId>& parents, const std::vector<ParentWrites>& writes, LayerTiles& tiles,
+                 DatasetMeta& meta) {
+  tiles = {};
+  for (size_t i = 0; i < parents.size(); ++i) {
+    const ParentWrites& w = writes[i];
+    if (w.elevation) {
+      tiles.elevation.insert(parents[i]);
+      ++meta.elevationTiles;
+    }
+    if (w.imagery) {
+      tiles.imagery.insert(parents[i]);
+      ++meta.imageryTiles;
+    }
+    if (w.ndvi) {
+      tiles.ndvi.insert(parents[i]);
+      ++meta.ndviTiles;
+    }
+    if (w.landcover) {
+      tiles.landcover.insert(parents[i]);
+      ++meta.landcoverTiles;
+    }
+    meta.bytes += w.bytes;
+  }
+}
+
 }  // namespace
 
 Status buildLowerZooms(const fs::path& dir, DatasetMeta& meta, ProgressSink& progress, const PyramidOptions& options) {
   assert(meta.minZoom >= 0 && meta.minZoom <= meta.maxZoom && meta.tileSize % 2 == 0);
   const std::string imageryExt = meta.imagery == ImageryFormat::Jpeg ? ".jpg" : ".png";
-  std::set<geo::TileId> elevation = listTiles(dir / "elevation", meta.maxZoom, ".png");
-  std::set<geo::TileId> imagery;
-  if (meta.imagery) imagery = listTiles(dir / "imagery", meta.maxZoom, imageryExt);
-  std::set<geo::TileId> ndvi;
-  if (meta.ndvi) ndvi = listTiles(dir / "ndvi", meta.maxZoom, ".png");
-  std::set<geo::TileId> landcover;
-  if (meta.landcover) landcover = listTiles(dir / "landcover", meta.maxZoom, ".png");
+  LayerTiles tiles;
+  tiles.elevation = listTiles(dir / "elevation", meta.maxZoom, ".png");
+  if (meta.imagery) tiles.imagery = listTiles(dir / "imagery", meta.maxZoom, imageryExt);
+  if (meta.ndvi) tiles.ndvi = listTiles(dir / "ndvi", meta.maxZoom, ".png");
+  if (meta.landcover) tiles.landcover = listTiles(dir / "landcover", meta.maxZoom, ".png");
 
   for (int z = meta.maxZoom - 1; z >= meta.minZoom; --z) {
     std::set<geo::TileId> parentSet;
-    for (const auto& t : elevation) parentSet.insert(geo::parent(t));
-    for (const auto& t : imagery) parentSet.insert(geo::parent(t));
-    for (const auto& t : ndvi) parentSet.insert(geo::parent(t));
-    for (const auto& t : landcover) parentSet.insert(geo::parent(t));
+    for (const std::set<geo::TileId>* layer : {&tiles.elevation, &tiles.imagery, &tiles.ndvi, &tiles.landcover})
+      for (const auto& t : *layer) parentSet.insert(geo::parent(t));
     const std::vector<geo::TileId> parents(parentSet.begin(), parentSet.end());
     progress.addTotal(parents.size());
     progress.stage(concat("zoom ", z));
 
-    std::vector<uint8_t> wroteElevation(parents.size(), 0), wroteImagery(parents.size(), 0),
-        wroteNdvi(parents.size(), 0), wroteLandcover(parents.size(), 0);
-    std::vector<uint64_t> bytes(parents.size(), 0);
+    std::vector<ParentWrites> writes(parents.size());
     Status s = parallelFor(parents.size(), options.threads, options.tasks, [&](size_t i) -> Status {
-      const geo::TileId& id = parents[i];
-      uint64_t written = 0;
-      auto h = downsampleHeights(dir, id, elevation, meta);
-      if (!h) return h.error();
-      if (*h) {
-        const fs::path p = elevationTilePath(dir, id);
-        if (auto w = writeHeightTile(p, **h, meta.elevationEncoding); !w) return w;
-        written += fileBytes(p);
-        wroteElevation[i] = 1;
-      }
-      if (meta.imagery) {
-        auto c = downsampleColour(dir, id, imagery, meta);
-        if (!c) return c.error();
-        if (*c) {
-          const fs::path p = imageryTilePath(dir, id, *meta.imagery);
-          if (auto w = writeColorTile(p, **c, *meta.imagery, options.jpegQuality); !w) return w;
-          written += fileBytes(p);
-          wroteImagery[i] = 1;
-        }
-      }
-      if (meta.ndvi) {
-        auto n = downsampleNdvi(dir, id, ndvi, meta);
-        if (!n) return n.error();
-        if (*n) {
-          const fs::path p = ndviTilePath(dir, id);
-          if (auto w = writeNdviTile(p, **n); !w) return w;
-          written += fileBytes(p);
-          wroteNdvi[i] = 1;
-        }
-      }
-      if (meta.landcover) {
-        auto l = downsampleLandcover(dir, id, landcover, meta);
-        if (!l) return l.error();
-        if (*l) {
-          const fs::path p = landcoverTilePath(dir, id);
-          if (auto w = writeLandcoverTile(p, **l); !w) return w;
-          written += fileBytes(p);
-          wroteLandcover[i] = 1;
-        }
-      }
-      bytes[i] = written;
-      progress.tileDone(written);
+      if (Status b = buildParent(dir, parents[i], tiles, meta, options, writes[i]); !b) return b;
+      progress.tileDone(writes[i].bytes);
       return {};
     });
     if (!s) return s;
-
-    elevation.clear();
-    imagery.clear();
-    ndvi.clear();
-    landcover.clear();
-    for (size_t i = 0; i < parents.size(); ++i) {
-      if (wroteElevation[i]) {
-        elevation.insert(parents[i]);
-        ++meta.elevationTiles;
-      }
-      if (wroteImagery[i]) {
-        imagery.insert(parents[i]);
-        ++meta.imageryTiles;
-      }
-      if (wroteNdvi[i]) {
-        ndvi.insert(parents[i]);
-        ++meta.ndviTiles;
-      }
-      if (wroteLandcover[i]) {
-        landcover.insert(parents[i]);
-        ++meta.landcoverTiles;
-      }
-      meta.bytes += bytes[i];
-    }
+    keepWritten(parents, writes, tiles, meta);
   }
   return {};
 }

@@ -197,6 +197,39 @@ std::string describe(const Written& w, const std::string& what, const SourcePlan
                 split ? concat(" (512 px, split into zoom ", plan.zoom + 1, ")") : std::string());
 }
 
+// The bounds of the tiles ids (not empty), degrees.
+geo::GeoBounds boundsOfTiles(const std::vector<geo::TileId>& ids) {
+  geo::GeoBounds bounds = geo::tileBoundsLonLat(ids.front());
+  for (const auto& id : ids) {
+    const geo::GeoBounds b = geo::tileBoundsLonLat(id);
+    bounds.westDeg = std::min(bounds.westDeg, b.westDeg);
+    bounds.eastDeg = std::max(bounds.eastDeg, b.eastDeg);
+    bounds.southDeg = std::min(bounds.southDeg, b.southDeg);
+    bounds.northDeg = std::max(bounds.northDeg, b.northDeg);
+  }
+  return bounds;
+}
+
+// The imagery tiles over the elevation tiles written (elevationIds), into tmp and meta.
+Status addImagery(const XyzImportOptions& options, std::unique_ptr<XyzSource> source,
+                  const std::vector<geo::TileId>& elevationIds, const fs::path& tmp, ProgressSink& progress,
+                  const Logger& log, DatasetMeta& meta) {
+  auto imagery = planImagery(std::move(source), elevationIds, meta.maxZoom);
+  if (!imagery) return imagery.error();
+  Written img;
+  const std::set<geo::TileId> keep(elevationIds.begin(), elevationIds.end());
+  if (auto s = writeImagery(options, *imagery, keep, tmp, progress, img); !s) return s;
+  meta.imagery = options.imageryFormat;
+  meta.imageryTiles = img.ids.size();
+  meta.bytes += img.bytes;
+  meta.sources.push_back(
+      {"imagery", imagery->source->name(), geo::webMercatorCrs().name(), describe(img, "", *imagery)});
+  if (img.ids.size() < elevationIds.size())
+    log->warn("imagery: {} of the {} elevation tiles have no imagery in '{}'", elevationIds.size() - img.ids.size(),
+              elevationIds.size(), imagery->source->name());
+  return {};
+}
+
 }  // namespace
 
 Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger& log, const XyzProgress& progress) {
@@ -243,30 +276,11 @@ Result<DatasetMeta> importXyzTiles(const XyzImportOptions& options, const Logger
     meta.minHeightM = elev.lo, meta.maxHeightM = elev.hi;
     meta.elevationTiles = elev.ids.size();
     meta.bytes = elev.bytes;
-    meta.bounds = geo::tileBoundsLonLat(elev.ids.front());
-    for (const auto& id : elev.ids) {
-      const geo::GeoBounds b = geo::tileBoundsLonLat(id);
-      meta.bounds.westDeg = std::min(meta.bounds.westDeg, b.westDeg);
-      meta.bounds.eastDeg = std::max(meta.bounds.eastDeg, b.eastDeg);
-      meta.bounds.southDeg = std::min(meta.bounds.southDeg, b.southDeg);
-      meta.bounds.northDeg = std::max(meta.bounds.northDeg, b.northDeg);
-    }
+    meta.bounds = boundsOfTiles(elev.ids);
     meta.sources.push_back({"elevation", elevation->source->name(), crs,
                             describe(elev, concat(toString(options.encoding), " "), *elevation)});
-    if (imagerySource) {
-      auto imagery = planImagery(std::move(imagerySource), elev.ids, meta.maxZoom);
-      if (!imagery) return imagery.error();
-      Written img;
-      const std::set<geo::TileId> keep(elev.ids.begin(), elev.ids.end());
-      if (auto s = writeImagery(options, *imagery, keep, tmp, progress, img); !s) return s;
-      meta.imagery = options.imageryFormat;
-      meta.imageryTiles = img.ids.size();
-      meta.bytes += img.bytes;
-      meta.sources.push_back({"imagery", imagery->source->name(), crs, describe(img, "", *imagery)});
-      if (img.ids.size() < elev.ids.size())
-        log->warn("imagery: {} of the {} elevation tiles have no imagery in '{}'", elev.ids.size() - img.ids.size(),
-                  elev.ids.size(), imagery->source->name());
-    }
+    if (imagerySource)
+      if (auto s = addImagery(options, std::move(imagerySource), elev.ids, tmp, progress, log, meta); !s) return s;
     result = finishDataset(tmp, meta, progress, options.threads, options.jpegQuality, options.tasks);
     if (!result) return result.error();
     return checkCancel(options);

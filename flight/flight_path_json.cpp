@@ -1,7 +1,9 @@
+// Reading flight paths from JSON (flight_path_json.h; the format in flight/README.md): a Reader
+// that turns every problem into "file:line:col: field: what", the walk over the document, and
+// the malformed-JSON messages. Writing them back is flight_path_write.cpp.
 #include "flight/flight_path_json.h"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -268,12 +270,6 @@ std::string lineFieldFor(const JsonPositions& positions, std::string field) {
   return field;
 }
 
-std::string fmt(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 // The parsed document → a validated path.
 Result<FlightPath> readFlightPath(const json& doc, std::string_view text, const std::string& sourceName) {
   const JsonPositions positions(text);
@@ -358,76 +354,6 @@ Result<FlightPath> loadFlightPath(const std::filesystem::path& file) {
   auto text = readTextFile(file);
   if (!text) return text.error();
   return parseFlightPath(*text, file.string());
-}
-
-std::string flightPathToJson(const FlightPath& path) {
-  auto str = [](const std::string& s) { return json(s).dump(); };
-  auto ref = [](AltRef a) { return a == AltRef::Terrain ? "\"terrain\"" : "\"msl\""; };
-  auto position = [&](double t, double lat, double lon, double alt, AltRef a) {
-    return "\"t\": " + fmt(t, 3) + ", \"lat\": " + fmt(lat, 7) + ", \"lon\": " + fmt(lon, 7) +
-           ", \"alt_m\": " + fmt(alt, 3) + ", \"alt_ref\": " + ref(a);
-  };
-  std::string out = "{\n  \"name\": " + str(path.name) + ",\n";
-  if (!path.description.empty()) out += "  \"description\": " + str(path.description) + ",\n";
-  if (path.datetime) out += "  \"datetime\": " + str(geo::formatIsoDateTime(*path.datetime)) + ",\n";
-  out += "  \"keyframes\": [\n";
-  for (std::size_t i = 0; i < path.keyframes.size(); ++i) {
-    const Keyframe& k = path.keyframes[i];
-    out += "    {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + ", \"heading\": " + fmt(k.headingDeg, 3) +
-           ", \"pitch\": " + fmt(k.pitchDeg, 3) + "}" + (i + 1 < path.keyframes.size() ? ",\n" : "\n");
-  }
-  out += "  ]";
-  if (!path.colliders.empty()) {
-    out += ",\n  \"colliders\": [\n";
-    for (std::size_t c = 0; c < path.colliders.size(); ++c) {
-      const Collider& col = path.colliders[c];
-      const bool capsule = col.shape == Collider::Shape::Capsule;
-      out += "    {\"name\": " + str(col.name) + ", \"shape\": " + (capsule ? "\"capsule\"" : "\"sphere\"") +
-             ", \"radius_m\": " + fmt(col.radiusM, 3) + (capsule ? ", \"length_m\": " + fmt(col.lengthM, 3) : "") +
-             ",\n     \"keyframes\": [\n";
-      for (std::size_t i = 0; i < col.keyframes.size(); ++i) {
-        const ColliderKeyframe& k = col.keyframes[i];
-        out += "       {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + "}" +
-               (i + 1 < col.keyframes.size() ? ",\n" : "\n");
-      }
-      out += std::string("     ]}") + (c + 1 < path.colliders.size() ? ",\n" : "\n");
-    }
-    out += "  ]";
-  }
-  if (path.wind) {
-    const WindSection& w = *path.wind;
-    std::string fields;
-    auto add = [&](const char* key, const std::optional<double>& v) {
-      if (v) fields += std::string(fields.empty() ? "" : ", ") + "\"" + key + "\": " + fmt(*v, 3);
-    };
-    add("speed_mps", w.speedMps);
-    add("direction_deg", w.directionDeg);
-    add("gustiness", w.gustiness);
-    out += ",\n  \"wind\": {" + fields;
-    if (!w.sources.empty()) {
-      out += std::string(fields.empty() ? "" : ",") + "\n    \"sources\": [\n";
-      for (std::size_t s = 0; s < w.sources.size(); ++s) {
-        const WindSourceSpec& src = w.sources[s];
-        const char* type = src.type == WindSourceSpec::Type::Fan         ? "\"fan\""
-                           : src.type == WindSourceSpec::Type::Whirlwind ? "\"whirlwind\""
-                                                                         : "\"rotor\"";
-        out += "      {\"name\": " + str(src.name) + ", \"type\": " + type + ", \"radius_m\": " +
-               fmt(src.radiusM, 3) + ", \"strength_mps\": " + fmt(src.strengthMps, 3) +
-               (src.directionDeg ? ", \"direction_deg\": " + fmt(*src.directionDeg, 3) : "") +
-               ",\n       \"keyframes\": [\n";
-        for (std::size_t i = 0; i < src.keyframes.size(); ++i) {
-          const ColliderKeyframe& k = src.keyframes[i];
-          out += "         {" + position(k.t, k.lat, k.lon, k.altM, k.altRef) + "}" +
-                 (i + 1 < src.keyframes.size() ? ",\n" : "\n");
-        }
-        out += std::string("       ]}") + (s + 1 < w.sources.size() ? ",\n" : "\n");
-      }
-      out += "    ]\n  }";
-    } else {
-      out += "}";
-    }
-  }
-  return out + "\n}\n";
 }
 
 }  // namespace vegstream::flight

@@ -13,27 +13,10 @@ std::string gpuPassColumn(const std::string& pass) {
   return out + "_ms";
 }
 
-std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses) {
-  std::vector<RecordColumn> c = {{"frame", 0},
-                                 {"t_s", 6},
-                                 {"lat", 9},
-                                 {"lon", 9},
-                                 {"alt_msl_m", 3},
-                                 {"height_above_ground_m", 3},
-                                 {"heading_deg", 4},
-                                 {"pitch_deg", 4},
-                                 {"cpu_flight_ms", 6},
-                                 {"cpu_streaming_ms", 6},
-                                 {"cpu_terrain_ms", 6},
-                                 {"cpu_seeding_ms", 6},
-                                 {"cpu_simulation_ms", 6},
-                                 {"cpu_record_submit_ms", 6},
-                                 {"cpu_frame_ms", 6},
-                                 {"gpu_frame_ms", 4}};
-  for (const auto& p : gpuPasses) c.push_back({gpuPassColumn(p), 4});
-  c.push_back({"wall_ms", 4});
-  c.push_back({"recorder_ms", 6});  // sub-microsecond: nanosecond digits
-  c.push_back({"png_ms", 4});
+namespace {
+
+// The counts, memory and streaming columns after png_ms.
+void addStreamingColumns(std::vector<RecordColumn>& c) {
   for (const char* n : {"terrain_triangles", "stat_input_primitives", "stat_clipping_primitives",
                         "stat_fragment_invocations", "cpu_bytes", "gpu_bytes"})
     c.push_back({n, 0});
@@ -63,6 +46,11 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
                         "terrain_max_levels_coarser",
                         "terrain_meshes_built"})
     c.push_back({n, 0});
+}
+
+// The terrain's error and ROAM columns, the compute raster's, the plants', the Hi-Z culling's and
+// the trees'.
+void addTerrainAndPlantColumns(std::vector<RecordColumn>& c) {
   c.push_back({"terrain_error_bound_px", 3});
   c.push_back({"terrain_error_relaxation", 3});
   c.push_back({"terrain_roam_update_ms", 6});
@@ -93,6 +81,33 @@ std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses
                         "tree_budget_bound", "tree_gpu_bytes"})
     c.push_back({n, 0});
   c.push_back({"tree_placement_ms", 4});
+}
+
+}  // namespace
+
+std::vector<RecordColumn> frameColumns(const std::vector<std::string>& gpuPasses) {
+  std::vector<RecordColumn> c = {{"frame", 0},
+                                 {"t_s", 6},
+                                 {"lat", 9},
+                                 {"lon", 9},
+                                 {"alt_msl_m", 3},
+                                 {"height_above_ground_m", 3},
+                                 {"heading_deg", 4},
+                                 {"pitch_deg", 4},
+                                 {"cpu_flight_ms", 6},
+                                 {"cpu_streaming_ms", 6},
+                                 {"cpu_terrain_ms", 6},
+                                 {"cpu_seeding_ms", 6},
+                                 {"cpu_simulation_ms", 6},
+                                 {"cpu_record_submit_ms", 6},
+                                 {"cpu_frame_ms", 6},
+                                 {"gpu_frame_ms", 4}};
+  for (const auto& p : gpuPasses) c.push_back({gpuPassColumn(p), 4});
+  c.push_back({"wall_ms", 4});
+  c.push_back({"recorder_ms", 6});  // sub-microsecond: nanosecond digits
+  c.push_back({"png_ms", 4});
+  addStreamingColumns(c);
+  addTerrainAndPlantColumns(c);
   // The sun (issue 39, scene/sun_clock.h): seen from the dataset's centre at the frame's date-time.
   c.push_back({"sun_azimuth_deg", 4});
   c.push_back({"sun_elevation_deg", 4});

@@ -17,6 +17,49 @@ namespace vegstream::flight {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+namespace {
+
+// recording.json's "streaming": the streaming and terrain settings of the run.
+json streamingMetaJson(const RecordingMeta::Streaming& s) {
+  return json{{"mode", s.mode},
+              {"look_ahead", s.lookAhead},
+              {"cpu_budget_bytes", s.cpuBudgetBytes},
+              {"gpu_budget_bytes", s.gpuBudgetBytes},
+              {"upload_bytes_per_frame", s.uploadBytesPerFrame},
+              {"max_requests_in_flight", s.maxRequestsInFlight},
+              {"imagery_layers", s.imageryLayers},
+              {"terrain_error_px", s.terrainErrorPx},
+              {"terrain_max_nodes", s.terrainMaxNodes},
+              {"terrain_max_triangles", s.terrainMaxTriangles},
+              {"canopy_m", s.canopyM},
+              {"terrain_detail", s.terrainDetail},
+              {"seed_horizon_m", s.seedHorizonM},
+              {"seed_level", s.seedLevel},
+              {"seed_triangle_area_m2", s.seedTriangleAreaM2}};
+}
+
+// recording.json's "plants": the plant settings of the run.
+json plantsMetaJson(const RecordingMeta::Plants& p) {
+  return json{{"enabled", p.enabled},
+              {"density_per_px2", p.density},
+              {"max_per_seed_triangle", p.maxPerTriangle},
+              {"ground_density_m2", p.groundDensityM2},
+              {"fades", p.fades},
+              {"cluster_size", p.clusterSize},
+              {"species_catalog", p.speciesCatalog},
+              {"species", p.species},
+              {"style", p.style},
+              {"max_segments", p.maxSegments},
+              {"lod_distance_m", p.lodDistanceM},
+              {"shadows", p.shadows},
+              {"shadow_distance_m", p.shadowDistanceM},
+              {"occlusion_culling", p.occlusionCulling},
+              {"blade_path", p.bladePath},
+              {"blade_path_requested", p.bladePathRequested}};
+}
+
+}  // namespace
+
 std::string recordingMetaJson(const RecordingMeta& m) {
   const json j = {
       {"device",
@@ -42,39 +85,8 @@ std::string recordingMetaJson(const RecordingMeta& m) {
         {"imagery_zoom", m.imageryZoom},
         {"ground_zoom", m.groundZoom},
         {"load_ms", m.sceneLoadMs}}},
-      {"streaming",
-       {{"mode", m.streaming.mode},
-        {"look_ahead", m.streaming.lookAhead},
-        {"cpu_budget_bytes", m.streaming.cpuBudgetBytes},
-        {"gpu_budget_bytes", m.streaming.gpuBudgetBytes},
-        {"upload_bytes_per_frame", m.streaming.uploadBytesPerFrame},
-        {"max_requests_in_flight", m.streaming.maxRequestsInFlight},
-        {"imagery_layers", m.streaming.imageryLayers},
-        {"terrain_error_px", m.streaming.terrainErrorPx},
-        {"terrain_max_nodes", m.streaming.terrainMaxNodes},
-        {"terrain_max_triangles", m.streaming.terrainMaxTriangles},
-        {"canopy_m", m.streaming.canopyM},
-        {"terrain_detail", m.streaming.terrainDetail},
-        {"seed_horizon_m", m.streaming.seedHorizonM},
-        {"seed_level", m.streaming.seedLevel},
-        {"seed_triangle_area_m2", m.streaming.seedTriangleAreaM2}}},
-      {"plants",
-       {{"enabled", m.plants.enabled},
-        {"density_per_px2", m.plants.density},
-        {"max_per_seed_triangle", m.plants.maxPerTriangle},
-        {"ground_density_m2", m.plants.groundDensityM2},
-        {"fades", m.plants.fades},
-        {"cluster_size", m.plants.clusterSize},
-        {"species_catalog", m.plants.speciesCatalog},
-        {"species", m.plants.species},
-        {"style", m.plants.style},
-        {"max_segments", m.plants.maxSegments},
-        {"lod_distance_m", m.plants.lodDistanceM},
-        {"shadows", m.plants.shadows},
-        {"shadow_distance_m", m.plants.shadowDistanceM},
-        {"occlusion_culling", m.plants.occlusionCulling},
-        {"blade_path", m.plants.bladePath},
-        {"blade_path_requested", m.plants.bladePathRequested}}},
+      {"streaming", streamingMetaJson(m.streaming)},
+      {"plants", plantsMetaJson(m.plants)},
       {"datetime", m.sun.datetime},
       {"datetime_source", m.sun.datetimeSource},
       {"sun",
@@ -139,23 +151,15 @@ std::vector<double> frameTimes(const RecordTable& t) {
   return out;
 }
 
-}  // namespace
+// A column's values (it is there); an optional column's, or none.
+std::vector<double> column(const RecordTable& frames, const char* name) { return frames.values(*frames.find(name)); }
+std::vector<double> optionalColumn(const RecordTable& frames, const char* name) {
+  const auto c = frames.find(name);
+  return c ? frames.values(*c) : std::vector<double>{};
+}
 
-Result<std::string> makeSummaryJson(const std::string& recordingJson, const std::string& recordingSource,
-                                    const RecordTable& frames) {
-  json rec = json::parse(recordingJson, nullptr, false);
-  if (rec.is_discarded() || !rec.is_object())
-    return makeError(ErrorKind::InvalidInput, recordingSource + ": not a JSON object");
-  // The recording is copied into the summary and dumped, both recursive in nlohmann: a value
-  // nested thousands deep would overflow the stack (found by fuzz/, recording_json).
-  constexpr size_t kMaxRecordingDepth = 64;
-  if (!jsonDepthAtMost(rec, kMaxRecordingDepth))
-    return makeError(ErrorKind::InvalidInput, recordingSource + ": nested deeper than " +
-                                                  std::to_string(kMaxRecordingDepth) + " levels");
-  for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
-    if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
-
-  json times = json::object(), counts = json::object();
+// The percentiles of every time column and the range of every count column.
+void summariseColumns(const RecordTable& frames, json& times, json& counts) {
   for (std::size_t c = 0; c < frames.columns().size(); ++c) {
     const std::string& name = frames.columns()[c].name;
     const std::vector<double> v = frames.values(c);
@@ -174,54 +178,73 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
                                       {"total", sum(v)}};
     }
   }
+}
 
-  const std::vector<std::size_t> hitches = findHitches(frameTimes(frames));
-  const auto column = [&](const char* name) { return frames.values(*frames.find(name)); };
-  const auto optionalColumn = [&](const char* name) {
-    const auto c = frames.find(name);
-    return c ? frames.values(*c) : std::vector<double>{};
-  };
-  const std::vector<double> cpuFrame = column("cpu_frame_ms"), recorder = column("recorder_ms");
-  const std::vector<double> tS = column("t_s");
-  const double gpuBytesMax = maxOf(optionalColumn("gpu_bytes"));
-  // Not rec.value(key, 0.0): it throws when the key holds another type (a hand-edited file).
-  const auto rssField = rec.find("peak_rss_bytes");
-  const double rss = rssField != rec.end() && rssField->is_number() ? rssField->get<double>() : 0.0;
+// What streaming did over the flight (all zero/empty before issue 5's columns existed).
+json streamingTotals(const RecordTable& frames, const std::vector<double>& tS) {
+  const auto optional = [&](const char* name) { return optionalColumn(frames, name); };
+  const std::vector<double> coarser = optional("terrain_max_levels_coarser");
+  const std::vector<double> fallback = optional("terrain_fallback_pieces");
+  std::size_t fallbackFrames = 0, coarseAfter1s = 0;
+  for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1 : 0;
+  for (std::size_t i = 0; i < coarser.size() && i < tS.size(); ++i)
+    coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1 : 0;
+  json requests = json::object();
+  for (const char* k : {"issued", "completed", "cancelled", "failed", "missing"})
+    requests[k] = sum(optional(("stream_requests_" + std::string(k)).c_str()));
+  requests["retries"] = sum(optional("stream_retries"));
+  return {{"requests", requests},
+          {"bytes_read", sum(optional("stream_bytes_read"))},
+          {"uploads", sum(optional("stream_uploads"))},
+          {"fallback_frames", fallbackFrames},
+          {"frames_more_than_one_level_coarser_after_1s", coarseAfter1s},
+          {"max_levels_coarser", maxOf(coarser)},
+          {"wait_ms_total", sum(optional("streaming_wait_ms"))},
+          {"max_bytes_resident_cpu", maxOf(optional("stream_bytes_resident_cpu"))},
+          {"max_bytes_resident_gpu", maxOf(optional("stream_bytes_resident_gpu"))},
+          {"max_error_relaxation", maxOf(optional("terrain_error_relaxation"))}};
+}
+
+// The recorder's own time, against the CPU frame's.
+json recorderOverhead(const RecordTable& frames) {
+  const std::vector<double> cpuFrame = column(frames, "cpu_frame_ms"), recorder = column(frames, "recorder_ms");
   const double meanCpu = cpuFrame.empty() ? 0.0 : sum(cpuFrame) / static_cast<double>(cpuFrame.size());
   const double meanRecorder = recorder.empty() ? 0.0 : sum(recorder) / static_cast<double>(recorder.size());
   double maxShare = 0.0;
-  {
-    const auto cc = *frames.find("cpu_frame_ms"), rc = *frames.find("recorder_ms");
-    for (std::size_t i = 0; i < frames.rowCount(); ++i)
-      if (frames.at(i, cc) > 0.0 && !std::isnan(frames.at(i, rc)))
-        maxShare = std::max(maxShare, frames.at(i, rc) / frames.at(i, cc));
-  }
+  const auto cc = *frames.find("cpu_frame_ms"), rc = *frames.find("recorder_ms");
+  for (std::size_t i = 0; i < frames.rowCount(); ++i)
+    if (frames.at(i, cc) > 0.0 && !std::isnan(frames.at(i, rc)))
+      maxShare = std::max(maxShare, frames.at(i, rc) / frames.at(i, cc));
+  return {{"mean_ms", meanRecorder},
+          {"max_ms", maxOf(recorder)},
+          {"mean_share_of_cpu_frame", meanCpu > 0.0 ? meanRecorder / meanCpu : 0.0},
+          {"max_share_of_cpu_frame", maxShare}};
+}
 
-  // What streaming did over the flight (all zero/empty before issue 5's columns existed).
-  json streamingTotals = json::object();
-  {
-    const std::vector<double> coarser = optionalColumn("terrain_max_levels_coarser");
-    const std::vector<double> fallback = optionalColumn("terrain_fallback_pieces");
-    std::size_t fallbackFrames = 0, coarseAfter1s = 0;
-    for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1 : 0;
-    for (std::size_t i = 0; i < coarser.size() && i < tS.size(); ++i)
-      coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1 : 0;
-    json requests = json::object();
-    for (const char* k : {"issued", "completed", "cancelled", "failed", "missing"})
-      requests[k] = sum(optionalColumn(("stream_requests_" + std::string(k)).c_str()));
-    requests["retries"] = sum(optionalColumn("stream_retries"));
-    streamingTotals = {{"requests", requests},
-                       {"bytes_read", sum(optionalColumn("stream_bytes_read"))},
-                       {"uploads", sum(optionalColumn("stream_uploads"))},
-                       {"fallback_frames", fallbackFrames},
-                       {"frames_more_than_one_level_coarser_after_1s", coarseAfter1s},
-                       {"max_levels_coarser", maxOf(coarser)},
-                       {"wait_ms_total", sum(optionalColumn("streaming_wait_ms"))},
-                       {"max_bytes_resident_cpu", maxOf(optionalColumn("stream_bytes_resident_cpu"))},
-                       {"max_bytes_resident_gpu", maxOf(optionalColumn("stream_bytes_resident_gpu"))},
-                       {"max_error_relaxation", maxOf(optionalColumn("terrain_error_relaxation"))}};
-  }
+}  // namespace
 
+Result<std::string> makeSummaryJson(const std::string& recordingJson, const std::string& recordingSource,
+                                    const RecordTable& frames) {
+  json rec = json::parse(recordingJson, nullptr, false);
+  if (rec.is_discarded() || !rec.is_object())
+    return makeError(ErrorKind::InvalidInput, recordingSource + ": not a JSON object");
+  // The recording is copied into the summary and dumped, both recursive in nlohmann: a value
+  // nested thousands deep would overflow the stack (found by fuzz/, recording_json).
+  constexpr size_t kMaxRecordingDepth = 64;
+  if (!jsonDepthAtMost(rec, kMaxRecordingDepth))
+    return makeError(ErrorKind::InvalidInput, recordingSource + ": nested deeper than " +
+                                                  std::to_string(kMaxRecordingDepth) + " levels");
+  for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
+    if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
+
+  json times = json::object(), counts = json::object();
+  summariseColumns(frames, times, counts);
+  const std::vector<std::size_t> hitches = findHitches(frameTimes(frames));
+  const std::vector<double> tS = column(frames, "t_s");
+  const double gpuBytesMax = maxOf(optionalColumn(frames, "gpu_bytes"));
+  // Not rec.value(key, 0.0): it throws when the key holds another type (a hand-edited file).
+  const auto rssField = rec.find("peak_rss_bytes");
+  const double rss = rssField != rec.end() && rssField->is_number() ? rssField->get<double>() : 0.0;
   const json summary = {
       {"summary_version", 1},
       {"recording", rec},
@@ -236,19 +259,15 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
         {"window_frames", kHitchWindow},
         {"rule", "cpu_frame_ms + gpu_frame_ms > factor x median of the previous window_frames frames"}}},
       {"peak_memory", {{"rss_hwm_bytes", rss}, {"gpu_bytes", gpuBytesMax}, {"total_bytes", rss + gpuBytesMax}}},
-      {"resident_bytes", {{"cpu_max", maxOf(optionalColumn("cpu_bytes"))}, {"gpu_max", gpuBytesMax}}},
+      {"resident_bytes", {{"cpu_max", maxOf(optionalColumn(frames, "cpu_bytes"))}, {"gpu_max", gpuBytesMax}}},
       {"totals",
-       {{"wall_s", sum(column("wall_ms")) / 1000.0},
-        {"cpu_frame_ms", sum(cpuFrame)},
-        {"gpu_frame_ms", sum(column("gpu_frame_ms"))},
-        {"terrain_triangles", sum(optionalColumn("terrain_triangles"))},
-        {"png_frames", optionalColumn("png_ms").size()}}},
-      {"streaming", streamingTotals},
-      {"recorder_overhead",
-       {{"mean_ms", meanRecorder},
-        {"max_ms", maxOf(recorder)},
-        {"mean_share_of_cpu_frame", meanCpu > 0.0 ? meanRecorder / meanCpu : 0.0},
-        {"max_share_of_cpu_frame", maxShare}}}};
+       {{"wall_s", sum(column(frames, "wall_ms")) / 1000.0},
+        {"cpu_frame_ms", sum(column(frames, "cpu_frame_ms"))},
+        {"gpu_frame_ms", sum(column(frames, "gpu_frame_ms"))},
+        {"terrain_triangles", sum(optionalColumn(frames, "terrain_triangles"))},
+        {"png_frames", optionalColumn(frames, "png_ms").size()}}},
+      {"streaming", streamingTotals(frames, tS)},
+      {"recorder_overhead", recorderOverhead(frames)}};
   return summary.dump(2) + "\n";
 }
 

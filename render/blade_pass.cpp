@@ -80,6 +80,12 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
                   6 * 6),
       maxPlants_(std::max<uint64_t>(maxVertices_ / kVerticesPerPlant, 1)) {
   assert(maxVertices >= 6);
+  createPipelines(frameLayout, samples);
+  createSlots(tasks);
+}
+
+void BladePass::createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples) {
+  const Context& ctx = *ctx_;
   // Set 1: the plant pipelines' inputs (shaders/common/plant_common.glsl); set 2: the blades.
   const VkDescriptorSetLayoutBinding inputs[] = {
       binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
@@ -111,7 +117,10 @@ BladePass::BladePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   desc.depthFormat = kDepthFormat;
   desc.layout = layout_.get();
   draw_ = createGraphicsPipeline(ctx, desc);
+}
 
+void BladePass::createSlots(TaskRunner* tasks) {
+  const Context& ctx = *ctx_;
   const BladeBufferStart start = chooseBladeBufferStart(
       ctx.info().software, ctx.info().deviceLocalBytes,
       slots_.size() * (maxVertices_ * sizeof(BladeVertexGpu) + maxIndices_ * sizeof(uint32_t)));
@@ -201,6 +210,20 @@ void BladePass::ensureCapacity(Slot& s, const Bound& need, const RetireBuffer& r
   s.indexCapacity = static_cast<uint32_t>(std::min<uint64_t>(s.indices.size() / sizeof(uint32_t), maxIndices_) / 6 * 6);
 }
 
+void BladePass::writeSets(Slot& s, int slot, const ClassifyPass& classify, const PlantPass& plants,
+                          VkImageView imagery) {
+  writeUniformBuffer(*ctx_, s.inputSet, classify.species(), sizeof(SpeciesBlock), 0);
+  writeStorageBuffer(*ctx_, s.inputSet, classify.triangles(slot), 1);
+  writeStorageBuffer(*ctx_, s.inputSet, classify.records(slot), 2);
+  writeSampledImage(*ctx_, s.inputSet, plants.tableSampler(), plants.tableView(), 3);
+  writeSampledImage(*ctx_, s.inputSet, plants.imagerySampler(), imagery, 4);
+  writeStorageBuffer(*ctx_, s.bladeSet, s.vertices.get(), 0);
+  writeStorageBuffer(*ctx_, s.bladeSet, s.indices.get(), 2);
+  writeStorageBuffer(*ctx_, s.bladeSet, s.state.get(), 3);
+  writeStorageBuffer(*ctx_, s.bladeSet, classify.indirect(slot), 4);
+  writeStorageBuffer(*ctx_, s.bladeSet, s.figures.get(), 5);
+}
+
 void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const ClassifyPass& classify,
                              const PlantPass& plants, std::span<const SeedTriangleGpu> triangles, uint32_t clusterSize,
                              VkImageView imagery, const PlantDrawOptions& options, const RetireBuffer& retire) {
@@ -212,16 +235,7 @@ void BladePass::recordExpand(VkCommandBuffer cmd, int slot, VkDescriptorSet fram
   ensureCapacity(s, bound(triangles, clusterSize, options), retire);
 
   // The slot's previous frame has finished (the renderer waited on its fence): its sets are free.
-  writeUniformBuffer(*ctx_, s.inputSet, classify.species(), sizeof(SpeciesBlock), 0);
-  writeStorageBuffer(*ctx_, s.inputSet, classify.triangles(slot), 1);
-  writeStorageBuffer(*ctx_, s.inputSet, classify.records(slot), 2);
-  writeSampledImage(*ctx_, s.inputSet, plants.tableSampler(), plants.tableView(), 3);
-  writeSampledImage(*ctx_, s.inputSet, plants.imagerySampler(), imagery, 4);
-  writeStorageBuffer(*ctx_, s.bladeSet, s.vertices.get(), 0);
-  writeStorageBuffer(*ctx_, s.bladeSet, s.indices.get(), 2);
-  writeStorageBuffer(*ctx_, s.bladeSet, s.state.get(), 3);
-  writeStorageBuffer(*ctx_, s.bladeSet, classify.indirect(slot), 4);
-  writeStorageBuffer(*ctx_, s.bladeSet, s.figures.get(), 5);
+  writeSets(s, slot, classify, plants, imagery);
 
   // Counters cleared, capacities set; the draw's instance count is 1.
   BladeStateHeader header{};

@@ -86,6 +86,10 @@ class BladePass {
   uint64_t writtenVertices(int slot) const;
 
  private:
+  // The constructor's steps: the set layouts, pool and pipelines; each slot's sets and buffers,
+  // started as chooseBladeBufferStart says.
+  void createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+  void createSlots(TaskRunner* tasks);
   struct Slot {
     GrowingBuffer vertices, indices;
     GpuBuffer state, figures;
@@ -94,6 +98,9 @@ class BladePass {
     PlantPush drawPush{};
     bool expanded = false;
   };
+  // recordExpand()'s sets: slot s's inputs (classify's buffers, the shape table, the imagery)
+  // and its blade buffers.
+  void writeSets(Slot& s, int slot, const ClassifyPass& classify, const PlantPass& plants, VkImageView imagery);
   struct Bound {
     uint64_t plants = 0, vertices = 0, indices = 0;
   };

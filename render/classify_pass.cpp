@@ -19,6 +19,18 @@
 namespace vegstream::render {
 namespace {
 
+// The crowns the plants thin under, into the slot's canopy buffer (a disabled header when none).
+void writeCanopy(void* mapped, const vegetation::CanopyTable* canopy) {
+  auto* canopyBytes = static_cast<uint8_t*>(mapped);
+  const bool crowns = canopy && canopy->header.enabled != 0 &&
+                      canopy->entries.size() == size_t{vegetation::kCanopyCells} * vegetation::kCanopyCells;
+  const vegetation::CanopyHeader header = crowns ? canopy->header : vegetation::CanopyHeader{};
+  std::memcpy(canopyBytes, &header, sizeof(header));
+  if (crowns)
+    std::memcpy(canopyBytes + sizeof(header), canopy->entries.data(),
+                canopy->entries.size() * sizeof(vegetation::CanopyEntry));
+}
+
 constexpr VkDeviceSize kCanopyBytes = sizeof(vegetation::CanopyHeader) + VkDeviceSize{vegetation::kCanopyCells} *
                                                                           vegetation::kCanopyCells *
                                                                           sizeof(vegetation::CanopyEntry);
@@ -81,36 +93,39 @@ ClassifyPass::ClassifyPass(const Context& ctx, const ClassifyOptions& options) :
   finish_ =
       createComputePipeline(ctx, finishPipelineLayout_.get(), spv_classify_finish_comp, "classify finish pipeline");
 
-  const VkDeviceSize recordBytes = VkDeviceSize{options.clustersPerSpecies} * kSpeciesSlots * sizeof(PlantClusterGpu);
-  for (int i = 0; i < kSlots; ++i) {
-    Slot& s = slots_[size_t(i)];
-    const std::string tag = " (slot " + std::to_string(i) + ")";
-    s.counters = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              MemoryUse::DeviceLocal, "classify counters" + tag);
-    // Transfer source: tests and tools read the records back.
-    s.records = createBuffer(ctx, recordBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                             MemoryUse::DeviceLocal, "classify records" + tag);
-    s.indirect =
-        createBuffer(ctx, kIndirectBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                     MemoryUse::DeviceLocal, "classify indirect draws" + tag);
-    s.figures = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
-                             "classify figures" + tag);
-    std::memset(s.figures.mapped, 0, kCounterBytes);
-    s.canopy = createBuffer(ctx, kCanopyBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
-                            "classify canopy" + tag);
-    std::memset(s.canopy.mapped, 0, kCanopyBytes);  // enabled 0: no crowns
-    s.triangles = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
-                                "classify triangles" + tag, options.tasks);
-    s.visible = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
-                              "classify visible triangles" + tag, options.tasks);
-    s.order = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "classify bin order" + tag,
-                            options.tasks);
-    s.classifySet = allocateDescriptorSet(ctx, pool_.get(), classifyLayout_.get(), "classify set" + tag);
-    s.finishSet = allocateDescriptorSet(ctx, pool_.get(), finishLayout_.get(), "classify finish set" + tag);
-    writeStorageBuffer(ctx, s.finishSet, s.counters.get(), 0);
-    writeStorageBuffer(ctx, s.finishSet, s.indirect.get(), 1);
-    writeStorageBuffer(ctx, s.finishSet, s.figures.get(), 2);
-  }
+  for (size_t i = 0; i < size_t{kSlots}; ++i) createSlot(i);
+}
+
+void ClassifyPass::createSlot(size_t i) {
+  const Context& ctx = *ctx_;
+  const VkDeviceSize recordBytes = VkDeviceSize{options_.clustersPerSpecies} * kSpeciesSlots * sizeof(PlantClusterGpu);
+  Slot& s = slots_[size_t(i)];
+  const std::string tag = " (slot " + std::to_string(i) + ")";
+  s.counters = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            MemoryUse::DeviceLocal, "classify counters" + tag);
+  // Transfer source: tests and tools read the records back.
+  s.records = createBuffer(ctx, recordBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           MemoryUse::DeviceLocal, "classify records" + tag);
+  s.indirect =
+      createBuffer(ctx, kIndirectBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                   MemoryUse::DeviceLocal, "classify indirect draws" + tag);
+  s.figures = createBuffer(ctx, kCounterBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostReadback,
+                           "classify figures" + tag);
+  std::memset(s.figures.mapped, 0, kCounterBytes);
+  s.canopy = createBuffer(ctx, kCanopyBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                          "classify canopy" + tag);
+  std::memset(s.canopy.mapped, 0, kCanopyBytes);  // enabled 0: no crowns
+  s.triangles = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                              "classify triangles" + tag, options_.tasks);
+  s.visible = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::DeviceLocal,
+                            "classify visible triangles" + tag, options_.tasks);
+  s.order = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "classify bin order" + tag,
+                          options_.tasks);
+  s.classifySet = allocateDescriptorSet(ctx, pool_.get(), classifyLayout_.get(), "classify set" + tag);
+  s.finishSet = allocateDescriptorSet(ctx, pool_.get(), finishLayout_.get(), "classify finish set" + tag);
+  writeStorageBuffer(ctx, s.finishSet, s.counters.get(), 0);
+  writeStorageBuffer(ctx, s.finishSet, s.indirect.get(), 1);
+  writeStorageBuffer(ctx, s.finishSet, s.figures.get(), 2);
 }
 
 void ClassifyPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
@@ -144,6 +159,55 @@ void ClassifyPass::writeSets(Slot& s, VkImageView imagery, VkImageView companion
   s.boundCompanions = companions;
 }
 
+uint32_t ClassifyPass::dispatchClassify(VkCommandBuffer cmd, const Slot& s, const vegetation::BinnedTriangles& bins,
+                                        uint32_t clusterSize, uint32_t companionFlags, bool culled) {
+  uint32_t nonEmpty = 0;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelineLayout_.get(), 0, 1, &s.classifySet, 0,
+                          nullptr);
+  for (const vegetation::PlantBin& bin : bins.bins) {
+    if (bin.count == 0) continue;
+    ++nonEmpty;
+    const uint64_t threads = uint64_t{bin.count} * bin.capacity;
+    for (uint64_t base = 0; base < threads; base += uint64_t{kMaxGroupsPerDispatch} * kWorkgroup) {
+      const ClassifyPush push{bin.first,
+                              bin.count,
+                              bin.capacity,
+                              clusterSize,
+                              static_cast<uint32_t>(base),
+                              options_.clustersPerSpecies,
+                              culled ? 1u : 0u,
+                              fades_ ? 0u : 1u,
+                              companionFlags,
+                              {},
+                              thinning_};
+      vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+      const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
+      vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
+    }
+  }
+  return nonEmpty;
+}
+
+void ClassifyPass::dispatchFinish(VkCommandBuffer cmd, const Slot& s, uint32_t verticesPerGroup, uint32_t patchMask) {
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finish_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finishPipelineLayout_.get(), 0, 1, &s.finishSet, 0,
+                          nullptr);
+  const FinishPush fp{verticesPerGroup, options_.clustersPerSpecies, patchMask};
+  vkCmdPushConstants(cmd, finishPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(fp), &fp);
+  vkCmdDispatch(cmd, 1, 1, 1);
+
+  // Records and draws to the species pipelines; the figures copy to the host.
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+          VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+}
+
 VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<const SeedTriangleGpu> triangles,
                                        uint32_t clusterSize, VkImageView imagery, VkImageView companions, uint32_t companionFlags,
                                        uint32_t verticesPerGroup, uint32_t patchMask, const RetireBuffer& retire,
@@ -166,14 +230,7 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
   if (!bins.order.empty())
     std::memcpy(s.order.buffer().mapped, bins.order.data(), bins.order.size() * sizeof(uint32_t));
   // The crowns (the slot's previous frame, which read them, has finished: its fence).
-  auto* canopyBytes = static_cast<uint8_t*>(s.canopy.mapped);
-  const bool crowns = canopy && canopy->header.enabled != 0 &&
-                      canopy->entries.size() == size_t{vegetation::kCanopyCells} * vegetation::kCanopyCells;
-  const vegetation::CanopyHeader header = crowns ? canopy->header : vegetation::CanopyHeader{};
-  std::memcpy(canopyBytes, &header, sizeof(header));
-  if (crowns)
-    std::memcpy(canopyBytes + sizeof(header), canopy->entries.data(),
-                canopy->entries.size() * sizeof(vegetation::CanopyEntry));
+  writeCanopy(s.canopy.mapped, canopy);
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
   if (s.boundImagery != imagery || s.boundCompanions != companions) writeSets(s, imagery, companions);
 
@@ -193,47 +250,8 @@ VegetationFigures ClassifyPass::record(VkCommandBuffer cmd, int slot, std::span<
       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelineLayout_.get(), 0, 1, &s.classifySet, 0,
-                          nullptr);
-  for (const vegetation::PlantBin& bin : bins.bins) {
-    if (bin.count == 0) continue;
-    ++f.bins;
-    const uint64_t threads = uint64_t{bin.count} * bin.capacity;
-    for (uint64_t base = 0; base < threads; base += uint64_t{kMaxGroupsPerDispatch} * kWorkgroup) {
-      const ClassifyPush push{bin.first,
-                              bin.count,
-                              bin.capacity,
-                              clusterSize,
-                              static_cast<uint32_t>(base),
-                              options_.clustersPerSpecies,
-                              cull && !triangles.empty() ? 1u : 0u,
-                              fades_ ? 0u : 1u,
-                              companionFlags,
-                              {},
-                              thinning_};
-      vkCmdPushConstants(cmd, classifyPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-      const uint64_t groups = std::min<uint64_t>((threads - base + kWorkgroup - 1) / kWorkgroup, kMaxGroupsPerDispatch);
-      vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
-    }
-  }
-
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finish_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finishPipelineLayout_.get(), 0, 1, &s.finishSet, 0,
-                          nullptr);
-  const FinishPush fp{verticesPerGroup, options_.clustersPerSpecies, patchMask};
-  vkCmdPushConstants(cmd, finishPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(fp), &fp);
-  vkCmdDispatch(cmd, 1, 1, 1);
-
-  // Records and draws to the species pipelines; the figures copy to the host.
-  memoryBarrier(
-      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-          VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+  f.bins = dispatchClassify(cmd, s, bins, clusterSize, companionFlags, cull && !triangles.empty());
+  dispatchFinish(cmd, s, verticesPerGroup, patchMask);
   return f;
 }
 

@@ -23,6 +23,10 @@
 #include "render/growing_buffer.h"
 #include "render/handle.h"
 
+namespace vegstream::vegetation {
+struct BinnedTriangles;
+}  // namespace vegstream::vegetation
+
 namespace vegstream::render {
 
 struct ClassifyOptions {
@@ -97,6 +101,13 @@ class ClassifyPass {
   };
   void ensureCapacity(Slot& s, size_t triangles, size_t orderEntries, const RetireBuffer& retire);
   void writeSets(Slot& s, VkImageView imagery, VkImageView companions);
+  // Slot i's buffers and sets (the constructor's).
+  void createSlot(size_t i);
+  // record()'s dispatches: the classify over every non-empty bin (returns how many), then the
+  // finish that turns the counters into draws.
+  uint32_t dispatchClassify(VkCommandBuffer cmd, const Slot& s, const vegetation::BinnedTriangles& bins,
+                            uint32_t clusterSize, uint32_t companionFlags, bool culled);
+  void dispatchFinish(VkCommandBuffer cmd, const Slot& s, uint32_t verticesPerGroup, uint32_t patchMask);
 
   const Context* ctx_;
   ClassifyOptions options_;

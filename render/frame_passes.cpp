@@ -1,5 +1,5 @@
 // What one frame records (Renderer::Impl, render/renderer_impl.h): the passes in order,
-// read-back, present and the queue submission.
+// read-back, present and the queue submission; and what it yields once done (collect).
 #include <cassert>
 
 #define GLFW_INCLUDE_VULKAN
@@ -53,66 +53,11 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
 
   // Trees first: classified (compute), then cast into the sun's shadow map, which the terrain,
   // the plants and the trees themselves sample.
-  if (treeRequest) {
-    slot.timer->beginPass(cmd, "tree classify");
-    const VkExtent2D e = targets->extent();
-    const glm::dmat4 viewProj =
-        projection(request.camera, double(e.width) / double(e.height)) * viewRotation(request.camera);
-    trees->recordClassify(cmd, slotIndex, slot.descriptorSet, *treeRequest, viewProj,
-                          treeLodScale(e.height, request.camera.verticalFovDeg), slot.shadows ? 40.0f : 0.0f,
-                          retireBuffer);
-    slot.timer->endPass(cmd);
-    slot.treesDrawn = true;
-  }
-  if (slot.shadows) {
-    slot.timer->beginPass(cmd, "shadow");
-    sunShadows->record(cmd, *slot.shadows, [&](VkCommandBuffer c, int cascade, const glm::mat4& m) {
-      trees->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m);
-    });
-    slot.timer->endPass(cmd);
-  }
-
-  slot.terrainTriangles =
-      terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retireBuffer);
-  RenderTargets::Load next = RenderTargets::Load::Keep;  // how the plants' scope starts
-  if (terrainRaster) {  // rasterised and shaded in compute: no graphics work for the terrain
-    slot.timer->beginPass(cmd, "terrain");
-    terrainRaster->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets, slot.terrainTriangles,
-                          retireBuffer, [&] {
-                            slot.timer->endPass(cmd);
-                            slot.timer->beginPass(cmd, "terrain shade");
-                          });
-    slot.timer->endPass(cmd);
-    // Its depth samples into the depth attachment: the trees and plants are depth-tested against
-    // the terrain by the hardware, hidden fragments rejected before they are shaded (on the H200,
-    // benchmark-30s: trees pass p50 1.23 → 0.82 ms against testing each fragment against the
-    // samples in its shader; this pass costs 0.68 ms, the clear it replaces 0.59).
-    slot.timer->beginPass(cmd, "terrain depth");
-    terrainRaster->recordDepthAttachment(cmd, slot.descriptorSet, *targets);
-    slot.timer->endPass(cmd);
-    next = RenderTargets::Load::Shaded;
-  } else if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
-    slot.timer->beginPass(cmd, "terrain");
-    targets->beginVisibility(cmd);
-    terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
-    vkCmdEndRendering(cmd);
-    slot.timer->endPass(cmd);
-    slot.timer->beginPass(cmd, "terrain shade");
-    targets->visibilityToShade(cmd);
-    terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
-    slot.timer->endPass(cmd);
-    next = RenderTargets::Load::Shaded;
-  } else {
-    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/plants == nullptr && treeRequest == nullptr,
-                            slot.readDepth);
-    slot.timer->beginPass(cmd, "sky");
-    sky->record(cmd, slot.descriptorSet);
-    slot.timer->endPass(cmd);
-    slot.timer->beginPass(cmd, "terrain");
-    terrainPass->recordForward(cmd, slotIndex, slot.descriptorSet);
-    slot.timer->endPass(cmd);
-    vkCmdEndRendering(cmd);
-  }
+  if (treeRequest) recordTreeClassify(cmd, slot, slotIndex, request, *treeRequest, retireBuffer);
+  if (slot.shadows) recordShadows(cmd, slot, slotIndex);
+  // How the plants' scope starts; the forward terrain's scope resolves when nothing follows it.
+  RenderTargets::Load next =
+      recordTerrain(cmd, slot, slotIndex, request, plants == nullptr && treeRequest == nullptr, retireBuffer);
   if (slot.hizEarly) {  // the terrain's depth → the Hi-Z pyramid the trees and the classify test against
     slot.timer->beginPass(cmd, "hi-z");
     hiz->recordBuild(cmd);
@@ -144,6 +89,76 @@ void Renderer::Impl::recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t
         [&](GpuImage&& old) { deletions.defer(index, std::move(old)); });
     slot.timer->endPass(cmd);
   }
+}
+
+// The trees classified (compute) for this frame's view and its shadow cascades.
+void Renderer::Impl::recordTreeClassify(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request,
+                                        const TreeRequest& treeRequest, const ClassifyPass::RetireBuffer& retire) {
+  slot.timer->beginPass(cmd, "tree classify");
+  const VkExtent2D e = targets->extent();
+  const glm::dmat4 viewProj =
+      projection(request.camera, double(e.width) / double(e.height)) * viewRotation(request.camera);
+  trees->recordClassify(cmd, slotIndex, slot.descriptorSet, treeRequest, viewProj,
+                        treeLodScale(e.height, request.camera.verticalFovDeg), slot.shadows ? 40.0f : 0.0f, retire);
+  slot.timer->endPass(cmd);
+  slot.treesDrawn = true;
+}
+
+// The trees cast into the sun's shadow map's cascades (slot.shadows).
+void Renderer::Impl::recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex) {
+  slot.timer->beginPass(cmd, "shadow");
+  sunShadows->record(cmd, *slot.shadows, [&](VkCommandBuffer c, int cascade, const glm::mat4& m) {
+    trees->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m);
+  });
+  slot.timer->endPass(cmd);
+}
+
+// The terrain: rasterised and shaded in compute, deferred (ids, then shaded in compute, sky
+// included) or forward (sky and terrain in one scope, resolved when lastScope). Returns how the
+// next scope starts.
+RenderTargets::Load Renderer::Impl::recordTerrain(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex,
+                                                  const FrameRequest& request, bool lastScope,
+                                                  const ClassifyPass::RetireBuffer& retire) {
+  slot.terrainTriangles =
+      terrainPass->prepare(cmd, slotIndex, request.camera.position, request.terrain, retire);
+  if (terrainRaster) {  // rasterised and shaded in compute: no graphics work for the terrain
+    slot.timer->beginPass(cmd, "terrain");
+    terrainRaster->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets, slot.terrainTriangles,
+                          retire, [&] {
+                            slot.timer->endPass(cmd);
+                            slot.timer->beginPass(cmd, "terrain shade");
+                          });
+    slot.timer->endPass(cmd);
+    // Its depth samples into the depth attachment: the trees and plants are depth-tested against
+    // the terrain by the hardware, hidden fragments rejected before they are shaded (on the H200,
+    // benchmark-30s: trees pass p50 1.23 → 0.82 ms against testing each fragment against the
+    // samples in its shader; this pass costs 0.68 ms, the clear it replaces 0.59).
+    slot.timer->beginPass(cmd, "terrain depth");
+    terrainRaster->recordDepthAttachment(cmd, slot.descriptorSet, *targets);
+    slot.timer->endPass(cmd);
+    return RenderTargets::Load::Shaded;
+  } else if (terrainShade) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
+    slot.timer->beginPass(cmd, "terrain");
+    targets->beginVisibility(cmd);
+    terrainPass->recordVisibility(cmd, slotIndex, slot.descriptorSet);
+    vkCmdEndRendering(cmd);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain shade");
+    targets->visibilityToShade(cmd);
+    terrainShade->record(cmd, slotIndex, slot.descriptorSet, *terrainPass, *targets);
+    slot.timer->endPass(cmd);
+    return RenderTargets::Load::Shaded;
+  } else {
+    targets->beginRendering(cmd, RenderTargets::Load::Clear, /*resolve=*/lastScope, slot.readDepth);
+    slot.timer->beginPass(cmd, "sky");
+    sky->record(cmd, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+    slot.timer->beginPass(cmd, "terrain");
+    terrainPass->recordForward(cmd, slotIndex, slot.descriptorSet);
+    slot.timer->endPass(cmd);
+    vkCmdEndRendering(cmd);
+  }
+  return RenderTargets::Load::Keep;
 }
 
 // After the terrain's scope: Hi-Z build + classify (culling hidden seed triangles when asked),
@@ -272,6 +287,34 @@ void Renderer::Impl::recordPresent(VkCommandBuffer cmd, uint32_t imageIndex) con
   transitionImage(cmd, dst, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+}
+
+// The frame's figures and read-back images, once its slot's fence has signalled.
+FrameResult Renderer::Impl::collect(FrameSlot& slot) {
+  waitSlot(slot);
+  FrameResult r;
+  r.frameIndex = slot.frameIndex;
+  r.cpuRecordMs = slot.cpuRecordMs;
+  r.terrainTriangles = slot.terrainTriangles;
+  r.terrainRasterised = terrainRaster != nullptr;
+  if (terrainRaster) {
+    const TerrainRasterFigures f = terrainRaster->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
+    r.terrainRasterTriangles = f.rasterTriangles;
+    r.terrainTileEntries = f.tileEntries;
+    r.terrainTileEntriesDropped = f.tileEntriesDropped;
+  }
+  if (slot.vegetation) {
+    classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    if (slot.vegetation->occlusionCulling && slot.vegetation->seedTriangles > 0)  // the test ran
+      hiz->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    if (slot.bladesExpanded) blades->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
+    r.vegetation = slot.vegetation;
+  }
+  if (slot.treesDrawn) r.trees = trees->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
+  r.exposureEv = tonemap->exposureEv(static_cast<int>(slot.frameIndex % kFramesInFlight));
+  r.gpu = slot.timer->read();
+  readSlotImages(slot, targets->extent(), r);
+  return r;
 }
 
 }  // namespace vegstream::render

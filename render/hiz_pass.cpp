@@ -97,6 +97,12 @@ HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const Re
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + 4 * kSlots}};
   pool_ = createPool(ctx, sizes, 2 + kSlots, "hi-z pool");
 
+  createPipelines(frameLayout, targets);
+  createSets(terrainDepth, targets);
+}
+
+void HizPass::createPipelines(VkDescriptorSetLayout frameLayout, const RenderTargets& targets) {
+  const Context& ctx = *ctx_;
   const VkPushConstantRange depthPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DepthPush)};
   const VkDescriptorSetLayout dl[] = {depthLayout_.get()};
   depthPipelineLayout_ = createPipelineLayout(ctx, dl, {&depthPush, 1}, "hi-z depth pipeline layout");
@@ -113,7 +119,10 @@ HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const Re
   const VkDescriptorSetLayout cl[] = {frameLayout, cullLayout_.get()};
   cullPipelineLayout_ = createPipelineLayout(ctx, cl, {&cullPush, 1}, "hi-z cull pipeline layout");
   cull_ = createComputePipeline(ctx, cullPipelineLayout_.get(), spv_hiz_cull_comp, "hi-z cull pipeline");
+}
 
+void HizPass::createSets(VkBuffer terrainDepth, const RenderTargets& targets) {
+  const Context& ctx = *ctx_;
   // The depth attachment (every MSAA sample), sampled in SHADER_READ_ONLY_OPTIMAL by recordBuild.
   depthSet_ = allocateDescriptorSet(ctx, pool_.get(), depthLayout_.get(), "hi-z depth set");
   if (fromBuffer_) {

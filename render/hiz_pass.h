@@ -84,6 +84,10 @@ class HizPass {
   uint64_t gpuBytes() const;
 
  private:
+  // The constructor's steps: the depth, reduce and cull pipelines; the depth and reduce sets and
+  // each slot's counters and cull set.
+  void createPipelines(VkDescriptorSetLayout frameLayout, const RenderTargets& targets);
+  void createSets(VkBuffer terrainDepth, const RenderTargets& targets);
   struct Slot {
     GpuBuffer counters;  // host-readable: tested, culled, clusters culled, plants culled
     VkDescriptorSet cullSet = VK_NULL_HANDLE;

@@ -1,3 +1,5 @@
+// The HUD overlay (hud_pass.h): the overlay's draw data, its atlas uploaded when it changes, drawn
+// over the tone-mapped display target.
 #include "render/hud_pass.h"
 
 #include <algorithm>
@@ -18,6 +20,55 @@ struct HudPush {
   float scale[2];
   float translate[2];
 };
+
+// Rendering into the display target, over what the scene drew there.
+void beginOverlayRendering(VkCommandBuffer cmd, const GpuImage& target) {
+  // The scene's rendering (and its MSAA resolve) wrote the target; the overlay reads and
+  // blends over it.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = target.view.get();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, target.extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  vkCmdBeginRendering(cmd, &ri);
+}
+
+// The overlay's draw commands, each in its clip rectangle (a bad command is skipped); returns the
+// triangles drawn.
+uint64_t drawCommands(VkCommandBuffer cmd, const OverlayDrawData& data, VkExtent2D extent) {
+  // Clip rectangles are in layout pixels; scale them to the target.
+  const float sx = static_cast<float>(extent.width) / data.width;
+  const float sy = static_cast<float>(extent.height) / data.height;
+  const auto clampTo = [](float v, uint32_t limit) {
+    return static_cast<int32_t>(std::clamp(v, 0.0f, static_cast<float>(limit)));
+  };
+  uint64_t triangles = 0;
+  const auto indexCount = static_cast<uint32_t>(data.indices.size());
+  const auto vertexCount = static_cast<int64_t>(data.vertices.size());
+  for (const OverlayCommand& c : data.commands) {
+    if (c.indexCount == 0 || c.firstIndex > indexCount || c.indexCount > indexCount - c.firstIndex) continue;
+    if (c.vertexOffset < 0 || c.vertexOffset >= vertexCount) continue;
+    const int32_t x0 = clampTo(std::floor(c.clipX0 * sx), extent.width);
+    const int32_t y0 = clampTo(std::floor(c.clipY0 * sy), extent.height);
+    const int32_t x1 = clampTo(std::ceil(c.clipX1 * sx), extent.width);
+    const int32_t y1 = clampTo(std::ceil(c.clipY1 * sy), extent.height);
+    if (x1 <= x0 || y1 <= y0) continue;
+    const VkRect2D scissor{{x0, y0}, {static_cast<uint32_t>(x1 - x0), static_cast<uint32_t>(y1 - y0)}};
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdDrawIndexed(cmd, c.indexCount, 1, c.firstIndex, c.vertexOffset, 0);
+    triangles += c.indexCount / 3;
+  }
+  return triangles;
+}
 
 }  // namespace
 
@@ -100,25 +151,8 @@ uint64_t HudPass::record(VkCommandBuffer cmd, int slot, const OverlayDrawData& d
   std::memcpy(vertices_[s].mapped, data.vertices.data(), static_cast<size_t>(vbytes));
   std::memcpy(indices_[s].mapped, data.indices.data(), static_cast<size_t>(ibytes));
 
-  // The scene's rendering (and its MSAA resolve) wrote the target; the overlay reads and
-  // blends over it.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-
+  beginOverlayRendering(cmd, target);
   const VkExtent2D extent = target.extent;
-  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = target.view.get();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &color;
-  vkCmdBeginRendering(cmd, &ri);
-
   const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
                             0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
@@ -131,28 +165,7 @@ uint64_t HudPass::record(VkCommandBuffer cmd, int slot, const OverlayDrawData& d
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
   vkCmdBindIndexBuffer(cmd, indices_[s].get(), 0, VK_INDEX_TYPE_UINT32);
 
-  // Clip rectangles are in layout pixels; scale them to the target.
-  const float sx = static_cast<float>(extent.width) / data.width;
-  const float sy = static_cast<float>(extent.height) / data.height;
-  const auto clampTo = [](float v, uint32_t limit) {
-    return static_cast<int32_t>(std::clamp(v, 0.0f, static_cast<float>(limit)));
-  };
-  uint64_t triangles = 0;
-  const auto indexCount = static_cast<uint32_t>(data.indices.size());
-  const auto vertexCount = static_cast<int64_t>(data.vertices.size());
-  for (const OverlayCommand& c : data.commands) {
-    if (c.indexCount == 0 || c.firstIndex > indexCount || c.indexCount > indexCount - c.firstIndex) continue;
-    if (c.vertexOffset < 0 || c.vertexOffset >= vertexCount) continue;
-    const int32_t x0 = clampTo(std::floor(c.clipX0 * sx), extent.width);
-    const int32_t y0 = clampTo(std::floor(c.clipY0 * sy), extent.height);
-    const int32_t x1 = clampTo(std::ceil(c.clipX1 * sx), extent.width);
-    const int32_t y1 = clampTo(std::ceil(c.clipY1 * sy), extent.height);
-    if (x1 <= x0 || y1 <= y0) continue;
-    const VkRect2D scissor{{x0, y0}, {static_cast<uint32_t>(x1 - x0), static_cast<uint32_t>(y1 - y0)}};
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
-    vkCmdDrawIndexed(cmd, c.indexCount, 1, c.firstIndex, c.vertexOffset, 0);
-    triangles += c.indexCount / 3;
-  }
+  const uint64_t triangles = drawCommands(cmd, data, extent);
   vkCmdEndRendering(cmd);
   return triangles;
 }

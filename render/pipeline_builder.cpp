@@ -42,27 +42,20 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescri
   return PipelineLayout(ctx.device(), layout);
 }
 
-Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc) {
-  std::vector<ShaderModule> modules;
-  std::vector<VkPipelineShaderStageCreateInfo> stages;
-  for (const auto& s : desc.stages) {
-    modules.push_back(createShaderModule(ctx, s.spirv, desc.name + " shader"));
-    VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    si.stage = s.stage;
-    si.module = modules.back().get();
-    si.pName = "main";
-    stages.push_back(si);
-  }
+namespace {
+
+// The desc's vertex bindings and attributes (pointing into desc).
+VkPipelineVertexInputStateCreateInfo vertexInput(const GraphicsPipelineDesc& desc) {
   VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   vi.vertexBindingDescriptionCount = static_cast<uint32_t>(desc.bindings.size());
   vi.pVertexBindingDescriptions = desc.bindings.data();
   vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.attributes.size());
   vi.pVertexAttributeDescriptions = desc.attributes.data();
-  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  ia.topology = desc.topology;
-  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  vp.viewportCount = 1;
-  vp.scissorCount = 1;
+  return vi;
+}
+
+// Filled polygons, the desc's culling, front faces counter-clockwise, its depth bias (dynamic).
+VkPipelineRasterizationStateCreateInfo rasterizationState(const GraphicsPipelineDesc& desc) {
   VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   rs.polygonMode = VK_POLYGON_MODE_FILL;
   rs.cullMode = desc.cullMode;
@@ -70,14 +63,20 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
   // counter-clockwise seen from its front stays counter-clockwise in Vulkan's terms.
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = desc.samples;
-  VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
-  ts.patchControlPoints = desc.patchControlPoints;
+  if (desc.depthBias) rs.depthBiasEnable = VK_TRUE;
+  return rs;
+}
+
+VkPipelineDepthStencilStateCreateInfo depthState(const GraphicsPipelineDesc& desc) {
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
   ds.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
   ds.depthCompareOp = desc.depthCompare;
+  return ds;
+}
+
+// Every channel written; with alphaBlend, over what is there.
+VkPipelineColorBlendAttachmentState blendAttachment(const GraphicsPipelineDesc& desc) {
   VkPipelineColorBlendAttachmentState blend{};
   blend.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
@@ -90,13 +89,41 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
     blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     blend.alphaBlendOp = VK_BLEND_OP_ADD;
   }
+  return blend;
+}
+
+}  // namespace
+
+Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& desc) {
+  std::vector<ShaderModule> modules;
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  for (const auto& s : desc.stages) {
+    modules.push_back(createShaderModule(ctx, s.spirv, desc.name + " shader"));
+    VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    si.stage = s.stage;
+    si.module = modules.back().get();
+    si.pName = "main";
+    stages.push_back(si);
+  }
+  const VkPipelineVertexInputStateCreateInfo vi = vertexInput(desc);
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = desc.topology;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  const VkPipelineRasterizationStateCreateInfo rs = rasterizationState(desc);
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = desc.samples;
+  VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+  ts.patchControlPoints = desc.patchControlPoints;
+  const VkPipelineDepthStencilStateCreateInfo ds = depthState(desc);
+  const VkPipelineColorBlendAttachmentState blend = blendAttachment(desc);
   const uint32_t attachments = desc.colorFormat == VK_FORMAT_UNDEFINED ? 0u : desc.colorAttachments;
   const std::vector<VkPipelineColorBlendAttachmentState> blends(attachments, blend);
   const std::vector<VkFormat> formats(attachments, desc.colorFormat);
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   cb.attachmentCount = attachments;
   cb.pAttachments = blends.data();
-  if (desc.depthBias) rs.depthBiasEnable = VK_TRUE;
   const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
                                           VK_DYNAMIC_STATE_DEPTH_BIAS};
   VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};

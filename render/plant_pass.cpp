@@ -44,6 +44,27 @@ Sampler nearestClampSampler(const Context& ctx, const std::string& name) {
   return Sampler(ctx.device(), s);
 }
 
+// A plant pipeline: tessellation of one patch per cluster, then `geom`'s triangles, shaded by
+// `frag`, two-sided.
+Pipeline plantPipeline(const Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples, const char* name,
+                       std::span<const uint32_t> tese, std::span<const uint32_t> geom, std::span<const uint32_t> frag) {
+  GraphicsPipelineDesc desc;
+  desc.name = name;
+  desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_plant_vert},
+                 {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, spv_plant_tesc},
+                 {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, tese},
+                 {VK_SHADER_STAGE_GEOMETRY_BIT, geom},
+                 {VK_SHADER_STAGE_FRAGMENT_BIT, frag}};
+  desc.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+  desc.patchControlPoints = 1;
+  desc.cullMode = VK_CULL_MODE_NONE;  // blades are two-sided
+  desc.samples = samples;
+  desc.colorFormat = kColorFormat;
+  desc.depthFormat = kDepthFormat;
+  desc.layout = layout;
+  return createGraphicsPipeline(ctx, desc);
+}
+
 }  // namespace
 
 PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
@@ -84,23 +105,9 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "plant pipeline layout");
 
-  auto makePipeline = [&](const char* name, std::span<const uint32_t> tese, std::span<const uint32_t> geom,
-                          std::span<const uint32_t> frag) {
-    GraphicsPipelineDesc desc;
-    desc.name = name;
-    desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_plant_vert},
-                   {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, spv_plant_tesc},
-                   {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, tese},
-                   {VK_SHADER_STAGE_GEOMETRY_BIT, geom},
-                   {VK_SHADER_STAGE_FRAGMENT_BIT, frag}};
-    desc.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
-    desc.patchControlPoints = 1;
-    desc.cullMode = VK_CULL_MODE_NONE;  // blades are two-sided
-    desc.samples = samples;
-    desc.colorFormat = kColorFormat;
-    desc.depthFormat = kDepthFormat;
-    desc.layout = layout_.get();
-    return createGraphicsPipeline(ctx, desc);
+  const auto makePipeline = [&](const char* name, std::span<const uint32_t> tese, std::span<const uint32_t> geom,
+                                std::span<const uint32_t> frag) {
+    return plantPipeline(ctx, layout_.get(), samples, name, tese, geom, frag);
   };
   pipelines_[0] = makePipeline("grass pipeline", spv_plant_tese, spv_grass_geom, spv_plant_frag);
   pipelines_[1] = makePipeline("gravel pipeline", spv_plant_tese, spv_gravel_geom, spv_plant_frag);

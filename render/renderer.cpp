@@ -1,37 +1,12 @@
+// The renderer (renderer.h, Renderer::Impl in renderer_impl.h): its creation from the options
+// and the device, its passes and frame slots, submitting a frame, and the public
+// API's setters and debug read-backs. What a frame records is frame_passes.cpp.
 #include "render/renderer.h"
 
 #include "render/renderer_impl.h"
 
-#include <algorithm>
-#include <array>
-#include <cstring>
-
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-#include <glm/mat4x4.hpp>
-
-#include "core/stopwatch.h"
-#include "render/aov_image.h"
-#include "render/blade_pass.h"
-#include "render/deletion_queue.h"
-#include "render/descriptors.h"
-#include "render/frame_slots.h"
-#include "render/frame_uniforms.h"
-#include "render/gpu_timer.h"
-#include "render/hiz_pass.h"
-#include "render/hud_pass.h"
-#include "render/render_targets.h"
-#include "render/classify_pass.h"
-#include "render/plant_marker_pass.h"
-#include "render/plant_pass.h"
-#include "render/sky_pass.h"
-#include "render/swapchain.h"
-#include "render/terrain_detail.h"
-#include "render/terrain_pass.h"
-#include "render/terrain_shade_pass.h"
-#include "render/vk_check.h"
 
 namespace vegstream::render {
 
@@ -41,29 +16,8 @@ void Renderer::Impl::init(const RendererOptions& options) {
   const bool deferred = terrainShading == TerrainShading::Deferred || computeRaster;
   targets = std::make_unique<RenderTargets>(*ctx, extent, toSampleBits(msaa), deferred, computeRaster);
   if (options.window) swapchain = std::make_unique<Swapchain>(*ctx, options.window);
-
-  // Set 0 of every pass: the frame's uniforms, and the shared simulation's block, wind cells and
-  // interaction field (render/simulation_pass.h), which every plant stage may read.
-  constexpr VkShaderStageFlags kFrameStages = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
-  const VkDescriptorSetLayoutBinding frameBindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kFrameStages, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sun's shadow map
-      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the compute raster's terrain depth
-      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},   // the Hi-Z pyramid
-      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the sky-view LUT
-      {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},   // the aerial-perspective volume
-      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the sky light (render/atmosphere_pass.h)
-  frameLayout = createLayout(*ctx, frameBindings, "frame set layout");
-  const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * kFramesInFlight}};
-  // Twice: each slot has a second set for the shadow pass (its binding 4 a placeholder map).
-  VkDescriptorPoolSize doubled[3];
-  for (int k = 0; k < 3; ++k) doubled[k] = {frameSizes[k].type, 2 * frameSizes[k].descriptorCount};
-  descriptorPool = createPool(*ctx, doubled, 2 * kFramesInFlight, "frame descriptor pool");
+  frameLayout = createFrameSetLayout(*ctx);
+  descriptorPool = createFrameSetPool(*ctx);
   const VkDescriptorSetLayout layout = frameLayout.get();
 
   simulation = std::make_unique<SimulationPass>(*ctx, layout, options.trailStoreBytes);
@@ -83,41 +37,19 @@ void Renderer::Impl::init(const RendererOptions& options) {
   sunShadows = std::make_unique<SunShadowPass>(*ctx, std::max(options.shadowMapSize, 64u));
   tonemap = std::make_unique<TonemapPass>(*ctx, *targets);
   atmosphere = std::make_unique<AtmospherePass>(*ctx);
-  const VkDeviceSize pixels = VkDeviceSize{extent.width} * extent.height;
+  initFrameSlots(VkDeviceSize{extent.width} * extent.height, terrainDepth);
+  initPlantPasses(options);
+  treeBudgetBytes = options.treeBudgetBytes;
+}
+
+// Every slot's resources (frame_slot.h) and its two frame sets: the second is the shadow pass's,
+// its binding 4 a placeholder map.
+void Renderer::Impl::initFrameSlots(VkDeviceSize pixels, VkBuffer terrainDepth) {
+  const VkDescriptorSetLayout layout = frameLayout.get();
   for (int i = 0; i < kFramesInFlight; ++i) {
     FrameSlot& s = slots[static_cast<size_t>(i)];
+    createFrameSlot(*ctx, s, i, pixels);
     const std::string tag = " (slot " + std::to_string(i) + ")";
-    VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    cpci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    cpci.queueFamilyIndex = ctx->queueFamily();
-    VkCommandPool cp;
-    vkCheck(vkCreateCommandPool(ctx->device(), &cpci, nullptr, &cp), "vkCreateCommandPool");
-    s.pool = CommandPool(ctx->device(), cp);
-    ctx->setName(VK_OBJECT_TYPE_COMMAND_POOL, cp, "frame command pool" + tag);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = cp;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    vkCheck(vkAllocateCommandBuffers(ctx->device(), &ai, &s.cmd), "vkAllocateCommandBuffers");
-    ctx->setName(VK_OBJECT_TYPE_COMMAND_BUFFER, s.cmd, "frame commands" + tag);
-    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence;
-    vkCheck(vkCreateFence(ctx->device(), &fci, nullptr, &fence), "vkCreateFence");
-    s.fence = Fence(ctx->device(), fence);
-    ctx->setName(VK_OBJECT_TYPE_FENCE, fence, "frame fence" + tag);
-    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore sem;
-    vkCheck(vkCreateSemaphore(ctx->device(), &sci, nullptr, &sem), "vkCreateSemaphore");
-    s.imageAcquired = Semaphore(ctx->device(), sem);
-    ctx->setName(VK_OBJECT_TYPE_SEMAPHORE, sem, "image acquired" + tag);
-    s.uniforms = createBuffer(*ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::HostUpload,
-                              "frame uniforms" + tag);
-    s.timer = std::make_unique<GpuTimer>(*ctx, kMaxPasses, "frame" + tag);
-    s.colorReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
-                                   "colour read-back" + tag);
-    s.depthReadback = createBuffer(*ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
-                                   "depth read-back" + tag);
-
     s.descriptorSet = allocateDescriptorSet(*ctx, descriptorPool.get(), layout, "frame uniforms set" + tag);
     writeUniformBuffer(*ctx, s.descriptorSet, s.uniforms.get(), sizeof(FrameUniforms));
     simulation->writeFrameSet(s.descriptorSet, i);
@@ -133,6 +65,11 @@ void Renderer::Impl::init(const RendererOptions& options) {
     writeStorageBuffer(*ctx, s.shadowPassSet, hiz->pyramid(), 6);
     atmosphere->writeFrameSet(s.shadowPassSet);
   }
+}
+
+// The sky, the HUD and the passes of the plants and trees, after the frame sets are written.
+void Renderer::Impl::initPlantPasses(const RendererOptions& options) {
+  const VkDescriptorSetLayout layout = frameLayout.get();
   sky = std::make_unique<SkyPass>(*ctx, layout, toSampleBits(msaa));
   hudPass = std::make_unique<HudPass>(*ctx);
   ClassifyOptions classifyOptions;
@@ -155,7 +92,6 @@ void Renderer::Impl::init(const RendererOptions& options) {
                                        options.tasks);
   blades->setCatalog(vegetation::defaultSpeciesCatalog());
   trees = std::make_unique<TreePass>(*ctx, layout, toSampleBits(msaa));
-  treeBudgetBytes = options.treeBudgetBytes;
 }
 
 void Renderer::Impl::waitSlot(FrameSlot& slot) {
@@ -169,18 +105,8 @@ void Renderer::Impl::waitSlot(FrameSlot& slot) {
   deletions.collect(completedFrame);
 }
 
-uint64_t Renderer::Impl::submit(const FrameRequest& request) {
-  Stopwatch watch;
-  const uint64_t index = nextFrame++;
-  FrameSlot& slot = slots[index % kFramesInFlight];
-  waitSlot(slot);
-  // The overflow thinning's pressure comes from frame index − kFramesInFlight, the slot's last
-  // (done now): the same lag however many frames the caller keeps in flight, so recordings stay
-  // deterministic (none before the first frames: no pressure).
-  classify->updateThinningFromSlot(slot.submitted && slot.vegetation ? static_cast<int>(index % kFramesInFlight) : -1);
-  VkFence fence = slot.fence.get();
-  vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
-
+// The frame's sun shadow cascades, uniforms and simulation block, into its slot.
+void Renderer::Impl::writeFrameState(FrameSlot& slot, const FrameRequest& request, uint64_t index) {
   const VkExtent2D extent = targets->extent();
   // The trees cast into the sun's shadow map this frame (render/shadow_cascades.h).
   slot.shadows.reset();
@@ -203,6 +129,22 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   u.terrainDepth = glm::vec4(terrainRaster ? 1.0f : 0.0f, static_cast<float>(msaa), slot.hizEarly ? 1.0f : 0.0f, 0.0f);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   simulation->writeBlock(static_cast<int>(index % kFramesInFlight), request.simulation);
+}
+
+uint64_t Renderer::Impl::submit(const FrameRequest& request) {
+  Stopwatch watch;
+  const uint64_t index = nextFrame++;
+  FrameSlot& slot = slots[index % kFramesInFlight];
+  waitSlot(slot);
+  // The overflow thinning's pressure comes from frame index − kFramesInFlight, the slot's last
+  // (done now): the same lag however many frames the caller keeps in flight, so recordings stay
+  // deterministic (none before the first frames: no pressure).
+  classify->updateThinningFromSlot(slot.submitted && slot.vegetation ? static_cast<int>(index % kFramesInFlight) : -1);
+  VkFence fence = slot.fence.get();
+  vkCheck(vkResetFences(ctx->device(), 1, &fence), "vkResetFences");
+
+  writeFrameState(slot, request, index);
+  const VkExtent2D extent = targets->extent();
 
   std::optional<uint32_t> imageIndex;
   if (request.present && swapchain) imageIndex = swapchain->acquire(slot.imageAcquired.get());
@@ -236,47 +178,6 @@ uint64_t Renderer::Impl::submit(const FrameRequest& request) {
   slot.submitted = true;
   slot.cpuRecordMs = watch.elapsedMs();
   return index;
-}
-
-FrameResult Renderer::Impl::collect(FrameSlot& slot) {
-  waitSlot(slot);
-  FrameResult r;
-  r.frameIndex = slot.frameIndex;
-  r.cpuRecordMs = slot.cpuRecordMs;
-  r.terrainTriangles = slot.terrainTriangles;
-  r.terrainRasterised = terrainRaster != nullptr;
-  if (terrainRaster) {
-    const TerrainRasterFigures f = terrainRaster->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
-    r.terrainRasterTriangles = f.rasterTriangles;
-    r.terrainTileEntries = f.tileEntries;
-    r.terrainTileEntriesDropped = f.tileEntriesDropped;
-  }
-  if (slot.vegetation) {
-    classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
-    if (slot.vegetation->occlusionCulling && slot.vegetation->seedTriangles > 0)  // the test ran
-      hiz->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
-    if (slot.bladesExpanded) blades->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);
-    r.vegetation = slot.vegetation;
-  }
-  if (slot.treesDrawn) r.trees = trees->figures(static_cast<int>(slot.frameIndex % kFramesInFlight));
-  r.exposureEv = tonemap->exposureEv(static_cast<int>(slot.frameIndex % kFramesInFlight));
-  r.gpu = slot.timer->read();
-  const VkExtent2D e = targets->extent();
-  const size_t pixels = size_t{e.width} * e.height;
-  if (slot.readColor) {
-    ColorImage img{e.width, e.height, std::vector<uint8_t>(pixels * 4)};
-    std::memcpy(img.rgba.data(), slot.colorReadback.mapped, pixels * 4);
-    r.color = std::move(img);
-  }
-  if (slot.readDepth) {
-    DepthImage img{e.width, e.height, std::vector<float>(pixels)};
-    std::memcpy(img.depth.data(), slot.depthReadback.mapped, pixels * 4);
-    r.depth = std::move(img);
-  }
-  if (slot.readAov && r.depth)
-    r.aov = decodeAov(e.width, e.height, static_cast<const uint32_t*>(slot.aovReadback.mapped), r.depth->depth.data(),
-                      slot.aovInverseProjection);
-  return r;
 }
 
 // --- public API ---------------------------------------------------------------------------

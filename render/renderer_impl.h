@@ -1,7 +1,7 @@
 #pragma once
 // Private to render/: the renderer's implementation (frame slots, passes, targets), shared by
-// renderer.cpp (creation, submit/collect, the public API) and frame_passes.cpp (what one frame
-// records: the passes in order, read-back, present, submission).
+// renderer.cpp (creation, submit, the public API) and frame_passes.cpp (what one frame
+// records: the passes in order, read-back, present, submission, collect).
 
 #include "render/renderer.h"
 
@@ -20,6 +20,7 @@
 #include "render/blade_pass.h"
 #include "render/deletion_queue.h"
 #include "render/descriptors.h"
+#include "render/frame_slot.h"
 #include "render/frame_slots.h"
 #include "render/frame_uniforms.h"
 #include "render/gpu_timer.h"
@@ -51,36 +52,8 @@ namespace vegstream::render {
 static_assert(HudPass::kSlots == kFramesInFlight, "one HUD buffer set per frame slot");
 static_assert(TerrainPass::kSlots == kFramesInFlight, "one terrain buffer set per frame slot");
 static_assert(ClassifyPass::kSlots == kFramesInFlight, "one classify (and plant) buffer set per frame slot");
-inline constexpr int kMaxPasses = 16;
 static_assert(TreePass::kSlots == kFramesInFlight, "one tree block per frame slot");
 inline constexpr int kBladeTableSegments = vegetation::kBladeShapeSegments;
-
-// Everything one frame in flight owns.
-struct FrameSlot {
-  CommandPool pool;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  Fence fence;
-  Semaphore imageAcquired;
-  GpuBuffer uniforms;
-  VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
-  VkDescriptorSet shadowPassSet = VK_NULL_HANDLE;  // the same, but binding 4 a placeholder: the shadow pass's own
-  std::unique_ptr<GpuTimer> timer;
-  GpuBuffer colorReadback, depthReadback;
-  GpuBuffer aovReadback;  // an AOV frame's resolved float target; made by the slot's first AOV frame
-  // What was submitted last in this slot.
-  uint64_t frameIndex = 0;
-  bool submitted = false;
-  bool readColor = false, readDepth = false;
-  bool readAov = false;             // an AOV frame: aovReadback holds the resolved float target
-  glm::dmat4 aovInverseProjection{1.0};  // its camera's, for the distances
-  double cpuRecordMs = 0.0;
-  uint64_t terrainTriangles = 0;
-  std::optional<VegetationFigures> vegetation;
-  bool bladesExpanded = false;  // the compute blade path drew this frame's plants
-  bool treesDrawn = false;      // the tree pass classified this frame's trees
-  bool hizEarly = false;        // the Hi-Z pyramid is built right after the terrain (before the trees)
-  std::optional<ShadowCascades> shadows;  // the sun's shadow map holds this frame's trees
-};
 
 inline VkSampleCountFlagBits toSampleBits(int samples) { return static_cast<VkSampleCountFlagBits>(samples); }
 
@@ -123,9 +96,17 @@ struct Renderer::Impl {
   }
 
   void init(const RendererOptions& options);
+  void initFrameSlots(VkDeviceSize pixels, VkBuffer terrainDepth);
+  void initPlantPasses(const RendererOptions& options);
   void waitSlot(FrameSlot& slot);
+  void writeFrameState(FrameSlot& slot, const FrameRequest& request, uint64_t index);
   uint64_t submit(const FrameRequest& request);
   void recordPasses(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, const FrameRequest& request);
+  void recordTreeClassify(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request,
+                          const TreeRequest& treeRequest, const ClassifyPass::RetireBuffer& retire);
+  void recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex);
+  RenderTargets::Load recordTerrain(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request,
+                                    bool lastScope, const ClassifyPass::RetireBuffer& retire);
   void recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
                     RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire);
   void queueSubmit(FrameSlot& slot, std::optional<uint32_t> imageIndex);

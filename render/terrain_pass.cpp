@@ -53,6 +53,32 @@ MeshSize flatSize(const terrain::TerrainMesh& m) {
   return s;
 }
 
+// The drawn pieces, in draw order: each one's size (counted once, used twice) and range of the
+// buffers (first vertex, first index); their totals.
+struct PieceLayout {
+  std::vector<MeshSize> sizes;
+  std::vector<std::pair<uint32_t, uint32_t>> at;
+  VkDeviceSize vertexBytes = 0, indexBytes = 0;
+  uint32_t vertices = 0, indices = 0;
+};
+
+PieceLayout layoutPieces(std::span<const TerrainDraw> draws, const std::vector<uint32_t>& order) {
+  PieceLayout l;
+  l.sizes.reserve(order.size());
+  for (uint32_t i : order) {
+    const MeshSize size = l.sizes.emplace_back(flatSize(*draws[i].mesh));
+    l.vertexBytes += size.vertices * sizeof(terrain::TerrainVertex);
+    l.indexBytes += size.indices * sizeof(uint32_t);
+  }
+  l.at.resize(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    l.at[k] = {l.vertices, l.indices};
+    l.vertices += static_cast<uint32_t>(l.sizes[k].vertices);
+    l.indices += static_cast<uint32_t>(l.sizes[k].indices);
+  }
+  return l;
+}
+
 // Flattens `m` into vdst / idst (its own vertices, then each chunk's, indices rebased), so a
 // piece stays one draw. The chunks are copied every frame, like the rest of the geometry.
 void copyFlat(const terrain::TerrainMesh& m, terrain::TerrainVertex* vdst, uint32_t* idst) {
@@ -148,6 +174,14 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   imagerySet_ = allocateDescriptorSet(ctx, imageryPool_.get(), imageryLayout_.get(), "terrain imagery set");
   sampler_ = createLinearClampSampler(ctx, "terrain imagery sampler");
 
+  createPipelines(frameLayout, samples, deferred);
+
+  // One layer until the scene says how many it streams, so the descriptor is always valid.
+  setImageryLayers(1, {}, [](GpuImage&&) {});
+}
+
+void TerrainPass::createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred) {
+  const Context& ctx = *ctx_;
   const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get(), detail_.layout()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain pipeline layout");
@@ -174,9 +208,6 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
     desc.colorFormat = kVisibilityFormat;
     visibilityPipeline_ = createGraphicsPipeline(ctx, desc);
   }
-
-  // One layer until the scene says how many it streams, so the descriptor is always valid.
-  setImageryLayers(1, {}, [](GpuImage&&) {});
 }
 
 void TerrainPass::setImageryLayers(uint32_t layers, ImageryCompanions companions, const RetireImage& retire) {
@@ -249,14 +280,9 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   std::vector<PreparedDraw>& list = prepared_[s];
   list.clear();
   const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition, tasks_);
-  VkDeviceSize vertexBytes = 0, indexBytes = 0;
-  std::vector<MeshSize> sizes;  // per drawn piece, in draw order (counted once, used twice)
-  sizes.reserve(order.size());
-  for (uint32_t i : order) {
-    const MeshSize size = sizes.emplace_back(flatSize(*draws[i].mesh));
-    vertexBytes += size.vertices * sizeof(terrain::TerrainVertex);
-    indexBytes += size.indices * sizeof(uint32_t);
-  }
+  const PieceLayout layout = layoutPieces(draws, order);
+  const auto& at = layout.at;
+  VkDeviceSize vertexBytes = layout.vertexBytes, indexBytes = layout.indexBytes;
   // The buffers exist even for a frame without terrain: the shade pass's descriptors need them.
   vertexBytes = std::max<VkDeviceSize>(vertexBytes, sizeof(terrain::TerrainVertex));
   indexBytes = std::max<VkDeviceSize>(indexBytes, 3 * sizeof(uint32_t));
@@ -270,14 +296,7 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   auto* vdst = static_cast<uint8_t*>(vertices_[s].buffer().mapped);
   auto* idst = static_cast<uint8_t*>(indices_[s].buffer().mapped);
   auto* pdst = static_cast<TerrainPiece*>(pieces_[s].buffer().mapped);
-  // Each piece's range of the buffers, in draw order; then the copies, a task per piece.
-  std::vector<std::pair<uint32_t, uint32_t>> at(order.size());  // first vertex, first index
-  uint32_t totalVertices = 0, totalIndices = 0;
-  for (size_t k = 0; k < order.size(); ++k) {
-    at[k] = {totalVertices, totalIndices};
-    totalVertices += static_cast<uint32_t>(sizes[k].vertices);
-    totalIndices += static_cast<uint32_t>(sizes[k].indices);
-  }
+  // The copies, a task per piece.
   eachPiece(order.size(), tasks_, [&](size_t k) {
     copyFlat(*draws[order[k]].mesh, reinterpret_cast<terrain::TerrainVertex*>(vdst) + at[k].first,
              reinterpret_cast<uint32_t*>(idst) + at[k].second);
@@ -285,7 +304,7 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
   for (size_t k = 0; k < order.size(); ++k) {
     const TerrainDraw& d = draws[order[k]];
     const terrain::TerrainMesh& m = *d.mesh;
-    const MeshSize size = sizes[k];
+    const MeshSize size = layout.sizes[k];
     const auto [firstVertex, firstIndex] = at[k];
     const bool valid = [&] {  // a layer the array does not have is a caller bug; draw uncoloured instead of faulting
       return d.imageryLayer < static_cast<int32_t>(layers_) && d.previousLayer < static_cast<int32_t>(layers_);
@@ -305,15 +324,15 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
                                      glm::uvec4(firstIndex / 3, firstVertex, triangles, 0u)};
     list.push_back(p);
   }
-  const VkBufferCopy vcopy{0, 0, VkDeviceSize{totalVertices} * sizeof(terrain::TerrainVertex)};
-  const VkBufferCopy icopy{0, 0, VkDeviceSize{totalIndices} * sizeof(uint32_t)};
+  const VkBufferCopy vcopy{0, 0, VkDeviceSize{layout.vertices} * sizeof(terrain::TerrainVertex)};
+  const VkBufferCopy icopy{0, 0, VkDeviceSize{layout.indices} * sizeof(uint32_t)};
   vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);
   vkCmdCopyBuffer(cmd, indices_[s].get(), deviceIndices_[s].get(), 1, &icopy);
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  return totalIndices / 3;
+  return layout.indices / 3;
 }
 
 void TerrainPass::recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const {

@@ -136,6 +136,8 @@ class TerrainPass {
     int32_t vertexOffset = 0;
   };
   void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
+  // The constructor's pipelines: the forward one, and the visibility one when deferred.
+  void createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred);
 
   const Context* ctx_;
   TaskRunner* tasks_;

@@ -78,7 +78,13 @@ TerrainRasterPass::TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout f
     std::memset(readback_[i].mapped, 0, kCounterBytes);
   }
 
-  const VkPushConstantRange push{c, 0, sizeof(TerrainComputePush)};
+  createPipelines(frameLayout, terrain, targets);
+}
+
+void TerrainRasterPass::createPipelines(VkDescriptorSetLayout frameLayout, const TerrainPass& terrain,
+                                        const RenderTargets& targets) {
+  const Context& ctx = *ctx_;
+  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(TerrainComputePush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, terrain.imageryLayout(), terrain.detail().layout(),
                                         inputsLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain raster pipeline layout");
@@ -106,10 +112,7 @@ void TerrainRasterPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, co
   buffer = createBuffer(*ctx_, grownSize(bytes, 256 * 1024), kStorage, MemoryUse::DeviceLocal, what);
 }
 
-void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
-                               const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
-                               const std::function<void()>& binned) {
-  const auto s = static_cast<size_t>(slot);
+void TerrainRasterPass::growLists(int slot, uint64_t triangles, const RetireBuffer& retire) {
   // Room for 4 tiles per raster triangle (most touch 1 or 2); and the slot's previous frame has
   // finished (the renderer waited for its fence): its figures say whether the lists were short
   // even so (huge triangles), and then the next frames get 1.5 × what it needed.
@@ -125,9 +128,9 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   // A triangle clipped by the near plane may become two.
   ensureCapacity(triangles_, std::max<VkDeviceSize>(2 * triangles, 1) * kTriangleBytes, "terrain raster triangles",
                  retire);
+}
 
-  const TerrainGeometry g = terrain.geometry(slot);
-  assert(g.vertices && g.indices && g.pieces && "TerrainPass::prepare first");
+void TerrainRasterPass::writeInputs(size_t s, const TerrainGeometry& g, const RenderTargets& targets) {
   const VkDescriptorSet inputs = inputs_[s];
   writeStorageBuffer(*ctx_, inputs, g.vertices, 1);
   writeStorageBuffer(*ctx_, inputs, g.indices, 2);
@@ -139,24 +142,9 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   writeStorageBuffer(*ctx_, inputs, tileStarts_.get(), 8);
   writeStorageBuffer(*ctx_, inputs, tileLists_.get(), 9);
   writeStorageBuffer(*ctx_, inputs, depth_.get(), 10);
+}
 
-  // The previous frame's compute readers (its raster, Hi-Z build) before this frame's writes (its
-  // fragments' reads of the depth samples are waited for at its end: recordEndOfFrame); then the
-  // counts start at zero.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
-                VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdFillBuffer(cmd, tileCounts_.get(), 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(cmd, counters_.get(), 0, kCounterBytes, 0);
-  // CLEAR | COPY: the fill counts as a clear (spec) or a copy (some validation layers).
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-
-  const VkDescriptorSet sets[] = {frameSet, terrain.imagerySet(), terrain.detail().set(), inputs};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 4, sets, 0, nullptr);
-  TerrainComputePush push{glm::uvec4(g.pieceCount, static_cast<uint32_t>(triangles), 0u, listCapacity_),
-                          glm::uvec4(tilesX_, tilesY_, samples_, 0u)};
+void TerrainRasterPass::recordBinning(VkCommandBuffer cmd, TerrainComputePush& push, uint64_t triangles) {
   const auto pushNow = [&] {
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   };
@@ -174,6 +162,39 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
     vkCmdDispatch(cmd, groups(2 * triangles, kBinGroup), 1, 1);
     computeToCompute(cmd);
   }
+}
+
+void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
+                               const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
+                               const std::function<void()>& binned) {
+  const auto s = static_cast<size_t>(slot);
+  growLists(slot, triangles, retire);
+
+  const TerrainGeometry g = terrain.geometry(slot);
+  assert(g.vertices && g.indices && g.pieces && "TerrainPass::prepare first");
+  writeInputs(s, g, targets);
+
+  // The previous frame's compute readers (its raster, Hi-Z build) before this frame's writes (its
+  // fragments' reads of the depth samples are waited for at its end: recordEndOfFrame); then the
+  // counts start at zero.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdFillBuffer(cmd, tileCounts_.get(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, counters_.get(), 0, kCounterBytes, 0);
+  // CLEAR | COPY: the fill counts as a clear (spec) or a copy (some validation layers).
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+  const VkDescriptorSet sets[] = {frameSet, terrain.imagerySet(), terrain.detail().set(), inputs_[s]};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 4, sets, 0, nullptr);
+  TerrainComputePush push{glm::uvec4(g.pieceCount, static_cast<uint32_t>(triangles), 0u, listCapacity_),
+                          glm::uvec4(tilesX_, tilesY_, samples_, 0u)};
+  const auto pushNow = [&] {
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  };
+  recordBinning(cmd, push, triangles);
   binned();
 
   // The colour target becomes writable by compute (its old contents discarded: every sample is

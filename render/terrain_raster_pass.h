@@ -81,6 +81,13 @@ class TerrainRasterPass {
 
  private:
   void ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, const char* what, const RetireBuffer& retire);
+  // record()'s steps: the tile lists and triangle buffer grown for `triangles`; slot s's inputs
+  // set written; the bin, scan and bin-again dispatches that sort the triangles into tiles.
+  void growLists(int slot, uint64_t triangles, const RetireBuffer& retire);
+  // The constructor's pipelines: bin, scan and raster (compute), and the depth attachment's.
+  void createPipelines(VkDescriptorSetLayout frameLayout, const TerrainPass& terrain, const RenderTargets& targets);
+  void writeInputs(size_t s, const TerrainGeometry& g, const RenderTargets& targets);
+  void recordBinning(VkCommandBuffer cmd, TerrainComputePush& push, uint64_t triangles);
 
   const Context* ctx_;
   uint32_t tilesX_ = 0, tilesY_ = 0, samples_ = 1;

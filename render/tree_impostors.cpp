@@ -72,52 +72,7 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
         transitionImage(cmd, img->get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    for (uint32_t layer = 0; layer < layers; ++layer) {
-      // The depth target is reused per layer: wait for the previous layer's tests.
-      transitionImage(cmd, depth_.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-      views.push_back(layerView(ctx, albedo_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
-      views.push_back(layerView(ctx, normal_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
-      VkRenderingAttachmentInfo colour[2]{};
-      for (int k = 0; k < 2; ++k) {
-        colour[k].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-        const VkImageView layerView = views[views.size() - 2 + static_cast<size_t>(k)].get();
-        colour[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colour[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        if (multisampled) {
-          colour[k].imageView = (k == 0 ? msAlbedo_ : msNormal_).view.get();
-          colour[k].resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;  // coverage → alpha
-          colour[k].resolveImageView = layerView;
-          colour[k].resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-          colour[k].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        } else {
-          colour[k].imageView = layerView;
-          colour[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        }
-        colour[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-      }
-      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      depth.imageView = depth_.view.get();
-      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: far
-      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      ri.renderArea = {{0, 0}, extent};
-      ri.layerCount = 1;
-      ri.colorAttachmentCount = 2;
-      ri.pColorAttachments = colour;
-      ri.pDepthAttachment = &depth;
-      vkCmdBeginRendering(cmd, &ri);
-      const VkViewport vp{0.0f, 0.0f, static_cast<float>(side), static_cast<float>(side), 0.0f, 1.0f};
-      const VkRect2D scissor{{0, 0}, extent};
-      vkCmdSetViewport(cmd, 0, 1, &vp);
-      vkCmdSetScissor(cmd, 0, 1, &scissor);
-      draw(cmd, layer);
-      vkCmdEndRendering(cmd);
-    }
+    for (uint32_t layer = 0; layer < layers; ++layer) captureLayer(cmd, layer, views, draw);
     for (const GpuImage* img : {&albedo_, &normal_})
       transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -125,6 +80,58 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
                            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   });
+}
+
+void TreeImpostors::captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vector<ImageView>& views,
+                                 const DrawModel& draw) {
+  const Context& ctx = *ctx_;
+  const uint32_t side = kImpostorViews * kImpostorCellPx;
+  const VkExtent2D extent{side, side};
+  const bool multisampled = kImpostorSamples != VK_SAMPLE_COUNT_1_BIT;
+  // The depth target is reused per layer: wait for the previous layer's tests.
+  transitionImage(cmd, depth_.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  views.push_back(layerView(ctx, albedo_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
+  views.push_back(layerView(ctx, normal_, layer, VK_IMAGE_ASPECT_COLOR_BIT));
+  VkRenderingAttachmentInfo colour[2]{};
+  for (int k = 0; k < 2; ++k) {
+    colour[k].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+    const VkImageView layerView = views[views.size() - 2 + static_cast<size_t>(k)].get();
+    colour[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colour[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    if (multisampled) {
+      colour[k].imageView = (k == 0 ? msAlbedo_ : msNormal_).view.get();
+      colour[k].resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;  // coverage → alpha
+      colour[k].resolveImageView = layerView;
+      colour[k].resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      colour[k].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    } else {
+      colour[k].imageView = layerView;
+      colour[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    }
+    colour[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_.view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: far
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 2;
+  ri.pColorAttachments = colour;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  const VkViewport vp{0.0f, 0.0f, static_cast<float>(side), static_cast<float>(side), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  draw(cmd, layer);
+  vkCmdEndRendering(cmd);
 }
 
 std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer) const {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -20,6 +21,7 @@
 
 #include "render/context.h"
 #include "render/gpu_resources.h"
+#include "render/handle.h"
 
 namespace vegstream::render {
 
@@ -53,6 +55,10 @@ class TreeImpostors {
   std::vector<uint8_t> readAlbedo(uint32_t layer) const;
 
  private:
+  // Renders model `layer` from every direction into its layer of the atlas (views keeps the
+  // layer's attachment views alive until the capture has run).
+  void captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vector<ImageView>& views, const DrawModel& draw);
+
   const Context* ctx_;
   GpuImage albedo_, normal_, depth_, msAlbedo_, msNormal_;
 };

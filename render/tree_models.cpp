@@ -18,16 +18,19 @@
 namespace vegstream::render {
 using namespace tree_detail;
 
-bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet) {
-  vkDeviceWaitIdle(ctx_->device());
-  models_.clear();
-  modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
-  pageCapacity_ = 0;
+// The models of every set (at most kMaxTreeModels) in one mesh, in order.
+struct TreePass::PackedModels {
   std::vector<vegetation::TreeVertex> vertices;
   // The impostors' one triangle (shaders/tree_impostor.vert), first.
   std::vector<uint32_t> indices = {0u, 1u, 2u};
   std::vector<vegetation::TreeBranch> branches;
   std::vector<TreeImpostorModel> impostorModels;
+};
+
+// Packs the models' levels into one vertex and index array, their branches into one, and fills
+// models_ and each model's GPU record in modelBlock_.
+TreePass::PackedModels TreePass::packModels(std::span<const TreeModelSet> sets) {
+  PackedModels p;
   auto* gpuModels = reinterpret_cast<TreeModelGpu*>(modelBlock_.data());
   for (const TreeModelSet& set : sets)
     for (const vegetation::TreeModel& model : set.variants) {
@@ -35,12 +38,12 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       const auto m = static_cast<uint32_t>(models_.size());
       ModelDraw draw{};
       for (int lod = 0; lod < 2; ++lod) {
-        draw.firstIndex[lod] = static_cast<uint32_t>(indices.size());
+        draw.firstIndex[lod] = static_cast<uint32_t>(p.indices.size());
         draw.indexCount[lod] = model.lod[lod].coreFirstIndex;
         draw.coreCount[lod] = static_cast<uint32_t>(model.lod[lod].indices.size()) - model.lod[lod].coreFirstIndex;
-        draw.vertexOffset[lod] = static_cast<uint32_t>(vertices.size());
-        indices.insert(indices.end(), model.lod[lod].indices.begin(), model.lod[lod].indices.end());
-        vertices.insert(vertices.end(), model.lod[lod].vertices.begin(), model.lod[lod].vertices.end());
+        draw.vertexOffset[lod] = static_cast<uint32_t>(p.vertices.size());
+        p.indices.insert(p.indices.end(), model.lod[lod].indices.begin(), model.lod[lod].indices.end());
+        p.vertices.insert(p.vertices.end(), model.lod[lod].vertices.begin(), model.lod[lod].vertices.end());
       }
       // The impostor's square holds the model seen from any direction: its bounding sphere
       // about the centre.
@@ -48,9 +51,9 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       float radius = 0.0f;
       for (const auto& v : model.lod[0].vertices)
         radius = std::max(radius, glm::length(glm::vec3(v.position[0], v.position[1], v.position[2] - centreZ)));
-      impostorModels.push_back({centreZ, 1.02f * radius});
+      p.impostorModels.push_back({centreZ, 1.02f * radius});
       TreeModelGpu& g = gpuModels[m];
-      g.mesh0 = {draw.firstIndex[0], draw.indexCount[0], draw.vertexOffset[0], static_cast<uint32_t>(branches.size())};
+      g.mesh0 = {draw.firstIndex[0], draw.indexCount[0], draw.vertexOffset[0], static_cast<uint32_t>(p.branches.size())};
       g.mesh1 = {draw.firstIndex[1], draw.indexCount[1], draw.vertexOffset[1], m};
       g.shape = {model.modelHeightM, std::max(model.crownRadiusM, 0.1f), 1.02f * radius, centreZ};
       const ImpostorTriangle triangle =
@@ -61,22 +64,14 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
       g.leaf = {set.params.leafColour[0], set.params.leafColour[1], set.params.leafColour[2], set.params.translucency};
       g.bark = {set.params.barkColour[0], set.params.barkColour[1], set.params.barkColour[2],
                 set.params.form == vegetation::TreeForm::Broadleaf ? 1.0f : 0.0f};
-      branches.insert(branches.end(), model.branches.begin(), model.branches.end());
+      p.branches.insert(p.branches.end(), model.branches.begin(), model.branches.end());
       models_.push_back(draw);
     }
-  if (models_.empty()) return false;
-  const auto count = static_cast<uint32_t>(models_.size());
+  return p;
+}
 
+VkDeviceSize TreePass::createDrawBuffers(uint32_t count) {
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  vertices_ = createBufferWithData(*ctx_, vertices.data(), vertices.size() * sizeof(vertices[0]),
-                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "tree vertices");
-  indices_ = createBufferWithData(*ctx_, indices.data(), indices.size() * sizeof(uint32_t),
-                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "tree indices");
-  branches_ = createBufferWithData(*ctx_, branches.data(), branches.size() * sizeof(branches[0]), storage,
-                                   "tree branches");
-  uint64_t fixed = vertices_.size + indices_.size + branches_.size;
-  if (fixed > budgetBytes) return false;
-
   // Visible lists: per model the trees it may draw at each level (a cross-fading tree in two);
   // then per cascade and model the sun's shadow casters (the near cascades cover less ground).
   capacity_ = {2048u, 8192u, 65536u};
@@ -120,20 +115,12 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   counters_ = createBuffer(*ctx_, kCounters * sizeof(uint32_t),
                            storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                            MemoryUse::DeviceLocal, "tree counters");
+  return visibleBytes;
+}
 
-  // The impostors, captured with the model pipeline in capture mode (2 attachments, 1 sample).
-  GraphicsPipelineDesc capture;
-  capture.name = "tree impostor capture pipeline";
-  capture.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
-  setTreeVertexInput(capture);
-  capture.cullMode = VK_CULL_MODE_NONE;
-  capture.samples = kImpostorSamples;
-  capture.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
-  capture.colorAttachments = 2;
-  capture.depthFormat = VK_FORMAT_D32_SFLOAT;
-  capture.layout = drawLayout_.get();
-  Pipeline capturePipeline = createGraphicsPipeline(*ctx_, capture);
-
+bool TreePass::createInstancePool(uint64_t fixedBytes, uint64_t budgetBytes, uint32_t count) {
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  uint64_t fixed = fixedBytes;
   // Per-slot host buffers; the pool from what the budget leaves.
   for (int s = 0; s < kSlots; ++s) {
     uniforms_[size_t(s)] = createBuffer(*ctx_, sizeof(TreeBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -142,7 +129,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                                         MemoryUse::HostReadback, "tree counters read-back");
     slotRecorded_[size_t(s)] = false;
   }
-  fixed += visibleBytes + drawTemplate_.size + meshDraws_.size + impostorDraws_.size;
+  fixed += drawTemplate_.size + meshDraws_.size + impostorDraws_.size;
   fixed += VkDeviceSize{count} * 2 * kImpostorViews * kImpostorCellPx * kImpostorViews * kImpostorCellPx * 4 +
            VkDeviceSize{kImpostorViews} * kImpostorCellPx * kImpostorViews * kImpostorCellPx * 4;
   const uint64_t pageBytes = uint64_t{kTreePageSize} * sizeof(TreeInstanceGpu) + kSlots * sizeof(uint32_t);
@@ -158,24 +145,41 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
     std::memset(pageCounts_[size_t(s)].mapped, 0, pageCounts_[size_t(s)].size);
     slotPages_[size_t(s)] = 0;
   }
+  return true;
+}
 
-  // Every slot's set (the atlas bindings first need an atlas: captured below with set 0).
-  const auto writeSet = [&](size_t s) {
-    const VkDescriptorSet set = sets_[s];
-    writeUniformBuffer(*ctx_, set, uniforms_[s].get(), sizeof(TreeBlock), 0);
-    writeStorageBuffer(*ctx_, set, instances_.get(), 1);
-    writeStorageBuffer(*ctx_, set, visible_.get(), 2);
-    writeStorageBuffer(*ctx_, set, branches_.get(), 3);
-    writeStorageBuffer(*ctx_, set, pageCounts_[s].get(), 4);
-    writeStorageBuffer(*ctx_, set, meshDraws_.get(), 5);
-    writeStorageBuffer(*ctx_, set, impostorDraws_.get(), 6);
-    writeStorageBuffer(*ctx_, set, counters_.get(), 7);
-  };
+void TreePass::writeSlotSet(size_t s) {
+  const VkDescriptorSet set = sets_[s];
+  writeUniformBuffer(*ctx_, set, uniforms_[s].get(), sizeof(TreeBlock), 0);
+  writeStorageBuffer(*ctx_, set, instances_.get(), 1);
+  writeStorageBuffer(*ctx_, set, visible_.get(), 2);
+  writeStorageBuffer(*ctx_, set, branches_.get(), 3);
+  writeStorageBuffer(*ctx_, set, pageCounts_[s].get(), 4);
+  writeStorageBuffer(*ctx_, set, meshDraws_.get(), 5);
+  writeStorageBuffer(*ctx_, set, impostorDraws_.get(), 6);
+  writeStorageBuffer(*ctx_, set, counters_.get(), 7);
+}
+
+// The impostors, captured with the model pipeline in capture mode (2 attachments, 1 sample);
+// then every slot's set (the atlas bindings first need an atlas: captured here with set 0).
+void TreePass::captureImpostors(std::span<const TreeImpostorModel> impostorModels, VkDescriptorSet frameSet) {
+  GraphicsPipelineDesc capture;
+  capture.name = "tree impostor capture pipeline";
+  capture.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
+  setTreeVertexInput(capture);
+  capture.cullMode = VK_CULL_MODE_NONE;
+  capture.samples = kImpostorSamples;
+  capture.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  capture.colorAttachments = 2;
+  capture.depthFormat = VK_FORMAT_D32_SFLOAT;
+  capture.layout = drawLayout_.get();
+  Pipeline capturePipeline = createGraphicsPipeline(*ctx_, capture);
+
   // The capture reads the models from slot 0's block.
   auto* block0 = static_cast<TreeBlock*>(uniforms_[0].mapped);
   std::memset(block0, 0, sizeof(TreeBlock));
   std::memcpy(block0->models, modelBlock_.data(), modelBlock_.size());
-  writeSet(0);
+  writeSlotSet(0);
   // A placeholder atlas for the capture's own set (the capture does not sample it).
   GpuImage placeholder = createImageArray(*ctx_, {1, 1}, 1, VK_FORMAT_R8G8B8A8_UNORM,
                                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -205,10 +209,33 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
                          static_cast<int32_t>(models_[m].vertexOffset[0]), 0);
       });
   for (size_t s = 0; s < sets_.size(); ++s) {
-    writeSet(s);
+    writeSlotSet(s);
     writeSampledImage(*ctx_, sets_[s], sampler_.get(), impostors_->albedo().view.get(), 8);
     writeSampledImage(*ctx_, sets_[s], sampler_.get(), impostors_->normalDepth().view.get(), 9);
   }
+}
+
+bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet) {
+  vkDeviceWaitIdle(ctx_->device());
+  models_.clear();
+  modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
+  pageCapacity_ = 0;
+  const PackedModels p = packModels(sets);
+  if (models_.empty()) return false;
+  const auto count = static_cast<uint32_t>(models_.size());
+
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  vertices_ = createBufferWithData(*ctx_, p.vertices.data(), p.vertices.size() * sizeof(p.vertices[0]),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "tree vertices");
+  indices_ = createBufferWithData(*ctx_, p.indices.data(), p.indices.size() * sizeof(uint32_t),
+                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "tree indices");
+  branches_ = createBufferWithData(*ctx_, p.branches.data(), p.branches.size() * sizeof(p.branches[0]), storage,
+                                   "tree branches");
+  const uint64_t fixed = vertices_.size + indices_.size + branches_.size;
+  if (fixed > budgetBytes) return false;
+  const VkDeviceSize visibleBytes = createDrawBuffers(count);
+  if (!createInstancePool(fixed + visibleBytes, budgetBytes, count)) return false;
+  captureImpostors(p.impostorModels, frameSet);
   return true;
 }
 

@@ -117,12 +117,8 @@ uint64_t TreePass::gpuBytes() const {
   return bytes;
 }
 
-void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
-                              const glm::dmat4& viewProj, float lodScale, float shadowMarginM,
-                              const RetireBuffer& retire) {
-  const auto s = static_cast<size_t>(slot);
-  slotRecorded_[s] = false;
-  if (models_.empty() || pageCapacity_ == 0) return;
+void TreePass::recordPageUploads(VkCommandBuffer cmd, size_t s, const TreeRequest& request,
+                                 const RetireBuffer& retire) {
   // Page uploads through the slot's staging buffer (its previous frame has finished).
   VkDeviceSize uploadBytes = 0;
   for (const TreePageUpload& u : request.uploads)
@@ -147,11 +143,10 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     vkCmdCopyBuffer(cmd, staging_[s].get(), instances_.get(), static_cast<uint32_t>(copies.size()), copies.data());
   }
-  const auto pages = static_cast<uint32_t>(std::min<size_t>(request.pageCounts.size(), pageCapacity_));
-  auto* counts = static_cast<uint32_t*>(pageCounts_[s].mapped);
-  std::memcpy(counts, request.pageCounts.data(), pages * sizeof(uint32_t));
-  slotPages_[s] = pages;
+}
 
+void TreePass::writeBlock(size_t s, const TreeRequest& request, const glm::dmat4& viewProj, float lodScale,
+                          float shadowMarginM, uint32_t pages) {
   auto* block = static_cast<TreeBlock*>(uniforms_[s].mapped);
   block->camera = glm::vec4(static_cast<float>(request.cameraEnu[0]), static_cast<float>(request.cameraEnu[1]),
                             static_cast<float>(request.cameraEnu[2]), request.timeS);
@@ -164,6 +159,21 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   block->limits = glm::vec4(shadowMarginM, request.lod.impostorEndHeights * lodScale, 0.0f, 0.0f);
   block->casters = {casterCapacity_[0], casterCapacity_[1], casterCapacity_[2], 0u};
   std::memcpy(block->models, modelBlock_.data(), modelBlock_.size());
+}
+
+void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TreeRequest& request,
+                              const glm::dmat4& viewProj, float lodScale, float shadowMarginM,
+                              const RetireBuffer& retire) {
+  const auto s = static_cast<size_t>(slot);
+  slotRecorded_[s] = false;
+  if (models_.empty() || pageCapacity_ == 0) return;
+  recordPageUploads(cmd, s, request, retire);
+  const auto pages = static_cast<uint32_t>(std::min<size_t>(request.pageCounts.size(), pageCapacity_));
+  auto* counts = static_cast<uint32_t*>(pageCounts_[s].mapped);
+  std::memcpy(counts, request.pageCounts.data(), pages * sizeof(uint32_t));
+  slotPages_[s] = pages;
+
+  writeBlock(s, request, viewProj, lodScale, shadowMarginM, pages);
 
   // Reset the draws and counters, classify, clamp.
   const VkBufferCopy meshCopy{0, 0, meshDraws_.size};

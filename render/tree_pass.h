@@ -28,6 +28,7 @@
 namespace vegstream::render {
 
 class TreeImpostors;
+struct TreeImpostorModel;
 
 class TreePass {
  public:
@@ -72,6 +73,21 @@ class TreePass {
     uint32_t firstIndex[2], indexCount[2], vertexOffset[2], coreCount[2];
   };
   void createPipelines(VkDescriptorSetLayout frameLayout);
+  // recordClassify()'s steps: the request's pages copied into the pool through slot s's staging
+  // buffer; slot s's TreeBlock written for the view.
+  void recordPageUploads(VkCommandBuffer cmd, size_t s, const TreeRequest& request, const RetireBuffer& retire);
+  void writeBlock(size_t s, const TreeRequest& request, const glm::dmat4& viewProj, float lodScale, float shadowMarginM,
+                  uint32_t pages);
+  // setModels's steps (render/tree_models.cpp): the models packed into one mesh with their GPU
+  // records and impostor spheres; the visible lists and draws of `count` models (returns the
+  // lists' bytes); the per-slot buffers and the instance pool from what the budget leaves after
+  // `fixedBytes` (false: not one page); slot `s`'s set; the impostors captured, then every set.
+  struct PackedModels;
+  PackedModels packModels(std::span<const TreeModelSet> sets);
+  VkDeviceSize createDrawBuffers(uint32_t count);
+  bool createInstancePool(uint64_t fixedBytes, uint64_t budgetBytes, uint32_t count);
+  void writeSlotSet(size_t s);
+  void captureImpostors(std::span<const TreeImpostorModel> impostorModels, VkDescriptorSet frameSet);
 
   const Context* ctx_;
   VkSampleCountFlagBits samples_;

@@ -116,6 +116,46 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
   }
 }
 
+// "more than --max-plants N": the box grows howMany, n of them.
+Error tooManyPlants(const PlantsInBoxOptions& options, const std::string& howMany, uint64_t n) {
+  return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " +
+                                                options.maxPlantsName + " " + std::to_string(options.maxPlants) +
+                                                "; give a smaller box or " + options.maxPlantsName + " " +
+                                                std::to_string(n));
+}
+
+// Triangles × their flat area × the densest species: more than 4 × the most plants is refused.
+Status checkUpperBound(const terrain::BintreeGrid& grid, const geo::TileRange& roots,
+                       const terrain::SeedRegionQuery& query, double lat, const PlantsInBoxOptions& options) {
+  const uint64_t triangles = terrain::countSeedTrianglesIn(grid, roots, query);
+  const double perTriangle = query.densityM2 * terrain::triangleAreaM2(grid, query.seedLevel, lat);
+  const auto upperBound = static_cast<uint64_t>(double(triangles) * perTriangle);
+  if (upperBound > 4 * options.maxPlants)
+    return tooManyPlants(options,
+                         "the box grows up to " + plural(upperBound, "plant") + " (" +
+                             plural(triangles, "seed triangle") + " × " + std::to_string(int(perTriangle)) + ")",
+                         upperBound);
+  return {};
+}
+
+// The box's finest tiles of both layers, settled in one go.
+void prefetchBox(SettledTiles& tiles, const geo::GeoBounds& box, int maxZoom) {
+  std::vector<streaming::TileKey> wanted;
+  for (const geo::TileId& id : geo::tilesCovering(box, maxZoom))
+    for (streaming::TileLayer layer : {streaming::TileLayer::Height, streaming::TileLayer::Imagery})
+      wanted.push_back({layer, id});
+  tiles.prefetch(wanted);
+}
+
+// The given crowns in the box's frame; none when the catalog has no trees.
+std::vector<vegetation::CanopyTree> boxCrowns(const PlantsInBoxOptions& options, const geo::LocalFrame& frame,
+                                              const vegetation::SpeciesCatalog& catalog) {
+  std::vector<vegetation::CanopyTree> crowns;
+  for (const BoxCrown& c : options.crowns) crowns.push_back({frame.toLocal(c.at), c.crownM});
+  if (!vegetation::hasTrees(catalog)) crowns.clear();
+  return crowns;
+}
+
 }  // namespace
 
 Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds& box,
@@ -142,30 +182,14 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   query.densityM2 = vegetation::densestGroundDensity(catalog);
   query.select = terrain::RegionSelect::Overlap;
   const uint64_t maxPlants = options.maxPlants;
-  auto tooMany = [&](const std::string& howMany, uint64_t n) {
-    return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " +
-                                                  options.maxPlantsName + " " + std::to_string(maxPlants) +
-                                                  "; give a smaller box or " + options.maxPlantsName + " " +
-                                                  std::to_string(n));
-  };
   // A cheap bound first (triangles × their flat area × the densest species, no heights): a huge
   // box is refused at once, not after growing it.
-  const uint64_t triangles = terrain::countSeedTrianglesIn(grid, roots, query);
-  const double perTriangle = query.densityM2 * terrain::triangleAreaM2(grid, query.seedLevel, lat);
-  const auto upperBound = static_cast<uint64_t>(double(triangles) * perTriangle);
-  if (upperBound > 4 * maxPlants)
-    return tooMany("the box grows up to " + plural(upperBound, "plant") + " (" + plural(triangles, "seed triangle") +
-                       " × " + std::to_string(int(perTriangle)) + ")",
-                   upperBound);
+  if (Status bounded = checkUpperBound(grid, roots, query, lat, options); !bounded) return bounded.error();
 
   // The box's finest tiles of both layers in one settle (decoded in parallel); the rest (tiles
   // beside the box that edge triangles reach, ancestors where a tile is missing) on demand.
   SettledTiles tiles(source, *meta);
-  std::vector<streaming::TileKey> wanted;
-  for (const geo::TileId& id : geo::tilesCovering(box, meta->maxZoom))
-    for (streaming::TileLayer layer : {streaming::TileLayer::Height, streaming::TileLayer::Imagery})
-      wanted.push_back({layer, id});
-  tiles.prefetch(wanted);
+  prefetchBox(tiles, box, meta->maxZoom);
   terrain::ResidentHeights heights(grid, [&](const geo::TileId& t) {
     return tiles.finest({streaming::TileLayer::Height, t});
   });
@@ -178,9 +202,7 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   out.seedTriangles = region.triangles.size();
   out.nodataSkipped = region.nodataSkipped;
   uint64_t count = 0;
-  std::vector<vegetation::CanopyTree> crowns;
-  for (const BoxCrown& c : options.crowns) crowns.push_back({frame.toLocal(c.at), c.crownM});
-  if (!vegetation::hasTrees(catalog)) crowns.clear();
+  const std::vector<vegetation::CanopyTree> crowns = boxCrowns(options, frame, catalog);
   const vegetation::TreeGrid treeGrid = crowns.empty() ? vegetation::TreeGrid{} : vegetation::treeGridFor(catalog);
   LandcoverLookup landcover;
   if (meta->landcover) {
@@ -191,7 +213,7 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
        meta->maxZoom, maxPlants, landcover, out, count);
   if (tiles.error()) return *tiles.error();
   if (landcover.error) return *landcover.error;
-  if (count > maxPlants) return tooMany("the box grows " + plural(count, "plant"), count);
+  if (count > maxPlants) return tooManyPlants(options, "the box grows " + plural(count, "plant"), count);
   return out;
 }
 

@@ -25,6 +25,51 @@ const char* styleName(render::PlantStyle style) {
   return "plants";
 }
 
+// recording.json's streaming and terrain settings.
+flight::RecordingMeta::Streaming streamingMeta(const SceneOptions& so, const SceneInfo& info) {
+  flight::RecordingMeta::Streaming streaming;
+  streaming.mode = toString(so.mode);
+  streaming.lookAhead = so.lookAhead;
+  streaming.cpuBudgetBytes = so.streaming.cpuBudgetBytes;
+  streaming.gpuBudgetBytes = so.streaming.gpuBudgetBytes;
+  streaming.uploadBytesPerFrame = so.streaming.uploadBytesPerFrame;
+  streaming.maxRequestsInFlight = so.streaming.maxRequestsInFlight;
+  streaming.imageryLayers = info.imageryLayers;
+  streaming.terrainErrorPx = so.terrain.maxErrorPx;
+  streaming.terrainMaxNodes = so.terrain.maxNodes;
+  streaming.terrainMaxTriangles = so.terrain.roam.maxTriangles;
+  streaming.canopyM = so.terrain.roam.canopyM;
+  streaming.terrainDetail = so.terrainDetail;
+  streaming.seedHorizonM = so.terrain.seeds.horizonM;
+  streaming.seedLevel = info.seedLevel;
+  streaming.seedTriangleAreaM2 = info.seedAreaM2;
+  return streaming;
+}
+
+// recording.json's plant settings: those asked for, and the blade path the device gave.
+flight::RecordingMeta::Plants plantsMeta(const SceneOptions& so, const render::Renderer& r,
+                                         const std::string& speciesCatalog) {
+  flight::RecordingMeta::Plants plants;
+  plants.enabled = so.plants;
+  plants.density = so.terrain.seeds.density;
+  plants.maxPerTriangle = so.terrain.seeds.maxPlants;
+  plants.groundDensityM2 = so.terrain.seeds.groundDensityM2;
+  plants.clusterSize = so.clusterSize;
+  plants.speciesCatalog = speciesCatalog;
+  plants.style = so.plantDraw.flatColour ? "coverage" : styleName(so.plantStyle);
+  plants.maxSegments = so.plantDraw.maxSegments;
+  plants.lodDistanceM = so.plantDraw.lodDistanceM;
+  plants.shadows = so.plantDraw.shadows;
+  plants.shadowDistanceM = so.plantDraw.shadowDistanceM;
+  plants.fades = so.plantDraw.fades;
+  plants.occlusionCulling = so.occlusionCulling;
+  plants.bladePath = render::bladePathName(r.bladePath());
+  plants.bladePathRequested = render::bladePathName(so.renderer.bladePath);
+  for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
+    plants.species.push_back(s.name);
+  return plants;
+}
+
 }  // namespace
 
 flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath& path, const Recording& recording,
@@ -55,38 +100,8 @@ flight::RecordingMeta recordingMeta(const Scene& scene, const flight::FlightPath
   m.imageryZoom = info.hasImagery ? info.maxZoom : -1;
   m.groundZoom = info.groundZoom;
   m.sceneLoadMs = info.loadMs;
-  m.streaming.mode = toString(so.mode);
-  m.streaming.lookAhead = so.lookAhead;
-  m.streaming.cpuBudgetBytes = so.streaming.cpuBudgetBytes;
-  m.streaming.gpuBudgetBytes = so.streaming.gpuBudgetBytes;
-  m.streaming.uploadBytesPerFrame = so.streaming.uploadBytesPerFrame;
-  m.streaming.maxRequestsInFlight = so.streaming.maxRequestsInFlight;
-  m.streaming.imageryLayers = info.imageryLayers;
-  m.streaming.terrainErrorPx = so.terrain.maxErrorPx;
-  m.streaming.terrainMaxNodes = so.terrain.maxNodes;
-  m.streaming.terrainMaxTriangles = so.terrain.roam.maxTriangles;
-  m.streaming.canopyM = so.terrain.roam.canopyM;
-  m.streaming.terrainDetail = so.terrainDetail;
-  m.streaming.seedHorizonM = so.terrain.seeds.horizonM;
-  m.streaming.seedLevel = info.seedLevel;
-  m.streaming.seedTriangleAreaM2 = info.seedAreaM2;
-  m.plants.enabled = so.plants;
-  m.plants.density = so.terrain.seeds.density;
-  m.plants.maxPerTriangle = so.terrain.seeds.maxPlants;
-  m.plants.groundDensityM2 = so.terrain.seeds.groundDensityM2;
-  m.plants.clusterSize = so.clusterSize;
-  m.plants.speciesCatalog = request.speciesCatalog;
-  m.plants.style = so.plantDraw.flatColour ? "coverage" : styleName(so.plantStyle);
-  m.plants.maxSegments = so.plantDraw.maxSegments;
-  m.plants.lodDistanceM = so.plantDraw.lodDistanceM;
-  m.plants.shadows = so.plantDraw.shadows;
-  m.plants.shadowDistanceM = so.plantDraw.shadowDistanceM;
-  m.plants.fades = so.plantDraw.fades;
-  m.plants.occlusionCulling = so.occlusionCulling;
-  m.plants.bladePath = render::bladePathName(r.bladePath());
-  m.plants.bladePathRequested = render::bladePathName(so.renderer.bladePath);
-  for (const vegetation::Species& s : (so.species ? *so.species : vegetation::defaultSpeciesCatalog()).species)
-    m.plants.species.push_back(s.name);
+  m.streaming = streamingMeta(so, info);
+  m.plants = plantsMeta(so, r, request.speciesCatalog);
   const SunClock& sun = scene.sunClock();
   const geo::SolarPosition start = sun.sunAt(0.0);
   m.sun.datetime = geo::formatIsoDateTime(sun.start);

@@ -1,3 +1,6 @@
+// The composition root (scene.h): Scene::open builds the dataset's source, the renderer, the
+// tile streamer, the streamed terrain and the trees; prepareFrame turns a flight sample into the
+// frame's request (streaming, terrain, seeding, trees) and its figures.
 #include "scene/dataset_calibration.h"
 #include "scene/scene.h"
 
@@ -115,6 +118,55 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   return {};
 }
 
+// The tile streamer over the source, the scene's description, and the renderer's imagery layers.
+Status openStreaming(Scene::Impl& m, const datasets::DatasetMeta& meta, int groundZoom, const Logger& log) {
+  streaming::StreamingOptions streamingOptions = terrain::streamingOptionsFor(meta, m.options.streaming);
+  streamingOptions.tasks = m.tasks.get();
+  streamingOptions.maxGpuSlots = std::min(streamingOptions.maxGpuSlots, m.renderer->maxImageryLayers());
+  SceneInfo& info = m.info;
+  info.datasetName = meta.name;
+  info.source = m.source->describe();
+  info.bounds = meta.bounds;
+  info.minZoom = meta.minZoom;
+  info.maxZoom = meta.maxZoom;
+  info.groundZoom = groundZoom;
+  info.hasImagery = meta.imagery.has_value();
+  info.groundBytes = m.ground.heights.size() * sizeof(float);
+  m.streamer = std::make_unique<streaming::TileStreamer>(m.source, meta, streamingOptions, log);
+  info.imageryLayers = info.hasImagery ? m.streamer->gpuSlotCount() : 0;
+  if (info.hasImagery) {
+    if (info.imageryLayers == 0)
+      return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
+    if (Status s = m.renderer->setImageryLayers(info.imageryLayers, {meta.ndvi, meta.landcover.has_value()}); !s)
+      return s.error();
+  }
+  return {};
+}
+
+// The catalog calibrated to the dataset (and given to the renderer when it differs from the
+// default), and the streamed terrain with the seeding it decides.
+Status openTerrain(Scene::Impl& m, const datasets::DatasetMeta& meta) {
+  m.catalog = calibratedCatalog(m.options.species ? *m.options.species : vegetation::defaultSpeciesCatalog(), meta);
+  if (meta.landcover) m.catalog.landcoverCodes = landcoverMasks(m.catalog, *meta.landcover);
+  if (m.options.species || !m.catalog.calibration.isIdentity() || m.catalog.landcoverCodes)
+    if (Status s = m.renderer->setSpeciesCatalog(m.catalog); !s) return s.error();
+  if (m.options.clusterSize < 1 || m.options.clusterSize > vegetation::kMaxClusterSize)
+    return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(m.options.clusterSize) +
+                                                  ": must be 1 … " + std::to_string(vegetation::kMaxClusterSize));
+  // The catalog decides how dense plants grow and how far the farthest can be seen: the seed
+  // triangles' counts stop there (terrain/seed_triangles.h), each species at its own.
+  const vegetation::SpeciesCatalog& catalog = m.catalog;
+  terrain::SeedOptions& seeds = m.options.terrain.seeds;
+  seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
+  seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));
+  m.options.terrain.roam.tasks = m.tasks.get();  // compactions beside the frame
+  m.terrain = std::make_unique<terrain::StreamedTerrain>(*m.streamer, m.frame, m.options.terrain);
+  SceneInfo& info = m.info;
+  info.seedLevel = m.terrain->roam().seedLevel();
+  info.seedAreaM2 = terrain::triangleAreaM2(m.terrain->roam().mesh().grid(), info.seedLevel, meta.bounds.centre().y);
+  return {};
+}
+
 }  // namespace
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -165,42 +217,10 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   impl->sun = *sun;
   impl->lighting.exposureEv = options.exposureEv;
 
-  streaming::StreamingOptions streamingOptions = terrain::streamingOptionsFor(*meta, options.streaming);
-  streamingOptions.tasks = impl->tasks.get();
-  streamingOptions.maxGpuSlots = std::min(streamingOptions.maxGpuSlots, impl->renderer->maxImageryLayers());
+  if (Status s = openStreaming(*impl, *meta, ground->zoom, log); !s) return s.error();
   SceneInfo& info = impl->info;
-  info.datasetName = meta->name;
-  info.source = impl->source->describe();
-  info.bounds = b;
-  info.minZoom = meta->minZoom;
-  info.maxZoom = meta->maxZoom;
-  info.groundZoom = ground->zoom;
-  info.hasImagery = meta->imagery.has_value();
-  info.groundBytes = impl->ground.heights.size() * sizeof(float);
-  impl->streamer = std::make_unique<streaming::TileStreamer>(impl->source, *meta, streamingOptions, log);
-  info.imageryLayers = info.hasImagery ? impl->streamer->gpuSlotCount() : 0;
-  if (info.hasImagery) {
-    if (info.imageryLayers == 0)
-      return makeError(ErrorKind::InvalidInput, "--gpu-budget-mb: too small for one imagery tile (256 KiB)");
-    if (Status s = impl->renderer->setImageryLayers(info.imageryLayers, {meta->ndvi, meta->landcover.has_value()}); !s) return s.error();
-  }
-  impl->catalog = calibratedCatalog(options.species ? *options.species : vegetation::defaultSpeciesCatalog(), *meta);
-  if (meta->landcover) impl->catalog.landcoverCodes = landcoverMasks(impl->catalog, *meta->landcover);
-  if (options.species || !impl->catalog.calibration.isIdentity() || impl->catalog.landcoverCodes)
-    if (Status s = impl->renderer->setSpeciesCatalog(impl->catalog); !s) return s.error();
-  if (options.clusterSize < 1 || options.clusterSize > vegetation::kMaxClusterSize)
-    return makeError(ErrorKind::InvalidInput, "--cluster-size " + std::to_string(options.clusterSize) +
-                                                  ": must be 1 … " + std::to_string(vegetation::kMaxClusterSize));
-  // The catalog decides how dense plants grow and how far the farthest can be seen: the seed
-  // triangles' counts stop there (terrain/seed_triangles.h), each species at its own.
+  if (Status s = openTerrain(*impl, *meta); !s) return s.error();
   const vegetation::SpeciesCatalog& catalog = impl->catalog;
-  terrain::SeedOptions& seeds = impl->options.terrain.seeds;
-  seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
-  seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));
-  impl->options.terrain.roam.tasks = impl->tasks.get();  // compactions beside the frame
-  impl->terrain = std::make_unique<terrain::StreamedTerrain>(*impl->streamer, impl->frame, impl->options.terrain);
-  info.seedLevel = impl->terrain->roam().seedLevel();
-  info.seedAreaM2 = terrain::triangleAreaM2(impl->terrain->roam().mesh().grid(), info.seedLevel, b.centre().y);
   if (options.trees.enabled && info.hasImagery)
     if (Status s = openTrees(*impl, *meta, limits, catalog); !s) return s.error();
   info.loadMs = watch.elapsedMs();
@@ -245,6 +265,67 @@ render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
   return req;
 }
 
+namespace {
+
+// Settled streaming: the wants settled round after round until they stop changing (`wants` the
+// last round's); returns every round's counters.
+streaming::StreamingFrameStats settleWants(Scene::Impl& m, std::vector<streaming::TileWant>& wants, double timeS) {
+  // A wanted tile that turns out missing is replaced by its parent: settle until the wants stop
+  // changing (each round can only move wants up the pyramid, so this ends).
+  streaming::StreamingFrameStats counted;
+  for (int round = 0; round < 32; ++round) {
+    m.streamer->settle(wants, timeS);
+    addFrameCounters(counted, m.streamer->frameStats());
+    std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
+    const bool same =
+        again.size() == wants.size() && std::equal(again.begin(), again.end(), wants.begin(),
+                                                   [](const auto& a, const auto& b) { return a.key == b.key; });
+    wants = std::move(again);
+    if (same) break;
+  }
+  return counted;
+}
+
+// The uploads this frame records (into m.uploads), as the streamer plans them.
+void planUploads(Scene::Impl& m) {
+  // Settled frames draw everything they waited for; realtime frames keep the per-frame budget.
+  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled ? std::optional<uint64_t>(UINT64_MAX)
+                                                                               : std::nullopt);
+  m.uploads.clear();
+  for (const streaming::Upload& u : m.planned)
+    if (u.tile && u.tile->colors) {
+      const datasets::ColorTile& c = *u.tile->colors;
+      m.uploads.push_back({u.slot, c.rgba, c.ndvi, c.landcover});
+    }
+  m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
+}
+
+// The trees around the camera into req, the canopy the plants thin under, and their figures.
+void prepareTrees(Scene::Impl& m, render::FrameRequest& req) {
+  SceneFrameFigures& fig = m.figures;
+  const render::TreeRequest& trees =
+      m.treeField->prepare(req.camera.position, m.options.mode == StreamingMode::Settled);
+  req.trees = &trees;
+  if (req.vegetation) {  // relative to the camera the seed triangles are relative to
+    m.treeField->fillCanopy(req.camera.position, m.canopy);
+    m.vegetation.canopy = &m.canopy;
+  }
+  const TreeFieldFigures& t = m.treeField->figures();
+  fig.trees = true;
+  fig.treeTilesWanted = t.tilesWanted;
+  fig.treeTilesDrawn = t.tilesDrawn;
+  fig.treePagesUsed = t.pagesUsed;
+  fig.treePageCapacity = t.pageCapacity;
+  fig.treesResident = t.treesDrawn;
+  fig.treePlacementMs = t.placementMs;
+  fig.treeBudgetBound = t.budgetBound;
+  // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
+  (m.options.mode == StreamingMode::Settled ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
+  fig.treeGpuBytes = m.renderer->treeGpuBytes();
+}
+
+}  // namespace
+
 render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) {
   Impl& m = *impl_;
   SceneFrameFigures& fig = m.figures;
@@ -264,34 +345,12 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   std::optional<streaming::StreamingFrameStats> settledCounters;
   if (m.options.mode == StreamingMode::Settled) {
     Stopwatch wait;
-    // A wanted tile that turns out missing is replaced by its parent: settle until the wants stop
-    // changing (each round can only move wants up the pyramid, so this ends).
-    streaming::StreamingFrameStats counted;
-    for (int round = 0; round < 32; ++round) {
-      m.streamer->settle(wants, timeS);
-      addFrameCounters(counted, m.streamer->frameStats());
-      std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
-      const bool same =
-          again.size() == wants.size() && std::equal(again.begin(), again.end(), wants.begin(),
-                                                     [](const auto& a, const auto& b) { return a.key == b.key; });
-      wants = std::move(again);
-      if (same) break;
-    }
-    settledCounters = counted;
+    settledCounters = settleWants(m, wants, timeS);
     waitMs = wait.elapsedMs();
   } else {
     m.streamer->update(wants, timeS);
   }
-  // Settled frames draw everything they waited for; realtime frames keep the per-frame budget.
-  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled ? std::optional<uint64_t>(UINT64_MAX)
-                                                                               : std::nullopt);
-  m.uploads.clear();
-  for (const streaming::Upload& u : m.planned)
-    if (u.tile && u.tile->colors) {
-      const datasets::ColorTile& c = *u.tile->colors;
-      m.uploads.push_back({u.slot, c.rgba, c.ndvi, c.landcover});
-    }
-  m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
+  planUploads(m);
   fig.streamingMs = stage.elapsedMs() - waitMs;
   fig.settleWaitMs = waitMs;
 
@@ -312,27 +371,7 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
     fig.seedTrianglesClassified = m.seeds.size();
   }
 
-  if (m.treeField) {
-    const render::TreeRequest& trees =
-        m.treeField->prepare(req.camera.position, m.options.mode == StreamingMode::Settled);
-    req.trees = &trees;
-    if (req.vegetation) {  // relative to the camera the seed triangles are relative to
-      m.treeField->fillCanopy(req.camera.position, m.canopy);
-      m.vegetation.canopy = &m.canopy;
-    }
-    const TreeFieldFigures& t = m.treeField->figures();
-    fig.trees = true;
-    fig.treeTilesWanted = t.tilesWanted;
-    fig.treeTilesDrawn = t.tilesDrawn;
-    fig.treePagesUsed = t.pagesUsed;
-    fig.treePageCapacity = t.pageCapacity;
-    fig.treesResident = t.treesDrawn;
-    fig.treePlacementMs = t.placementMs;
-    fig.treeBudgetBound = t.budgetBound;
-    // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
-    (m.options.mode == StreamingMode::Settled ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
-    fig.treeGpuBytes = m.renderer->treeGpuBytes();
-  }
+  if (m.treeField) prepareTrees(m, req);
   fig.streaming = m.streamer->frameStats();
   if (settledCounters) {  // every settle round's requests; the uploads planned after them
     const uint64_t uploadBytes = fig.streaming.uploadBytes;
@@ -346,34 +385,6 @@ render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, 
   req.terrain = m.draws;
   req.imageryUploads = m.uploads;
   return req;
-}
-
-void seedTrianglesForGpu(std::span<const terrain::SeedTriangle> seeds, const glm::dvec3& camera,
-                         std::vector<render::SeedTriangleGpu>& out) {
-  out.clear();
-  out.reserve(seeds.size());
-  for (const terrain::SeedTriangle& s : seeds) {
-    if (s.imageryLayer < 0) continue;  // no imagery drawn under it yet: no colour, no species
-    render::SeedTriangleGpu g;
-    // Camera-relative in double, then float: centimetres stay exact kilometres from the origin.
-    g.v0 = glm::vec4(glm::vec3(s.world[0] - camera), s.plantCount);
-    g.v1 = glm::vec4(glm::vec3(s.world[1] - camera), 0.0f);
-    g.v2 = glm::vec4(glm::vec3(s.world[2] - camera), 0.0f);
-    g.uv01 = glm::vec4(s.imageryUv[0], s.imageryUv[1]);
-    g.uv2 = s.imageryUv[2];
-    const uint64_t key = terrain::seedKey(s.path);
-    g.keyLo = static_cast<uint32_t>(key);
-    g.keyHi = static_cast<uint32_t>(key >> 32);
-    g.layer = s.imageryLayer;
-    g.lodCount = s.lodCount;
-    g.areaM2 = s.areaM2;
-    g.nearestM = s.nearestM;
-    g.previousUv01 = glm::vec4(s.previousUv[0], s.previousUv[1]);
-    g.previousUv2 = s.previousUv[2];
-    g.previousLayer = s.previousLayer;
-    g.imageryBlend = s.imageryBlend;
-    out.push_back(g);
-  }
 }
 
 }  // namespace vegstream::scene

@@ -27,7 +27,6 @@ glm::vec3 ownTint(const vegetation::PlacedTree& t) {
 
 }  // namespace
 
-
 TreeField::TreeField(const vegetation::SpeciesCatalog& catalog, vegetation::TreeGroundAt ground,
                      const TreeFieldOptions& options, std::vector<uint32_t> firstModel, uint32_t variants,
                      uint32_t pageCapacity)
@@ -77,14 +76,11 @@ void TreeField::freePages(Tile& tile) {
   std::sort(freePages_.begin(), freePages_.end(), std::greater<>());  // lowest at the back
 }
 
-const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool settled) {
-  figures_ = {};
-  figures_.pageCapacity = static_cast<uint32_t>(pageCounts_.size());
-  uploads_.clear();
+TreeField::Wanted TreeField::wantedTiles(const glm::dvec3& camera) const {
   const double horizon = options_.lod.horizonM;
   const double side = grid_.cellM * options_.tileCells;
   // The tiles any part of which lies within the horizon, nearest first (ties by key: deterministic).
-  std::vector<std::pair<double, TileKey>> wanted;
+  Wanted wanted;
   const auto lo = [&](double c) { return static_cast<int32_t>(std::floor((c - horizon) / side)); };
   const auto hi = [&](double c) { return static_cast<int32_t>(std::floor((c + horizon) / side)); };
   for (int32_t ty = lo(camera.y); ty <= hi(camera.y); ++ty)
@@ -95,8 +91,10 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
       if (d < horizon) wanted.push_back({d, {tx, ty}});
     }
   std::sort(wanted.begin(), wanted.end());
-  figures_.tilesWanted = static_cast<uint32_t>(wanted.size());
+  return wanted;
+}
 
+void TreeField::placeWanted(const Wanted& wanted, bool settled) {
   // Tiles that left the horizon go, with their pages.
   std::map<TileKey, Tile> kept;
   for (const auto& [d, key] : wanted) {
@@ -115,9 +113,11 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
     ++figures_.placed;
   }
   figures_.placementMs = placing.elapsedMs();
+}
 
-  // Pages, nearest first; a nearer tile takes the pages of the farthest that has some. Once one
-  // tile finds none, no farther tile is drawn either (the drawn trees are always the nearest).
+// Pages, nearest first; a nearer tile takes the pages of the farthest that has some. Once one
+// tile finds none, no farther tile is drawn either (the drawn trees are always the nearest).
+void TreeField::assignPages(const Wanted& wanted) {
   bool bound = false;
   for (size_t i = 0; i < wanted.size(); ++i) {
     Tile& tile = tiles_[wanted[i].second];
@@ -145,6 +145,9 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
       uploads_.push_back({page, count, tile.trees.data() + first});
     }
   }
+}
+
+uint32_t TreeField::countDrawn() {
   uint32_t highest = 0;
   for (const auto& [key, tile] : tiles_) {
     if (tile.placed && !tile.trees.empty() && tile.pages.empty()) figures_.budgetBound = true;
@@ -154,6 +157,18 @@ const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool set
     figures_.pagesUsed += static_cast<uint32_t>(tile.pages.size());
     for (uint32_t p : tile.pages) highest = std::max(highest, p + 1);
   }
+  return highest;
+}
+
+const render::TreeRequest& TreeField::prepare(const glm::dvec3& camera, bool settled) {
+  figures_ = {};
+  figures_.pageCapacity = static_cast<uint32_t>(pageCounts_.size());
+  uploads_.clear();
+  const Wanted wanted = wantedTiles(camera);
+  figures_.tilesWanted = static_cast<uint32_t>(wanted.size());
+  placeWanted(wanted, settled);
+  assignPages(wanted);
+  const uint32_t highest = countDrawn();
   request_.uploads = uploads_;
   request_.pageCounts = std::span<const uint32_t>(pageCounts_.data(), highest);
   request_.lod = options_.lod;

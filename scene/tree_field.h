@@ -66,6 +66,14 @@ class TreeField {
   };
   void place(const TileKey& key, Tile& tile);
   void freePages(Tile& tile);
+  // prepare()'s steps: the tiles any part of which lies within the horizon, nearest first; the
+  // others dropped and the wanted placed (in a realtime frame a few); their pages; the drawn
+  // tiles' figures (returns one past the highest page used).
+  using Wanted = std::vector<std::pair<double, TileKey>>;
+  Wanted wantedTiles(const glm::dvec3& camera) const;
+  void placeWanted(const Wanted& wanted, bool settled);
+  void assignPages(const Wanted& wanted);
+  uint32_t countDrawn();
 
   const vegetation::SpeciesCatalog* catalog_;
   vegetation::TreeGroundAt ground_;

@@ -72,6 +72,12 @@ class Simulation {
 
  private:
   void restart(double timeS);
+  // step()'s parts, into `p`: the clock (returns the sub-steps this frame runs); the wind and
+  // interaction windows around the camera; the colliders, marking the tiles they press (returns
+  // how many are simulated).
+  int64_t advanceClock(double timeS, shader::SimulationParams& p);
+  void placeWindows(const glm::dvec3& cam, double timeS, int64_t steps, shader::SimulationParams& p);
+  std::size_t writeColliders(const StepInput& in, shader::SimulationParams& p);
 
   SimulationOptions options_;
   GpuStep gpu_;

@@ -108,6 +108,42 @@ bool covered(const std::vector<geo::TileRange>& ranges, const geo::TileId& t) {
   return false;
 }
 
+// A node's candidate: its box (from its resident heights where known) tested against the view
+// frustum; nullopt when culled.
+struct NodeEvaluator {
+  const SelectionView& view;
+  const SelectionDataset& dataset;
+  const geo::LocalFrame& frame;
+  const TileHeightRange& heightRange;
+  const std::array<glm::dvec4, 5>& planes;
+
+  std::optional<Candidate> evaluate(const geo::TileId& id) const {
+    double hMin = dataset.minHeightM, hMax = dataset.maxHeightM;
+    if (heightRange) {
+      // A resident tile's own range is tighter; an empty or NaN range (all nodata) is ignored.
+      if (const auto r = heightRange(id); r && r->first <= r->second) {
+        hMin = static_cast<double>(r->first);
+        hMax = static_cast<double>(r->second);
+      }
+    }
+    const Box box = nodeBox(id, hMin, hMax, frame);
+    if (outside(box, planes)) return std::nullopt;
+    const double d = distanceToBox(view.cameraEnu, box);
+    return Candidate{id, projectedErrorPx(nodeGeometricErrorM(id), d, view), d, false};
+  }
+};
+
+// The nodes not refined, sorted by id; the worst error among them.
+void collectDrawn(const std::vector<Candidate>& nodes, Selection& selection) {
+  for (const Candidate& c : nodes) {
+    if (c.refined) continue;
+    selection.nodes.push_back({c.id, c.errorPx, c.distanceM});
+    selection.achievedErrorPx = std::max(selection.achievedErrorPx, c.errorPx);
+  }
+  std::sort(selection.nodes.begin(), selection.nodes.end(),
+            [](const SelectedNode& a, const SelectedNode& b) { return a.id < b.id; });
+}
+
 }  // namespace
 
 double nodeQuadSizeM(const geo::TileId& node) {
@@ -135,21 +171,7 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
   for (int z = dataset.minZoom; z <= dataset.maxZoom; ++z)
     coverage.push_back(geo::tileRangesCovering(dataset.bounds, z));
 
-  // nullopt when culled.
-  auto evaluate = [&](const geo::TileId& id) -> std::optional<Candidate> {
-    double hMin = dataset.minHeightM, hMax = dataset.maxHeightM;
-    if (heightRange) {
-      // A resident tile's own range is tighter; an empty or NaN range (all nodata) is ignored.
-      if (const auto r = heightRange(id); r && r->first <= r->second) {
-        hMin = static_cast<double>(r->first);
-        hMax = static_cast<double>(r->second);
-      }
-    }
-    const Box box = nodeBox(id, hMin, hMax, frame);
-    if (outside(box, planes)) return std::nullopt;
-    const double d = distanceToBox(view.cameraEnu, box);
-    return Candidate{id, projectedErrorPx(nodeGeometricErrorM(id), d, view), d, false};
-  };
+  const NodeEvaluator evaluator{view, dataset, frame, heightRange, planes};
 
   std::vector<Candidate> nodes;  // every node evaluated and kept; refined ones are not drawn
   auto heapLess = [&nodes](size_t a, size_t b) { return lessUrgent(nodes[a], nodes[b]); };
@@ -158,7 +180,7 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
 
   Selection selection;
   for (const geo::TileId& root : geo::tilesCovering(dataset.bounds, dataset.minZoom)) {
-    if (auto c = evaluate(root)) {
+    if (auto c = evaluator.evaluate(root)) {
       nodes.push_back(*c);
       if (refinable(*c)) queue.push(nodes.size() - 1);
     }
@@ -172,7 +194,7 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
     std::vector<Candidate> kids;
     for (const geo::TileId& child : geo::children(id)) {
       if (!covered(coverage[static_cast<size_t>(child.z - dataset.minZoom)], child)) continue;
-      if (auto c = evaluate(child)) kids.push_back(*c);
+      if (auto c = evaluator.evaluate(child)) kids.push_back(*c);
     }
     // Refining replaces one leaf by its visible children. If the most urgent refinement does
     // not fit, stop: every refinement left is less urgent than this one.
@@ -189,14 +211,8 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
     }
   }
 
-  for (const Candidate& c : nodes) {
-    if (c.refined) continue;
-    selection.nodes.push_back({c.id, c.errorPx, c.distanceM});
-    selection.achievedErrorPx = std::max(selection.achievedErrorPx, c.errorPx);
-  }
+  collectDrawn(nodes, selection);
   assert(selection.nodes.size() == drawn);
-  std::sort(selection.nodes.begin(), selection.nodes.end(),
-            [](const SelectedNode& a, const SelectedNode& b) { return a.id < b.id; });
   return selection;
 }
 

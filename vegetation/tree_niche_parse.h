@@ -1,6 +1,6 @@
 #pragma once
 // The catalog's "niche" object of a tree species (format in tree_niche.h), for
-// species_catalog.cpp.
+// species_entry_parse.cpp.
 
 #include <string>
 
