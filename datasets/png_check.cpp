@@ -168,9 +168,8 @@ Status checkChunk(ChunkWalk& w, const std::string& t, const uint8_t* type, std::
     if (data[10] != 0 || data[11] != 0) return corrupt(name, "IHDR compression or filter method does not exist");
     if (auto p = headerProblem(h)) return corrupt(name, *p);
     if (h.width > maxSide || h.height > maxSide)  // before any inflate: the header bounds the work
-      return makeError(ErrorKind::InvalidInput,
-                       concat("tile '", name, "' is ", h.width, "x", h.height, " pixels; a tile here is at most ",
-                              maxSide, " pixels a side"));
+      return makeError(ErrorKind::InvalidInput, concat("tile '", name, "' is ", h.width, "x", h.height,
+                                                       " pixels; a tile here is at most ", maxSide, " pixels a side"));
     w.header = h;
   } else if (t == "PLTE") {
     if (w.havePalette || !w.idat.empty() || w.haveTrns) return corrupt(name, "PLTE is out of place");

@@ -102,8 +102,8 @@ SyntheticTile renderTile(const SyntheticTerrain& terrain, const geo::TileId& id,
                         (samples.east[static_cast<size_t>(i + 2)] - samples.east[static_cast<size_t>(i)]);
       const double gy = (samples.at(i, j - 1) - samples.at(i, j + 1)) /
                         (samples.north[static_cast<size_t>(j)] - samples.north[static_cast<size_t>(j + 2)]);
-      const auto c = terrain.color(samples.east[static_cast<size_t>(i + 1)],
-                                   samples.north[static_cast<size_t>(j + 1)], h, std::atan(std::hypot(gx, gy)));
+      const auto c = terrain.color(samples.east[static_cast<size_t>(i + 1)], samples.north[static_cast<size_t>(j + 1)],
+                                   h, std::atan(std::hypot(gx, gy)));
       t.heights.heights[p] = static_cast<float>(h);
       std::copy(c.begin(), c.end(), t.colours.rgba.begin() + static_cast<std::ptrdiff_t>(p * 4));
       t.colours.rgba[p * 4 + 3] = 255;

@@ -118,10 +118,9 @@ void grow(const terrain::BintreeGrid& grid, const geo::LocalFrame& frame, const 
 
 // "more than --max-plants N": the box grows howMany, n of them.
 Error tooManyPlants(const PlantsInBoxOptions& options, const std::string& howMany, uint64_t n) {
-  return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " +
-                                                options.maxPlantsName + " " + std::to_string(options.maxPlants) +
-                                                "; give a smaller box or " + options.maxPlantsName + " " +
-                                                std::to_string(n));
+  return makeError(ErrorKind::InvalidInput, options.boxName + ": " + howMany + ", more than " + options.maxPlantsName +
+                                                " " + std::to_string(options.maxPlants) + "; give a smaller box or " +
+                                                options.maxPlantsName + " " + std::to_string(n));
 }
 
 // Triangles × their flat area × the densest species: more than 4 × the most plants is refused.

@@ -36,7 +36,6 @@ InteractionWindowOptions windowOptions(const SimulationOptions& o) {
   return w;
 }
 
-
 // The wind sources, world-anchored, into p (at most kMaxWindSources); returns how many.
 std::size_t writeSources(std::span<const WindSourceState> in, shader::SimulationParams& p) {
   const auto sources = std::min<std::size_t>(in.size(), shader::kMaxWindSources);
