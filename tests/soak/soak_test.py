@@ -45,7 +45,7 @@ r = subprocess.run([os.path.join(build, "app", "vegstream"), "import", "--dem", 
 check(r.returncode == 0, f"import: {r.stderr[-300:]}")
 
 out = os.path.join(tmp, "run")
-r = subprocess.run([soak, "--minutes", "1", "--every-s", "5", "--validate", "--out", out, "--dataset", dataset,
+r = subprocess.run([soak, "--minutes", "1", "--every-s", "5", "--validate", "--http-cache", "--out", out, "--dataset", dataset,
                     "--build", build], capture_output=True, text=True, timeout=600)
 print(r.stdout)
 print(r.stderr, file=sys.stderr)
