@@ -204,15 +204,7 @@ void HttpTileSource::Impl::complete(uint64_t seq, FetchOutcome outcome, std::str
   if (t->isTile) {
     seqOfTile.erase(t->id);
     std::lock_guard lock(mutex);
-    switch (outcome) {
-      case FetchOutcome::Ok:
-        ++counters.requestsCompleted;
-        counters.bytesRead += r.bytes.size();
-        break;
-      case FetchOutcome::Missing: ++counters.requestsMissing; break;
-      case FetchOutcome::Failed: ++counters.requestsFailed; break;
-      case FetchOutcome::Cancelled: ++counters.requestsCancelled; break;
-    }
+    countOutcome(counters, outcome, r.bytes.size());
     if (r.fromCache) ++counters.cacheHits;
   }
   t->done(std::move(r));

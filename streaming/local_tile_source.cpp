@@ -106,15 +106,7 @@ struct LocalTileSource::Impl : std::enable_shared_from_this<Impl> {
           r.bytes.clear();
         }
       }
-      switch (r.outcome) {
-        case FetchOutcome::Ok:
-          ++counters.requestsCompleted;
-          counters.bytesRead += r.bytes.size();
-          break;
-        case FetchOutcome::Missing: ++counters.requestsMissing; break;
-        case FetchOutcome::Failed: ++counters.requestsFailed; break;
-        case FetchOutcome::Cancelled: ++counters.requestsCancelled; break;
-      }
+      countOutcome(counters, r.outcome, r.bytes.size());
       // The callback runs unlocked (it may take its own locks); inFlight drops after it, so a
       // caller that sees inFlight() == 0 knows every callback has returned.
       lock.unlock();

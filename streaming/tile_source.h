@@ -53,6 +53,19 @@ struct SourceCounters {
   uint64_t cacheHits = 0;
 };
 
+// Counts one ended request's outcome (and, for Ok, its bytes) into `c`: every source the same way.
+inline void countOutcome(SourceCounters& c, FetchOutcome outcome, uint64_t bytes) {
+  switch (outcome) {
+    case FetchOutcome::Ok:
+      ++c.requestsCompleted;
+      c.bytesRead += bytes;
+      break;
+    case FetchOutcome::Missing: ++c.requestsMissing; break;
+    case FetchOutcome::Failed: ++c.requestsFailed; break;
+    case FetchOutcome::Cancelled: ++c.requestsCancelled; break;
+  }
+}
+
 class TileSource {
  public:
   virtual ~TileSource() = default;
