@@ -27,6 +27,7 @@
 
 #include "core/stopwatch.h"
 #include "core/task_runner.h"
+#include "datasets/dataset_format.h"
 #include "datasets/geotiff_import.h"
 #include "datasets/progress.h"
 #include "scene/camera_views.h"
@@ -46,9 +47,24 @@ struct Zion {
   fs::path dir;
   datasets::DatasetMeta meta;
   bool ok = false;
+  bool owned = false;  // imported here (removed at exit), not given by VEGSTREAM_BENCH_DATASET
   Zion() {
+    // An imported Zion dataset (bench/gpu-measure passes its --dataset: the GPU host has no
+    // ../shared/datasets to import from); else the sample's heights imported once here.
+    if (const char* given = std::getenv("VEGSTREAM_BENCH_DATASET")) {
+      dir = given;
+      auto m = datasets::readDatasetMeta(dir);
+      if (!m) {
+        std::fprintf(stderr, "bench_roam: VEGSTREAM_BENCH_DATASET: %s\n", m.error().message.c_str());
+        return;
+      }
+      meta = *m;
+      ok = true;
+      return;
+    }
     dir = fs::temp_directory_path() / ("vegstream_bench_roam_" + std::to_string(::getpid()));
     fs::remove_all(dir);
+    owned = true;
     datasets::GeoTiffImportOptions o;
     o.dem = {(fs::path(VEGSTREAM_DATASETS_DIR) / "zion" / "srtm.tif").string()};
     o.maxZoom = 12;
@@ -62,7 +78,9 @@ struct Zion {
     meta = *m;
     ok = true;
   }
-  ~Zion() { fs::remove_all(dir); }
+  ~Zion() {
+    if (owned) fs::remove_all(dir);
+  }
 };
 
 Zion& zion() {
@@ -92,7 +110,10 @@ double percentile(std::vector<double> v, double p) {
 constexpr double kW = 1920.0, kH = 1080.0, kFps = 60.0;
 
 Result<flight::FlightPath> bundledPath(const char* name) {
-  return flight::loadFlightPath(fs::path(VEGSTREAM_SOURCE_DIR) / "flight" / "paths" / (std::string(name) + ".json"));
+  // VEGSTREAM_SOURCE_DIR: this checkout; VEGSTREAM_BENCH_SOURCE_DIR overrides it (a copy elsewhere).
+  const char* root = std::getenv("VEGSTREAM_BENCH_SOURCE_DIR");
+  return flight::loadFlightPath(fs::path(root ? root : VEGSTREAM_SOURCE_DIR) / "flight" / "paths" /
+                                (std::string(name) + ".json"));
 }
 
 // The streamed terrain of one flight over the Zion sample. settle(t): the tile selection's wants
