@@ -10,7 +10,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/atomic_file.h"
-#include "datasets/encoded_image.h"
+#include "core/encoded_image.h"
 #include "datasets/message.h"
 #include "datasets/png_check.h"
 #include "datasets/tile_codec.h"

@@ -19,7 +19,7 @@
 #include "core/atomic_file.h"
 #include "core/printable.h"
 #include "core/regular_file.h"
-#include "datasets/encoded_image.h"
+#include "core/encoded_image.h"
 #include "datasets/message.h"
 #include "datasets/png_check.h"
 

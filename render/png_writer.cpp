@@ -3,7 +3,7 @@
 #include "render/png_writer.h"
 
 #include "core/atomic_file.h"
-#include "render/encoded_image.h"
+#include "core/encoded_image.h"
 
 namespace vegstream::render {
 

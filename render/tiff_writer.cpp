@@ -5,7 +5,7 @@
 #include <cassert>
 
 #include "core/atomic_file.h"
-#include "render/encoded_image.h"
+#include "core/encoded_image.h"
 
 namespace vegstream::render {
 

@@ -13,11 +13,11 @@
 
 #include "core/result.h"
 
-namespace vegstream::render {
+namespace vegstream {
 
 // `format`: an OIIO format name ("png", "tiff", "jpeg"); `spec` holds size, channels, sample
 // type and attributes; `pixels` are in spec.format. Io error naming `nameForErrors` on failure.
 Result<std::vector<uint8_t>> encodeImage(const char* format, const OIIO::ImageSpec& spec, const void* pixels,
                                          const std::filesystem::path& nameForErrors);
 
-}  // namespace vegstream::render
+}  // namespace vegstream

@@ -1,12 +1,12 @@
 // In-memory image encoding (encoded_image.h).
 
-#include "render/encoded_image.h"
+#include "core/encoded_image.h"
 
 #include <OpenImageIO/filesystem.h>
 
 #include <string>
 
-namespace vegstream::render {
+namespace vegstream {
 
 namespace {
 std::string firstLineOf(std::string s) {
@@ -36,4 +36,4 @@ Result<std::vector<uint8_t>> encodeImage(const char* format, const OIIO::ImageSp
   return bytes;
 }
 
-}  // namespace vegstream::render
+}  // namespace vegstream
