@@ -26,6 +26,11 @@ if(VEGSTREAM_SANITIZE)
   target_link_options(vegstream_options INTERFACE -fsanitize=address,undefined)
 endif()
 
+# The folders whose libraries also compile with -Wpedantic -Wsign-conversion (issue 43 item 4:
+# "where they can be clean"): every library below render/ in the folder order. render/, scene/ and
+# app/ are not yet (Vulkan's and ImGui's C interfaces take int and uint32_t in the same calls).
+set(VEGSTREAM_STRICT_FOLDERS core geo datasets streaming terrain vegetation simulation flight)
+
 # vegstream_add_library(NAME SOURCES... DEPS ...): one library per folder, with the folder's
 # parent as include root so code writes #include "core/result.h".
 function(vegstream_add_library name)
@@ -34,6 +39,10 @@ function(vegstream_add_library name)
     add_library(${name} STATIC ${ARG_SOURCES})
     target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
     target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE vegstream_options ${ARG_PRIVATE_DEPS})
+    get_filename_component(folder ${CMAKE_CURRENT_SOURCE_DIR} NAME)
+    if(folder IN_LIST VEGSTREAM_STRICT_FOLDERS AND NOT VEGSTREAM_FUZZ)
+      target_compile_options(${name} PRIVATE -Wpedantic -Wsign-conversion)
+    endif()
   else()
     add_library(${name} INTERFACE)
     target_include_directories(${name} INTERFACE ${PROJECT_SOURCE_DIR})

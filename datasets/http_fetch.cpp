@@ -24,7 +24,7 @@ void initCurlOnce() {
 
 uint64_t requestKey(const std::string& url, const std::optional<ByteRange>& range) {
   uint64_t h = 1469598103934665603ull;  // FNV-1a: a reproducible jitter per request
-  for (unsigned char c : url) h = (h ^ c) * 1099511628211ull;
+  for (const char c : url) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
   if (range) h = (h ^ range->offset) * 1099511628211ull;
   return h;
 }
@@ -73,8 +73,8 @@ HttpFetcher::~HttpFetcher() = default;
 
 namespace {
 
-Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRange>& range,
-                    const HttpFetchOptions& o, SteadyTime deadline) {
+Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRange>& range, const HttpFetchOptions& o,
+                    SteadyTime deadline) {
   Attempt a;
   a.body.limit = o.maxBodyBytes;
   char errorBuffer[CURL_ERROR_SIZE] = {};
@@ -123,9 +123,9 @@ Attempt attemptOnce(CURL* e, const std::string& url, const std::optional<ByteRan
 Result<std::optional<std::vector<uint8_t>>> HttpFetcher::get(const std::string& url,
                                                              std::optional<ByteRange> range) const {
   assert(!range || range->length > 0);
-  const std::string what = range ? concat("GET ", url, " (bytes ", range->offset, "-",
-                                          range->offset + range->length - 1, ")")
-                                 : concat("GET ", url);
+  const std::string what =
+      range ? concat("GET ", url, " (bytes ", range->offset, "-", range->offset + range->length - 1, ")")
+            : concat("GET ", url);
   CURL* e = pool_->take();
   if (e == nullptr) return makeError(ErrorKind::Io, concat(what, ": libcurl could not make a handle"));
   const SteadyTime deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.requestDeadlineMs);
@@ -150,9 +150,9 @@ Result<std::optional<std::vector<uint8_t>>> HttpFetcher::get(const std::string& 
     if (verdict == AttemptVerdict::Ok) {
       pool_->give(e);
       if (range && a.end.httpStatus != 206)
-        return makeError(ErrorKind::InvalidInput,
-                         concat(what, ": HTTP ", a.end.httpStatus, " instead of 206: the server does not serve byte "
-                                "ranges, which a PMTiles archive over HTTP needs"));
+        return makeError(ErrorKind::InvalidInput, concat(what, ": HTTP ", a.end.httpStatus,
+                                                         " instead of 206: the server does not serve byte "
+                                                         "ranges, which a PMTiles archive over HTTP needs"));
       if (range && a.body.bytes.size() > range->length)
         return makeError(ErrorKind::InvalidInput,
                          concat(what, ": ", a.body.bytes.size(), " bytes for a range of ", range->length));

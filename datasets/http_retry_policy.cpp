@@ -58,7 +58,8 @@ long backoffDelayMs(int nextAttempt, uint64_t requestKey, long baseMs, long maxM
   const int doublings = std::clamp(nextAttempt - 2, 0, 30);
   const long raw = std::min(maxMs, baseMs << doublings);
   // SplitMix64 of (key, attempt): a well-mixed, reproducible fraction in [0, 1).
-  uint64_t z = requestKey * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(nextAttempt) * 0xBF58476D1CE4E5B9ull;
+  uint64_t z = requestKey * uint64_t{0x9E3779B97F4A7C15ull} +
+               static_cast<uint64_t>(nextAttempt) * uint64_t{0xBF58476D1CE4E5B9ull};
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;

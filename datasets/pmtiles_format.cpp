@@ -32,12 +32,12 @@ int32_t le32s(const uint8_t* p) {
   return s;
 }
 void put64(std::vector<uint8_t>& out, size_t at, uint64_t v) {
-  for (int i = 0; i < 8; ++i) out[at + i] = static_cast<uint8_t>(v >> (8 * i));
+  for (size_t i = 0; i < 8; ++i) out[at + i] = static_cast<uint8_t>(v >> (8 * i));
 }
 void put32(std::vector<uint8_t>& out, size_t at, int32_t s) {
   uint32_t v;
   std::memcpy(&v, &s, 4);
-  for (int i = 0; i < 4; ++i) out[at + i] = static_cast<uint8_t>(v >> (8 * i));
+  for (size_t i = 0; i < 4; ++i) out[at + i] = static_cast<uint8_t>(v >> (8 * i));
 }
 
 // Reads one varint at `at`; false when it runs past the end or beyond 64 bits.
@@ -112,9 +112,9 @@ std::vector<uint8_t> encodePmtilesHeader(const PmtilesHeader& h) {
   std::vector<uint8_t> out(kPmtilesHeaderBytes, 0);
   std::memcpy(out.data(), "PMTiles", 7);
   out[7] = 3;
-  const uint64_t v[] = {h.rootOffset,     h.rootLength,     h.metadataOffset, h.metadataLength,
-                        h.leafOffset,     h.leafLength,     h.tileDataOffset, h.tileDataLength,
-                        h.addressedTiles, h.tileEntries,    h.tileContents};
+  const uint64_t v[] = {h.rootOffset,     h.rootLength,  h.metadataOffset, h.metadataLength,
+                        h.leafOffset,     h.leafLength,  h.tileDataOffset, h.tileDataLength,
+                        h.addressedTiles, h.tileEntries, h.tileContents};
   for (size_t i = 0; i < std::size(v); ++i) put64(out, 8 + 8 * i, v[i]);
   out[96] = h.clustered ? 1 : 0;
   out[97] = static_cast<uint8_t>(h.internalCompression);
@@ -155,9 +155,8 @@ Result<std::vector<uint8_t>> gunzip(std::span<const uint8_t> bytes, const std::s
   return out;
 }
 
-Result<std::vector<PmtilesEntry>> decodePmtilesDirectory(std::span<const uint8_t> bytes,
-                                                         PmtilesCompression compression, const std::string& name,
-                                                         size_t maxEntries) {
+Result<std::vector<PmtilesEntry>> decodePmtilesDirectory(std::span<const uint8_t> bytes, PmtilesCompression compression,
+                                                         const std::string& name, size_t maxEntries) {
   std::vector<uint8_t> inflated;
   if (compression == PmtilesCompression::Gzip) {
     auto g = gunzip(bytes, name, std::max<size_t>(maxEntries, 1) * 40);  // ≤ 4 varints of ≤ 10 bytes each

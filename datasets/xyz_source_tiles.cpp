@@ -23,8 +23,10 @@ std::vector<T> block(const std::vector<T>& src, int i, int j, int channels) {
   const size_t side = kTileSize, row = side * static_cast<size_t>(channels);
   std::vector<T> out(side * row);
   for (size_t y = 0; y < side; ++y) {
-    const size_t from = ((static_cast<size_t>(j) * side + y) * 2 * side + static_cast<size_t>(i) * side) * channels;
-    std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(from), row, out.begin() + static_cast<std::ptrdiff_t>(y * row));
+    const size_t from = ((static_cast<size_t>(j) * side + y) * 2 * side + static_cast<size_t>(i) * side) *
+                        static_cast<size_t>(channels);
+    std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(from), row,
+                out.begin() + static_cast<std::ptrdiff_t>(y * row));
   }
   return out;
 }

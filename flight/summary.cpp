@@ -186,9 +186,9 @@ json streamingTotals(const RecordTable& frames, const std::vector<double>& tS) {
   const std::vector<double> coarser = optional("terrain_max_levels_coarser");
   const std::vector<double> fallback = optional("terrain_fallback_pieces");
   std::size_t fallbackFrames = 0, coarseAfter1s = 0;
-  for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1 : 0;
+  for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1u : 0u;
   for (std::size_t i = 0; i < coarser.size() && i < tS.size(); ++i)
-    coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1 : 0;
+    coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1u : 0u;
   json requests = json::object();
   for (const char* k : {"issued", "completed", "cancelled", "failed", "missing"})
     requests[k] = sum(optional(("stream_requests_" + std::string(k)).c_str()));
@@ -232,8 +232,8 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
   // nested thousands deep would overflow the stack (found by fuzz/, recording_json).
   constexpr size_t kMaxRecordingDepth = 64;
   if (!jsonDepthAtMost(rec, kMaxRecordingDepth))
-    return makeError(ErrorKind::InvalidInput, recordingSource + ": nested deeper than " +
-                                                  std::to_string(kMaxRecordingDepth) + " levels");
+    return makeError(ErrorKind::InvalidInput,
+                     recordingSource + ": nested deeper than " + std::to_string(kMaxRecordingDepth) + " levels");
   for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
     if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
 

@@ -64,14 +64,8 @@ class CompactionBuilder {
   CompactionBuilder(const std::vector<RoamNode>& nodes, const std::vector<RoamVertex>& vertices,
                     const std::vector<uint32_t>& roots, const std::vector<uint32_t>& corners, uint64_t leaves,
                     RoamCompaction& c, TaskRunner* tasks)
-      : nodes_(nodes),
-        vertices_(vertices),
-        roots_(roots),
-        corners_(corners),
-        c_(c),
-        tasks_(tasks),
-        nodeMap_(c.renumbering.nodes),
-        vertexMap_(c.renumbering.vertices),
+      : nodes_(nodes), vertices_(vertices), roots_(roots), corners_(corners), c_(c), tasks_(tasks),
+        nodeMap_(c.renumbering.nodes), vertexMap_(c.renumbering.vertices),
         rootCount_(static_cast<uint32_t>(roots.size())),
         splitCount_(static_cast<uint32_t>(leaves - rootCount_)),  // L − 1 per root
         serial_(tasks == nullptr) {}
@@ -159,8 +153,10 @@ class CompactionBuilder {
         stack.push_back(n.child);
       } else {
         const CopyItem item{t, true, next, n.leafCount - 1};  // a subtree of L leaves holds L − 1 split nodes
-        if (serial_) walk(item);
-        else items.push_back(item);
+        if (serial_)
+          walk(item);
+        else
+          items.push_back(item);
         next += n.leafCount - 1;
       }
     }
@@ -185,7 +181,7 @@ class CompactionBuilder {
     // (2) The vertices each item owns.
     forEachItem(items.size(), tasks_, [&](size_t i) {
       uint32_t owned = 0;
-      for (uint32_t k = items[i].rank; k < items[i].rank + items[i].splits; ++k) owned += owns(k) ? 1 : 0;
+      for (uint32_t k = items[i].rank; k < items[i].rank + items[i].splits; ++k) owned += owns(k) ? 1u : 0u;
       items[i].owned = owned;
     });
     auto vertexCount = static_cast<uint32_t>(corners_.size());
