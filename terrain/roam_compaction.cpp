@@ -1,29 +1,24 @@
-// The tessellator's compactions (roam_tessellator.h, RoamOptions::tasks): RoamMesh::compact's
-// copy on another thread while the frame goes on. A compaction copies every node and vertex in
-// tree order — 2–11 ms at 80 k leaves, the slowest frames of a flight when it ran in the update
-// (issue 17) — and nothing needs its result until the next change of the mesh: the output only
-// reads the mesh, and the rest of the frame does not touch it.
+// RoamCompactor (roam_compaction.h): the tessellator's compactions, their copy on
+// RoamOptions::tasks beside the frame.
+
+#include "terrain/roam_compaction.h"
 
 #include <atomic>
 #include <cassert>
 #include <condition_variable>
 #include <deque>
-#include <memory>
 #include <mutex>
-
-#include "core/stopwatch.h"
-#include "terrain/roam_tessellator.h"
-#include "terrain/roam_walk.h"  // the scratch types the destructor destroys
+#include <utility>
 
 namespace vegstream::terrain {
 
 // The copy's own runner: RoamMesh::buildCompaction splits it over subtrees with parallelFor,
 // whose helper tasks go to the pool and also to a queue of this copy's, each run once by
-// whichever gets to it first. The thread that waits for the copy (finishCompaction) runs them
-// from the queue instead of idling: the copy starts on a worker at the end of an update, and when
-// it is not done by the next one — in a fast descent the frame has little else to do on a small
+// whichever gets to it first. The thread that waits for the copy (finish) runs them from the
+// queue instead of idling: the copy starts on a worker at the end of an update, and when it is
+// not done by the next one — in a fast descent the frame has little else to do on a small
 // machine — the frame thread copies beside that worker rather than wait for it alone.
-struct RoamTessellator::PendingCompaction final : TaskRunner {
+struct RoamCompactor::Pending final : TaskRunner {
   struct Helper {
     Task task;
     std::atomic<bool> taken{false};
@@ -35,7 +30,7 @@ struct RoamTessellator::PendingCompaction final : TaskRunner {
   const RoamMesh* mesh = nullptr;
   TaskRunner* pool = nullptr;  // the copy's helpers run there too
   RoamCompaction work;
-  std::atomic<bool> claimed{false};  // the worker or finishCompaction: the first one makes the copy
+  std::atomic<bool> claimed{false};  // the worker or finish(): the first one makes the copy
   std::mutex mu;
   std::condition_variable changed;  // a helper queued, or the copy done
   std::deque<std::shared_ptr<Helper>> helpers;
@@ -80,40 +75,37 @@ struct RoamTessellator::PendingCompaction final : TaskRunner {
   }
 };
 
-RoamTessellator::~RoamTessellator() {
+RoamCompactor::RoamCompactor(RoamMesh& mesh, TaskRunner* tasks) : mesh_(mesh), tasks_(tasks) {}
+
+RoamCompactor::~RoamCompactor() {
   // A worker may be copying from the mesh: it must be done first. One that has not started
   // never will (the claim is taken here).
-  if (compaction_ && compaction_->claimed.exchange(true)) compaction_->helpUntilDone();
+  if (pending_ && pending_->claimed.exchange(true)) pending_->helpUntilDone();
 }
 
-void RoamTessellator::startCompaction() {
-  assert(!compaction_);
-  if (!options_.tasks) {
-    remapChunks(mesh_.compact());
-    stamps_.clear();
-    return;
-  }
-  compaction_ = std::make_shared<PendingCompaction>();
-  compaction_->mesh = &mesh_;
-  compaction_->pool = options_.tasks;
-  compaction_->work = mesh_.beginCompaction();
-  options_.tasks->post([pending = compaction_] {
+std::optional<RoamRenumbering> RoamCompactor::start() {
+  assert(!pending_);
+  if (!tasks_) return mesh_.compact();
+  pending_ = std::make_shared<Pending>();
+  pending_->mesh = &mesh_;
+  pending_->pool = tasks_;
+  pending_->work = mesh_.beginCompaction();
+  tasks_->post([pending = pending_] {
     if (!pending->claimed.exchange(true)) pending->build();
   });
+  return std::nullopt;
 }
 
-void RoamTessellator::finishCompaction() {
-  if (!compaction_) return;
-  Stopwatch watch;
-  PendingCompaction& pending = *compaction_;
+RoamRenumbering RoamCompactor::finish() {
+  assert(pending_);
+  Pending& pending = *pending_;
   if (!pending.claimed.exchange(true))
     pending.build();  // no worker took it (a busy runner): the copy is made here
   else
     pending.helpUntilDone();
-  remapChunks(mesh_.endCompaction(std::move(pending.work)));
-  stamps_.clear();
-  compaction_.reset();
-  compactWaitMs_ += watch.elapsedMs();  // this update's figure (update() hands it on)
+  RoamRenumbering renumbering = mesh_.endCompaction(std::move(pending.work));
+  pending_.reset();
+  return renumbering;
 }
 
 }  // namespace vegstream::terrain

@@ -1,5 +1,6 @@
 #pragma once
-// The ROAM error metric and how far it can move (internal to roam_tessellator*.cpp). Seed
+// The ROAM error metric and how far it can move, and a node's vertices in eye space (internal
+// to the tessellator: roam_priorities.cpp, roam_output.cpp). Seed
 // 001_3eca9f2c7752e4fb.txt §3.1 (a screen-space error over nested wedgies); Duchaineau et al.
 // 1997 §6 (deferred priority recomputation: how fast a priority can change as the camera moves).
 //
@@ -19,8 +20,19 @@
 #include <glm/vec3.hpp>
 
 #include "terrain/eye_space.h"
+#include "terrain/roam_mesh.h"
 
 namespace vegstream::terrain {
+
+// A vertex in eye space (RoamVertex::at, what culling and priorities use), and a node's three
+// (apex, left, right). Inline: the traversals call them for every node they descend through.
+inline glm::dvec3 eyeOfVertex(const RoamMesh& mesh, const EyeView& view, uint32_t v) {
+  return view.toEye(mesh.vertex(v).at);
+}
+inline void eyeOf(const RoamMesh& mesh, const EyeView& view, uint32_t t, glm::dvec3* eye) {
+  const RoamNode& n = mesh.node(t);
+  for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(mesh, view, n.v[i]);
+}
 
 // The least radius of curvature of the ellipsoid (the meridian's at the equator, rounded down):
 // the local up turns by at most 1 / kMinCurvatureRadiusM radians per metre travelled.

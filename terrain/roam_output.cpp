@@ -1,26 +1,33 @@
-// ROAM output traversal: drawn leaves per piece and seed triangles (roam_tessellator.h). Seed
-// 001_3eca9f2c7752e4fb.txt §3.1 (what to seed: fixed level, frustum, horizon — back faces too,
-// unlike the seed;
-// eye-space tricks A and B) and §2.1 (eq. 1, eq. 2).
+// RoamOutput (roam_output.h): ROAM output traversal, drawn leaves per piece and seed triangles.
+// Seed 001_3eca9f2c7752e4fb.txt §3.1 (what to seed: fixed level, frustum, horizon — back faces
+// too, unlike the seed; eye-space tricks A and B) and §2.1 (eq. 1, eq. 2).
+
+#include "terrain/roam_output.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
-#include "core/stopwatch.h"
-#include "terrain/roam_tessellator.h"
-#include "terrain/roam_walk.h"
+#include "terrain/roam_error.h"
 
 namespace vegstream::terrain {
 
-void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double timeS,
-                             std::vector<TerrainMesh>& meshes, std::vector<SeedTriangle>& seeds) {
-  Stopwatch watch;
-  ++outputFrame_;
-  stamps_.resize(mesh_.vertexCapacity());
-  releaseChunks();
+struct RoamOutput::Walk {
+  ChunkPass pass;  // view, frustum, pieces, meshes, time, counts: what the chunks need too
+  std::vector<SeedTriangle>* seeds = nullptr;
+  int untextured = -1;  // index of the mesh for leaves not yet inside a piece
+  EmitCounts emitted;   // the direct output's
+};
+
+RoamOutput::RoamOutput(RoamMesh& mesh, const geo::LocalFrame& frame, const RoamOptions& options,
+                       const SeedOptions& seeds, int seedLevel, RoamFigures& figures)
+    : mesh_(mesh), frame_(frame), options_(options), seeds_(seeds), seedLevel_(seedLevel), figures_(figures),
+      chunks_(mesh, options, figures) {}
+
+void RoamOutput::resetPieces(const EyeView& view, const PieceSet& pieces, std::vector<TerrainMesh>& meshes) const {
   meshes.resize(pieces.tiles().size() + 1);
   for (size_t i = 0; i < meshes.size(); ++i) {
     TerrainMesh& m = meshes[i];
@@ -33,16 +40,18 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
       m.origin = view.cameraEnu;
     }
   }
+}
+
+void RoamOutput::run(const EyeView& view, const PieceSet& pieces, double timeS, std::vector<TerrainMesh>& meshes,
+                     std::vector<SeedTriangle>& seeds, bool attachChunks) {
+  ++outputFrame_;
+  stamps_.resize(mesh_.vertexCapacity());
+  chunks_.beginOutput();
+  resetPieces(view, pieces, meshes);
   seeds.clear();
-  // Changes from here on are after every chunk this output builds.
-  chunkEpoch_ = mesh_.closeDrawnEpoch();
   const Frustum frustum(view);
   Walk w;
-  w.view = &view;
-  w.frustum = &frustum;
-  w.pieces = &pieces;
-  w.timeS = timeS;
-  w.meshes = &meshes;
+  w.pass = {&view, &frustum, &pieces, &meshes, timeS, &w.emitted, attachChunks};
   w.seeds = &seeds;
   w.untextured = static_cast<int>(pieces.tiles().size());
   figures_.drawnTriangles = figures_.constrainedLeaves = figures_.morphingVertices = 0;
@@ -51,21 +60,19 @@ void RoamTessellator::output(const EyeView& view, const PieceSet& pieces, double
   figures_.seedPlants = 0.0;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
-    eyeOf(view, r, eye);
-    visitOutput(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None, -1, true);
+    eyeOf(mesh_, view, r, eye);
+    visit(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None, -1, true);
   }
-  prepareChunks(w);
-  appendChunkDraws(w);
+  chunks_.finish(w.pass);
   figures_.leavesEmitted += w.emitted.leaves;
   figures_.morphingVertices += w.emitted.morphingVertices;
   figures_.chunksMoved += w.emitted.chunksMoved;
   figures_.seedTriangles = seeds.size();
   mesh_.markShown();
-  figures_.outputMs = watch.elapsedMs();
 }
 
-void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps,
-                                  int piece, bool seeds) {
+void RoamOutput::visit(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps, int piece,
+                       bool seeds) {
   // Eye coordinates are needed while the culling or the seeds are undecided, and only then.
   assert(eye != nullptr || (cull == Cull::Inside && !seeds));
   const RoamNode& n = mesh_.node(t);
@@ -73,118 +80,84 @@ void RoamTessellator::visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cu
   const int level = n.path.level;
   const double e = n.cullThickness();
   if (cull != Cull::Inside) {
-    cull = cullWedgie(*w.frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
+    cull = cullWedgie(*w.pass.frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM, planes);
     if (cull == Cull::Outside) return;
   }
   if (level == 0 || (ps == InPiece::Above && level % 2 == 0)) {
     const geo::TileId square = mesh_.grid().square(mesh_.corners(t), level);
-    const int exact = w.pieces->exactly(square);
+    const int exact = w.pass.pieces->exactly(square);
     if (exact >= 0) {
       ps = InPiece::In;
       piece = exact;
     } else {
-      ps = w.pieces->isAbove(square) ? InPiece::Above : InPiece::None;
+      ps = w.pass.pieces->isAbove(square) ? InPiece::Above : InPiece::None;
     }
   }
   if (ps == InPiece::None) return;  // outside every piece: the tile selection found it invisible
-
-  if (seeds && level <= seedLevel_) {
-    if (sphereDistance(*w.view, t, eye, e) > seeds_.horizonM) {
-      seeds = false;
-    } else if (level == seedLevel_ || n.isLeaf()) {
-      glm::dvec3 world[3];
-      bool data = true;
-      for (int i = 0; i < 3; ++i) {
-        const RoamVertex& v = mesh_.vertex(n.v[i]);
-        data = data && v.heightM == v.heightM;
-        world[i] = v.position(v.heightM);
-      }
-      if (data) {
-        const int seedPiece = ps == InPiece::In ? piece : -1;
-        if (level == seedLevel_)
-          emitSeed(w, n.path, world, eye, false, seedPiece);
-        else
-          refineSeeds(w, n.path, world, eye, e, seedPiece);
-      }
-      seeds = false;
-    }
-  }
+  if (seeds && level <= seedLevel_) seeds = seedsAt(w, t, eye, e, ps, piece);
   if (options_.cacheChunks && !seeds && ps == InPiece::In && n.leafCount <= options_.chunkMaxLeaves) {
-    drawChunk(w, t, piece, cull == Cull::Inside ? PlaneMask{0} : planes);
+    chunks_.draw(w.pass, t, piece, cull == Cull::Inside ? PlaneMask{0} : planes);
     return;
   }
   if (n.isLeaf()) {
-    if (ps == InPiece::Above) ++figures_.constrainedLeaves;
-    const bool textured = ps == InPiece::In;
-    TerrainMesh& m = (*w.meshes)[size_t(textured ? piece : w.untextured)];
-    if (emitLeaf(w.timeS, t,
-                 {&m.vertices, &m.indices, m.origin, textured ? &w.pieces->tiles()[size_t(piece)] : nullptr,
-                  static_cast<uint32_t>(textured ? piece : w.untextured), nullptr, &w.emitted, nullptr}))
-      ++figures_.drawnTriangles;
+    emitDrawnLeaf(w, t, ps, piece);
     return;
   }
   const uint32_t c = n.child;
   if (cull == Cull::Inside && !seeds) {
-    visitOutput(w, c, nullptr, cull, 0, ps, piece, false);
-    visitOutput(w, c + 1, nullptr, cull, 0, ps, piece, false);
+    visit(w, c, nullptr, cull, 0, ps, piece, false);
+    visit(w, c + 1, nullptr, cull, 0, ps, piece, false);
     return;
   }
-  const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);  // the only vertex transformed here (§3.1 A)
+  const glm::dvec3 m = eyeOfVertex(mesh_, *w.pass.view, n.mid);  // the only vertex transformed here (§3.1 A)
   const glm::dvec3 e0[3] = {m, eye[0], eye[1]}, e1[3] = {m, eye[2], eye[0]};
-  visitOutput(w, c, e0, cull, planes, ps, piece, seeds);
-  visitOutput(w, c + 1, e1, cull, planes, ps, piece, seeds);
+  visit(w, c, e0, cull, planes, ps, piece, seeds);
+  visit(w, c + 1, e1, cull, planes, ps, piece, seeds);
 }
 
-bool RoamTessellator::emitLeaf(double timeS, uint32_t t, const LeafSink& sink) {
-  assert((sink.chunk == nullptr) == (sink.chunkVertices == nullptr) && "a chunk brings its vertex map");
+bool RoamOutput::seedsAt(Walk& w, uint32_t t, const glm::dvec3* eye, double thickness, InPiece ps, int piece) {
   const RoamNode& n = mesh_.node(t);
-  ++sink.counts->leaves;
-  for (uint32_t v : n.v)
-    if (!(mesh_.vertex(v).heightM == mesh_.vertex(v).heightM)) return false;  // nodata: a hole, never a drop to 0
-  // 2^(z − gridZoom), exactly (a piece's zoom is below the grid's): the tile's uv per grid step.
-  assert(!sink.tile || sink.tile->z < mesh_.grid().gridZoom());
-  const double uvScale =
-      sink.tile ? 1.0 / static_cast<double>(uint64_t{1} << (mesh_.grid().gridZoom() - sink.tile->z)) : 0.0;
-  const double fade = mesh_.options().fadeS;
-  for (uint32_t v : n.v) {
-    uint32_t* known = nullptr;  // the chunk's entry for v
-    if (sink.chunkVertices) {
-      known = &sink.chunkVertices->at(v);
-      if (*known != kNoNode) {
-        sink.indices->push_back(*known);
-        continue;
-      }
-    } else if (const Stamp& st = stamps_[v]; st.frame == outputFrame_ && st.piece == sink.stamp) {
-      sink.indices->push_back(st.index);
-      continue;
-    }
-    const RoamVertex& x = mesh_.vertex(v);
-    const double h = x.drawnHeight(timeS, fade);
-    if (h != x.heightM) ++sink.counts->morphingVertices;
-    TerrainVertex out;
-    out.position = glm::vec3(x.position(h) - sink.origin);
-    out.normal = x.normal;
-    out.heightMsl = static_cast<float>(h);
-    if (sink.tile)
-      out.uv = glm::vec2(double(x.grid.x) * uvScale - sink.tile->x, double(x.grid.y) * uvScale - sink.tile->y);
-    const auto index = static_cast<uint32_t>(sink.vertices->size());
-    if (known)
-      *known = index;
-    else
-      stamps_[v] = {outputFrame_, sink.stamp, index};
-    if (sink.chunk) {
-      if (!x.morphDone(timeS, fade)) sink.chunk->morphing.emplace_back(index, x);
-      sink.chunk->at.push_back(x.at);
-    }
-    sink.indices->push_back(index);
-    sink.vertices->push_back(out);
+  const int level = n.path.level;
+  if (ErrorGeometry::of(*w.pass.view, eye, thickness, n.radius).sphereDistance() > seeds_.horizonM) return false;
+  if (level != seedLevel_ && !n.isLeaf()) return true;
+  glm::dvec3 world[3];
+  bool data = true;
+  for (int i = 0; i < 3; ++i) {
+    const RoamVertex& v = mesh_.vertex(n.v[i]);
+    data = data && v.heightM == v.heightM;
+    world[i] = v.position(v.heightM);
   }
-  if (sink.chunk) sink.chunk->thickness.push_back(n.cullThickness());
-  return true;
+  if (data) {
+    const int seedPiece = ps == InPiece::In ? piece : -1;
+    if (level == seedLevel_)
+      emitSeed(w, n.path, world, eye, false, seedPiece);
+    else
+      refineSeeds(w, n.path, world, eye, thickness, seedPiece);
+  }
+  return false;
 }
 
-void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
-                               bool interpolated, int piece) {
+void RoamOutput::emitDrawnLeaf(Walk& w, uint32_t t, InPiece ps, int piece) {
+  if (ps == InPiece::Above) ++figures_.constrainedLeaves;
+  const bool textured = ps == InPiece::In;
+  TerrainMesh& m = (*w.pass.meshes)[size_t(textured ? piece : w.untextured)];
+  const LeafSink sink{.vertices = &m.vertices,
+                      .indices = &m.indices,
+                      .origin = m.origin,
+                      .tile = textured ? &w.pass.pieces->tiles()[size_t(piece)] : nullptr,
+                      .stamps = &stamps_,
+                      .frame = outputFrame_,
+                      .stamp = static_cast<uint32_t>(textured ? piece : w.untextured),
+                      .chunkVertices = nullptr,
+                      .counts = &w.emitted,
+                      .morphing = nullptr,
+                      .at = nullptr,
+                      .thickness = nullptr};
+  if (emitLeaf(mesh_, w.pass.timeS, t, sink)) ++figures_.drawnTriangles;
+}
+
+void RoamOutput::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
+                          bool interpolated, int piece) {
   // The seeding horizon is measured to the nearest vertex (§3.1).
   const double nearest = std::min({glm::length(eye[0]), glm::length(eye[1]), glm::length(eye[2])});
   if (nearest > seeds_.horizonM) return;
@@ -192,14 +165,15 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   // a crest their tops show above it — and dropping a triangle's plants the moment the camera
   // crosses its plane made them all pop at once (issue 18). The terrain's depth hides the rest,
   // and the Hi-Z occlusion test keeps them from being classified.
+  const EyeView& view = *w.pass.view;
   SeedTriangle s;
   s.path = path;
   const std::array<glm::dvec3, 3> e{eye[0], eye[1], eye[2]};
-  const double lod = seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(*w.view, e, seeds_, &s.nearPlane)
-                                                                 : plantCountWorld(*w.view, e, seeds_);
+  const double lod = seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(view, e, seeds_, &s.nearPlane)
+                                                               : plantCountWorld(view, e, seeds_);
   for (int i = 0; i < 3; ++i) {
     s.world[size_t(i)] = world[i];
-    s.fromCamera[size_t(i)] = glm::vec3(world[i] - w.view->cameraEnu);
+    s.fromCamera[size_t(i)] = glm::vec3(world[i] - view.cameraEnu);
   }
   s.interpolated = interpolated;
   s.corners = mesh_.grid().corners(path);
@@ -214,11 +188,12 @@ void RoamTessellator::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* w
   w.seeds->push_back(s);
 }
 
-void RoamTessellator::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
-                                  double thickness, int piece) {
+void RoamOutput::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
+                             double thickness, int piece) {
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
-  if (cullWedgie(*w.frustum, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside) return;
+  if (cullWedgie(*w.pass.frustum, eye[0], eye[1], eye[2], thickness, thickness + options_.canopyM) == Cull::Outside)
+    return;
   const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
   const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
   if (glm::length(c) - radius - thickness > seeds_.horizonM) return;

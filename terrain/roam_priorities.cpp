@@ -1,4 +1,4 @@
-// ROAM update, step 1: the priority traversal (roam_tessellator.h update(), step 1). Seed
+// RoamPriorities (roam_priorities.h): ROAM update, step 1, the priority traversal. Seed
 // 001_3eca9f2c7752e4fb.txt §3.1 (the projected wedgie error, hierarchical culling); Duchaineau
 // et al. 1997 §6 (deferred priority recomputation).
 //
@@ -10,64 +10,116 @@
 // cancel (they mark leaves on both sides of a diamond, possibly in another subtree: nothing the
 // traversal reads); and the subtree deadlines of the nodes above the tasks (post-order).
 
+#include "terrain/roam_priorities.h"
+
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/parallel_for.h"
 #include "terrain/roam_error.h"
-#include "terrain/roam_tessellator.h"
-#include "terrain/roam_walk.h"
 
 namespace vegstream::terrain {
 
-void RoamTessellator::PriorityFigures::add(const PriorityFigures& o) {
+struct RoamPriorities::Walk {
+  const EyeView* view = nullptr;
+  const Frustum* frustum = nullptr;  // the view's planes
+  const PieceSet* pieces = nullptr;
+  double bound = 0.0;
+  std::vector<Candidate>* splits = nullptr;
+  std::vector<Candidate>* diamonds = nullptr;
+  double mergeBelow = 0.0;
+  bool overBudget = false;
+  PriorityFigures counts;
+  std::vector<uint32_t>* cancels = nullptr;  // diamonds whose merge morph is cancelled after the traversal
+  // The top of a parallel traversal (compute): the subtrees handed to tasks, and the nodes above
+  // them, post-order, whose subtree deadlines wait for the tasks.
+  std::vector<PriorityTask>* tasks = nullptr;
+  size_t taskCount = 0;
+  std::vector<uint32_t> waiting;
+};
+
+void PriorityFigures::add(const PriorityFigures& o) {
   visited += o.visited;
   computed += o.computed;
   achievedErrorPx = std::max(achievedErrorPx, o.achievedErrorPx);
 }
 
-void RoamTessellator::computePriorities(Walk& w) {
+RoamPriorities::RoamPriorities(RoamMesh& mesh, const RoamOptions& options, const SeedOptions& seeds, int seedLevel)
+    : mesh_(mesh), options_(options), seeds_(seeds), seedLevel_(seedLevel) {}
+
+void RoamPriorities::begin(const EyeView& view) {
+  const Projection projection{view.nearM,    view.pixelsPerRadian, view.tanHalfX,
+                              view.tanHalfY, options_.maxErrorPx,  options_.mergeFraction * options_.maxErrorPx};
+  evaluateAll_ = !options_.deferPriorities || !(projection == lastProjection_) || !(lastCamera_ == lastCamera_) ||
+                 mesh_.leafCount() > options_.maxTriangles;  // over budget: every diamond is a candidate
+  lastProjection_ = projection;
+  const double moved = lastCamera_ == lastCamera_ ? glm::length(view.cameraEnu - lastCamera_) : 0.0;
+  odometerM_ += moved;
+  lastCamera_ = view.cameraEnu;
+  // The bounds let the vertical turn as the ellipsoid's normal does over the distance moved; a
+  // view whose "up" turned more (not the local vertical) has every priority computed again.
+  const glm::dvec3 up = glm::transpose(view.rotation) * view.upEye;
+  if (glm::dot(up, lastUp_) < std::cos(moved / kMinCurvatureRadiusM) - 1e-12) evaluateAll_ = true;
+  lastUp_ = up;
+}
+
+InPiece RoamPriorities::pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const {
+  if (level > 0 && (parent != InPiece::Above || level % 2 == 1)) return parent;
+  if (pieces.exactly(square) >= 0) return InPiece::In;
+  return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
+}
+
+InPiece RoamPriorities::pieceStateOf(const PieceSet& pieces, uint32_t t) const {
+  const geo::TileId square = mesh_.grid().square(mesh_.corners(t), mesh_.node(t).path.level);
+  if (pieces.pieceOf(square) >= 0) return InPiece::In;
+  return pieces.isAbove(square) ? InPiece::Above : InPiece::None;
+}
+
+float RoamPriorities::priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
+                               ErrorGeometry* geometry) const {
+  if (cull == Cull::Outside) return 0.0f;
+  if (ps == InPiece::Above) return kForcedPriority;
+  const RoamNode& n = mesh_.node(t);
+  if (!(n.thickness >= 0.0f)) return 0.0f;  // nothing known yet, or no data under it
+  const ErrorGeometry g = ErrorGeometry::of(view, eye, n.thickness, n.radius);
+  if (geometry) *geometry = g;
+  if (seeds_.refineToSeedLevel && n.path.level < seedLevel_ && g.sphereDistance() < seeds_.horizonM)
+    return kForcedPriority;
+  return static_cast<float>(g.errorPx());
+}
+
+double RoamPriorities::errorPx(const EyeView& view, uint32_t t) const {
+  glm::dvec3 eye[3];
+  eyeOf(mesh_, view, t, eye);
+  const RoamNode& n = mesh_.node(t);
+  if (!(n.thickness >= 0.0f)) return 0.0;
+  return ErrorGeometry::of(view, eye, n.thickness, n.radius).errorPx();
+}
+
+void RoamPriorities::compute(const EyeView& view, const Frustum& frustum, const PieceSet& pieces,
+                             std::vector<Candidate>& splits, std::vector<Candidate>& diamonds, RoamFigures& figures) {
+  Walk w;
+  w.view = &view;
+  w.frustum = &frustum;
+  w.pieces = &pieces;
+  w.bound = options_.maxErrorPx;
+  w.splits = &splits;
+  w.diamonds = &diamonds;
+  w.mergeBelow = options_.mergeFraction * options_.maxErrorPx;
+  w.overBudget = mesh_.leafCount() > options_.maxTriangles;
   std::vector<uint32_t> cancels;
   w.cancels = &cancels;
-  w.tasks = options_.tasks ? &priorityTasks_ : nullptr;
-  w.taskCount = 0;
-  w.waiting.clear();
+  w.tasks = options_.tasks ? &tasks_ : nullptr;
   for (uint32_t r : mesh_.roots()) {
     glm::dvec3 eye[3];
-    eyeOf(*w.view, r, eye);
-    descendPriorities(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None);
+    eyeOf(mesh_, view, r, eye);
+    descend(w, r, eye, Cull::Partial, kEveryPlane, InPiece::None);
   }
-  if (w.taskCount > 0) {
-    const auto run = [&](size_t k) -> Status {
-      PriorityTask& task = priorityTasks_[k];
-      Walk tw;
-      tw.view = w.view;
-      tw.frustum = w.frustum;
-      tw.pieces = w.pieces;
-      tw.bound = w.bound;
-      tw.mergeBelow = w.mergeBelow;
-      tw.overBudget = w.overBudget;
-      tw.splits = &task.splits;
-      tw.diamonds = &task.diamonds;
-      tw.cancels = &task.cancels;
-      visitPriorities(tw, task.node, task.cull == Cull::Outside ? nullptr : task.eye, task.cull, task.planes, task.ps);
-      task.counts = tw.counts;
-      return {};
-    };
-    const Status done = parallelFor(w.taskCount, 0, options_.tasks, run);
-    assert(done.ok());
-    (void)done;
-    // The candidates in traversal order. The top pushes none: its nodes hold more than
-    // kTaskLeaves ≥ 2 leaves, so none is a leaf or a diamond.
-    assert(w.splits->empty() && w.diamonds->empty());
-    for (size_t k = 0; k < w.taskCount; ++k) {
-      const PriorityTask& task = priorityTasks_[k];
-      w.splits->insert(w.splits->end(), task.splits.begin(), task.splits.end());
-      w.diamonds->insert(w.diamonds->end(), task.diamonds.begin(), task.diamonds.end());
-      cancels.insert(cancels.end(), task.cancels.begin(), task.cancels.end());
-      w.counts.add(task.counts);
-    }
-  }
+  if (w.taskCount > 0) runTasks(w, cancels);
   // The nodes above the tasks, children first.
   for (uint32_t t : w.waiting) {
     RoamNode& n = mesh_.node(t);
@@ -77,16 +129,47 @@ void RoamTessellator::computePriorities(Walk& w) {
   // Cancelling is idempotent and writes nothing the traversal reads: done after it, in any
   // order, it gives what cancelling on the way gave.
   for (uint32_t t : cancels) mesh_.cancelMergeMorph(t);
-  figures_.priorityTasks = w.taskCount;
-  figures_.nodesVisited = w.counts.visited;
-  figures_.prioritiesComputed = w.counts.computed;
-  figures_.achievedErrorPx = w.counts.achievedErrorPx;
+  figures.priorityTasks = w.taskCount;
+  figures.nodesVisited = w.counts.visited;
+  figures.prioritiesComputed = w.counts.computed;
+  figures.achievedErrorPx = w.counts.achievedErrorPx;
 }
 
-void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
-                                        InPiece ps) {
+void RoamPriorities::runTasks(Walk& w, std::vector<uint32_t>& cancels) {
+  const auto run = [&](size_t k) -> Status {
+    PriorityTask& task = tasks_[k];
+    Walk tw;
+    tw.view = w.view;
+    tw.frustum = w.frustum;
+    tw.pieces = w.pieces;
+    tw.bound = w.bound;
+    tw.mergeBelow = w.mergeBelow;
+    tw.overBudget = w.overBudget;
+    tw.splits = &task.splits;
+    tw.diamonds = &task.diamonds;
+    tw.cancels = &task.cancels;
+    visit(tw, task.node, task.cull == Cull::Outside ? nullptr : task.eye, task.cull, task.planes, task.ps);
+    task.counts = tw.counts;
+    return {};
+  };
+  const Status done = parallelFor(w.taskCount, 0, options_.tasks, run);
+  assert(done.ok());
+  (void)done;
+  // The candidates in traversal order. The top pushes none: its nodes hold more than
+  // kTaskLeaves ≥ 2 leaves, so none is a leaf or a diamond.
+  assert(w.splits->empty() && w.diamonds->empty());
+  for (size_t k = 0; k < w.taskCount; ++k) {
+    const PriorityTask& task = tasks_[k];
+    w.splits->insert(w.splits->end(), task.splits.begin(), task.splits.end());
+    w.diamonds->insert(w.diamonds->end(), task.diamonds.begin(), task.diamonds.end());
+    cancels.insert(cancels.end(), task.cancels.begin(), task.cancels.end());
+    w.counts.add(task.counts);
+  }
+}
+
+void RoamPriorities::descend(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps) {
   if (!w.tasks || mesh_.node(t).leafCount > kTaskLeaves) {
-    visitPriorities(w, t, eye, cull, planes, ps);
+    visit(w, t, eye, cull, planes, ps);
     return;
   }
   if (w.taskCount == w.tasks->size()) w.tasks->emplace_back();
@@ -102,8 +185,7 @@ void RoamTessellator::descendPriorities(Walk& w, uint32_t t, const glm::dvec3* e
   task.counts = {};
 }
 
-void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
-                                      InPiece ps) {
+void RoamPriorities::visit(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps) {
   RoamNode& n = mesh_.node(t);
   mesh_.prefetchChildrenForPriorities(t);
   const int level = n.path.level;
@@ -139,8 +221,15 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
     n.seenPiece = static_cast<uint8_t>(ps);
     w.cancels->push_back(t);
   }
-  // Children the deferral skips on entry (the test at the top, for a cull and piece state
-  // they inherit unchanged) need no eye coordinates: do not transform the split vertex for them.
+  visitChildren(w, t, eye, cull, planes, ps);
+}
+
+void RoamPriorities::visitChildren(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes,
+                                   InPiece ps) {
+  const uint32_t c = mesh_.node(t).child;
+  // Children the deferral skips on entry (the test at the top of visit, for a cull and piece
+  // state they inherit unchanged) need no eye coordinates: do not transform the split vertex
+  // for them.
   auto skipped = [&](uint32_t child) {
     const RoamNode& x = mesh_.node(child);
     return !evaluateAll_ && cull != Cull::Partial && (ps == InPiece::In || ps == InPiece::None) &&
@@ -152,7 +241,7 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   if (!skip0 || !skip1) {
     glm::dvec3 e0[3], e1[3];
     if (cull != Cull::Outside) {
-      const glm::dvec3 m = eyeOfVertex(*w.view, n.mid);
+      const glm::dvec3 m = eyeOfVertex(mesh_, *w.view, mesh_.node(t).mid);
       e0[0] = m;
       e0[1] = eye[0];
       e0[2] = eye[1];
@@ -163,11 +252,11 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
     // A skipped child would return at once (the test at the top) with nothing written: it is
     // not entered, nor made a task.
     if (top) {
-      if (!skip0) descendPriorities(w, c, e0, cull, planes, ps);
-      if (!skip1) descendPriorities(w, c + 1, e1, cull, planes, ps);
+      if (!skip0) descend(w, c, e0, cull, planes, ps);
+      if (!skip1) descend(w, c + 1, e1, cull, planes, ps);
     } else {
-      if (!skip0) visitPriorities(w, c, e0, cull, planes, ps);
-      if (!skip1) visitPriorities(w, c + 1, e1, cull, planes, ps);
+      if (!skip0) visit(w, c, e0, cull, planes, ps);
+      if (!skip1) visit(w, c + 1, e1, cull, planes, ps);
     }
   }
   if (top) {
@@ -178,8 +267,23 @@ void RoamTessellator::visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye
   after.subtreeDeadline = std::min({after.deadline, mesh_.node(c).subtreeDeadline, mesh_.node(c + 1).subtreeDeadline});
 }
 
-void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
-                                   PriorityFigures& counts) {
+float RoamPriorities::evaluateNewLeaf(const EyeView& view, const Frustum& frustum, const PieceSet& pieces,
+                                      uint32_t leaf, RoamFigures& figures) {
+  glm::dvec3 eye[3];
+  eyeOf(mesh_, view, leaf, eye);
+  const double e = mesh_.node(leaf).cullThickness();
+  const Cull cull = cullWedgie(frustum, eye[0], eye[1], eye[2], e, e + options_.canopyM);
+  PriorityFigures counts;
+  evaluateLeaf(view, leaf, eye, cull, pieceStateOf(pieces, leaf), counts);
+  figures.prioritiesComputed += counts.computed;
+  figures.achievedErrorPx = std::max(figures.achievedErrorPx, counts.achievedErrorPx);
+  RoamNode& evaluated = mesh_.node(leaf);
+  evaluated.subtreeDeadline = evaluated.deadline;  // its ancestors are due already (the split)
+  return evaluated.priority;
+}
+
+void RoamPriorities::evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
+                                  PriorityFigures& counts) {
   RoamNode& n = mesh_.node(t);
   n.seenCull = static_cast<uint8_t>(cull);
   n.seenPiece = static_cast<uint8_t>(ps);
@@ -203,7 +307,7 @@ void RoamTessellator::evaluateLeaf(const EyeView& view, uint32_t t, const glm::d
   n.deadline = odometerM_ + safe;
 }
 
-void RoamTessellator::evaluateDiamond(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
+void RoamPriorities::evaluateDiamond(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps) {
   RoamNode& n = mesh_.node(t);
   n.seenCull = static_cast<uint8_t>(cull);
   n.seenPiece = static_cast<uint8_t>(ps);

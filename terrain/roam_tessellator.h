@@ -56,7 +56,11 @@
 
 namespace vegstream::terrain {
 
-struct ErrorGeometry;  // roam_error.h
+// The tessellator's parts (internal to terrain/, each in its own header and file).
+class RoamPriorities;
+class RoamQueues;
+class RoamOutput;
+class RoamCompactor;
 
 // Priority of a leaf that must split whatever its error (a constraint).
 inline constexpr float kForcedPriority = 3.0e38f;
@@ -68,7 +72,7 @@ struct RoamOptions {
   uint64_t maxOpsPerFrame = 60000;  // splits + merges per frame (a deterministic work budget)
   double maxQueueMs = 0.0;          // a time budget for the queue work; 0: none (deterministic)
   double canopyM = 30.0;            // the tallest plant: wedgies grow by it for culling
-  bool cacheChunks = true;          // output: append unchanged drawn chunks as cached (roam_output.cpp)
+  bool cacheChunks = true;          // output: append unchanged drawn chunks as cached (roam_chunks.h)
   bool deferPriorities = true;      // update: compute a priority only when it may have crossed a bound
   // The most leaves a drawn chunk holds: larger chunks are fewer (less work per frame, fewer
   // draws) but each change rebuilds more.
@@ -173,194 +177,24 @@ class RoamTessellator {
   double errorPx(const EyeView& view, uint32_t node) const;
 
  private:
-  enum class InPiece : uint8_t { None, Above, In };
-  struct Candidate {
-    float priority;
-    uint32_t node;
-    TriPath path;
-  };
-  struct Walk;  // the state of one traversal
+  void finishCompaction();  // before anything changes the mesh: waits for the copy, applies it
+  void startCompaction();
 
-  // geometry (optional) receives the error geometry when the priority came from it.
-  float priority(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
-                 ErrorGeometry* geometry = nullptr) const;
-  double sphereDistance(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
-  double projectedErrorPx(const EyeView& view, uint32_t t, const glm::dvec3* eye, double thickness) const;
-  InPiece pieceState(const PieceSet& pieces, const geo::TileId& square, InPiece parent, int level) const;
-  InPiece pieceStateOf(const PieceSet& pieces, uint32_t t) const;
-  // Inline: the traversals call them for every node they descend through.
-  void eyeOf(const EyeView& view, uint32_t t, glm::dvec3* eye) const {
-    const RoamNode& n = mesh_.node(t);
-    for (int i = 0; i < 3; ++i) eye[i] = eyeOfVertex(view, n.v[i]);
-  }
-  glm::dvec3 eyeOfVertex(const EyeView& view, uint32_t v) const { return view.toEye(mesh_.vertex(v).at); }
-  // The priority traversal (roam_priorities.cpp). With options_.tasks, the frame thread walks
-  // the top of the tree and hands each subtree of at most kTaskLeaves leaves to a task; the
-  // tasks' results are put back together in the order one traversal gives.
-  struct PriorityFigures {
-    uint64_t visited = 0, computed = 0;
-    double achievedErrorPx = 0.0;
-    void add(const PriorityFigures& o);
-  };
-  struct PriorityTask {
-    uint32_t node;
-    glm::dvec3 eye[3];  // unset when culled: an Outside subtree needs none
-    Cull cull;
-    PlaneMask planes;  // those its wedgie straddles, when Partial
-    InPiece ps;
-    std::vector<Candidate> splits, diamonds;
-    std::vector<uint32_t> cancels;
-    PriorityFigures counts;
-  };
-  static constexpr uint32_t kTaskLeaves = 1024;  // ≥ 2: a task's root is never a leaf or diamond of the top
-  void computePriorities(Walk& w);
-  // `planes`: those the parent's wedgie straddles, when `cull` is Partial (eye_space.h).
-  void descendPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps);
-  void visitPriorities(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps);
-  void visitOutput(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, PlaneMask planes, InPiece ps, int piece,
-                   bool seeds);
-  // Which vertices a chunk being built holds already (roam_chunks.cpp): a small map of its own,
-  // so that chunks are built on any thread (the direct output uses stamps_).
-  class ChunkVertexMap;
-  struct DrawnChunk;  // below: the output cache
-  struct EmitCounts {
-    uint64_t leaves = 0, morphingVertices = 0, chunksMoved = 0;
-    void add(const EmitCounts& o) {
-      leaves += o.leaves;
-      morphingVertices += o.morphingVertices;
-      chunksMoved += o.chunksMoved;
-    }
-  };
-  // Where emitLeaf writes: a piece's mesh, or a drawn chunk being built.
-  struct LeafSink {
-    std::vector<TerrainVertex>* vertices;
-    std::vector<uint32_t>* indices;
-    glm::dvec3 origin;
-    const geo::TileId* tile;          // the piece (uv), or null: untextured
-    uint32_t stamp;                   // a piece's mesh: which vertices are already in it (stamps_)
-    ChunkVertexMap* chunkVertices;    // a chunk: which vertices are already in it (instead of stamps_)
-    EmitCounts* counts;
-    DrawnChunk* chunk;                // a chunk: also its morphing vertices, thickness and at
-  };
-  bool emitLeaf(double timeS, uint32_t t, const LeafSink& sink);  // false: nodata (a hole)
-  // The output's chunks (roam_chunks.cpp), in three steps so that the work per chunk runs on
-  // options_.tasks: the traversal claims each chunk it reaches and queues it (drawChunk); then
-  // every queued chunk is built again, or has its morphing vertices moved, and, where it
-  // straddles the edge of the view (partial), has its triangles culled one by one
-  // (prepareChunks, in parallel: each touches its own chunk); then the draws are appended to
-  // the pieces' meshes in traversal order (appendChunkDraws). Without tasks drawChunk does all
-  // three at once, while the chunk is in the cache.
-  struct ChunkDraw {
-    uint32_t slot;
-    int piece;
-    PlaneMask planes;  // the planes of the view its root's wedgie straddles (none: wholly inside)
-  };
-  struct ChunkScratch;  // roam_walk.h: a block's vertex map, plane distances and leaf list
-  void drawChunk(Walk& w, uint32_t t, int piece, PlaneMask planes);
-  void prepareChunks(Walk& w);
-  void prepareChunk(const Walk& w, size_t draw, ChunkScratch& scratch, EmitCounts& counts);
-  void appendChunkDraws(Walk& w);
-  void appendChunkDraw(Walk& w, const ChunkDraw& d);
-  std::vector<ChunkScratch> chunkScratch_;  // kept from output to output
-  // A chunk's leaves, depth first, into `leaves` (their vertices asked for ahead of emitLeaf).
-  void collectChunk(uint32_t root, std::vector<uint32_t>& leaves) const;
-  void releaseChunks();
-  void dropIdleChunks();
-  static constexpr uint64_t kChunkIdleFrames = 64;
-  void remapChunks(const RoamRenumbering& renumbering);
-  void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
-                int piece);
-  void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
-                   int piece);
-  // `w`: the update's walk (its view, frustum and pieces).
-  void splitPhase(const Walk& w, std::vector<Candidate>& candidates, uint64_t& ops, const Stopwatch& watch);
-  void mergePhase(std::vector<Candidate>& diamonds, uint64_t& ops, const Stopwatch& watch);
-  bool outOfWork(uint64_t ops, const Stopwatch& watch);
-  void lowerDeadline(uint32_t t, double deadline);  // and its ancestors' subtree deadlines
-
+  // The owner of the mesh and of the parts that work on it (each owns its own state):
   RoamMesh mesh_;
   geo::LocalFrame frame_;
   RoamOptions options_;
   SeedOptions seeds_;
   int seedLevel_ = 0;
-  double fillHeightM_ = 0.0;
   RoamFigures figures_;
-  // Deferred priority recomputation (Duchaineau et al. 1997 §6): the camera's odometer (metres
-  // travelled), and what a change of which means every priority is computed again.
-  void beginUpdate(const EyeView& view);
-  void evaluateLeaf(const EyeView& view, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps,
-                    PriorityFigures& counts);
-  void evaluateDiamond(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, InPiece ps);
-  std::vector<PriorityTask> priorityTasks_;  // reused: their vectors keep their capacity
-  double odometerM_ = 0.0;
-  glm::dvec3 lastCamera_{std::numeric_limits<double>::quiet_NaN()};
-  glm::dvec3 lastUp_{0.0};
-  struct Projection {
-    double nearM = 0.0, pixelsPerRadian = 0.0, tanHalfX = 0.0, tanHalfY = 0.0, boundPx = 0.0, mergePx = 0.0;
-    auto operator<=>(const Projection&) const = default;
-  } lastProjection_;
-  bool evaluateAll_ = true;  // this update computes every priority again
-  // The output cache (roam_output.cpp): the topmost node on the way down that is inside one
-  // piece, beyond the seeds, not wholly outside the view and holds at most chunkMaxLeaves
-  // leaves keeps its subtree's leaves as drawn (a TerrainChunk handed out by reference, never
-  // copied), as long as nothing in them changed (RoamNode::drawnStamp); only its morphing
-  // vertices are moved (a new version); where it straddles the edge of the view, its triangles
-  // are culled one by one. Chunks unused for kChunkIdleFrames outputs are dropped.
-  struct DrawnChunk {
-    uint32_t root = kNoNode;
-    uint64_t builtStamp = 0;  // the mesh's drawn epoch when built
-    uint64_t usedFrame = 0;
-    geo::TileId piece{};  // positions are relative to its origin, uvs in it
-    TerrainChunk mesh;
-    // The vertices still morphing, each with a copy of what moving it needs (to move it each
-    // output without a cache miss in the vertex pool: a change of the copied morph changes the
-    // chunk — RoamMesh stamps every leaf of a vertex whose morph it starts, cancels or
-    // resamples; 88 bytes, not the 144 of a RoamVertex: most chunks moved are read only for it), and
-    // each triangle's wedgie thickness: where the chunk straddles the edge of the view its
-    // triangles are culled one by one (a leaf's wedgie nests in its ancestors', so that gives
-    // what the hierarchical culling does).
-    struct Morphing {
-      uint32_t at;  // index in mesh.vertices
-      glm::dvec3 base, up;  // RoamVertex's: the same arithmetic as emitting it
-      double heightM, fromHeightM, toHeightM, morphStartS;
-      explicit Morphing(uint32_t index, const RoamVertex& v)
-          : at(index), base(v.base), up(v.up), heightM(v.heightM), fromHeightM(v.fromHeightM), toHeightM(v.toHeightM),
-            morphStartS(v.morphStartS) {}
-      double drawnHeight(double t, double fadeS) const {
-        return morphedHeight(heightM, fromHeightM, toHeightM, morphStartS, t, fadeS);
-      }
-      glm::dvec3 position(double h) const { return base + up * h; }
-      bool morphDone(double t, double fadeS) const { return t - morphStartS >= fadeS; }
-    };
-    std::vector<Morphing> morphing;
-    std::vector<float> thickness;
-    // Each vertex's RoamVertex::at (what culling uses), kept here: reading it from the vertex
-    // pool was a cache miss per vertex. A change of it changes the chunk (RoamMesh::resample).
-    std::vector<glm::dvec3> at;
-    bool rebuild = false;           // this output builds it again (drawChunk → prepareChunks)
-    std::vector<uint32_t> visible;  // partly in view: the triangles drawn this output (prepareChunk)
-  };
-  std::deque<DrawnChunk> chunks_;            // a deque: the TerrainChunks handed out keep their address
-  uint64_t nextChunkId_ = 1;
-  uint64_t chunkEpoch_ = 0;  // this output's (RoamMesh::closeDrawnEpoch)
-  std::vector<uint32_t> freeChunks_;
-  // Per-output vertex stamps: which mesh a RoamVertex went into last, and where.
-  struct Stamp {
-    uint64_t frame = 0;
-    uint32_t piece = 0, index = 0;
-  };
-  std::vector<Stamp> stamps_;
-  uint64_t outputFrame_ = 0;
+  std::unique_ptr<RoamPriorities> priorities_;  // update, step 1 (roam_priorities.h)
+  std::unique_ptr<RoamQueues> queues_;          // update, steps 2 and 3 (roam_queues.h)
+  std::unique_ptr<RoamOutput> output_;          // the output traversal and its cache (roam_output.h)
+  // Declared after mesh_: destroyed first, it waits for a copy under way (roam_compaction.h).
+  std::unique_ptr<RoamCompactor> compactor_;
   static constexpr uint64_t kCompactChurn = 4;
-  // A compaction whose copy runs on options_.tasks (RoamOptions::tasks): whoever claims it first,
-  // the worker or finishCompaction(), makes the copy.
-  struct PendingCompaction;
-  std::shared_ptr<PendingCompaction> compaction_;
-  void startCompaction();
-  void finishCompaction();  // before anything changes the mesh: waits for the copy, applies it
   double compactWaitMs_ = 0.0;
   uint64_t updates_ = 0;
-  double timeS_ = 0.0;
 };
 
 }  // namespace vegstream::terrain

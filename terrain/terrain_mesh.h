@@ -4,7 +4,7 @@
 // Layout shared with shaders/terrain.vert (checked in render/terrain_pass.cpp).
 //
 // A mesh is its own triangles plus references to chunks: blocks of triangles the producer keeps
-// across frames (ROAM's drawn chunks, roam_output.cpp) with the same origin and imagery. A chunk
+// across frames (ROAM's drawn chunks, roam_chunks.h) with the same origin and imagery. A chunk
 // is never copied into the mesh: it keeps an id for as long as its triangles stay the same, and
 // a version that changes when its vertices move, so a consumer that keeps chunks (the renderer,
 // on the GPU) touches only the ones that changed. A chunk drawn partly (it straddles the edge of

@@ -1,0 +1,122 @@
+#pragma once
+// DrawnChunks (internal to the tessellator: the output cache, roam_tessellator.h output()).
+// The topmost node on the output's way down that is inside one piece, beyond the seeds, not
+// wholly outside the view and holds at most RoamOptions::chunkMaxLeaves leaves keeps its
+// subtree's leaves as drawn (a TerrainChunk handed out by reference, never copied), as long as
+// nothing in them changed (RoamNode::drawnStamp); only its morphing vertices are moved (a new
+// version); where it straddles the edge of the view, its triangles are culled one by one. It
+// owns the chunks (slots attached to their roots, RoamNode::drawnChunk), their ids, the drawn
+// epoch of this output, the draws claimed this output and the scratch that builds them.
+//
+// Contract, per output: beginOutput(); draw() for each chunk root the traversal reaches, in
+// traversal order (ids are handed out there, in order); finish(): the claimed chunks built
+// again, moved or culled — on RoamOptions::tasks in blocks of chunks, each touching only its
+// own — then their draws appended to the pieces' meshes in traversal order, so the output is
+// the same with any number of threads. Without tasks draw() does all of it at once, while the
+// chunk is in the cache. Between outputs: release() (chunks whose root the mesh freed),
+// dropIdle() (unused for kChunkIdleFrames outputs), remap() (after a compaction).
+// Counts chunksBuilt, chunksReused and drawnTriangles into the figures.
+
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "geo/xyz_tiles.h"
+#include "terrain/eye_space.h"
+#include "terrain/roam_leaves.h"
+#include "terrain/roam_mesh.h"
+#include "terrain/roam_tessellator.h"
+#include "terrain/terrain_mesh.h"
+
+namespace vegstream::terrain {
+
+struct DrawnChunk {
+  uint32_t root = kNoNode;
+  uint64_t builtStamp = 0;  // the mesh's drawn epoch when built
+  uint64_t usedFrame = 0;
+  geo::TileId piece{};  // positions are relative to its origin, uvs in it
+  TerrainChunk mesh;
+  // The vertices still morphing, each with a copy of what moving it needs (roam_leaves.h), and
+  // each triangle's wedgie thickness: where the chunk straddles the edge of the view its
+  // triangles are culled one by one (a leaf's wedgie nests in its ancestors', so that gives
+  // what the hierarchical culling does).
+  std::vector<MorphingVertex> morphing;
+  std::vector<float> thickness;
+  // Each vertex's RoamVertex::at (what culling uses), kept here: reading it from the vertex
+  // pool was a cache miss per vertex. A change of it changes the chunk (RoamMesh::resample).
+  std::vector<glm::dvec3> at;
+  bool rebuild = false;           // this output builds it again (draw → finish)
+  std::vector<uint32_t> visible;  // partly in view: the triangles drawn this output (prepare)
+};
+
+// One output's: what its chunks are drawn for.
+struct ChunkPass {
+  const EyeView* view = nullptr;
+  const Frustum* frustum = nullptr;  // the view's planes
+  const PieceSet* pieces = nullptr;
+  std::vector<TerrainMesh>* meshes = nullptr;  // the pieces' meshes: origins, and where draws go
+  double timeS = 0.0;
+  EmitCounts* emitted = nullptr;  // the output's counts (draw() without tasks, finish())
+  // False while a compaction's copy reads the nodes: a new chunk's slot is attached to its root
+  // afterwards (remap() attaches every chunk to its root again).
+  bool attach = true;
+};
+
+class DrawnChunks {
+ public:
+  static constexpr uint64_t kChunkIdleFrames = 64;
+
+  // Every reference outlives this.
+  DrawnChunks(RoamMesh& mesh, const RoamOptions& options, RoamFigures& figures);
+
+  // Releases the chunks whose root was freed; changes of the mesh from here on are after every
+  // chunk this output builds.
+  void beginOutput();
+  // The chunk of root `t` in piece `piece`; `planes`: those of the view its root's wedgie
+  // straddles (none: wholly inside).
+  void draw(const ChunkPass& pass, uint32_t t, int piece, PlaneMask planes);
+  void finish(const ChunkPass& pass);
+
+  void release();
+  void dropIdle();
+  void remap(const RoamRenumbering& renumbering);
+
+ private:
+  struct ChunkDraw {
+    uint32_t slot;
+    int piece;
+    PlaneMask planes;  // the planes of the view its root's wedgie straddles (none: wholly inside)
+  };
+  // A block's vertex map, plane distances and leaf list, kept from output to output.
+  struct ChunkScratch {
+    ChunkVertexMap map;
+    std::vector<PlaneDistances> planes;  // each vertex's, by plane
+    std::vector<uint32_t> leaves;        // collect's
+  };
+  uint32_t slotFor(uint32_t t, bool attach);
+  void prepareAll(const ChunkPass& pass);
+  // Any thread: reads the mesh, writes this chunk (and the caller's scratch and counts) only.
+  void prepare(const ChunkPass& pass, size_t draw, ChunkScratch& scratch, EmitCounts& counts);
+  void rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, ChunkScratch& scratch,
+               EmitCounts& counts);
+  void move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, EmitCounts& counts);
+  void cullTriangles(const ChunkPass& pass, DrawnChunk& chunk, PlaneMask rootPlanes, ChunkScratch& scratch);
+  void append(const ChunkPass& pass, const ChunkDraw& d);
+  // A chunk's leaves, depth first, into `leaves` (their vertices asked for ahead of emitLeaf).
+  void collect(uint32_t root, std::vector<uint32_t>& leaves) const;
+
+  RoamMesh& mesh_;
+  const RoamOptions& options_;
+  RoamFigures& figures_;
+  std::deque<DrawnChunk> chunks_;  // a deque: the TerrainChunks handed out keep their address
+  std::vector<uint32_t> freeChunks_;
+  uint64_t nextChunkId_ = 1;
+  uint64_t chunkEpoch_ = 0;  // this output's (RoamMesh::closeDrawnEpoch)
+  uint64_t outputFrame_ = 0;
+  std::vector<ChunkDraw> draws_;            // this output's, in traversal order
+  std::vector<ChunkScratch> chunkScratch_;  // kept from output to output
+};
+
+}  // namespace vegstream::terrain
