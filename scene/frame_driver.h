@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -84,6 +85,12 @@ struct FrameRecord {
   std::optional<render::AovImage> aov;      // when FrameInput::aov
   double driverMs = 0.0;                    // the driver's own bookkeeping (copying figures)
   double cpuMs() const;                     // the CPU stages that exist: flight … record/submit
+  // The recorder's (playback.h), for a recorded frame: its row, its wall time, its own bookkeeping
+  // and the PNG writing (NaN: not saved). NaN outside a recording.
+  std::size_t row = 0;
+  double wallMs = std::numeric_limits<double>::quiet_NaN();
+  double recorderMs = std::numeric_limits<double>::quiet_NaN();
+  double pngMs = std::numeric_limits<double>::quiet_NaN();
 };
 
 class FrameDriver {

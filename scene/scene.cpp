@@ -311,14 +311,7 @@ void prepareTrees(Scene::Impl& m, render::FrameRequest& req) {
     m.vegetation.canopy = &m.canopy;
   }
   const TreeFieldFigures& t = m.treeField->figures();
-  fig.trees = true;
-  fig.treeTilesWanted = t.tilesWanted;
-  fig.treeTilesDrawn = t.tilesDrawn;
-  fig.treePagesUsed = t.pagesUsed;
-  fig.treePageCapacity = t.pageCapacity;
-  fig.treesResident = t.treesDrawn;
-  fig.treePlacementMs = t.placementMs;
-  fig.treeBudgetBound = t.budgetBound;
+  fig.trees = t;
   // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
   (m.options.mode == StreamingMode::Settled ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
   fig.treeGpuBytes = m.renderer->treeGpuBytes();

@@ -33,6 +33,7 @@
 #include "geo/local_frame.h"
 #include "render/renderer.h"
 #include "scene/sun_clock.h"
+#include "scene/tree_field_figures.h"
 #include "simulation/simulation_options.h"
 #include "streaming/tile_streamer.h"
 #include "terrain/streamed_terrain.h"
@@ -119,13 +120,9 @@ struct SceneFrameFigures {
   uint64_t gpuBytes = 0;                 // imagery array, terrain, classify and plant buffers
   uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
   double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
-  // Trees: tiles placed and given pages this frame (scene/tree_field.h); zero without trees.
-  bool trees = false;
-  uint32_t treeTilesWanted = 0, treeTilesDrawn = 0, treePagesUsed = 0, treePageCapacity = 0;
-  uint64_t treesResident = 0;
-  double treePlacementMs = 0.0;
-  bool treeBudgetBound = false;
-  uint64_t treeGpuBytes = 0;
+  // Trees: tiles placed and given pages this frame (scene/tree_field.h); absent without trees.
+  std::optional<TreeFieldFigures> trees;
+  uint64_t treeGpuBytes = 0;  // the renderer's tree pool
 };
 
 class Scene {
