@@ -67,8 +67,9 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   if (inFlight_.size() >= kMaxInFlight)
     return makeError(ErrorKind::Internal, "frame driver: " + std::to_string(inFlight_.size()) +
                                               " frames in flight already; collect one before submitting another");
-  // prepare
-  render::FrameRequest request = scene_.prepareFrame(input.pose, input.timeS, input.ahead);
+  // prepare: the pose's views once, then streaming, terrain, seeding and trees
+  const FrameContext context = scene_.frameContext(input.pose, input.timeS, input.ahead);
+  render::FrameRequest request = scene_.prepareFrame(context);
   const double sunTimeS = input.sunTimeS.value_or(input.timeS);
   if (input.sunTimeS) request.lighting = scene_.lightingAt(sunTimeS);
   request.lighting.adaptExposure = input.adaptExposure;
@@ -82,7 +83,7 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
 
   // simulate
   Stopwatch simulateWatch;
-  simulate(input, request.camera.position);
+  simulate(input, context.camera.position);
   if (simulation_.simulates()) request.simulation = &simulation_.gpuStep();
   const double simulationMs = simulation_.simulates() ? simulateWatch.elapsedMs() : kNoFigure;
 
@@ -95,7 +96,7 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   r.index = *index;
   r.timeS = input.timeS;
   r.pose = input.pose;
-  r.verticalFovDeg = request.camera.verticalFovDeg;
+  r.verticalFovDeg = context.camera.verticalFovDeg;
   r.datetime = scene_.sunClock().at(sunTimeS);
   r.sun = scene_.sunClock().sunAt(sunTimeS);
   r.flightMs = input.flightMs;
@@ -141,8 +142,9 @@ Status FrameDriver::advanceSimulation(const FrameInput& input) {
   if (!inFlight_.empty())
     return makeError(ErrorKind::Internal, "frame driver: advanceSimulation() with " +
                                               std::to_string(inFlight_.size()) + " frames in flight; collect them first");
-  render::FrameRequest request = scene_.cameraRequest(input.pose);
-  simulate(input, request.camera.position);
+  const FrameContext context = scene_.frameContext(input.pose, input.timeS);
+  simulate(input, context.camera.position);
+  render::FrameRequest request = scene_.cameraRequest(context);
   if (!simulation_.simulates()) return {};
   request.simulation = &simulation_.gpuStep();
   auto index = scene_.renderer().submitFrame(request);

@@ -12,7 +12,6 @@
 
 #include "core/stopwatch.h"
 #include "core/task_runner.h"
-#include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
 #include "streaming/tile_check.h"
@@ -49,12 +48,6 @@ struct Scene::Impl {
   SceneFrameFigures figures;
   vegetation::SpeciesCatalog catalog;  // the catalog with the dataset's colour calibration (trees point at it)
 
-  double width() const { return static_cast<double>(renderer->width()); }
-  double height() const { return static_cast<double>(renderer->height()); }
-  terrain::SelectionView selectionView(const render::FrameRequest& req) const {
-    return selectionViewFor(req.camera, width(), height());
-  }
-  terrain::EyeView eyeView(const render::FrameRequest& req) const { return eyeViewFor(req.camera, width(), height()); }
 };
 
 namespace {
@@ -256,10 +249,16 @@ GroundHeight Scene::groundFunction() const {
   return [impl](double lat, double lon) { return impl->ground.sampleLonLat(lon, lat); };
 }
 
-render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
+FrameContext Scene::frameContext(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) const {
+  const render::Renderer& r = *impl_->renderer;
+  return FrameContext(impl_->frame, now, timeS, impl_->options.lookAhead ? ahead : std::span<const FlightSample>{},
+                      static_cast<double>(r.width()), static_cast<double>(r.height()));
+}
+
+render::FrameRequest Scene::cameraRequest(const FrameContext& context) const {
   render::FrameRequest req;
-  req.camera = cameraFor(impl_->frame, sample);
-  req.cameraHeightMsl = sample.position.heightM;
+  req.camera = context.camera;
+  req.cameraHeightMsl = context.pose.position.heightM;
   req.terrainDetail = impl_->options.terrainDetail;
   req.lighting = lightingAt(0.0);
   return req;
@@ -320,18 +319,20 @@ void prepareTrees(Scene::Impl& m, render::FrameRequest& req) {
 }  // namespace
 
 render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) {
+  return prepareFrame(frameContext(now, timeS, ahead));
+}
+
+render::FrameRequest Scene::prepareFrame(const FrameContext& context) {
   Impl& m = *impl_;
   SceneFrameFigures& fig = m.figures;
   fig = {};
-  render::FrameRequest req = cameraRequest(now);
+  const double timeS = context.timeS;
+  render::FrameRequest req = cameraRequest(context);
   req.lighting = lightingAt(timeS);
 
   Stopwatch stage;
-  std::vector<terrain::SelectionView> aheadViews;
-  if (m.options.lookAhead)
-    for (const FlightSample& s : ahead) aheadViews.push_back(m.selectionView(cameraRequest(s)));
-  std::vector<streaming::TileWant> wants = m.terrain->wants(m.selectionView(req), m.eyeView(req), aheadViews);
-  double terrainMs = stage.elapsedMs();
+  std::vector<streaming::TileWant> wants = m.terrain->wants(context.selection, context.eye, context.ahead);
+  double terrainMs = context.viewsMs + stage.elapsedMs();  // the views' time: the terrain's, as its selection
 
   stage.restart();
   double waitMs = 0.0;

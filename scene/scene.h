@@ -32,6 +32,7 @@
 #include "geo/datetime.h"
 #include "geo/local_frame.h"
 #include "render/renderer.h"
+#include "scene/frame_context.h"
 #include "scene/sun_clock.h"
 #include "scene/tree_field_figures.h"
 #include "simulation/simulation_options.h"
@@ -142,9 +143,12 @@ class Scene {
   double groundHeight(double latDeg, double lonDeg) const;
   GroundHeight groundFunction() const;  // the same, for PathSampler
 
-  // The frame for a camera at `now` (flight time timeS) with the poses expected next (look-ahead;
-  // ignored when SceneOptions::lookAhead is off). Read-backs, presenting and the overlay are the
-  // caller's to set on the returned request.
+  // The views of a camera at `now` (flight time timeS) and of the poses expected next (look-ahead;
+  // ignored when SceneOptions::lookAhead is off), for this scene's renderer (frame_context.h).
+  FrameContext frameContext(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {}) const;
+  // The frame for a context. Read-backs, presenting and the overlay are the caller's to set on the
+  // returned request. The three-argument form makes the context first.
+  render::FrameRequest prepareFrame(const FrameContext& context);
   render::FrameRequest prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {});
   const SceneFrameFigures& lastFrameFigures() const;
   // Realtime: waits until a tile request has finished (the next prepareFrame takes it in) or
@@ -155,9 +159,8 @@ class Scene {
   // steps a manual clock and lets each step's I/O settle before the next frame.
   streaming::TileStreamer::IoProgress tileIoProgress() const;
 
-  // Camera and lighting for a sample, without streaming or terrain (for tests of the pose); the
-  // sun of flight time 0.
-  render::FrameRequest cameraRequest(const FlightSample& sample) const;
+  // Camera and lighting for a context, without streaming or terrain; the sun of flight time 0.
+  render::FrameRequest cameraRequest(const FrameContext& context) const;
 
   // The date-time and sun at every flight time (sun_clock.h), resolved at open().
   const SunClock& sunClock() const;
