@@ -1,30 +1,45 @@
 #pragma once
-// What every stage of a frame reads about its pose, made once when the frame starts: the flight
+// One frame as its stages (frame_stage.h) see it. Made once when the frame starts: the flight
 // sample and the frame's time, the camera in the scene's local frame (geo/camera.h), the tile
 // selection's view and ROAM's eye view of that camera, and the selection views of the look-ahead
-// poses. No stage converts the pose again, and the look-ahead poses are only ever views.
+// poses — no stage converts the pose again, and the look-ahead poses are only ever views. Then
+// filled by the stages in the list's order: the renderer's request (and the plants' part of it),
+// the CPU stages' figures, the simulation's time, the submitted frame.
 //
 // Contract: the views are those of camera_views.h for the given viewport; `ahead` is empty when
-// the caller passes no look-ahead poses (look-ahead off). A context is plain data, valid as long
-// as the caller keeps it.
+// the caller passes no look-ahead poses (look-ahead off). `input` is the driver's (null when a
+// caller runs only the scene's stages). The request points into the context and into the stages'
+// storage: valid until the stages run again. Neither copied nor moved (the request points at
+// `vegetation`).
 
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "core/result.h"
 #include "flight/path_sampler.h"
 #include "geo/camera.h"
 #include "geo/local_frame.h"
+#include "render/frame_types.h"
+#include "scene/scene_frame_figures.h"
 #include "terrain/eye_space.h"
 #include "terrain/tile_selection.h"
 
 namespace vegstream::scene {
+
+struct FrameInput;
 
 struct FrameContext {
   // The pose at `timeS` seen through a viewport of widthPx × heightPx, with the poses expected
   // next (look-ahead) as selection views.
   FrameContext(const geo::LocalFrame& frame, const flight::FlightSample& pose, double timeS,
                std::span<const flight::FlightSample> ahead, double widthPx, double heightPx);
+  FrameContext(const FrameContext&) = delete;
+  FrameContext& operator=(const FrameContext&) = delete;
 
+  // The views, made once.
   flight::FlightSample pose;
   double timeS = 0.0;
   geo::Camera camera;
@@ -32,6 +47,14 @@ struct FrameContext {
   terrain::EyeView eye;
   std::vector<terrain::SelectionView> ahead;
   double viewsMs = 0.0;  // making the above (the terrain stage counts it: its views)
+  const FrameInput* input = nullptr;
+
+  // What the stages hand on.
+  render::FrameRequest request;
+  render::VegetationRequest vegetation;  // the plants' request, when the seeding stage makes one
+  SceneFrameFigures figures;             // the CPU stages'
+  double simulationMs = std::numeric_limits<double>::quiet_NaN();  // NaN: nothing simulated
+  std::optional<Result<uint64_t>> submitted;                       // the render stage's frame index
 };
 
 }  // namespace vegstream::scene

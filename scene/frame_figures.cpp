@@ -6,13 +6,20 @@
 #include <cassert>
 
 #include "scene/frame_driver.h"
+#include "scene/render_stage.h"
+#include "scene/seeding_stage.h"
+#include "scene/simulation_stage.h"
+#include "scene/streaming_stage.h"
+#include "scene/terrain_stage.h"
+#include "scene/tree_stage.h"
 
 namespace vegstream::scene {
 
 FrameFigures frameFigures(const FigureLayout& layout) {
   FrameFigures figures;
-  for (auto declare : {declareFrameOwnFigures, declareStreamingFigures, declareTerrainFigures, declareSeedingFigures,
-                       declareTreeFigures, declareSimulationFigures, declareRenderFigures})
+  for (auto declare : {declareFrameOwnFigures, StreamingStage::declareFigures, TerrainStage::declareFigures,
+                       SeedingStage::declareFigures, TreeStage::declareFigures, SimulationStage::declareFigures,
+                       RenderStage::declareFigures})
     declare(figures, layout);
   std::stable_sort(figures.begin(), figures.end(),
                    [](const FrameFigure& a, const FrameFigure& b) { return a.section < b.section; });

@@ -1,13 +1,15 @@
 #pragma once
-// The frame's per-frame figures: each stage declares its own (frame_figure.h) in its own file,
-// and this is the list of them, in the stages' order — the frame's own figures (pose, totals,
-// the recorder, the sun), then streaming, terrain, seeding, trees, simulation and render. From
-// the list come frames.csv's columns and rows (playback.h), the summary (flight/summary.h reads
-// frames.csv back by the declared names) and the HUD's figures (FigureLookup).
+// The frame's per-frame figures: each stage declares its own (frame_figure.h) in its own file
+// (frame_stage.h), and this is the list of them, in the stages' order — the frame's own figures
+// (pose, totals, the recorder, the sun), then streaming, terrain, seeding, trees, simulation and
+// render. From the list come frames.csv's columns and rows (playback.h), the summary
+// (flight/summary.h reads frames.csv back by the declared names) and the HUD's figures
+// (FigureLookup).
 //
 // Contract: frameColumns() is frames.csv's header, the contract README.md "Recordings"
 // documents; its order is FigureSection's, then the list's, then each stage's declarations'.
-// Declaring a figure touches only the stage's file; adding a stage, the stage and this list.
+// Declaring a figure touches only the stage's file; adding a stage, the stage, this list and the
+// list of stages that run (Scene's or the driver's).
 
 #include <cstddef>
 #include <string>
@@ -20,14 +22,10 @@
 
 namespace vegstream::scene {
 
-// Each stage's declarations, appended to `out` (each in its own file, named after the stage).
-void declareFrameOwnFigures(FrameFigures& out, const FigureLayout& layout);    // frame_own_figures.cpp
-void declareStreamingFigures(FrameFigures& out, const FigureLayout& layout);   // streaming_figures.cpp
-void declareTerrainFigures(FrameFigures& out, const FigureLayout& layout);     // terrain_figures.cpp
-void declareSeedingFigures(FrameFigures& out, const FigureLayout& layout);     // seeding_figures.cpp
-void declareTreeFigures(FrameFigures& out, const FigureLayout& layout);        // tree_figures.cpp
-void declareSimulationFigures(FrameFigures& out, const FigureLayout& layout);  // simulation_figures.cpp
-void declareRenderFigures(FrameFigures& out, const FigureLayout& layout);      // render_figures.cpp
+// The frame's own figures (frame_own_figures.cpp): its row, time and pose, cpu_flight_ms,
+// cpu_frame_ms, the recorder's times, the sun. Each stage's are its `declareFigures`
+// (frame_stage.h).
+void declareFrameOwnFigures(FrameFigures& out, const FigureLayout& layout);
 
 // Every stage's figures, in column order.
 FrameFigures frameFigures(const FigureLayout& layout);

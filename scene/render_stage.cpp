@@ -1,7 +1,10 @@
-// The render stage's figures (frame_figures.h): recording and submitting, the GPU frame and its
-// passes, the pipeline statistics, the GPU memory, the compute raster, the classify pass with its
-// culling, and the trees drawn (render::FrameResult, as the driver collected it).
+// The render stage (render_stage.h): its run and its figures — recording and submitting, the GPU
+// frame and its passes, the pipeline statistics, the GPU memory, the compute raster, the classify
+// pass with its culling, and the trees drawn (render::FrameResult, as the driver collected it).
 
+#include "scene/render_stage.h"
+
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -111,7 +114,25 @@ void declareTreeDrawFigures(FrameFigures& out) {
 
 }  // namespace
 
-void declareRenderFigures(FrameFigures& out, const FigureLayout& layout) {
+void RenderStage::run(FrameContext& context) {
+  render::FrameRequest& request = context.request;
+  if (const FrameInput* input = context.input) {
+    if (input->sunTimeS) request.lighting = scene_.lightingAt(*input->sunTimeS);
+    request.lighting.adaptExposure = input->adaptExposure;
+    // The window's exposure moves with the time between its frames (the first frame: none).
+    if (input->adaptExposure && lastTimeS_)
+      request.lighting.adaptSeconds = float(std::clamp(input->timeS - *lastTimeS_, 0.0, 1.0));
+    lastTimeS_ = input->timeS;
+    request.present = input->present;
+    request.readbackColor = input->readbackColor;
+    request.aov = input->aov;
+    request.overlay = input->overlay;
+  }
+  context.figures.gpuBytes = scene_.renderer().gpuBytes();
+  context.submitted = scene_.renderer().submitFrame(request);
+}
+
+void RenderStage::declareFigures(FrameFigures& out, const FigureLayout& layout) {
   out.push_back({S::CpuStages, {"cpu_record_submit_ms", 6, "ms"}, [](R r) { return r.recordSubmitMs; }});
   declareGpuTimes(out, layout);
   declareGpuCounts(out);

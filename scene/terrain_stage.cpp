@@ -1,11 +1,24 @@
-// The terrain stage's figures (frame_figures.h): its CPU time, the wants and pieces of the
-// streamed terrain, and ROAM with the seed triangles (terrain::TerrainFrameFigures).
+// The terrain stage (terrain_stage.h): its run and its figures — its CPU time, the wants and
+// pieces of the streamed terrain, and ROAM with the seed triangles (terrain::TerrainFrameFigures).
 
+#include "scene/terrain_stage.h"
+
+#include "core/stopwatch.h"
 #include "flight/frame_columns.h"
 #include "scene/frame_driver.h"
-#include "scene/frame_figures.h"
 
 namespace vegstream::scene {
+
+void TerrainStage::run(FrameContext& context) {
+  Stopwatch stage;
+  const std::span<const terrain::TerrainPiece> pieces = terrain_.pieces(context.timeS);
+  draws_.clear();
+  for (const terrain::TerrainPiece& p : pieces)
+    draws_.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend});
+  context.figures.terrainMs += stage.elapsedMs();
+  context.figures.terrain = terrain_.figures();
+  context.request.terrain = draws_;
+}
 
 namespace {
 
@@ -46,7 +59,7 @@ void declareRoamFigures(FrameFigures& out) {
 
 }  // namespace
 
-void declareTerrainFigures(FrameFigures& out, const FigureLayout&) {
+void TerrainStage::declareFigures(FrameFigures& out, const FigureLayout&) {
   using S = FigureSection;
   using R = const FrameRecord&;
   namespace col = flight::column;

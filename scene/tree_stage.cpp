@@ -1,13 +1,28 @@
-// The trees stage's figures (frame_figures.h): the tree field's tiles and pages
+// The trees stage (tree_stage.h): its run and its figures — the tree field's tiles and pages
 // (TreeFieldFigures) and the renderer's tree pool; empty without trees. What the tree pass drew is
 // the render stage's.
 
+#include "scene/tree_stage.h"
+
 #include "scene/frame_driver.h"
-#include "scene/frame_figures.h"
 
 namespace vegstream::scene {
 
-void declareTreeFigures(FrameFigures& out, const FigureLayout&) {
+void TreeStage::run(FrameContext& context) {
+  SceneFrameFigures& fig = context.figures;
+  context.request.trees = &field_.prepare(context.camera.position, settled_);
+  if (context.request.vegetation) {  // relative to the camera the seed triangles are relative to
+    field_.fillCanopy(context.camera.position, canopy_);
+    context.vegetation.canopy = &canopy_;
+  }
+  const TreeFieldFigures& t = field_.figures();
+  fig.trees = t;
+  // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
+  (settled_ ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
+  fig.treeGpuBytes = renderer_.treeGpuBytes();
+}
+
+void TreeStage::declareFigures(FrameFigures& out, const FigureLayout&) {
   using R = const FrameRecord&;
   using T = TreeFieldFigures;
   const auto add = [&out](const char* name, const char* unit, int decimals, double (*value)(const T&)) {
