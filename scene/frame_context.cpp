@@ -7,16 +7,16 @@
 
 namespace vegstream::scene {
 
-FrameContext::FrameContext(const geo::LocalFrame& frame, const flight::FlightSample& pose, double timeS,
-                           std::span<const flight::FlightSample> ahead, double widthPx, double heightPx)
-    : pose(pose), timeS(timeS) {
+FrameContext::FrameContext(const geo::LocalFrame& frame, const flight::FlightSample& now, double t,
+                           std::span<const flight::FlightSample> aheadPoses, double widthPx, double heightPx)
+    : pose(now), timeS(t) {
   Stopwatch watch;
-  camera = cameraFor(frame, pose);
+  camera = cameraFor(frame, now);
   selection = selectionViewFor(camera, widthPx, heightPx);
   eye = eyeViewFor(camera, widthPx, heightPx);
-  this->ahead.reserve(ahead.size());
-  for (const flight::FlightSample& s : ahead)
-    this->ahead.push_back(selectionViewFor(cameraFor(frame, s), widthPx, heightPx));
+  ahead.reserve(aheadPoses.size());
+  for (const flight::FlightSample& s : aheadPoses)
+    ahead.push_back(selectionViewFor(cameraFor(frame, s), widthPx, heightPx));
   viewsMs = watch.elapsedMs();
 }
 

@@ -32,10 +32,10 @@ namespace vegstream::scene {
 struct FrameInput;
 
 struct FrameContext {
-  // The pose at `timeS` seen through a viewport of widthPx × heightPx, with the poses expected
-  // next (look-ahead) as selection views.
-  FrameContext(const geo::LocalFrame& frame, const flight::FlightSample& pose, double timeS,
-               std::span<const flight::FlightSample> ahead, double widthPx, double heightPx);
+  // The pose `now` at flight time t seen through a viewport of widthPx × heightPx, with the poses
+  // expected next (look-ahead) as selection views.
+  FrameContext(const geo::LocalFrame& frame, const flight::FlightSample& now, double t,
+               std::span<const flight::FlightSample> aheadPoses, double widthPx, double heightPx);
   FrameContext(const FrameContext&) = delete;
   FrameContext& operator=(const FrameContext&) = delete;
 
