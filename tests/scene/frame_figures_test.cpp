@@ -42,7 +42,8 @@ TEST(FrameFigures, ColumnsInTheDocumentedOrder) {
   EXPECT_EQ(at("plant_cull_tested"), at("plant_triangles") + 1);  // issue 17's occlusion culling follows
   EXPECT_EQ(at("trees_full"), at("plants_culled") + 1);           // issue 20's trees follow
   EXPECT_EQ(at("tree_tiles_wanted"), at("trees_classified") + 1);
-  EXPECT_EQ(at("sun_azimuth_deg"), at("tree_placement_ms") + 1);  // issue 39's sun follows, last
+  EXPECT_GT(at("sun_azimuth_deg"), at("tree_placement_ms"));  // issue 39's sun follows, last
+  EXPECT_EQ(at("sun_azimuth_deg"), static_cast<long>(n.size()) - 2);
   EXPECT_EQ(n.back(), "sun_elevation_deg");
 }
 
