@@ -274,10 +274,10 @@ render::FrameRequest Scene::cameraRequest(const FrameContext& context) const {
 }
 
 render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) {
-  impl_->lastContext.reset();  // before the new one: its stages' storage is what the old one points at
+  const render::Renderer& r = *impl_->renderer;
   impl_->lastContext = std::make_unique<FrameContext>(impl_->frame, now, timeS,
                                                       impl_->options.lookAhead ? ahead : std::span<const FlightSample>{},
-                                                      impl_->renderer->width(), impl_->renderer->height());
+                                                      static_cast<double>(r.width()), static_cast<double>(r.height()));
   prepareFrame(*impl_->lastContext);
   return impl_->lastContext->request;
 }
