@@ -3,10 +3,7 @@
 
 #include "scene/frame_driver.h"
 
-#include <algorithm>
-
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace vegstream::scene {
