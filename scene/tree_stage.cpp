@@ -39,6 +39,8 @@ void TreeStage::declareFigures(FrameFigures& out, const FigureLayout&) {
                    return r.scene.trees ? count(r.scene.treeGpuBytes) : flight::kNoValue;
                  }});
   add("tree_placement_ms", "ms", 4, [](const T& t) { return t.placementMs; });
+  // The tiles placed this frame: what tree_placement_ms paid for (realtime: at most two a frame).
+  add("tree_tiles_placed", "tiles", 0, [](const T& t) { return count(t.placed); });
 }
 
 }  // namespace vegstream::scene
