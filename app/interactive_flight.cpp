@@ -22,6 +22,7 @@
 #include "flight/flight_path.h"
 #include "render/png_writer.h"
 #include "scene/frame_driver.h"
+#include "scene/frame_figures.h"
 
 namespace vegstream::app {
 namespace fs = std::filesystem;
@@ -42,6 +43,38 @@ flight::FlightSample defaultStart(const scene::Scene& scene) {
   s.headingDeg = 0.0;
   s.pitchDeg = -15.0;
   return s;
+}
+
+// The last frame's figures on the HUD, read by the columns the stages declare
+// (scene/frame_figures.h); before the first frame, an empty record's.
+void putFrameFigures(HudState& s, const scene::FigureLookup& figure, const scene::FrameRecord* last) {
+  static const scene::FrameRecord kNone{};
+  const scene::FrameRecord& r = last ? *last : kNone;
+  const auto n = [&](const char* column) { return static_cast<unsigned long long>(figure(r, column)); };
+  if (last) {
+    s.gpu = last->gpu;
+    s.terrainTriangles = n("terrain_triangles");
+    s.seedTriangles = n("terrain_seed_triangles");
+    // The triangles the species pipelines drew (or the compute blade path counted).
+    const double plantTriangles = figure(r, "plant_triangles");
+    if (!std::isnan(plantTriangles)) s.plantTriangles = static_cast<uint64_t>(plantTriangles);
+    s.cpuFrameMs = figure(r, "cpu_frame_ms");
+    const double simulationMs = figure(r, "cpu_simulation_ms");
+    if (std::isfinite(simulationMs)) s.cpuSimulationMs = simulationMs;
+  }
+  // Plants classified on the GPU, where their counts were read back.
+  if (last && last->vegetation && last->vegetation->gpuCounts) s.plants = last->vegetation->plantsTotal;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "tiles %llu CPU / %llu GPU, %llu in flight, wanted %llu/%llu; %llu fallback pieces (%d lv), "
+                "error %.1f px (x%.2f)",
+                n("stream_tiles_resident_cpu"), n("stream_tiles_resident_gpu"), n("stream_requests_in_flight"),
+                n("stream_wanted_resident"), n("stream_wanted"), n("terrain_fallback_pieces"),
+                static_cast<int>(figure(r, "terrain_max_levels_coarser")), figure(r, "terrain_error_bound_px"),
+                figure(r, "terrain_error_relaxation"));
+  s.streaming = line;
+  s.cpuBytes = n("cpu_bytes");
+  s.gpuBytes = n("gpu_bytes");
 }
 
 // "20250102-130405": local time, for file names that sort by time.
@@ -99,6 +132,7 @@ class Session {
   int screenshots_ = 0;
   std::deque<float> frameTimes_;
   std::optional<scene::FrameRecord> last_;            // the last frame collected
+  const scene::FigureLookup figures_{scene::FigureLayout{}};  // its figures by column (no pass's)
   std::optional<flight::FlightSample> previousPose_;  // for velocity extrapolation (look-ahead)
   double previousPoseS_ = 0.0;
   std::string message_;
@@ -197,32 +231,7 @@ HudState Session::hudState(double now) const {
   double sum = 0.0;
   for (float ms : frameTimes_) sum += ms;
   s.fps = sum > 0.0 ? 1000.0 * static_cast<double>(frameTimes_.size()) / sum : 0.0;
-  if (last_) {
-    s.gpu = last_->gpu;
-    s.terrainTriangles = last_->terrainTriangles;
-  }
-  static const scene::SceneFrameFigures kNone{};
-  const scene::SceneFrameFigures& fig = last_ ? last_->scene : kNone;
-  if (last_) s.seedTriangles = fig.terrain.roam.seedTriangles;
-  // Plants classified on the GPU and the triangles the species pipelines drew.
-  if (last_ && last_->vegetation && last_->vegetation->gpuCounts) s.plants = last_->vegetation->plantsTotal;
-  if (last_ && last_->vegetation && last_->vegetation->bladeCounts)
-    s.plantTriangles = last_->vegetation->bladeTriangles;  // the compute blade path counts its own
-  else if (last_ && last_->vegetation && last_->gpu.statistics.available)
-    s.plantTriangles = last_->gpu.statistics.geometryPrimitives;  // only the plant stages emit any
-  const streaming::StreamingFrameStats& st = fig.streaming;
-  char line[256];
-  std::snprintf(
-      line, sizeof(line),
-      "tiles %llu CPU / %llu GPU, %llu in flight, wanted %llu/%llu; %llu fallback pieces (%d lv), "
-      "error %.1f px (x%.2f)",
-      static_cast<unsigned long long>(st.tilesResidentCpu), static_cast<unsigned long long>(st.tilesResidentGpu),
-      static_cast<unsigned long long>(st.requestsInFlight), static_cast<unsigned long long>(st.wantedResident),
-      static_cast<unsigned long long>(st.wanted), static_cast<unsigned long long>(fig.terrain.fallbackPieces),
-      fig.terrain.maxLevelsCoarser, fig.terrain.errorBoundPx, fig.terrain.relaxation);
-  s.streaming = line;
-  s.cpuBytes = fig.cpuBytes;
-  s.gpuBytes = fig.gpuBytes;
+  putFrameFigures(s, figures_, last_ ? &*last_ : nullptr);
   const flight::FlightSample pose = camera_.sample();
   s.latDeg = pose.position.latDeg;
   s.lonDeg = pose.position.lonDeg;
@@ -240,10 +249,6 @@ HudState Session::hudState(double now) const {
   const simulation::SimulationOptions& sim = driver_.simulation().options();
   s.simulationOn = sim.enabled;
   s.wind = sim.wind;
-  if (last_) {
-    s.cpuFrameMs = last_->cpuMs();
-    if (std::isfinite(last_->simulationMs)) s.cpuSimulationMs = last_->simulationMs;
-  }
   s.cameraCollider = cameraColliderName(collider_);
   const scene::SunClock& sun = scene_.sunClock();
   s.sun = describeSun(sun.at(now), sun.sunAt(now));

@@ -149,7 +149,7 @@ struct RoamFlight {
   int frames() const { return static_cast<int>(std::floor(sampler.duration() * kFps)) + 1; }
   void settle(double t) {
     const flight::GroundHeight groundFn = [&](double lat, double lon) { return grid.sampleLonLat(lon, lat); };
-    const render::Camera cam = scene::cameraFor(frame, sampler.sample(t, groundFn));
+    const geo::Camera cam = scene::cameraFor(frame, sampler.sample(t, groundFn));
     auto wants = terrain->wants(scene::selectionViewFor(cam, kW, kH), scene::eyeViewFor(cam, kW, kH), {});
     for (int round = 0; round < 32; ++round) {
       streamer->settle(wants, t);

@@ -21,6 +21,7 @@ inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 struct RecordColumn {
   std::string name;
   int decimals = 4;  // digits after the point in the CSV; 0 writes an integer
+  std::string unit;  // what a cell counts ("ms", "bytes", "tiles", …); not written to the CSV
 };
 
 class RecordTable {

@@ -12,10 +12,12 @@
 
 #include "core/atomic_file.h"
 #include "core/json_text.h"
+#include "flight/frame_columns.h"
 
 namespace vegstream::flight {
 namespace fs = std::filesystem;
 using nlohmann::json;
+namespace col = column;
 
 namespace {
 
@@ -142,7 +144,7 @@ double maxOf(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_
 
 // Each frame's cpu_frame_ms + gpu_frame_ms (a missing part counts 0).
 std::vector<double> frameTimes(const RecordTable& t) {
-  const auto cpu = t.find("cpu_frame_ms"), gpu = t.find("gpu_frame_ms");
+  const auto cpu = t.find(col::kCpuFrameMs), gpu = t.find(col::kGpuFrameMs);
   std::vector<double> out(t.rowCount(), 0.0);
   for (std::size_t i = 0; i < t.rowCount(); ++i) {
     if (cpu && !std::isnan(t.at(i, *cpu))) out[i] += t.at(i, *cpu);
@@ -152,7 +154,9 @@ std::vector<double> frameTimes(const RecordTable& t) {
 }
 
 // A column's values (it is there); an optional column's, or none.
-std::vector<double> column(const RecordTable& frames, const char* name) { return frames.values(*frames.find(name)); }
+std::vector<double> requiredColumn(const RecordTable& frames, const char* name) {
+  return frames.values(*frames.find(name));
+}
 std::vector<double> optionalColumn(const RecordTable& frames, const char* name) {
   const auto c = frames.find(name);
   return c ? frames.values(*c) : std::vector<double>{};
@@ -183,35 +187,38 @@ void summariseColumns(const RecordTable& frames, json& times, json& counts) {
 // What streaming did over the flight (all zero/empty before issue 5's columns existed).
 json streamingTotals(const RecordTable& frames, const std::vector<double>& tS) {
   const auto optional = [&](const char* name) { return optionalColumn(frames, name); };
-  const std::vector<double> coarser = optional("terrain_max_levels_coarser");
-  const std::vector<double> fallback = optional("terrain_fallback_pieces");
+  const std::vector<double> coarser = optional(col::kMaxLevelsCoarser);
+  const std::vector<double> fallback = optional(col::kFallbackPieces);
   std::size_t fallbackFrames = 0, coarseAfter1s = 0;
   for (std::size_t i = 0; i < fallback.size(); ++i) fallbackFrames += fallback[i] > 0.0 ? 1u : 0u;
   for (std::size_t i = 0; i < coarser.size() && i < tS.size(); ++i)
     coarseAfter1s += (tS[i] > 1.0 && coarser[i] > 1.0) ? 1u : 0u;
   json requests = json::object();
-  for (const char* k : {"issued", "completed", "cancelled", "failed", "missing"})
-    requests[k] = sum(optional(("stream_requests_" + std::string(k)).c_str()));
-  requests["retries"] = sum(optional("stream_retries"));
+  for (const auto& [key, name] :
+       {std::pair{"issued", col::kRequestsIssued}, std::pair{"completed", col::kRequestsCompleted},
+        std::pair{"cancelled", col::kRequestsCancelled}, std::pair{"failed", col::kRequestsFailed},
+        std::pair{"missing", col::kRequestsMissing}, std::pair{"retries", col::kRetries}})
+    requests[key] = sum(optional(name));
   return {{"requests", requests},
-          {"bytes_read", sum(optional("stream_bytes_read"))},
-          {"uploads", sum(optional("stream_uploads"))},
+          {"bytes_read", sum(optional(col::kBytesRead))},
+          {"uploads", sum(optional(col::kUploads))},
           {"fallback_frames", fallbackFrames},
           {"frames_more_than_one_level_coarser_after_1s", coarseAfter1s},
           {"max_levels_coarser", maxOf(coarser)},
-          {"wait_ms_total", sum(optional("streaming_wait_ms"))},
-          {"max_bytes_resident_cpu", maxOf(optional("stream_bytes_resident_cpu"))},
-          {"max_bytes_resident_gpu", maxOf(optional("stream_bytes_resident_gpu"))},
-          {"max_error_relaxation", maxOf(optional("terrain_error_relaxation"))}};
+          {"wait_ms_total", sum(optional(col::kStreamingWaitMs))},
+          {"max_bytes_resident_cpu", maxOf(optional(col::kBytesResidentCpu))},
+          {"max_bytes_resident_gpu", maxOf(optional(col::kBytesResidentGpu))},
+          {"max_error_relaxation", maxOf(optional(col::kErrorRelaxation))}};
 }
 
 // The recorder's own time, against the CPU frame's.
 json recorderOverhead(const RecordTable& frames) {
-  const std::vector<double> cpuFrame = column(frames, "cpu_frame_ms"), recorder = column(frames, "recorder_ms");
+  const std::vector<double> cpuFrame = requiredColumn(frames, col::kCpuFrameMs),
+                            recorder = requiredColumn(frames, col::kRecorderMs);
   const double meanCpu = cpuFrame.empty() ? 0.0 : sum(cpuFrame) / static_cast<double>(cpuFrame.size());
   const double meanRecorder = recorder.empty() ? 0.0 : sum(recorder) / static_cast<double>(recorder.size());
   double maxShare = 0.0;
-  const auto cc = *frames.find("cpu_frame_ms"), rc = *frames.find("recorder_ms");
+  const auto cc = *frames.find(col::kCpuFrameMs), rc = *frames.find(col::kRecorderMs);
   for (std::size_t i = 0; i < frames.rowCount(); ++i)
     if (frames.at(i, cc) > 0.0 && !std::isnan(frames.at(i, rc)))
       maxShare = std::max(maxShare, frames.at(i, rc) / frames.at(i, cc));
@@ -234,14 +241,16 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
   if (!jsonDepthAtMost(rec, kMaxRecordingDepth))
     return makeError(ErrorKind::InvalidInput,
                      recordingSource + ": nested deeper than " + std::to_string(kMaxRecordingDepth) + " levels");
-  for (const char* col : {"frame", "t_s", "cpu_frame_ms", "gpu_frame_ms", "wall_ms", "recorder_ms"})
-    if (!frames.find(col)) return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + col);
+  for (const char* name :
+       {col::kFrame, col::kTimeS, col::kCpuFrameMs, col::kGpuFrameMs, col::kWallMs, col::kRecorderMs})
+    if (!frames.find(name))
+      return makeError(ErrorKind::InvalidInput, std::string("frames.csv: missing column ") + name);
 
   json times = json::object(), counts = json::object();
   summariseColumns(frames, times, counts);
   const std::vector<std::size_t> hitches = findHitches(frameTimes(frames));
-  const std::vector<double> tS = column(frames, "t_s");
-  const double gpuBytesMax = maxOf(optionalColumn(frames, "gpu_bytes"));
+  const std::vector<double> tS = requiredColumn(frames, col::kTimeS);
+  const double gpuBytesMax = maxOf(optionalColumn(frames, col::kGpuBytes));
   // Not rec.value(key, 0.0): it throws when the key holds another type (a hand-edited file).
   const auto rssField = rec.find("peak_rss_bytes");
   const double rss = rssField != rec.end() && rssField->is_number() ? rssField->get<double>() : 0.0;
@@ -259,13 +268,13 @@ Result<std::string> makeSummaryJson(const std::string& recordingJson, const std:
         {"window_frames", kHitchWindow},
         {"rule", "cpu_frame_ms + gpu_frame_ms > factor x median of the previous window_frames frames"}}},
       {"peak_memory", {{"rss_hwm_bytes", rss}, {"gpu_bytes", gpuBytesMax}, {"total_bytes", rss + gpuBytesMax}}},
-      {"resident_bytes", {{"cpu_max", maxOf(optionalColumn(frames, "cpu_bytes"))}, {"gpu_max", gpuBytesMax}}},
+      {"resident_bytes", {{"cpu_max", maxOf(optionalColumn(frames, col::kCpuBytes))}, {"gpu_max", gpuBytesMax}}},
       {"totals",
-       {{"wall_s", sum(column(frames, "wall_ms")) / 1000.0},
-        {"cpu_frame_ms", sum(column(frames, "cpu_frame_ms"))},
-        {"gpu_frame_ms", sum(column(frames, "gpu_frame_ms"))},
-        {"terrain_triangles", sum(optionalColumn(frames, "terrain_triangles"))},
-        {"png_frames", optionalColumn(frames, "png_ms").size()}}},
+       {{"wall_s", sum(requiredColumn(frames, col::kWallMs)) / 1000.0},
+        {"cpu_frame_ms", sum(requiredColumn(frames, col::kCpuFrameMs))},
+        {"gpu_frame_ms", sum(requiredColumn(frames, col::kGpuFrameMs))},
+        {"terrain_triangles", sum(optionalColumn(frames, col::kTerrainTriangles))},
+        {"png_frames", optionalColumn(frames, col::kPngMs).size()}}},
       {"streaming", streamingTotals(frames, tS)},
       {"recorder_overhead", recorderOverhead(frames)}};
   return summary.dump(2) + "\n";

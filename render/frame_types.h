@@ -12,6 +12,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "geo/camera.h"
 #include "render/classify_layout.h"
 #include "render/gpu_timing.h"
 #include "render/overlay_types.h"
@@ -25,23 +26,12 @@ struct GpuStep;
 
 namespace vegstream::render {
 
-// A camera in the local ENU frame, in double precision.
-struct Camera {
-  glm::dvec3 position{0.0};
-  glm::dvec3 forward{0.0, 1.0, 0.0};  // unit view direction
-  glm::dvec3 up{0.0, 0.0, 1.0};       // approximate up; re-orthogonalised
-  double verticalFovDeg = 55.0;
-  double nearM = 1.0;
-  double farM = 150'000.0;
-};
-
-// Rotation-only view matrix: the camera at the origin looking along forward (right-handed,
-// looking down −z in view space).
-glm::dmat4 viewRotation(const Camera& camera);
-// Reverse-Z perspective for Vulkan clip space (y down, depth 1 at near, 0 at far).
-glm::dmat4 projection(const Camera& camera, double aspect);
-// Reverse-Z depth of a point at view distance d (along the view axis): n(f − d) / ((f − n) d).
-double reverseZDepth(const Camera& camera, double viewDistance);
+// The camera (local ENU, double precision) and its matrices are geo's (geo/camera.h): the scene
+// makes it once per frame and the terrain's views share it.
+using geo::Camera;
+using geo::projection;
+using geo::reverseZDepth;
+using geo::viewRotation;
 
 // The light of a frame: the sun's direction (its colour, the sky and the air come from the
 // atmosphere model for it, render/atmosphere_pass.h) and the exposure.

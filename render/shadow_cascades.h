@@ -14,9 +14,11 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "geo/camera.h"
+
 namespace vegstream::render {
 
-struct Camera;
+using geo::Camera;
 
 inline constexpr int kShadowCascades = 3;
 

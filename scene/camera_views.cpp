@@ -6,8 +6,8 @@
 
 namespace vegstream::scene {
 
-render::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sample) {
-  render::Camera c;
+geo::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sample) {
+  geo::Camera c;
   const glm::dvec3 position = frame.toLocal(sample.position);
   const glm::dvec3 up = frame.upAt(sample.position);
   const glm::dvec3 northAhead =
@@ -22,17 +22,17 @@ render::Camera cameraFor(const geo::LocalFrame& frame, const FlightSample& sampl
   return c;
 }
 
-terrain::SelectionView selectionViewFor(const render::Camera& camera, double widthPx, double heightPx) {
+terrain::SelectionView selectionViewFor(const geo::Camera& camera, double widthPx, double heightPx) {
   terrain::SelectionView v;
   v.cameraEnu = camera.position;
-  v.viewProjection = render::projection(camera, widthPx / heightPx) * render::viewRotation(camera) *
+  v.viewProjection = geo::projection(camera, widthPx / heightPx) * geo::viewRotation(camera) *
                      glm::translate(glm::dmat4(1.0), -camera.position);
   v.viewportHeightPx = heightPx;
   v.verticalFovRad = glm::radians(camera.verticalFovDeg);
   return v;
 }
 
-terrain::EyeView eyeViewFor(const render::Camera& camera, double widthPx, double heightPx) {
+terrain::EyeView eyeViewFor(const geo::Camera& camera, double widthPx, double heightPx) {
   return terrain::EyeView::lookAlong(camera.position, camera.forward, camera.up, glm::radians(camera.verticalFovDeg),
                                      widthPx, heightPx, camera.nearM);
 }

@@ -3,17 +3,10 @@
 
 #include "scene/frame_driver.h"
 
-#include <algorithm>
-
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace vegstream::scene {
-
-namespace {
-constexpr double kNoFigure = std::numeric_limits<double>::quiet_NaN();
-}
 
 double FrameRecord::cpuMs() const {
   double ms = flightMs + scene.streamingMs + scene.terrainMs + scene.seedingMs + recordSubmitMs;
@@ -24,42 +17,7 @@ double FrameRecord::cpuMs() const {
 FrameDriver::FrameDriver(Scene& scene) : FrameDriver(scene, scene.options().simulation) {}
 
 FrameDriver::FrameDriver(Scene& scene, const simulation::SimulationOptions& simulation)
-    : scene_(scene), simulation_(simulation) {}
-
-void FrameDriver::simulate(const FrameInput& input, const glm::dvec3& camera) {
-  const geo::LocalFrame& frame = scene_.frame();
-  // The ground under a point, in the local frame; where the data has none, the point's own height.
-  const auto groundZ = [&](const geo::Geodetic& g, double fallbackMsl) {
-    const double h = scene_.groundHeight(g.latDeg, g.lonDeg);
-    return frame.toLocal({g.latDeg, g.lonDeg, std::isnan(h) ? fallbackMsl : h}).z;
-  };
-  colliders_.clear();
-  for (const flight::ColliderSample& c : input.colliders) {
-    simulation::ColliderState s;
-    s.centre = frame.toLocal(c.centre);
-    s.radiusM = c.radiusM;
-    s.lengthM = c.lengthM;
-    s.groundZ = groundZ(c.centre, c.centre.heightM - 0.5 * c.lengthM - c.radiusM);
-    colliders_.push_back(s);
-  }
-  sources_.clear();
-  for (const flight::WindSourceSample& w : input.windSources) {
-    simulation::WindSourceState s;
-    s.type = w.type == flight::WindSourceSpec::Type::Fan         ? simulation::WindSourceType::Fan
-             : w.type == flight::WindSourceSpec::Type::Whirlwind ? simulation::WindSourceType::Whirlwind
-                                                                 : simulation::WindSourceType::Rotor;
-    s.position = frame.toLocal(w.centre);
-    s.groundZ = groundZ(w.centre, w.centre.heightM);
-    s.radiusM = w.radiusM;
-    s.strengthMps = w.strengthMps;
-    s.directionDeg = w.directionDeg;
-    sources_.push_back(s);
-  }
-  const double t = input.simulationTimeS.value_or(input.timeS);
-  const double dt = lastStepS_ ? t - *lastStepS_ : 0.0;
-  simulation_.step({t, dt, camera, colliders_, sources_});
-  lastStepS_ = t;
-}
+    : scene_(scene), simulation_(scene, simulation), render_(scene) {}
 
 Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   // The renderer would reuse the oldest frame's slot and overwrite its figures before they were
@@ -67,42 +25,28 @@ Result<uint64_t> FrameDriver::submit(const FrameInput& input) {
   if (inFlight_.size() >= kMaxInFlight)
     return makeError(ErrorKind::Internal, "frame driver: " + std::to_string(inFlight_.size()) +
                                               " frames in flight already; collect one before submitting another");
-  // prepare
-  render::FrameRequest request = scene_.prepareFrame(input.pose, input.timeS, input.ahead);
-  const double sunTimeS = input.sunTimeS.value_or(input.timeS);
-  if (input.sunTimeS) request.lighting = scene_.lightingAt(sunTimeS);
-  request.lighting.adaptExposure = input.adaptExposure;
-  // The window's exposure moves with the time between its frames (the first frame: none).
-  if (input.adaptExposure && lastTimeS_) request.lighting.adaptSeconds = float(std::clamp(input.timeS - *lastTimeS_, 0.0, 1.0));
-  lastTimeS_ = input.timeS;
-  request.present = input.present;
-  request.readbackColor = input.readbackColor;
-  request.aov = input.aov;
-  request.overlay = input.overlay;
-
-  // simulate
-  Stopwatch simulateWatch;
-  simulate(input, request.camera.position);
-  if (simulation_.simulates()) request.simulation = &simulation_.gpuStep();
-  const double simulationMs = simulation_.simulates() ? simulateWatch.elapsedMs() : kNoFigure;
-
-  // submit
-  auto index = scene_.renderer().submitFrame(request);
-  if (!index) return index.error();
+  FrameContext context = scene_.frameContext(input.pose, input.timeS, input.ahead);
+  context.input = &input;
+  scene_.prepareFrame(context);  // streaming, terrain, seeding, trees
+  simulation_.run(context);
+  render_.run(context);
+  if (!*context.submitted) return context.submitted->error();
+  const uint64_t index = **context.submitted;
 
   Stopwatch own;
   FrameRecord& r = inFlight_.emplace_back();
-  r.index = *index;
+  r.index = index;
   r.timeS = input.timeS;
   r.pose = input.pose;
-  r.verticalFovDeg = request.camera.verticalFovDeg;
+  r.verticalFovDeg = context.camera.verticalFovDeg;
+  const double sunTimeS = input.sunTimeS.value_or(input.timeS);
   r.datetime = scene_.sunClock().at(sunTimeS);
   r.sun = scene_.sunClock().sunAt(sunTimeS);
   r.flightMs = input.flightMs;
-  r.scene = scene_.lastFrameFigures();  // the next prepare overwrites the scene's copy
-  r.simulationMs = simulationMs;
+  r.scene = context.figures;
+  r.simulationMs = context.simulationMs;
   r.driverMs = own.elapsedMs();
-  return *index;
+  return index;
 }
 
 Result<FrameRecord> FrameDriver::collect(uint64_t index) {
@@ -141,10 +85,12 @@ Status FrameDriver::advanceSimulation(const FrameInput& input) {
   if (!inFlight_.empty())
     return makeError(ErrorKind::Internal, "frame driver: advanceSimulation() with " +
                                               std::to_string(inFlight_.size()) + " frames in flight; collect them first");
-  render::FrameRequest request = scene_.cameraRequest(input.pose);
-  simulate(input, request.camera.position);
-  if (!simulation_.simulates()) return {};
-  request.simulation = &simulation_.gpuStep();
+  FrameContext context = scene_.frameContext(input.pose, input.timeS);
+  context.input = &input;
+  simulation_.run(context);
+  if (!context.request.simulation) return {};
+  render::FrameRequest request = scene_.cameraRequest(context);
+  request.simulation = context.request.simulation;
   auto index = scene_.renderer().submitFrame(request);
   if (!index) return index.error();
   auto done = scene_.renderer().waitFrame(*index);

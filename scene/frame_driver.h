@@ -1,12 +1,14 @@
 #pragma once
 // The one frame driver. Every mode that draws frames — the window, headless `fly` and `record`
-// — runs each frame through it, in one fixed order:
+// — runs each frame through it: the pose becomes the frame's context (frame_context.h: its views,
+// once), then the list of stages (frame_stage.h) runs over it in one fixed order:
 //
-//   prepare   Scene::prepareFrame: wanted tiles, streaming (settled or realtime), ROAM, the
-//             terrain's draws and the seed triangles
-//   simulate  the shared simulation's step at the frame's time (simulation/simulation.h)
-//   submit    the renderer records and submits the frame's commands
-//   collect   waits for the GPU and gathers the figures of every stage into one FrameRecord
+//   streaming, terrain, seeding, trees   the scene's (Scene::prepareFrame): wanted tiles,
+//             streaming (settled or realtime), ROAM, the terrain's draws, the seed triangles, trees
+//   simulation  the shared simulation's step at the frame's time (simulation_stage.h)
+//   render    the renderer records and submits the frame's commands (render_stage.h)
+//
+// and collect() waits for the GPU and gathers the figures of every stage into one FrameRecord.
 //
 // submit() and collect() are separate so the CPU prepares the next frames while the GPU draws
 // the earlier ones: the window and fixed-step playback (playback.h) submit frame n + 1 (and
@@ -25,6 +27,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -33,33 +36,13 @@
 #include "flight/path_sampler.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
+#include "scene/frame_input.h"
+#include "scene/render_stage.h"
 #include "scene/scene.h"
+#include "scene/simulation_stage.h"
 #include "simulation/simulation.h"
 
 namespace vegstream::scene {
-
-// What the caller decides about a frame: the camera, the time, the poses expected next.
-struct FrameInput {
-  flight::FlightSample pose;
-  double timeS = 0.0;                       // flight time (scripted) or session time (window)
-  std::vector<flight::FlightSample> ahead;  // look-ahead poses (ignored without look-ahead)
-  // The shared simulation's inputs at this instant (flight/path_sampler.h): the path's colliders
-  // and wind sources, and the simulation's own clock when it differs from timeS (a still holds
-  // its scene time while the simulation runs on: app/settled_still.h).
-  std::vector<flight::ColliderSample> colliders;
-  std::vector<flight::WindSourceSample> windSources;
-  std::optional<double> simulationTimeS;
-  // The sun's clock (Scene::sunClock) when it differs from timeS: a still holds its date-time
-  // while the scene settles.
-  std::optional<double> sunTimeS;
-  bool adaptExposure = false;               // the window: automatic exposure smoothed over time
-  double flightMs = 0.0;                    // what the caller spent producing pose and ahead
-  bool present = false;                     // to the window, when the renderer has one
-  bool readbackColor = false;
-  // An AOV frame (render::FrameRequest::aov): FrameRecord::aov comes back instead of a colour.
-  bool aov = false;
-  const render::OverlayDrawData* overlay = nullptr;  // must stay alive until submit() returns
-};
 
 // One frame's figures from every stage; NaN (kNoFigure) where a figure does not exist.
 struct FrameRecord {
@@ -84,6 +67,12 @@ struct FrameRecord {
   std::optional<render::AovImage> aov;      // when FrameInput::aov
   double driverMs = 0.0;                    // the driver's own bookkeeping (copying figures)
   double cpuMs() const;                     // the CPU stages that exist: flight … record/submit
+  // The recorder's (playback.h), for a recorded frame: its row, its wall time, its own bookkeeping
+  // and the PNG writing (NaN: not saved). NaN outside a recording.
+  std::size_t row = 0;
+  double wallMs = std::numeric_limits<double>::quiet_NaN();
+  double recorderMs = std::numeric_limits<double>::quiet_NaN();
+  double pngMs = std::numeric_limits<double>::quiet_NaN();
 };
 
 class FrameDriver {
@@ -106,9 +95,9 @@ class FrameDriver {
   // step and nothing else is drawn), waited for; refused while frames are in flight. Lets a still
   // show the simulation S seconds in without drawing S × 60 whole frames.
   Status advanceSimulation(const FrameInput& input);
-  const simulation::Simulation& simulation() const { return simulation_; }
+  const simulation::Simulation& simulation() const { return simulation_.simulation(); }
   // The wind from the next frame on (the window sets it from the HUD).
-  void setWind(const simulation::WindOptions& wind) { simulation_.setWind(wind); }
+  void setWind(const simulation::WindOptions& wind) { simulation_.simulation().setWind(wind); }
 
   std::size_t framesInFlight() const { return inFlight_.size(); }
   // The index collect() takes next; 0 when nothing is in flight.
@@ -116,15 +105,11 @@ class FrameDriver {
   Scene& scene() { return scene_; }
 
  private:
-  // The simulate stage: steps the simulation for `input` with the camera at `camera` (local ENU).
-  void simulate(const FrameInput& input, const glm::dvec3& camera);
-
   Scene& scene_;
-  simulation::Simulation simulation_;
-  std::optional<double> lastStepS_;
-  std::vector<simulation::ColliderState> colliders_;  // the latest step's inputs (local ENU)
-  std::vector<simulation::WindSourceState> sources_;
-  std::optional<double> lastTimeS_;  // the last submitted frame's time (the window's exposure adaptation)
+  // The frame's list of stages: the scene's (streaming, terrain, seeding, trees:
+  // Scene::prepareFrame), then these two.
+  SimulationStage simulation_;
+  RenderStage render_;
   std::deque<FrameRecord> inFlight_;  // submitted, not collected (≤ kMaxInFlight), oldest first
 };
 

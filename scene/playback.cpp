@@ -15,7 +15,7 @@
 #include "core/stopwatch.h"
 #include "flight/path_sampler.h"
 #include "scene/frame_sidecar.h"
-#include "scene/frame_table.h"
+#include "scene/frame_figures.h"
 
 namespace vegstream::scene {
 
@@ -87,8 +87,7 @@ class Pipeline {
     excludedMs_ = 0.0;
   }
 
-  std::vector<FrameRecord> records;
-  std::vector<double> wallMs, recorderMs, pngMs;
+  std::vector<FrameRecord> records;  // each with its row's recorder figures (FrameRecord::row …)
 
  private:
   struct Pending {
@@ -127,23 +126,23 @@ class Pipeline {
     frame->color.reset();
     const double driverMs = frame->driverMs;
     records.push_back(std::move(*frame));
-    const FrameRecord& record = records.back();
-    recorderMs.push_back(driverMs + bookkeeping.elapsedMs());
+    FrameRecord& record = records.back();
+    record.row = p.frame;
+    record.recorderMs = driverMs + bookkeeping.elapsedMs();
     // Completion to completion (playback.h): with frames in flight, the CPU work of the later
     // frames and the GPU work of this one overlap inside this interval.
     const double doneMs = clock_.elapsedMs();
-    wallMs.push_back(doneMs - lastDoneMs_ - excludedMs_);
+    record.wallMs = doneMs - lastDoneMs_ - excludedMs_;
     lastDoneMs_ = doneMs;
     excludedMs_ = 0.0;
 
-    pngMs.push_back(flight::kNoValue);
     if (p.savePng) {
       Stopwatch png;
       assert(color && "the renderer returns the colour read-back it was asked for");
       const std::string sidecar = frameSidecarJson(record, color->width, color->height, driver_.scene());
       if (Status s = writeFrameWithSidecar(options_.framesDir / frameName(p.frame), *color, sidecar); !s) return s.error();
-      pngMs.back() = png.elapsedMs();
-      excludedMs_ += pngMs.back();
+      record.pngMs = png.elapsedMs();
+      excludedMs_ += record.pngMs;
       ++rec_.pngFrames;
     }
     if (options_.progress) options_.progress(records.size(), total_);
@@ -186,9 +185,6 @@ Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path
   if (Status s = pipeline.drain(); !s) return s.error();
 
   pipeline.records.reserve(n);
-  pipeline.wallMs.reserve(n);
-  pipeline.recorderMs.reserve(n);
-  pipeline.pngMs.reserve(n);
   pipeline.startClock();
   for (std::size_t i = 0; i < n; ++i) {
     const double t = std::min(static_cast<double>(i) / options.fps, sampler.duration());
@@ -196,10 +192,10 @@ Result<Recording> playFlight(FrameDriver& driver, const flight::FlightPath& path
   }
   if (Status s = pipeline.drain(); !s) return s.error();
 
-  FrameTableLayout layout;
+  FigureLayout layout;
   layout.gpuPasses = rec.gpuPasses;
   layout.perPassMeaningful = rec.perPassMeaningful;
-  rec.table = frameTable(pipeline.records, pipeline.wallMs, pipeline.recorderMs, pipeline.pngMs, layout);
+  rec.table = frameTable(pipeline.records, layout);
   rec.wallS = total.elapsedMs() / 1000.0;
   rec.peakRssBytes = peakResidentBytes();
   return rec;

@@ -12,11 +12,14 @@
 
 #include "core/stopwatch.h"
 #include "core/task_runner.h"
-#include "scene/camera_views.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
 #include "streaming/tile_check.h"
+#include "scene/seeding_stage.h"
+#include "scene/streaming_stage.h"
+#include "scene/terrain_stage.h"
 #include "scene/tree_field.h"
+#include "scene/tree_stage.h"
 #include "scene/tree_ground.h"
 #include "terrain/snapshot_grid.h"
 #include "vegetation/philox.h"
@@ -37,24 +40,14 @@ struct Scene::Impl {
   std::shared_ptr<streaming::TileSource> source;
   std::unique_ptr<streaming::TileStreamer> streamer;
   std::unique_ptr<terrain::StreamedTerrain> terrain;
-  // Storage behind the last request's spans.
-  std::vector<render::TerrainDraw> draws;
-  std::vector<render::ImageryUpload> uploads;
-  std::vector<streaming::Upload> planned;
-  std::vector<render::SeedTriangleGpu> seeds;
-  render::VegetationRequest vegetation;
-  vegetation::CanopyTable canopy;  // the crowns the plants thin under (vegetation/canopy_cells.h)
   std::unique_ptr<TreeGround> treeGround;
   std::unique_ptr<TreeField> treeField;
-  SceneFrameFigures figures;
+  // The scene's stages of the frame, in order (prepareFrame): streaming, terrain, seeding, trees.
+  std::vector<std::unique_ptr<FrameStage>> stages;
+  std::unique_ptr<FrameContext> lastContext;  // prepareFrame(pose, t, ahead)'s
+  SceneFrameFigures figures;                  // the last prepared frame's
   vegetation::SpeciesCatalog catalog;  // the catalog with the dataset's colour calibration (trees point at it)
 
-  double width() const { return static_cast<double>(renderer->width()); }
-  double height() const { return static_cast<double>(renderer->height()); }
-  terrain::SelectionView selectionView(const render::FrameRequest& req) const {
-    return selectionViewFor(req.camera, width(), height());
-  }
-  terrain::EyeView eyeView(const render::FrameRequest& req) const { return eyeViewFor(req.camera, width(), height()); }
 };
 
 namespace {
@@ -169,7 +162,16 @@ Status openTerrain(Scene::Impl& m, const datasets::DatasetMeta& meta) {
 
 }  // namespace
 
-Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+// The scene's part of the frame's list of stages (frame_stage.h); the driver's simulation and
+// render stages follow them.
+Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {
+  Impl& m = *impl_;
+  const bool settled = m.options.mode == StreamingMode::Settled;
+  m.stages.push_back(std::make_unique<StreamingStage>(*m.streamer, *m.terrain, settled, m.info.groundBytes));
+  m.stages.push_back(std::make_unique<TerrainStage>(*m.terrain));
+  m.stages.push_back(std::make_unique<SeedingStage>(*m.terrain, m.options));
+  if (m.treeField) m.stages.push_back(std::make_unique<TreeStage>(*m.treeField, *m.renderer, settled));
+}
 Scene::~Scene() = default;
 
 Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
@@ -256,135 +258,35 @@ GroundHeight Scene::groundFunction() const {
   return [impl](double lat, double lon) { return impl->ground.sampleLonLat(lon, lat); };
 }
 
-render::FrameRequest Scene::cameraRequest(const FlightSample& sample) const {
+FrameContext Scene::frameContext(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) const {
+  const render::Renderer& r = *impl_->renderer;
+  return FrameContext(impl_->frame, now, timeS, impl_->options.lookAhead ? ahead : std::span<const FlightSample>{},
+                      static_cast<double>(r.width()), static_cast<double>(r.height()));
+}
+
+render::FrameRequest Scene::cameraRequest(const FrameContext& context) const {
   render::FrameRequest req;
-  req.camera = cameraFor(impl_->frame, sample);
-  req.cameraHeightMsl = sample.position.heightM;
+  req.camera = context.camera;
+  req.cameraHeightMsl = context.pose.position.heightM;
   req.terrainDetail = impl_->options.terrainDetail;
   req.lighting = lightingAt(0.0);
   return req;
 }
 
-namespace {
-
-// Settled streaming: the wants settled round after round until they stop changing (`wants` the
-// last round's); returns every round's counters.
-streaming::StreamingFrameStats settleWants(Scene::Impl& m, std::vector<streaming::TileWant>& wants, double timeS) {
-  // A wanted tile that turns out missing is replaced by its parent: settle until the wants stop
-  // changing (each round can only move wants up the pyramid, so this ends).
-  streaming::StreamingFrameStats counted;
-  for (int round = 0; round < 32; ++round) {
-    m.streamer->settle(wants, timeS);
-    addFrameCounters(counted, m.streamer->frameStats());
-    std::vector<streaming::TileWant> again = m.terrain->wantsAgain();
-    const bool same =
-        again.size() == wants.size() && std::equal(again.begin(), again.end(), wants.begin(),
-                                                   [](const auto& a, const auto& b) { return a.key == b.key; });
-    wants = std::move(again);
-    if (same) break;
-  }
-  return counted;
-}
-
-// The uploads this frame records (into m.uploads), as the streamer plans them.
-void planUploads(Scene::Impl& m) {
-  // Settled frames draw everything they waited for; realtime frames keep the per-frame budget.
-  m.planned = m.streamer->planUploads(m.options.mode == StreamingMode::Settled ? std::optional<uint64_t>(UINT64_MAX)
-                                                                               : std::nullopt);
-  m.uploads.clear();
-  for (const streaming::Upload& u : m.planned)
-    if (u.tile && u.tile->colors) {
-      const datasets::ColorTile& c = *u.tile->colors;
-      m.uploads.push_back({u.slot, c.rgba, c.ndvi, c.landcover});
-    }
-  m.streamer->uploadsRecorded(m.planned);  // recorded into this frame's commands by submitFrame
-}
-
-// The trees around the camera into req, the canopy the plants thin under, and their figures.
-void prepareTrees(Scene::Impl& m, render::FrameRequest& req) {
-  SceneFrameFigures& fig = m.figures;
-  const render::TreeRequest& trees =
-      m.treeField->prepare(req.camera.position, m.options.mode == StreamingMode::Settled);
-  req.trees = &trees;
-  if (req.vegetation) {  // relative to the camera the seed triangles are relative to
-    m.treeField->fillCanopy(req.camera.position, m.canopy);
-    m.vegetation.canopy = &m.canopy;
-  }
-  const TreeFieldFigures& t = m.treeField->figures();
-  fig.trees = true;
-  fig.treeTilesWanted = t.tilesWanted;
-  fig.treeTilesDrawn = t.tilesDrawn;
-  fig.treePagesUsed = t.pagesUsed;
-  fig.treePageCapacity = t.pageCapacity;
-  fig.treesResident = t.treesDrawn;
-  fig.treePlacementMs = t.placementMs;
-  fig.treeBudgetBound = t.budgetBound;
-  // Settled frames wait for their tiles' trees as for their tiles; realtime ones place a few.
-  (m.options.mode == StreamingMode::Settled ? fig.settleWaitMs : fig.seedingMs) += t.placementMs;
-  fig.treeGpuBytes = m.renderer->treeGpuBytes();
-}
-
-}  // namespace
-
 render::FrameRequest Scene::prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead) {
-  Impl& m = *impl_;
-  SceneFrameFigures& fig = m.figures;
-  fig = {};
-  render::FrameRequest req = cameraRequest(now);
-  req.lighting = lightingAt(timeS);
+  const render::Renderer& r = *impl_->renderer;
+  impl_->lastContext = std::make_unique<FrameContext>(impl_->frame, now, timeS,
+                                                      impl_->options.lookAhead ? ahead : std::span<const FlightSample>{},
+                                                      static_cast<double>(r.width()), static_cast<double>(r.height()));
+  prepareFrame(*impl_->lastContext);
+  return impl_->lastContext->request;
+}
 
-  Stopwatch stage;
-  std::vector<terrain::SelectionView> aheadViews;
-  if (m.options.lookAhead)
-    for (const FlightSample& s : ahead) aheadViews.push_back(m.selectionView(cameraRequest(s)));
-  std::vector<streaming::TileWant> wants = m.terrain->wants(m.selectionView(req), m.eyeView(req), aheadViews);
-  double terrainMs = stage.elapsedMs();
-
-  stage.restart();
-  double waitMs = 0.0;
-  std::optional<streaming::StreamingFrameStats> settledCounters;
-  if (m.options.mode == StreamingMode::Settled) {
-    Stopwatch wait;
-    settledCounters = settleWants(m, wants, timeS);
-    waitMs = wait.elapsedMs();
-  } else {
-    m.streamer->update(wants, timeS);
-  }
-  planUploads(m);
-  fig.streamingMs = stage.elapsedMs() - waitMs;
-  fig.settleWaitMs = waitMs;
-
-  stage.restart();
-  const std::span<const terrain::TerrainPiece> pieces = m.terrain->pieces(timeS);
-  m.draws.clear();
-  for (const terrain::TerrainPiece& p : pieces)
-    m.draws.push_back({p.mesh, p.imageryLayer, p.imageryUv, p.previousLayer, p.previousUv, p.imageryBlend});
-  fig.terrainMs = terrainMs + stage.elapsedMs();
-  fig.seedingMs = 0.0;
-  if (m.options.plants) {
-    stage.restart();
-    seedTrianglesForGpu(m.terrain->seedTriangles(), req.camera.position, m.seeds);
-    fig.seedingMs = stage.elapsedMs();
-    m.vegetation = {m.seeds, m.options.clusterSize, m.options.plantStyle, m.options.plantDraw,
-                    m.options.occlusionCulling};
-    req.vegetation = &m.vegetation;
-    fig.seedTrianglesClassified = m.seeds.size();
-  }
-
-  if (m.treeField) prepareTrees(m, req);
-  fig.streaming = m.streamer->frameStats();
-  if (settledCounters) {  // every settle round's requests; the uploads planned after them
-    const uint64_t uploadBytes = fig.streaming.uploadBytes;
-    setFrameCounters(fig.streaming, *settledCounters);
-    fig.streaming.uploadBytes = uploadBytes;
-  }
-  fig.terrain = m.terrain->figures();
-  fig.uploads = m.uploads.size();
-  fig.cpuBytes = fig.streaming.bytesResidentCpu + m.info.groundBytes;
-  fig.gpuBytes = m.renderer->gpuBytes();
-  req.terrain = m.draws;
-  req.imageryUploads = m.uploads;
-  return req;
+void Scene::prepareFrame(FrameContext& context) {
+  context.request = cameraRequest(context);
+  context.request.lighting = lightingAt(context.timeS);
+  for (const std::unique_ptr<FrameStage>& stage : impl_->stages) stage->run(context);
+  impl_->figures = context.figures;
 }
 
 }  // namespace vegstream::scene

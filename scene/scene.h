@@ -32,7 +32,9 @@
 #include "geo/datetime.h"
 #include "geo/local_frame.h"
 #include "render/renderer.h"
+#include "scene/frame_context.h"
 #include "scene/sun_clock.h"
+#include "scene/scene_frame_figures.h"
 #include "simulation/simulation_options.h"
 #include "streaming/tile_streamer.h"
 #include "terrain/streamed_terrain.h"
@@ -107,27 +109,6 @@ struct SceneInfo {
   double loadMs = 0.0;
 };
 
-// What one frame cost and did, for the recorder and the HUD.
-struct SceneFrameFigures {
-  double streamingMs = 0.0;   // update + upload planning, CPU (settle wait excluded)
-  double settleWaitMs = 0.0;  // settled mode: waiting for wanted tiles (left out of frame time)
-  double terrainMs = 0.0;     // selection, wants, pieces (mesh builds included)
-  streaming::StreamingFrameStats streaming;
-  terrain::TerrainFrameFigures terrain;
-  uint64_t uploads = 0;                  // imagery tiles uploaded this frame
-  uint64_t cpuBytes = 0;                 // resident tiles + ground mosaic
-  uint64_t gpuBytes = 0;                 // imagery array, terrain, classify and plant buffers
-  uint64_t seedTrianglesClassified = 0;  // seed triangles with imagery, sent to the classify pass
-  double seedingMs = 0.0;                // making them ready for the GPU (keys, camera-relative)
-  // Trees: tiles placed and given pages this frame (scene/tree_field.h); zero without trees.
-  bool trees = false;
-  uint32_t treeTilesWanted = 0, treeTilesDrawn = 0, treePagesUsed = 0, treePageCapacity = 0;
-  uint64_t treesResident = 0;
-  double treePlacementMs = 0.0;
-  bool treeBudgetBound = false;
-  uint64_t treeGpuBytes = 0;
-};
-
 class Scene {
  public:
   static Result<std::unique_ptr<Scene>> open(const SceneOptions& options);
@@ -145,11 +126,17 @@ class Scene {
   double groundHeight(double latDeg, double lonDeg) const;
   GroundHeight groundFunction() const;  // the same, for PathSampler
 
-  // The frame for a camera at `now` (flight time timeS) with the poses expected next (look-ahead;
-  // ignored when SceneOptions::lookAhead is off). Read-backs, presenting and the overlay are the
-  // caller's to set on the returned request.
+  // The views of a camera at `now` (flight time timeS) and of the poses expected next (look-ahead;
+  // ignored when SceneOptions::lookAhead is off), for this scene's renderer (frame_context.h).
+  FrameContext frameContext(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {}) const;
+  // The scene's stages of the frame (frame_stage.h), in order: streaming, terrain, seeding and,
+  // with trees, trees — after the context's request gets its camera and the sun at its time. The
+  // driver runs its simulation and render stages after them.
+  void prepareFrame(FrameContext& context);
+  // The same for a pose, the context kept until the next call; the request it returns is valid as
+  // long. Read-backs, presenting and the overlay are the caller's to set on it.
   render::FrameRequest prepareFrame(const FlightSample& now, double timeS, std::span<const FlightSample> ahead = {});
-  const SceneFrameFigures& lastFrameFigures() const;
+  const SceneFrameFigures& lastFrameFigures() const;  // the last prepared frame's
   // Realtime: waits until a tile request has finished (the next prepareFrame takes it in) or
   // `timeout` passes; true when one has. Lets a caller hold a pose until its tiles are in
   // without sleeping (TileStreamer::waitForArrivals).
@@ -158,9 +145,8 @@ class Scene {
   // steps a manual clock and lets each step's I/O settle before the next frame.
   streaming::TileStreamer::IoProgress tileIoProgress() const;
 
-  // Camera and lighting for a sample, without streaming or terrain (for tests of the pose); the
-  // sun of flight time 0.
-  render::FrameRequest cameraRequest(const FlightSample& sample) const;
+  // Camera and lighting for a context, without streaming or terrain; the sun of flight time 0.
+  render::FrameRequest cameraRequest(const FrameContext& context) const;
 
   // The date-time and sun at every flight time (sun_clock.h), resolved at open().
   const SunClock& sunClock() const;

@@ -17,6 +17,7 @@
 
 #include "render/tree_layout.h"
 #include "scene/canopy_trees.h"
+#include "scene/tree_field_figures.h"
 #include "vegetation/canopy_cells.h"
 #include "vegetation/species_catalog.h"
 #include "vegetation/tree_placement.h"
@@ -30,15 +31,6 @@ struct TreeFieldOptions {
   bool fades = true;
   bool shadows = true;
   bool cores = true;
-};
-
-struct TreeFieldFigures {
-  uint32_t tilesWanted = 0, tilesDrawn = 0;  // within the horizon; with pages
-  uint64_t treesDrawn = 0;                   // trees in the tiles with pages
-  uint32_t pagesUsed = 0, pageCapacity = 0;
-  uint32_t placed = 0;       // tiles placed this frame
-  double placementMs = 0.0;  // their cost
-  bool budgetBound = false;  // a wanted tile had no page: far trees fall back to the terrain's colour
 };
 
 class TreeField {

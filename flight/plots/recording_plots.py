@@ -19,17 +19,19 @@ VEGETATION_PASSES = ("classify", "blades", "grass", "gravel", "trees", "plants",
 # The shared simulation's GPU pass (issue 19: wind grid and interaction field): its own band, as
 # it moves the plants but draws nothing.
 SIMULATION_PASSES = ("simulation",)
-# The CPU stages of a frame (their sum is cpu_frame_ms), bottom first; those absent or empty
+# The CPU stages of a frame are the columns cpu_<stage>_ms but cpu_frame_ms (their sum), in file
+# order, bottom first — the stages' own declarations (scene/frame_figures.h); those empty
 # (cpu_simulation_ms while the simulation is off, cpu_seeding_ms without plants) are left out.
-# The simulation is purple in both panels.
-CPU_STAGES = (
-    ("cpu_flight_ms", "flight path", "tab:gray"),
-    ("cpu_streaming_ms", "streaming", "tab:orange"),
-    ("cpu_terrain_ms", "terrain (tiles, ROAM)", "tab:blue"),
-    ("cpu_seeding_ms", "seeding", "tab:green"),
-    ("cpu_simulation_ms", "simulation (wind, grass)", "tab:purple"),
-    ("cpu_record_submit_ms", "record + submit", "tab:brown"),
-)
+# Their legend labels and colours; a stage not named here shows its column's name. The
+# simulation is purple in both panels.
+CPU_STAGE_STYLES = {
+    "cpu_flight_ms": ("flight path", "tab:gray"),
+    "cpu_streaming_ms": ("streaming", "tab:orange"),
+    "cpu_terrain_ms": ("terrain (tiles, ROAM)", "tab:blue"),
+    "cpu_seeding_ms": ("seeding", "tab:green"),
+    "cpu_simulation_ms": ("simulation (wind, grass)", "tab:purple"),
+    "cpu_record_submit_ms": ("record + submit", "tab:brown"),
+}
 # Geometric-load columns, in legend order; those absent or empty are skipped.
 GEOMETRY_COLUMNS = (
     ("terrain_triangles", "terrain triangles submitted"),
@@ -109,6 +111,14 @@ def height_panel(ax, cols):
     ax.grid(alpha=0.3)
 
 
+def cpu_stage_style(column):
+    return CPU_STAGE_STYLES.get(column, (column[len("cpu_"):-len("_ms")], "tab:olive"))
+
+
+def cpu_stage_columns(cols):
+    return [c for c in cols if c.startswith("cpu_") and c.endswith("_ms") and c != "cpu_frame_ms" and present(cols, c)]
+
+
 def pass_columns(cols, passes):
     return [c for c in cols if c.startswith("gpu_") and c[4:-3] in passes and present(cols, c)]
 
@@ -128,7 +138,7 @@ def frame_time_series(cols):
     gpu += [(c, "simulation pass (wind, grass)") for c in sim]
     if veg:
         gpu.append(("+".join(veg), "vegetation passes"))
-    cpu = [(name, text) for name, text, _ in CPU_STAGES if present(cols, name)]
+    cpu = [(name, cpu_stage_style(name)[0]) for name in cpu_stage_columns(cols)]
     return {"gpu": gpu, "cpu": cpu}
 
 
@@ -175,7 +185,7 @@ def plot_frame_time(directory, cols, summary):
     ax.legend(fontsize=8, loc="upper right")
     # The CPU stages stacked: which stage a CPU-bound frame spends its time in.
     if series["cpu"]:
-        colour = {name: c for name, _, c in CPU_STAGES}
+        colour = {name: cpu_stage_style(name)[1] for name, _ in series["cpu"]}
         stages = [[0.0 if math.isnan(v) else v for v in cols[c]] for c, _ in series["cpu"]]
         cpu_ax.stackplot(t, *stages, labels=[label for _, label in series["cpu"]],
                          colors=[colour[c] for c, _ in series["cpu"]], alpha=0.5)

@@ -2,6 +2,7 @@
 // files, columns and keys; deterministic counts and positions; PNG frames; no faked plots;
 // user mistakes end with one message, exit code 2 and nothing written.
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,103 +13,14 @@
 #include <nlohmann/json.hpp>
 #include <sys/stat.h>
 
+#include "flight/frame_columns.h"
+#include "scene/frame_figures.h"
 #include "tests/app/record_test_data.h"
 
 namespace vegstream::testing {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-// frames.csv's documented columns (README.md "Recordings"), in order; gpu_<pass>_ms columns sit
-// between gpu_frame_ms and wall_ms.
-const std::vector<std::string> kLeading = {"frame",
-                                           "t_s",
-                                           "lat",
-                                           "lon",
-                                           "alt_msl_m",
-                                           "height_above_ground_m",
-                                           "heading_deg",
-                                           "pitch_deg",
-                                           "cpu_flight_ms",
-                                           "cpu_streaming_ms",
-                                           "cpu_terrain_ms",
-                                           "cpu_seeding_ms",
-                                           "cpu_simulation_ms",
-                                           "cpu_record_submit_ms",
-                                           "cpu_frame_ms",
-                                           "gpu_frame_ms"};
-const std::vector<std::string> kTrailing = {"wall_ms",
-                                            "recorder_ms",
-                                            "png_ms",
-                                            "terrain_triangles",
-                                            "stat_input_primitives",
-                                            "stat_clipping_primitives",
-                                            "stat_fragment_invocations",
-                                            "cpu_bytes",
-                                            "gpu_bytes"};
-// Issue 5's streaming columns, after kTrailing.
-const std::vector<std::string> kStreaming = {"streaming_wait_ms",
-                                             "stream_longest_wait_ms",
-                                             "stream_requests_issued",
-                                             "stream_requests_completed",
-                                             "stream_requests_cancelled",
-                                             "stream_requests_failed",
-                                             "stream_requests_missing",
-                                             "stream_retries",
-                                             "stream_bytes_read",
-                                             "stream_uploads",
-                                             "stream_upload_bytes",
-                                             "stream_evictions_cpu",
-                                             "stream_evictions_gpu",
-                                             "stream_tiles_resident_cpu",
-                                             "stream_tiles_resident_gpu",
-                                             "stream_bytes_resident_cpu",
-                                             "stream_bytes_resident_gpu",
-                                             "stream_requests_in_flight",
-                                             "stream_wanted",
-                                             "stream_wanted_resident",
-                                             "stream_lookahead_wants",
-                                             "terrain_pieces",
-                                             "terrain_fallback_pieces",
-                                             "terrain_max_levels_coarser",
-                                             "terrain_meshes_built",
-                                             "terrain_error_bound_px",
-                                             "terrain_error_relaxation"};
-// Issue 6's ROAM and seed-triangle columns, after kStreaming.
-const std::vector<std::string> kRoam = {"terrain_roam_update_ms",
-                                        "terrain_roam_output_ms",
-                                        "terrain_roam_compact_wait_ms",
-                                        "terrain_roam_priorities_ms",
-                                        "terrain_roam_split_ms",
-                                        "terrain_leaves",
-                                        "terrain_splits",
-                                        "terrain_merges",
-                                        "terrain_constrained_leaves",
-                                        "terrain_triangle_budget_hit",
-                                        "terrain_work_budget_hit",
-                                        "terrain_seed_triangles",
-                                        "terrain_seed_interpolated",
-                                        "terrain_depth_limited_leaves",
-                                        "terrain_seed_plants",
-                                        "terrain_achieved_error_px",
-                                        // Issue 17's terrain rasterised in compute.
-                                        "terrain_raster_triangles",
-                                        "terrain_tile_entries",
-                                        "terrain_tile_entries_dropped"};
-// Issue 7's classify-pass columns, after kRoam.
-const std::vector<std::string> kPlants = {"plant_seed_triangles", "plant_bins",    "plant_clusters",
-                                          "plant_cluster_slots",  "plant_groups",  "plants",
-                                          "plant_overflow",       "plant_patches", "plant_triangles",
-                                          // Issue 17's Hi-Z occlusion culling.
-                                          "plant_cull_tested",    "plant_cull_culled", "plant_clusters_culled",
-                                          "plant_groups_culled",  "plants_culled"};
-// Issue 20's trees, after kPlants.
-const std::vector<std::string> kTrees = {"trees_full",        "trees_reduced",      "trees_impostor",
-                                         "trees_dropped",     "trees_classified",   "tree_tiles_wanted",
-                                         "tree_tiles_drawn",  "tree_pages_used",    "tree_page_capacity",
-                                         "tree_budget_bound", "tree_gpu_bytes",     "tree_placement_ms"};
-// Issue 39's sun, the last columns.
-const std::vector<std::string> kSun = {"sun_azimuth_deg", "sun_elevation_deg"};
 
 struct Csv {
   std::vector<std::string> header;
@@ -174,21 +86,18 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
     EXPECT_TRUE(isPng(dir / f)) << f;
 
   const Csv csv = readCsv(dir / "frames.csv");
-  const std::size_t tail =
-      kTrailing.size() + kStreaming.size() + kRoam.size() + kPlants.size() + kTrees.size() + kSun.size();
-  ASSERT_GE(csv.header.size(), kLeading.size() + tail);
-  EXPECT_TRUE(std::equal(kLeading.begin(), kLeading.end(), csv.header.begin()));
-  const auto back = [&](std::size_t skip) { return csv.header.rbegin() + static_cast<long>(skip); };
-  EXPECT_TRUE(std::equal(kSun.rbegin(), kSun.rend(), back(0)));
-  const std::size_t t = kTrees.size() + kSun.size();
-  EXPECT_TRUE(std::equal(kTrees.rbegin(), kTrees.rend(), back(kSun.size())));
-  EXPECT_TRUE(std::equal(kPlants.rbegin(), kPlants.rend(), back(t)));
-  EXPECT_TRUE(std::equal(kRoam.rbegin(), kRoam.rend(), back(t + kPlants.size())));
-  EXPECT_TRUE(std::equal(kStreaming.rbegin(), kStreaming.rend(), back(t + kPlants.size() + kRoam.size())));
-  EXPECT_TRUE(std::equal(kTrailing.rbegin(), kTrailing.rend(),
-                         back(t + kPlants.size() + kStreaming.size() + kRoam.size())));
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
-    EXPECT_TRUE(csv.header[i].starts_with("gpu_") && csv.header[i].ends_with("_ms")) << csv.header[i];
+  // The header is the columns the frame's stages declare (scene/frame_figures.h; README.md
+  // "Recordings" documents them) for the recording's passes, which sit after gpu_frame_ms.
+  const json recorded = json::parse(readWhole(dir / "recording.json"));
+  scene::FigureLayout layout;
+  layout.gpuPasses = recorded["gpu_passes"].get<std::vector<std::string>>();
+  std::vector<std::string> declared, passColumns;
+  for (const flight::RecordColumn& c : scene::frameColumns(layout)) declared.push_back(c.name);
+  for (const std::string& p : layout.gpuPasses) passColumns.push_back(flight::column::gpuPassColumn(p));
+  EXPECT_EQ(csv.header, declared);
+  ASSERT_FALSE(passColumns.empty());
+  EXPECT_EQ(std::find(csv.header.begin(), csv.header.end(), passColumns.front()) - csv.header.begin(),
+            std::find(csv.header.begin(), csv.header.end(), "gpu_frame_ms") - csv.header.begin() + 1);
   // 2 s at 15 fps: t = 0, 1/15, …, 2 → 31 frames, one row each, every row complete.
   ASSERT_EQ(csv.rows.size(), 31u);
   for (std::size_t i = 0; i < csv.rows.size(); ++i) {
@@ -245,8 +154,8 @@ TEST(RecordCommand, WritesTheDocumentedFilesColumnsAndKeys) {
   // lavapipe: per-pass GPU times are not meaningful, so those cells are empty.
   EXPECT_EQ(rec["device"]["software"], true);
   EXPECT_EQ(rec["per_pass_gpu_times_meaningful"], false);
-  for (std::size_t i = kLeading.size(); i < csv.header.size() - tail; ++i)
-    for (const auto& v : csv.column(csv.header[i])) EXPECT_EQ(v, "") << csv.header[i];
+  for (const std::string& column : passColumns)
+    for (const auto& v : csv.column(column)) EXPECT_EQ(v, "") << column;
 
   for (const char* k : {"summary_version", "recording", "frames", "flight_time_s", "times_ms", "counts", "hitches",
                         "peak_memory", "resident_bytes", "totals", "streaming", "recorder_overhead"})

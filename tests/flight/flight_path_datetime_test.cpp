@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include "flight/frame_columns.h"
 #include "flight/flight_path_json.h"
 
 namespace vegstream::flight {
@@ -62,13 +61,6 @@ TEST(FlightPathDatetime, ABadOneNamesFileLineColumnAndField) {
   EXPECT_EQ(errorFor(withDatetime("20260621")), "paths/dawn.json:3:15: datetime: must be a string, found a number");
   EXPECT_NE(errorFor(withDatetime(R"("tomorrow")")).find("paths/dawn.json:3:15: datetime: \"tomorrow\": not an ISO"),
             std::string::npos);
-}
-
-TEST(FlightPathDatetime, FramesCsvEndsWithTheSun) {
-  const std::vector<RecordColumn> c = frameColumns({"terrain"});
-  ASSERT_GE(c.size(), 2u);
-  EXPECT_EQ(c[c.size() - 2].name, "sun_azimuth_deg");
-  EXPECT_EQ(c.back().name, "sun_elevation_deg");
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // simulation is its own band — cpu_simulation_ms among the CPU stages, gpu_simulation_ms among
 // the GPU passes where per-pass times exist — and disappears where its column is empty. Runs the
 // embedded script (`series DIR` lists what frame_time.png stacks; `report DIR` draws it) on a
-// frames.csv with the recorder's own columns (frame_columns.h).
+// frames.csv with the recorder's columns it reads.
 
 #include <algorithm>
 #include <cstdio>
@@ -28,7 +28,15 @@ const std::vector<std::string> kPasses = {"simulation", "terrain", "terrain_shad
 // A recording of 30 frames; `perPass`: per-pass GPU times exist (not a CPU rasteriser);
 // `simulating`: cpu_simulation_ms is filled (the simulation is on).
 fs::path writeRecording(const fs::path& dir, bool perPass, bool simulating) {
-  RecordTable t(frameColumns(kPasses));
+  // The recorder's columns the plot reads, in file order (scene/frame_figures.h declares them all).
+  std::vector<RecordColumn> columns;
+  for (const char* name :
+       {"frame", "t_s", "height_above_ground_m", "cpu_flight_ms", "cpu_streaming_ms", "cpu_terrain_ms",
+        "cpu_seeding_ms", "cpu_simulation_ms", "cpu_record_submit_ms", "cpu_frame_ms", "gpu_frame_ms"})
+    columns.push_back({name, 6});
+  for (const std::string& p : kPasses) columns.push_back({column::gpuPassColumn(p), 4});
+  columns.push_back({"wall_ms", 4});
+  RecordTable t(columns);
   for (int i = 0; i < 30; ++i) {
     std::vector<double>& r = t.addRow();
     auto set = [&](const std::string& name, double v) { r[*t.find(name)] = v; };
@@ -42,7 +50,7 @@ fs::path writeRecording(const fs::path& dir, bool perPass, bool simulating) {
     set("cpu_frame_ms", simulating ? 2.75 : 2.5);
     set("gpu_frame_ms", 6.0);
     if (perPass)
-      for (const std::string& p : kPasses) set(gpuPassColumn(p), 1.0);
+      for (const std::string& p : kPasses) set(column::gpuPassColumn(p), 1.0);
     set("wall_ms", 16.7);
   }
   std::ofstream(dir / "frames.csv") << t.toCsv();

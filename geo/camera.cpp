@@ -1,10 +1,12 @@
+// The camera's matrices (camera.h).
+
+#include "geo/camera.h"
+
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/frame_types.h"
-
-namespace vegstream::render {
+namespace vegstream::geo {
 
 glm::dmat4 viewRotation(const Camera& camera) { return glm::lookAtRH(glm::dvec3(0.0), camera.forward, camera.up); }
 
@@ -20,4 +22,4 @@ double reverseZDepth(const Camera& camera, double d) {
   return n * (f - d) / ((f - n) * d);
 }
 
-}  // namespace vegstream::render
+}  // namespace vegstream::geo
