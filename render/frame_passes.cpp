@@ -302,6 +302,7 @@ FrameResult Renderer::Impl::collect(FrameSlot& slot) {
     r.terrainRasterTriangles = f.rasterTriangles;
     r.terrainTileEntries = f.tileEntries;
     r.terrainTileEntriesDropped = f.tileEntriesDropped;
+    r.terrainDepthEdgeTiles = f.depthEdgeTiles;
   }
   if (slot.vegetation) {
     classify->readFigures(static_cast<int>(slot.frameIndex % kFramesInFlight), *slot.vegetation);

@@ -252,6 +252,7 @@ struct FrameResult {
   uint64_t terrainRasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
   uint64_t terrainTileEntries = 0;      // triangle-in-tile entries its lists needed
   uint64_t terrainTileEntriesDropped = 0;  // past the lists' capacity (they grow for the next frames)
+  uint64_t terrainDepthEdgeTiles = 0;      // 8 × 8 tiles whose depth went into the attachment per sample
   std::optional<VegetationFigures> vegetation;  // when the request had plants
   std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;

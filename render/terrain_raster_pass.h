@@ -18,9 +18,14 @@
 // on all 132 SMs.
 //
 // The rest of the frame sees the terrain as if drawn with graphics: recordDepthAttachment writes
-// the depth samples into the depth attachment (one full-screen triangle run per sample,
-// shaders/terrain_depth.frag: 0.68 ms on the H200 at 1080p, 4× MSAA), so the trees and plants are
-// depth-tested against it by the hardware, hidden fragments rejected before they are shaded. (The
+// the depth samples into the depth attachment, so the trees and plants are depth-tested against
+// it by the hardware, hidden fragments rejected before they are shaded. It writes each pixel's
+// sample-0 depth into all its samples (a full-screen triangle, one fragment per pixel,
+// shaders/terrain_depth_pixel.frag), then each sample's own over the 8 × 8 tiles where a pixel's
+// samples differ by more than 0.2 % of the distance (terrain edges: the raster lists them and
+// counts a draw-indirect command; shaders/terrain_depth_edge.vert, terrain_depth.frag per sample).
+// Graphics fragments run on few units of the H100/H200: writing every sample per sample cost
+// 0.67 ms at 1080p, 4× MSAA, and 2.67 ms at 4K on the H100. (The
 // first version cleared the attachment, 0.59 ms, and every fragment tested itself against the
 // samples in its shader: the trees pass then cost 1.23 / 3.11 ms p50 / p99 on benchmark-30s
 // against 0.82 / 2.53 now, measured side by side.) The Hi-Z build reads the same buffer (HizPass,
@@ -48,6 +53,7 @@ struct TerrainRasterFigures {
   uint32_t rasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
   uint32_t tileEntries = 0;      // triangle-in-tile entries the lists needed
   uint32_t tileEntriesDropped = 0;
+  uint32_t depthEdgeTiles = 0;   // 8 × 8 tiles whose depth went into the attachment per sample
 };
 
 class TerrainRasterPass {
@@ -72,8 +78,8 @@ class TerrainRasterPass {
   // frame's raster waits for them here, not at its start, where the wait would also hold it
   // behind the graphics work recorded before it.
   void recordEndOfFrame(VkCommandBuffer cmd) const;
-  // After record(): the depth samples into the depth attachment (a full-screen draw per sample,
-  // shaders/terrain_depth.frag), in a scope of its own (RenderTargets::beginTerrainDepth).
+  // After record(): the depth samples into the depth attachment (a full-screen draw per pixel,
+  // then the edge tiles per sample), in a scope of its own (RenderTargets::beginTerrainDepth).
   void recordDepthAttachment(VkCommandBuffer cmd, VkDescriptorSet frameSet, const RenderTargets& targets) const;
   TerrainRasterFigures figures(int slot) const;
 
@@ -97,8 +103,11 @@ class TerrainRasterPass {
   std::array<VkDescriptorSet, kSlots> inputs_{};
   std::array<GpuBuffer, kSlots> readback_;  // host-readable copies of counters_: TerrainRasterFigures
   GpuBuffer counters_, triangles_, tileCounts_, tileStarts_, tileLists_, depth_;
+  GpuBuffer edgeTiles_;  // a draw-indirect command and the depth edge tiles (terrain_raster.glsl)
+  DescriptorSetLayout edgeLayout_;
+  VkDescriptorSet edgeSet_ = VK_NULL_HANDLE;  // edgeTiles_ for terrain_depth_edge.vert
   PipelineLayout layout_, depthLayout_;
-  Pipeline bin_, scan_, raster_, depthPipeline_;
+  Pipeline bin_, scan_, raster_, depthPipeline_, edgePipeline_;
 };
 
 }  // namespace vegstream::render

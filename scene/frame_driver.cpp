@@ -72,6 +72,7 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.terrainRasterTriangles = result->terrainRasterTriangles;
   r.terrainTileEntries = result->terrainTileEntries;
   r.terrainTileEntriesDropped = result->terrainTileEntriesDropped;
+  r.terrainDepthEdgeTiles = result->terrainDepthEdgeTiles;
   r.vegetation = result->vegetation;
   r.trees = result->trees;
   r.color = std::move(result->color);

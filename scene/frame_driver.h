@@ -61,6 +61,7 @@ struct FrameRecord {
   uint64_t terrainTriangles = 0;
   bool terrainRasterised = false;  // in compute (render::FrameResult::terrainRasterised): the next three exist
   uint64_t terrainRasterTriangles = 0, terrainTileEntries = 0, terrainTileEntriesDropped = 0;
+  uint64_t terrainDepthEdgeTiles = 0;
   std::optional<render::VegetationFigures> vegetation;
   std::optional<render::TreeFigures> trees;  // when the frame drew trees
   std::optional<render::ColorImage> color;  // when FrameInput::readbackColor

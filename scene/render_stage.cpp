@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "flight/frame_columns.h"
 #include "scene/frame_driver.h"
@@ -24,13 +25,16 @@ using flight::kNoValue;
 // nothing, or the frame's pass is not the layout's).
 void declareGpuTimes(FrameFigures& out, const FigureLayout& layout) {
   out.push_back({S::GpuFrame, {flight::column::kGpuFrameMs, 4, "ms"}, [](R r) { return r.gpu.frameMs; }});
-  for (std::size_t p = 0; p < layout.gpuPasses.size(); ++p)
-    out.push_back({S::GpuFrame,
-                   {flight::column::gpuPassColumn(layout.gpuPasses[p]), 4, "ms"},
-                   [p, pass = layout.gpuPasses[p], meaningful = layout.perPassMeaningful](R r) {
-                     return meaningful && p < r.gpu.passes.size() && r.gpu.passes[p].pass == pass ? r.gpu.passes[p].ms
-                                                                                                  : kNoValue;
-                   }});
+  for (std::size_t p = 0; p < layout.gpuPasses.size(); ++p) {
+    FrameFigure f;  // member by member: GCC 12 sees an uninitialised string in the braced form here
+    f.section = S::GpuFrame;
+    f.column.name = flight::column::gpuPassColumn(layout.gpuPasses[p]);
+    f.column.unit = "ms";
+    f.value = [p, pass = layout.gpuPasses[p], meaningful = layout.perPassMeaningful](R r) {
+      return meaningful && p < r.gpu.passes.size() && r.gpu.passes[p].pass == pass ? r.gpu.passes[p].ms : kNoValue;
+    };
+    out.push_back(std::move(f));
+  }
 }
 
 // The terrain pass's triangles and the pipeline statistics over the frame.
@@ -51,13 +55,21 @@ void declareGpuCounts(FrameFigures& out) {
 
 // The terrain rasterised in compute (render/terrain_raster_pass.h); empty otherwise.
 void declareComputeRaster(FrameFigures& out) {
-  const auto add = [&out](const char* name, const char* unit, uint64_t FrameRecord::*field) {
-    out.push_back(
-        {S::Terrain, {name, 0, unit}, [field](R r) { return r.terrainRasterised ? count(r.*field) : kNoValue; }});
+  struct Count {
+    const char* name;
+    const char* unit;
+    uint64_t FrameRecord::*field;
   };
-  add("terrain_raster_triangles", "triangles", &FrameRecord::terrainRasterTriangles);
-  add("terrain_tile_entries", "entries", &FrameRecord::terrainTileEntries);
-  add("terrain_tile_entries_dropped", "entries", &FrameRecord::terrainTileEntriesDropped);
+  static const Count counts[] = {
+      {"terrain_raster_triangles", "triangles", &FrameRecord::terrainRasterTriangles},
+      {"terrain_tile_entries", "entries", &FrameRecord::terrainTileEntries},
+      {"terrain_tile_entries_dropped", "entries", &FrameRecord::terrainTileEntriesDropped},
+      {"terrain_depth_edge_tiles", "tiles", &FrameRecord::terrainDepthEdgeTiles},
+  };
+  for (const Count& c : counts)
+    out.push_back({S::Terrain, {c.name, 0, c.unit}, [field = c.field](R r) {
+                     return r.terrainRasterised ? count(r.*field) : kNoValue;
+                   }});
 }
 
 // The classify pass (render/classify_pass.h) and the plants' statistics; empty when plants are off.

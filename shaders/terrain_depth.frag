@@ -1,12 +1,11 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The terrain rasterised in compute (render/terrain_raster_pass.h) into the depth attachment:
-// one full-screen triangle, run per sample (gl_SampleID), writes each sample's depth from the
-// raster's buffer, so the trees and plants drawn after it are depth-tested against the terrain by
-// the hardware — rejected before they are shaded — as over a terrain drawn with graphics.
+// The terrain rasterised in compute (render/terrain_raster_pass.h) into the depth attachment,
+// per sample (gl_SampleID): each sample's depth from the raster's buffer, over the tiles that hold
+// a depth edge (terrain_depth_edge.vert), after terrain_depth_pixel.frag wrote one depth per pixel.
 #include "common/frame_uniforms.glsl"
 
-layout(location = 0) in vec2 inNdc;  // sky.vert's, unused
+layout(location = 0) in vec2 inNdc;  // terrain_depth_edge.vert's, unused
 layout(std430, set = 0, binding = 5) readonly buffer TerrainDepthSamples { float terrainDepthSamples[]; };
 
 void main() {

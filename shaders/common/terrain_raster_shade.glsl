@@ -52,7 +52,22 @@ void storedEdges(uint slot, out RasterEdge e[3]) {
   }
 }
 
+shared uint sDepthEdge;  // whether a pixel of the tile is a depth edge (kDepthEdgeShare)
+
+// Whether the pixel's samples hold depths too far apart to share one (or sky beside terrain).
+bool depthEdge(float best[kMaxSamples], int samples) {
+  float lo = best[0], hi = best[0];
+  for (int s = 1; s < kMaxSamples; ++s) {
+    if (s >= samples) break;
+    lo = min(lo, best[s]);
+    hi = max(hi, best[s]);
+  }
+  return lo == 0.0 ? hi > 0.0 : hi > lo * (1.0 + kDepthEdgeShare);
+}
+
 void main() {
+  if (gl_LocalInvocationIndex == 0u) sDepthEdge = 0u;
+  barrier();
   uvec2 tile = gl_WorkGroupID.xy;
   uint tileIndex = tile.y * shade.tiles.x + tile.x;
   ivec2 px = ivec2(tile * kRasterTile + gl_LocalInvocationID.xy);
@@ -98,6 +113,11 @@ void main() {
     }
     barrier();
   }
+#ifdef VEGSTREAM_MULTISAMPLE
+  if (onScreen && depthEdge(best, samples)) sDepthEdge = 1u;  // any writer: the same value
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && sDepthEdge != 0u) depthEdgeTiles[atomicAdd(depthEdgeCommand[1], 1u)] = tileIndex;
+#endif
   if (!onScreen) return;
   uint base = (uint(px.y) * uint(frame.viewport.x) + uint(px.x)) * uint(samples);
   for (int s = 0; s < samples; ++s) terrainDepthOut[base + uint(s)] = best[s];

@@ -250,7 +250,7 @@ TEST(RecordCommand, WritesTheSavedFramesAovsAndRecordsTheSameFrames) {
             std::string::npos) << refused.err;
 }
 
-// The terrain rasterised in compute (render/terrain_raster_pass.h) fills its three columns, and
+// The terrain rasterised in compute (render/terrain_raster_pass.h) fills its four columns, and
 // the same flight gives the same terrain: the same triangles, frame by frame. Elsewhere they are
 // empty.
 TEST(RecordCommand, TheComputeRasterFillsItsColumns) {
@@ -261,15 +261,18 @@ TEST(RecordCommand, TheComputeRasterFillsItsColumns) {
   const Csv compute = readCsv(dir / "frames.csv"), deferred = readCsv(base / "frames.csv");
   EXPECT_EQ(compute.column("terrain_triangles"), deferred.column("terrain_triangles"));
   const auto triangles = compute.column("terrain_raster_triangles"), entries = compute.column("terrain_tile_entries"),
-             dropped = compute.column("terrain_tile_entries_dropped");
+             dropped = compute.column("terrain_tile_entries_dropped"),
+             edges = compute.column("terrain_depth_edge_tiles");
   ASSERT_FALSE(triangles.empty());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     ASSERT_FALSE(triangles[i].empty()) << "frame " << i;
     EXPECT_GT(std::stoull(triangles[i]), 0u) << "frame " << i;
     EXPECT_GE(std::stoull(entries[i]), std::stoull(triangles[i])) << "frame " << i;
     EXPECT_EQ(dropped[i], "0") << "frame " << i;
+    EXPECT_EQ(edges[i], "0") << "frame " << i << ": one sample per pixel has no depth edges within a pixel";
   }
-  for (const char* col : {"terrain_raster_triangles", "terrain_tile_entries", "terrain_tile_entries_dropped"})
+  for (const char* col : {"terrain_raster_triangles", "terrain_tile_entries", "terrain_tile_entries_dropped",
+                          "terrain_depth_edge_tiles"})
     for (const std::string& cell : deferred.column(col)) EXPECT_EQ(cell, "") << col << " without the compute raster";
 }
 

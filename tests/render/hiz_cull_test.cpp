@@ -279,6 +279,11 @@ TEST_F(HizCullTest, TheTerrainRasterisedInComputeCullsAndHidesAsTheDeferredOne) 
   }
   EXPECT_GT(terrain, pixels / 2);
   EXPECT_LT(apart, pixels / 500);
+  // Per sample only where the wall's top meets the sky or the ground behind it: some tiles, far
+  // from all of them.
+  const uint64_t tiles = uint64_t{(kW + 7) / 8} * ((kH + 7) / 8);
+  EXPECT_GT(compute.bare.terrainDepthEdgeTiles, 0u);
+  EXPECT_LT(compute.bare.terrainDepthEdgeTiles, tiles / 2);
 }
 
 TEST_F(HizCullTest, AWallJustAboveTheEyeHidesTheFieldBehindItsFoot) {

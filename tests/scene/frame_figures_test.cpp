@@ -38,7 +38,7 @@ TEST(FrameFigures, ColumnsInTheDocumentedOrder) {
   EXPECT_EQ(at("terrain_roam_update_ms"), at("terrain_error_relaxation") + 1);  // issue 6's columns follow
   // Issue 17's terrain rasterised in compute follows, then issue 7's columns.
   EXPECT_EQ(at("terrain_raster_triangles"), at("terrain_achieved_error_px") + 1);
-  EXPECT_EQ(at("plant_seed_triangles"), at("terrain_tile_entries_dropped") + 1);
+  EXPECT_EQ(at("plant_seed_triangles"), at("terrain_depth_edge_tiles") + 1);
   EXPECT_EQ(at("plant_cull_tested"), at("plant_triangles") + 1);  // issue 17's occlusion culling follows
   EXPECT_EQ(at("trees_full"), at("plants_culled") + 1);           // issue 20's trees follow
   EXPECT_EQ(at("tree_tiles_wanted"), at("trees_classified") + 1);
