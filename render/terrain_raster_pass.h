@@ -22,7 +22,7 @@
 // it by the hardware, hidden fragments rejected before they are shaded. It writes each pixel's
 // sample-0 depth into all its samples (a full-screen triangle, one fragment per pixel,
 // shaders/terrain_depth_pixel.frag), then each sample's own over the 8 × 8 tiles where a pixel's
-// samples differ by more than 0.2 % of the distance (terrain edges: the raster lists them and
+// samples differ by more than 5 % of the distance (terrain edges: the raster lists them and
 // counts a draw-indirect command; shaders/terrain_depth_edge.vert, terrain_depth.frag per sample).
 // Graphics fragments run on few units of the H100/H200: writing every sample per sample cost
 // 0.67 ms at 1080p, 4× MSAA, and 2.67 ms at 4K on the H100. (The

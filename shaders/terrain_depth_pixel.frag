@@ -4,7 +4,7 @@
 // one fragment per pixel: a full-screen triangle writes each pixel's sample 0 depth into all its
 // samples. Where they differ by more than common/terrain_raster.glsl's kDepthEdgeShare (an edge),
 // terrain_depth_edge.vert's tiles write them per sample afterwards (terrain_depth.frag); elsewhere
-// the one depth is within 0.2 % of the distance of each sample's. So the trees and plants drawn
+// the one depth is off by no more than the terrain's own depth range across the pixel. So the trees and plants drawn
 // after it are depth-tested against the terrain by the hardware, rejected before they are shaded.
 #include "common/frame_uniforms.glsl"
 
