@@ -120,6 +120,19 @@ Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
   return createClampSampler(ctx, VK_FILTER_LINEAR, name);
 }
 
+Sampler createTrilinearClampSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = static_cast<float>(mipLevels);
+  VkSampler sampler;
+  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
+  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
+  return Sampler(ctx.device(), sampler);
+}
+
 Sampler createLinearRepeatSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = VK_FILTER_LINEAR;

@@ -49,6 +49,8 @@ void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
 
 // Bilinear, clamped, no mip levels: what the terrain imagery and the HUD atlas both want.
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name);
+// Bilinear within a level, linear between `mipLevels` levels, clamped (the impostor atlases).
+Sampler createTrilinearClampSampler(const Context& ctx, uint32_t mipLevels, const std::string& name);
 
 // Nearest, clamped, one level: texelFetch reads (exact texels, integer-encoded data).
 Sampler createNearestClampSampler(const Context& ctx, const std::string& name);

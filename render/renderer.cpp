@@ -337,12 +337,13 @@ Status Renderer::setTreeModels(std::span<const TreeModelSet> sets) {
 uint32_t Renderer::treePageCapacity() const { return impl_->trees->pageCapacity(); }
 uint64_t Renderer::treeGpuBytes() const { return impl_->trees->gpuBytes(); }
 
-Result<std::vector<uint8_t>> Renderer::readTreeImpostor(uint32_t model) {
+Result<std::vector<uint8_t>> Renderer::readTreeImpostor(uint32_t model, uint32_t level) {
   if (!impl_->trees->impostors() || model >= impl_->trees->modelCount())
     return makeError(ErrorKind::InvalidInput, "no tree model " + std::to_string(model));
+  if (level >= kImpostorMipLevels) return makeError(ErrorKind::InvalidInput, "no mip level " + std::to_string(level));
   return guardGpu([&]() -> Result<std::vector<uint8_t>> {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
-    return impl_->trees->impostors()->readAlbedo(model);
+    return impl_->trees->impostors()->readAlbedo(model, level);
   });
 }
 

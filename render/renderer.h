@@ -105,8 +105,8 @@ class Renderer {
   uint32_t treePageCapacity() const;
   uint64_t treeGpuBytes() const;
   // One model's impostor atlas layer (RGBA8 albedo + coverage, kImpostorViews × kImpostorCellPx
-  // square), for tests; waits for the GPU.
-  Result<std::vector<uint8_t>> readTreeImpostor(uint32_t model);
+  // square at mip level 0, half as wide at each next level), for tests; waits for the GPU.
+  Result<std::vector<uint8_t>> readTreeImpostor(uint32_t model, uint32_t level = 0);
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
   // The shared simulation's GPU state as it is now (waits for the GPU to be idle): the wind cells

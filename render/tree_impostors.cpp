@@ -47,10 +47,11 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
   const uint32_t side = kImpostorViews * kImpostorCellPx;
   const VkExtent2D extent{side, side};
   const auto layers = static_cast<uint32_t>(models.size());
-  const VkImageUsageFlags usage =
-      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  albedo_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor albedo");
-  normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth");
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  albedo_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor albedo", kImpostorMipLevels);
+  normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth",
+                             kImpostorMipLevels);
   depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, kImpostorSamples,
                          "tree impostor capture depth");
   const bool multisampled = kImpostorSamples != VK_SAMPLE_COUNT_1_BIT;
@@ -73,13 +74,42 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     for (uint32_t layer = 0; layer < layers; ++layer) captureLayer(cmd, layer, views, draw);
-    for (const GpuImage* img : {&albedo_, &normal_})
-      transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    buildMips(cmd, layers);
   });
+}
+
+void TreeImpostors::buildMips(VkCommandBuffer cmd, uint32_t layers) const {
+  const int32_t side = static_cast<int32_t>(kImpostorViews * kImpostorCellPx);
+  for (const GpuImage* img : {&albedo_, &normal_}) {
+    // Level 0 → a blit source; then each level a destination, then the next one's source.
+    transitionImageRange(cmd, img->get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers},
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    for (uint32_t level = 1; level < kImpostorMipLevels; ++level) {
+      transitionImageRange(cmd, img->get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, layers},
+                           VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                           VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      const int32_t from = side >> (level - 1), to = side >> level;
+      VkImageBlit blit{};
+      blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, layers};
+      blit.srcOffsets[1] = {from, from, 1};
+      blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, layers};
+      blit.dstOffsets[1] = {to, to, 1};
+      // Exactly half: the linear filter is the 2 × 2 box of the premultiplied texels.
+      vkCmdBlitImage(cmd, img->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img->get(),
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+      transitionImageRange(cmd, img->get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, layers},
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                           VK_ACCESS_2_TRANSFER_READ_BIT);
+    }
+    transitionImageRange(cmd, img->get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, kImpostorMipLevels, 0, layers},
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
 }
 
 void TreeImpostors::captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vector<ImageView>& views,
@@ -134,21 +164,22 @@ void TreeImpostors::captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vecto
   vkCmdEndRendering(cmd);
 }
 
-std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer) const {
-  const VkExtent2D e = albedo_.extent;
+std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer, uint32_t level) const {
+  assert(level < kImpostorMipLevels);
+  const VkExtent2D e{albedo_.extent.width >> level, albedo_.extent.height >> level};
   const VkDeviceSize bytes = VkDeviceSize{e.width} * e.height * 4;
   GpuBuffer buffer = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                   "impostor read-back");
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1},
+    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, layer, 1},
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
                          VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, layer, 1};
     region.imageExtent = {e.width, e.height, 1};
     vkCmdCopyImageToBuffer(cmd, albedo_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
-    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1},
+    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, layer, 1},
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                          VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

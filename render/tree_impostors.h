@@ -27,6 +27,11 @@ namespace vegstream::render {
 
 inline constexpr uint32_t kImpostorViews = 8;    // G: cells per side
 inline constexpr uint32_t kImpostorCellPx = 96;  // pixels per cell side (sharp enough at the 5-height switch)
+// Mip levels of the atlases (96, 48, 24, 12 pixels a cell): each level a 2 × 2 box of the one
+// above, never across a cell's edge (every level's cell side is even), so an impostor seen from
+// afar reads its texels' average coverage — a crown's share covered, whorl gaps included — rather
+// than a point of it (issue 41 items 5 and 6: a forest seen from above closes as its crowns do).
+inline constexpr uint32_t kImpostorMipLevels = 4;
 inline constexpr VkSampleCountFlagBits kImpostorSamples = VK_SAMPLE_COUNT_1_BIT;  // see above
 
 // The C++ twin of common/tree_impostor.glsl.
@@ -51,13 +56,16 @@ class TreeImpostors {
   uint64_t gpuBytes() const {
     return albedo_.bytes + normal_.bytes + depth_.bytes + msAlbedo_.bytes + msNormal_.bytes;
   }
-  // Reads one layer's albedo atlas back (RGBA8, row-major): for tests. Waits for the GPU.
-  std::vector<uint8_t> readAlbedo(uint32_t layer) const;
+  // Reads one layer's albedo atlas back at mip `level` (RGBA8, row-major): for tests. Waits for the GPU.
+  std::vector<uint8_t> readAlbedo(uint32_t layer, uint32_t level = 0) const;
 
  private:
   // Renders model `layer` from every direction into its layer of the atlas (views keeps the
   // layer's attachment views alive until the capture has run).
   void captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vector<ImageView>& views, const DrawModel& draw);
+  // After the capture (level 0 in the colour-attachment layout): levels 1 … kImpostorMipLevels − 1
+  // of both atlases, each blitted from the one above; every level left shader-readable.
+  void buildMips(VkCommandBuffer cmd, uint32_t layers) const;
 
   const Context* ctx_;
   GpuImage albedo_, normal_, depth_, msAlbedo_, msNormal_;

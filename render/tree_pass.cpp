@@ -55,7 +55,7 @@ TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSamp
   pool_ = createPool(ctx, sizes, kSlots, "tree pool");
   for (size_t i = 0; i < sets_.size(); ++i)
     sets_[i] = allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "tree set (slot " + std::to_string(i) + ")");
-  sampler_ = createLinearClampSampler(ctx, "tree impostor sampler");
+  sampler_ = createTrilinearClampSampler(ctx, kImpostorMipLevels, "tree impostor sampler");
   createPipelines(frameLayout);
 }
 

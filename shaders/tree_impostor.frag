@@ -58,8 +58,13 @@ void main() {
   vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
   // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than
-  // the conifer model at the switch (tree_render_test.cpp).
-  float coverage = treeSharpCoverage(albedo.a, 0.57);
+  // the conifer model at the switch (tree_render_test.cpp). Minified, a texel of a coarser level
+  // holds the share of the crown's cells the needles cover, gaps between whorls included: the
+  // edge falls to 0.3 over the first two levels, so a crown seen from afar reads as a crown (its
+  // layers of branches, one behind the other, close what one layer leaves open), as the cards'
+  // needles give way to a mean of 0.8 (common/tree_coverage.glsl).
+  float lod = clamp(textureQueryLod(impostorAlbedo, vUv).y, 0.0, 2.0);
+  float coverage = treeSharpCoverage(albedo.a, mix(0.57, 0.3, 0.5 * lod));
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
   if (push.mode == 1u) {

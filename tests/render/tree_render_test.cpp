@@ -13,6 +13,7 @@
 #include "gpu_test_fixture.h"
 #include "render/png_writer.h"
 #include "render/shadow_cascades.h"
+#include "render/tree_impostors.h"
 #include "tests/support/plant_field_scene.h"
 #include "tree_frame.h"
 #include "vegetation/tree_model.h"
@@ -21,7 +22,7 @@ namespace vegstream::render::testing {
 namespace {
 
 constexpr float kTreeHeight = 15.0f, kCrown = 5.0f;
-constexpr uint32_t kImpostorViewsForTest = 512;  // render/tree_impostors.h: 8 views of 64 px
+constexpr uint32_t kImpostorViewsForTest = kImpostorViews * kImpostorCellPx;
 
 // The default catalog's first tree species of that form, as one model of kTreeHeight.
 std::vector<TreeModelSet> oneModel(vegetation::TreeForm form) {
@@ -188,6 +189,77 @@ TEST_F(TreeRenderTest, ImpostorSilhouetteMatchesTheModelAtTheSwitch) {
                 100.0 * symmetric);
     EXPECT_GT(na, 2000u);
     EXPECT_LT(coverage, 0.05);
+  }
+}
+
+// The atlases' mip levels (render/tree_impostors.h): each a 2 × 2 box of the level above that
+// never crosses a cell's edge, so every cell keeps its coverage (mean alpha) at every level, to
+// the 8-bit rounding of each blit; a blit across cells, or no levels at all, moves it.
+TEST_F(TreeRenderTest, ImpostorMipLevelsKeepEveryCellsCoverage) {
+  auto r = makeRenderer(64, 64, 1);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setTreeModels(oneModel(vegetation::TreeForm::Conifer)).ok());
+  const auto cellMeans = [&](uint32_t level) {
+    const auto atlas = r->readTreeImpostor(0, level);
+    EXPECT_TRUE(atlas.ok());
+    const uint32_t side = kImpostorViewsForTest >> level, cell = kImpostorCellPx >> level;
+    std::vector<double> mean(kImpostorViews * kImpostorViews, 0.0);
+    if (!atlas.ok() || atlas->size() != size_t{side} * side * 4) return mean;
+    for (uint32_t y = 0; y < side; ++y)
+      for (uint32_t x = 0; x < side; ++x)
+        mean[(y / cell) * kImpostorViews + x / cell] += (*atlas)[(size_t{y} * side + x) * 4 + 3] / 255.0;
+    for (double& m : mean) m /= double(cell) * cell;
+    return mean;
+  };
+  const std::vector<double> top = cellMeans(0);
+  for (double m : top) EXPECT_GT(m, 0.02) << "every view of the tree covers part of its cell";
+  for (uint32_t level = 1; level < kImpostorMipLevels; ++level) {
+    const std::vector<double> m = cellMeans(level);
+    for (size_t c = 0; c < m.size(); ++c)
+      EXPECT_NEAR(m[c], top[c], double(level) * 1.0 / 255.0) << "level " << level << ", cell " << c;
+  }
+  EXPECT_FALSE(r->readTreeImpostor(0, kImpostorMipLevels).ok());
+}
+
+// Far beyond the switch (trees a quarter of their switch size, about 12 pixels tall: the atlas
+// read two levels down), a row of impostors still covers about what the full models cover there:
+// thin foliage keeps its coverage at distance (issue 41 item 5).
+TEST_F(TreeRenderTest, FarImpostorsKeepTheModelsCoverage) {
+  for (auto form : {vegetation::TreeForm::Conifer, vegetation::TreeForm::Broadleaf}) {
+    auto r = makeRenderer(320, 96, 4);
+    ASSERT_TRUE(r);
+    ASSERT_TRUE(r->setTreeModels(oneModel(form)).ok());
+    const double d = 4.0 * TreeLodDistances{}.reducedHeights * kTreeHeight;
+    std::vector<TreeInstanceGpu> trees;
+    for (int i = 0; i < 24; ++i) trees.push_back(treeAt(float(i - 11.5) * 7.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
+    TreeLodDistances full, impostor;
+    full.fullHeights = full.reducedHeights = 1e6f;
+    full.horizonM = impostor.horizonM = 1e5f;
+    impostor.fullHeights = 1e-4f;
+    impostor.reducedHeights = 2e-4f;
+    const glm::dvec3 camera{0.0, -d, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
+    const double pixelsPerRadian = 540.0 / std::tan(27.5 * 3.14159265358979 / 180.0);  // 1080p, 55°
+    const double fov = 2.0 * std::atan(48.0 / pixelsPerRadian) * 180.0 / 3.14159265358979;
+    const FrameResult bg = frame(*r, trees, camera, target, fov, full, false, /*drawTrees=*/false);
+    const FrameResult a = frame(*r, trees, camera, target, fov, full, false);
+    const FrameResult b = frame(*r, trees, camera, target, fov, impostor, false);
+    ASSERT_TRUE(bg.color && a.color && b.color);
+    ASSERT_EQ(b.trees->impostor, 24u);
+    // Coverage as the share of each pixel's colour moved from the background (MSAA 4 resolves).
+    const auto covered = [&](const ColorImage& img) {
+      double sum = 0.0;
+      for (size_t i = 0; i + 3 < img.rgba.size(); i += 4) {
+        int diff = 0;
+        for (size_t c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(img.rgba[i + c]) - int(bg.color->rgba[i + c])));
+        sum += diff > 12 ? 1.0 : 0.0;
+      }
+      return sum;
+    };
+    const double na = covered(*a.color), nb = covered(*b.color);
+    std::printf("%s at 4x the switch: model %.0f px, impostor %.0f px (%.1f %%)\n",
+                form == vegetation::TreeForm::Conifer ? "conifer" : "broadleaf", na, nb, 100.0 * (nb - na) / na);
+    EXPECT_GT(na, 300.0);
+    EXPECT_NEAR(nb / na, 1.0, 0.15);
   }
 }
 
