@@ -1,8 +1,8 @@
 #pragma once
 // Private to render/: what one frame in flight owns (its command buffer, fence, uniforms, timer,
 // read-back buffers and descriptor sets, and what was submitted in it), set 0 of every pass (the
-// frame set's layout and pool), and the slot's read-back images. Used by the renderer
-// (renderer_impl.h) and frame_slot.cpp.
+// frame set's layout and pool), and the slot's read-back images. The slots are the frame
+// submitter's (frame_submitter.h); the passes record into them (frame_passes.h).
 
 #include <cstdint>
 #include <memory>

@@ -3,7 +3,7 @@
 // Miller, "Hierarchical Z-Buffer Visibility" (SIGGRAPH 1993), built each frame from the
 // terrain's depth and tested on the GPU before the classify pass expands any cluster.
 //
-// Frame order (render/renderer.cpp recordPasses): rendering scope 1 draws sky + terrain and
+// Frame order (render/frame_passes.cpp FramePasses::record): rendering scope 1 draws sky + terrain and
 // ends; recordBuild reduces the depth attachment into a pyramid; the classify pass calls
 // recordCull (its CullHook) after uploading the triangles, so triangles hidden behind canyon
 // walls and ridges are never classified into plants nor drawn (and groups of a species hidden
