@@ -55,7 +55,11 @@ void main() {
   vec2 uvDx = dFdx(vUv), uvDy = dFdy(vUv);
   // The triangle reaches past the rectangle the model fills (and its atlas cell): not drawn.
   if (any(greaterThan(abs(vUv - vRect.xy), vRect.zw))) discard;
-  vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
+  // The shadow pass reads level 0 as it always did (its footprint taps below do the filtering),
+  // without the trilinear read and the level query the colour needs.
+  bool shadow = push.mode == 1u;  // uniform: derivatives below stay in uniform control flow
+  vec4 albedo = shadow ? textureLod(impostorAlbedo, vec3(vUv, float(vLayer)), 0.0)
+                       : texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
   // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than
   // the conifer model at the switch (tree_render_test.cpp). Minified, a texel of a coarser level
@@ -63,11 +67,11 @@ void main() {
   // edge falls to 0.3 over the first two levels, so a crown seen from afar reads as a crown (its
   // layers of branches, one behind the other, close what one layer leaves open), as the cards'
   // needles give way to a mean of 0.8 (common/tree_coverage.glsl).
-  float lod = clamp(textureQueryLod(impostorAlbedo, vUv).y, 0.0, 2.0);
+  float lod = shadow ? 0.0 : clamp(textureQueryLod(impostorAlbedo, vUv).y, 0.0, 2.0);
   float coverage = treeSharpCoverage(albedo.a, mix(0.57, 0.3, 0.5 * lod));
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
-  if (push.mode == 1u) {
+  if (shadow) {
     if (treeShadowFootprintCoverage(uvDx, uvDy) < kTreeShadowCoverage) discard;
     outColor = vec4(0.0);
     return;
