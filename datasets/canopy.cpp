@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/encoded_image.h"
+#include "datasets/image_reader.h"
 #include "datasets/message.h"
 #include "datasets/png_check.h"
 #include "datasets/tile_codec.h"
@@ -62,8 +63,9 @@ Result<CanopyTile> decodeCanopyTile(std::span<const uint8_t> bytes, const geo::T
   auto checked = checkedPng(bytes, nameForErrors, static_cast<uint32_t>(std::max(expectedSize, 0)));
   if (!checked) return checked.error();
   OIIO::Filesystem::IOMemReader proxy(checked->data(), checked->size());
-  auto in = ImageInput::open("tile.png", nullptr, &proxy);
-  if (!in) return badTile(nameForErrors, concat("is not a readable PNG: ", firstLine(OIIO::geterror())));
+  std::string openError;
+  auto in = openWithReaderOf("png", proxy, openError);  // the PNG reader only (image_reader.h)
+  if (!in) return badTile(nameForErrors, concat("is not a readable PNG: ", firstLine(openError)));
   const ImageSpec spec = in->spec();
   if (spec.nchannels != 1 || spec.format != TypeDesc::UINT16)
     return badTile(nameForErrors, concat("is not a tile of the canopy layer: expected a one-channel 16-bit PNG, found ",
@@ -75,7 +77,9 @@ Result<CanopyTile> decodeCanopyTile(std::span<const uint8_t> bytes, const geo::T
   t.id = id;
   t.size = expectedSize;
   t.decimetres.resize(static_cast<size_t>(expectedSize) * static_cast<size_t>(expectedSize));
-  if (!in->read_image(0, 0, 0, 1, TypeDesc::UINT16, t.decimetres.data()))
+  // Read as stored (checked UINT16 above): asking OIIO 2.4 for UINT16 goes through a 64 MB scratch
+  // buffer even when no conversion is needed (tile_codec.cpp decodeRgba8Unguarded).
+  if (!in->read_image(0, 0, 0, 1, TypeDesc::UNKNOWN, t.decimetres.data()))
     return badTile(nameForErrors, concat("is corrupt or truncated: ", firstLine(in->geterror())));
   return t;
 }

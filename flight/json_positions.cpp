@@ -65,12 +65,18 @@ void JsonPositions::skipNested() {
 }
 
 void JsonPositions::value(const std::string& path, int depth) {
-  if (!offsets_.emplace(path, pos_).second && !duplicate_) duplicate_ = path;
+  // A path longer than kMaxIndexedPath is not indexed, nor is anything under it: every value
+  // under a long key repeated that key in its own path (a 30 000-byte key over an array of
+  // 17 000 numbers made half a gigabyte of paths, quadratic in the text; found profiling the
+  // flight_path fuzz target). Such a field has no line of its own: lineFieldFor gives its nearest
+  // indexed parent's, other look-ups none.
+  const bool indexed = path.size() <= kMaxIndexedPath;
+  if (indexed && !offsets_.emplace(path, pos_).second && !duplicate_) duplicate_ = path;
   if (pos_ >= text_.size()) return;
   const char c = text_[pos_];
   if (c == '"') {
     readString();
-  } else if ((c == '{' || c == '[') && depth >= 64) {
+  } else if ((c == '{' || c == '[') && (depth >= 64 || !indexed)) {
     skipNested();
   } else if (c == '{' || c == '[') {
     const bool object = c == '{';

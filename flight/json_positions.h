@@ -23,7 +23,12 @@ LineCol lineColAt(std::string_view text, std::size_t offset);
 
 class JsonPositions {
  public:
-  // text must be valid JSON (parse it with nlohmann first); deeper than 64 levels is not indexed.
+  // Paths longer than this (a flight path's are tens of bytes) are not indexed, nor what is under
+  // them: indexing them cost time and memory quadratic in the text.
+  static constexpr std::size_t kMaxIndexedPath = 512;
+
+  // text must be valid JSON (parse it with nlohmann first); deeper than 64 levels, or under a path
+  // longer than kMaxIndexedPath, is not indexed (nor checked for duplicate keys).
   explicit JsonPositions(std::string_view text);
 
   // Where the value at `path` starts ("" = the root; "a.b[2].c"), if it exists.

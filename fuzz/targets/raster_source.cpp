@@ -2,9 +2,10 @@
 // the bytes become a /vsimem/ file (no disk), opened through RasterSource::open as the importer
 // opens a path, then read as the importer reads — a window at the top left (at most 64 × 64), a
 // decimated window over the whole raster (at most 32 pixels a side), and an overview of at most
-// 4096 pixels — so a header that claims billions of pixels costs nothing. The input's length
-// parity turns the heights option (scale/offset, feet) on. GDAL itself is not instrumented:
-// libFuzzer is guided by the project's code around it, the sanitizers see GDAL's heap only.
+// 4096 pixels (checked, up to rounding) — so a header that claims billions of pixels costs
+// nothing. The input's length parity turns the heights option (scale/offset, feet) on. GDAL
+// itself is not instrumented: libFuzzer is guided by the project's code around it, the
+// sanitizers see GDAL's heap only.
 
 #include <algorithm>
 #include <string>
@@ -46,7 +47,12 @@ int rasterSource(const uint8_t* data, size_t size) {
       (void)src->description();
       checkRaster(src->read(0, 0, std::min(src->width(), 64), std::min(src->height(), 64)));
       checkRaster(src->read(0, 0, src->width(), src->height(), 32));
-      checkRaster(src->readOverview(4096));
+      const auto overview = src->readOverview(4096);
+      checkRaster(overview);
+      // readOverview's bound: 4 096 pixels, but for each side's rounding up (< 2 × 4 096 + 2).
+      if (overview)
+        VEGSTREAM_FUZZ_CHECK(static_cast<size_t>(overview->width) * static_cast<size_t>(overview->height) <=
+                             2 * 4096 + 2);
     }
   }
   VSIUnlink(path.c_str());
