@@ -97,14 +97,16 @@ void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
 }
 
 namespace {
-// One mip level, clamped: `filter` picks bilinear (imagery, HUD atlas) or nearest (texelFetch).
-Sampler createClampSampler(const Context& ctx, VkFilter filter, const std::string& name) {
+// The one place samplers are made: `filter` within a level, `mipmap` between levels (maxLod 0:
+// level 0 only), `address` at the edges.
+Sampler createSampler(const Context& ctx, VkFilter filter, VkSamplerMipmapMode mipmap, VkSamplerAddressMode address,
+                      float maxLod, const std::string& name) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = filter;
   sci.minFilter = filter;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.maxLod = 0.0f;
+  sci.mipmapMode = mipmap;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = address;
+  sci.maxLod = maxLod;
   VkSampler sampler;
   vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
   ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
@@ -113,37 +115,23 @@ Sampler createClampSampler(const Context& ctx, VkFilter filter, const std::strin
 }  // namespace
 
 Sampler createNearestClampSampler(const Context& ctx, const std::string& name) {
-  return createClampSampler(ctx, VK_FILTER_NEAREST, name);
+  return createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                       0.0f, name);
 }
 
 Sampler createLinearClampSampler(const Context& ctx, const std::string& name) {
-  return createClampSampler(ctx, VK_FILTER_LINEAR, name);
+  return createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                       0.0f, name);
 }
 
 Sampler createTrilinearClampSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.maxLod = static_cast<float>(mipLevels);
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
-  return Sampler(ctx.device(), sampler);
+  return createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                       static_cast<float>(mipLevels), name);
 }
 
 Sampler createLinearRepeatSampler(const Context& ctx, uint32_t mipLevels, const std::string& name) {
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  sci.maxLod = static_cast<float>(mipLevels);
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
-  return Sampler(ctx.device(), sampler);
+  return createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                       static_cast<float>(mipLevels), name);
 }
 
 }  // namespace vegstream::render

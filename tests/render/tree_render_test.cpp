@@ -100,6 +100,28 @@ class TreeRenderTest : public GpuTest {
         if (std::abs(int(a.rgba[i * 4 + c]) - int(bg.rgba[i * 4 + c])) > 12) m[i] = 1;
     return m;
   }
+
+  // A row of `count` trees 7 m apart (each with its own seed: yaw, lean, branch angles) seen from
+  // `distance` m, in a narrow view whose pixels are a 1080-line, 55° view's: the background, every
+  // tree as its full model, every tree as its impostor.
+  struct RowFrames {
+    FrameResult bg, model, impostor;
+  };
+  RowFrames rowOfTrees(Renderer& r, int count, double distance) {
+    std::vector<TreeInstanceGpu> trees;
+    for (int i = 0; i < count; ++i)
+      trees.push_back(treeAt(float(i - 0.5 * (count - 1)) * 7.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
+    TreeLodDistances full, impostor;
+    full.fullHeights = full.reducedHeights = 1e6f;
+    full.horizonM = impostor.horizonM = 1e5f;
+    impostor.fullHeights = 1e-4f;
+    impostor.reducedHeights = 2e-4f;
+    const glm::dvec3 camera{0.0, -distance, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
+    const double pixelsPerRadian = 540.0 / std::tan(27.5 * 3.14159265358979 / 180.0);  // 1080p, 55°
+    const double fov = 2.0 * std::atan(48.0 / pixelsPerRadian) * 180.0 / 3.14159265358979;
+    return {frame(r, trees, camera, target, fov, full, false, /*drawTrees=*/false),
+            frame(r, trees, camera, target, fov, full, false), frame(r, trees, camera, target, fov, impostor, false)};
+  }
 };
 
 // The classify pass puts each tree at the level the rule gives for its distance in tree heights
@@ -148,20 +170,8 @@ TEST_F(TreeRenderTest, ImpostorSilhouetteMatchesTheModelAtTheSwitch) {
     auto r = makeRenderer(320, 96, 1);
     ASSERT_TRUE(r);
     ASSERT_TRUE(r->setTreeModels(oneModel(form)).ok());
-    const double d = TreeLodDistances{}.reducedHeights * kTreeHeight;  // the reduced → impostor switch
-    std::vector<TreeInstanceGpu> trees;
-    for (int i = 0; i < 12; ++i) trees.push_back(treeAt(float(i - 5.5) * 7.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
-    TreeLodDistances full, impostor;
-    full.fullHeights = full.reducedHeights = 1e6f;
-    full.horizonM = impostor.horizonM = 1e5f;
-    impostor.fullHeights = 1e-4f;
-    impostor.reducedHeights = 2e-4f;
-    const glm::dvec3 camera{0.0, -d, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
-    const double pixelsPerRadian = 540.0 / std::tan(27.5 * 3.14159265358979 / 180.0);  // 1080p, 55°
-    const double fov = 2.0 * std::atan(48.0 / pixelsPerRadian) * 180.0 / 3.14159265358979;
-    const FrameResult bg = frame(*r, trees, camera, target, fov, full, false, /*drawTrees=*/false);
-    const FrameResult a = frame(*r, trees, camera, target, fov, full, false);
-    const FrameResult b = frame(*r, trees, camera, target, fov, impostor, false);
+    const RowFrames row = rowOfTrees(*r, 12, TreeLodDistances{}.reducedHeights * kTreeHeight);  // at the switch
+    const FrameResult &bg = row.bg, &a = row.model, &b = row.impostor;
     ASSERT_TRUE(bg.color && a.color && b.color);
     const std::string tag = form == vegetation::TreeForm::Conifer ? "conifer" : "broadleaf";
     dump(a, "silhouette-" + tag + "-model");
@@ -229,20 +239,8 @@ TEST_F(TreeRenderTest, FarImpostorsKeepTheModelsCoverage) {
     auto r = makeRenderer(320, 96, 4);
     ASSERT_TRUE(r);
     ASSERT_TRUE(r->setTreeModels(oneModel(form)).ok());
-    const double d = 4.0 * TreeLodDistances{}.reducedHeights * kTreeHeight;
-    std::vector<TreeInstanceGpu> trees;
-    for (int i = 0; i < 24; ++i) trees.push_back(treeAt(float(i - 11.5) * 7.0f, 0.0f, 0x9e3779b9u * uint32_t(i + 1)));
-    TreeLodDistances full, impostor;
-    full.fullHeights = full.reducedHeights = 1e6f;
-    full.horizonM = impostor.horizonM = 1e5f;
-    impostor.fullHeights = 1e-4f;
-    impostor.reducedHeights = 2e-4f;
-    const glm::dvec3 camera{0.0, -d, 0.5 * kTreeHeight}, target{0.0, 0.0, 0.5 * kTreeHeight};
-    const double pixelsPerRadian = 540.0 / std::tan(27.5 * 3.14159265358979 / 180.0);  // 1080p, 55°
-    const double fov = 2.0 * std::atan(48.0 / pixelsPerRadian) * 180.0 / 3.14159265358979;
-    const FrameResult bg = frame(*r, trees, camera, target, fov, full, false, /*drawTrees=*/false);
-    const FrameResult a = frame(*r, trees, camera, target, fov, full, false);
-    const FrameResult b = frame(*r, trees, camera, target, fov, impostor, false);
+    const RowFrames row = rowOfTrees(*r, 24, 4.0 * TreeLodDistances{}.reducedHeights * kTreeHeight);
+    const FrameResult &bg = row.bg, &a = row.model, &b = row.impostor;
     ASSERT_TRUE(bg.color && a.color && b.color);
     ASSERT_EQ(b.trees->impostor, 24u);
     // Coverage as the share of each pixel's colour moved from the background (MSAA 4 resolves).
