@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
 
@@ -44,6 +45,12 @@ namespace fs = std::filesystem;
 std::atomic<int> mosaicCount{0};
 // A whole read holds at most this many samples (1 GiB of float).
 constexpr double kMaxWholeSamples = 268435456.0;
+// What GDAL is let allocate for a raster, checked at open before any read (its block cache holds
+// whole blocks; each block it touches is an object): a file of a few hundred bytes can claim
+// thousands of bands or a block of gigabytes (issue 42 item 1; fuzz/regressions/raster_source/).
+constexpr size_t kMaxBands = 64;                  // bands taken from one source
+constexpr double kMaxBlockBytes = 268435456.0;    // 256 MiB: one GDAL block (a strip, a tile)
+constexpr double kMaxBlocks = 16777216.0;         // blocks over every band taken
 
 GDALDataset* openHandle(const std::string& path) {
   return GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, nullptr, nullptr,
@@ -183,6 +190,36 @@ Status chooseBands(RasterSource::Shared& s, GDALDataset& d) {
   return {};
 }
 
+// The ceilings above, from the header alone: the bands taken, each band's block (all the
+// file's bands when they are interleaved by pixel) and the blocks a whole read would touch.
+Status checkBlocks(const RasterSource::Shared& s, GDALDataset& d) {
+  if (s.bands.size() > kMaxBands)
+    return makeError(ErrorKind::InvalidInput, concat(s.label, ": ", s.bands.size(), " bands, more than the ", kMaxBands,
+                                                     " a source may have; name the bands to take"));
+  const char* interleave = d.GetMetadataItem("INTERLEAVE", "IMAGE_STRUCTURE");
+  const bool byPixel = interleave && std::string(interleave) == "PIXEL";
+  double blocks = 0.0;
+  for (int b : s.bands) {
+    GDALRasterBand* band = d.GetRasterBand(b);
+    int bx = 0, by = 0;
+    band->GetBlockSize(&bx, &by);
+    if (bx <= 0 || by <= 0) return makeError(ErrorKind::InvalidInput, concat(s.label, ": band ", b, " has no blocks"));
+    const double bytes = double(bx) * by * GDALGetDataTypeSizeBytes(band->GetRasterDataType()) *
+                         (byPixel ? d.GetRasterCount() : 1);
+    if (bytes > kMaxBlockBytes)
+      return makeError(ErrorKind::InvalidInput, concat(s.label, ": its blocks are ", bx, " x ", by, " pixels (",
+                                                       static_cast<int64_t>(bytes / 1048576.0), " MiB), more than the ",
+                                                       static_cast<int64_t>(kMaxBlockBytes / 1048576.0),
+                                                       " MiB a block may hold; rewrite it tiled (gdal_translate -co TILED=YES)"));
+    blocks += std::ceil(double(s.width) / bx) * std::ceil(double(s.height) / by);
+  }
+  if (blocks > kMaxBlocks)
+    return makeError(ErrorKind::InvalidInput,
+                     concat(s.label, ": ", static_cast<int64_t>(blocks), " blocks over its bands, more than the ",
+                            static_cast<int64_t>(kMaxBlocks), " a source may have; rewrite it with larger tiles"));
+  return {};
+}
+
 }  // namespace
 
 bool isUrl(const std::string& input) { return input.rfind("http://", 0) == 0 || input.rfind("https://", 0) == 0; }
@@ -208,6 +245,7 @@ Result<RasterSource> RasterSource::open(const std::vector<std::string>& inputs, 
   s->height = d->GetRasterYSize();
   if (s->width <= 0 || s->height <= 0) return makeError(ErrorKind::InvalidInput, concat(s->label, " has no pixels"));
   if (auto st = chooseBands(*s, *d); !st) return st.error();
+  if (auto st = checkBlocks(*s, *d); !st) return st.error();
   if (auto st = checkGeoreference(*s, *d); !st) return st.error();
   s->datetime = acquisitionDatetimeOf(*d);
   RasterSource r;

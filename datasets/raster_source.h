@@ -9,6 +9,10 @@
 //   is read tile by tile), with GDAL's retries set as the streaming retry policy's
 //   (geo/gdal_quiet.h).
 // - Bands: `bands` (1-based) picks them; without it, every band GDAL does not call alpha.
+// - Ceilings, checked at open from the header before GDAL reads anything: at most 64 bands taken,
+//   256 MiB in one GDAL block (every band of the file when interleaved by pixel), 16 M blocks over
+//   the bands taken; past one, InvalidInput naming the file (a block of gigabytes or thousands of
+//   bands is what a damaged or hostile file of a few hundred bytes can claim).
 // - No data: a band's mask as GDAL defines it (its nodata value, a declared alpha band, a
 //   per-dataset mask) becomes NaN; `nodataOverride` replaces that with a value of our own.
 // - Heights (`heights`): the band's scale and offset applied, and values in feet (the band's

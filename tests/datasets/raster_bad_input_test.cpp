@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include <OpenImageIO/imageio.h>
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 #include "datasets/raster_source.h"
@@ -235,6 +236,51 @@ TEST(GeoTiffSamplesTypes, UInt8IsNotNormalised) {
   auto r = readWholeRaster(fs::path(p).string());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->samples, (std::vector<float>{0, 1, 200, 255}));
+}
+
+// A GeoTIFF made by GDAL itself: `bands` bands of `w` × `h` Byte pixels, `options` its creation
+// options (sparse: nothing written, so a huge raster costs a few bytes of file).
+fs::path gdalTiff(const std::string& name, int w, int h, int bands, std::vector<std::string> options) {
+  GDALAllRegister();
+  const fs::path p = tmpFile(name);
+  options.push_back("SPARSE_OK=TRUE");
+  std::vector<const char*> opts;
+  for (const std::string& o : options) opts.push_back(o.c_str());
+  opts.push_back(nullptr);
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* d = gtiff->Create(p.string().c_str(), w, h, bands, GDT_Byte, const_cast<char**>(opts.data()));
+  EXPECT_NE(d, nullptr);
+  GDALClose(d);
+  return p;
+}
+
+// The ceilings checked at open, before GDAL reads anything (issue 42 item 1, the fuzzer's
+// findings in fuzz/regressions/raster_source/): more bands than a source may take, and a block
+// (here one tile over a sparse 20 000² raster, 381 MiB) larger than a block may hold.
+TEST(GeoTiffBadInput, TooManyBandsOrTooLargeABlockIsRefusedAtOpen) {
+  const fs::path many = gdalTiff("seventy_bands.tif", 4, 4, 70, {});
+  SourceOptions options;
+  auto r = RasterSource::open({many.string()}, options);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(r.error().message.find(many.string()), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("70 bands"), std::string::npos) << r.error().message;
+  options.bands = {1, 2, 3};  // three of them are fine (the georeference is what is missing then)
+  auto three = RasterSource::open({many.string()}, options);
+  ASSERT_FALSE(three.ok());
+  EXPECT_EQ(three.error().message.find("bands, more than"), std::string::npos) << three.error().message;
+
+  // One tile: GDAL reads a strip, even a compressed one, in pieces of its own, a tile whole.
+  const fs::path strip =
+      gdalTiff("one_huge_tile.tif", 20000, 20000, 1, {"TILED=YES", "BLOCKXSIZE=20000", "BLOCKYSIZE=20000"});
+  auto big = RasterSource::open({strip.string()}, SourceOptions{});
+  ASSERT_FALSE(big.ok());
+  EXPECT_EQ(big.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(big.error().message.find("20000 x 20000 pixels (381 MiB)"), std::string::npos) << big.error().message;
+  const fs::path tiled = gdalTiff("tiled.tif", 20000, 20000, 1, {"TILED=YES"});
+  auto ok = RasterSource::open({tiled.string()}, SourceOptions{});
+  ASSERT_FALSE(ok.ok());  // no georeference: refused for that, after the ceilings let it through
+  EXPECT_NE(ok.error().message.find("no georeference"), std::string::npos) << ok.error().message;
 }
 
 }  // namespace
