@@ -185,16 +185,7 @@ void TerrainRasterPass::recordBinning(VkCommandBuffer cmd, TerrainComputePush& p
   }
 }
 
-void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
-                               const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
-                               const std::function<void()>& binned) {
-  const auto s = static_cast<size_t>(slot);
-  growLists(slot, triangles, retire);
-
-  const TerrainGeometry g = terrain.geometry(slot);
-  assert(g.vertices && g.indices && g.pieces && "TerrainPass::prepare first");
-  writeInputs(s, g, targets);
-
+void TerrainRasterPass::resetCounts(VkCommandBuffer cmd) const {
   // The previous frame's compute readers (its raster, Hi-Z build) and its edge tiles' draw before
   // this frame's writes (its fragments' reads of the depth samples are waited for at its end:
   // recordEndOfFrame); then the counts start at zero.
@@ -213,6 +204,19 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const TerrainPass& terrain,
+                               const RenderTargets& targets, uint64_t triangles, const RetireBuffer& retire,
+                               const std::function<void()>& binned) {
+  const auto s = static_cast<size_t>(slot);
+  growLists(slot, triangles, retire);
+
+  const TerrainGeometry g = terrain.geometry(slot);
+  assert(g.vertices && g.indices && g.pieces && "TerrainPass::prepare first");
+  writeInputs(s, g, targets);
+
+  resetCounts(cmd);
 
   const VkDescriptorSet sets[] = {frameSet, terrain.imagerySet(), terrain.detail().set(), inputs_[s]};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 4, sets, 0, nullptr);

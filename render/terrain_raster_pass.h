@@ -94,6 +94,8 @@ class TerrainRasterPass {
   void createPipelines(VkDescriptorSetLayout frameLayout, const TerrainPass& terrain, const RenderTargets& targets);
   void writeInputs(size_t s, const TerrainGeometry& g, const RenderTargets& targets);
   void recordBinning(VkCommandBuffer cmd, TerrainComputePush& push, uint64_t triangles);
+  // After the previous frame's readers: the tile counts, the counters and the edge tiles' draw at zero.
+  void resetCounts(VkCommandBuffer cmd) const;
 
   const Context* ctx_;
   uint32_t tilesX_ = 0, tilesY_ = 0, samples_ = 1;
