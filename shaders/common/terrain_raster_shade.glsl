@@ -52,6 +52,7 @@ void storedEdges(uint slot, out RasterEdge e[3]) {
   }
 }
 
+#ifdef VEGSTREAM_MULTISAMPLE
 shared uint sDepthEdge;  // whether a pixel of the tile is a depth edge (kDepthEdgeShare)
 
 // Whether the pixel's samples hold depths too far apart to share one (or sky beside terrain).
@@ -64,10 +65,13 @@ bool depthEdge(float best[kMaxSamples], int samples) {
   }
   return lo == 0.0 ? hi > 0.0 : hi > lo * (1.0 + kDepthEdgeShare);
 }
+#endif
 
 void main() {
+#ifdef VEGSTREAM_MULTISAMPLE  // one sample per pixel has no depth edges within a pixel
   if (gl_LocalInvocationIndex == 0u) sDepthEdge = 0u;
   barrier();
+#endif
   uvec2 tile = gl_WorkGroupID.xy;
   uint tileIndex = tile.y * shade.tiles.x + tile.x;
   ivec2 px = ivec2(tile * kRasterTile + gl_LocalInvocationID.xy);
