@@ -12,6 +12,7 @@ namespace {
 
 constexpr double kMaxTreeHorizonM = 20000.0;  // as a species' horizon_m
 constexpr double kMaxTreeBudgetMb = 1e6;
+constexpr double kMinTreeDetail = 0.25, kMaxTreeDetail = 8.0;
 
 }  // namespace
 
@@ -26,6 +27,10 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
   cmd.add_option("--tree-horizon-m", out.horizonM,
                  "How far trees are drawn, metres, at least the plants' horizon (default: the catalog's tree "
                  "horizon, 3000 in the default catalog)");
+  cmd.add_option("--tree-detail", out.detail,
+                 "Scales the trees' level-of-detail distances, 0.25 to 8: where full models give way to reduced "
+                 "ones, those to impostors, and impostors end by size. 1 (default) sizes them by the view's pixels; "
+                 "2 draws every level twice as far (finer trees, slower frames)");
   cmd.add_option("--tree-budget-mb", out.budgetMb,
                  "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "
                  "fall back to the terrain's colour (default " +
@@ -45,6 +50,8 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
       return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": shorter than the plants' horizon (" + numberText(plants) +
                  " m)");
   }
+  if (o.detail && !(*o.detail >= kMinTreeDetail && *o.detail <= kMaxTreeDetail))
+    return bad("--tree-detail " + numberText(*o.detail) + ": must be from 0.25 to 8");
   if (o.budgetMb && !(*o.budgetMb > 0.0 && *o.budgetMb <= kMaxTreeBudgetMb))
     return bad("--tree-budget-mb " + numberText(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
   return {};
@@ -55,6 +62,12 @@ void applyTreeOptions(const TreeCli& o, scene::SceneOptions& so) {
   so.trees.shadows = o.shadows == "on";
   so.trees.cores = o.cores == "on";
   if (o.horizonM) so.trees.horizonM = *o.horizonM;
+  if (o.detail) {
+    const auto f = static_cast<float>(*o.detail);
+    so.trees.lod.fullHeights *= f;
+    so.trees.lod.reducedHeights *= f;
+    so.trees.lod.impostorEndHeights *= f;
+  }
   if (o.budgetMb) so.renderer.treeBudgetBytes = static_cast<uint64_t>(*o.budgetMb * 1024.0 * 1024.0);
 }
 

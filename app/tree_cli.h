@@ -1,6 +1,6 @@
 #pragma once
 // The tree options that `fly`, `record` and `snapshot` share (issue 20): --trees on|off,
-// --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-budget-mb. One definition, so the commands spell and check them alike.
+// --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-detail, --tree-budget-mb. One definition, so the commands spell and check them alike.
 
 #include <optional>
 #include <string>
@@ -19,6 +19,7 @@ struct TreeCli {
   std::string shadows = "on";              // --tree-shadows on|off
   std::string cores = "on";                // --tree-cores on|off
   std::optional<double> horizonM;          // --tree-horizon-m M (default: the catalog's tree horizon)
+  std::optional<double> detail;            // --tree-detail F, 0.25 … 8: the level-of-detail distances × F
   std::optional<double> budgetMb;          // --tree-budget-mb MB, > 0 (default render::RendererOptions)
 };
 

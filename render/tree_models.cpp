@@ -2,6 +2,7 @@
 // crowns' cores), branches —, the per-model draw templates, the visible lists and the instance pool
 // within the budget, and the impostors captured from the models (render/tree_impostors.h).
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <string>
 
@@ -60,7 +61,7 @@ TreePass::PackedModels TreePass::packModels(std::span<const TreeModelSet> sets) 
           impostorTriangle(model.lod[0].vertices, {g.shape.x, g.shape.y, g.shape.z, g.shape.w});
       g.triangleApex = triangle.apex;
       g.triangleBase = triangle.base;
-      g.ids = {set.species, 0u, 0u, 0u};
+      g.ids = {set.species, std::bit_cast<uint32_t>(std::max(model.crownAreaRadiusM, 0.1f)), 0u, 0u};
       g.leaf = {set.params.leafColour[0], set.params.leafColour[1], set.params.leafColour[2], set.params.translucency};
       g.bark = {set.params.barkColour[0], set.params.barkColour[1], set.params.barkColour[2],
                 set.params.form == vegetation::TreeForm::Broadleaf ? 1.0f : 0.0f};

@@ -140,8 +140,9 @@ void main() {
   }
   p += offset;
 
-  float sz = t.heightM / m.shape.x;
-  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 2.5 * sz);
+  vec2 scale = treeScale(t, m);
+  // The trunk keeps its girth for its height: a crown stretched wide (treeScale) does not fatten it.
+  float sxy = (inKind == 0u && inBranch == 0u) ? min(scale.x, kTrunkStretch * scale.y) : scale.x, sz = scale.y;
   vec3 world = treeRotate(vec3(p.xy * sxy, p.z * sz), seed);
   vec3 rel = (t.position - trees.camera.xyz) + world;
   vNormal = treeRotate(normalize(vec3(n.xy / sxy, n.z / sz)), seed);

@@ -84,11 +84,14 @@ void main() {
   vec3 rel = t.position - trees.camera.xyz;
   float dist = length(rel);
   float h = max(t.heightM, 0.5);
-  // Trees end at the horizon, or sooner where they are a pixel or two tall.
-  float horizon = min(trees.lod.z, trees.limits.y * h);
+  // Trees end at the horizon, or sooner where they are a few pixels in size: their height or,
+  // seen from above, their crown, whichever is larger.
+  float horizon = min(trees.lod.z, trees.limits.y * max(h, t.crownM));
   if (dist >= horizon) return;
   vec3 centre = rel + vec3(0.0, 0.0, 0.5 * h);
-  float radius = 0.6 * max(h, t.crownM) + trees.limits.x;
+  // The model's box as drawn (treeScale), with a tenth more for the lean and the sway.
+  float reach = 1.1 * length(vec2(treeScale(t, trees.models[t.model]).x * trees.models[t.model].shape.y, 0.5 * h));
+  float radius = reach + trees.limits.x;
   for (int p = 0; p < 6; ++p)
     if (dot(trees.frustum[p].xyz, centre) + trees.frustum[p].w < -radius) return;
 
@@ -116,5 +119,5 @@ void main() {
     if (keep > 0.0) append(t.model, kTreeLodImpostor, i, keep, wind);
   }
   // The caster's own sphere (its quad turned to the sun, with the sway), not the view's margin.
-  if (frame.shadowSplits.w > 0.5 && keep > 0.0) castShadow(t.model, i, keep, wind, centre, 0.7 * max(h, t.crownM));
+  if (frame.shadowSplits.w > 0.5 && keep > 0.0) castShadow(t.model, i, keep, wind, centre, reach);
 }

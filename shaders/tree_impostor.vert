@@ -35,8 +35,8 @@ void main() {
   TreeInstanceGpu t = treeInstances[entry.x];
   TreeModelGpu m = trees.models[push.model];
   uint seed = t.seed;
-  float sz = t.heightM / m.shape.x;
-  float sxy = clamp(t.crownM / (2.0 * m.shape.y), 0.6 * sz, 2.5 * sz);
+  vec2 scale = treeScale(t, m);
+  float sxy = scale.x, sz = scale.y;
   vec3 root = t.position - trees.camera.xyz;
   vec3 centreRel = root + vec3(0.0, 0.0, m.shape.w * sz);
   // The direction the tree is seen from, in the model's frame; the nearest captured cell.

@@ -23,6 +23,7 @@
 #include <mutex>
 #include <utility>
 
+#include "vegetation/crown_projection.h"
 #include "vegetation/tree_core.h"
 #include "vegetation/tree_crowns.h"
 
@@ -269,6 +270,7 @@ TreeModel buildTreeModel(const TreeParams& params, float heightM, float crownWid
     if (model.crownRadiusM <= 1.08f * env.radius) break;
     scale *= 1.04f * env.radius / model.crownRadiusM;
   }
+  model.crownAreaRadiusM = std::min(crownProjectionRadius(model.lod[0]), model.crownRadiusM);
   return model;
 }
 

@@ -63,6 +63,9 @@ struct TreeMesh {
 struct TreeModel {
   float modelHeightM = 0.0f;  // the height the model was built at (the species' mean height)
   float crownRadiusM = 0.0f;  // the largest horizontal distance of any vertex from the axis
+  // The radius of the disk of the Full mesh's area seen from above (crown_projection.h): a tree
+  // asking for a crown width w is drawn w / (2 · this) wide, so its crown covers its disk.
+  float crownAreaRadiusM = 0.0f;
   std::vector<TreeBranch> branches;  // shared by both levels of detail (Reduced uses a subset)
   TreeMesh lod[2];                   // indexed by TreeLod
 };

@@ -20,7 +20,7 @@ struct TreeModelGpu {
   // The impostor's triangle per quarter of sin(elevation) (render/tree_impostor_outline.h): apex
   // height and base half width, in the rectangle's units.
   vec4 triangleApex, triangleBase;
-  uvec4 ids;    // x: the species (catalog index; the AOV frames' species, aov.glsl)
+  uvec4 ids;    // x: the species (catalog index; the AOV frames' species, aov.glsl), y: crown area radius (m, float bits)
 };
 
 layout(set = 1, binding = 0, std140) uniform TreeBlock {
@@ -42,6 +42,18 @@ struct TreeInstanceGpu {
   uint seed;
   uint colour;  // rgb: the imagery under the tree (sRGB bytes), a: colour factor (render/tree_layout.h)
 };
+
+// The model's scale for one tree, x horizontal and y vertical: the tree's height over the model's,
+// and its crown width over the diameter of the model's crown area seen from above
+// (vegetation/crown_projection.h), so the crown covers the disk the placement gave it. The
+// horizontal scale stays within 0.6 … kTreeCrownStretch times the vertical one: a short tree with
+// a wide crown is not flattened into a disk.
+const float kTreeCrownStretch = 3.5, kTrunkStretch = 1.5;
+vec2 treeScale(TreeInstanceGpu t, TreeModelGpu m) {
+  float sz = t.heightM / m.shape.x;
+  float sxy = clamp(t.crownM / (2.0 * uintBitsToFloat(m.ids.y)), 0.6 * sz, kTreeCrownStretch * sz);
+  return vec2(sxy, sz);
+}
 
 struct TreeBranchGpu {
   vec4 originLength;  // xyz origin, w length L (m)

@@ -414,6 +414,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_tree_cores", "{DS} {SMALL} --path {PATH} --tree-cores maybe", "--tree-cores maybe"},
         BadRecord{"bad_tree_horizon", "{DS} {SMALL} --path {PATH} --tree-horizon-m 10", "--tree-horizon-m 10"},
         BadRecord{"bad_tree_budget", "{DS} {SMALL} --path {PATH} --tree-budget-mb 0", "--tree-budget-mb 0"},
+        BadRecord{"bad_tree_detail", "{DS} {SMALL} --path {PATH} --tree-detail 20", "--tree-detail 20"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
