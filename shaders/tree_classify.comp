@@ -84,9 +84,10 @@ void main() {
   vec3 rel = t.position - trees.camera.xyz;
   float dist = length(rel);
   float h = max(t.heightM, 0.5);
-  // Trees end at the horizon, or sooner where they are a few pixels in size: their height or,
-  // seen from above, their crown, whichever is larger.
-  float horizon = min(trees.lod.z, trees.limits.y * max(h, t.crownM));
+  // Trees end at the horizon, or sooner where they are a pixel or two tall. (Ending them by the
+  // crown where it is wider than the tree is tall, as from above, was tried: it drew more
+  // impostors in every bundled flight for trees of a pixel or two; not kept.)
+  float horizon = min(trees.lod.z, trees.limits.y * h);
   if (dist >= horizon) return;
   vec3 centre = rel + vec3(0.0, 0.0, 0.5 * h);
   // The model's box as drawn (treeScale), with a tenth more for the lean and the sway.

