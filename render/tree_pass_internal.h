@@ -20,7 +20,7 @@ struct TreeModelGpu {
   glm::uvec4 mesh0, mesh1;
   glm::vec4 shape, leaf, bark;
   glm::vec4 triangleApex, triangleBase;  // the impostor's triangle per elevation bin (tree_impostor_outline.h)
-  glm::uvec4 ids;                        // x: the species (catalog index: the AOV frames' species), y: crown area radius (float bits)
+  glm::uvec4 ids;  // x: the species (catalog index: the AOV frames' species), y: crown area radius (float bits)
 };
 struct TreeBlock {
   glm::vec4 camera, lod;

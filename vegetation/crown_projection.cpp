@@ -22,8 +22,12 @@ void markTriangle(Point a, Point b, Point c, double x0, double y0, double cell, 
   const double area = edge(a, b, c);
   if (std::abs(area) < 1e-12) return;
   const double sign = area > 0.0 ? 1.0 : -1.0;
-  const auto first = [&](double v, double o) { return std::clamp(static_cast<int>(std::ceil((v - o) / cell - 0.5)), 0, cells); };
-  const auto last = [&](double v, double o) { return std::clamp(static_cast<int>(std::floor((v - o) / cell - 0.5)), -1, cells - 1); };
+  const auto first = [&](double v, double o) {
+    return std::clamp(static_cast<int>(std::ceil((v - o) / cell - 0.5)), 0, cells);
+  };
+  const auto last = [&](double v, double o) {
+    return std::clamp(static_cast<int>(std::floor((v - o) / cell - 0.5)), -1, cells - 1);
+  };
   const int i0 = first(std::min({a.x, b.x, c.x}), x0), i1 = last(std::max({a.x, b.x, c.x}), x0);
   const int j0 = first(std::min({a.y, b.y, c.y}), y0), j1 = last(std::max({a.y, b.y, c.y}), y0);
   for (int j = j0; j <= j1; ++j)

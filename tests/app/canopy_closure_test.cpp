@@ -33,10 +33,11 @@ constexpr double kLat = 37.4603, kLon = -113.0254, kAltM = 300.0, kVerticalFovDe
 // The share of the still that trees cover (AOV species k + 1 is catalog species k).
 double treeCover(const fs::path& dataset) {
   const fs::path out = testing::testOutputDir() / "canopy-nadir.png";
-  const auto r = testing::runVegstream("snapshot '" + dataset.string() + "' --lat " + std::to_string(kLat) +
-                                       " --lon " + std::to_string(kLon) +
+  const auto r = testing::runVegstream("snapshot '" + dataset.string() + "' --lat " + std::to_string(kLat) + " --lon " +
+                                       std::to_string(kLon) +
                                        " --alt 300 --heading 0 --pitch -89 --size 320x180 --validate "
-                                       "--tree-detail 2 --aov species,coverage --out '" + out.string() + "'");
+                                       "--tree-detail 2 --aov species,coverage --out '" +
+                                       out.string() + "'");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
   const auto coverage = testing::readFloat1(out.parent_path() / "canopy-nadir.coverage.tif", kW, kH);
@@ -60,8 +61,8 @@ double imageryCover(const fs::path& dataset) {
     for (int i = 0; i < 9; ++i) {
       const double north = (j / 4.0 - 0.5) * 2.0 * halfH, east = (i / 8.0 - 0.5) * 2.0 * halfW;
       const double lat = kLat + north / 111320.0, lon = kLon + east / (111320.0 * std::cos(kLat * M_PI / 180.0));
-      const auto q = testing::runVegstream("query '" + dataset.string() + "' --lat " + std::to_string(lat) +
-                                           " --lon " + std::to_string(lon));
+      const auto q = testing::runVegstream("query '" + dataset.string() + "' --lat " + std::to_string(lat) + " --lon " +
+                                           std::to_string(lon));
       EXPECT_EQ(q.exitCode, 0) << q.err;
       if (q.exitCode != 0) continue;
       sum += nlohmann::json::parse(q.out).at("canopy_cover").get<double>();
@@ -74,8 +75,8 @@ TEST(CanopyClosure, ClosedForestHidesTheGroundFromAbove) {
   const auto dataset = testing::zionSampleDataset();
   ASSERT_TRUE(dataset.ok()) << dataset.error().message;
   const double trees = treeCover(*dataset), cover = imageryCover(*dataset);
-  std::printf("trees cover %.3f of the view (visible ground %.3f); imagery canopy cover %.3f (1 - cover %.3f)\n",
-              trees, 1.0 - trees, cover, 1.0 - cover);
+  std::printf("trees cover %.3f of the view (visible ground %.3f); imagery canopy cover %.3f (1 - cover %.3f)\n", trees,
+              1.0 - trees, cover, 1.0 - cover);
   EXPECT_GT(cover, 0.9) << "the place is no longer closed forest in the imagery: the test measures nothing";
   EXPECT_LE(std::abs((1.0 - trees) - (1.0 - cover)), 0.15);
 }

@@ -1,6 +1,8 @@
 // vegetation/crown_projection.h: the radius of the disk of a mesh's area seen from above — exact
 // for shapes whose area is known, overlaps counted once, height ignored; and for the catalog's
 // trees, a crown area radius below the widest reach (the ground between a conifer's branches).
+// The exact shapes are sampled on a 512-cell grid: on the default 128 a 0.5 m bar over a 6 m reach
+// is 10 or 11 cells wide, a 5 % error in its area.
 
 #include <cmath>
 #include <cstdio>
@@ -31,29 +33,29 @@ float discRadius(float area) { return std::sqrt(area / kPi); }
 TEST(CrownProjection, ASquareHasItsArea) {
   TreeMesh m;
   addQuad(m, -2.0f, -2.0f, 2.0f, 2.0f, 5.0f);
-  EXPECT_NEAR(crownProjectionRadius(m), discRadius(16.0f), 0.01f);
+  EXPECT_NEAR(crownProjectionRadius(m, 512), discRadius(16.0f), 0.01f);
 }
 
 TEST(CrownProjection, OverlapsCountOnceAndHeightDoesNotMatter) {
   TreeMesh m;
   addQuad(m, -3.0f, -1.0f, 1.0f, 1.0f, 2.0f);  // 8 m²
   addQuad(m, -1.0f, -1.0f, 3.0f, 1.0f, 9.0f);  // 8 m², 4 of them over the first
-  EXPECT_NEAR(crownProjectionRadius(m), discRadius(12.0f), 0.02f);
+  EXPECT_NEAR(crownProjectionRadius(m, 512), discRadius(12.0f), 0.02f);
 }
 
 TEST(CrownProjection, ACrossCoversLessThanItsReach) {
   TreeMesh m;  // two 6 × 0.5 m bars crossing: 5.75 m² within a reach of 3 m
   addQuad(m, -3.0f, -0.25f, 3.0f, 0.25f, 1.0f);
   addQuad(m, -0.25f, -3.0f, 0.25f, 3.0f, 1.0f);
-  EXPECT_NEAR(crownProjectionRadius(m), discRadius(5.75f), 0.03f);
+  EXPECT_NEAR(crownProjectionRadius(m, 512), discRadius(5.75f), 0.03f);
   EXPECT_EQ(crownProjectionRadius(TreeMesh{}), 0.0f);
 }
 
 TEST(CrownProjection, CatalogTreesCoverBetweenAThirdAndAllOfTheirReach) {
   for (const Species& s : defaultSpeciesCatalog().species) {
     if (!isTree(s)) continue;
-    const TreeModel model = buildTreeModel(s.tree, 0.5f * (s.heightM.min + s.heightM.max),
-                                           0.5f * (s.widthM.min + s.widthM.max), 7u);
+    const TreeModel model =
+        buildTreeModel(s.tree, 0.5f * (s.heightM.min + s.heightM.max), 0.5f * (s.widthM.min + s.widthM.max), 7u);
     const float area = kPi * model.crownAreaRadiusM * model.crownAreaRadiusM;
     const float disc = kPi * model.crownRadiusM * model.crownRadiusM;
     std::printf("%-16s reach %.2f m, area radius %.2f m: %.0f %% of the disc\n", s.name.c_str(), model.crownRadiusM,
