@@ -74,10 +74,13 @@ TEST(ImportBadInput, DemAndImageryDoNotOverlap) {
 }
 
 TEST(ImportBadInput, HugeHeaderNeverHeldWhole) {
-  // Claims 10^12 pixels of 10°: opened (GDAL knows only the size), never held whole, and
-  // refused for what it claims to cover.
+  // Claims 10^12 pixels in a few hundred bytes: refused at open for the strips it lacks.
   const fs::path p = tinyGeoTiff(importTmp("bad_huge_src") / "huge.tif", kWgs84Keys, 1000000);
-  expectRefused(runImport("huge", "--dem " + p.string()), p.string(), "outside the earth");
+  expectRefused(runImport("huge", "--dem " + p.string()), p.string(), "lie in blocks the file does not hold");
+  // Claims 4 x 10^8 pixels of 10°: opened (GDAL knows only the size), never held whole, and
+  // refused for what it claims to cover.
+  const fs::path q = tinyGeoTiff(importTmp("bad_large_src") / "large.tif", kWgs84Keys, 20000);
+  expectRefused(runImport("large", "--dem " + q.string()), q.string(), "outside the earth");
 }
 
 TEST(ImportBadInput, MemoryBudgetTooSmall) {
