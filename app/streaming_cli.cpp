@@ -48,6 +48,11 @@ void addTerrainOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "shaded as drawn; auto: compute on a GPU, deferred on a CPU rasteriser (lavapipe), else forward")
       ->check(CLI::IsMember({"auto", "forward", "deferred", "compute"}))
       ->capture_default_str();
+  cmd.add_option("--terrain-geometry", o.terrainGeometry,
+                 "resident: the terrain's vertices stay on the GPU, ROAM's chunks uploaded only when new or moved; "
+                 "copied: every frame copies them all (the same images, for comparison)")
+      ->check(CLI::IsMember({"resident", "copied"}))
+      ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM,
                  "Seed triangles (plants) only within this distance, metres (each species also stops at its "
                  "catalog horizon_m)")
@@ -180,6 +185,7 @@ void applyTerrainOptions(const StreamingCli& o, scene::StreamingMode defaultMode
                                   : o.terrainShading == "deferred" ? render::TerrainShading::Deferred
                                   : o.terrainShading == "compute"  ? render::TerrainShading::Compute
                                                                    : render::TerrainShading::Auto;
+  scene.renderer.residentTerrain = o.terrainGeometry == "resident";
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;

@@ -26,6 +26,7 @@ struct StreamingCli {
   int64_t terrainMaxTriangles = 120000;  // ROAM leaves
   double canopyM = 30.0;                 // tallest plant, for culling
   std::string terrainShading = "auto";  // auto | forward | deferred (render::TerrainShading)
+  std::string terrainGeometry = "resident";  // resident | copied (render::RendererOptions::residentTerrain)
   double terrainDetail = 1.0;            // close-up detail textures, 0 (bare imagery) … 1
   double seedHorizonM = 250.0;           // seed triangles within this distance (and each species' own)
   std::string httpCache;                 // directory for the on-disk HTTP tile cache; empty: none

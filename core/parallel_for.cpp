@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -85,6 +86,15 @@ Status parallelFor(size_t n, int threads, TaskRunner* tasks, const std::function
   if (loop->firstException) std::rethrow_exception(loop->firstException);
   if (loop->firstError) return *loop->firstError;
   return {};
+}
+
+void parallelEach(size_t n, TaskRunner* tasks, const std::function<void(size_t)>& work) {
+  const Status s = parallelFor(n, tasks ? 0 : 1, tasks, [&](size_t k) -> Status {
+    work(k);
+    return {};
+  });
+  assert(s.ok());
+  (void)s;
 }
 
 }  // namespace vegstream

@@ -24,4 +24,8 @@ inline Status parallelFor(size_t n, int threads, const std::function<Status(size
   return parallelFor(n, threads, nullptr, work);
 }
 
+// Work that cannot fail, on `tasks` and the calling thread, or on the calling thread alone
+// without a runner (no pool is made).
+void parallelEach(size_t n, TaskRunner* tasks, const std::function<void(size_t index)>& work);
+
 }  // namespace vegstream

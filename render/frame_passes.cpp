@@ -69,7 +69,7 @@ FramePasses::FramePasses(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   // The terrain's passes come before the frame sets are written: binding 5 is the compute
   // raster's depth samples (or a placeholder nothing reads: frame.terrainDepth.x is 0 then).
   terrainPass_ = std::make_unique<TerrainPass>(ctx, frameLayout, toSampleBits(msaa_), deferred && !computeRaster,
-                                               options.tasks, options.terrainTriangles);
+                                               options.tasks, options.terrainTriangles, options.residentTerrain);
   if (computeRaster) {
     terrainRaster_ = std::make_unique<TerrainRasterPass>(ctx, frameLayout, *terrainPass_, targets);
   } else {
@@ -245,6 +245,7 @@ RenderTargets::Load FramePasses::recordTerrain(VkCommandBuffer cmd, FrameSlot& s
                                                const FrameRequest& request, bool lastScope,
                                                const ClassifyPass::RetireBuffer& retire) {
   slot.terrainTriangles = terrainPass_->prepare(cmd, slotIndex, request.camera.position, request.terrain, retire);
+  slot.terrainGeometry = terrainPass_->geometryFigures();
   if (terrainRaster_) {  // rasterised and shaded in compute: no graphics work for the terrain
     slot.timer->beginPass(cmd, "terrain");
     terrainRaster_->record(cmd, slotIndex, slot.descriptorSet, *terrainPass_, targets_, slot.terrainTriangles, retire,
@@ -338,6 +339,9 @@ BladePath FramePasses::pathFor(const PlantDrawOptions& draw) const {
 
 void FramePasses::readFigures(FrameSlot& slot, FrameResult& r) const {
   const int slotIndex = static_cast<int>(slot.frameIndex % kFramesInFlight);
+  r.terrainChunksDrawn = slot.terrainGeometry.chunksDrawn;
+  r.terrainChunksUploaded = slot.terrainGeometry.chunksUploaded;
+  r.terrainVerticesUploaded = slot.terrainGeometry.verticesUploaded;
   r.terrainRasterised = terrainRaster_ != nullptr;
   if (terrainRaster_) {
     const TerrainRasterFigures f = terrainRaster_->figures(slotIndex);

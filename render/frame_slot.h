@@ -16,6 +16,7 @@
 #include "render/gpu_timer.h"
 #include "render/handle.h"
 #include "render/renderer.h"
+#include "render/terrain_chunk_cache.h"
 #include "render/shadow_cascades.h"
 
 namespace vegstream::render {
@@ -42,6 +43,7 @@ struct FrameSlot {
   glm::dmat4 aovInverseProjection{1.0};  // its camera's, for the distances
   double cpuRecordMs = 0.0;
   uint64_t terrainTriangles = 0;
+  ChunkCacheFigures terrainGeometry;  // the terrain's chunks drawn and uploaded (TerrainPass::prepare)
   std::optional<VegetationFigures> vegetation;
   bool bladesExpanded = false;            // the compute blade path drew this frame's plants
   bool treesDrawn = false;                // the tree pass classified this frame's trees

@@ -246,6 +246,10 @@ struct FrameResult {
   double cpuRecordMs = 0.0;
   GpuTimings gpu;
   uint64_t terrainTriangles = 0;                // triangles submitted by the terrain pass
+  // The terrain's chunks (terrain_mesh.h) drawn and uploaded this frame, and the vertices copied
+  // to the GPU (chunks' and the meshes' own; render/terrain_geometry_buffers.h). Zero when the
+  // vertices are copied every frame (RendererOptions::residentTerrain false).
+  uint64_t terrainChunksDrawn = 0, terrainChunksUploaded = 0, terrainVerticesUploaded = 0;
   // The terrain rasterised in compute (TerrainShading::Compute): what its binning made
   // (render/terrain_raster_pass.h); zero otherwise.
   bool terrainRasterised = false;

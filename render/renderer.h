@@ -64,6 +64,10 @@ struct RendererOptions {
   // the terrain pass's geometry buffers start that large, so they do not grow — a new buffer
   // allocated and mapped, 1–4 ms on the H200 — while a flight refines; 0: they start small.
   uint64_t terrainTriangles = 0;
+  // The terrain's vertices stay on the GPU, ROAM's chunks uploaded only when new or moved
+  // (render/terrain_geometry_buffers.h); false: every frame copies them all (the images are the
+  // same byte for byte; `--terrain-geometry copied`, for comparison).
+  bool residentTerrain = true;
   // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
   // with the thread that submits; null: all on that thread. Must outlive the renderer.
   TaskRunner* tasks = nullptr;

@@ -13,13 +13,11 @@
 // Either way the pieces are drawn front to back (nearest bounding-box point first), so early
 // depth testing rejects most hidden fragments before they cost shading or ROP writes.
 //
-// Geometry is copied each frame into the frame slot's host-visible buffers and from there into
-// device-local ones (read by the vertex stage and, when deferred, by the shade pass): the
-// terrain changes as tiles stream in and as ROAM refines, and copying a few MB is cheaper than
-// managing thousands of small buffers. A mesh's chunks (terrain_mesh.h) are flattened into its
-// piece's range (one draw per piece); their ids and versions would let a GPU-resident cache
-// upload only the changed ones, which is not done yet. Imagery arrives through a per-frame-slot
-// staging buffer (a ring of kSlots) and lands in its layer before the draws.
+// Geometry lives in TerrainGeometryBuffers (render/terrain_geometry_buffers.h): each frame's
+// index buffer holds every piece's triangles in draw order (one draw per piece), and the
+// vertices stay resident on the GPU, ROAM's chunks uploaded only when new or moved (or, with
+// TerrainGeometry::Copied, flattened and copied every frame). Imagery arrives through a
+// per-frame-slot staging buffer (a ring of kSlots) and lands in its layer before the draws.
 //
 // Close up, the imagery gets detail textures blended by the colour score of its colour (core
 // seed 001 §3.3; render/detail_textures.h owns them and the terrain-type table, bound as set 2),
@@ -39,6 +37,7 @@
 #include "render/gpu_resources.h"
 #include "render/growing_buffer.h"
 #include "render/handle.h"
+#include "render/terrain_geometry_buffers.h"
 #include "terrain/terrain_mesh.h"
 
 namespace vegstream::render {
@@ -79,9 +78,10 @@ class TerrainPass {
   // (may be null: all on the calling thread) shares prepare()'s per-piece work with the calling
   // thread; it must outlive the pass; it also makes the slots' buffers' next sizes ahead of need
   // (growing_buffer.h). `reserveTriangles`: the geometry buffers' smallest size, in
-  // triangles (RendererOptions::terrainTriangles).
+  // triangles (RendererOptions::terrainTriangles). `residentGeometry`: the vertices kept on the
+  // GPU (terrain_geometry_buffers.h), or copied every frame.
   TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred,
-              TaskRunner* tasks = nullptr, uint64_t reserveTriangles = 0);
+              TaskRunner* tasks = nullptr, uint64_t reserveTriangles = 0, bool residentGeometry = true);
 
   using RetireImage = std::function<void(GpuImage&&)>;
   using RetireBuffer = std::function<void(GpuBuffer&&)>;
@@ -124,6 +124,8 @@ class TerrainPass {
   // Inside rendering into the visibility + depth targets: the prepared draws' triangle ids.
   void recordVisibility(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const;
   TerrainGeometry geometry(int slot) const;
+  // The last prepare()'s chunks drawn and uploaded, vertices uploaded (zero when copied).
+  const ChunkCacheFigures& geometryFigures() const { return geometry_.figures(); }
 
   // Imagery array + detail textures + geometry buffers of every slot.
   uint64_t gpuBytes() const;
@@ -153,8 +155,8 @@ class TerrainPass {
   GpuImage companionArray_;  // RG8: NDVI, landcover class
   ImageryCompanions companions_;
   uint32_t layers_ = 0;
-  std::array<GrowingBuffer, kSlots> vertices_, indices_, pieces_, staging_;  // host-visible
-  std::array<GrowingBuffer, kSlots> deviceVertices_, deviceIndices_;
+  std::array<GrowingBuffer, kSlots> pieces_, staging_;  // host-visible
+  TerrainGeometryBuffers geometry_;
   std::array<std::vector<PreparedDraw>, kSlots> prepared_;
 };
 

@@ -68,6 +68,9 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.recordSubmitMs = result->cpuRecordMs;
   r.gpu = std::move(result->gpu);
   r.terrainTriangles = result->terrainTriangles;
+  r.terrainChunksDrawn = result->terrainChunksDrawn;
+  r.terrainChunksUploaded = result->terrainChunksUploaded;
+  r.terrainVerticesUploaded = result->terrainVerticesUploaded;
   r.terrainRasterised = result->terrainRasterised;
   r.terrainRasterTriangles = result->terrainRasterTriangles;
   r.terrainTileEntries = result->terrainTileEntries;

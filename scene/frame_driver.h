@@ -59,6 +59,7 @@ struct FrameRecord {
   double recordSubmitMs = 0.0;  // the renderer's own timer
   render::GpuTimings gpu;
   uint64_t terrainTriangles = 0;
+  uint64_t terrainChunksDrawn = 0, terrainChunksUploaded = 0, terrainVerticesUploaded = 0;  // render::FrameResult's
   bool terrainRasterised = false;  // in compute (render::FrameResult::terrainRasterised): the next three exist
   uint64_t terrainRasterTriangles = 0, terrainTileEntries = 0, terrainTileEntriesDropped = 0;
   uint64_t terrainDepthEdgeTiles = 0;

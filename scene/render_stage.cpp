@@ -43,6 +43,14 @@ void declareGpuCounts(FrameFigures& out) {
   out.push_back({S::GpuCounts, {flight::column::kTerrainTriangles, 0, "triangles"}, [](R r) {
                    return count(r.terrainTriangles);
                  }});
+  // The terrain's vertices on the GPU (render/terrain_geometry_buffers.h): chunks drawn, chunks
+  // and vertices uploaded (0 with `--terrain-geometry copied`).
+  const auto geometry = [&out](const char* name, const char* unit, uint64_t FrameRecord::*field) {
+    out.push_back({S::GpuCounts, {name, 0, unit}, [field](R r) { return count(r.*field); }});
+  };
+  geometry("terrain_chunks", "chunks", &FrameRecord::terrainChunksDrawn);
+  geometry("terrain_chunks_uploaded", "chunks", &FrameRecord::terrainChunksUploaded);
+  geometry("terrain_vertices_uploaded", "vertices", &FrameRecord::terrainVerticesUploaded);
   const auto stat = [&out](const char* name, uint64_t Stats::*field) {
     out.push_back({S::GpuCounts, {name, 0, "primitives"}, [field](R r) {
                      return r.gpu.statistics.available ? count(r.gpu.statistics.*field) : kNoValue;

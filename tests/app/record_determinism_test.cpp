@@ -115,15 +115,15 @@ Table readFrames(const fs::path& recording) {
 
 bool isTiming(const std::string& column) { return column.size() > 3 && column.ends_with("_ms"); }
 
-// Every column but the timings, cell by cell; the first few differences are named.
-void expectSameCounts(const fs::path& a, const fs::path& b) {
+// Every column but the timings (and `ignore`), cell by cell; the first few differences are named.
+void expectSameCounts(const fs::path& a, const fs::path& b, const std::vector<std::string>& ignore = {}) {
   const Table ta = readFrames(a), tb = readFrames(b);
   ASSERT_EQ(ta.header, tb.header);
   ASSERT_EQ(ta.rows.size(), 121u) << "benchmark-30s at 4 fps";
   ASSERT_EQ(tb.rows.size(), ta.rows.size());
   int compared = 0, differing = 0;
   for (const std::string& name : ta.header) {
-    if (isTiming(name)) continue;
+    if (isTiming(name) || std::find(ignore.begin(), ignore.end(), name) != ignore.end()) continue;
     ++compared;
     const auto ca = ta.column(name), cb = tb.column(name);
     for (size_t i = 0; i < ca.size(); ++i) {
@@ -178,6 +178,36 @@ TEST(RecordDeterminism, OneFrameInFlightGivesWhatThreeGive) {
   // recording.json says how each was played (its wall times depend on it).
   EXPECT_NE(readBytes(dir / "serial" / "recording.json").find("\"frames_in_flight\": 1"), std::string::npos);
   EXPECT_NE(readBytes(ref.recording / "recording.json").find("\"frames_in_flight\": 3"), std::string::npos);
+}
+
+double sum(const std::vector<std::string>& column) {
+  double total = 0.0;
+  for (const std::string& v : column) total += v.empty() ? 0.0 : std::stod(v);
+  return total;
+}
+
+// The terrain's vertices resident on the GPU (the default; render/terrain_geometry_buffers.h)
+// draw what copying them all every frame draws, byte for byte, while uploading only the chunks
+// that are new or moved (issue 44 item 2).
+TEST(RecordDeterminism, ResidentTerrainGeometryDrawsWhatCopiedDraws) {
+  const fs::path dir = testDir();
+  const Reference ref = reference();
+  ASSERT_TRUE(fs::exists(ref.recording / "frames.csv"));
+  record(ref.dataset.string(), dir / "copied", " --terrain-geometry copied");
+  const std::vector<std::string> geometry = {"terrain_chunks", "terrain_chunks_uploaded", "terrain_vertices_uploaded"};
+  std::vector<std::string> ignore = geometry;
+  ignore.push_back("gpu_bytes");  // the pool and the slots' buffers are not the same sizes
+  expectSameCounts(ref.recording, dir / "copied", ignore);
+  expectSameFrames(ref.recording, dir / "copied");
+  const Table copied = readFrames(dir / "copied"), resident = readFrames(ref.recording);
+  for (const std::string& name : geometry) EXPECT_EQ(sum(copied.column(name)), 0.0) << name << " when copied";
+  // Resident: the first frame uploads every chunk it draws; over the flight, most draws reuse one.
+  const auto drawn = resident.column("terrain_chunks"), uploaded = resident.column("terrain_chunks_uploaded");
+  ASSERT_FALSE(drawn.empty());
+  EXPECT_GT(std::stod(drawn[0]), 0.0);
+  EXPECT_EQ(drawn[0], uploaded[0]);
+  EXPECT_GT(sum(drawn), 20000.0) << "chunks drawn over the flight";
+  EXPECT_LT(sum(uploaded), 0.5 * sum(drawn)) << "chunks uploaded over the flight";
 }
 
 TEST(RecordDeterminism, ARecordingOverNginxEqualsOneFromTheDirectory) {

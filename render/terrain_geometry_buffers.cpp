@@ -1,0 +1,239 @@
+// The terrain's geometry buffers (terrain_geometry_buffers.h).
+
+#include "render/terrain_geometry_buffers.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <string>
+
+#include "core/parallel_for.h"
+#include "render/render_targets.h"
+
+namespace vegstream::render {
+namespace {
+using terrain::TerrainVertex;
+constexpr VkDeviceSize kVertexBytes = sizeof(TerrainVertex);
+constexpr VkDeviceSize kSmallest = 256 * 1024;
+constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+
+// A chunk draw's indices: this frame's partial list, or all the chunk's own.
+const uint32_t* chunkIndices(const terrain::TerrainMesh& m, const terrain::TerrainChunkDraw& c) {
+  return (c.partial ? m.chunkIndices.data() : c.chunk->indices.data()) + c.first;
+}
+
+// The vertices of `m` when flattened: its own and its chunks'.
+size_t flatVertices(const terrain::TerrainMesh& m) {
+  size_t n = m.vertices.size();
+  for (const terrain::TerrainChunkDraw& c : m.chunks) n += c.chunk->vertices.size();
+  return n;
+}
+
+// Flattens `m` into vdst / idst (its own vertices, then each chunk's, indices rebased), so a
+// piece stays one draw.
+void copyFlat(const terrain::TerrainMesh& m, TerrainVertex* vdst, uint32_t* idst) {
+  std::memcpy(vdst, m.vertices.data(), m.vertices.size() * kVertexBytes);
+  std::memcpy(idst, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  auto base = static_cast<uint32_t>(m.vertices.size());
+  size_t at = m.indices.size();
+  for (const terrain::TerrainChunkDraw& c : m.chunks) {
+    const std::vector<TerrainVertex>& v = c.chunk->vertices;
+    std::memcpy(vdst + base, v.data(), v.size() * kVertexBytes);
+    const uint32_t* src = chunkIndices(m, c);
+    for (uint32_t i = 0; i < c.count; ++i) idst[at + i] = src[i] + base;
+    at += c.count;
+    base += static_cast<uint32_t>(v.size());
+  }
+}
+
+// Each piece's range of the index buffer, in order; the total in `indices`.
+std::vector<PieceRange> indexRanges(std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
+                                    uint64_t& indices) {
+  std::vector<PieceRange> ranges(order.size());
+  indices = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    ranges[k].firstIndex = static_cast<uint32_t>(indices);
+    ranges[k].indexCount = static_cast<uint32_t>(draws[order[k]].mesh->triangleCount() * 3);
+    indices += ranges[k].indexCount;
+  }
+  return ranges;
+}
+
+}  // namespace
+
+TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* tasks, uint64_t reserveTriangles,
+                                               bool resident)
+    : tasks_(tasks), resident_(resident), cache_(kSlots, kIdleFrames) {
+  // ROAM's chunked meshes hold 1.0–1.5 vertices a triangle on the benchmark flights.
+  const VkDeviceSize vertexMin = std::max<VkDeviceSize>(reserveTriangles * 3 / 2 * kVertexBytes, kSmallest);
+  const VkDeviceSize indexMin = std::max<VkDeviceSize>(reserveTriangles * 3 * sizeof(uint32_t), kSmallest);
+  auto make = [&](VkBufferUsageFlags usage, MemoryUse use, const std::string& what, VkDeviceSize minimum) {
+    return GrowingBuffer(ctx, usage, use, "terrain " + what, tasks, minimum);
+  };
+  for (size_t s = 0; s < kSlots; ++s) {
+    const std::string tag = " (slot " + std::to_string(s) + ")";
+    // Resident frames stage only what changed: a smaller start.
+    vertices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices" + tag,
+                        resident ? kSmallest : vertexMin);
+    indices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices" + tag, indexMin);
+    deviceIndices_[s] =
+        make(VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "indices (device)" + tag, indexMin);
+    if (!resident)
+      deviceVertices_[s] =
+          make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "vertices (device)" + tag, vertexMin);
+  }
+  if (resident)
+    pool_ = make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | kRead, MemoryUse::DeviceLocal,
+                 "vertex pool", vertexMin * 2);
+}
+
+std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int slot, std::span<const TerrainDraw> draws,
+                                                      std::span<const uint32_t> order,
+                                                      const GrowingBuffer::Retire& retire) {
+  const auto s = static_cast<size_t>(slot);
+  std::vector<PieceRange> ranges = resident_ ? writeResident(cmd, s, draws, order, retire)
+                                             : writeCopied(cmd, s, draws, order, retire);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  return ranges;
+}
+
+uint32_t* TerrainGeometryBuffers::ensureIndices(size_t s, uint64_t indices, const GrowingBuffer::Retire& retire) {
+  // The buffers exist even for a frame without terrain: the shade pass's descriptors need them.
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(indices, 3) * sizeof(uint32_t);
+  indices_[s].ensure(bytes, GrowingBuffer::kNoCeiling, retire);
+  deviceIndices_[s].ensure(bytes, GrowingBuffer::kNoCeiling, retire);
+  return static_cast<uint32_t*>(indices_[s].buffer().mapped);
+}
+
+void TerrainGeometryBuffers::recordIndexCopy(VkCommandBuffer cmd, size_t s, uint64_t indices) const {
+  if (indices == 0) return;
+  const VkBufferCopy copy{0, 0, VkDeviceSize{indices} * sizeof(uint32_t)};
+  vkCmdCopyBuffer(cmd, indices_[s].get(), deviceIndices_[s].get(), 1, &copy);
+}
+
+std::vector<PieceRange> TerrainGeometryBuffers::writeCopied(VkCommandBuffer cmd, size_t s,
+                                                            std::span<const TerrainDraw> draws,
+                                                            std::span<const uint32_t> order,
+                                                            const GrowingBuffer::Retire& retire) {
+  uint64_t indices = 0, vertices = 0;
+  std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
+  std::vector<uint32_t> firstVertex(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    firstVertex[k] = static_cast<uint32_t>(vertices);
+    ranges[k].vertexOffset = static_cast<int32_t>(vertices);
+    vertices += flatVertices(*draws[order[k]].mesh);
+  }
+  const VkDeviceSize vertexBytes = std::max<VkDeviceSize>(vertices, 1) * kVertexBytes;
+  vertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
+  deviceVertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
+  uint32_t* idst = ensureIndices(s, indices, retire);
+  auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
+  parallelEach(order.size(), tasks_, [&](size_t k) {
+    copyFlat(*draws[order[k]].mesh, vdst + firstVertex[k], idst + ranges[k].firstIndex);
+  });
+  if (vertices > 0) {
+    const VkBufferCopy vcopy{0, 0, vertices * kVertexBytes};
+    vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);
+  }
+  recordIndexCopy(cmd, s, indices);
+  return ranges;
+}
+
+std::vector<PieceRange> TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s,
+                                                              std::span<const TerrainDraw> draws,
+                                                              std::span<const uint32_t> order,
+                                                              const GrowingBuffer::Retire& retire) {
+  uint64_t indices = 0, staged = 0;
+  std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
+  // Where everything goes, in draw order (the cache's ranges depend on the order of its calls).
+  uploads_.clear();
+  chunkFirst_.clear();
+  pieceChunks_.assign(order.size(), 0);
+  ownFirst_.assign(order.size(), 0);
+  cache_.beginFrame();
+  for (size_t k = 0; k < order.size(); ++k) {
+    const terrain::TerrainMesh& m = *draws[order[k]].mesh;
+    if (const auto own = static_cast<uint32_t>(m.vertices.size()); own > 0) {
+      ownFirst_[k] = cache_.placeTransient(own);
+      uploads_.push_back({m.vertices.data(), own, ownFirst_[k], staged});
+      staged += own;
+    }
+    pieceChunks_[k] = chunkFirst_.size();
+    for (const terrain::TerrainChunkDraw& c : m.chunks) {
+      const ChunkPlacement p = cache_.place(*c.chunk);
+      chunkFirst_.push_back(p.firstVertex);
+      if (!p.upload || c.chunk->vertices.empty()) continue;
+      const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
+      uploads_.push_back({c.chunk->vertices.data(), n, p.firstVertex, staged});
+      staged += n;
+    }
+  }
+  cache_.endFrame();
+  growPool(cmd, retire);
+  vertices_[s].ensure(std::max<VkDeviceSize>(staged, 1) * kVertexBytes, GrowingBuffer::kNoCeiling, retire);
+  uint32_t* idst = ensureIndices(s, indices, retire);
+  auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
+  parallelEach(order.size(), tasks_, [&](size_t k) {  // the indices, into the pool
+    const terrain::TerrainMesh& m = *draws[order[k]].mesh;
+    uint32_t* out = idst + ranges[k].firstIndex;
+    for (uint32_t i : m.indices) *out++ = i + ownFirst_[k];
+    for (size_t j = 0; j < m.chunks.size(); ++j) {
+      const uint32_t base = chunkFirst_[pieceChunks_[k] + j];
+      const uint32_t* src = chunkIndices(m, m.chunks[j]);
+      for (uint32_t i = 0; i < m.chunks[j].count; ++i) *out++ = src[i] + base;
+    }
+  });
+  parallelEach(uploads_.size(), tasks_, [&](size_t u) {
+    std::memcpy(vdst + uploads_[u].staged, uploads_[u].src, uploads_[u].count * kVertexBytes);
+  });
+  // One copy region per run of uploads that are contiguous in both buffers.
+  std::vector<VkBufferCopy> regions;
+  for (const Upload& u : uploads_) {
+    const VkBufferCopy r{u.staged * kVertexBytes, VkDeviceSize{u.poolFirst} * kVertexBytes, u.count * kVertexBytes};
+    if (!regions.empty() && regions.back().srcOffset + regions.back().size == r.srcOffset &&
+        regions.back().dstOffset + regions.back().size == r.dstOffset)
+      regions.back().size += r.size;
+    else
+      regions.push_back(r);
+  }
+  if (!regions.empty())
+    vkCmdCopyBuffer(cmd, vertices_[s].get(), pool_.get(), static_cast<uint32_t>(regions.size()), regions.data());
+  recordIndexCopy(cmd, s, indices);
+  return ranges;
+}
+
+void TerrainGeometryBuffers::growPool(VkCommandBuffer cmd, const GrowingBuffer::Retire& retire) {
+  VkBuffer old = VK_NULL_HANDLE;
+  const bool grown = pool_.ensure(cache_.capacity() * kVertexBytes, GrowingBuffer::kNoCeiling, [&](GpuBuffer&& b) {
+    old = b.get();
+    retire(std::move(b));  // kept alive until this frame has finished with it
+  });
+  if (grown && old != VK_NULL_HANDLE && poolValidVertices_ > 0) {
+    // Earlier frames' copies into the old pool, then this one out of it; then this frame's
+    // uploads over ranges the old contents may have held.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferCopy all{0, 0, poolValidVertices_ * kVertexBytes};
+    vkCmdCopyBuffer(cmd, old, pool_.get(), 1, &all);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  }
+  poolValidVertices_ = cache_.capacity();
+}
+
+VkBuffer TerrainGeometryBuffers::vertices(int slot) const {
+  return resident_ ? pool_.get() : deviceVertices_[static_cast<size_t>(slot)].get();
+}
+
+uint64_t TerrainGeometryBuffers::gpuBytes() const {
+  uint64_t bytes = pool_.size();
+  for (size_t s = 0; s < kSlots; ++s)
+    bytes += vertices_[s].size() + indices_[s].size() + deviceIndices_[s].size() + deviceVertices_[s].size();
+  return bytes;
+}
+
+}  // namespace vegstream::render
