@@ -69,6 +69,7 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
   for (int s : {1, 2, 4, 8})  // the shade shader handles up to 8 samples
     if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
   info.sampleRateShading = features.sampleRateShading == VK_TRUE;
+  info.multiDrawIndirect = features.multiDrawIndirect == VK_TRUE && features.drawIndirectFirstInstance == VK_TRUE;
   VkPhysicalDeviceMemoryProperties memory{};
   vkGetPhysicalDeviceMemoryProperties(pd, &memory);
   for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
@@ -264,6 +265,8 @@ void Context::createDevice(const ContextOptions& options) {
   features.features.sampleRateShading = supported.sampleRateShading;
   features.features.fillModeNonSolid = supported.fillModeNonSolid;
   features.features.shaderStorageImageMultisample = supported.shaderStorageImageMultisample;
+  features.features.multiDrawIndirect = supported.multiDrawIndirect;
+  features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -19,6 +19,9 @@ struct DeviceInfo {
   // only with shaderStorageImageMultisample): where deferred terrain shading can run.
   std::vector<int> storageMsaaCounts;
   bool sampleRateShading = false;  // fragment stages run per sample when asked (the compute terrain's depth pass)
+  // Many draws in one indirect call, each with its own first instance (the terrain's draw list;
+  // without: one indirect call per draw).
+  bool multiDrawIndirect = false;
   uint64_t deviceLocalBytes = 0;   // the largest device-local memory heap
 
   bool supportsMsaa(int samples) const;

@@ -26,7 +26,7 @@
 namespace vegstream::render {
 namespace {
 static_assert(sizeof(terrain::TerrainVertex) == 36, "must match the attributes of shaders/terrain.vert");
-constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+constexpr VkShaderStageFlags kDrawStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 constexpr VkShaderStageFlags kSampledBy = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
 constexpr VkDeviceSize kTileBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 4;
 constexpr VkDeviceSize kCompanionBytes = VkDeviceSize{kImageryTileSize} * kImageryTileSize * 2;
@@ -87,7 +87,16 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
                                 "terrain imagery staging" + tag, tasks, kSmallest);
     pieces_[s] = GrowingBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "terrain pieces" + tag,
                                tasks, kSmallest);
+    drawList_[s] = GrowingBuffer(ctx, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryUse::HostUpload,
+                                 "terrain draw list" + tag, tasks, 16 * 1024);
   }
+  multiDraw_ = ctx.info().multiDrawIndirect;
+  const VkDescriptorSetLayoutBinding pieceBinding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kDrawStages, nullptr};
+  piecesLayout_ = createLayout(ctx, {&pieceBinding, 1}, "terrain pieces layout");
+  const VkDescriptorPoolSize piecesPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSlots};
+  piecesPool_ = createPool(ctx, {&piecesPoolSize, 1}, kSlots, "terrain pieces pool");
+  for (auto& set : piecesSets_)
+    set = allocateDescriptorSet(ctx, piecesPool_.get(), piecesLayout_.get(), "terrain pieces set");
   // Binding 0: the imagery array; 1: its NDVI array (terrain_shading.glsl).
   const VkDescriptorSetLayoutBinding imageryBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kSampledBy, nullptr},
@@ -106,9 +115,8 @@ TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, 
 
 void TerrainPass::createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred) {
   const Context& ctx = *ctx_;
-  const VkPushConstantRange push{kPushStages, 0, sizeof(TerrainPush)};
-  const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get(), detail_.layout()};
-  layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "terrain pipeline layout");
+  const VkDescriptorSetLayout sets[] = {frameLayout, imageryLayout_.get(), detail_.layout(), piecesLayout_.get()};
+  layout_ = createPipelineLayout(ctx, sets, {}, "terrain pipeline layout");
   GraphicsPipelineDesc desc;
   desc.name = "terrain pipeline";
   desc.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_terrain_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_frag}};
@@ -201,11 +209,15 @@ void TerrainPass::recordUploads(VkCommandBuffer cmd, int slot, std::span<const I
 uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& cameraPosition,
                               std::span<const TerrainDraw> draws, const RetireBuffer& retire) {
   const auto s = static_cast<size_t>(slot);
-  std::vector<PreparedDraw>& list = prepared_[s];
+  std::vector<VkDrawIndexedIndirectCommand>& list = draws_[s];
   list.clear();
   const std::vector<uint32_t> order = frontToBackOrder(draws, cameraPosition, tasks_);
   const std::vector<PieceRange> ranges = geometry_.write(cmd, slot, draws, order, retire);
-  pieces_[s].ensure(std::max<size_t>(order.size(), 1) * sizeof(TerrainPiece), GrowingBuffer::kNoCeiling, retire);
+  const size_t pieces = std::max<size_t>(order.size(), 1);
+  pieces_[s].ensure(pieces * sizeof(TerrainPiece), GrowingBuffer::kNoCeiling, retire);
+  drawList_[s].ensure(pieces * sizeof(VkDrawIndexedIndirectCommand), GrowingBuffer::kNoCeiling, retire);
+  // The slot's last frame has finished (its fence was waited for): its set is free to write.
+  writeStorageBuffer(*ctx_, piecesSets_[s], pieces_[s].get(), 0);
   auto* pdst = static_cast<TerrainPiece*>(pieces_[s].buffer().mapped);
   uint64_t triangles = 0;
   for (size_t k = 0; k < order.size(); ++k) {
@@ -216,37 +228,35 @@ uint64_t TerrainPass::prepare(VkCommandBuffer cmd, int slot, const glm::dvec3& c
     }();
     assert(valid);
     // The subtraction happens in double; only the small camera-relative offset becomes float.
-    PreparedDraw p;
-    p.push = TerrainPush{glm::vec4(glm::vec3(d.mesh->origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
-                         glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
-                                   valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f),
-                         glm::uvec4(r.firstIndex / 3, 0u, 0u, 0u)};
-    p.indexCount = r.indexCount;
-    p.firstIndex = r.firstIndex;
-    p.vertexOffset = r.vertexOffset;
-    pdst[list.size()] =
-        TerrainPiece{p.push.originFromCamera, p.push.imageryUv, p.push.previousUv, p.push.layers,
-                     glm::uvec4(r.firstIndex / 3, static_cast<uint32_t>(r.vertexOffset), r.indexCount / 3, 0u)};
-    list.push_back(p);
+    pdst[k] = TerrainPiece{glm::vec4(glm::vec3(d.mesh->origin - cameraPosition), 0.0f), d.imageryUv, d.previousUv,
+                           glm::vec4(valid ? static_cast<float>(d.imageryLayer) : -1.0f,
+                                     valid ? static_cast<float>(d.previousLayer) : -1.0f, d.imageryBlend, 0.0f),
+                           glm::uvec4(r.firstIndex / 3, static_cast<uint32_t>(r.vertexOffset), r.indexCount / 3, 0u)};
+    list.push_back({r.indexCount, 1, r.firstIndex, r.vertexOffset, static_cast<uint32_t>(k)});
     triangles += r.indexCount / 3;
   }
+  if (!list.empty())
+    std::memcpy(drawList_[s].buffer().mapped, list.data(), list.size() * sizeof(VkDrawIndexedIndirectCommand));
+  drawCount_[s] = static_cast<uint32_t>(list.size());
   return triangles;
 }
 
 void TerrainPass::recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const {
   const auto s = static_cast<size_t>(slot);
-  if (prepared_[s].empty()) return;
+  if (drawCount_[s] == 0) return;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-  const VkDescriptorSet sets[] = {frameSet, imagerySet_, detail_.set()};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets, 0, nullptr);
+  const VkDescriptorSet sets[] = {frameSet, imagerySet_, detail_.set(), piecesSets_[s]};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 4, sets, 0, nullptr);
   const VkBuffer vb = geometry_.vertices(slot);
   const VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
   vkCmdBindIndexBuffer(cmd, geometry_.indices(slot), 0, VK_INDEX_TYPE_UINT32);
-  for (const PreparedDraw& d : prepared_[s]) {
-    vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(d.push), &d.push);
-    vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+  if (multiDraw_) {
+    vkCmdDrawIndexedIndirect(cmd, drawList_[s].get(), 0, drawCount_[s], sizeof(VkDrawIndexedIndirectCommand));
+    return;
   }
+  for (const VkDrawIndexedIndirectCommand& d : draws_[s])
+    vkCmdDrawIndexed(cmd, d.indexCount, d.instanceCount, d.firstIndex, d.vertexOffset, d.firstInstance);
 }
 
 void TerrainPass::recordForward(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet) const {
@@ -261,12 +271,12 @@ void TerrainPass::recordVisibility(VkCommandBuffer cmd, int slot, VkDescriptorSe
 TerrainGeometry TerrainPass::geometry(int slot) const {
   const auto s = static_cast<size_t>(slot);
   return {geometry_.vertices(slot), geometry_.indices(slot), pieces_[s].get(),
-          static_cast<uint32_t>(prepared_[s].size())};
+          drawCount_[s]};
 }
 
 uint64_t TerrainPass::gpuBytes() const {
   uint64_t bytes = imagery_.bytes + companionArray_.bytes + detail_.gpuBytes() + geometry_.gpuBytes();
-  for (size_t s = 0; s < kSlots; ++s) bytes += staging_[s].size() + pieces_[s].size();
+  for (size_t s = 0; s < kSlots; ++s) bytes += staging_[s].size() + pieces_[s].size() + drawList_[s].size();
   return bytes;
 }
 

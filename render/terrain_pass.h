@@ -14,9 +14,13 @@
 // depth testing rejects most hidden fragments before they cost shading or ROP writes.
 //
 // Geometry lives in TerrainGeometryBuffers (render/terrain_geometry_buffers.h): each frame's
-// index buffer holds every piece's triangles in draw order (one draw per piece), and the
-// vertices stay resident on the GPU, ROAM's chunks uploaded only when new or moved (or, with
-// TerrainGeometry::Copied, flattened and copied every frame). Imagery arrives through a
+// index buffer holds every piece's triangles in draw order, and the vertices stay resident on
+// the GPU, ROAM's chunks uploaded only when new or moved (or, with RendererOptions::
+// residentTerrain false, flattened and copied every frame). The pieces are drawn through an
+// indirect list, one indexed command per piece whose first instance is the piece's index into
+// the slot's pieces (set 3; shaders/common/terrain_draw.glsl), in one call where the device has
+// multiDrawIndirect and drawIndirectFirstInstance (else one direct draw per piece, the same
+// commands). Imagery arrives through a
 // per-frame-slot staging buffer (a ring of kSlots) and lands in its layer before the draws.
 //
 // Close up, the imagery gets detail textures blended by the colour score of its colour (core
@@ -42,17 +46,8 @@
 
 namespace vegstream::render {
 
-// Push constants of one terrain draw (shaders/common/terrain_push.glsl).
-struct TerrainPush {
-  glm::vec4 originFromCamera;
-  glm::vec4 imageryUv;
-  glm::vec4 previousUv;
-  glm::vec4 layers;
-  glm::uvec4 ids;  // x: the piece's first triangle in the frame's index buffer
-};
-static_assert(sizeof(TerrainPush) == 80, "Vulkan guarantees 128 bytes of push constants");
-
-// One drawn piece for the deferred shade (std430; Piece in shaders/common/terrain_shade.glsl).
+// One drawn piece (std430; Piece in shaders/common/terrain_piece.glsl), read by the draws
+// (the piece at gl_InstanceIndex), the deferred shade and the compute raster.
 struct TerrainPiece {
   glm::vec4 originFromCamera;
   glm::vec4 imageryUv;
@@ -131,12 +126,6 @@ class TerrainPass {
   uint64_t gpuBytes() const;
 
  private:
-  struct PreparedDraw {
-    TerrainPush push;
-    uint32_t indexCount = 0;
-    uint32_t firstIndex = 0;
-    int32_t vertexOffset = 0;
-  };
   void recordDraws(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkPipeline pipeline) const;
   // The constructor's pipelines: the forward one, and the visibility one when deferred.
   void createPipelines(VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples, bool deferred);
@@ -156,8 +145,15 @@ class TerrainPass {
   ImageryCompanions companions_;
   uint32_t layers_ = 0;
   std::array<GrowingBuffer, kSlots> pieces_, staging_;  // host-visible
+  // The draw list: one indexed indirect command per piece, its first instance the piece's index.
+  std::array<GrowingBuffer, kSlots> drawList_;
+  std::array<uint32_t, kSlots> drawCount_{};
+  std::array<std::vector<VkDrawIndexedIndirectCommand>, kSlots> draws_;  // without multi-draw: drawn one by one
+  bool multiDraw_ = false;
+  DescriptorSetLayout piecesLayout_;  // set 3 of the draws: the slot's pieces
+  DescriptorPool piecesPool_;
+  std::array<VkDescriptorSet, kSlots> piecesSets_{};
   TerrainGeometryBuffers geometry_;
-  std::array<std::vector<PreparedDraw>, kSlots> prepared_;
 };
 
 // The draw order of `draws`: front to back by the distance from `cameraPosition` to each

@@ -7,14 +7,8 @@
 // terrain::TerrainVertex (36 bytes: position, normal, heightMsl, uv), read as floats.
 layout(std430, set = 3, binding = 1) readonly buffer Vertices { float vertexData[]; };
 layout(std430, set = 3, binding = 2) readonly buffer Indices { uint indexData[]; };
-// One per drawn piece, in draw order (mirrors TerrainPiece in render/terrain_pass.h).
-struct Piece {
-  vec4 originFromCamera;
-  vec4 imageryUv;
-  vec4 previousUv;
-  vec4 layers;
-  uvec4 range;  // x: first triangle, y: first vertex (the draw's vertex offset), z: triangles
-};
+// One per drawn piece, in draw order.
+#include "terrain_piece.glsl"
 layout(std430, set = 3, binding = 3) readonly buffer Pieces { Piece pieces[]; };
 // Mirrors TerrainComputePush (render/terrain_shade_pass.h).
 layout(push_constant) uniform ShadePush {

@@ -22,7 +22,7 @@ layout(set = 2, binding = 0) uniform sampler2DArray detailTextures;  // one laye
 // here once, by this frame's sun and sky (atmosphere.glsl), as a Lambertian surface.
 
 // What the shading needs of a surface point: its attributes as the vertex stage interpolates
-// them, its piece's imagery mapping (terrain_push.glsl), and the screen derivatives of its
+// them, its piece's imagery mapping (terrain_piece.glsl), and the screen derivatives of its
 // camera-relative position (for the detail textures' filtering).
 struct TerrainPoint {
   vec3 offset;     // camera-relative position (m)
