@@ -17,7 +17,6 @@ constexpr VkDeviceSize kVertexBytes = sizeof(TerrainVertex);
 constexpr VkDeviceSize kSmallest = 256 * 1024;
 constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-
 // A chunk draw's indices: this frame's partial list, or all the chunk's own.
 const uint32_t* chunkIndices(const terrain::TerrainMesh& m, const terrain::TerrainChunkDraw& c) {
   return (c.partial ? m.chunkIndices.data() : c.chunk->indices.data()) + c.first;
@@ -92,12 +91,13 @@ std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int s
                                                       std::span<const uint32_t> order,
                                                       const GrowingBuffer::Retire& retire) {
   const auto s = static_cast<size_t>(slot);
-  std::vector<PieceRange> ranges = resident_ ? writeResident(cmd, s, draws, order, retire)
-                                             : writeCopied(cmd, s, draws, order, retire);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  std::vector<PieceRange> ranges =
+      resident_ ? writeResident(cmd, s, draws, order, retire) : writeCopied(cmd, s, draws, order, retire);
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
+          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+      VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   return ranges;
 }
 
@@ -132,9 +132,8 @@ std::vector<PieceRange> TerrainGeometryBuffers::writeCopied(VkCommandBuffer cmd,
   deviceVertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
   uint32_t* idst = ensureIndices(s, indices, retire);
   auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
-  parallelEach(order.size(), tasks_, [&](size_t k) {
-    copyFlat(*draws[order[k]].mesh, vdst + firstVertex[k], idst + ranges[k].firstIndex);
-  });
+  parallelEach(order.size(), tasks_,
+               [&](size_t k) { copyFlat(*draws[order[k]].mesh, vdst + firstVertex[k], idst + ranges[k].firstIndex); });
   if (vertices > 0) {
     const VkBufferCopy vcopy{0, 0, vertices * kVertexBytes};
     vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);

@@ -78,14 +78,14 @@ class TerrainGeometryBuffers {
   std::array<GrowingBuffer, kSlots> vertices_, indices_;  // host-visible staging
   std::array<GrowingBuffer, kSlots> deviceVertices_;      // copied: each slot's vertices
   std::array<GrowingBuffer, kSlots> deviceIndices_;
-  GrowingBuffer pool_;             // resident: every slot's vertices
+  GrowingBuffer pool_;              // resident: every slot's vertices
   uint64_t poolValidVertices_ = 0;  // the pool's vertices written by earlier frames (its used part)
   TerrainChunkCache cache_;
   // Scratch kept from frame to frame.
   std::vector<Upload> uploads_;
-  std::vector<uint32_t> chunkFirst_;   // each drawn chunk's first vertex in the pool, in draw order
-  std::vector<size_t> pieceChunks_;    // each piece's first entry in chunkFirst_
-  std::vector<uint32_t> ownFirst_;     // each piece's own vertices' first vertex in the pool
+  std::vector<uint32_t> chunkFirst_;  // each drawn chunk's first vertex in the pool, in draw order
+  std::vector<size_t> pieceChunks_;   // each piece's first entry in chunkFirst_
+  std::vector<uint32_t> ownFirst_;    // each piece's own vertices' first vertex in the pool
 };
 
 }  // namespace vegstream::render
