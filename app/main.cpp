@@ -19,7 +19,7 @@
 #include "app/record_command.h"
 #include "app/report_command.h"
 #include "app/sample_dataset.h"
-#include "app/simulation_cli.h"
+#include "app/scene_setup.h"
 #include "app/snapshot_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
@@ -91,10 +91,7 @@ void addFlyCommand(CLI::App& cli, Commands& c) {
   cmd.add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd.add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   cmd.add_flag("--headless", o.headless, "Never open a window, even when a display exists");
-  app::addStreamingOptions(cmd, o.streaming, true);
-  app::addSimulationOptions(cmd, o.simulationCli);
-  app::addTreeOptions(cmd, o.treeCli);
-  app::addSunOptions(cmd, o.sunCli);
+  app::addSceneOptions(cmd, o.streaming, true, o.simulationCli, o.treeCli, o.sunCli);
 }
 
 // `info` and `query`, and their options.
