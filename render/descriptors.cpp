@@ -51,28 +51,45 @@ VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool,
   return set;
 }
 
-void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
-  const VkDescriptorImageInfo ii{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+void allocateSlotSets(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                      std::span<VkDescriptorSet> sets, const std::string& name) {
+  for (size_t i = 0; i < sets.size(); ++i)
+    sets[i] = allocateDescriptorSet(ctx, pool, layout, name + " (slot " + std::to_string(i) + ")");
 }
 
 namespace {
-void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
-                 uint32_t binding) {
-  const VkDescriptorBufferInfo bi{buffer, 0, range};
+// `binding` := one descriptor of `type`: the image or the buffer given (the other null).
+void writeDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                     const VkDescriptorImageInfo* image, const VkDescriptorBufferInfo* buffer) {
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
   w.dstBinding = binding;
   w.descriptorCount = 1;
   w.descriptorType = type;
-  w.pBufferInfo = &bi;
+  w.pImageInfo = image;
+  w.pBufferInfo = buffer;
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+}
+
+void writeImage(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, const VkDescriptorImageInfo& image,
+                uint32_t binding) {
+  writeDescriptor(ctx, set, binding, type, &image, nullptr);
+}
+
+void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
+                 uint32_t binding) {
+  const VkDescriptorBufferInfo bi{buffer, 0, range};
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+             {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
+}
+
+void writeSeparateImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding) {
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+             {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
+}
+
+  writeDescriptor(ctx, set, binding, type, nullptr, &bi);
 }
 }  // namespace
 
@@ -82,14 +99,7 @@ void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
 }
 
 void writeStorageImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding) {
-  const VkDescriptorImageInfo ii{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL}, binding);
 }
 
 void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding) {
