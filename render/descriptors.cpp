@@ -1,6 +1,6 @@
 #include "render/descriptors.h"
 
-#include "render/vk_check.h"
+#include "render/create_named.h"
 
 namespace vegstream::render {
 
@@ -9,10 +9,8 @@ DescriptorSetLayout createLayout(const Context& ctx, std::span<const VkDescripto
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = static_cast<uint32_t>(bindings.size());
   lci.pBindings = bindings.data();
-  VkDescriptorSetLayout layout;
-  vkCheck(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, name);
-  return DescriptorSetLayout(ctx.device(), layout);
+  return createNamed<DescriptorSetLayout>(ctx, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name,
+                                          "vkCreateDescriptorSetLayout", vkCreateDescriptorSetLayout, lci);
 }
 
 DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
@@ -27,10 +25,8 @@ DescriptorPool createPool(const Context& ctx, std::span<const VkDescriptorPoolSi
   pci.maxSets = maxSets;
   pci.poolSizeCount = static_cast<uint32_t>(sizes.size());
   pci.pPoolSizes = sizes.data();
-  VkDescriptorPool pool;
-  vkCheck(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name);
-  return DescriptorPool(ctx.device(), pool);
+  return createNamed<DescriptorPool>(ctx, VK_OBJECT_TYPE_DESCRIPTOR_POOL, name, "vkCreateDescriptorPool",
+                                     vkCreateDescriptorPool, pci);
 }
 
 DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
@@ -79,6 +75,10 @@ void writeImage(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, 
 void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
                  uint32_t binding) {
   const VkDescriptorBufferInfo bi{buffer, 0, range};
+  writeDescriptor(ctx, set, binding, type, nullptr, &bi);
+}
+}  // namespace
+
 void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
   writeImage(ctx, set, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
              {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
@@ -88,10 +88,6 @@ void writeSeparateImage(const Context& ctx, VkDescriptorSet set, VkImageView vie
   writeImage(ctx, set, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
              {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
 }
-
-  writeDescriptor(ctx, set, binding, type, nullptr, &bi);
-}
-}  // namespace
 
 void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
                         uint32_t binding) {
@@ -117,10 +113,7 @@ Sampler createSampler(const Context& ctx, VkFilter filter, VkSamplerMipmapMode m
   sci.mipmapMode = mipmap;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = address;
   sci.maxLod = maxLod;
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
-  return Sampler(ctx.device(), sampler);
+  return createNamed<Sampler>(ctx, VK_OBJECT_TYPE_SAMPLER, name, "vkCreateSampler", vkCreateSampler, sci);
 }
 }  // namespace
 
