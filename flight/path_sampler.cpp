@@ -18,12 +18,8 @@ std::vector<TrackPoint> cameraPoints(const FlightPath& path) {
   return out;
 }
 
-// The track of a collider's or a wind source's centre (both have ColliderKeyframes).
-PositionTrack objectTrack(const std::vector<ColliderKeyframe>& keys) {
-  std::vector<TrackPoint> out;
-  for (const ColliderKeyframe& k : keys) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
-  return PositionTrack(out);
-}
+// The track of a collider's or a wind source's centre (both have ColliderKeyframes: TrackPoints).
+PositionTrack objectTrack(const std::vector<ColliderKeyframe>& keys) { return PositionTrack(keys); }
 
 // Where such an object is at t: clamped to its keyframes, no clearance (it may touch the ground).
 geo::Geodetic objectCentre(const PositionTrack& track, double t, const GroundHeight& ground) {
