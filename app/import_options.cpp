@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -28,10 +29,14 @@ std::vector<fs::path> splitList(const std::string& text) {
   return out;
 }
 
-Result<geo::Crs> crsOption(const std::string& flag, const std::string& text) {
+// A CRS option: `out` := the CRS `text` names, when it names one (empty: not given, `out` left as
+// it is); an error naming `flag` when it does not parse.
+Status crsOption(const std::string& flag, const std::string& text, std::optional<geo::Crs>& out) {
+  if (text.empty()) return {};
   auto crs = geo::Crs::fromUserInput(text);
   if (!crs) return makeError(crs.error().kind, flag + ": " + crs.error().message);
-  return crs;
+  out = std::move(*crs);
+  return {};
 }
 
 // "1,2,3" → {1, 2, 3}: positive band numbers.
@@ -128,11 +133,7 @@ Result<geo::GeoBounds> boundsOption(const std::string& text) {
 // --dem, --dem-crs, --dem-nodata.
 Status demOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& g) {
   g.dem = o.dem;
-  if (!o.demCrs.empty()) {
-    auto e = crsOption("--dem-crs", o.demCrs);
-    if (!e) return e.error();
-    g.demCrs = *e;
-  }
+  if (Status s = crsOption("--dem-crs", o.demCrs, g.demCrs); !s) return s;
   if (o.demNodataOpt && o.demNodataOpt->count()) g.demNodata = o.demNodata;
   return {};
 }
@@ -157,11 +158,7 @@ Status imageryOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& g)
       return userError(m);
     }
   }
-  if (!o.imageryCrs.empty()) {
-    auto e = crsOption("--imagery-crs", o.imageryCrs);
-    if (!e) return e.error();
-    g.imagery.assumeCrs = *e;
-  }
+  if (Status s = crsOption("--imagery-crs", o.imageryCrs, g.imagery.assumeCrs); !s) return s;
   if (!o.stretch.empty()) {
     auto s = datasets::parseStretch(o.stretch);
     if (!s) return s.error();
@@ -181,11 +178,7 @@ Status nirOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& g) {
         return userError("--nir-band without --imagery-nir takes the band from --imagery FILE: give one file");
       nir.file = o.imagery[0];
     }
-    if (!o.imageryNirCrs.empty()) {
-      auto e = crsOption("--imagery-nir-crs", o.imageryNirCrs);
-      if (!e) return e.error();
-      nir.assumeCrs = *e;
-    }
+    if (Status s = crsOption("--imagery-nir-crs", o.imageryNirCrs, nir.assumeCrs); !s) return s;
     g.nir = std::move(nir);
   } else if (!o.imageryNirCrs.empty()) {
     return userError("--imagery-nir-crs states the CRS of --imagery-nir FILE, which was not given");
@@ -201,11 +194,7 @@ Status landcoverOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& 
     auto scheme = datasets::parseLandcoverScheme(o.landcoverScheme);
     if (!scheme) return scheme.error();
     l.scheme = *scheme;
-    if (!o.landcoverCrs.empty()) {
-      auto e = crsOption("--landcover-crs", o.landcoverCrs);
-      if (!e) return e.error();
-      l.crs = *e;
-    }
+    if (Status s = crsOption("--landcover-crs", o.landcoverCrs, l.crs); !s) return s;
     g.landcover = std::move(l);
   } else if (!o.landcoverCrs.empty() || o.landcoverScheme != "auto") {
     return userError("--landcover-scheme and --landcover-crs describe --landcover FILE, which was not given");
@@ -218,11 +207,7 @@ Status canopyOptions(const ImportOptions& o, datasets::GeoTiffImportOptions& g) 
   if (!o.canopyHeight.empty()) {
     datasets::GeoTiffImportOptions::Canopy c;
     c.file = o.canopyHeight;
-    if (!o.canopyHeightCrs.empty()) {
-      auto e = crsOption("--canopy-height-crs", o.canopyHeightCrs);
-      if (!e) return e.error();
-      c.crs = *e;
-    }
+    if (Status s = crsOption("--canopy-height-crs", o.canopyHeightCrs, c.crs); !s) return s;
     g.canopy = std::move(c);
   } else if (!o.canopyHeightCrs.empty()) {
     return userError("--canopy-height-crs states the CRS of --canopy-height FILE, which was not given");

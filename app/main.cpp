@@ -19,7 +19,7 @@
 #include "app/record_command.h"
 #include "app/report_command.h"
 #include "app/sample_dataset.h"
-#include "app/simulation_cli.h"
+#include "app/scene_setup.h"
 #include "app/snapshot_command.h"
 #include "app/query_command.h"
 #include "core/log.h"
@@ -45,115 +45,108 @@ int listDevicesCommand(const vegstream::Logger& log) {
   return vegstream::app::kExitOk;
 }
 
-// Every subcommand's options, and its handle: true once the user chose it.
+// A subcommand's options, and its handle: true once the user chose it.
+template <class Options>
+struct Subcommand {
+  Options options;
+  CLI::App* cmd = nullptr;
+};
+
+// Every subcommand, with what it parses beyond its options.
 struct Commands {
-  app::FlyOptions fly;
+  Subcommand<app::FlyOptions> fly;
   std::string flySize = "640x360";
-  CLI::App* flyCmd = nullptr;
-  app::ImportOptions importOptions;
-  CLI::App* importCmd = nullptr;
-  app::RecordOptions recordOptions;
-  CLI::App* recordCmd = nullptr;
-  app::ReportOptions reportOptions;
-  CLI::App* reportCmd = nullptr;
-  app::CompareOptions compareOptions;
-  CLI::App* compareCmd = nullptr;
-  app::PathOptions pathOptions;
-  CLI::App* pathCmd = nullptr;
+  Subcommand<app::ImportOptions> importing;
+  Subcommand<app::RecordOptions> record;
+  Subcommand<app::ReportOptions> report;
+  Subcommand<app::CompareOptions> compare;
+  Subcommand<app::PathOptions> path;
   CLI::App* devicesCmd = nullptr;
-  app::InfoOptions info;
-  CLI::App* infoCmd = nullptr;
-  app::QueryOptions query;
-  CLI::App* queryCmd = nullptr;
-  app::PlantsOptions plantsOptions;
-  CLI::App* plantsCmd = nullptr;
-  app::InspectOptions inspectOptions;
-  CLI::App* inspectCmd = nullptr;
-  app::SnapshotOptions snapshotOptions;
-  CLI::App* snapshotCmd = nullptr;
-  datasets::SyntheticOptions gen;
+  Subcommand<app::InfoOptions> info;
+  Subcommand<app::QueryOptions> query;
+  Subcommand<app::PlantsOptions> plants;
+  Subcommand<app::InspectOptions> inspect;
+  Subcommand<app::SnapshotOptions> snapshot;
+  Subcommand<datasets::SyntheticOptions> generate;
   std::string genOut, genEncoding = "terrarium";
-  CLI::App* generateCmd = nullptr;
 };
 
 // `fly` and its options.
 void addFlyCommand(CLI::App& cli, Commands& c) {
-  c.fly.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
-  c.flyCmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
-  c.flyCmd->add_option(
-      "dataset", c.fly.dataset,
-      "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion "
-      "(without it: the synthetic dataset, generated once into out/datasets/synthetic)");
-  c.flyCmd->add_option("--path", c.fly.path, "Flight path JSON; default: the benchmark-30s template over the dataset");
-  c.flyCmd->add_option("--out", c.fly.out, "Directory for headless frames and run.json")->capture_default_str();
-  c.flyCmd->add_option("--frames", c.fly.frames, "Number of headless frames")
+  app::FlyOptions& o = c.fly.options;
+  o.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
+  c.fly.cmd = cli.add_subcommand("fly", "Fly over a dataset: a window when a display exists, else PNG frames");
+  CLI::App& cmd = *c.fly.cmd;
+  cmd.add_option("dataset", o.dataset,
+                 "Dataset directory (vegstream import); default: the Zion sample, imported once into out/datasets/zion "
+                 "(without it: the synthetic dataset, generated once into out/datasets/synthetic)");
+  cmd.add_option("--path", o.path, "Flight path JSON; default: the benchmark-30s template over the dataset");
+  cmd.add_option("--out", o.out, "Directory for headless frames and run.json")->capture_default_str();
+  cmd.add_option("--frames", o.frames, "Number of headless frames")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
-  c.flyCmd->add_option("--size", c.flySize, "Frame size WxH")->capture_default_str();
-  c.flyCmd->add_option("--msaa", c.fly.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")
-      ->capture_default_str();
-  app::addFramesInFlightOption(*c.flyCmd, c.fly.framesInFlight);
-  c.flyCmd->add_option("--device", c.fly.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
-  c.flyCmd->add_flag("--validate", c.fly.validate, "Turn on the Vulkan validation layers");
-  c.flyCmd->add_flag("--headless", c.fly.headless, "Never open a window, even when a display exists");
-  app::addStreamingOptions(*c.flyCmd, c.fly.streaming, true);
-  app::addSimulationOptions(*c.flyCmd, c.fly.simulationCli);
-  app::addTreeOptions(*c.flyCmd, c.fly.treeCli);
-  app::addSunOptions(*c.flyCmd, c.fly.sunCli);
+  cmd.add_option("--size", c.flySize, "Frame size WxH")->capture_default_str();
+  cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 4, 8 where the device offers them)")->capture_default_str();
+  app::addFramesInFlightOption(cmd, o.framesInFlight);
+  cmd.add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
+  cmd.add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
+  cmd.add_flag("--headless", o.headless, "Never open a window, even when a display exists");
+  app::addSceneOptions(cmd, o.streaming, true, o.simulationCli, o.treeCli, o.sunCli);
 }
 
 // `info` and `query`, and their options.
 void addInfoAndQueryCommands(CLI::App& cli, Commands& c) {
-  c.infoCmd = cli.add_subcommand("info", "Describe a dataset directory as JSON (bounds, zooms, heights, tiles)");
-  c.infoCmd->add_option("dataset", c.info.dataset, "Dataset directory")->required();
-  c.queryCmd = cli.add_subcommand("query", "Height, base colour and species of a dataset at one point, as JSON");
-  c.queryCmd->add_option("dataset", c.query.dataset, "Dataset directory")->required();
-  c.queryCmd->add_option("--lat", c.query.latDeg, "Latitude, degrees (WGS 84)")
+  c.info.cmd = cli.add_subcommand("info", "Describe a dataset directory as JSON (bounds, zooms, heights, tiles)");
+  c.info.cmd->add_option("dataset", c.info.options.dataset, "Dataset directory")->required();
+  c.query.cmd = cli.add_subcommand("query", "Height, base colour and species of a dataset at one point, as JSON");
+  c.query.cmd->add_option("dataset", c.query.options.dataset, "Dataset directory")->required();
+  c.query.cmd->add_option("--lat", c.query.options.latDeg, "Latitude, degrees (WGS 84)")
       ->required()
       ->check(CLI::Range(-90.0, 90.0));
-  c.queryCmd->add_option("--lon", c.query.lonDeg, "Longitude, degrees (WGS 84)")
+  c.query.cmd->add_option("--lon", c.query.options.lonDeg, "Longitude, degrees (WGS 84)")
       ->required()
       ->check(CLI::Range(-180.0, 180.0));
-  c.queryCmd->add_option("--species", c.query.speciesFile,
-                         "Species catalog JSON (default: the embedded config/species.json)");
+  c.query.cmd->add_option("--species", c.query.options.speciesFile,
+                          "Species catalog JSON (default: the embedded config/species.json)");
 }
 
 // `generate` and its options.
 void addGenerateCommand(CLI::App& cli, Commands& c) {
-  c.generateCmd = cli.add_subcommand("generate", "Write a synthetic dataset: fractal relief, biome colours");
-  c.generateCmd->add_option("--out", c.genOut, "Dataset directory to create")->required();
-  c.generateCmd->add_option("--lat", c.gen.centreLatDeg, "Latitude of the centre")->capture_default_str();
-  c.generateCmd->add_option("--lon", c.gen.centreLonDeg, "Longitude of the centre")->capture_default_str();
-  c.generateCmd->add_option("--size-km", c.gen.sizeKm, "Side of the square area, km")->capture_default_str();
-  c.generateCmd->add_option("--seed", c.gen.seed, "Seed: the same seed gives identical files")->capture_default_str();
-  c.generateCmd->add_option("--name", c.gen.name, "Dataset name (default: the --out directory's name)");
-  c.generateCmd->add_option("--max-zoom", c.gen.maxZoom, "Finest zoom (default: pixels of at most 10 m)");
-  c.generateCmd->add_option("--min-zoom", c.gen.minZoom, "Coarsest zoom (default: the area in one tile)");
-  c.generateCmd->add_option("--encoding", c.genEncoding, "Elevation encoding: terrarium or terrain-rgb")
-      ->capture_default_str();
+  datasets::SyntheticOptions& o = c.generate.options;
+  c.generate.cmd = cli.add_subcommand("generate", "Write a synthetic dataset: fractal relief, biome colours");
+  CLI::App& cmd = *c.generate.cmd;
+  cmd.add_option("--out", c.genOut, "Dataset directory to create")->required();
+  cmd.add_option("--lat", o.centreLatDeg, "Latitude of the centre")->capture_default_str();
+  cmd.add_option("--lon", o.centreLonDeg, "Longitude of the centre")->capture_default_str();
+  cmd.add_option("--size-km", o.sizeKm, "Side of the square area, km")->capture_default_str();
+  cmd.add_option("--seed", o.seed, "Seed: the same seed gives identical files")->capture_default_str();
+  cmd.add_option("--name", o.name, "Dataset name (default: the --out directory's name)");
+  cmd.add_option("--max-zoom", o.maxZoom, "Finest zoom (default: pixels of at most 10 m)");
+  cmd.add_option("--min-zoom", o.minZoom, "Coarsest zoom (default: the area in one tile)");
+  cmd.add_option("--encoding", c.genEncoding, "Elevation encoding: terrarium or terrain-rgb")->capture_default_str();
 }
 
 // Every subcommand, in the order --help lists them.
 void addCommands(CLI::App& cli, Commands& c) {
   addFlyCommand(cli, c);
-  c.importCmd = app::addImportCommand(cli, c.importOptions);
-  c.recordOptions.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
-  c.recordCmd = app::addRecordCommand(cli, c.recordOptions);
-  c.reportCmd = app::addReportCommand(cli, c.reportOptions);
-  c.compareCmd = app::addCompareCommand(cli, c.compareOptions);
-  c.pathCmd = app::addPathCommand(cli, c.pathOptions);
+  c.importing.cmd = app::addImportCommand(cli, c.importing.options);
+  c.record.options.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
+  c.record.cmd = app::addRecordCommand(cli, c.record.options);
+  c.report.cmd = app::addReportCommand(cli, c.report.options);
+  c.compare.cmd = app::addCompareCommand(cli, c.compare.options);
+  c.path.cmd = app::addPathCommand(cli, c.path.options);
   c.devicesCmd = cli.add_subcommand("devices", "List the Vulkan devices vegstream can draw with");
   addInfoAndQueryCommands(cli, c);
-  c.plantsCmd = app::addPlantsCommand(cli, c.plantsOptions);
-  c.inspectCmd = app::addInspectCommand(cli, c.inspectOptions);
-  c.snapshotOptions.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
-  c.snapshotCmd = app::addSnapshotCommand(cli, c.snapshotOptions);
+  c.plants.cmd = app::addPlantsCommand(cli, c.plants.options);
+  c.inspect.cmd = app::addInspectCommand(cli, c.inspect.options);
+  c.snapshot.options.samplesDir = app::samplesDirFromEnvironment(VEGSTREAM_SAMPLES_DIR);
+  c.snapshot.cmd = app::addSnapshotCommand(cli, c.snapshot.options);
   addGenerateCommand(cli, c);
 }
 
 // `fly` after its own checks of --size and --msaa.
 int runFly(Commands& c, const Logger& log) {
-  app::FlyOptions& fly = c.fly;
+  app::FlyOptions& fly = c.fly.options;
   if (!vegstream::app::parseFrameSize(c.flySize, fly.width, fly.height)) {
     log->error("--size {}: expected WxH with each side 1 … 16384, e.g. 640x360", c.flySize);
     return app::kExitUserError;
@@ -162,31 +155,31 @@ int runFly(Commands& c, const Logger& log) {
     log->error("--msaa {}: samples per pixel must be 1, 2, 4, 8 or 16", fly.msaa);
     return app::kExitUserError;
   }
-  fly.framesGiven = c.flyCmd->count("--frames") > 0;
+  fly.framesGiven = c.fly.cmd->count("--frames") > 0;
   return app::runFly(fly, log);
 }
 
 // The subcommand the user chose.
 int runCommand(Commands& c, const Logger& log) {
   if (*c.devicesCmd) return listDevicesCommand(log);
-  if (*c.recordCmd) return app::runRecord(c.recordOptions, log);
-  if (*c.reportCmd) return app::runReport(c.reportOptions, log);
-  if (*c.compareCmd) return app::runCompare(c.compareOptions, log);
-  if (*c.pathCmd) return app::runPath(c.pathOptions, log);
-  if (*c.importCmd) return app::runImport(c.importOptions, log);
-  if (*c.infoCmd) return app::runInfo(c.info, log);
-  if (*c.queryCmd) return app::runQuery(c.query, log);
-  if (*c.plantsCmd) return app::runPlants(c.plantsOptions, log);
-  if (*c.inspectCmd) return app::runInspect(c.inspectOptions, log);
-  if (*c.snapshotCmd) return app::runSnapshot(c.snapshotOptions, log);
-  if (*c.generateCmd) {
+  if (*c.record.cmd) return app::runRecord(c.record.options, log);
+  if (*c.report.cmd) return app::runReport(c.report.options, log);
+  if (*c.compare.cmd) return app::runCompare(c.compare.options, log);
+  if (*c.path.cmd) return app::runPath(c.path.options, log);
+  if (*c.importing.cmd) return app::runImport(c.importing.options, log);
+  if (*c.info.cmd) return app::runInfo(c.info.options, log);
+  if (*c.query.cmd) return app::runQuery(c.query.options, log);
+  if (*c.plants.cmd) return app::runPlants(c.plants.options, log);
+  if (*c.inspect.cmd) return app::runInspect(c.inspect.options, log);
+  if (*c.snapshot.cmd) return app::runSnapshot(c.snapshot.options, log);
+  if (*c.generate.cmd) {
     auto encoding = datasets::parseElevationEncoding(c.genEncoding);
     if (!encoding) return app::reportError(log, encoding.error());
-    c.gen.encoding = *encoding;
-    c.gen.out = c.genOut;
-    return app::runGenerate(c.gen, log);
+    c.generate.options.encoding = *encoding;
+    c.generate.options.out = c.genOut;
+    return app::runGenerate(c.generate.options, log);
   }
-  if (*c.flyCmd) return runFly(c, log);
+  if (*c.fly.cmd) return runFly(c, log);
   return app::kExitUserError;
 }
 

@@ -3,6 +3,7 @@
 
 #include "app/plants_export.h"
 
+#include <array>
 #include <charconv>
 #include <filesystem>
 
@@ -24,36 +25,38 @@ std::vector<TableColumn> columns(const char* size, const char* third, const char
   return {{"height_m", T::Real}, {"species", T::Text}, {size, T::Real}, {third, T::Real}, {fourth, T::Real}};
 }
 
-PointTable plantsTable(const PlantsExport& d) {
-  PointTable t{"plants", "", columns("plant_height_m", "stiffness", "s_prime"), d.plants->size(), {}};
-  t.row = [&d](size_t i, double& lon, double& lat, std::span<TableValue> v) {
-    const scene::BoxPlant& p = (*d.plants)[i];
-    const PlantFields f = fieldsOf(p);
+// The table `name` of `items` (plants or trees): position, height and species, then the three
+// columns of their own that own(fieldsOf(item)) picks, each the double its printed field reads
+// back as.
+template <class Item, class Own>
+PointTable pointTable(const char* name, std::vector<TableColumn> columns, const std::vector<Item>& items,
+                      const vegetation::SpeciesCatalog& catalog, Own own) {
+  PointTable t{name, "", std::move(columns), items.size(), {}};
+  t.row = [&items, &catalog, own](size_t i, double& lon, double& lat, std::span<TableValue> v) {
+    const Item& item = items[i];
+    const auto f = fieldsOf(item);
     lon = value(f.lon);
     lat = value(f.lat);
     v[0] = value(f.height);
-    v[1] = std::string_view(d.catalog->species[p.species].name);
-    v[2] = value(f.plantHeight);
-    v[3] = value(f.stiffness);
-    v[4] = value(f.sPrime);
+    v[1] = std::string_view(catalog.species[item.species].name);
+    const std::array<const std::string*, 3> printed = own(f);
+    for (size_t k = 0; k < printed.size(); ++k) v[2 + k] = value(*printed[k]);
   };
   return t;
 }
 
+PointTable plantsTable(const PlantsExport& d) {
+  return pointTable("plants", columns("plant_height_m", "stiffness", "s_prime"), *d.plants, *d.catalog,
+                    [](const PlantFields& f) {
+                      return std::array{&f.plantHeight, &f.stiffness, &f.sPrime};
+                    });
+}
+
 PointTable treesTable(const PlantsExport& d) {
-  PointTable t{"trees", "", columns("tree_height_m", "crown_m", "s_prime"), d.trees->size(), {}};
-  t.row = [&d](size_t i, double& lon, double& lat, std::span<TableValue> v) {
-    const scene::BoxTree& tree = (*d.trees)[i];
-    const TreeFields f = fieldsOf(tree);
-    lon = value(f.lon);
-    lat = value(f.lat);
-    v[0] = value(f.height);
-    v[1] = std::string_view(d.catalog->species[tree.species].name);
-    v[2] = value(f.treeHeight);
-    v[3] = value(f.crown);
-    v[4] = value(f.sPrime);
-  };
-  return t;
+  return pointTable("trees", columns("tree_height_m", "crown_m", "s_prime"), *d.trees, *d.catalog,
+                    [](const TreeFields& f) {
+                      return std::array{&f.treeHeight, &f.crown, &f.sPrime};
+                    });
 }
 
 // F's stem + "-" + table + F's extension, in F's directory.
@@ -74,8 +77,8 @@ std::optional<TableFormat> parseExportFormat(const std::string& text) {
   return std::nullopt;
 }
 
-Result<std::vector<ExportFile>> exportFiles(TableFormat format, const std::string& formatName,
-                                            const std::string& layer, const std::string& output) {
+Result<std::vector<ExportFile>> exportFiles(TableFormat format, const std::string& formatName, const std::string& layer,
+                                            const std::string& output) {
   const std::vector<std::string> both = {"plants", "trees"};
   if (format == TableFormat::GeoPackage) {
     if (output.empty())
@@ -85,9 +88,9 @@ Result<std::vector<ExportFile>> exportFiles(TableFormat format, const std::strin
   }
   if (!layer.empty()) return std::vector<ExportFile>{{output, {layer}}};
   if (output.empty())
-    return makeError(ErrorKind::InvalidInput,
-                     "--format " + formatName + ": one table a file; on standard output pick it with --layer plants|"
-                     "trees, or give --output FILE for both (FILE-plants, FILE-trees)");
+    return makeError(ErrorKind::InvalidInput, "--format " + formatName +
+                                                  ": one table a file; on standard output pick it with --layer plants|"
+                                                  "trees, or give --output FILE for both (FILE-plants, FILE-trees)");
   std::vector<ExportFile> files;
   for (const std::string& table : both) files.push_back({suffixed(output, table), {table}});
   return files;

@@ -62,10 +62,7 @@ CLI::App* addRecordCommand(CLI::App& cli, RecordOptions& o) {
   cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
   cmd->add_flag("--no-plots", o.noPlots, "Write frames.csv and the JSON files only (no python3/matplotlib needed)");
-  addStreamingOptions(*cmd, o.streaming, true);
-  addSimulationOptions(*cmd, o.simulationCli);
-  addTreeOptions(*cmd, o.treeCli);
-  addSunOptions(*cmd, o.sunCli);
+  addSceneOptions(*cmd, o.streaming, true, o.simulationCli, o.treeCli, o.sunCli);
   return cmd;
 }
 
@@ -82,7 +79,8 @@ int runRecord(RecordOptions o, const Logger& log) {
   auto aovs = scene::parseAovList(o.aov);
   if (!aovs) return reportError(log, aovs.error());
   if (aovs->any() && o.framesEvery <= 0)
-    return userError("--aov " + o.aov + ": --frames-every K is required (the AOVs are written beside the saved frames)");
+    return userError("--aov " + o.aov +
+                     ": --frames-every K is required (the AOVs are written beside the saved frames)");
   std::error_code ec;
   if (fs::exists(o.out, ec) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec)))
     return userError("--out " + o.out + " already exists and is not empty; choose another output directory");

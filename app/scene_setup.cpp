@@ -15,11 +15,18 @@ namespace vegstream::app {
 Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log,
                                    bool syntheticFallback) {
   if (!given.empty()) return given;
-  auto sample = syntheticFallback
-                    ? ensureDefaultDataset(samplesDir, "out/datasets/zion", "out/datasets/synthetic", log)
-                    : ensureZionSample(samplesDir, "out/datasets/zion", log);
+  auto sample = syntheticFallback ? ensureDefaultDataset(samplesDir, "out/datasets/zion", "out/datasets/synthetic", log)
+                                  : ensureZionSample(samplesDir, "out/datasets/zion", log);
   if (!sample) return sample.error();
   return sample->string();
+}
+
+void addSceneOptions(CLI::App& cmd, StreamingCli& streaming, bool withMode, SimulationCli& simulation, TreeCli& trees,
+                     SunCli& sun) {
+  addStreamingOptions(cmd, streaming, withMode);
+  addSimulationOptions(cmd, simulation);
+  addTreeOptions(cmd, trees);
+  addSunOptions(cmd, sun);
 }
 
 Status applyStreamingAndTreeOptions(const StreamingCli& streaming, scene::StreamingMode defaultMode,

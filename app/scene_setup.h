@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <string>
 
+#include "app/simulation_cli.h"
 #include "app/streaming_cli.h"
+#include "app/sun_cli.h"
 #include "app/tree_cli.h"
 #include "core/log.h"
 #include "core/result.h"
@@ -22,6 +24,11 @@ namespace vegstream::app {
 // into out/datasets/synthetic (sample_dataset.h).
 Result<std::string> resolveDataset(const std::string& given, const std::string& samplesDir, const Logger& log,
                                    bool syntheticFallback = false);
+
+// Registers the options `fly`, `record` and `snapshot` share on cmd, in this order: the streaming
+// options (--streaming only `withMode`), the simulation's, the trees' and the sun's.
+void addSceneOptions(CLI::App& cmd, StreamingCli& streaming, bool withMode, SimulationCli& simulation, TreeCli& trees,
+                     SunCli& sun);
 
 // The options `fly`, `record` and `snapshot` take first, before any file but --species is read:
 // the streaming options (defaultMode where --streaming names none) and the tree options, checked

@@ -27,7 +27,6 @@ namespace {
 
 constexpr double kMaxSimulationTimeS = 600.0;
 
-
 constexpr double kMinClearanceM = 0.5;  // the camera at least this far above the ground
 constexpr double kMaxAltM = 100000.0;
 constexpr double kMaxPitchDeg = 89.0;  // ±90 looks along the up axis: no heading, no view
@@ -41,7 +40,8 @@ Status checkOut(const std::string& out) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   std::error_code ec;
   if (fs::is_directory(p, ec)) return userError("--out " + out + " is a directory; give a file name ending in .png");
-  if (ext != ".png") return userError("--out " + out + ": the still is written as PNG; give a file name ending in .png");
+  if (ext != ".png")
+    return userError("--out " + out + ": the still is written as PNG; give a file name ending in .png");
   if (fs::is_directory(scene::sidecarPathFor(p), ec))
     return userError("--out " + out + ": its sidecar " + scene::sidecarPathFor(p).string() + " is a directory");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
@@ -55,7 +55,8 @@ Status checkPoseNumbers(const SnapshotOptions& o) {
     return userError("--lat " + numberText(o.latDeg) + ": must be -90 … 90 degrees");
   if (!std::isfinite(o.lonDeg) || o.lonDeg < -180.0 || o.lonDeg > 180.0)
     return userError("--lon " + numberText(o.lonDeg) + ": must be -180 … 180 degrees");
-  if (!std::isfinite(o.headingDeg)) return userError("--heading " + numberText(o.headingDeg) + ": must be a number of degrees");
+  if (!std::isfinite(o.headingDeg))
+    return userError("--heading " + numberText(o.headingDeg) + ": must be a number of degrees");
   if (!std::isfinite(o.pitchDeg) || std::abs(o.pitchDeg) > kMaxPitchDeg)
     return userError("--pitch " + numberText(o.pitchDeg) + ": must be -89 … 89 degrees (0 level, negative looks down)");
   if (!std::isfinite(o.altM) || o.altM > kMaxAltM)
@@ -74,8 +75,7 @@ Status checkCoverage(const SnapshotOptions& o, const geo::GeoBounds& b, const st
                             : latOut         ? "--lat " + numberText(o.latDeg)
                                              : "--lon " + numberText(o.lonDeg);
   char cover[160];
-  std::snprintf(cover, sizeof(cover), "lat %.5f … %.5f, lon %.5f … %.5f", b.southDeg, b.northDeg, b.westDeg,
-                b.eastDeg);
+  std::snprintf(cover, sizeof(cover), "lat %.5f … %.5f, lon %.5f … %.5f", b.southDeg, b.northDeg, b.westDeg, b.eastDeg);
   return userError(which + ": outside dataset " + dataset + ", which covers " + cover);
 }
 
@@ -117,10 +117,7 @@ CLI::App* addSnapshotCommand(CLI::App& cli, SnapshotOptions& o) {
       ->capture_default_str();
   cmd->add_option("--device", o.device, "Use the GPU whose name contains NAME (see `vegstream devices`)");
   cmd->add_flag("--validate", o.validate, "Turn on the Vulkan validation layers");
-  addStreamingOptions(*cmd, o.streaming, false);
-  addSimulationOptions(*cmd, o.simulationCli);
-  addTreeOptions(*cmd, o.treeCli);
-  addSunOptions(*cmd, o.sunCli);
+  addSceneOptions(*cmd, o.streaming, false, o.simulationCli, o.treeCli, o.sunCli);
   cmd->add_option("--time", o.timeS,
                   "Show the wind as it is S seconds into a flight held at this pose since 0 (0 … 600)")
       ->capture_default_str();
@@ -154,8 +151,10 @@ Result<flight::FlightSample> snapshotPose(const SnapshotOptions& o, scene::Scene
                      " has no elevation data there");
   const double heightMsl = o.altRef == "msl" ? o.altM : ground + o.altM;
   if (heightMsl - ground < kMinClearanceM)
-    return userError("--alt " + numberText(o.altM) + " (above sea level): the camera must be at least 0.5 m "
-                     "above the ground, which is at " + numberText(ground) + " m there");
+    return userError("--alt " + numberText(o.altM) +
+                     " (above sea level): the camera must be at least 0.5 m "
+                     "above the ground, which is at " +
+                     numberText(ground) + " m there");
   flight::FlightSample pose;
   pose.position = {o.latDeg, o.lonDeg, heightMsl};
   pose.headingDeg = std::fmod(std::fmod(o.headingDeg, 360.0) + 360.0, 360.0);
@@ -167,7 +166,7 @@ Result<flight::FlightSample> snapshotPose(const SnapshotOptions& o, scene::Scene
 // The run's summary: what was drawn, how long it took to settle, and the sun.
 void logSnapshot(const SnapshotOptions& o, const SettledStill& still, const scene::Scene& scene, bool plantsOn,
                  uint32_t width, uint32_t height, const flight::FlightSample& pose, const Logger& log) {
-  const std::string plants = !plantsOn            ? "no plants"
+  const std::string plants = !plantsOn             ? "no plants"
                              : still.plantsCounted ? std::to_string(still.plants) + " plants drawn"
                                                    : "plants not counted on this device";
   const std::string frames = still.settled ? std::to_string(still.frames) + " frames to settle"
@@ -218,12 +217,13 @@ int runSnapshot(SnapshotOptions o, const Logger& log) {
   auto still = renderSettledStill(scene, *pose, log, 40, o.timeS, aovs->any());
   if (!still) return reportError(log, still.error());
   if (!still->settled)
-    log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame",
-              still->frames, still->unsettled);
+    log->warn("the view did not settle in {} frames (the last one still had {}); writing the last frame", still->frames,
+              still->unsettled);
   if (still->fallbackPieces > 0)
-    log->warn("{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
-              "--cpu-budget-mb / --gpu-budget-mb",
-              still->fallbackPieces);
+    log->warn(
+        "{} terrain pieces are drawn from coarser tiles: the tiles the view wants do not fit "
+        "--cpu-budget-mb / --gpu-budget-mb",
+        still->fallbackPieces);
   const std::string sidecar = scene::frameSidecarJson(still->record, width, height, scene);
   if (Status s = writeStill(o.out, *still, sidecar, *aovs); !s) return reportError(log, s.error());
 

@@ -26,8 +26,7 @@ geo::GeoBounds intersection(const geo::GeoBounds& a, const geo::GeoBounds& b) {
 }
 
 // One tile at the layer's zoom; `wrote` when any pixel has a height.
-Status writeCanopyAt(const fs::path& dir, const geo::TileId& id, const SourceGrid& grid, bool& wrote,
-                     uint64_t& bytes) {
+Status writeCanopyAt(const fs::path& dir, const geo::TileId& id, const SourceGrid& grid, bool& wrote, uint64_t& bytes) {
   const auto px = grid.tilePixelsToSource(id, kTileSize);
   auto window = grid.windowFor(px, 2, kMaxWindowSide);
   if (!window) return window.error();
@@ -105,20 +104,12 @@ Status buildCanopyPyramid(const fs::path& dir, std::set<geo::TileId> level, int 
 
 Result<CanopyLayer> openCanopy(const std::string& file, const std::optional<geo::Crs>& crs, const SourceGrid& dem,
                                uint64_t overviewPixels, const Logger& log) {
-  SourceOptions so;
-  so.flag = "--canopy-height";
-  so.crsFlag = "--canopy-height-crs";
-  so.assumeCrs = crs;
-  so.bands = {1};
-  so.heights = true;  // scale / offset applied, a declared foot unit converted to metres
-  auto src = RasterSource::open({file}, so);
-  if (!src) return src.error();
-  CanopyLayer l;
-  l.file = file;
-  l.source = std::make_shared<RasterSource>(std::move(*src));
-  auto grid = SourceGrid::make(*l.source);
-  if (!grid) return grid.error();
-  l.grid = std::make_shared<SourceGrid>(std::move(*grid));
+  // heights: scale / offset applied, a declared foot unit converted to metres.
+  auto opened = openGridded(
+      file,
+      {.flag = "--canopy-height", .crsFlag = "--canopy-height-crs", .assumeCrs = crs, .bands = {1}, .heights = true});
+  if (!opened) return opened.error();
+  CanopyLayer l{file, opened->source, opened->grid};
   if (!extentsOverlap(dem.extent(), l.grid->extent()))
     return makeError(ErrorKind::InvalidInput,
                      concat("the canopy height model ", file, " (", extentText(l.grid->extent()), ") and the DEM (",
@@ -166,7 +157,8 @@ Status importCanopyTiles(const fs::path& dir, const CanopyLayer& layer, const ge
     return makeError(ErrorKind::InvalidInput, concat("the canopy height model ", layer.file,
                                                      " has no height over the DEM (all nodata where they overlap)"));
   meta.canopyZoom = layer.zoom;
-  return buildCanopyPyramid(dir, std::move(level), layer.zoom, std::min(meta.minZoom, layer.zoom), threads, tasks, meta);
+  return buildCanopyPyramid(dir, std::move(level), layer.zoom, std::min(meta.minZoom, layer.zoom), threads, tasks,
+                            meta);
 }
 
 }  // namespace vegstream::datasets

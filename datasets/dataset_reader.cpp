@@ -113,20 +113,27 @@ void DatasetReader::insert(Entry entry) {
   }
 }
 
-Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::TileId& id) {
-  const Key key{id, Layer::Height};
-  if (const Entry* e = cached(key)) return e->height;
+template <class Tile, class PathOf, class Read>
+Result<std::shared_ptr<const Tile>> DatasetReader::cachedTile(const Key& key, std::shared_ptr<const Tile> Entry::*slot,
+                                                              bool present, PathOf&& pathOf, Read&& read) {
+  if (const Entry* e = cached(key)) return e->*slot;
   Entry entry{key, nullptr, nullptr, nullptr};
-  const fs::path path = elevationTilePath(dir_, id);
+  const fs::path path = pathOf();
   std::error_code ec;
-  if (fs::exists(path, ec)) {
-    auto tile = readHeightTile(path, id, meta_.elevationEncoding, meta_.tileSize);  // checks the size
+  if (present && fs::exists(path, ec)) {
+    Result<Tile> tile = read(path);  // checks the size
     if (!tile) return tile.error();
-    entry.height = std::make_shared<const HeightTile>(std::move(*tile));
+    entry.*slot = std::make_shared<const Tile>(std::move(*tile));
     ++decoded_;
   }
   insert(entry);
-  return entry.height;
+  return entry.*slot;
+}
+
+Result<std::shared_ptr<const HeightTile>> DatasetReader::heightTile(const geo::TileId& id) {
+  return cachedTile(
+      Key{id, Layer::Height}, &Entry::height, true, [&] { return elevationTilePath(dir_, id); },
+      [&](const fs::path& path) { return readHeightTile(path, id, meta_.elevationEncoding, meta_.tileSize); });
 }
 
 Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::TileId& id) {
@@ -166,35 +173,16 @@ Result<std::shared_ptr<const ColorTile>> DatasetReader::colorTile(const geo::Til
 }
 
 Result<std::shared_ptr<const LandcoverTile>> DatasetReader::landcoverTile(const geo::TileId& id) {
-  const Key key{id, Layer::Landcover};
-  if (const Entry* e = cached(key)) return e->landcover;
-  Entry entry{key, nullptr, nullptr, nullptr};
-  const fs::path path = landcoverTilePath(dir_, id);
-  std::error_code ec;
-  if (meta_.landcover && fs::exists(path, ec)) {
-    auto tile = readLandcoverTile(path, id, meta_.tileSize);  // checks the size
-    if (!tile) return tile.error();
-    entry.landcover = std::make_shared<const LandcoverTile>(std::move(*tile));
-    ++decoded_;
-  }
-  insert(entry);
-  return entry.landcover;
+  return cachedTile(
+      Key{id, Layer::Landcover}, &Entry::landcover, meta_.landcover.has_value(),
+      [&] { return landcoverTilePath(dir_, id); },
+      [&](const fs::path& path) { return readLandcoverTile(path, id, meta_.tileSize); });
 }
 
 Result<std::shared_ptr<const CanopyTile>> DatasetReader::canopyTile(const geo::TileId& id) {
-  const Key key{id, Layer::Canopy};
-  if (const Entry* e = cached(key)) return e->canopy;
-  Entry entry{key, nullptr, nullptr, nullptr};
-  const fs::path path = canopyTilePath(dir_, id);
-  std::error_code ec;
-  if (meta_.canopyZoom && fs::exists(path, ec)) {
-    auto tile = readCanopyTile(path, id, meta_.tileSize);  // checks the size
-    if (!tile) return tile.error();
-    entry.canopy = std::make_shared<const CanopyTile>(std::move(*tile));
-    ++decoded_;
-  }
-  insert(entry);
-  return entry.canopy;
+  return cachedTile(
+      Key{id, Layer::Canopy}, &Entry::canopy, meta_.canopyZoom.has_value(), [&] { return canopyTilePath(dir_, id); },
+      [&](const fs::path& path) { return readCanopyTile(path, id, meta_.tileSize); });
 }
 
 Result<double> DatasetReader::heightAtZoom(double latDeg, double lonDeg, int z) {

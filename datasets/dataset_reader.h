@@ -97,6 +97,11 @@ class DatasetReader {
   };
   const Entry* cached(const Key& key);
   void insert(Entry entry);
+  // The tile of `key` from the cache (its `slot`), else read and cached: read(path) where the
+  // layer is `present` and the file pathOf() exists, else none (cached as none too).
+  template <class Tile, class PathOf, class Read>
+  Result<std::shared_ptr<const Tile>> cachedTile(const Key& key, std::shared_ptr<const Tile> Entry::*slot, bool present,
+                                                 PathOf&& pathOf, Read&& read);
 
   std::filesystem::path dir_;
   DatasetMeta meta_;

@@ -12,18 +12,10 @@ namespace vegstream::datasets {
 
 Result<LandcoverLayer> openLandcover(const GeoTiffImportOptions::Landcover& in, const SourceGrid& dem,
                                      uint64_t overviewPixels, const Logger& log) {
-  SourceOptions so;
-  so.flag = "--landcover";
-  so.crsFlag = "--landcover-crs";
-  so.assumeCrs = in.crs;
-  so.bands = {1};
-  auto src = RasterSource::open({in.file}, so);
-  if (!src) return src.error();
-  LandcoverLayer l;
-  l.source = std::make_shared<RasterSource>(std::move(*src));
-  auto grid = SourceGrid::make(*l.source);
-  if (!grid) return grid.error();
-  l.grid = std::make_shared<SourceGrid>(std::move(*grid));
+  auto opened =
+      openGridded(in.file, {.flag = "--landcover", .crsFlag = "--landcover-crs", .assumeCrs = in.crs, .bands = {1}});
+  if (!opened) return opened.error();
+  LandcoverLayer l{opened->source, opened->grid};
   if (!extentsOverlap(dem.extent(), l.grid->extent()))
     return makeError(ErrorKind::InvalidInput, concat("the landcover ", in.file, " (", extentText(l.grid->extent()),
                                                      ") and the DEM (", extentText(dem.extent()), ") do not overlap"));

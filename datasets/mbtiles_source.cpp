@@ -155,7 +155,8 @@ Result<std::optional<std::vector<uint8_t>>> MbtilesSource::read(const geo::TileI
   if (rc != SQLITE_ROW) return failure(concat("reading tile ", geo::toString(id)));
   const int n = sqlite3_column_bytes(readStmt_, 0);
   if (n > kMaxTileBytes)
-    return makeError(ErrorKind::InvalidInput, concat(tileName(id), " has ", n, " bytes; tiles stop at ", kMaxTileBytes));
+    return makeError(ErrorKind::InvalidInput,
+                     concat(tileName(id), " has ", n, " bytes; tiles stop at ", kMaxTileBytes));
   const auto* p = static_cast<const uint8_t*>(sqlite3_column_blob(readStmt_, 0));
   std::vector<uint8_t> bytes(p, p + (p ? n : 0));
   sqlite3_reset(readStmt_);
@@ -165,12 +166,7 @@ Result<std::optional<std::vector<uint8_t>>> MbtilesSource::read(const geo::TileI
 }  // namespace
 
 Result<std::unique_ptr<XyzSource>> openMbtilesSource(const fs::path& file) {
-  std::error_code ec;
-  const auto status = fs::status(file, ec);
-  if (status.type() == fs::file_type::not_found)
-    return makeError(ErrorKind::NotFound, concat("MBTiles archive ", file, " does not exist"));
-  if (!fs::is_regular_file(status))
-    return makeError(ErrorKind::InvalidInput, concat("MBTiles archive ", file, " is not a file"));
+  if (Status s = checkArchiveFile(file, concat("MBTiles archive ", file)); !s) return s.error();
   sqlite3* db = nullptr;
   const int rc = sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX, nullptr);
   if (rc != SQLITE_OK) {

@@ -45,28 +45,23 @@ float ndviOf(float nir, float red) {
 }
 
 Result<NdviSource> NdviSource::open(const NirInput& in, const SourceGrid& imagery, const Logger& log) {
-  SourceOptions so;
-  so.flag = "--imagery-nir";
-  so.crsFlag = "--imagery-nir-crs";
-  so.assumeCrs = in.assumeCrs;
-  so.bands = {in.band};
-  auto read = RasterSource::open({in.file}, so);
-  if (!read) return read.error();
+  auto opened = openGridded(
+      in.file,
+      {.flag = "--imagery-nir", .crsFlag = "--imagery-nir-crs", .assumeCrs = in.assumeCrs, .bands = {in.band}});
+  if (!opened) return opened.error();
   NdviSource out;
-  out.nir_ = std::make_shared<RasterSource>(std::move(*read));
-  auto grid = SourceGrid::make(*out.nir_);
-  if (!grid) return grid.error();
-  out.grid_ = std::make_shared<SourceGrid>(std::move(*grid));
+  out.nir_ = opened->source;
+  out.grid_ = opened->grid;
   if (!extentsOverlap(out.grid_->extent(), imagery.extent()))
-    return makeError(ErrorKind::InvalidInput,
-                     concat("the near-infrared file ", in.file, " (", extentText(out.grid_->extent()),
-                            ") and the imagery ", imagery.source().label(), " (", extentText(imagery.extent()),
-                            ") do not overlap"));
+    return makeError(
+        ErrorKind::InvalidInput,
+        concat("the near-infrared file ", in.file, " (", extentText(out.grid_->extent()), ") and the imagery ",
+               imagery.source().label(), " (", extentText(imagery.extent()), ") do not overlap"));
   out.imagery_ = &imagery;
   out.sameGrid_ = sameGrid(imagery.source(), *out.nir_);
   out.description_ = describe(*out.nir_, *out.grid_, out.sameGrid_);
-  log->info("{}: band {}, {} ({:.1f} m pixels), NDVI with the imagery's red", in.file, in.band,
-            out.nir_->crs().name(), out.grid_->pixelSizeM());
+  log->info("{}: band {}, {} ({:.1f} m pixels), NDVI with the imagery's red", in.file, in.band, out.nir_->crs().name(),
+            out.grid_->pixelSizeM());
   return out;
 }
 
@@ -110,7 +105,8 @@ Result<Raster> NdviSource::ndviFor(const ImageryWindow& w, int maxSide) const {
   const size_t count = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
   out.samples.assign(count, NAN);
   if (sameGrid_) {
-    const int ww = static_cast<int>(std::lround(c.width * c.step.x)), wh = static_cast<int>(std::lround(c.height * c.step.y));
+    const int ww = static_cast<int>(std::lround(c.width * c.step.x)),
+              wh = static_cast<int>(std::lround(c.height * c.step.y));
     auto nir = nir_->read(static_cast<int>(c.origin.x), static_cast<int>(c.origin.y), ww, wh, maxSide);
     if (!nir) return nir.error();
     assert(nir->width == c.width && nir->height == c.height);

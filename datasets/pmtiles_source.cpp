@@ -216,8 +216,9 @@ Status PmtilesSource::walk(const Directory& dir, uint64_t lo, uint64_t hi, int d
       continue;
     }
     for (uint64_t t = std::max(e.tileId, lo); t < std::min(end, hi); ++t) {
-      if (ids.size() >= max) return makeError(ErrorKind::InvalidInput, concat("'", name(), "' has more than ", max,
-                                                                              " tiles at one zoom (a lower --max-zoom)"));
+      if (ids.size() >= max)
+        return makeError(ErrorKind::InvalidInput,
+                         concat("'", name(), "' has more than ", max, " tiles at one zoom (a lower --max-zoom)"));
       ids.push_back(t);
     }
   }
@@ -260,14 +261,10 @@ Result<std::unique_ptr<XyzSource>> openPmtilesSource(const std::string& pathOrUr
   if (looksLikeHttpUrl(pathOrUrl)) {
     reader = std::make_unique<HttpReader>(pathOrUrl, http);
   } else {
-    std::error_code ec;
-    const auto status = fs::status(pathOrUrl, ec);
-    if (status.type() == fs::file_type::not_found)
-      return makeError(ErrorKind::NotFound, concat("PMTiles archive '", pathOrUrl, "' does not exist"));
-    if (!fs::is_regular_file(status))
-      return makeError(ErrorKind::InvalidInput, concat("PMTiles archive '", pathOrUrl, "' is not a file"));
+    if (Status s = checkArchiveFile(pathOrUrl, concat("PMTiles archive '", pathOrUrl, "'")); !s) return s.error();
     const int fd = ::open(pathOrUrl.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) return makeError(ErrorKind::Io, concat("cannot open PMTiles archive '", pathOrUrl, "'"));
+    std::error_code ec;
     reader = std::make_unique<FileReader>(pathOrUrl, fd, fs::file_size(pathOrUrl, ec));
   }
   auto source = std::make_unique<PmtilesSource>(pathOrUrl, std::move(reader));

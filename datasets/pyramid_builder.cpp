@@ -126,89 +126,85 @@ bool meanOfValidChildren(const std::array<std::optional<Kid>, 4>& kids, int size
   return valid;
 }
 
-Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const geo::TileId& parentId,
-                                                    const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  auto read = readChildren<HeightTile>(parentId, present, [&](const geo::TileId& id) {
-    const fs::path p = elevationTilePath(dir, id);
-    return checkTileSize(readHeightTile(p, id, meta.elevationEncoding, meta.tileSize), p, meta);
-  });
-  if (!read) return read.error();
-  if (!*read) return std::optional<HeightTile>{};
-  const auto& kids = **read;
+// The parent tile of the children of parentId in `present` (each read by read(childId)): made
+// with its id and size, then blank(tile, texels) sets every texel to "no data", then each texel
+// `at` with n valid child texels is put(tile, at, sum, n) (meanOfValidChildren's add and sum).
+// nullopt when no child is present, or when no texel was valid and not keepEmpty.
+template <class Tile, class Kid, class Sum, class Read, class Blank, class Add, class Put>
+Result<std::optional<Tile>> downsample(const geo::TileId& parentId, const std::set<geo::TileId>& present,
+                                       const DatasetMeta& meta, bool keepEmpty, Read&& read, Blank&& blank, Add&& add,
+                                       Put&& put) {
+  auto kids = readChildren<Kid>(parentId, present, read);
+  if (!kids) return kids.error();
+  if (!*kids) return std::optional<Tile>{};
   const int size = meta.tileSize;
-  HeightTile out;
+  Tile out;
   out.id = parentId;
   out.size = size;
-  out.heights.assign(static_cast<size_t>(size) * static_cast<size_t>(size), NAN);
-  const bool valid = meanOfValidChildren<double>(
-      kids, size,
+  blank(out, static_cast<size_t>(size) * static_cast<size_t>(size));
+  const bool valid =
+      meanOfValidChildren<Sum>(**kids, size, add, [&](size_t at, const Sum& sum, int n) { put(out, at, sum, n); });
+  if (!valid && !keepEmpty) return std::optional<Tile>{};
+  return std::optional<Tile>(std::move(out));
+}
+
+Result<std::optional<HeightTile>> downsampleHeights(const fs::path& dir, const geo::TileId& parentId,
+                                                    const std::set<geo::TileId>& present, const DatasetMeta& meta) {
+  return downsample<HeightTile, HeightTile, double>(
+      parentId, present, meta, false,
+      [&](const geo::TileId& id) {
+        const fs::path p = elevationTilePath(dir, id);
+        return checkTileSize(readHeightTile(p, id, meta.elevationEncoding, meta.tileSize), p, meta);
+      },
+      [](HeightTile& t, size_t texels) { t.heights.assign(texels, NAN); },
       [](double& sum, const HeightTile& kid, size_t k) {
         const float h = kid.heights[k];
         if (!std::isfinite(h)) return false;
         sum += h;
         return true;
       },
-      [&](size_t at, double sum, int n) { out.heights[at] = static_cast<float>(sum / n); });
-  if (!valid) return std::optional<HeightTile>{};
-  return std::optional<HeightTile>(std::move(out));
+      [](HeightTile& t, size_t at, double sum, int n) { t.heights[at] = static_cast<float>(sum / n); });
 }
 
+// Imagery: the mean of the opaque child pixels, opaque; a parent whose children are all
+// transparent is kept, transparent.
 Result<std::optional<ColorTile>> downsampleColour(const fs::path& dir, const geo::TileId& parentId,
                                                   const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  auto read = readChildren<ColorTile>(parentId, present, [&](const geo::TileId& id) {
-    const fs::path p = imageryTilePath(dir, id, *meta.imagery);
-    return checkTileSize(readColorTile(p, id, meta.tileSize), p, meta);
-  });
-  if (!read) return read.error();
-  if (!*read) return std::optional<ColorTile>{};
-  const auto& kids = **read;
-  const int size = meta.tileSize;
-  ColorTile out;
-  out.id = parentId;
-  out.size = size;
-  out.rgba.assign(static_cast<size_t>(size) * static_cast<size_t>(size) * 4, 0);
-  meanOfValidChildren<std::array<int, 3>>(
-      kids, size,
+  return downsample<ColorTile, ColorTile, std::array<int, 3>>(
+      parentId, present, meta, true,
+      [&](const geo::TileId& id) {
+        const fs::path p = imageryTilePath(dir, id, *meta.imagery);
+        return checkTileSize(readColorTile(p, id, meta.tileSize), p, meta);
+      },
+      [](ColorTile& t, size_t texels) { t.rgba.assign(texels * 4, 0); },
       [](std::array<int, 3>& sum, const ColorTile& kid, size_t k) {
         const uint8_t* px = &kid.rgba[k * 4];
         if (px[3] == 0) return false;
         for (size_t c = 0; c < 3; ++c) sum[c] += px[c];
         return true;
       },
-      [&](size_t at, const std::array<int, 3>& sum, int n) {
-        uint8_t* d = &out.rgba[at * 4];
+      [](ColorTile& t, size_t at, const std::array<int, 3>& sum, int n) {
+        uint8_t* d = &t.rgba[at * 4];
         for (size_t c = 0; c < 3; ++c) d[c] = static_cast<uint8_t>((sum[c] + n / 2) / n);
         d[3] = 255;
       });
-  return std::optional<ColorTile>(std::move(out));
 }
 
 // NDVI: the mean of the valid child values (decoded and re-encoded: the mean of the NDVI, not
 // of its bytes, though the encoding is linear and the two differ only by rounding).
 Result<std::optional<ColorTile>> downsampleNdvi(const fs::path& dir, const geo::TileId& parentId,
                                                 const std::set<geo::TileId>& present, const DatasetMeta& meta) {
-  auto read = readChildren<std::vector<uint8_t>>(parentId, present, [&](const geo::TileId& id) {
-    return readNdviTile(ndviTilePath(dir, id), id, meta.tileSize);
-  });
-  if (!read) return read.error();
-  if (!*read) return std::optional<ColorTile>{};
-  const auto& kids = **read;
-  const int size = meta.tileSize;
-  ColorTile out;
-  out.id = parentId;
-  out.size = size;
-  out.ndvi.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
-  const bool valid = meanOfValidChildren<double>(
-      kids, size,
+  return downsample<ColorTile, std::vector<uint8_t>, double>(
+      parentId, present, meta, false,
+      [&](const geo::TileId& id) { return readNdviTile(ndviTilePath(dir, id), id, meta.tileSize); },
+      [](ColorTile& t, size_t texels) { t.ndvi.assign(texels, 0); },
       [](double& sum, const std::vector<uint8_t>& kid, size_t k) {
         const float v = ndviFromByte(kid[k]);
         if (std::isnan(v)) return false;
         sum += v;
         return true;
       },
-      [&](size_t at, double sum, int n) { out.ndvi[at] = ndviToByte(static_cast<float>(sum / n)); });
-  if (!valid) return std::optional<ColorTile>{};
-  return std::optional<ColorTile>(std::move(out));
+      [](ColorTile& t, size_t at, double sum, int n) { t.ndvi[at] = ndviToByte(static_cast<float>(sum / n)); });
 }
 
 // Landcover: the mode of the valid child classes (landcover.h modeOfClasses: ties to the
@@ -220,28 +216,18 @@ struct ClassBlock {
 Result<std::optional<LandcoverTile>> downsampleLandcover(const fs::path& dir, const geo::TileId& parentId,
                                                          const std::set<geo::TileId>& present,
                                                          const DatasetMeta& meta) {
-  auto read = readChildren<LandcoverTile>(parentId, present, [&](const geo::TileId& id) {
-    return readLandcoverTile(landcoverTilePath(dir, id), id, meta.tileSize);
-  });
-  if (!read) return read.error();
-  if (!*read) return std::optional<LandcoverTile>{};
-  const int size = meta.tileSize;
-  LandcoverTile out;
-  out.id = parentId;
-  out.size = size;
-  out.classes.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
-  const bool valid = meanOfValidChildren<ClassBlock>(
-      **read, size,
+  return downsample<LandcoverTile, LandcoverTile, ClassBlock>(
+      parentId, present, meta, false,
+      [&](const geo::TileId& id) { return readLandcoverTile(landcoverTilePath(dir, id), id, meta.tileSize); },
+      [](LandcoverTile& t, size_t texels) { t.classes.assign(texels, 0); },
       [](ClassBlock& block, const LandcoverTile& kid, size_t k) {
         if (kid.classes[k] == 0) return false;
         block.classes[block.n++] = kid.classes[k];
         return true;
       },
-      [&](size_t at, const ClassBlock& block, int) {
-        out.classes[at] = modeOfClasses(std::span(block.classes.data(), block.n));
+      [](LandcoverTile& t, size_t at, const ClassBlock& block, int) {
+        t.classes[at] = modeOfClasses(std::span(block.classes.data(), block.n));
       });
-  if (!valid) return std::optional<LandcoverTile>{};
-  return std::optional<LandcoverTile>(std::move(out));
 }
 
 // Each layer's tiles at the zoom being reduced.
@@ -255,73 +241,56 @@ struct ParentWrites {
   uint64_t bytes = 0;
 };
 
+// Writes one layer's parent tile to p when `tile` (what its children made) holds one, with
+// write(p, tile): `written` set and its bytes added to `bytes`.
+template <class Tile, class Write>
+Status writeParentLayer(const Result<std::optional<Tile>>& tile, const fs::path& p, Write&& write, bool& written,
+                        uint64_t& bytes) {
+  if (!tile) return tile.error();
+  if (!*tile) return {};
+  if (auto w = write(p, **tile); !w) return w;
+  bytes += fileBytes(p);
+  written = true;
+  return {};
+}
+
 // Writes parent tile id of every layer from its children in `tiles` (a layer with no valid child
 // gets none).
 Status buildParent(const fs::path& dir, const geo::TileId& id, const LayerTiles& tiles, const DatasetMeta& meta,
                    const PyramidOptions& options, ParentWrites& out) {
-  auto h = downsampleHeights(dir, id, tiles.elevation, meta);
-  if (!h) return h.error();
-  if (*h) {
-    const fs::path p = elevationTilePath(dir, id);
-    if (auto w = writeHeightTile(p, **h, meta.elevationEncoding); !w) return w;
-    out.bytes += fileBytes(p);
-    out.elevation = true;
-  }
-  if (meta.imagery) {
-    auto c = downsampleColour(dir, id, tiles.imagery, meta);
-    if (!c) return c.error();
-    if (*c) {
-      const fs::path p = imageryTilePath(dir, id, *meta.imagery);
-      if (auto w = writeColorTile(p, **c, *meta.imagery, options.jpegQuality); !w) return w;
-      out.bytes += fileBytes(p);
-      out.imagery = true;
-    }
-  }
-  if (meta.ndvi) {
-    auto n = downsampleNdvi(dir, id, tiles.ndvi, meta);
-    if (!n) return n.error();
-    if (*n) {
-      const fs::path p = ndviTilePath(dir, id);
-      if (auto w = writeNdviTile(p, **n); !w) return w;
-      out.bytes += fileBytes(p);
-      out.ndvi = true;
-    }
-  }
-  if (meta.landcover) {
-    auto l = downsampleLandcover(dir, id, tiles.landcover, meta);
-    if (!l) return l.error();
-    if (*l) {
-      const fs::path p = landcoverTilePath(dir, id);
-      if (auto w = writeLandcoverTile(p, **l); !w) return w;
-      out.bytes += fileBytes(p);
-      out.landcover = true;
-    }
-  }
-  return {};
+  auto heights = [&](const fs::path& p, const HeightTile& t) { return writeHeightTile(p, t, meta.elevationEncoding); };
+  auto colour = [&](const fs::path& p, const ColorTile& t) {
+    return writeColorTile(p, t, *meta.imagery, options.jpegQuality);
+  };
+  Status s = writeParentLayer(downsampleHeights(dir, id, tiles.elevation, meta), elevationTilePath(dir, id), heights,
+                              out.elevation, out.bytes);
+  if (s && meta.imagery)
+    s = writeParentLayer(downsampleColour(dir, id, tiles.imagery, meta), imageryTilePath(dir, id, *meta.imagery),
+                         colour, out.imagery, out.bytes);
+  if (s && meta.ndvi)
+    s = writeParentLayer(downsampleNdvi(dir, id, tiles.ndvi, meta), ndviTilePath(dir, id), writeNdviTile, out.ndvi,
+                         out.bytes);
+  if (s && meta.landcover)
+    s = writeParentLayer(downsampleLandcover(dir, id, tiles.landcover, meta), landcoverTilePath(dir, id),
+                         writeLandcoverTile, out.landcover, out.bytes);
+  return s;
 }
 
 // The parents written become the tiles of the next zoom down, and are counted in meta.
 void keepWritten(const std::vector<geo::TileId>& parents, const std::vector<ParentWrites>& writes, LayerTiles& tiles,
                  DatasetMeta& meta) {
   tiles = {};
+  auto keep = [](bool written, const geo::TileId& id, std::set<geo::TileId>& layer, uint64_t& count) {
+    if (!written) return;
+    layer.insert(id);
+    ++count;
+  };
   for (size_t i = 0; i < parents.size(); ++i) {
     const ParentWrites& w = writes[i];
-    if (w.elevation) {
-      tiles.elevation.insert(parents[i]);
-      ++meta.elevationTiles;
-    }
-    if (w.imagery) {
-      tiles.imagery.insert(parents[i]);
-      ++meta.imageryTiles;
-    }
-    if (w.ndvi) {
-      tiles.ndvi.insert(parents[i]);
-      ++meta.ndviTiles;
-    }
-    if (w.landcover) {
-      tiles.landcover.insert(parents[i]);
-      ++meta.landcoverTiles;
-    }
+    keep(w.elevation, parents[i], tiles.elevation, meta.elevationTiles);
+    keep(w.imagery, parents[i], tiles.imagery, meta.imageryTiles);
+    keep(w.ndvi, parents[i], tiles.ndvi, meta.ndviTiles);
+    keep(w.landcover, parents[i], tiles.landcover, meta.landcoverTiles);
     meta.bytes += w.bytes;
   }
 }

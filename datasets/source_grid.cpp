@@ -64,6 +64,16 @@ std::string extentText(const geo::GeoBounds& b) {
   return buf;
 }
 
+Result<GriddedSource> openGridded(const std::string& file, const SourceOptions& options) {
+  auto source = RasterSource::open({file}, options);
+  if (!source) return source.error();
+  GriddedSource out{std::make_shared<RasterSource>(std::move(*source)), nullptr};
+  auto grid = SourceGrid::make(*out.source);
+  if (!grid) return grid.error();
+  out.grid = std::make_shared<SourceGrid>(std::move(*grid));
+  return out;
+}
+
 Result<SourceGrid> SourceGrid::make(const RasterSource& source) {
   SourceGrid g;
   g.source_ = &source;
@@ -114,8 +124,7 @@ Result<SourceGrid> SourceGrid::make(const RasterSource& source) {
   const auto enu = [&](glm::dvec2 px) { return frame.toLocal(geo::fromProjected(crs, applyAffine(t, px))); };
   const auto ex = enu(c + glm::dvec2{1.0, 0.0}), ey = enu(c + glm::dvec2{0.0, 1.0});
   g.pixelSizeM_ = std::min(std::hypot(ex.x, ex.y), std::hypot(ey.x, ey.y));
-  if (!(g.pixelSizeM_ > 0.0))
-    return makeError(ErrorKind::InvalidInput, concat(path, " has a zero ground pixel size"));
+  if (!(g.pixelSizeM_ > 0.0)) return makeError(ErrorKind::InvalidInput, concat(path, " has a zero ground pixel size"));
   return g;
 }
 
@@ -179,7 +188,8 @@ Result<std::optional<Raster>> SourceGrid::windowFor(const std::vector<glm::dvec2
   }
   if (!(x0 <= x1)) return std::optional<Raster>();
   const int c0 = static_cast<int>(std::floor(x0 - 0.5)) - margin, r0 = static_cast<int>(std::floor(y0 - 0.5)) - margin;
-  const int c1 = static_cast<int>(std::floor(x1 - 0.5)) + 2 + margin, r1 = static_cast<int>(std::floor(y1 - 0.5)) + 2 + margin;
+  const int c1 = static_cast<int>(std::floor(x1 - 0.5)) + 2 + margin,
+            r1 = static_cast<int>(std::floor(y1 - 0.5)) + 2 + margin;
   const int cx = std::max(c0, 0), cy = std::max(r0, 0);
   auto r = source_->read(cx, cy, std::min(c1, source_->width()) - cx, std::min(r1, source_->height()) - cy, maxSide);
   if (!r) return r.error();

@@ -10,6 +10,7 @@
 // window from windowFor() does.
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,16 @@ class SourceGrid {
   geo::GeoBounds extent_;
   double pixelSizeM_ = 0.0;
 };
+
+// A raster source and its grid, both shared: the grid points into the source, so the two move
+// and copy as one (the landcover, canopy-height and near-infrared layers keep them so).
+struct GriddedSource {
+  std::shared_ptr<RasterSource> source;
+  std::shared_ptr<SourceGrid> grid;
+};
+// `file` opened with `options`, and its grid (the errors of RasterSource::open and
+// SourceGrid::make).
+Result<GriddedSource> openGridded(const std::string& file, const SourceOptions& options);
 
 // Samplers: `pixel` in whole-raster coordinates, `raster` a window holding the samples around it.
 //

@@ -39,15 +39,20 @@ double gradientNoise(double x, double y, uint32_t seed) {
   return 1.41 * (nx0 + v * (nx1 - nx0));
 }
 
+// The next octave's point: doubled in frequency (×2 in scale) and rotated, so that lattice
+// artefacts of successive octaves do not line up.
+void nextOctave(double& x, double& y) {
+  const double rx = 1.6 * x + 1.2 * y, ry = -1.2 * x + 1.6 * y;
+  x = rx;
+  y = ry;
+}
+
 double fbm(double x, double y, int octaves, uint32_t seed) {
   double sum = 0.0, amp = 0.5, norm = 0.0;
   for (int o = 0; o < octaves; ++o) {
     sum += amp * gradientNoise(x, y, seed + static_cast<uint32_t>(o) * 0x632be5abU);
     norm += amp;
-    // Rotate between octaves so that lattice artefacts do not line up.
-    const double rx = 1.6 * x + 1.2 * y, ry = -1.2 * x + 1.6 * y;
-    x = rx;
-    y = ry;
+    nextOctave(x, y);
     amp *= 0.5;
   }
   return sum / norm;
@@ -64,9 +69,7 @@ double ridged(double x, double y, int octaves, uint32_t seed) {
     weight = std::clamp(r * 2.0, 0.0, 1.0);
     sum += amp * r;
     norm += amp;
-    const double rx = 1.6 * x + 1.2 * y, ry = -1.2 * x + 1.6 * y;
-    x = rx;
-    y = ry;
+    nextOctave(x, y);
     amp *= 0.5;
   }
   return sum / norm;

@@ -43,7 +43,8 @@ struct Written {
 };
 
 Status checkCancel(const XyzImportOptions& o) {
-  if (o.cancel && o.cancel->load()) return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
+  if (o.cancel && o.cancel->load())
+    return makeError(ErrorKind::InvalidInput, "import interrupted; nothing was written");
   return {};
 }
 
@@ -73,14 +74,15 @@ Result<SourcePlan> planElevation(const XyzImportOptions& o) {
                      concat("tile URL '", plan.source->name(),
                             "' cannot be listed: give the area and the zoom with --bounds W,S,E,N and --max-zoom Z"));
   if (!zoom)
-    return makeError(ErrorKind::InvalidInput, concat("no elevation tiles in ", plan.source->kind(), " '",
-                                                     plan.source->name(), "'"));
+    return makeError(ErrorKind::InvalidInput,
+                     concat("no elevation tiles in ", plan.source->kind(), " '", plan.source->name(), "'"));
   plan.zoom = *zoom;
   auto ids = plan.source->tilesAt(plan.zoom, bounds, o.maxTiles);
   if (!ids) return ids.error();
   if (ids->empty())
-    return makeError(ErrorKind::InvalidInput, concat("no elevation tiles at zoom ", plan.zoom, o.bounds ? " over --bounds" : "",
-                                                     " in ", plan.source->kind(), " '", plan.source->name(), "'"));
+    return makeError(ErrorKind::InvalidInput,
+                     concat("no elevation tiles at zoom ", plan.zoom, o.bounds ? " over --bounds" : "", " in ",
+                            plan.source->kind(), " '", plan.source->name(), "'"));
   plan.ids = std::move(*ids);
   // The first tile asked for before anything is written or reported: a server that does not
   // answer, or a corrupt first tile, ends the import with its one message.
@@ -122,73 +124,78 @@ Result<SourcePlan> planImagery(std::unique_ptr<XyzSource> source, const std::vec
   }
   return makeError(ErrorKind::InvalidInput,
                    concat("no imagery tiles over the elevation tiles in ", plan.source->kind(), " '",
-                          plan.source->name(), "': needed 256-pixel tiles at zoom ", z,
-                          " or 512-pixel tiles at zoom ", z - 1, *size ? " (found 512-pixel tiles at zoom " : "",
+                          plan.source->name(), "': needed 256-pixel tiles at zoom ", z, " or 512-pixel tiles at zoom ",
+                          z - 1, *size ? " (found 512-pixel tiles at zoom " : "",
                           *size ? std::to_string(z) : std::string(), *size ? ")" : ""));
+}
+
+// A dataset tile written: where, and the range of its heights (empty for imagery).
+struct TileWritten {
+  fs::path path;
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+};
+
+// Writes one layer, each source tile of the plan on the workers: read(sourceId) gives its
+// dataset tiles (4 for a 512-pixel source tile, none where the source has none), and write(tile)
+// writes each one kept (a TileWritten), or returns nullopt for one not kept. What was written is
+// added to w.
+template <class Tile, class Read, class Write>
+Status writeLayer(const XyzImportOptions& o, SourcePlan& plan, ProgressSink& progress, Written& w, Read&& read,
+                  Write&& write) {
+  progress.addTotal(plan.ids.size());
+  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
+    if (auto c = checkCancel(o); !c) return c;
+    Result<std::vector<Tile>> tiles = read(plan.ids[i]);
+    if (!tiles) return tiles.error();
+    const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
+    if (auto s = tiles->empty() ? Status{} : sameSize(w, *plan.source, plan.ids[i], size); !s) return s;
+    uint64_t bytes = 0;
+    for (const Tile& t : *tiles) {
+      Result<std::optional<TileWritten>> written = write(t);
+      if (!written) return written.error();
+      if (!*written) continue;
+      const uint64_t b = fileBytes((*written)->path);
+      bytes += b;
+      std::lock_guard lock(w.mutex);
+      w.lo = std::min(w.lo, (*written)->lo), w.hi = std::max(w.hi, (*written)->hi);
+      w.ids.push_back(t.id);
+      w.bytes += b;
+    }
+    if (!tiles->empty()) {
+      std::lock_guard lock(w.mutex);
+      ++w.sourceTiles;
+    }
+    progress.tileDone(bytes);
+    return {};
+  });
 }
 
 Status writeElevation(const XyzImportOptions& o, SourcePlan& plan, ElevationEncoding encoding, const fs::path& tmp,
                       ProgressSink& progress, Written& w) {
   progress.stage(concat("elevation, source zoom ", plan.zoom));
-  progress.addTotal(plan.ids.size());
-  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
-    if (auto c = checkCancel(o); !c) return c;
-    auto tiles = readSourceHeightTiles(*plan.source, plan.ids[i], o.encoding);
-    if (!tiles) return tiles.error();
-    const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
-    if (auto s = tiles->empty() ? Status{} : sameSize(w, *plan.source, plan.ids[i], size); !s) return s;
-    uint64_t bytes = 0;
-    for (const HeightTile& t : *tiles) {
-      double tlo = std::numeric_limits<double>::infinity(), thi = -tlo;
-      for (float h : t.heights)
-        if (!std::isnan(h)) tlo = std::min(tlo, double{h}), thi = std::max(thi, double{h});
-      const fs::path dst = elevationTilePath(tmp, t.id);
-      if (auto s = writeHeightTile(dst, t, encoding); !s) return s;
-      const uint64_t b = fileBytes(dst);
-      bytes += b;
-      std::lock_guard lock(w.mutex);
-      w.lo = std::min(w.lo, tlo), w.hi = std::max(w.hi, thi);
-      w.ids.push_back(t.id);
-      w.bytes += b;
-    }
-    if (!tiles->empty()) {
-      std::lock_guard lock(w.mutex);
-      ++w.sourceTiles;
-    }
-    progress.tileDone(bytes);
-    return {};
-  });
+  return writeLayer<HeightTile>(
+      o, plan, progress, w, [&](const geo::TileId& id) { return readSourceHeightTiles(*plan.source, id, o.encoding); },
+      [&](const HeightTile& t) -> Result<std::optional<TileWritten>> {
+        TileWritten out{elevationTilePath(tmp, t.id)};
+        for (float h : t.heights)
+          if (!std::isnan(h)) out.lo = std::min(out.lo, double{h}), out.hi = std::max(out.hi, double{h});
+        if (auto s = writeHeightTile(out.path, t, encoding); !s) return s.error();
+        return std::optional(std::move(out));
+      });
 }
 
 // Imagery tiles over the elevation tiles `keep` only (a 512-pixel tile's other children are dropped).
-Status writeImagery(const XyzImportOptions& o, SourcePlan& plan, const std::set<geo::TileId>& keep,
-                    const fs::path& tmp, ProgressSink& progress, Written& w) {
+Status writeImagery(const XyzImportOptions& o, SourcePlan& plan, const std::set<geo::TileId>& keep, const fs::path& tmp,
+                    ProgressSink& progress, Written& w) {
   progress.stage(concat("imagery, source zoom ", plan.zoom));
-  progress.addTotal(plan.ids.size());
-  return parallelFor(plan.ids.size(), workersFor(o, *plan.source), o.tasks, [&](size_t i) -> Status {
-    if (auto c = checkCancel(o); !c) return c;
-    auto tiles = readSourceColorTiles(*plan.source, plan.ids[i]);
-    if (!tiles) return tiles.error();
-    const int size = tiles->size() == 4 ? kLargeSourceTileSize : kTileSize;
-    if (auto s = tiles->empty() ? Status{} : sameSize(w, *plan.source, plan.ids[i], size); !s) return s;
-    uint64_t bytes = 0;
-    for (const ColorTile& t : *tiles) {
-      if (!keep.contains(t.id)) continue;
-      const fs::path dst = imageryTilePath(tmp, t.id, o.imageryFormat);
-      if (auto s = writeColorTile(dst, t, o.imageryFormat, o.jpegQuality); !s) return s;
-      const uint64_t b = fileBytes(dst);
-      bytes += b;
-      std::lock_guard lock(w.mutex);
-      w.ids.push_back(t.id);
-      w.bytes += b;
-    }
-    if (!tiles->empty()) {
-      std::lock_guard lock(w.mutex);
-      ++w.sourceTiles;
-    }
-    progress.tileDone(bytes);
-    return {};
-  });
+  return writeLayer<ColorTile>(
+      o, plan, progress, w, [&](const geo::TileId& id) { return readSourceColorTiles(*plan.source, id); },
+      [&](const ColorTile& t) -> Result<std::optional<TileWritten>> {
+        if (!keep.contains(t.id)) return std::optional<TileWritten>{};
+        TileWritten out{imageryTilePath(tmp, t.id, o.imageryFormat)};
+        if (auto s = writeColorTile(out.path, t, o.imageryFormat, o.jpegQuality); !s) return s.error();
+        return std::optional(std::move(out));
+      });
 }
 
 std::string describe(const Written& w, const std::string& what, const SourcePlan& plan) {

@@ -32,9 +32,9 @@ class TileUrlSource final : public XyzSource {
     uint64_t count = 0;
     for (const auto& r : geo::tileRangesCovering(*bounds, z)) count += static_cast<uint64_t>(r.count());
     if (count > maxTiles)
-      return makeError(ErrorKind::InvalidInput, concat("tile URL '", name(), "': the bounds hold ", count,
-                                                       " tiles at zoom ", z, "; at most ", maxTiles,
-                                                       " are imported (a smaller --bounds or a lower --max-zoom)"));
+      return makeError(ErrorKind::InvalidInput,
+                       concat("tile URL '", name(), "': the bounds hold ", count, " tiles at zoom ", z, "; at most ",
+                              maxTiles, " are imported (a smaller --bounds or a lower --max-zoom)"));
     auto ids = geo::tilesCovering(*bounds, z);
     std::sort(ids.begin(), ids.end());
     return ids;
@@ -71,32 +71,42 @@ Result<std::unique_ptr<XyzSource>> openTileUrlSource(const std::string& urlTempl
   return std::unique_ptr<XyzSource>(new TileUrlSource(std::move(*tmpl), http));
 }
 
+Status checkArchiveFile(const fs::path& file, const std::string& named) {
+  std::error_code ec;
+  const auto status = fs::status(file, ec);
+  if (status.type() == fs::file_type::not_found) return makeError(ErrorKind::NotFound, named + " does not exist");
+  if (!fs::is_regular_file(status)) return makeError(ErrorKind::InvalidInput, named + " is not a file");
+  return {};
+}
+
 Result<std::unique_ptr<XyzSource>> openXyzSource(const std::string& text, const HttpFetchOptions& http) {
   if (text.empty()) return makeError(ErrorKind::InvalidInput, "empty tile source");
   const bool url = looksLikeHttpUrl(text);
   // Anything with a placeholder is a template (bad ones are refused by parseTileTemplate).
-  if (text.find('{') != std::string::npos)
-    return url ? openTileUrlSource(text, http) : openTileDirectorySource(text);
+  if (text.find('{') != std::string::npos) return url ? openTileUrlSource(text, http) : openTileDirectorySource(text);
   std::string bare = text.substr(0, text.find_first_of(url ? "?#" : ""));
   if (endsWith(bare, ".pmtiles")) return openPmtilesSource(text, http);
   if (url)
     return makeError(ErrorKind::Unsupported,
-                     concat("'", text, "': over HTTP vegstream reads tile URL templates (…/{z}/{x}/{y}.png) and "
-                                       ".pmtiles archives; MBTiles must be a local file"));
+                     concat("'", text,
+                            "': over HTTP vegstream reads tile URL templates (…/{z}/{x}/{y}.png) and "
+                            ".pmtiles archives; MBTiles must be a local file"));
   if (endsWith(bare, ".mbtiles")) return openMbtilesSource(text);
   std::error_code ec;
   if (!fs::exists(text, ec))
-    return makeError(ErrorKind::NotFound, concat("tile source '", text, "' does not exist (expected a template "
-                                                                        "DIR/{z}/{x}/{y}.png, an .mbtiles or a "
-                                                                        ".pmtiles file)"));
+    return makeError(ErrorKind::NotFound, concat("tile source '", text,
+                                                 "' does not exist (expected a template "
+                                                 "DIR/{z}/{x}/{y}.png, an .mbtiles or a "
+                                                 ".pmtiles file)"));
   const auto firstSixteen = firstBytes(text);
   if (!firstSixteen) return firstSixteen.error();
   const std::string& head = *firstSixteen;
   if (head.rfind("SQLite format 3", 0) == 0) return openMbtilesSource(text);
   if (head.rfind("PMTiles", 0) == 0) return openPmtilesSource(text, http);
   return makeError(ErrorKind::InvalidInput,
-                   concat("tile source '", text, "' is neither a template with {z}/{x}/{y}, an MBTiles (SQLite) nor a "
-                                                 "PMTiles archive"));
+                   concat("tile source '", text,
+                          "' is neither a template with {z}/{x}/{y}, an MBTiles (SQLite) nor a "
+                          "PMTiles archive"));
 }
 
 }  // namespace vegstream::datasets

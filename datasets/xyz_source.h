@@ -76,6 +76,10 @@ Result<std::unique_ptr<XyzSource>> openTileUrlSource(const std::string& urlTempl
 Result<std::unique_ptr<XyzSource>> openMbtilesSource(const std::filesystem::path& file);
 Result<std::unique_ptr<XyzSource>> openPmtilesSource(const std::string& pathOrUrl, const HttpFetchOptions& http);
 
+// A local archive's first check, `named` as messages name it: NotFound "<named> does not exist",
+// InvalidInput "<named> is not a file" (a directory, a FIFO, a device).
+Status checkArchiveFile(const std::filesystem::path& file, const std::string& named);
+
 // The tiles that match a path template, sorted (the directory source's listing).
 struct XyzTileFile {
   geo::TileId id;

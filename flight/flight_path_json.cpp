@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <optional>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -81,18 +83,27 @@ struct Reader {
     return fail(path.empty() ? "document" : path, std::string("must be an object, found ") + typeName(v), path);
   }
 
-  // A required (fallback empty) or optional number.
-  Result<double> number(const json& obj, const std::string& path, const std::string& key,
-                        std::optional<double> fallback = std::nullopt) const {
+  // obj[key], a `kind` of value that `is` tells apart, as a T: required (fallback empty) or
+  // optional, `fallback` where missing.
+  template <class T>
+  Result<T> field(const json& obj, const std::string& path, const std::string& key, std::optional<T> fallback,
+                  const char* kind, bool (json::*is)() const) const {
     const std::string f = child(path, key);
     const auto it = obj.find(key);
     if (it == obj.end()) {
-      if (fallback) return *fallback;
-      return fail(f, "missing required number", path);
+      if (fallback) return std::move(*fallback);
+      return fail(f, std::string("missing required ") + kind, path);
     }
-    if (!it->is_number()) return fail(f, std::string("must be a number, found ") + typeName(*it), f);
-    const double v = it->get<double>();
-    if (!std::isfinite(v)) return fail(f, "is not a finite number", f);
+    if (!((*it).*is)()) return fail(f, std::string("must be a ") + kind + ", found " + typeName(*it), f);
+    return it->get<T>();
+  }
+
+  // A required (fallback empty) or optional number.
+  Result<double> number(const json& obj, const std::string& path, const std::string& key,
+                        std::optional<double> fallback = std::nullopt) const {
+    const bool given = obj.contains(key);
+    auto v = field<double>(obj, path, key, fallback, "number", &json::is_number);
+    if (v && given && !std::isfinite(*v)) return fail(child(path, key), "is not a finite number", child(path, key));
     return v;
   }
 
@@ -106,23 +117,28 @@ struct Reader {
 
   Result<std::string> string(const json& obj, const std::string& path, const std::string& key,
                              std::optional<std::string> fallback = std::nullopt) const {
-    const std::string f = child(path, key);
-    const auto it = obj.find(key);
-    if (it == obj.end()) {
-      if (fallback) return *fallback;
-      return fail(f, "missing required string", path);
+    return field<std::string>(obj, path, key, std::move(fallback), "string", &json::is_string);
+  }
+
+  // obj[key], a string naming one of `choices` (its value then), `fallback` where missing when
+  // given; anything else is an error listing the names.
+  template <class E>
+  Result<E> choice(const json& obj, const std::string& path, const std::string& key,
+                   std::initializer_list<std::pair<const char*, E>> choices,
+                   std::optional<std::string> fallback = std::nullopt) const {
+    auto s = string(obj, path, key, std::move(fallback));
+    if (!s) return s.error();
+    std::string names;
+    for (const auto& [name, value] : choices) {
+      if (*s == name) return value;
+      names += std::string(names.empty() ? "" : ", ") + "\"" + name + "\"";
     }
-    if (!it->is_string()) return fail(f, std::string("must be a string, found ") + typeName(*it), f);
-    return it->get<std::string>();
+    const std::string f = child(path, key);
+    return fail(f, "\"" + printable(*s) + "\" is not one of " + names, f);
   }
 
   Result<AltRef> altRef(const json& obj, const std::string& path) const {
-    auto s = string(obj, path, "alt_ref", "terrain");
-    if (!s) return s.error();
-    if (*s == "terrain") return AltRef::Terrain;
-    if (*s == "msl") return AltRef::Msl;
-    return fail(child(path, "alt_ref"), "\"" + printable(*s) + "\" is not one of \"terrain\", \"msl\"",
-                child(path, "alt_ref"));
+    return choice<AltRef>(obj, path, "alt_ref", {{"terrain", AltRef::Terrain}, {"msl", AltRef::Msl}}, "terrain");
   }
 
   // The array at obj[key] (required unless optional), its elements objects.
@@ -178,14 +194,9 @@ Result<Collider> readCollider(const Reader& r, const json& obj, const std::strin
   if (auto e = r.onlyKnownKeys(obj, f, {"name", "shape", "radius_m", "length_m", "keyframes"})) return *e;
   Collider c;
   VEG_TRY_ASSIGN(c.name, r.string(obj, f, "name"));
-  std::string shape;
-  VEG_TRY_ASSIGN(shape, r.string(obj, f, "shape"));
-  if (shape == "sphere")
-    c.shape = Collider::Shape::Sphere;
-  else if (shape == "capsule")
-    c.shape = Collider::Shape::Capsule;
-  else
-    return r.fail(f + ".shape", "\"" + printable(shape) + "\" is not one of \"sphere\", \"capsule\"", f + ".shape");
+  VEG_TRY_ASSIGN(
+      c.shape, r.choice<Collider::Shape>(obj, f, "shape",
+                                         {{"sphere", Collider::Shape::Sphere}, {"capsule", Collider::Shape::Capsule}}));
   VEG_TRY_ASSIGN(c.radiusM, r.number(obj, f, "radius_m"));
   if (c.shape == Collider::Shape::Capsule) {
     VEG_TRY_ASSIGN(c.lengthM, r.number(obj, f, "length_m"));
@@ -201,17 +212,9 @@ Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const st
     return *e;
   WindSourceSpec w;
   VEG_TRY_ASSIGN(w.name, r.string(obj, f, "name"));
-  std::string type;
-  VEG_TRY_ASSIGN(type, r.string(obj, f, "type"));
-  if (type == "fan")
-    w.type = WindSourceSpec::Type::Fan;
-  else if (type == "whirlwind")
-    w.type = WindSourceSpec::Type::Whirlwind;
-  else if (type == "rotor")
-    w.type = WindSourceSpec::Type::Rotor;
-  else
-    return r.fail(f + ".type", "\"" + printable(type) + "\" is not one of \"fan\", \"whirlwind\", \"rotor\"",
-                  f + ".type");
+  using Type = WindSourceSpec::Type;
+  VEG_TRY_ASSIGN(w.type, r.choice<Type>(obj, f, "type",
+                                        {{"fan", Type::Fan}, {"whirlwind", Type::Whirlwind}, {"rotor", Type::Rotor}}));
   VEG_TRY_ASSIGN(w.radiusM, r.number(obj, f, "radius_m"));
   VEG_TRY_ASSIGN(w.strengthMps, r.number(obj, f, "strength_mps"));
   if (w.type == WindSourceSpec::Type::Fan) {
@@ -222,6 +225,7 @@ Result<WindSourceSpec> readWindSource(const Reader& r, const json& obj, const st
     VEG_TRY_ASSIGN(direction, r.number(obj, f, "direction_deg"));
     w.directionDeg = direction;
   } else if (obj.contains("direction_deg")) {
+    const std::string type = obj.at("type").get<std::string>();  // a name choice() accepted
     return r.fail(f + ".direction_deg", "only a fan has a direction (a " + printable(type) + " blows all around)",
                   f + ".direction_deg");
   }

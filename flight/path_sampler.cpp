@@ -18,12 +18,8 @@ std::vector<TrackPoint> cameraPoints(const FlightPath& path) {
   return out;
 }
 
-// The track of a collider's or a wind source's centre (both have ColliderKeyframes).
-PositionTrack objectTrack(const std::vector<ColliderKeyframe>& keys) {
-  std::vector<TrackPoint> out;
-  for (const ColliderKeyframe& k : keys) out.push_back({k.t, k.lat, k.lon, k.altM, k.altRef});
-  return PositionTrack(out);
-}
+// The track of a collider's or a wind source's centre (both have ColliderKeyframes: TrackPoints).
+PositionTrack objectTrack(const std::vector<ColliderKeyframe>& keys) { return PositionTrack(keys); }
 
 // Where such an object is at t: clamped to its keyframes, no clearance (it may touch the ground).
 geo::Geodetic objectCentre(const PositionTrack& track, double t, const GroundHeight& ground) {
@@ -96,23 +92,13 @@ FlightSample PathSampler::sample(double t, const GroundHeight& ground) const {
 ColliderSample PathSampler::collider(std::size_t i, double t, const GroundHeight& ground) const {
   assert(i < colliders_.size());
   const Collider& c = colliderShapes_[i];
-  ColliderSample s;
-  s.centre = objectCentre(colliders_[i], t, ground);
-  s.radiusM = c.radiusM;
-  s.lengthM = c.shape == Collider::Shape::Capsule ? c.lengthM : 0.0;
-  return s;
+  return {objectCentre(colliders_[i], t, ground), c.radiusM, c.shape == Collider::Shape::Capsule ? c.lengthM : 0.0};
 }
 
 WindSourceSample PathSampler::windSource(std::size_t i, double t, const GroundHeight& ground) const {
   assert(i < windTracks_.size());
   const WindSourceSpec& w = windSources_[i];
-  WindSourceSample s;
-  s.centre = objectCentre(windTracks_[i], t, ground);
-  s.type = w.type;
-  s.radiusM = w.radiusM;
-  s.strengthMps = w.strengthMps;
-  s.directionDeg = w.directionDeg.value_or(0.0);
-  return s;
+  return {objectCentre(windTracks_[i], t, ground), w.type, w.radiusM, w.strengthMps, w.directionDeg.value_or(0.0)};
 }
 
 FlightSample sampleAt(const FlightPath& path, double t, const GroundHeight& ground) {

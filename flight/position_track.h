@@ -27,13 +27,9 @@
 
 namespace vegstream::flight {
 
-struct TrackPoint {
-  double t = 0.0;
-  double lat = 0.0;
-  double lon = 0.0;
-  double altM = 0.0;
-  AltRef altRef = AltRef::Terrain;
-};
+// A point of a track: time, lat/lon, altitude and its reference. A collider's or a wind source's
+// keyframe is one as it is; a camera keyframe is one plus its heading and pitch.
+using TrackPoint = ColliderKeyframe;
 
 class PositionTrack {
  public:

@@ -1,6 +1,6 @@
 #include "render/descriptors.h"
 
-#include "render/vk_check.h"
+#include "render/create_named.h"
 
 namespace vegstream::render {
 
@@ -9,10 +9,8 @@ DescriptorSetLayout createLayout(const Context& ctx, std::span<const VkDescripto
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = static_cast<uint32_t>(bindings.size());
   lci.pBindings = bindings.data();
-  VkDescriptorSetLayout layout;
-  vkCheck(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout), "vkCreateDescriptorSetLayout");
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, name);
-  return DescriptorSetLayout(ctx.device(), layout);
+  return createNamed<DescriptorSetLayout>(ctx, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name,
+                                          "vkCreateDescriptorSetLayout", vkCreateDescriptorSetLayout, lci);
 }
 
 DescriptorSetLayout createSingleBindingLayout(const Context& ctx, VkDescriptorType type, VkShaderStageFlags stages,
@@ -27,10 +25,8 @@ DescriptorPool createPool(const Context& ctx, std::span<const VkDescriptorPoolSi
   pci.maxSets = maxSets;
   pci.poolSizeCount = static_cast<uint32_t>(sizes.size());
   pci.pPoolSizes = sizes.data();
-  VkDescriptorPool pool;
-  vkCheck(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool), "vkCreateDescriptorPool");
-  ctx.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name);
-  return DescriptorPool(ctx.device(), pool);
+  return createNamed<DescriptorPool>(ctx, VK_OBJECT_TYPE_DESCRIPTOR_POOL, name, "vkCreateDescriptorPool",
+                                     vkCreateDescriptorPool, pci);
 }
 
 DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type, uint32_t maxSets,
@@ -51,30 +47,47 @@ VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool,
   return set;
 }
 
-void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
-  const VkDescriptorImageInfo ii{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+void allocateSlotSets(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                      std::span<VkDescriptorSet> sets, const std::string& name) {
+  for (size_t i = 0; i < sets.size(); ++i)
+    sets[i] = allocateDescriptorSet(ctx, pool, layout, name + " (slot " + std::to_string(i) + ")");
 }
 
 namespace {
-void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
-                 uint32_t binding) {
-  const VkDescriptorBufferInfo bi{buffer, 0, range};
+// `binding` := one descriptor of `type`: the image or the buffer given (the other null).
+void writeDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                     const VkDescriptorImageInfo* image, const VkDescriptorBufferInfo* buffer) {
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
   w.dstBinding = binding;
   w.descriptorCount = 1;
   w.descriptorType = type;
-  w.pBufferInfo = &bi;
+  w.pImageInfo = image;
+  w.pBufferInfo = buffer;
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
 }
+
+void writeImage(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, const VkDescriptorImageInfo& image,
+                uint32_t binding) {
+  writeDescriptor(ctx, set, binding, type, &image, nullptr);
+}
+
+void writeBuffer(const Context& ctx, VkDescriptorSet set, VkDescriptorType type, VkBuffer buffer, VkDeviceSize range,
+                 uint32_t binding) {
+  const VkDescriptorBufferInfo bi{buffer, 0, range};
+  writeDescriptor(ctx, set, binding, type, nullptr, &bi);
+}
 }  // namespace
+
+void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view, uint32_t binding) {
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+             {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
+}
+
+void writeSeparateImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding) {
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+             {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}, binding);
+}
 
 void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,
                         uint32_t binding) {
@@ -82,14 +95,7 @@ void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer
 }
 
 void writeStorageImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding) {
-  const VkDescriptorImageInfo ii{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+  writeImage(ctx, set, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL}, binding);
 }
 
 void writeStorageBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, uint32_t binding) {
@@ -107,10 +113,7 @@ Sampler createSampler(const Context& ctx, VkFilter filter, VkSamplerMipmapMode m
   sci.mipmapMode = mipmap;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = address;
   sci.maxLod = maxLod;
-  VkSampler sampler;
-  vkCheck(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler), "vkCreateSampler");
-  ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, name);
-  return Sampler(ctx.device(), sampler);
+  return createNamed<Sampler>(ctx, VK_OBJECT_TYPE_SAMPLER, name, "vkCreateSampler", vkCreateSampler, sci);
 }
 }  // namespace
 

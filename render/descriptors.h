@@ -31,11 +31,19 @@ DescriptorPool createSingleBindingPool(const Context& ctx, VkDescriptorType type
 // One set from `pool`; freed with the pool.
 VkDescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
                                       const std::string& name);
+// One set per frame slot (sets[i] for slot i) from `pool`, named "<name> (slot i)"; freed with
+// the pool.
+void allocateSlotSets(const Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                      std::span<VkDescriptorSet> sets, const std::string& name);
 
 // `binding` := the image view, sampled in SHADER_READ_ONLY_OPTIMAL. The caller guarantees no
 // pending GPU work reads the set (Vulkan forbids updating a set in use).
 void writeSampledImage(const Context& ctx, VkDescriptorSet set, VkSampler sampler, VkImageView view,
                        uint32_t binding = 0);
+
+// `binding` := the image view as a separate sampled image (no sampler of its own), in
+// SHADER_READ_ONLY_OPTIMAL.
+void writeSeparateImage(const Context& ctx, VkDescriptorSet set, VkImageView view, uint32_t binding);
 
 // `binding` := the first `range` bytes of a uniform buffer.
 void writeUniformBuffer(const Context& ctx, VkDescriptorSet set, VkBuffer buffer, VkDeviceSize range,

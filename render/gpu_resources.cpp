@@ -85,6 +85,24 @@ GpuBuffer createBufferWithData(const Context& ctx, const void* bytes, VkDeviceSi
 }
 
 namespace {
+// What creates the image `img` describes (format, extent, depth, layers, mip levels, samples):
+// optimal tiling, undefined contents; mutable format when it is also viewed as another.
+VkImageCreateInfo imageCreateInfo(const GpuImage& img, VkImageViewType viewType, VkImageUsageFlags usage,
+                                  bool alsoViewed) {
+  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ici.imageType = viewType == VK_IMAGE_VIEW_TYPE_3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+  ici.format = img.format;
+  ici.extent = {img.extent.width, img.extent.height, img.depth};
+  ici.mipLevels = img.mipLevels;
+  ici.arrayLayers = img.layers;
+  ici.samples = img.samples;
+  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ici.usage = usage;
+  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (alsoViewed) ici.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+  return ici;
+}
+
 // A 2D image (or array), or with a 3D view type a 3D image of `depth` slices.
 GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
                      VkSampleCountFlagBits samples, VkImageViewType viewType, const std::string& name,
@@ -99,18 +117,7 @@ GpuImage createImage(const Context& ctx, VkExtent2D extent, uint32_t layers, VkF
   out.samples = samples;
   out.aspect = (format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM) ? VK_IMAGE_ASPECT_DEPTH_BIT
                                                                                  : VK_IMAGE_ASPECT_COLOR_BIT;
-  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = viewType == VK_IMAGE_VIEW_TYPE_3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
-  ici.format = format;
-  ici.extent = {extent.width, extent.height, depth};
-  ici.mipLevels = mipLevels;
-  ici.arrayLayers = layers;
-  ici.samples = samples;
-  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ici.usage = usage;
-  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  if (alsoViewAs != VK_FORMAT_UNDEFINED)
-    ici.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+  const VkImageCreateInfo ici = imageCreateInfo(out, viewType, usage, alsoViewAs != VK_FORMAT_UNDEFINED);
   VkImage raw;
   vkCheck(vkCreateImage(device, &ici, nullptr, &raw), "vkCreateImage");
   out.image = Image(device, raw);
@@ -164,37 +171,47 @@ GpuImage createImageArray(const Context& ctx, VkExtent2D extent, uint32_t layers
                      mipLevels, alsoViewAs);
 }
 
-void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
-                          VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                          VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+namespace {
+// b (a VkMemoryBarrier2 or a VkImageMemoryBarrier2) waits for srcAccess in srcStage before
+// dstAccess in dstStage.
+template <class Barrier>
+void setScopes(Barrier& b, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+               VkAccessFlags2 dstAccess) {
   b.srcStageMask = srcStage;
   b.srcAccessMask = srcAccess;
   b.dstStageMask = dstStage;
   b.dstAccessMask = dstAccess;
+}
+
+// Records one barrier: a global memory barrier or an image's (the other null).
+void pipelineBarrier(VkCommandBuffer cmd, const VkMemoryBarrier2* memory, const VkImageMemoryBarrier2* image) {
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = memory ? 1 : 0;
+  dep.pMemoryBarriers = memory;
+  dep.imageMemoryBarrierCount = image ? 1 : 0;
+  dep.pImageMemoryBarriers = image;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+}  // namespace
+
+void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
+                          VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                          VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  setScopes(b, srcStage, srcAccess, dstStage, dstAccess);
   b.oldLayout = from;
   b.newLayout = to;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;  // no ownership transfer
   b.image = image;
   b.subresourceRange = range;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.imageMemoryBarrierCount = 1;
-  dep.pImageMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  pipelineBarrier(cmd, nullptr, &b);
 }
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  mb.srcStageMask = srcStage;
-  mb.srcAccessMask = srcAccess;
-  mb.dstStageMask = dstStage;
-  mb.dstAccessMask = dstAccess;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &mb;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  setScopes(mb, srcStage, srcAccess, dstStage, dstAccess);
+  pipelineBarrier(cmd, &mb, nullptr);
 }
 
 void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess) {

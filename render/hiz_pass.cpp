@@ -77,15 +77,16 @@ void HizPass::setCatalog(const vegetation::SpeciesCatalog& catalog) {
 
 HizPass::HizPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const RenderTargets& targets,
                  VkBuffer terrainDepth)
-    : ctx_(&ctx), targets_(&targets), levels_(hizLevels(targets.extent())), fromBuffer_(terrainDepth != VK_NULL_HANDLE) {
+    : ctx_(&ctx), targets_(&targets), levels_(hizLevels(targets.extent())),
+      fromBuffer_(terrainDepth != VK_NULL_HANDLE) {
   const uint32_t texels = levels_.back().offset + 1;
-  pyramid_ = createBuffer(ctx, VkDeviceSize{texels} * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                          MemoryUse::DeviceLocal, "hi-z pyramid");
+  pyramid_ = createBuffer(ctx, VkDeviceSize{texels} * sizeof(float),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::DeviceLocal,
+                          "hi-z pyramid");
 
-  const VkDescriptorSetLayoutBinding depthBindings[] = {binding(0, fromBuffer_ ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                                                                : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE),
-                                                        binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+  const VkDescriptorSetLayoutBinding depthBindings[] = {
+      binding(0, fromBuffer_ ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE),
+      binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   depthLayout_ = createLayout(ctx, depthBindings, "hi-z depth set layout");
   const VkDescriptorSetLayoutBinding reduceBindings[] = {binding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   reduceLayout_ = createLayout(ctx, reduceBindings, "hi-z reduce set layout");
@@ -128,15 +129,7 @@ void HizPass::createSets(VkBuffer terrainDepth, const RenderTargets& targets) {
   if (fromBuffer_) {
     writeStorageBuffer(ctx, depthSet_, terrainDepth, 0);
   } else {
-    const VkDescriptorImageInfo ii{VK_NULL_HANDLE, targets.depthAttachment().view.get(),
-                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = depthSet_;
-    w.dstBinding = 0;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-    w.pImageInfo = &ii;
-    vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
+    writeSeparateImage(ctx, depthSet_, targets.depthAttachment().view.get(), 0);
   }
   writeStorageBuffer(ctx, depthSet_, pyramid_.get(), 1);
   reduceSet_ = allocateDescriptorSet(ctx, pool_.get(), reduceLayout_.get(), "hi-z reduce set");
@@ -168,8 +161,8 @@ void HizPass::recordBuild(VkCommandBuffer cmd) {
   // The previous frame's tests (either slot; the classify's, the impostors' vertex stage) read
   // the pyramid this build overwrites.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depth_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depthPipelineLayout_.get(), 0, 1, &depthSet_, 0,
@@ -193,10 +186,10 @@ void HizPass::recordBuild(VkCommandBuffer cmd) {
   }
   // The pyramid → the tests (and tests' copies); the depth back to an attachment for the
   // plants' scope, which loads it.
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                    VK_PIPELINE_STAGE_2_COPY_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   if (fromBuffer_) return;
   transitionImage(cmd, depth.get(), depth.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -205,8 +198,8 @@ void HizPass::recordBuild(VkCommandBuffer cmd) {
                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 }
 
-void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkBuffer triangles,
-                         VkBuffer visible, uint32_t count, uint32_t clusterSize, bool shadows) {
+void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkBuffer triangles, VkBuffer visible,
+                         uint32_t count, uint32_t clusterSize, bool shadows) {
   Slot& s = slots_[size_t(slot)];
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
   if (s.boundTriangles != triangles || s.boundVisible != visible) {
@@ -224,8 +217,15 @@ void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet
   const VkDescriptorSet sets[] = {frameSet, s.cullSet};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipelineLayout_.get(), 0, 2, sets, 0, nullptr);
   const VkExtent2D extent = targets_->extent();
-  const CullPush cp{count,        clusterSize,   shadows ? 1u : 0u, extent.width, extent.height,
-                    static_cast<uint32_t>(levels_.size()), speciesCount_, 0u, reach_};
+  const CullPush cp{count,
+                    clusterSize,
+                    shadows ? 1u : 0u,
+                    extent.width,
+                    extent.height,
+                    static_cast<uint32_t>(levels_.size()),
+                    speciesCount_,
+                    0u,
+                    reach_};
   vkCmdPushConstants(cmd, cullPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(cp), &cp);
   // One dispatch holds 65535 × 64 ≈ 4 M triangles: far more than a frame's seed triangles.
   vkCmdDispatch(cmd, std::min(groups(count, kCullGroup), 65535u), 1, 1);

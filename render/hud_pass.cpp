@@ -76,10 +76,7 @@ HudPass::HudPass(const Context& ctx) : ctx_(&ctx) {
   setLayout_ = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
                                          "hud atlas layout");
   pool_ = createSingleBindingPool(ctx, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlots, "hud descriptor pool");
-  for (int i = 0; i < kSlots; ++i) {
-    sets_[static_cast<size_t>(i)] =
-        allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "hud atlas set (slot " + std::to_string(i) + ")");
-  }
+  allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "hud atlas set");
   sampler_ = createLinearClampSampler(ctx, "hud atlas sampler");
   const VkDescriptorSetLayout setLayout = setLayout_.get();
 

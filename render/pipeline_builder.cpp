@@ -1,6 +1,6 @@
 #include "render/pipeline_builder.h"
 
-#include "render/vk_check.h"
+#include "render/create_named.h"
 
 namespace vegstream::render {
 
@@ -8,10 +8,8 @@ ShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> sp
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   ci.codeSize = spirv.size_bytes();
   ci.pCode = spirv.data();
-  VkShaderModule module;
-  vkCheck(vkCreateShaderModule(ctx.device(), &ci, nullptr, &module), "vkCreateShaderModule");
-  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, module, name);
-  return ShaderModule(ctx.device(), module);
+  return createNamed<ShaderModule>(ctx, VK_OBJECT_TYPE_SHADER_MODULE, name, "vkCreateShaderModule",
+                                   vkCreateShaderModule, ci);
 }
 
 Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, std::span<const uint32_t> spirv,
@@ -23,10 +21,9 @@ Pipeline createComputePipeline(const Context& ctx, VkPipelineLayout layout, std:
   ci.stage.module = module.get();
   ci.stage.pName = "main";
   ci.layout = layout;
-  VkPipeline raw = VK_NULL_HANDLE;
-  vkCheck(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &raw), "vkCreateComputePipelines");
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, raw, name);
-  return Pipeline(ctx.device(), raw);
+  return createNamed<Pipeline>(ctx, VK_OBJECT_TYPE_PIPELINE, name, "vkCreateComputePipelines", [&](VkPipeline* raw) {
+    return vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, raw);
+  });
 }
 
 PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
@@ -36,10 +33,8 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const VkDescri
   ci.pSetLayouts = sets.data();
   ci.pushConstantRangeCount = static_cast<uint32_t>(pushConstants.size());
   ci.pPushConstantRanges = pushConstants.data();
-  VkPipelineLayout layout;
-  vkCheck(vkCreatePipelineLayout(ctx.device(), &ci, nullptr, &layout), "vkCreatePipelineLayout");
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, layout, name);
-  return PipelineLayout(ctx.device(), layout);
+  return createNamed<PipelineLayout>(ctx, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name, "vkCreatePipelineLayout",
+                                     vkCreatePipelineLayout, ci);
 }
 
 namespace {
@@ -147,11 +142,10 @@ Pipeline createGraphicsPipeline(const Context& ctx, const GraphicsPipelineDesc& 
   ci.pColorBlendState = &cb;
   ci.pDynamicState = &dyn;
   ci.layout = desc.layout;
-  VkPipeline pipeline;
-  vkCheck(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
-          ("vkCreateGraphicsPipelines(" + desc.name + ")").c_str());
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, desc.name);
-  return Pipeline(ctx.device(), pipeline);
+  const std::string what = "vkCreateGraphicsPipelines(" + desc.name + ")";
+  return createNamed<Pipeline>(ctx, VK_OBJECT_TYPE_PIPELINE, desc.name, what.c_str(), [&](VkPipeline* pipeline) {
+    return vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, pipeline);
+  });
 }
 
 }  // namespace vegstream::render

@@ -26,9 +26,7 @@ PlantMarkerPass::PlantMarkerPass(const Context& ctx, VkDescriptorSetLayout frame
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, ClassifyPass::kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * ClassifyPass::kSlots}};
   pool_ = createPool(ctx, sizes, ClassifyPass::kSlots, "plant marker pool");
-  for (size_t i = 0; i < sets_.size(); ++i)
-    sets_[i] =
-        allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "plant marker set (slot " + std::to_string(i) + ")");
+  allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "plant marker set");
   const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(MarkerPush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "plant marker pipeline layout");

@@ -99,8 +99,7 @@ PlantPass::PlantPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSa
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * slots},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * slots}};
   pool_ = createPool(ctx, sizes, slots, "plant pool");
-  for (size_t i = 0; i < sets_.size(); ++i)
-    sets_[i] = allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "plant set (slot " + std::to_string(i) + ")");
+  allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "plant set");
   const VkPushConstantRange push{kStages, 0, sizeof(PlantPush)};
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   layout_ = createPipelineLayout(ctx, sets, {&push, 1}, "plant pipeline layout");

@@ -17,11 +17,13 @@ constexpr VkPipelineStageFlags2 kReaders =
 }  // namespace
 
 SunShadowPass::SunShadowPass(const Context& ctx, uint32_t mapSize) : ctx_(&ctx), size_(mapSize) {
-  map_ = createImageArray(ctx, {mapSize, mapSize}, kShadowCascades, kShadowFormat,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                          "sun shadow map");
-  placeholder_ = createImageArray(ctx, {1, 1}, kShadowCascades, kShadowFormat,
-                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "sun shadow placeholder");
+  map_ = createImageArray(
+      ctx, {mapSize, mapSize}, kShadowCascades, kShadowFormat,
+      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+      "sun shadow map");
+  placeholder_ =
+      createImageArray(ctx, {1, 1}, kShadowCascades, kShadowFormat,
+                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "sun shadow placeholder");
   for (int c = 0; c < kShadowCascades; ++c) {
     VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     ci.image = map_.get();
@@ -60,15 +62,7 @@ SunShadowPass::SunShadowPass(const Context& ctx, uint32_t mapSize) : ctx_(&ctx),
 }
 
 void SunShadowPass::writeFrameSet(VkDescriptorSet frameSet, bool placeholder) const {
-  VkDescriptorImageInfo ii{sampler_.get(), (placeholder ? placeholder_ : map_).view.get(),
-                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = frameSet;
-  w.dstBinding = 4;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = &ii;
-  vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+  writeSampledImage(*ctx_, frameSet, sampler_.get(), (placeholder ? placeholder_ : map_).view.get(), 4);
 }
 
 void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, const DrawCasters& draw) const {

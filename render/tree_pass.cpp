@@ -43,7 +43,8 @@ void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
 
 TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
     : ctx_(&ctx), samples_(samples) {
-  const VkShaderStageFlags all = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  const VkShaderStageFlags all =
+      VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr}};
   for (uint32_t b = 1; b <= 7; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr});
   for (uint32_t b = 8; b <= 9; ++b)
@@ -53,8 +54,7 @@ TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSamp
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots}};
   pool_ = createPool(ctx, sizes, kSlots, "tree pool");
-  for (size_t i = 0; i < sets_.size(); ++i)
-    sets_[i] = allocateDescriptorSet(ctx, pool_.get(), setLayout_.get(), "tree set (slot " + std::to_string(i) + ")");
+  allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "tree set");
   sampler_ = createTrilinearClampSampler(ctx, kImpostorMipLevels, "tree impostor sampler");
   createPipelines(frameLayout);
 }
@@ -109,8 +109,8 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
 }
 
 uint64_t TreePass::gpuBytes() const {
-  uint64_t bytes = vertices_.size + indices_.size + branches_.size + instances_.size + visible_.size +
-                   meshDraws_.size + impostorDraws_.size + drawTemplate_.size + counters_.size;
+  uint64_t bytes = vertices_.size + indices_.size + branches_.size + instances_.size + visible_.size + meshDraws_.size +
+                   impostorDraws_.size + drawTemplate_.size + counters_.size;
   for (const auto& b : pageCounts_) bytes += b.size;
   for (const auto& b : staging_) bytes += b.size;
   if (impostors_) bytes += impostors_->gpuBytes();
@@ -126,8 +126,8 @@ void TreePass::recordPageUploads(VkCommandBuffer cmd, size_t s, const TreeReques
   if (uploadBytes > 0) {
     if (staging_[s].size < uploadBytes) {
       if (staging_[s].size > 0) retire(std::move(staging_[s]));
-      staging_[s] = createBuffer(*ctx_, grownSize(uploadBytes), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                 MemoryUse::HostUpload, "tree page staging");
+      staging_[s] = createBuffer(*ctx_, grownSize(uploadBytes), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                 "tree page staging");
     }
     std::vector<VkBufferCopy> copies;
     VkDeviceSize at = 0;
@@ -199,11 +199,10 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   mode = 1;
   vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(mode), &mode);
   vkCmdDispatch(cmd, (static_cast<uint32_t>(models_.size()) + 255) / 256, 1, 1);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                    VK_PIPELINE_STAGE_2_COPY_BIT,
-                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                    VK_ACCESS_2_TRANSFER_READ_BIT);
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy countersCopy{0, 0, kCounters * sizeof(uint32_t)};
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &countersCopy);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -247,8 +246,7 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
   for (uint32_t m = 0; m < count; ++m) {
     const TreePush push{glm::mat4(1.0f), m, 2u, 0u, static_cast<uint32_t>(samples_)};
     vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
-    vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), m * kIndexedCommand, 1,
-                             static_cast<uint32_t>(kIndexedCommand));
+    vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), m * kIndexedCommand, 1, static_cast<uint32_t>(kIndexedCommand));
   }
 }
 

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "scene/dataset_calibration.h"
 #include "streaming/open_tile_source.h"
 
 namespace vegstream::scene {
@@ -16,7 +17,8 @@ std::string degrees(double v) {
 
 }  // namespace
 
-Result<BoxDataset> openBoxDataset(const std::string& dataset, const geo::GeoBounds& box, const std::string& boxName) {
+Result<BoxDataset> openBoxDataset(const std::string& dataset, const geo::GeoBounds& box, const std::string& boxName,
+                                  const vegetation::SpeciesCatalog& catalog) {
   auto source = streaming::openTileSource(dataset, {});
   if (!source) return source.error();
   auto meta = streaming::readMetaFrom(**source);
@@ -31,7 +33,9 @@ Result<BoxDataset> openBoxDataset(const std::string& dataset, const geo::GeoBoun
     return makeError(ErrorKind::InvalidInput, boxName + ": not inside the dataset's bounds (lon " + degrees(b.westDeg) +
                                                   " … " + degrees(b.eastDeg) + ", lat " + degrees(b.southDeg) + " … " +
                                                   degrees(b.northDeg) + ")");
-  return BoxDataset{std::move(*source), std::move(*meta)};
+  vegetation::SpeciesCatalog calibrated = calibratedCatalog(catalog, *meta);
+  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
+  return BoxDataset{std::move(*source), std::move(*meta), std::move(calibrated), frame};
 }
 
 }  // namespace vegstream::scene

@@ -2,7 +2,6 @@
 // through the streamer → clusters and species from the imagery colour → plants, kept where
 // their root lies in the box.
 
-#include "scene/dataset_calibration.h"
 #include "scene/plants_in_box.h"
 
 #include <algorithm>
@@ -159,26 +158,23 @@ std::vector<vegetation::CanopyTree> boxCrowns(const PlantsInBoxOptions& options,
 
 Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds& box,
                                 const vegetation::SpeciesCatalog& givenCatalog, const PlantsInBoxOptions& options) {
-  auto opened = openBoxDataset(dataset, box, options.boxName);
+  auto opened = openBoxDataset(dataset, box, options.boxName, givenCatalog);
   if (!opened) return opened.error();
-  const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
-  const datasets::DatasetMeta* meta = &opened->meta;
-  const vegetation::SpeciesCatalog catalog = calibratedCatalog(givenCatalog, *meta);  // the imagery's calibration
-  const geo::GeoBounds& b = meta->bounds;
+  const BoxDataset& d = *opened;
+  const geo::GeoBounds& b = d.meta.bounds;
 
   // The renderer's grid, seed level and roots (StreamedTerrain): the same triangles, keys and
   // vertices as in a flight.
   const terrain::SeedOptions seedOptions;
   const double lat = b.centre().y;
-  const terrain::BintreeGrid grid = terrain::gridForSeeds(meta->minZoom, meta->maxZoom, lat, seedOptions.targetAreaM2);
-  const geo::TileRange roots = geo::tileRangesCovering(b, meta->minZoom).front();
-  // The flight's frame (flight/scene.cpp): the plants' ENU positions are then those a flight
-  // computes, bit for bit, not merely the same lat/lon.
-  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
+  const terrain::BintreeGrid grid =
+      terrain::gridForSeeds(d.meta.minZoom, d.meta.maxZoom, lat, seedOptions.targetAreaM2);
+  const geo::TileRange roots = geo::tileRangesCovering(b, d.meta.minZoom).front();
+  const geo::LocalFrame& frame = d.frame;  // the plants' ENU positions are those a flight computes
   terrain::SeedRegionQuery query;
   query.box = box;
   query.seedLevel = terrain::seedLevelFor(grid, lat, seedOptions.targetAreaM2);
-  query.densityM2 = vegetation::densestGroundDensity(catalog);
+  query.densityM2 = vegetation::densestGroundDensity(d.catalog);
   query.select = terrain::RegionSelect::Overlap;
   const uint64_t maxPlants = options.maxPlants;
   // A cheap bound first (triangles × their flat area × the densest species, no heights): a huge
@@ -187,8 +183,8 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
 
   // The box's finest tiles of both layers in one settle (decoded in parallel); the rest (tiles
   // beside the box that edge triangles reach, ancestors where a tile is missing) on demand.
-  SettledTiles tiles(source, *meta);
-  prefetchBox(tiles, box, meta->maxZoom);
+  SettledTiles tiles(d.source, d.meta);
+  prefetchBox(tiles, box, d.meta.maxZoom);
   terrain::ResidentHeights heights(grid, [&](const geo::TileId& t) {
     return tiles.finest({streaming::TileLayer::Height, t});
   });
@@ -196,20 +192,20 @@ Result<PlantsInBox> plantsInBox(const std::string& dataset, const geo::GeoBounds
   if (tiles.error()) return *tiles.error();
 
   PlantsInBox out;
-  out.datasetName = meta->name;
+  out.datasetName = d.meta.name;
   out.seedLevel = query.seedLevel;
   out.seedTriangles = region.triangles.size();
   out.nodataSkipped = region.nodataSkipped;
   uint64_t count = 0;
-  const std::vector<vegetation::CanopyTree> crowns = boxCrowns(options, frame, catalog);
-  const vegetation::TreeGrid treeGrid = crowns.empty() ? vegetation::TreeGrid{} : vegetation::treeGridFor(catalog);
+  const std::vector<vegetation::CanopyTree> crowns = boxCrowns(options, frame, d.catalog);
+  const vegetation::TreeGrid treeGrid = crowns.empty() ? vegetation::TreeGrid{} : vegetation::treeGridFor(d.catalog);
   LandcoverLookup landcover;
-  if (meta->landcover) {
-    landcover.source = source.get();
-    landcover.masks = landcoverMasks(catalog, *meta->landcover);
+  if (d.meta.landcover) {
+    landcover.source = d.source.get();
+    landcover.masks = landcoverMasks(d.catalog, *d.meta.landcover);
   }
-  grow(grid, frame, region, box, catalog, vegetation::SeedingOptions{options.clusterSize}, crowns, treeGrid, tiles,
-       meta->maxZoom, maxPlants, landcover, out, count);
+  grow(grid, frame, region, box, d.catalog, vegetation::SeedingOptions{options.clusterSize}, crowns, treeGrid, tiles,
+       d.meta.maxZoom, maxPlants, landcover, out, count);
   if (tiles.error()) return *tiles.error();
   if (landcover.error) return *landcover.error;
   if (count > maxPlants) return tooManyPlants(options, "the box grows " + plural(count, "plant"), count);

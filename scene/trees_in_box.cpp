@@ -2,7 +2,6 @@
 // covering the box in the flight's frame, placed (vegetation/tree_placement.h, core seed
 // ../shared/seeds/001_3eca9f2c7752e4fb.txt §2.2, §3.3) and kept where the trunk stands in the box.
 
-#include "scene/dataset_calibration.h"
 #include "scene/trees_in_box.h"
 
 #include <algorithm>
@@ -40,9 +39,10 @@ CellRange cellsCovering(const geo::GeoBounds& box, const geo::LocalFrame& frame,
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   for (int k = 0; k <= 16; ++k) {
     const double t = k / 16.0;
-    const double lon = box.westDeg + t * (box.eastDeg - box.westDeg), lat = box.southDeg + t * (box.northDeg - box.southDeg);
-    const geo::Geodetic outline[4] = {{box.southDeg, lon, 0.0}, {box.northDeg, lon, 0.0}, {lat, box.westDeg, 0.0},
-                                      {lat, box.eastDeg, 0.0}};
+    const double lon = box.westDeg + t * (box.eastDeg - box.westDeg),
+                 lat = box.southDeg + t * (box.northDeg - box.southDeg);
+    const geo::Geodetic outline[4] = {
+        {box.southDeg, lon, 0.0}, {box.northDeg, lon, 0.0}, {lat, box.westDeg, 0.0}, {lat, box.eastDeg, 0.0}};
     for (geo::Geodetic p : outline)
       for (double h : {minHeightM, maxHeightM}) {
         p.heightM = h;
@@ -61,47 +61,43 @@ CellRange cellsCovering(const geo::GeoBounds& box, const geo::LocalFrame& frame,
 
 Result<TreesInBox> treesInBox(const std::string& dataset, const geo::GeoBounds& box,
                               const vegetation::SpeciesCatalog& givenCatalog, const TreesInBoxOptions& options) {
-  auto opened = openBoxDataset(dataset, box, options.boxName);
+  auto opened = openBoxDataset(dataset, box, options.boxName, givenCatalog);
   if (!opened) return opened.error();
-  const std::shared_ptr<streaming::TileSource> source = std::move(opened->source);
-  const datasets::DatasetMeta* meta = &opened->meta;
-  const vegetation::SpeciesCatalog catalog = calibratedCatalog(givenCatalog, *meta);  // the imagery's calibration
-  const geo::GeoBounds& b = meta->bounds;
+  const BoxDataset& d = *opened;
   TreesInBox out;
-  out.datasetName = meta->name;
-  if (!vegetation::hasTrees(catalog)) return out;
+  out.datasetName = d.meta.name;
+  if (!vegetation::hasTrees(d.catalog)) return out;
 
-  // The flight's frame (scene/scene.cpp): the trees' ENU positions are those a flight places.
-  const geo::LocalFrame frame({0.5 * (b.southDeg + b.northDeg), b.centre().x, 0.0});
-  const vegetation::TreeGrid grid = vegetation::treeGridFor(catalog);
-  const CellRange r = cellsCovering(box, frame, grid, meta->minHeightM, meta->maxHeightM);
+  const geo::LocalFrame& frame = d.frame;  // the trees' ENU positions are those a flight places
+  const vegetation::TreeGrid grid = vegetation::treeGridFor(d.catalog);
+  const CellRange r = cellsCovering(box, frame, grid, d.meta.minHeightM, d.meta.maxHeightM);
   out.cellM = grid.cellM;
   out.cells = uint64_t(r.cx1 - r.cx0) * uint64_t(r.cy1 - r.cy0);
   // A cheap bound before reading the ground: at most 90 % of the cells hold a tree.
   const auto upperBound = static_cast<uint64_t>(double(out.cells) * double(vegetation::kTreeCellShare));
   if (upperBound > 4 * options.maxTrees)
-    return makeError(ErrorKind::InvalidInput, options.boxName + ": the box holds up to " +
-                                                  std::to_string(upperBound) + " trees (" + std::to_string(out.cells) +
-                                                  " cells of " + fmt("%.2f", grid.cellM) + " m), more than " +
-                                                  options.maxTreesName + " " + std::to_string(options.maxTrees) +
-                                                  "; give a smaller box or " + options.maxTreesName + " " +
-                                                  std::to_string(upperBound));
+    return makeError(ErrorKind::InvalidInput, options.boxName + ": the box holds up to " + std::to_string(upperBound) +
+                                                  " trees (" + std::to_string(out.cells) + " cells of " +
+                                                  fmt("%.2f", grid.cellM) + " m), more than " + options.maxTreesName +
+                                                  " " + std::to_string(options.maxTrees) + "; give a smaller box or " +
+                                                  options.maxTreesName + " " + std::to_string(upperBound));
 
-  auto ground = TreeGround::load(*source, *meta, frame, options.ground);
+  auto ground = TreeGround::load(*d.source, d.meta, frame, options.ground);
   if (!ground) return ground.error();
-  if (meta->landcover) ground->allowLandcover(landcoverMasks(catalog, *meta->landcover));
+  if (d.meta.landcover) ground->allowLandcover(landcoverMasks(d.catalog, *d.meta.landcover));
   out.groundZoom = ground->zoom();
   std::vector<vegetation::PlacedTree> placed;
-  auto canopy = CanopyTrees::load(*source, *meta, frame, &box);
+  auto canopy = CanopyTrees::load(*d.source, d.meta, frame, &box);
   if (!canopy) return canopy.error();
-  placeTreesWithCanopy(canopy->get(), catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
+  placeTreesWithCanopy(canopy->get(), d.catalog, grid, r.cx0, r.cy0, r.cx1, r.cy1, ground->at(), placed);
   uint64_t count = 0;
   for (const vegetation::PlacedTree& t : placed) {
     const geo::Geodetic at = frame.toGeodetic({t.x, t.y, t.z});
     out.crowns.push_back({at, t.crownM});
     if (!inBox(at, box)) continue;
     ++count;
-    if (out.trees.size() < options.maxTrees) out.trees.push_back({at, t.species, t.seed, t.heightM, t.crownM, t.sPrime});
+    if (out.trees.size() < options.maxTrees)
+      out.trees.push_back({at, t.species, t.seed, t.heightM, t.crownM, t.sPrime});
   }
   if (count > options.maxTrees)
     return makeError(ErrorKind::InvalidInput, options.boxName + ": the box holds " + std::to_string(count) +

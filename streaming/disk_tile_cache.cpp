@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/regular_file.h"
+#include "streaming/escaped_bytes.h"
 
 namespace vegstream::streaming {
 namespace fs = std::filesystem;
@@ -23,20 +24,8 @@ bool keptAsIs(char c) {
 }
 
 std::string sanitiseSegment(std::string_view segment) {
-  static const char* hex = "0123456789ABCDEF";
   const bool dotsOnly = std::all_of(segment.begin(), segment.end(), [](char c) { return c == '.'; });
-  std::string out;
-  for (char c : segment) {
-    const auto u = static_cast<unsigned char>(c);
-    if (keptAsIs(c) && !dotsOnly) {
-      out += c;
-    } else {
-      out += '_';
-      out += hex[u >> 4];
-      out += hex[u & 15];
-    }
-  }
-  return out;
+  return escapeBytes(segment, '_', [dotsOnly](char c) { return keptAsIs(c) && !dotsOnly; });
 }
 
 // Through the checked opener (core/regular_file.h): anything but a regular tile-sized file is a
