@@ -63,9 +63,9 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
   vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, &colour);
   const bool storable = (colour.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
                         (colour.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
-  const VkSampleCountFlags storageCounts =
-      features.shaderStorageImageMultisample ? (p.limits.storageImageSampleCounts & counts)
-                                             : VkSampleCountFlags{VK_SAMPLE_COUNT_1_BIT};
+  const VkSampleCountFlags storageCounts = features.shaderStorageImageMultisample
+                                               ? (p.limits.storageImageSampleCounts & counts)
+                                               : VkSampleCountFlags{VK_SAMPLE_COUNT_1_BIT};
   for (int s : {1, 2, 4, 8})  // the shade shader handles up to 8 samples
     if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
   info.sampleRateShading = features.sampleRateShading == VK_TRUE;

@@ -22,7 +22,7 @@ struct DeviceInfo {
   // Many draws in one indirect call, each with its own first instance (the terrain's draw list;
   // without: one indirect call per draw).
   bool multiDrawIndirect = false;
-  uint64_t deviceLocalBytes = 0;   // the largest device-local memory heap
+  uint64_t deviceLocalBytes = 0;  // the largest device-local memory heap
 
   bool supportsMsaa(int samples) const;
   std::string msaaList() const;  // "1, 4"

@@ -66,18 +66,15 @@ std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const
     if (draws[i].mesh && draws[i].mesh->triangleCount() > 0) order.push_back(i);
   // The bounds read every vertex: one task per piece.
   std::vector<double> distance(draws.size(), 0.0);
-  parallelEach(order.size(), tasks, [&](size_t k) {
-    distance[order[k]] = distanceToBounds(*draws[order[k]].mesh, cameraPosition);
-  });
+  parallelEach(order.size(), tasks,
+               [&](size_t k) { distance[order[k]] = distanceToBounds(*draws[order[k]].mesh, cameraPosition); });
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return distance[a] < distance[b]; });
   return order;
 }
 
 TerrainPass::TerrainPass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
                          bool deferred, TaskRunner* tasks, uint64_t reserveTriangles, bool residentGeometry)
-    : ctx_(&ctx),
-      tasks_(tasks),
-      detail_(ctx, vegetation::defaultTerrainTypes()),
+    : ctx_(&ctx), tasks_(tasks), detail_(ctx, vegetation::defaultTerrainTypes()),
       geometry_(ctx, tasks, reserveTriangles, residentGeometry) {
   constexpr VkDeviceSize kSmallest = 256 * 1024;
   for (int i = 0; i < kSlots; ++i) {
@@ -165,8 +162,9 @@ void TerrainPass::setImageryLayers(uint32_t layers, ImageryCompanions companions
     // The companion array starts at 0 ("none"): the terrain samples it for every layer, and a
     // dataset without companions never uploads any.
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, companionLayers};
-    transitionImageRange(cmd, companionArray_.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    transitionImageRange(cmd, companionArray_.get(), all, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                         VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkClearColorValue zero{};
     vkCmdClearColorImage(cmd, companionArray_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
     transitionImageRange(cmd, companionArray_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -270,8 +268,7 @@ void TerrainPass::recordVisibility(VkCommandBuffer cmd, int slot, VkDescriptorSe
 
 TerrainGeometry TerrainPass::geometry(int slot) const {
   const auto s = static_cast<size_t>(slot);
-  return {geometry_.vertices(slot), geometry_.indices(slot), pieces_[s].get(),
-          drawCount_[s]};
+  return {geometry_.vertices(slot), geometry_.indices(slot), pieces_[s].get(), drawCount_[s]};
 }
 
 uint64_t TerrainPass::gpuBytes() const {
