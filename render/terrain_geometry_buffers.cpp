@@ -91,8 +91,14 @@ std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int s
                                                       std::span<const uint32_t> order,
                                                       const GrowingBuffer::Retire& retire) {
   const auto s = static_cast<size_t>(slot);
-  std::vector<PieceRange> ranges =
-      resident_ ? writeResident(cmd, s, draws, order, retire) : writeCopied(cmd, s, draws, order, retire);
+  uint64_t indices = 0;
+  std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
+  uint32_t* idst = ensureIndices(s, indices, retire);
+  if (resident_)
+    writeResident(cmd, s, draws, order, ranges, idst, retire);
+  else
+    writeCopied(cmd, s, draws, order, ranges, idst, retire);
+  recordIndexCopy(cmd, s, indices);
   memoryBarrier(
       cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
       VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
@@ -115,39 +121,31 @@ void TerrainGeometryBuffers::recordIndexCopy(VkCommandBuffer cmd, size_t s, uint
   vkCmdCopyBuffer(cmd, indices_[s].get(), deviceIndices_[s].get(), 1, &copy);
 }
 
-std::vector<PieceRange> TerrainGeometryBuffers::writeCopied(VkCommandBuffer cmd, size_t s,
-                                                            std::span<const TerrainDraw> draws,
-                                                            std::span<const uint32_t> order,
-                                                            const GrowingBuffer::Retire& retire) {
-  uint64_t indices = 0, vertices = 0;
-  std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
-  std::vector<uint32_t> firstVertex(order.size());
+void TerrainGeometryBuffers::writeCopied(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
+                                         std::span<const uint32_t> order, std::vector<PieceRange>& ranges,
+                                         uint32_t* idst, const GrowingBuffer::Retire& retire) {
+  uint64_t vertices = 0;
   for (size_t k = 0; k < order.size(); ++k) {
-    firstVertex[k] = static_cast<uint32_t>(vertices);
     ranges[k].vertexOffset = static_cast<int32_t>(vertices);
     vertices += flatVertices(*draws[order[k]].mesh);
   }
   const VkDeviceSize vertexBytes = std::max<VkDeviceSize>(vertices, 1) * kVertexBytes;
   vertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
   deviceVertices_[s].ensure(vertexBytes, GrowingBuffer::kNoCeiling, retire);
-  uint32_t* idst = ensureIndices(s, indices, retire);
   auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
-  parallelEach(order.size(), tasks_,
-               [&](size_t k) { copyFlat(*draws[order[k]].mesh, vdst + firstVertex[k], idst + ranges[k].firstIndex); });
+  parallelEach(order.size(), tasks_, [&](size_t k) {
+    copyFlat(*draws[order[k]].mesh, vdst + ranges[k].vertexOffset, idst + ranges[k].firstIndex);
+  });
   if (vertices > 0) {
     const VkBufferCopy vcopy{0, 0, vertices * kVertexBytes};
     vkCmdCopyBuffer(cmd, vertices_[s].get(), deviceVertices_[s].get(), 1, &vcopy);
   }
-  recordIndexCopy(cmd, s, indices);
-  return ranges;
 }
 
-std::vector<PieceRange> TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s,
-                                                              std::span<const TerrainDraw> draws,
-                                                              std::span<const uint32_t> order,
-                                                              const GrowingBuffer::Retire& retire) {
-  uint64_t indices = 0, staged = 0;
-  std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
+void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
+                                           std::span<const uint32_t> order, const std::vector<PieceRange>& ranges,
+                                           uint32_t* idst, const GrowingBuffer::Retire& retire) {
+  uint64_t staged = 0;
   // Where everything goes, in draw order (the cache's ranges depend on the order of its calls).
   uploads_.clear();
   chunkFirst_.clear();
@@ -174,7 +172,6 @@ std::vector<PieceRange> TerrainGeometryBuffers::writeResident(VkCommandBuffer cm
   cache_.endFrame();
   growPool(cmd, retire);
   vertices_[s].ensure(std::max<VkDeviceSize>(staged, 1) * kVertexBytes, GrowingBuffer::kNoCeiling, retire);
-  uint32_t* idst = ensureIndices(s, indices, retire);
   auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
   parallelEach(order.size(), tasks_, [&](size_t k) {  // the indices, into the pool
     const terrain::TerrainMesh& m = *draws[order[k]].mesh;
@@ -186,8 +183,12 @@ std::vector<PieceRange> TerrainGeometryBuffers::writeResident(VkCommandBuffer cm
       for (uint32_t i = 0; i < m.chunks[j].count; ++i) *out++ = src[i] + base;
     }
   });
+  copyUploads(cmd, s, vdst);
+}
+
+void TerrainGeometryBuffers::copyUploads(VkCommandBuffer cmd, size_t s, TerrainVertex* staging) const {
   parallelEach(uploads_.size(), tasks_, [&](size_t u) {
-    std::memcpy(vdst + uploads_[u].staged, uploads_[u].src, uploads_[u].count * kVertexBytes);
+    std::memcpy(staging + uploads_[u].staged, uploads_[u].src, uploads_[u].count * kVertexBytes);
   });
   // One copy region per run of uploads that are contiguous in both buffers.
   std::vector<VkBufferCopy> regions;
@@ -201,8 +202,6 @@ std::vector<PieceRange> TerrainGeometryBuffers::writeResident(VkCommandBuffer cm
   }
   if (!regions.empty())
     vkCmdCopyBuffer(cmd, vertices_[s].get(), pool_.get(), static_cast<uint32_t>(regions.size()), regions.data());
-  recordIndexCopy(cmd, s, indices);
-  return ranges;
 }
 
 void TerrainGeometryBuffers::growPool(VkCommandBuffer cmd, const GrowingBuffer::Retire& retire) {

@@ -63,10 +63,14 @@ class TerrainGeometryBuffers {
     uint32_t count, poolFirst;
     uint64_t staged;
   };
-  std::vector<PieceRange> writeCopied(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
-                                      std::span<const uint32_t> order, const GrowingBuffer::Retire& retire);
-  std::vector<PieceRange> writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
-                                        std::span<const uint32_t> order, const GrowingBuffer::Retire& retire);
+  // Each writes the vertices and `idst` (the slot's host-visible indices; `ranges` from
+  // indexRanges, the copied path setting their vertex offsets) and records the vertices' copies.
+  void writeCopied(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
+                   std::vector<PieceRange>& ranges, uint32_t* idst, const GrowingBuffer::Retire& retire);
+  void writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
+                     const std::vector<PieceRange>& ranges, uint32_t* idst, const GrowingBuffer::Retire& retire);
+  // The uploads into slot `s`'s staging (at `staging`), and their copies into the pool.
+  void copyUploads(VkCommandBuffer cmd, size_t s, terrain::TerrainVertex* staging) const;
   // The pool holds the cache's capacity; a new buffer gets the old one's contents first.
   void growPool(VkCommandBuffer cmd, const GrowingBuffer::Retire& retire);
   // Slot `s`'s index buffers hold `indices`; returns the host-visible one's memory.
