@@ -8,13 +8,19 @@
 #include <string>
 
 #include "core/parallel_for.h"
+#include "render/descriptors.h"
+#include "render/pipeline_builder.h"
 #include "render/render_targets.h"
+#include "shaders/terrain_upload.comp.h"
 
 namespace vegstream::render {
 namespace {
 using terrain::TerrainVertex;
 constexpr VkDeviceSize kVertexBytes = sizeof(TerrainVertex);
 constexpr VkDeviceSize kSmallest = 256 * 1024;
+// What writes the geometry: copy commands, and the resident uploads' compute dispatch.
+constexpr VkPipelineStageFlags2 kWriteStages = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+constexpr VkAccessFlags2 kWriteAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 // A chunk draw's indices: this frame's partial list, or all the chunk's own.
@@ -63,7 +69,7 @@ std::vector<PieceRange> indexRanges(std::span<const TerrainDraw> draws, std::spa
 
 TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* tasks, uint64_t reserveTriangles,
                                                bool resident)
-    : tasks_(tasks), resident_(resident), cache_(kSlots, kIdleFrames) {
+    : ctx_(&ctx), tasks_(tasks), resident_(resident), cache_(kSlots, kIdleFrames) {
   // ROAM's chunked meshes hold 1.0–1.5 vertices a triangle on the benchmark flights.
   const VkDeviceSize vertexMin = std::max<VkDeviceSize>(reserveTriangles * 3 / 2 * kVertexBytes, kSmallest);
   const VkDeviceSize indexMin = std::max<VkDeviceSize>(reserveTriangles * 3 * sizeof(uint32_t), kSmallest);
@@ -73,8 +79,10 @@ TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* t
   for (size_t s = 0; s < kSlots; ++s) {
     const std::string tag = " (slot " + std::to_string(s) + ")";
     // Resident frames stage only what changed: a smaller start.
-    vertices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "vertices" + tag,
-                        resident ? kSmallest : vertexMin);
+    vertices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                        "vertices" + tag, resident ? kSmallest : vertexMin);
+    if (resident)
+      uploadTable_[s] = make(VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "uploads" + tag, 16 * 1024);
     indices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices" + tag, indexMin);
     deviceIndices_[s] =
         make(VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "indices (device)" + tag, indexMin);
@@ -85,6 +93,7 @@ TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* t
   if (resident)
     pool_ = make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | kRead, MemoryUse::DeviceLocal,
                  "vertex pool", vertexMin * 2);
+  if (resident) createUploadPipeline();
 }
 
 std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int slot, std::span<const TerrainDraw> draws,
@@ -100,7 +109,7 @@ std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int s
     writeCopied(cmd, s, draws, order, ranges, idst, retire);
   recordIndexCopy(cmd, s, indices);
   memoryBarrier(
-      cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      cmd, kWriteStages, kWriteAccess,
       VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
       VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
@@ -183,25 +192,46 @@ void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::s
       for (uint32_t i = 0; i < m.chunks[j].count; ++i) *out++ = src[i] + base;
     }
   });
-  copyUploads(cmd, s, vdst);
+  copyUploads(cmd, s, vdst, retire);
 }
 
-void TerrainGeometryBuffers::copyUploads(VkCommandBuffer cmd, size_t s, TerrainVertex* staging) const {
+void TerrainGeometryBuffers::copyUploads(VkCommandBuffer cmd, size_t s, TerrainVertex* staging,
+                                         const GrowingBuffer::Retire& retire) {
   parallelEach(uploads_.size(), tasks_, [&](size_t u) {
     std::memcpy(staging + uploads_[u].staged, uploads_[u].src, uploads_[u].count * kVertexBytes);
   });
-  // One copy region per run of uploads that are contiguous in both buffers.
-  std::vector<VkBufferCopy> regions;
-  for (const Upload& u : uploads_) {
-    const VkBufferCopy r{u.staged * kVertexBytes, VkDeviceSize{u.poolFirst} * kVertexBytes, u.count * kVertexBytes};
-    if (!regions.empty() && regions.back().srcOffset + regions.back().size == r.srcOffset &&
-        regions.back().dstOffset + regions.back().size == r.dstOffset)
-      regions.back().size += r.size;
-    else
-      regions.push_back(r);
-  }
-  if (!regions.empty())
-    vkCmdCopyBuffer(cmd, vertices_[s].get(), pool_.get(), static_cast<uint32_t>(regions.size()), regions.data());
+  if (uploads_.empty()) return;
+  uploadTable_[s].ensure(uploads_.size() * sizeof(glm::uvec4), GrowingBuffer::kNoCeiling, retire);
+  auto* table = static_cast<glm::uvec4*>(uploadTable_[s].buffer().mapped);
+  for (size_t u = 0; u < uploads_.size(); ++u)
+    table[u] = glm::uvec4(static_cast<uint32_t>(uploads_[u].staged), uploads_[u].poolFirst, uploads_[u].count, 0u);
+  // The slot's last frame has finished (its fence was waited for): its set is free to write.
+  writeStorageBuffer(*ctx_, uploadSets_[s], vertices_[s].get(), 0);
+  writeStorageBuffer(*ctx_, uploadSets_[s], uploadTable_[s].get(), 1);
+  writeStorageBuffer(*ctx_, uploadSets_[s], pool_.get(), 2);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, uploadPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, uploadPipelineLayout_.get(), 0, 1, &uploadSets_[s], 0,
+                          nullptr);
+  constexpr uint32_t kPerRow = 65535;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows
+  const auto count = static_cast<uint32_t>(uploads_.size());
+  const uint32_t push[2] = {count, kPerRow};
+  vkCmdPushConstants(cmd, uploadPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
+  vkCmdDispatch(cmd, std::min(count, kPerRow), (count + kPerRow - 1) / kPerRow, 1);
+}
+
+void TerrainGeometryBuffers::createUploadPipeline() {
+  const Context& ctx = *ctx_;
+  VkDescriptorSetLayoutBinding bindings[3];
+  for (uint32_t b = 0; b < 3; ++b)
+    bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  uploadLayout_ = createLayout(ctx, bindings, "terrain upload layout");
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * kSlots};
+  uploadPool_ = createPool(ctx, {&size, 1}, kSlots, "terrain upload pool");
+  allocateSlotSets(ctx, uploadPool_.get(), uploadLayout_.get(), uploadSets_, "terrain upload set");
+  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 2 * sizeof(uint32_t)};
+  const VkDescriptorSetLayout layout = uploadLayout_.get();
+  uploadPipelineLayout_ = createPipelineLayout(ctx, {&layout, 1}, {&push, 1}, "terrain upload pipeline layout");
+  uploadPipeline_ = createComputePipeline(ctx, uploadPipelineLayout_.get(), spv_terrain_upload_comp, "terrain upload");
 }
 
 void TerrainGeometryBuffers::growPool(VkCommandBuffer cmd, const GrowingBuffer::Retire& retire) {
@@ -211,14 +241,13 @@ void TerrainGeometryBuffers::growPool(VkCommandBuffer cmd, const GrowingBuffer::
     retire(std::move(b));  // kept alive until this frame has finished with it
   });
   if (grown && old != VK_NULL_HANDLE && poolValidVertices_ > 0) {
-    // Earlier frames' copies into the old pool, then this one out of it; then this frame's
+    // Earlier frames' uploads into the old pool, then this copy out of it; then this frame's
     // uploads over ranges the old contents may have held.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_READ_BIT);
+    memoryBarrier(cmd, kWriteStages, kWriteAccess, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     const VkBufferCopy all{0, 0, poolValidVertices_ * kVertexBytes};
     vkCmdCopyBuffer(cmd, old, pool_.get(), 1, &all);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
   poolValidVertices_ = cache_.capacity();
 }
