@@ -64,7 +64,9 @@ ChunkPlacement TerrainChunkCache::place(const terrain::TerrainChunk& chunk) {
   const auto vertices = static_cast<uint32_t>(chunk.vertices.size());
   auto [it, added] = resident_.try_emplace(chunk.id);
   Resident& r = it->second;
-  if (!added && r.version == chunk.version) {
+  // The same id and version keep their vertices (terrain_mesh.h); a chunk that broke that by
+  // growing is placed anew rather than written past its range.
+  if (!added && r.version == chunk.version && vertices <= classSize(r.sizeClass)) {
     r.usedFrame = frame_;
     return {r.firstVertex, false};
   }

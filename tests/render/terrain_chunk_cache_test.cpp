@@ -96,6 +96,20 @@ TEST(TerrainChunkCache, IdleChunksAndTransientRangesAreGivenUp) {
   EXPECT_EQ(cache.capacity(), capacity);
 }
 
+TEST(TerrainChunkCache, AChunkThatGrowsUnderItsIdIsPlacedAnew) {
+  TerrainChunkCache cache(3, 64);
+  cache.beginFrame();
+  const uint32_t first = cache.place(chunk(5, 0, 60)).firstVertex;
+  const uint32_t next = cache.place(chunk(6, 0, 60)).firstVertex;
+  cache.endFrame();
+  ASSERT_EQ(next, first + 64) << "neighbours in the pool";
+  cache.beginFrame();
+  const ChunkPlacement grown = cache.place(chunk(5, 0, 100));  // a producer bug: more vertices, same id and version
+  cache.endFrame();
+  EXPECT_TRUE(grown.upload);
+  EXPECT_NE(grown.firstVertex, first) << "not written over chunk 6's range";
+}
+
 TEST(TerrainChunkCache, TheSameCallsGiveTheSameRanges) {
   const auto run = [] {
     TerrainChunkCache cache(3, 8);
