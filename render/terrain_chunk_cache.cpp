@@ -89,6 +89,11 @@ uint32_t TerrainChunkCache::placeTransient(uint32_t vertices) {
 }
 
 void TerrainChunkCache::endFrame() {
+  figures_.chunksResident = resident_.size();
+  // The idle chunks are looked for every idleFrames / 8 frames: a walk over every resident chunk
+  // (a node of the map each) every frame showed in the frame thread's profile (render/README.md).
+  const uint64_t every = std::max<uint64_t>(1, idleFrames_ / 8);
+  if (frame_ % every != 0) return;
   for (auto it = resident_.begin(); it != resident_.end();) {
     if (frame_ - it->second.usedFrame >= idleFrames_) {
       retire(it->second.firstVertex, it->second.sizeClass);

@@ -12,8 +12,8 @@
 // - A range stays untouched while a frame in flight may read it: a range given up in frame F
 //   (a chunk's old version, an idle chunk, a frame's own vertices) is handed out again from
 //   frame F + framesInFlight on, once the frame slot's fence has seen frame F finish.
-// - A chunk not drawn for `idleFrames` frames gives its range up; drawn again later, it is
-//   uploaded again.
+// - A chunk not drawn for `idleFrames` frames gives its range up (they are looked for every
+//   idleFrames / 8 frames, so within 9/8 × idleFrames); drawn again later, it is uploaded again.
 // - Ranges are 64 · 2^k vertices (k ≥ 0), from a free list per size or else from the end of the
 //   pool; capacity() is the pool's high-water mark, which the pool's buffer must hold.
 // Deterministic: the same sequence of calls gives the same ranges.

@@ -158,7 +158,8 @@ class TerrainPass {
 
 // The draw order of `draws`: front to back by the distance from `cameraPosition` to each
 // mesh's bounding box (ties keep their order, so the order is deterministic); draws without
-// triangles are left out. The bounds are found on `tasks` (and the calling thread) when given.
+// triangles are left out. A chunk's box is its own (terrain::TerrainChunk::boundsMin / boundsMax).
+// The bounds are found on `tasks` (and the calling thread) when given.
 std::vector<uint32_t> frontToBackOrder(std::span<const TerrainDraw> draws, const glm::dvec3& cameraPosition,
                                        TaskRunner* tasks = nullptr);
 

@@ -102,10 +102,13 @@ void DrawnChunks::prepare(const ChunkPass& pass, size_t draw, ChunkScratch& scra
   const ChunkDraw& d = draws_[draw];
   DrawnChunk& chunk = chunks_[d.slot];
   const glm::dvec3& origin = (*pass.meshes)[size_t(d.piece)].origin;
-  if (chunk.rebuild)
+  if (chunk.rebuild) {
     rebuild(pass, chunk, origin, scratch, counts);
-  else if (!chunk.morphing.empty())
+    keepBounds(chunk.mesh);
+  } else if (!chunk.morphing.empty()) {
     move(pass, chunk, origin, counts);
+    keepBounds(chunk.mesh);
+  }
   chunk.visible.clear();
   if (d.planes == 0 || chunk.mesh.indices.empty()) return;
   cullTriangles(pass, chunk, d.planes, scratch);

@@ -11,7 +11,10 @@
 // the view) lists the triangles drawn this frame in `chunkIndices`.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
+
+#include <glm/common.hpp>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -31,7 +34,22 @@ struct TerrainChunk {
   uint64_t version = 0;  // changes whenever its vertices move (the same triangles)
   std::vector<TerrainVertex> vertices;
   std::vector<uint32_t> indices;  // into vertices
+  // The box of its vertices' positions (meaningless without vertices), kept by the producer
+  // whenever they change (keepBounds), so a consumer that orders or culls the chunks every frame
+  // reads two corners instead of every vertex.
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };
+
+// Sets c.boundsMin / boundsMax to the box of c.vertices.
+inline void keepBounds(TerrainChunk& c) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const TerrainVertex& v : c.vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  c.boundsMin = lo;
+  c.boundsMax = hi;
+}
 
 struct TerrainChunkDraw {
   const TerrainChunk* chunk = nullptr;

@@ -301,6 +301,13 @@ TEST(RoamIncremental, ChunksKeptByIdAndVersionDrawTheSameTrianglesAsTheDirectOut
       for (const TerrainChunkDraw& d : m.chunks) {
         partial += d.partial ? 1 : 0;
         ASSERT_LE(d.first + d.count, d.partial ? m.chunkIndices.size() : d.chunk->indices.size());
+        // The box the renderer orders the pieces by is the one of the chunk's vertices now.
+        TerrainChunk box;
+        box.vertices = d.chunk->vertices;
+        keepBounds(box);
+        ASSERT_FALSE(d.chunk->vertices.empty());
+        ASSERT_EQ(d.chunk->boundsMin, box.boundsMin) << "chunk " << d.chunk->id << ", frame " << i;
+        ASSERT_EQ(d.chunk->boundsMax, box.boundsMax) << "chunk " << d.chunk->id << ", frame " << i;
       }
     }
     const uint64_t copiedBefore = keeper.copied, untouchedBefore = keeper.untouched;
