@@ -53,6 +53,11 @@ void addTerrainOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "copied: every frame copies them all (the same images, for comparison)")
       ->check(CLI::IsMember({"resident", "copied"}))
       ->capture_default_str();
+  cmd.add_option("--frame-workers", o.frameWorkers,
+                 "Most worker threads the frame's own parallel loops (terrain tessellation and copies) use beside "
+                 "the frame thread; 0: all of them (one per core)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd.add_option("--seed-horizon-m", o.seedHorizonM,
                  "Seed triangles (plants) only within this distance, metres (each species also stops at its "
                  "catalog horizon_m)")
@@ -186,6 +191,7 @@ void applyTerrainOptions(const StreamingCli& o, scene::StreamingMode defaultMode
                                   : o.terrainShading == "compute"  ? render::TerrainShading::Compute
                                                                    : render::TerrainShading::Auto;
   scene.renderer.residentTerrain = o.terrainGeometry == "resident";
+  scene.frameWorkers = o.frameWorkers;
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;
   scene.terrain.seeds.maxPlants = o.plantMax;

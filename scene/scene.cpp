@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/stopwatch.h"
+#include "core/capped_runner.h"
 #include "core/task_runner.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"
@@ -30,6 +32,7 @@ namespace vegstream::scene {
 
 struct Scene::Impl {
   std::unique_ptr<ThreadPool> tasks;  // the sources' I/O and the decodes; destroyed after them
+  std::unique_ptr<CappedRunner> frameTasks;  // `tasks`, capped at options.frameWorkers for the frame's loops
   std::unique_ptr<render::Renderer> renderer;
   SceneOptions options;
   SceneInfo info;
@@ -152,7 +155,7 @@ Status openTerrain(Scene::Impl& m, const datasets::DatasetMeta& meta) {
   terrain::SeedOptions& seeds = m.options.terrain.seeds;
   seeds.groundDensityM2 = vegetation::densestGroundDensity(catalog);
   seeds.horizonM = std::min<double>(seeds.horizonM, vegetation::farthestHorizon(catalog));
-  m.options.terrain.roam.tasks = m.tasks.get();  // compactions beside the frame
+  m.options.terrain.roam.tasks = m.frameTasks.get();  // compactions beside the frame, and its loops
   m.terrain = std::make_unique<terrain::StreamedTerrain>(*m.streamer, m.frame, m.options.terrain);
   SceneInfo& info = m.info;
   info.seedLevel = m.terrain->roam().seedLevel();
@@ -179,6 +182,8 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   Stopwatch watch;
   // The dataset first, then the renderer with its options: both fail before tiles are read.
   auto tasks = std::make_unique<ThreadPool>();
+  auto frameTasks = std::make_unique<CappedRunner>(
+      *tasks, options.frameWorkers > 0 ? options.frameWorkers : std::numeric_limits<int>::max());
   streaming::OpenSourceOptions so;
   so.http.cacheDir = options.httpCacheDir;
   so.http.allowRedirects = options.httpAllowRedirects;
@@ -198,7 +203,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
                              centreLon);
   if (!sun) return sun.error();
   render::RendererOptions rendererOptions = options.renderer;
-  rendererOptions.tasks = tasks.get();
+  rendererOptions.tasks = frameTasks.get();
   rendererOptions.terrainTriangles = options.terrain.roam.maxTriangles;
   rendererOptions.trailStoreBytes = static_cast<uint64_t>(options.simulation.trailBudgetMb * 1024.0 * 1024.0);
   auto renderer = render::Renderer::create(rendererOptions);
@@ -206,6 +211,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
 
   auto impl = std::make_unique<Impl>();
   impl->tasks = std::move(tasks);
+  impl->frameTasks = std::move(frameTasks);
   impl->options = options;
   impl->renderer = std::move(*renderer);
   impl->source = std::move(*source);  // the source goes before the pool its tasks run on

@@ -75,6 +75,9 @@ struct SceneOptions {
   std::optional<std::filesystem::path> httpCacheDir;
   bool httpAllowRedirects = false;  // --allow-redirects: follow redirects to other hosts (http(s) only)
   long httpRequestDeadlineMs = 30'000;  // --http-timeout-s: one HTTP request, all its retries included
+  // --frame-workers: the most workers the frame's own parallel loops (ROAM, the terrain's copies)
+  // use beside the frame thread (core/capped_runner.h); 0: every worker of the scene's pool.
+  int frameWorkers = 0;
   uint64_t groundMaxPixels = 4'000'000;  // the ground mosaic for path altitudes
   // Plants: the seed triangles go to the classify pass each frame (render/classify_pass.h).
   bool plants = true;

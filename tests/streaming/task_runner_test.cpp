@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/capped_runner.h"
 #include "core/clock.h"
 #include "core/task_runner.h"
 #include "core/parallel_for.h"
@@ -148,6 +149,23 @@ TEST(ParallelFor, OnAPoolEveryIndexRunsOnceAndTheFirstErrorIsReturned) {
     return {};
   }));
   EXPECT_EQ(count.load(), 64);
+}
+
+TEST(CappedRunner, ALoopOnItPostsAtMostTheCapOfHelpersAndTheRunnerRunsThem) {
+  ManualTaskRunner tasks;
+  // A pool of 16 offers 16 at once; capped, it offers the cap (or all it has, if fewer).
+  ThreadPool pool(16);
+  EXPECT_EQ(CappedRunner(pool, 2).concurrency(), 2);
+  EXPECT_EQ(CappedRunner(pool, 64).concurrency(), 16) << "never more than the runner has";
+  CappedRunner capped(tasks, 1);
+  std::vector<int> seen(40, 0);
+  EXPECT_TRUE(parallelFor(seen.size(), 0, &capped, [&](size_t i) -> Status {
+    ++seen[i];
+    return {};
+  }));
+  EXPECT_EQ(tasks.pending(), 1u) << "cap 1: one helper beside the caller, posted to the runner underneath";
+  for (size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 1) << i;
+  EXPECT_EQ(tasks.runAll(), 1u);
 }
 
 }  // namespace
