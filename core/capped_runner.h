@@ -4,7 +4,7 @@
 // The frame's short parallel loops — ROAM's priorities and chunks, the terrain's per-frame copies
 // — run on one: on a 16-core host, a loop of a few hundred microseconds that woke all 16 workers
 // spent more in the wake-ups and in the shared index than in its work (perf on the GPU host:
-// bench/README.md, "The frame's loops on few workers"). Long-running tasks and the work sized
+// bench/README.md, "The CPU frame on the GPU host, profiled"). Long-running tasks and the work sized
 // otherwise (the streamer's decodes) keep the whole runner.
 
 #include <algorithm>

@@ -45,10 +45,7 @@ void interleaveCompanions(uint8_t* dst, std::span<const uint8_t> ndvi, std::span
 // every piece, read each frame, was 4.7 MB a frame at 1080p (render/README.md).
 double distanceToBounds(const terrain::TerrainMesh& m, const glm::dvec3& eye) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const terrain::TerrainVertex& v : m.vertices) {
-    lo = glm::min(lo, v.position);
-    hi = glm::max(hi, v.position);
-  }
+  terrain::growBox(m.vertices, lo, hi);
   for (const terrain::TerrainChunkDraw& c : m.chunks) {
     if (c.chunk->vertices.empty()) continue;
     lo = glm::min(lo, c.chunk->boundsMin);

@@ -11,8 +11,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/stopwatch.h"
 #include "core/capped_runner.h"
+#include "core/stopwatch.h"
 #include "core/task_runner.h"
 #include "streaming/dataset_snapshot.h"
 #include "streaming/open_tile_source.h"

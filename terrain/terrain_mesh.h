@@ -15,7 +15,6 @@
 #include <vector>
 
 #include <glm/common.hpp>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -40,15 +39,19 @@ struct TerrainChunk {
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };
 
-// Sets c.boundsMin / boundsMax to the box of c.vertices.
-inline void keepBounds(TerrainChunk& c) {
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const TerrainVertex& v : c.vertices) {
+// Grows the box [lo, hi] by the positions of `vertices`.
+inline void growBox(const std::vector<TerrainVertex>& vertices, glm::vec3& lo, glm::vec3& hi) {
+  for (const TerrainVertex& v : vertices) {
     lo = glm::min(lo, v.position);
     hi = glm::max(hi, v.position);
   }
-  c.boundsMin = lo;
-  c.boundsMax = hi;
+}
+
+// Sets c.boundsMin / boundsMax to the box of c.vertices.
+inline void keepBounds(TerrainChunk& c) {
+  c.boundsMin = glm::vec3(std::numeric_limits<float>::max());
+  c.boundsMax = glm::vec3(std::numeric_limits<float>::lowest());
+  growBox(c.vertices, c.boundsMin, c.boundsMax);
 }
 
 struct TerrainChunkDraw {
