@@ -228,6 +228,16 @@ Result<std::vector<uint8_t>> Renderer::readTreeImpostor(uint32_t model, uint32_t
   });
 }
 
+Result<std::vector<uint32_t>> Renderer::readTreeList(uint32_t model, uint32_t lod) {
+  const TreePass& trees = impl_->passes->trees();
+  if (model >= trees.modelCount()) return makeError(ErrorKind::InvalidInput, "no tree model " + std::to_string(model));
+  if (lod > 1) return makeError(ErrorKind::InvalidInput, "no tree mesh level " + std::to_string(lod));
+  return guardGpu([&]() -> Result<std::vector<uint32_t>> {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    return trees.readList(model, lod);
+  });
+}
+
 Status Renderer::setSpeciesCatalog(const vegetation::SpeciesCatalog& catalog) {
   if (catalog.species.size() > vegetation::kMaxSpecies)
     return makeError(ErrorKind::InvalidInput, "species catalog: " + std::to_string(catalog.species.size()) +

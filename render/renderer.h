@@ -111,6 +111,10 @@ class Renderer {
   // One model's impostor atlas layer (RGBA8 albedo + coverage, kImpostorViews × kImpostorCellPx
   // square at mip level 0, half as wide at each next level), for tests; waits for the GPU.
   Result<std::vector<uint8_t>> readTreeImpostor(uint32_t model, uint32_t level = 0);
+  // Model `model`'s trees drawn at mesh level `lod` (0 full, 1 reduced) in the last frame, as
+  // instance indices in draw order (nearest first: shaders/tree_sort.comp), for tests; waits for
+  // the GPU.
+  Result<std::vector<uint32_t>> readTreeList(uint32_t model, uint32_t lod);
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
   // The shared simulation's GPU state as it is now (waits for the GPU to be idle): the wind cells

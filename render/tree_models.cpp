@@ -81,7 +81,8 @@ VkDeviceSize TreePass::createDrawBuffers(uint32_t count) {
   const VkDeviceSize visibleBytes =
       VkDeviceSize{count} * (perModel + casterCapacity_[0] + casterCapacity_[1] + casterCapacity_[2]) *
       sizeof(glm::uvec4);
-  visible_ = createBuffer(*ctx_, visibleBytes, storage, MemoryUse::DeviceLocal, "tree visible lists");
+  visible_ = createBuffer(*ctx_, visibleBytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::DeviceLocal,
+                         "tree visible lists");  // transfer source: readList (tests)
   // The draws and their per-frame template (instance counts 0, firsts at the regions).
   std::vector<uint32_t> tmpl;
   // Per model and level: bark and cards, then (a second set) the crowns' cores of the same
@@ -108,7 +109,7 @@ VkDeviceSize TreePass::createDrawBuffers(uint32_t count) {
   drawTemplate_ = createBufferWithData(*ctx_, tmpl.data(), tmpl.size() * sizeof(uint32_t),
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "tree draw template");
   const VkBufferUsageFlags draws =
-      storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+      storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   meshDraws_ = createBuffer(*ctx_, count * 4 * kIndexedCommand, draws, MemoryUse::DeviceLocal, "tree mesh draws");
   impostorDraws_ = createBuffer(*ctx_, count * (1 + kTreeShadowCascades) * kIndexedCommand,
                                 draws, MemoryUse::DeviceLocal,

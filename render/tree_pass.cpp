@@ -20,6 +20,7 @@
 #include "shaders/tree_core.frag.h"
 #include "shaders/tree.vert.h"
 #include "shaders/tree_classify.comp.h"
+#include "shaders/tree_sort.comp.h"
 #include "shaders/tree_impostor.frag.h"
 #include "shaders/tree_impostor.vert.h"
 
@@ -66,6 +67,7 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   const VkPushConstantRange classifyPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
   classifyLayout_ = createPipelineLayout(*ctx_, sets, {&classifyPush, 1}, "tree classify layout");
   classifyPipeline_ = createComputePipeline(*ctx_, classifyLayout_.get(), spv_tree_classify_comp, "tree classify");
+  sortPipeline_ = createComputePipeline(*ctx_, classifyLayout_.get(), spv_tree_sort_comp, "tree sort");
   const VkPushConstantRange drawPush{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TreePush)};
   drawLayout_ = createPipelineLayout(*ctx_, sets, {&drawPush, 1}, "tree draw layout");
 
@@ -199,6 +201,12 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   mode = 1;
   vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(mode), &mode);
   vkCmdDispatch(cmd, (static_cast<uint32_t>(models_.size()) + 255) / 256, 1, 1);
+  // The near lists front to back (shaders/tree_sort.comp): one group per model and mesh level.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sortPipeline_.get());
+  vkCmdDispatch(cmd, 2 * static_cast<uint32_t>(models_.size()), 1, 1);
   memoryBarrier(
       cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -271,6 +279,28 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
     vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kIndexedCommand, 1,
                              static_cast<uint32_t>(kIndexedCommand));
   }
+}
+
+std::vector<uint32_t> TreePass::readList(uint32_t model, uint32_t lod) const {
+  assert(model < models_.size() && lod < 2);
+  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
+  const VkDeviceSize region = VkDeviceSize{model * perModel + (lod == 1 ? capacity_[0] : 0u)} * sizeof(glm::uvec4);
+  const VkDeviceSize listBytes = VkDeviceSize{capacity_[lod]} * sizeof(glm::uvec4);
+  GpuBuffer host = createBuffer(*ctx_, kIndexedCommand + listBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                MemoryUse::HostReadback, "tree list read-back");
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy command{(model * 2 + lod) * kIndexedCommand, 0, kIndexedCommand};
+    const VkBufferCopy list{region, kIndexedCommand, listBytes};
+    vkCmdCopyBuffer(cmd, meshDraws_.get(), host.get(), 1, &command);
+    vkCmdCopyBuffer(cmd, visible_.get(), host.get(), 1, &list);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  const auto* words = static_cast<const uint32_t*>(host.mapped);
+  const uint32_t count = std::min(words[1], capacity_[lod]);  // the command's instance count
+  const auto* entries = reinterpret_cast<const glm::uvec4*>(static_cast<const uint8_t*>(host.mapped) + kIndexedCommand);
+  std::vector<uint32_t> out(count);
+  for (uint32_t i = 0; i < count; ++i) out[i] = entries[i].x;
+  return out;
 }
 
 TreeFigures TreePass::figures(int slot) const {

@@ -63,6 +63,10 @@ class TreePass {
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 
+  // The instances model `model`'s list at mesh level `lod` (0 full, 1 reduced) held after the last
+  // frame's classify and sort, in draw order (tests). Waits for the GPU.
+  std::vector<uint32_t> readList(uint32_t model, uint32_t lod) const;
+
   // The impostor atlas (tests): layer per model, RGBA8 albedo + coverage.
   const TreeImpostors* impostors() const { return impostors_.get(); }
 
@@ -95,7 +99,7 @@ class TreePass {
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};
   PipelineLayout classifyLayout_, drawLayout_;
-  Pipeline classifyPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowImpostorPipeline_;
+  Pipeline classifyPipeline_, sortPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowImpostorPipeline_;
   Sampler sampler_;
 
   std::vector<ModelDraw> models_;

@@ -41,10 +41,10 @@ float coniferNeedles(vec2 uv, float fine) {
 
 // A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
 // needles, narrowing to the tip; broadleaf: a clump of three leaves. `fine`: coniferNeedles'.
-// Call in uniform control flow.
+// Call in uniform control flow, with `form` uniform over the draw (the model's): the branch on it
+// keeps coniferNeedles' fwidth in uniform control flow, and a broadleaf's fragments skip it.
 float treeCardShape(vec2 uv, float form, float fine) {
-  float needles = coniferNeedles(uv, fine);  // before the branch: fwidth in uniform control flow
-  if (form < 0.5) return needles;
+  if (form < 0.5) return coniferNeedles(uv, fine);
   float a = 0.0;
   for (int i = 0; i < 3; ++i) {
     float ang = 1.0 + 2.0944 * float(i);
