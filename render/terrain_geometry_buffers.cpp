@@ -83,9 +83,11 @@ TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* t
                         "vertices" + tag, resident ? kSmallest : vertexMin);
     if (resident)
       uploadTable_[s] = make(VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload, "uploads" + tag, 16 * 1024);
-    indices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload, "indices" + tag, indexMin);
-    deviceIndices_[s] =
-        make(VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "indices (device)" + tag, indexMin);
+    // Storage too: the index pool's uploads read the chunks' indices staged after the frame's.
+    indices_[s] = make(VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::HostUpload,
+                       "indices" + tag, indexMin);
+    deviceIndices_[s] = make(VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | kRead,
+                             MemoryUse::DeviceLocal, "indices (device)" + tag, indexMin);
     if (!resident)
       deviceVertices_[s] =
           make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kRead, MemoryUse::DeviceLocal, "vertices (device)" + tag, vertexMin);
@@ -93,7 +95,10 @@ TerrainGeometryBuffers::TerrainGeometryBuffers(const Context& ctx, TaskRunner* t
   if (resident)
     pool_ = make(VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | kRead, MemoryUse::DeviceLocal,
                  "vertex pool", vertexMin * 2);
-  if (resident) createUploadPipeline();
+  if (resident) {
+    createUploadPipeline();
+    indexPool_ = std::make_unique<TerrainIndexPool>(ctx, tasks, indexMin * 2);
+  }
 }
 
 std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int slot, std::span<const TerrainDraw> draws,
@@ -102,12 +107,12 @@ std::vector<PieceRange> TerrainGeometryBuffers::write(VkCommandBuffer cmd, int s
   const auto s = static_cast<size_t>(slot);
   uint64_t indices = 0;
   std::vector<PieceRange> ranges = indexRanges(draws, order, indices);
-  uint32_t* idst = ensureIndices(s, indices, retire);
   if (resident_)
-    writeResident(cmd, s, draws, order, ranges, idst, retire);
+    writeResident(cmd, s, draws, order, ranges, indices, retire);
   else
-    writeCopied(cmd, s, draws, order, ranges, idst, retire);
+    writeCopied(cmd, s, draws, order, ranges, ensureIndices(s, indices, retire), retire);
   recordIndexCopy(cmd, s, indices);
+  if (resident_) indexPool_->recordGather(cmd, s, deviceIndices_[s].get());
   memoryBarrier(
       cmd, kWriteStages, kWriteAccess,
       VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
@@ -151,16 +156,18 @@ void TerrainGeometryBuffers::writeCopied(VkCommandBuffer cmd, size_t s, std::spa
   }
 }
 
-void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
-                                           std::span<const uint32_t> order, const std::vector<PieceRange>& ranges,
-                                           uint32_t* idst, const GrowingBuffer::Retire& retire) {
-  uint64_t staged = 0;
+uint64_t TerrainGeometryBuffers::placeResident(std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
+                                               const std::vector<PieceRange>& ranges, uint64_t indices) {
+  uint64_t staged = 0, stagedIndices = 0;
   // Where everything goes, in draw order (the cache's ranges depend on the order of its calls).
   uploads_.clear();
+  indexUploads_.clear();
   chunkFirst_.clear();
+  gathered_.clear();
   pieceChunks_.assign(order.size(), 0);
   ownFirst_.assign(order.size(), 0);
   cache_.beginFrame();
+  indexPool_->beginFrame();
   for (size_t k = 0; k < order.size(); ++k) {
     const terrain::TerrainMesh& m = *draws[order[k]].mesh;
     if (const auto own = static_cast<uint32_t>(m.vertices.size()); own > 0) {
@@ -169,30 +176,58 @@ void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::s
       staged += own;
     }
     pieceChunks_[k] = chunkFirst_.size();
+    auto target = static_cast<uint32_t>(ranges[k].firstIndex + m.indices.size());
     for (const terrain::TerrainChunkDraw& c : m.chunks) {
       const ChunkPlacement p = cache_.place(*c.chunk);
+      const bool kept = TerrainIndexPool::fits(*c.chunk);
       chunkFirst_.push_back(p.firstVertex);
+      gathered_.push_back(kept && !c.partial ? 1 : 0);
+      if (gathered_.back()) indexPool_->gather(p.firstVertex, c.first, c.count, target);
+      target += c.count;
       if (!p.upload || c.chunk->vertices.empty()) continue;
       const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
       uploads_.push_back({c.chunk->vertices.data(), n, p.firstVertex, staged});
       staged += n;
+      if (!kept) continue;  // its indices are written by the frame thread whenever it is drawn
+      const auto ni = static_cast<uint32_t>(c.chunk->indices.size());
+      indexPool_->upload(static_cast<uint32_t>(indices + stagedIndices), ni, p.firstVertex);
+      indexUploads_.push_back({c.chunk->indices.data(), ni, indices + stagedIndices});
+      stagedIndices += ni;
     }
   }
   cache_.endFrame();
+  stagedVertices_ = staged;
+  return stagedIndices;
+}
+
+void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws,
+                                           std::span<const uint32_t> order, const std::vector<PieceRange>& ranges,
+                                           uint64_t indices, const GrowingBuffer::Retire& retire) {
+  const uint64_t stagedIndices = placeResident(draws, order, ranges, indices);
+  uint32_t* idst = ensureIndices(s, indices + stagedIndices, retire);
   growPool(cmd, retire);
-  vertices_[s].ensure(std::max<VkDeviceSize>(staged, 1) * kVertexBytes, GrowingBuffer::kNoCeiling, retire);
+  vertices_[s].ensure(std::max<VkDeviceSize>(stagedVertices_, 1) * kVertexBytes, GrowingBuffer::kNoCeiling, retire);
   auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
-  parallelEach(order.size(), tasks_, [&](size_t k) {  // the indices, into the pool
+  // The indices the frame thread writes, into the pool: the pieces' own, and the chunks drawn in part.
+  parallelEach(order.size(), tasks_, [&](size_t k) {
     const terrain::TerrainMesh& m = *draws[order[k]].mesh;
     uint32_t* out = idst + ranges[k].firstIndex;
     for (uint32_t i : m.indices) *out++ = i + ownFirst_[k];
     for (size_t j = 0; j < m.chunks.size(); ++j) {
-      const uint32_t base = chunkFirst_[pieceChunks_[k] + j];
-      const uint32_t* src = chunkIndices(m, m.chunks[j]);
-      for (uint32_t i = 0; i < m.chunks[j].count; ++i) *out++ = src[i] + base;
+      const size_t at = pieceChunks_[k] + j;
+      if (!gathered_[at]) {
+        const uint32_t base = chunkFirst_[at];
+        const uint32_t* src = chunkIndices(m, m.chunks[j]);
+        for (uint32_t i = 0; i < m.chunks[j].count; ++i) out[i] = src[i] + base;
+      }
+      out += m.chunks[j].count;
     }
   });
+  parallelEach(indexUploads_.size(), tasks_, [&](size_t u) {
+    std::memcpy(idst + indexUploads_[u].staged, indexUploads_[u].src, indexUploads_[u].count * sizeof(uint32_t));
+  });
   copyUploads(cmd, s, vdst, retire);
+  indexPool_->recordUploads(cmd, s, indices_[s].get(), cache_.capacity(), retire);
 }
 
 void TerrainGeometryBuffers::copyUploads(VkCommandBuffer cmd, size_t s, TerrainVertex* staging,
@@ -257,7 +292,7 @@ VkBuffer TerrainGeometryBuffers::vertices(int slot) const {
 }
 
 uint64_t TerrainGeometryBuffers::gpuBytes() const {
-  uint64_t bytes = pool_.size();
+  uint64_t bytes = pool_.size() + (indexPool_ ? indexPool_->gpuBytes() : 0);
   for (size_t s = 0; s < kSlots; ++s)
     bytes += vertices_[s].size() + indices_[s].size() + deviceIndices_[s].size() + deviceVertices_[s].size();
   return bytes;

@@ -8,7 +8,9 @@
 // - resident (the default): one device-local vertex pool for all frame slots, in which each
 //   TerrainChunk keeps its range while its id and version stay the same
 //   (terrain_chunk_cache.h); a frame copies only new and moved chunks and the meshes' own
-//   vertices, and its indices point into the pool (a piece's vertex offset is 0);
+//   vertices, and its indices point into the pool (a piece's vertex offset is 0); the chunks'
+//   indices are resident too (terrain_index_pool.h), and those of a chunk drawn in full are
+//   gathered into the frame's index buffer on the GPU;
 // - copied: every frame flattens every piece (own vertices, then each chunk's) into the frame
 //   slot's buffers, a piece's indices relative to its vertex offset — the way before residency.
 // Either way the bytes go through the slot's host-visible staging buffers into device-local
@@ -19,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -28,6 +31,7 @@
 #include "render/growing_buffer.h"
 #include "render/handle.h"
 #include "render/terrain_chunk_cache.h"
+#include "render/terrain_index_pool.h"
 
 namespace vegstream::render {
 
@@ -57,6 +61,8 @@ class TerrainGeometryBuffers {
   bool resident() const { return resident_; }
   // The last write()'s: chunks drawn and uploaded, vertices uploaded (resident only; zero when copied).
   const ChunkCacheFigures& figures() const { return cache_.figures(); }
+  // The last write()'s indices gathered on the GPU from the index pool (resident only).
+  uint64_t gatheredIndices() const { return indexPool_ ? indexPool_->gatheredIndices() : 0; }
   uint64_t gpuBytes() const;
 
  private:
@@ -70,8 +76,15 @@ class TerrainGeometryBuffers {
   // indexRanges, the copied path setting their vertex offsets) and records the vertices' copies.
   void writeCopied(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
                    std::vector<PieceRange>& ranges, uint32_t* idst, const GrowingBuffer::Retire& retire);
+  // Resident: `indices` is the frame's index count (the staging buffer also stages the uploaded
+  // chunks' indices after them); the chunks drawn in full are gathered on the GPU (indexPool_).
   void writeResident(VkCommandBuffer cmd, size_t s, std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
-                     const std::vector<PieceRange>& ranges, uint32_t* idst, const GrowingBuffer::Retire& retire);
+                     const std::vector<PieceRange>& ranges, uint64_t indices, const GrowingBuffer::Retire& retire);
+  // writeResident's first step: every vertex range placed, the uploads listed, each chunk draw's
+  // indices gathered (in full, kept in the index pool) or left to the frame thread (gathered_).
+  // Returns the indices staged for the index pool's uploads.
+  uint64_t placeResident(std::span<const TerrainDraw> draws, std::span<const uint32_t> order,
+                         const std::vector<PieceRange>& ranges, uint64_t indices);
   // The uploads into slot `s`'s staging (at `staging`), and their copies into the pool.
   void copyUploads(VkCommandBuffer cmd, size_t s, terrain::TerrainVertex* staging, const GrowingBuffer::Retire& retire);
   void createUploadPipeline();
@@ -90,6 +103,7 @@ class TerrainGeometryBuffers {
   GrowingBuffer pool_;              // resident: every slot's vertices
   uint64_t poolValidVertices_ = 0;  // the pool's vertices written by earlier frames (its used part)
   TerrainChunkCache cache_;
+  std::unique_ptr<TerrainIndexPool> indexPool_;  // resident only
   // Resident: the uploads' table (uvec4 each: first staged vertex, first pool vertex, vertices)
   // and the compute pipeline that scatters them into the pool.
   std::array<GrowingBuffer, kSlots> uploadTable_;
@@ -103,6 +117,14 @@ class TerrainGeometryBuffers {
   std::vector<uint32_t> chunkFirst_;  // each drawn chunk's first vertex in the pool, in draw order
   std::vector<size_t> pieceChunks_;   // each piece's first entry in chunkFirst_
   std::vector<uint32_t> ownFirst_;    // each piece's own vertices' first vertex in the pool
+  uint64_t stagedVertices_ = 0;       // placeResident's: vertices the uploads stage
+  std::vector<uint8_t> gathered_;     // per drawn chunk, in chunkFirst_'s order: its indices come from the pool
+  struct IndexUpload {
+    const uint32_t* src;
+    uint32_t count;
+    uint64_t staged;  // in the slot's staging index buffer
+  };
+  std::vector<IndexUpload> indexUploads_;
 };
 
 }  // namespace vegstream::render
