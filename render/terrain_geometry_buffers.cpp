@@ -179,16 +179,19 @@ uint64_t TerrainGeometryBuffers::placeResident(std::span<const TerrainDraw> draw
     auto target = static_cast<uint32_t>(ranges[k].firstIndex + m.indices.size());
     for (const terrain::TerrainChunkDraw& c : m.chunks) {
       const ChunkPlacement p = cache_.place(*c.chunk);
-      const bool kept = TerrainIndexPool::fits(*c.chunk);
+      const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
       chunkFirst_.push_back(p.firstVertex);
-      gathered_.push_back(kept && !c.partial ? 1 : 0);
+      // Drawn in full, c.count is all its indices: whether the pool keeps them, without reading
+      // the chunk's index list (a cache miss a chunk on the frame thread).
+      assert(c.partial || c.count == c.chunk->indices.size());
+      gathered_.push_back(!c.partial && c.count <= uint64_t{TerrainIndexPool::kIndicesPerVertex} * n ? 1 : 0);
       if (gathered_.back()) indexPool_->gather(p.firstVertex, c.first, c.count, target);
       target += c.count;
-      if (!p.upload || c.chunk->vertices.empty()) continue;
-      const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
+      if (!p.upload || n == 0) continue;
       uploads_.push_back({c.chunk->vertices.data(), n, p.firstVertex, staged});
       staged += n;
-      if (!kept) continue;  // its indices are written by the frame thread whenever it is drawn
+      // Not kept: its indices are written by the frame thread whenever it is drawn.
+      if (!TerrainIndexPool::fits(*c.chunk)) continue;
       const auto ni = static_cast<uint32_t>(c.chunk->indices.size());
       indexPool_->upload(static_cast<uint32_t>(indices + stagedIndices), ni, p.firstVertex);
       indexUploads_.push_back({c.chunk->indices.data(), ni, indices + stagedIndices});
@@ -223,9 +226,9 @@ void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::s
       out += m.chunks[j].count;
     }
   });
-  parallelEach(indexUploads_.size(), tasks_, [&](size_t u) {
-    std::memcpy(idst + indexUploads_[u].staged, indexUploads_[u].src, indexUploads_[u].count * sizeof(uint32_t));
-  });
+  // The uploaded chunks' indices, staged for the index pool: a few hundred kilobytes at most, on
+  // this thread (a parallel loop's hand-over to a 16-core pool costs more than the copies).
+  for (const IndexUpload& u : indexUploads_) std::memcpy(idst + u.staged, u.src, u.count * sizeof(uint32_t));
   copyUploads(cmd, s, vdst, retire);
   indexPool_->recordUploads(cmd, s, indices_[s].get(), cache_.capacity(), retire);
 }

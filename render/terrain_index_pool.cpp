@@ -21,8 +21,8 @@ TerrainIndexPool::TerrainIndexPool(const Context& ctx, TaskRunner* tasks, VkDevi
   pool_ = GrowingBuffer(ctx, kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         MemoryUse::DeviceLocal, "terrain index pool", tasks, minimumBytes);
   for (size_t s = 0; s < kSlots; ++s)
-    table_[s] = GrowingBuffer(ctx, kStorage, MemoryUse::HostUpload, "terrain index copies (slot " + std::to_string(s) + ")",
-                              tasks, 16 * 1024);
+    table_[s] = GrowingBuffer(ctx, kStorage, MemoryUse::HostUpload,
+                              "terrain index copies (slot " + std::to_string(s) + ")", tasks, 16 * 1024);
   VkDescriptorSetLayoutBinding bindings[3];
   for (uint32_t b = 0; b < 3; ++b)
     bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
@@ -82,10 +82,7 @@ void TerrainIndexPool::recordUploads(VkCommandBuffer cmd, size_t s, VkBuffer sta
   if (!uploads_.empty()) std::memcpy(table, uploads_.data(), uploads_.size() * sizeof(glm::uvec4));
   if (!gathers_.empty()) std::memcpy(table + uploads_.size(), gathers_.data(), gathers_.size() * sizeof(glm::uvec4));
   if (uploads_.empty()) return;
-  // The slot's last frame has finished (its fence was waited for): its sets are free to write.
-  writeStorageBuffer(*ctx_, uploadSets_[s], staging, 0);
-  writeStorageBuffer(*ctx_, uploadSets_[s], table_[s].get(), 1);
-  writeStorageBuffer(*ctx_, uploadSets_[s], pool_.get(), 2);
+  bindOnce(uploadSets_[s], uploadBound_[s], {staging, table_[s].get(), pool_.get()});
   dispatch(cmd, uploadSets_[s], 0, static_cast<uint32_t>(uploads_.size()));
 }
 
@@ -97,10 +94,15 @@ void TerrainIndexPool::recordGather(VkCommandBuffer cmd, size_t s, VkBuffer indi
                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  writeStorageBuffer(*ctx_, gatherSets_[s], pool_.get(), 0);
-  writeStorageBuffer(*ctx_, gatherSets_[s], table_[s].get(), 1);
-  writeStorageBuffer(*ctx_, gatherSets_[s], indices, 2);
+  bindOnce(gatherSets_[s], gatherBound_[s], {pool_.get(), table_[s].get(), indices});
   dispatch(cmd, gatherSets_[s], static_cast<uint32_t>(uploads_.size()), static_cast<uint32_t>(gathers_.size()));
+}
+
+void TerrainIndexPool::bindOnce(VkDescriptorSet set, std::array<VkBuffer, 3>& bound, std::array<VkBuffer, 3> buffers) {
+  // The slot's last frame has finished (its fence was waited for): its sets are free to write.
+  for (uint32_t b = 0; b < 3; ++b)
+    if (bound[b] != buffers[b]) writeStorageBuffer(*ctx_, set, buffers[b], b);
+  bound = buffers;
 }
 
 void TerrainIndexPool::dispatch(VkCommandBuffer cmd, VkDescriptorSet set, uint32_t first, uint32_t count) {

@@ -58,16 +58,19 @@ class TerrainIndexPool {
 
  private:
   void dispatch(VkCommandBuffer cmd, VkDescriptorSet set, uint32_t first, uint32_t count);
+  // Writes the set's bindings 0–2 whose buffer is not the one `bound` says it holds.
+  void bindOnce(VkDescriptorSet set, std::array<VkBuffer, 3>& bound, std::array<VkBuffer, 3> buffers);
 
   const Context* ctx_;
   GrowingBuffer pool_;
-  uint64_t poolValid_ = 0;  // indices written by earlier frames (the pool's used part)
+  uint64_t poolValid_ = 0;                   // indices written by earlier frames (the pool's used part)
   std::array<GrowingBuffer, kSlots> table_;  // host-visible: this frame's uploads, then its gathers
   std::vector<glm::uvec4> uploads_, gathers_;
   uint64_t gatheredIndices_ = 0;
   DescriptorSetLayout layout_;
   DescriptorPool descriptorPool_;
   std::array<VkDescriptorSet, kSlots> uploadSets_{}, gatherSets_{};
+  std::array<std::array<VkBuffer, 3>, kSlots> uploadBound_{}, gatherBound_{};  // what each set holds
   PipelineLayout pipelineLayout_;
   Pipeline pipeline_;
 };

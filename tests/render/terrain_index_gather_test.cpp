@@ -26,7 +26,8 @@ TerrainChunk strip(uint64_t id, uint64_t version, uint32_t quads) {
   c.version = version;
   for (uint32_t v = 0; v < 2 * quads + 2; ++v)
     c.vertices.push_back({glm::vec3(float(id), float(version), float(v)), glm::vec3(0, 0, 1), 0.0f, glm::vec2(0)});
-  for (uint32_t q = 0; q < quads; ++q) c.indices.insert(c.indices.end(), {2 * q, 2 * q + 1, 2 * q + 2, 2 * q + 1, 2 * q + 3, 2 * q + 2});
+  for (uint32_t q = 0; q < quads; ++q)
+    c.indices.insert(c.indices.end(), {2 * q, 2 * q + 1, 2 * q + 2, 2 * q + 1, 2 * q + 3, 2 * q + 2});
   return c;
 }
 
@@ -34,8 +35,8 @@ template <class T>
 std::vector<T> readBack(const Context& ctx, VkBuffer src, size_t count) {
   std::vector<T> out(count);
   if (count == 0) return out;
-  GpuBuffer host = createBuffer(ctx, count * sizeof(T), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
-                                "test read-back");
+  GpuBuffer host =
+      createBuffer(ctx, count * sizeof(T), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "test read-back");
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     const VkBufferCopy copy{0, 0, count * sizeof(T)};
     vkCmdCopyBuffer(cmd, src, host.get(), 1, &copy);
@@ -66,7 +67,8 @@ TEST_F(TerrainIndexGatherTest, EveryIndexNamesTheMeshsVertexFrameAfterFrame) {
       for (int p = 0; p < 2; ++p) {  // own vertices: a triangle per piece, new every frame
         terrain::TerrainMesh& m = meshes[p];
         for (int v = 0; v < 3; ++v)
-          m.vertices.push_back({glm::vec3(-1.0f - float(p), float(frame), float(v)), glm::vec3(0, 0, 1), 0.0f, glm::vec2(0)});
+          m.vertices.push_back(
+              {glm::vec3(-1.0f - float(p), float(frame), float(v)), glm::vec3(0, 0, 1), 0.0f, glm::vec2(0)});
         m.indices = {0, 1, 2};
       }
       for (size_t i = 0; i < chunks.size(); ++i) {
@@ -95,14 +97,14 @@ TEST_F(TerrainIndexGatherTest, EveryIndexNamesTheMeshsVertexFrameAfterFrame) {
       size_t checked = 0, wrong = 0;
       for (size_t k = 0; k < 2; ++k) {
         size_t at = ranges[k].firstIndex;
-        terrain::forEachTriangle(*draws[order[k]].mesh, [&](const TerrainVertex& a, const TerrainVertex& b,
-                                                            const TerrainVertex& c) {
-          for (const TerrainVertex* v : {&a, &b, &c}) {
-            ++checked;
-            if (pool[indices[at++]].position != v->position && ++wrong <= 5)
-              ADD_FAILURE() << "frame " << frame << ", piece " << k << ", index " << at - 1;
-          }
-        });
+        terrain::forEachTriangle(*draws[order[k]].mesh,
+                                 [&](const TerrainVertex& a, const TerrainVertex& b, const TerrainVertex& c) {
+                                   for (const TerrainVertex* v : {&a, &b, &c}) {
+                                     ++checked;
+                                     if (pool[indices[at++]].position != v->position && ++wrong <= 5)
+                                       ADD_FAILURE() << "frame " << frame << ", piece " << k << ", index " << at - 1;
+                                   }
+                                 });
         EXPECT_EQ(at, size_t{ranges[k].firstIndex} + ranges[k].indexCount);
       }
       EXPECT_EQ(wrong, 0u) << "frame " << frame;
