@@ -112,4 +112,26 @@ bool GrowingBuffer::ensure(VkDeviceSize bytes, VkDeviceSize ceiling, const Retir
   return changed;
 }
 
+bool ensureKeeping(GrowingBuffer& b, VkCommandBuffer cmd, VkDeviceSize bytes, VkDeviceSize validBytes,
+                   const GrowingBuffer::Retire& retire) {
+  VkBuffer old = VK_NULL_HANDLE;
+  const bool grown = b.ensure(std::max<VkDeviceSize>(bytes, 1), GrowingBuffer::kNoCeiling, [&](GpuBuffer&& o) {
+    old = o.get();
+    retire(std::move(o));  // kept alive until this frame has finished with it
+  });
+  if (grown && old != VK_NULL_HANDLE && validBytes > 0) {
+    // Earlier frames' writes into the old buffer, then this copy out of it; then this frame's
+    // writes over ranges the old contents may have held.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferCopy all{0, 0, validBytes};
+    vkCmdCopyBuffer(cmd, old, b.get(), 1, &all);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  return grown;
+}
+
 }  // namespace vegstream::render

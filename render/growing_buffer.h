@@ -62,4 +62,11 @@ class GrowingBuffer {
   int madeHere_ = 0, takenAhead_ = 0;
 };
 
+// Grows `b` to hold `bytes` like ensure() (no ceiling), keeping its first `validBytes`: for a pool
+// that frames write in part and read whole. When a new buffer replaces the old one, `cmd` copies
+// them across, after every earlier copy or compute write and before any later compute access.
+// True when the buffer is a new one.
+bool ensureKeeping(GrowingBuffer& b, VkCommandBuffer cmd, VkDeviceSize bytes, VkDeviceSize validBytes,
+                   const GrowingBuffer::Retire& retire);
+
 }  // namespace vegstream::render

@@ -273,20 +273,7 @@ void TerrainGeometryBuffers::createUploadPipeline() {
 }
 
 void TerrainGeometryBuffers::growPool(VkCommandBuffer cmd, const GrowingBuffer::Retire& retire) {
-  VkBuffer old = VK_NULL_HANDLE;
-  const bool grown = pool_.ensure(cache_.capacity() * kVertexBytes, GrowingBuffer::kNoCeiling, [&](GpuBuffer&& b) {
-    old = b.get();
-    retire(std::move(b));  // kept alive until this frame has finished with it
-  });
-  if (grown && old != VK_NULL_HANDLE && poolValidVertices_ > 0) {
-    // Earlier frames' uploads into the old pool, then this copy out of it; then this frame's
-    // uploads over ranges the old contents may have held.
-    memoryBarrier(cmd, kWriteStages, kWriteAccess, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy all{0, 0, poolValidVertices_ * kVertexBytes};
-    vkCmdCopyBuffer(cmd, old, pool_.get(), 1, &all);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  }
+  ensureKeeping(pool_, cmd, cache_.capacity() * kVertexBytes, poolValidVertices_ * kVertexBytes, retire);
   poolValidVertices_ = cache_.capacity();
 }
 

@@ -57,23 +57,7 @@ void TerrainIndexPool::gather(uint32_t firstVertex, uint32_t first, uint32_t cou
 void TerrainIndexPool::recordUploads(VkCommandBuffer cmd, size_t s, VkBuffer staging, uint64_t vertexCapacity,
                                      const GrowingBuffer::Retire& retire) {
   const uint64_t capacity = vertexCapacity * kIndicesPerVertex;
-  VkBuffer old = VK_NULL_HANDLE;
-  const bool grown =
-      pool_.ensure(std::max<uint64_t>(capacity, 1) * sizeof(uint32_t), GrowingBuffer::kNoCeiling, [&](GpuBuffer&& b) {
-        old = b.get();
-        retire(std::move(b));  // kept alive until this frame has finished with it
-      });
-  if (grown && old != VK_NULL_HANDLE && poolValid_ > 0) {
-    // Earlier frames' uploads into the old pool, then this copy out of it; then this frame's
-    // uploads over ranges the old contents may have held.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy all{0, 0, poolValid_ * sizeof(uint32_t)};
-    vkCmdCopyBuffer(cmd, old, pool_.get(), 1, &all);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  }
+  ensureKeeping(pool_, cmd, capacity * sizeof(uint32_t), poolValid_ * sizeof(uint32_t), retire);
   poolValid_ = std::max(poolValid_, capacity);
   // The table: this frame's uploads, then its gathers (recordGather reads them from there).
   const size_t entries = uploads_.size() + gathers_.size();

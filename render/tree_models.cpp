@@ -91,7 +91,7 @@ VkDeviceSize TreePass::createDrawBuffers(uint32_t count) {
     for (uint32_t m = 0; m < count; ++m)
       for (int lod = 0; lod < 2; ++lod) {
         const ModelDraw& d = models_[m];
-        const uint32_t base = m * perModel + (lod == 1 ? capacity_[0] : 0u);
+        const uint32_t base = regionBase(m, static_cast<uint32_t>(lod));
         tmpl.insert(tmpl.end(), {cores ? d.coreCount[lod] : d.indexCount[lod], 0u,
                                  d.firstIndex[lod] + (cores ? d.indexCount[lod] : 0u), d.vertexOffset[lod], base});
       }
@@ -99,7 +99,7 @@ VkDeviceSize TreePass::createDrawBuffers(uint32_t count) {
   // impostors, then per cascade and model the shadow casters, each the triangle's three indices; the
   // classify counts their instances.
   for (uint32_t m = 0; m < count; ++m)
-    tmpl.insert(tmpl.end(), {kImpostorIndices, 0u, 0u, 0u, m * perModel + capacity_[0] + capacity_[1]});
+    tmpl.insert(tmpl.end(), {kImpostorIndices, 0u, 0u, 0u, regionBase(m, 2)});
   uint32_t casterBase = count * perModel;
   for (uint32_t c = 0; c < kTreeShadowCascades; ++c)
     for (uint32_t m = 0; m < count; ++m) {

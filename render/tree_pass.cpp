@@ -281,10 +281,14 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   }
 }
 
+uint32_t TreePass::regionBase(uint32_t m, uint32_t lod) const {
+  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
+  return m * perModel + (lod >= 1 ? capacity_[0] : 0u) + (lod >= 2 ? capacity_[1] : 0u);
+}
+
 std::vector<uint32_t> TreePass::readList(uint32_t model, uint32_t lod) const {
   assert(model < models_.size() && lod < 2);
-  const uint32_t perModel = capacity_[0] + capacity_[1] + capacity_[2];
-  const VkDeviceSize region = VkDeviceSize{model * perModel + (lod == 1 ? capacity_[0] : 0u)} * sizeof(glm::uvec4);
+  const VkDeviceSize region = VkDeviceSize{regionBase(model, lod)} * sizeof(glm::uvec4);
   const VkDeviceSize listBytes = VkDeviceSize{capacity_[lod]} * sizeof(glm::uvec4);
   GpuBuffer host = createBuffer(*ctx_, kIndexedCommand + listBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                 MemoryUse::HostReadback, "tree list read-back");

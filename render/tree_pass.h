@@ -91,6 +91,9 @@ class TreePass {
   VkDeviceSize createDrawBuffers(uint32_t count);
   bool createInstancePool(uint64_t fixedBytes, uint64_t budgetBytes, uint32_t count);
   void writeSlotSet(size_t s);
+  // The first entry of model m's visible list at level lod (shaders/common/tree_layout.glsl
+  // treeRegionBase).
+  uint32_t regionBase(uint32_t m, uint32_t lod) const;
   void captureImpostors(std::span<const TreeImpostorModel> impostorModels, VkDescriptorSet frameSet);
 
   const Context* ctx_;
