@@ -54,7 +54,7 @@ void main() {
   gl_SampleMask[0] = int(mask);
   vec3 n = normalize(vNormal);
   if (!gl_FrontFacing) n = -n;
-  vec3 albedo = (leaf ? treeLeafAlbedo(m.leaf.rgb, vColour.rgb) : m.bark.rgb) * vColour.a;
+  vec3 albedo = (leaf ? vColour.rgb : m.bark.rgb) * vColour.a;
   if (!leaf) albedo *= 0.85 + 0.3 * fract(sin(floor(vUv.y * 6.0) * 12.9898) * 43758.5453);  // bark bands
   vec3 lit = treeLight(n, albedo, m.leaf.w, leaf, vOcclusion, vSun);
   outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);

@@ -34,7 +34,7 @@ layout(location = 3) flat out uint vKind;
 layout(location = 4) flat out float vThreshold;
 layout(location = 5) flat out uint vInstance;
 layout(location = 6) out float vOcclusion;
-layout(location = 7) flat out vec4 vColour;  // rgb: the imagery under the tree (linear, 0: none), a: colour factor
+layout(location = 7) flat out vec4 vColour;  // rgb: the leaves' albedo (treeLeafAlbedo: taken per tree, not per fragment), a: colour factor
 layout(location = 8) out vec2 vCell;  // capture: the point in its cell's square (−1 … 1), outside is cut
 layout(location = 9) out vec4 vSky;   // the aerial perspective: in-scattered light, transmittance
 layout(location = 10) out float vSun; // the sun shadow
@@ -74,7 +74,7 @@ void main() {
     vNormal = n;
     vThreshold = 1.0;
     vInstance = 0u;
-    vColour = vec4(0.0, 0.0, 0.0, 1.0);
+    vColour = vec4(m.leaf.rgb, 1.0);
     vCell = local;
     // Reverse-Z: nearest the viewer 1.
     gl_Position = vec4((cell + 0.5 + 0.5 * local) / float(g) * 2.0 - 1.0, 0.5 + 0.5 * dot(q, d) / r, 1.0);
@@ -143,13 +143,15 @@ void main() {
   vec2 scale = treeScale(t, m);
   // The trunk keeps its girth for its height: a crown stretched wide (treeScale) does not fatten it.
   float sxy = (inKind == 0u && inBranch == 0u) ? min(scale.x, kTrunkStretch * scale.y) : scale.x, sz = scale.y;
-  vec3 world = treeRotate(vec3(p.xy * sxy, p.z * sz), seed);
+  mat3 rotation = treeRotation(seed);
+  vec3 world = rotation * vec3(p.xy * sxy, p.z * sz);
   vec3 rel = (t.position - trees.camera.xyz) + world;
-  vNormal = treeRotate(normalize(vec3(n.xy / sxy, n.z / sz)), seed);
+  vNormal = rotation * normalize(vec3(n.xy / sxy, n.z / sz));
   vPos = rel;
   vThreshold = threshold;
   vInstance = entry.x;
-  vColour = treeInstanceColour(t.colour);
+  vec4 ground = treeInstanceColour(t.colour);
+  vColour = vec4(treeLeafAlbedo(m.leaf.rgb, ground.rgb), ground.a);
   vSky = treeVertexAtmosphere(rel);
   vSun = sunShadow(rel, vNormal);
   gl_Position = frame.viewProj * vec4(rel, 1.0);

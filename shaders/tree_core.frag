@@ -29,7 +29,15 @@ layout(location = 0) out vec4 outColor;
 
 // Value noise over the core's surface, about 40 cm clumps in the tree's frame (vUv carries no
 // pattern for a core): sprays half in shade, so the solid does not read as a smooth surface.
-float coreHash(vec3 c) { return fract(sin(dot(c, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
+// An integer hash of the lattice point (pcg3d, Jarzynski & Olano 2020): no sine per corner, eight
+// corners a fragment.
+float coreHash(vec3 c) {
+  uvec3 v = uvec3(ivec3(c)) * 1664525u + 1013904223u;
+  v.x += v.y * v.z; v.y += v.z * v.x; v.z += v.x * v.y;
+  v ^= v >> 16u;
+  v.x += v.y * v.z;
+  return float(v.x >> 8) * (1.0 / 16777216.0);
+}
 float coreNoise(vec3 p) {
   vec3 i = floor(p), f = fract(p);
   f = f * f * (3.0 - 2.0 * f);
@@ -45,7 +53,7 @@ float coreNoise(vec3 p) {
 void main() {
   TreeModelGpu m = trees.models[push.model];
   float clumps = mix(0.6, 1.25, coreNoise((vPos + trees.camera.xyz) * 2.5));
-  vec3 albedo = treeLeafAlbedo(m.leaf.rgb, vColour.rgb) * vColour.a * kTreeCoreShade * clumps;
+  vec3 albedo = vColour.rgb * vColour.a * kTreeCoreShade * clumps;
   vec3 lit = treeLight(normalize(vNormal), albedo, m.leaf.w, false, vOcclusion, vSun);
   outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

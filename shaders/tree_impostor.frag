@@ -22,11 +22,11 @@ layout(location = 1) in vec2 vUv;
 layout(location = 2) flat in uint vLayer;
 layout(location = 3) flat in float vThreshold;
 layout(location = 4) flat in uint vInstance;
-layout(location = 5) flat in vec3 vRight;
-layout(location = 6) flat in vec3 vUp;
+layout(location = 5) flat in vec3 vRotX;  // the tree's turn (tree_impostor.vert)
+layout(location = 6) flat in vec3 vRotY;
 layout(location = 7) flat in vec3 vTowards;
-layout(location = 8) flat in vec4 vColour;
-layout(location = 9) flat in uint vSeed;
+layout(location = 8) flat in vec3 vTint;
+layout(location = 9) flat in vec3 vRotZ;
 layout(location = 10) flat in vec4 vSky;
 layout(location = 11) flat in float vSun;
 layout(location = 12) flat in vec4 vRect;
@@ -81,11 +81,11 @@ void main() {
   gl_SampleMask[0] = int(mask);
   // Premultiplied by the coverage (the capture averaged its samples with the empty background).
   vec3 nm = texture(impostorNormal, vec3(vUv, float(vLayer))).xyz / max(albedo.a, 1e-3) * 2.0 - 1.0;
-  vec3 n = normalize(treeRotate(nm, vSeed));
+  vec3 n = normalize(mat3(vRotX, vRotY, vRotZ) * nm);
   if (dot(n, vTowards) < 0.0) n = -n;
   TreeModelGpu m = trees.models[push.model];
   // The capture holds the species' leaf colour: turned into this tree's (treeLeafAlbedo).
-  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * treeImpostorFactor(m.leaf.rgb, vColour.rgb) * vColour.a;
+  vec3 colour = albedo.rgb / max(albedo.a, 1e-3) * vTint;
   vec3 lit = treeLight(n, colour, m.leaf.w, true, 1.0, vSun);
   outColor = aovFrame() ? aovVegetation(m.ids.x) : vec4(lit * vSky.a + vSky.rgb, 1.0);
 }

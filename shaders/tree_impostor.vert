@@ -21,11 +21,14 @@ layout(location = 1) out vec2 vUv;  // in the atlas (0 … 1)
 layout(location = 2) flat out uint vLayer;
 layout(location = 3) flat out float vThreshold;
 layout(location = 4) flat out uint vInstance;
-layout(location = 5) flat out vec3 vRight;  // the quad's axes and the view axis, world: for the normal
-layout(location = 6) flat out vec3 vUp;
-layout(location = 7) flat out vec3 vTowards;
-layout(location = 8) flat out vec4 vColour;  // as tree.vert's
-layout(location = 9) flat out uint vSeed;
+// The tree's turn (treeRotation), its columns: the captured model-space normal into the world
+// without the six sines and cosines per fragment.
+layout(location = 5) flat out vec3 vRotX;
+layout(location = 6) flat out vec3 vRotY;
+layout(location = 7) flat out vec3 vTowards;  // the captured view's axis, world
+// The captured colour's factor for this tree (treeImpostorFactor × its colour factor), per tree.
+layout(location = 8) flat out vec3 vTint;
+layout(location = 9) flat out vec3 vRotZ;
 layout(location = 10) flat out vec4 vSky;   // the aerial perspective at the tree's centre
 layout(location = 11) flat out float vSun;  // the sun shadow there
 layout(location = 12) flat out vec4 vRect;  // the rectangle the model fills, in the atlas: centre, half extents
@@ -79,18 +82,20 @@ void main() {
     modelPoint += branchOffset(trunk.tC2.xyz, trunk.rC4.xyz, trunk.sFrequency.xyz, trunk.originLength.w, trunk.tC2.w,
                                trunk.rC4.w, x, amp);
   }
-  vec3 rel = root + treeRotate(vec3(modelPoint.xy * sxy, modelPoint.z * sz), seed);
+  mat3 rotation = treeRotation(seed);
+  vec3 rel = root + rotation * vec3(modelPoint.xy * sxy, modelPoint.z * sz);
   vPos = rel;
   vUv = (cell + 0.5 + 0.5 * vec2(c.x * half_.x, -c.y * half_.y) / r) / float(g);
   vRect = vec4((cell + 0.5) / float(g), 0.5 * half_ / (r * float(g)));
   vLayer = m.mesh1.w;
   vThreshold = uintBitsToFloat(entry.y);
   vInstance = entry.x;
-  vRight = treeRotate(right, seed);
-  vUp = treeRotate(up, seed);
-  vTowards = treeRotate(dc, seed);
-  vColour = treeInstanceColour(t.colour);
-  vSeed = seed;
+  vRotX = rotation[0];
+  vRotY = rotation[1];
+  vRotZ = rotation[2];
+  vTowards = rotation * dc;
+  vec4 ground = treeInstanceColour(t.colour);
+  vTint = treeImpostorFactor(m.leaf.rgb, ground.rgb) * ground.a;
   vSky = treeVertexAtmosphere(centreRel);
   // The shadow of other trees: looked up just outside this one's crown, towards the sun (its own
   // centre is always in its own shadow).

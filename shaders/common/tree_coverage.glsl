@@ -21,7 +21,13 @@ float treeSharpCoverage(float alpha, float edge) {
 // everywhere (the shadow maps: a needle's shadow is finer than their texels, and a lone tree's
 // shadow must stay one piece). Call in uniform control flow (fwidth).
 const float kNeedleRows = 11.0;
-float needleHash(float row, float side) { return fract(sin(row * 12.9898 + side * 78.233) * 43758.5453); }
+// A needle's own numbers, 0 … 1: lowbias32 (Wellons) of its row and side, integer work only (a
+// sine hash costs the fragment stage's special-function units, its scarcest).
+float needleHash(float row, float side) {
+  uint x = uint(int(row) * 2 + int(side)) + 0x9e3779b9u;
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x >> 8) * (1.0 / 16777216.0);
+}
 float coniferNeedles(vec2 uv, float fine) {
   float across = abs(uv.x - 0.5) * 2.0;
   float side = uv.x < 0.5 ? 0.0 : 1.0;

@@ -106,6 +106,12 @@ vec3 treeRotate(vec3 v, uint seed) {
   float cl = cos(lean), sl = sin(lean);
   return v * cl + cross(axis, v) * sl + axis * dot(axis, v) * (1.0 - cl);
 }
+// treeRotate as a matrix, its six sines and cosines taken once: for a vertex stage that turns
+// several vectors, and for a fragment stage that turns one per fragment (the matrix passed flat).
+mat3 treeRotation(uint seed) {
+  return mat3(treeRotate(vec3(1.0, 0.0, 0.0), seed), treeRotate(vec3(0.0, 1.0, 0.0), seed),
+              treeRotate(vec3(0.0, 0.0, 1.0), seed));
+}
 vec3 treeUnrotateYaw(vec3 v, uint seed) {
   float yaw = float(seed & 0xffffu) * (6.28318530718 / 65536.0);
   float cy = cos(yaw), sy = sin(yaw);
