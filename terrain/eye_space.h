@@ -96,21 +96,5 @@ inline Cull cullWedgie(const EyeView& view, const glm::dvec3& a, const glm::dvec
   return cullWedgie(Frustum(view), a, b, c, below, above);
 }
 
-// The same test split in two, for many triangles sharing vertices (a drawn chunk culled
-// triangle by triangle): each vertex's signed distances to the planes that matter once, then per
-// triangle only the comparisons, plane by plane. wedgieOutsidePlane(..., k) for any k being
-// true == (cullWedgie(...) == Cull::Outside), bit for bit: the same arithmetic in the same order.
-struct PlaneDistances {
-  double d[5];  // near, left, right, bottom, top (Frustum::distance)
-};
-// Whether the prism lies wholly outside plane k.
-inline bool wedgieOutsidePlane(const Frustum& f, const PlaneDistances& a, const PlaneDistances& b,
-                               const PlaneDistances& c, double below, double above, int k) {
-  const double s = -below * f.up[k], t = above * f.up[k];
-  const double hi = s > t ? s : t;
-  double m = a.d[k] > b.d[k] ? a.d[k] : b.d[k];
-  m = m > c.d[k] ? m : c.d[k];
-  return m + hi < 0.0;
-}
 
 }  // namespace vegstream::terrain

@@ -43,7 +43,7 @@ uint32_t DrawnChunks::slotFor(uint32_t t, bool attach) {
   return slot;
 }
 
-void DrawnChunks::draw(const ChunkPass& pass, uint32_t t, int piece, PlaneMask planes) {
+void DrawnChunks::draw(const ChunkPass& pass, uint32_t t, int piece) {
   const geo::TileId& tile = pass.pieces->tiles()[size_t(piece)];
   const uint32_t slot = slotFor(t, pass.attach);
   DrawnChunk& chunk = chunks_[slot];
@@ -59,10 +59,10 @@ void DrawnChunks::draw(const ChunkPass& pass, uint32_t t, int piece, PlaneMask p
   } else {
     ++figures_.chunksReused;
   }
-  draws_.push_back({slot, piece, planes});
+  draws_.push_back({slot, piece});
   if (options_.tasks) return;  // prepared on the workers, appended in order (finish)
   // One thread: prepared and appended at once, while the chunk is still in the cache.
-  if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}, {}});
+  if (chunkScratch_.empty()) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
   prepare(pass, draws_.size() - 1, chunkScratch_[0], *pass.emitted);
   append(pass, draws_.back());
   draws_.clear();
@@ -82,7 +82,7 @@ void DrawnChunks::prepareAll(const ChunkPass& pass) {
   const size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<EmitCounts> counts(blocks);
   // Each block's scratch, kept from output to output (a map is a few kB to clear otherwise).
-  while (chunkScratch_.size() < blocks) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}, {}});
+  while (chunkScratch_.size() < blocks) chunkScratch_.push_back({ChunkVertexMap(options_.chunkMaxLeaves), {}});
   const auto block = [&](size_t b) -> Status {
     ChunkScratch& scratch = chunkScratch_[b];
     for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) prepare(pass, i, scratch, counts[b]);
@@ -109,9 +109,6 @@ void DrawnChunks::prepare(const ChunkPass& pass, size_t draw, ChunkScratch& scra
     move(pass, chunk, origin, counts);
     keepBounds(chunk.mesh);
   }
-  chunk.visible.clear();
-  if (d.planes == 0 || chunk.mesh.indices.empty()) return;
-  cullTriangles(pass, chunk, d.planes, scratch);
 }
 
 void DrawnChunks::rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, ChunkScratch& scratch,
@@ -119,8 +116,6 @@ void DrawnChunks::rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::d
   chunk.mesh.vertices.clear();
   chunk.mesh.indices.clear();
   chunk.morphing.clear();
-  chunk.thickness.clear();
-  chunk.at.clear();
   scratch.map.clear();
   const LeafSink sink{.vertices = &chunk.mesh.vertices,
                       .indices = &chunk.mesh.indices,
@@ -131,9 +126,7 @@ void DrawnChunks::rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::d
                       .stamp = 0,
                       .chunkVertices = &scratch.map,
                       .counts = &counts,
-                      .morphing = &chunk.morphing,
-                      .at = &chunk.at,
-                      .thickness = &chunk.thickness};
+                      .morphing = &chunk.morphing};
   collect(chunk.root, scratch.leaves);
   for (const uint32_t leaf : scratch.leaves) emitLeaf(mesh_, pass.timeS, leaf, sink);
 }
@@ -158,55 +151,13 @@ void DrawnChunks::move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec
   chunk.morphing.erase(chunk.morphing.begin() + static_cast<std::ptrdiff_t>(kept), chunk.morphing.end());
 }
 
-void DrawnChunks::cullTriangles(const ChunkPass& pass, DrawnChunk& chunk, PlaneMask rootPlanes, ChunkScratch& scratch) {
-  // Straddling the edge of the view: each triangle's wedgie (grown by the canopy) culled on its
-  // own, from its vertices' plane distances (each vertex transformed once); the vertices of
-  // culled triangles stay in the chunk, unreferenced.
-  // Only the planes the root's wedgie straddles can cull a triangle (each triangle's wedgie lies
-  // inside the root's, eye_space.h), and of those only the ones some vertex is outside: a plane
-  // every vertex is inside culls none of them (a prism reaches at least as far in as its
-  // triangle: below, above ≥ 0). Most such chunks straddle one plane of the five.
-  std::vector<PlaneDistances>& planes = scratch.planes;
-  planes.resize(chunk.at.size());
-  double lowest[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
-  for (size_t i = 0; i < chunk.at.size(); ++i) {
-    const glm::dvec3 q = pass.view->toEye(chunk.at[i]);
-    for (PlaneMask m = rootPlanes; m != 0; m = static_cast<PlaneMask>(m & (m - 1))) {
-      const int k = std::countr_zero(m);
-      planes[i].d[k] = pass.frustum->distance(q, k);
-      lowest[k] = std::min(lowest[k], planes[i].d[k]);
-    }
-  }
-  int straddled[5], count = 0;
-  for (int k = 0; k < 5; ++k)
-    if (lowest[k] < 0.0) straddled[count++] = k;
-  const std::vector<uint32_t>& indices = chunk.mesh.indices;
-  for (size_t t = 0; t < chunk.thickness.size(); ++t) {
-    const uint32_t* tri = &indices[3 * t];
-    const double e = chunk.thickness[t];
-    bool outside = false;
-    for (int j = 0; j < count && !outside; ++j)
-      outside = wedgieOutsidePlane(*pass.frustum, planes[tri[0]], planes[tri[1]], planes[tri[2]], e,
-                                   e + options_.canopyM, straddled[j]);
-    if (!outside) chunk.visible.insert(chunk.visible.end(), tri, tri + 3);
-  }
-}
-
 void DrawnChunks::append(const ChunkPass& pass, const ChunkDraw& d) {
   const DrawnChunk& chunk = chunks_[d.slot];
   TerrainMesh& m = (*pass.meshes)[size_t(d.piece)];
   const std::vector<uint32_t>& indices = chunk.mesh.indices;
   if (indices.empty()) return;  // no data under it
-  if (d.planes == 0) {
-    m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
-    figures_.drawnTriangles += indices.size() / 3;
-    return;
-  }
-  const auto first = static_cast<uint32_t>(m.chunkIndices.size());
-  const auto count = static_cast<uint32_t>(chunk.visible.size());
-  m.chunkIndices.insert(m.chunkIndices.end(), chunk.visible.begin(), chunk.visible.end());
-  if (count > 0) m.chunks.push_back({&chunk.mesh, true, first, count});
-  figures_.drawnTriangles += count / 3;
+  m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
+  figures_.drawnTriangles += indices.size() / 3;
 }
 
 void DrawnChunks::collect(uint32_t root, std::vector<uint32_t>& leaves) const {

@@ -4,13 +4,14 @@
 // wholly outside the view and holds at most RoamOptions::chunkMaxLeaves leaves keeps its
 // subtree's leaves as drawn (a TerrainChunk handed out by reference, never copied), as long as
 // nothing in them changed (RoamNode::drawnStamp); only its morphing vertices are moved (a new
-// version); where it straddles the edge of the view, its triangles are culled one by one. It
-// owns the chunks (slots attached to their roots, RoamNode::drawnChunk), their ids, the drawn
+// version). One that straddles the edge of the view is drawn whole: culling its triangles one by
+// one cost the output a sixth of its time and saved the GPU about 1 % of the terrain's
+// triangles, all outside the view (clipped before they cost a fragment). It owns the chunks (slots attached to their roots, RoamNode::drawnChunk), their ids, the drawn
 // epoch of this output, the draws claimed this output and the scratch that builds them.
 //
 // Contract, per output: beginOutput(); draw() for each chunk root the traversal reaches, in
 // traversal order (ids are handed out there, in order); finish(): the claimed chunks built
-// again, moved or culled — on RoamOptions::tasks in blocks of chunks, each touching only its
+// again or moved — on RoamOptions::tasks in blocks of chunks, each touching only its
 // own — then their draws appended to the pieces' meshes in traversal order, so the output is
 // the same with any number of threads. Without tasks draw() does all of it at once, while the
 // chunk is in the cache. Between outputs: release() (chunks whose root the mesh freed),
@@ -38,17 +39,9 @@ struct DrawnChunk {
   uint64_t usedFrame = 0;
   geo::TileId piece{};  // positions are relative to its origin, uvs in it
   TerrainChunk mesh;
-  // The vertices still morphing, each with a copy of what moving it needs (roam_leaves.h), and
-  // each triangle's wedgie thickness: where the chunk straddles the edge of the view its
-  // triangles are culled one by one (a leaf's wedgie nests in its ancestors', so that gives
-  // what the hierarchical culling does).
+  // The vertices still morphing, each with a copy of what moving it needs (roam_leaves.h).
   std::vector<MorphingVertex> morphing;
-  std::vector<float> thickness;
-  // Each vertex's RoamVertex::at (what culling uses), kept here: reading it from the vertex
-  // pool was a cache miss per vertex. A change of it changes the chunk (RoamMesh::resample).
-  std::vector<glm::dvec3> at;
-  bool rebuild = false;           // this output builds it again (draw → finish)
-  std::vector<uint32_t> visible;  // partly in view: the triangles drawn this output (prepare)
+  bool rebuild = false;  // this output builds it again (draw → finish)
 };
 
 // One output's: what its chunks are drawn for.
@@ -74,9 +67,8 @@ class DrawnChunks {
   // Releases the chunks whose root was freed; changes of the mesh from here on are after every
   // chunk this output builds.
   void beginOutput();
-  // The chunk of root `t` in piece `piece`; `planes`: those of the view its root's wedgie
-  // straddles (none: wholly inside).
-  void draw(const ChunkPass& pass, uint32_t t, int piece, PlaneMask planes);
+  // The chunk of root `t` (not wholly outside the view) in piece `piece`.
+  void draw(const ChunkPass& pass, uint32_t t, int piece);
   void finish(const ChunkPass& pass);
 
   void release();
@@ -87,13 +79,11 @@ class DrawnChunks {
   struct ChunkDraw {
     uint32_t slot;
     int piece;
-    PlaneMask planes;  // the planes of the view its root's wedgie straddles (none: wholly inside)
   };
-  // A block's vertex map, plane distances and leaf list, kept from output to output.
+  // A block's vertex map and leaf list, kept from output to output.
   struct ChunkScratch {
     ChunkVertexMap map;
-    std::vector<PlaneDistances> planes;  // each vertex's, by plane
-    std::vector<uint32_t> leaves;        // collect's
+    std::vector<uint32_t> leaves;  // collect's
   };
   uint32_t slotFor(uint32_t t, bool attach);
   void prepareAll(const ChunkPass& pass);
@@ -102,7 +92,6 @@ class DrawnChunks {
   void rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, ChunkScratch& scratch,
                EmitCounts& counts);
   void move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, EmitCounts& counts);
-  void cullTriangles(const ChunkPass& pass, DrawnChunk& chunk, PlaneMask rootPlanes, ChunkScratch& scratch);
   void append(const ChunkPass& pass, const ChunkDraw& d);
   // A chunk's leaves, depth first, into `leaves` (their vertices asked for ahead of emitLeaf).
   void collect(uint32_t root, std::vector<uint32_t>& leaves) const;

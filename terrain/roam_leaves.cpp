@@ -42,14 +42,10 @@ bool emitLeaf(const RoamMesh& mesh, double timeS, uint32_t t, const LeafSink& si
       *known = index;
     else
       (*sink.stamps)[v] = {sink.frame, sink.stamp, index};
-    if (sink.morphing) {
-      if (!x.morphDone(timeS, fade)) sink.morphing->emplace_back(index, x);
-      sink.at->push_back(x.at);
-    }
+    if (sink.morphing && !x.morphDone(timeS, fade)) sink.morphing->emplace_back(index, x);
     sink.indices->push_back(index);
     sink.vertices->push_back(out);
   }
-  if (sink.thickness) sink.thickness->push_back(n.cullThickness());
   return true;
 }
 

@@ -85,7 +85,7 @@ struct EmitCounts {
 };
 
 // Where emitLeaf writes: a piece's mesh (stamps), or a drawn chunk being built (chunkVertices,
-// and what the chunk keeps beside its mesh: morphing, at, thickness).
+// and what the chunk keeps beside its mesh: morphing).
 struct LeafSink {
   std::vector<TerrainVertex>* vertices;
   std::vector<uint32_t>* indices;
@@ -97,8 +97,6 @@ struct LeafSink {
   ChunkVertexMap* chunkVertices;     // a chunk: which vertices are already in it (instead of stamps)
   EmitCounts* counts;
   std::vector<MorphingVertex>* morphing;  // a chunk: its vertices still morphing
-  std::vector<glm::dvec3>* at;            // a chunk: each vertex's RoamVertex::at
-  std::vector<float>* thickness;          // a chunk: each triangle's wedgie thickness
 };
 
 // Leaf `t` at time `timeS` into `sink`; false: nodata (a hole, never a drop to 0).

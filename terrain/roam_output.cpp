@@ -96,7 +96,7 @@ void RoamOutput::visit(Walk& w, uint32_t t, const glm::dvec3* eye, Cull cull, Pl
   if (ps == InPiece::None) return;  // outside every piece: the tile selection found it invisible
   if (seeds && level <= seedLevel_) seeds = seedsAt(w, t, eye, e, ps, piece);
   if (options_.cacheChunks && !seeds && ps == InPiece::In && n.leafCount <= options_.chunkMaxLeaves) {
-    chunks_.draw(w.pass, t, piece, cull == Cull::Inside ? PlaneMask{0} : planes);
+    chunks_.draw(w.pass, t, piece);
     return;
   }
   if (n.isLeaf()) {
@@ -150,9 +150,7 @@ void RoamOutput::emitDrawnLeaf(Walk& w, uint32_t t, InPiece ps, int piece) {
                       .stamp = static_cast<uint32_t>(textured ? piece : w.untextured),
                       .chunkVertices = nullptr,
                       .counts = &w.emitted,
-                      .morphing = nullptr,
-                      .at = nullptr,
-                      .thickness = nullptr};
+                      .morphing = nullptr};
   if (emitLeaf(mesh_, w.pass.timeS, t, sink)) ++figures_.drawnTriangles;
 }
 

@@ -7,8 +7,9 @@
 // across frames (ROAM's drawn chunks, roam_chunks.h) with the same origin and imagery. A chunk
 // is never copied into the mesh: it keeps an id for as long as its triangles stay the same, and
 // a version that changes when its vertices move, so a consumer that keeps chunks (the renderer,
-// on the GPU) touches only the ones that changed. A chunk drawn partly (it straddles the edge of
-// the view) lists the triangles drawn this frame in `chunkIndices`.
+// on the GPU) touches only the ones that changed. A producer may also draw a chunk partly,
+// listing the triangles drawn this frame in `chunkIndices` (the renderer takes both; ROAM draws
+// every chunk whole, roam_chunks.h).
 
 #include <cstdint>
 #include <limits>
