@@ -73,7 +73,7 @@ TEST(RoamTessellator, FrameToFrameCoherentAndWorkBounded) {
   EXPECT_EQ(r->mesh().conformityViolations(), 0u);
 }
 
-TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
+TEST(RoamTessellator, EveryLeafInTheViewIsDrawnInsideOnePiece) {
   auto& z = zionResident();
   const PieceSet pieces = z.finestPieces();
   auto r = z.tessellator();
@@ -101,9 +101,10 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
   EXPECT_GT(inChunks, 0u) << "the cached chunks are drawn by reference";
   EXPECT_GT(triangles, 500u);
   EXPECT_EQ(triangles, r->figures().drawnTriangles);
-  // The hierarchical culling emits exactly the leaves whose own wedgie (thickness + canopy) is
-  // not entirely outside the view: none outside, none lost.
-  uint64_t expected = 0, outside = 0;
+  // The hierarchical culling emits every leaf whose own wedgie (thickness + canopy) is not
+  // entirely outside the view, none lost; of those outside, only ones in a drawn chunk that
+  // straddles the edge of the view (drawn whole, roam_chunks.h).
+  uint64_t expected = 0, outside = 0, outsideDrawable = 0;
   const double fill = r->mesh().options().fillHeightM;
   for (uint32_t t : r->mesh().leaves()) {
     const RoamNode& n = r->mesh().node(t);
@@ -116,10 +117,15 @@ TEST(RoamTessellator, DrawnLeavesAreInTheViewAndInsideOnePiece) {
     }
     const double e = std::max(0.0f, n.thickness);
     const bool in = cullWedgie(view, eye[0], eye[1], eye[2], e, e + r->options().canopyM) != Cull::Outside;
+    const bool drawable = data && pieces.pieceOf(z.grid().square(r->mesh().corners(t), n.path.level)) >= 0;
     if (!in) ++outside;
-    if (in && data && pieces.pieceOf(z.grid().square(r->mesh().corners(t), n.path.level)) >= 0) ++expected;
+    if (in && drawable) ++expected;
+    if (!in && drawable) ++outsideDrawable;
   }
-  EXPECT_EQ(r->figures().drawnTriangles, expected);
+  EXPECT_GE(r->figures().drawnTriangles, expected);
+  EXPECT_LE(r->figures().drawnTriangles, expected + outsideDrawable);
+  // The chunks along the edge add a rim of at most a chunk's width (here 7 %, a 320 × 180 view).
+  EXPECT_LT(double(r->figures().drawnTriangles), 1.15 * double(expected));
   EXPECT_GT(outside, 0u) << "the view leaves some of the mesh out";
 }
 
