@@ -56,7 +56,7 @@ vegstream::terrain::SelectionDataset zionDataset() {
 }
 
 // 150 m above the highest point near the south-west corner, looking north-east 10° down, or a
-// top-down view of the whole dataset from 80 km (range(0) = 0 / 1).
+// top-down view of the whole dataset from 80 km (range(0) = 0 / 1); range(1): maxNodes.
 void BM_SelectTiles(benchmark::State& state) {
   using namespace vegstream;
   const terrain::SelectionDataset d = zionDataset();
@@ -71,15 +71,26 @@ void BM_SelectTiles(benchmark::State& state) {
   const terrain::SelectionView view{eye, vp, 1080.0, fov};
   const terrain::SelectionOptions options{2.0, static_cast<int>(state.range(1))};
   terrain::Selection s;
+  // range(2) = 1: with the nodes' boxes kept from one selection to the next (as StreamedTerrain
+  // keeps them from frame to frame); the first selection fills the memo.
+  terrain::NodeBoxes memo;
+  terrain::NodeBoxes* kept = state.range(2) != 0 ? &memo : nullptr;
   for (auto _ : state) {
-    s = terrain::selectTiles(view, d, frame, options);
+    s = terrain::selectTiles(view, d, frame, options, {}, kept);
     benchmark::DoNotOptimize(s.nodes.data());
   }
   state.counters["nodes"] = static_cast<double>(s.nodes.size());
   state.counters["errorPx"] = s.achievedErrorPx;
   state.counters["limited"] = s.budgetLimited ? 1.0 : 0.0;
 }
-BENCHMARK(BM_SelectTiles)->Args({0, 512})->Args({0, 100'000})->Args({1, 512})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SelectTiles)
+    ->Args({0, 512, 0})
+    ->Args({0, 512, 1})
+    ->Args({0, 100'000, 0})
+    ->Args({0, 100'000, 1})
+    ->Args({1, 512, 0})
+    ->Args({1, 512, 1})
+    ->Unit(benchmark::kMicrosecond);
 
 // The wedgie table of one synthetic tile (what each height tile costs a decode thread).
 void BM_WedgieTable(benchmark::State& state) {

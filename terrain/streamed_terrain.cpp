@@ -96,11 +96,12 @@ std::vector<streaming::TileWant> StreamedTerrain::wants(const SelectionView& now
   if (ahead.empty()) aheadSelections_.clear();
   if (redoAhead) aheadSelections_.assign(ahead.size(), Selection{});
   const size_t count = 1 + (redoAhead ? ahead.size() : 0);
+  if (nodeBoxes_.size() < count) nodeBoxes_.resize(count);
   auto select = [&](size_t i) {
     if (i == 0)
-      selection_ = selectTiles(now, dataset_, frame_, so);
+      selection_ = selectTiles(now, dataset_, frame_, so, {}, &nodeBoxes_[0]);
     else
-      aheadSelections_[i - 1] = selectTiles(ahead[i - 1], dataset_, frame_, so);
+      aheadSelections_[i - 1] = selectTiles(ahead[i - 1], dataset_, frame_, so, {}, &nodeBoxes_[i]);
     return Status{};
   };
   if (options_.roam.tasks && count > 1) {

@@ -132,6 +132,9 @@ class StreamedTerrain {
   Selection selection_;
   EyeView eye_;
   std::vector<Selection> aheadSelections_;
+  // The nodes' boxes kept from frame to frame: [0] for the camera's selection, [1 + i] for
+  // look-ahead pose i's (each selection's own, as they are made side by side).
+  std::vector<NodeBoxes> nodeBoxes_;
   double relaxation_ = 1.0;
   uint64_t frameNumber_ = 0;
   std::map<geo::TileId, NodeState> nodes_;

@@ -23,15 +23,8 @@
 namespace vegstream::terrain {
 namespace {
 
-// Mean earth radius; only used to size a few-millimetre-to-metres safety pad.
-constexpr double kEarthRadiusM = 6'371'000.0;
 // Below this distance the projected error stops growing (the camera is inside the box).
 constexpr double kMinDistanceM = 0.01;
-
-struct Box {
-  glm::dvec3 lo{0.0};
-  glm::dvec3 hi{0.0};
-};
 
 // The frustum's side planes and the "in front of the camera" plane, as (a, b, c, d) with
 // a·x + b·y + c·z + d ≥ 0 inside. Clip-space rows: x = row 0, y = row 1, w = row 3.
@@ -41,7 +34,7 @@ std::array<glm::dvec4, 5> frustumPlanes(const glm::dmat4& m) {
   return {w + x, w - x, w + y, w - y, w};
 }
 
-bool outside(const Box& b, const std::array<glm::dvec4, 5>& planes) {
+bool outside(const NodeBox& b, const std::array<glm::dvec4, 5>& planes) {
   for (const glm::dvec4& p : planes) {
     // The box corner furthest along the plane normal: if even it is outside, all of the box is.
     const glm::dvec3 far{p.x >= 0.0 ? b.hi.x : b.lo.x, p.y >= 0.0 ? b.hi.y : b.lo.y, p.z >= 0.0 ? b.hi.z : b.lo.z};
@@ -50,42 +43,9 @@ bool outside(const Box& b, const std::array<glm::dvec4, 5>& planes) {
   return false;
 }
 
-double distanceToBox(const glm::dvec3& p, const Box& b) {
+double distanceToBox(const glm::dvec3& p, const NodeBox& b) {
   const glm::dvec3 d = glm::max(glm::max(b.lo - p, p - b.hi), glm::dvec3(0.0));
   return glm::length(d);
-}
-
-// Latitude (degrees) of the node's edge nearest the equator (0 when it straddles it).
-double latNearestEquator(const geo::TileId& t) {
-  const geo::GeoBounds g = geo::tileBoundsLonLat(t);
-  if (g.southDeg <= 0.0 && g.northDeg >= 0.0) return 0.0;
-  return std::abs(g.southDeg) < std::abs(g.northDeg) ? g.southDeg : g.northDeg;
-}
-
-// A box in ENU that holds the node's surface at any height in [hMin, hMax]: the corners, edge
-// midpoints and centre at both heights, through the exact geodetic → ENU map (so the curvature
-// drop of distant nodes is in it), padded by what a curved surface can bulge between those
-// points: the sagitta c²/8R of the diagonal c between neighbouring samples, plus as much again
-// times tan φ for the curvature of the parallels seen in the tangent plane.
-Box nodeBox(const geo::TileId& t, double hMin, double hMax, const geo::LocalFrame& frame) {
-  Box b{glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
-  for (int fy = 0; fy <= 2; ++fy) {
-    for (int fx = 0; fx <= 2; ++fx) {
-      const glm::dvec2 lonLat = geo::tileXYToLonLat({t.x + 0.5 * fx, t.y + 0.5 * fy}, t.z);
-      for (const double h : {hMin, hMax}) {
-        const glm::dvec3 p = frame.toLocal({lonLat.y, lonLat.x, h});
-        b.lo = glm::min(b.lo, p);
-        b.hi = glm::max(b.hi, p);
-      }
-    }
-  }
-  const double halfSide = 0.5 * kNodeQuads * nodeQuadSizeM(t);
-  const double c2 = 2.0 * halfSide * halfSide;
-  const double lat = std::min(std::abs(latNearestEquator(t)), 85.0) * std::numbers::pi / 180.0;
-  const double pad = c2 * (1.0 + std::tan(lat)) / (8.0 * kEarthRadiusM);
-  b.lo -= glm::dvec3(pad);
-  b.hi += glm::dvec3(pad);
-  return b;
 }
 
 struct Candidate {
@@ -108,14 +68,15 @@ bool covered(const std::vector<geo::TileRange>& ranges, const geo::TileId& t) {
   return false;
 }
 
-// A node's candidate: its box (from its resident heights where known) tested against the view
-// frustum; nullopt when culled.
+// A node's candidate: its box (from its resident heights where known; from the memo when given)
+// tested against the view frustum; nullopt when culled.
 struct NodeEvaluator {
   const SelectionView& view;
   const SelectionDataset& dataset;
   const geo::LocalFrame& frame;
   const TileHeightRange& heightRange;
   const std::array<glm::dvec4, 5>& planes;
+  NodeBoxes* memo;
 
   std::optional<Candidate> evaluate(const geo::TileId& id) const {
     double hMin = dataset.minHeightM, hMax = dataset.maxHeightM;
@@ -126,10 +87,11 @@ struct NodeEvaluator {
         hMax = static_cast<double>(r->second);
       }
     }
-    const Box box = nodeBox(id, hMin, hMax, frame);
+    NodeBox computed;
+    const NodeBox& box = memo ? memo->at(id, hMin, hMax, frame) : (computed = nodeBox(id, hMin, hMax, frame));
     if (outside(box, planes)) return std::nullopt;
     const double d = distanceToBox(view.cameraEnu, box);
-    return Candidate{id, projectedErrorPx(nodeGeometricErrorM(id), d, view), d, false};
+    return Candidate{id, projectedErrorPx(box.errorM, d, view), d, false};
   }
 };
 
@@ -146,13 +108,6 @@ void collectDrawn(const std::vector<Candidate>& nodes, Selection& selection) {
 
 }  // namespace
 
-double nodeQuadSizeM(const geo::TileId& node) {
-  assert(geo::isValid(node));
-  return geo::groundResolution(latNearestEquator(node), node.z, kNodeQuads);
-}
-
-double nodeGeometricErrorM(const geo::TileId& node) { return kErrorPerQuad * nodeQuadSizeM(node); }
-
 double projectedErrorPx(double errorM, double distanceM, const SelectionView& view) {
   assert(view.verticalFovRad > 0.0 && view.verticalFovRad < std::numbers::pi);
   const double d = std::max(distanceM, kMinDistanceM);
@@ -160,7 +115,7 @@ double projectedErrorPx(double errorM, double distanceM, const SelectionView& vi
 }
 
 Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset, const geo::LocalFrame& frame,
-                      const SelectionOptions& options, const TileHeightRange& heightRange) {
+                      const SelectionOptions& options, const TileHeightRange& heightRange, NodeBoxes* memo) {
   assert(0 <= dataset.minZoom && dataset.minZoom <= dataset.maxZoom && dataset.maxZoom <= geo::kMaxTileZoom);
   assert(dataset.minHeightM <= dataset.maxHeightM);
   assert(options.maxErrorPx > 0.0 && options.maxNodes >= 1);
@@ -171,7 +126,7 @@ Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset
   for (int z = dataset.minZoom; z <= dataset.maxZoom; ++z)
     coverage.push_back(geo::tileRangesCovering(dataset.bounds, z));
 
-  const NodeEvaluator evaluator{view, dataset, frame, heightRange, planes};
+  const NodeEvaluator evaluator{view, dataset, frame, heightRange, planes, memo};
 
   std::vector<Candidate> nodes;  // every node evaluated and kept; refined ones are not drawn
   auto heapLess = [&nodes](size_t a, size_t b) { return lessUrgent(nodes[a], nodes[b]); };

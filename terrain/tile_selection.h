@@ -33,6 +33,7 @@
 #include "geo/bounds.h"
 #include "geo/local_frame.h"
 #include "geo/xyz_tiles.h"
+#include "terrain/node_boxes.h"
 
 namespace vegstream::terrain {
 
@@ -96,8 +97,11 @@ double nodeGeometricErrorM(const geo::TileId& node);
 // error · viewportHeightPx / (2 tan(fov/2) · distance); distances below 1 cm count as 1 cm.
 double projectedErrorPx(double errorM, double distanceM, const SelectionView& view);
 
+// `memo` (optional, node_boxes.h) keeps the nodes' boxes from one selection to the next in the
+// same frame; the selection is the same, bit for bit, with or without it.
 Selection selectTiles(const SelectionView& view, const SelectionDataset& dataset, const geo::LocalFrame& frame,
-                      const SelectionOptions& options = {}, const TileHeightRange& heightRange = {});
+                      const SelectionOptions& options = {}, const TileHeightRange& heightRange = {},
+                      NodeBoxes* memo = nullptr);
 
 // The drawn nodes' tiles, most urgent first: priority = projected error in px (larger = more
 // urgent); on equal priority the nearer node comes first, then TileId order. Nodes deeper than

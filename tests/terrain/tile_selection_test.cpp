@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -275,4 +276,61 @@ TEST(TileSelection, GeometricErrorHalvesPerLevel) {
 }
 
 }  // namespace
+
+void expectSameSelection(const Selection& a, const Selection& b, const std::string& where) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size()) << where;
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(a.nodes[i].id, b.nodes[i].id) << where;
+    ASSERT_EQ(a.nodes[i].projectedErrorPx, b.nodes[i].projectedErrorPx) << where;
+    ASSERT_EQ(a.nodes[i].distanceM, b.nodes[i].distanceM) << where;
+  }
+  ASSERT_EQ(a.achievedErrorPx, b.achievedErrorPx) << where;
+  ASSERT_EQ(a.budgetLimited, b.budgetLimited) << where;
+}
+
+TEST(NodeBoxes, AMemoKeptAlongAFlightGivesTheSameSelectionsBitForBit) {
+  const SelectionDataset d = zionDataset();
+  const geo::LocalFrame frame = zionFrame();
+  const SelectionOptions o{2.0, 384};
+  // A small memo, so that it also starts again empty on the way; and resident ranges that change
+  // under it halfway (a tile's range arriving), which it must not answer from the old box.
+  NodeBoxes memo(600), roomy;
+  const glm::dvec3 start = frame.toLocal({d.bounds.southDeg + 0.03, d.bounds.westDeg + 0.03, d.maxHeightM + 300.0});
+  for (int i = 0; i < 40; ++i) {
+    const glm::dvec3 eye = start + glm::dvec3(60.0 * i, 45.0 * i, -4.0 * i);
+    const double turn = 0.03 * i;
+    const SelectionView v = camera(eye, glm::normalize(glm::dvec3(std::cos(turn), std::sin(turn), -0.2)));
+    const float lo = static_cast<float>(d.minHeightM), hi = static_cast<float>(d.minHeightM + 100.0 + i);
+    const TileHeightRange ranges = [&](const geo::TileId& t) -> std::optional<std::pair<float, float>> {
+      if (i < 20 || (t.x + t.y) % 3 != 0) return std::nullopt;
+      return std::pair<float, float>{lo, hi};
+    };
+    const Selection plain = selectTiles(v, d, frame, o, ranges);
+    expectSameSelection(plain, selectTiles(v, d, frame, o, ranges, &memo), "frame " + std::to_string(i));
+    expectSameSelection(plain, selectTiles(v, d, frame, o, ranges, &roomy), "frame " + std::to_string(i));
+  }
+  EXPECT_LE(memo.size(), 600u);
+  // Most lookups of a flight are answered from the memo: the views overlap from frame to frame
+  // (here a third of the tiles' ranges change every frame of the second half: those miss).
+  EXPECT_GT(roomy.hits(), 3 * roomy.misses()) << roomy.hits() << " hits, " << roomy.misses() << " misses";
+  EXPECT_GT(memo.misses(), roomy.misses()) << "the small memo started again";
+}
+
+TEST(NodeBoxes, TheBoxHoldsTheNodesSurfaceAndItsErrorIsTheSelections) {
+  const SelectionDataset d = zionDataset();
+  const geo::LocalFrame frame = zionFrame();
+  const geo::TileId t = geo::tilesCovering(d.bounds, 12).front();
+  const NodeBox b = nodeBox(t, d.minHeightM, d.maxHeightM, frame);
+  EXPECT_EQ(b.errorM, nodeGeometricErrorM(t));
+  // Points of the tile at both extreme heights and between, off the nine sampled ones.
+  for (const double fx : {0.1, 0.37, 0.9})
+    for (const double fy : {0.2, 0.61, 0.95})
+      for (const double h : {d.minHeightM, 0.5 * (d.minHeightM + d.maxHeightM), d.maxHeightM}) {
+        const glm::dvec2 ll = geo::tileXYToLonLat({t.x + fx, t.y + fy}, t.z);
+        const glm::dvec3 p = frame.toLocal({ll.y, ll.x, h});
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, b.lo)) && glm::all(glm::lessThanEqual(p, b.hi)))
+            << fx << ", " << fy << ", " << h;
+      }
+}
+
 }  // namespace vegstream::terrain
