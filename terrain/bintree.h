@@ -47,6 +47,7 @@ inline GridPoint midpoint(GridPoint a, GridPoint b) {
 
 struct TriCorners {
   GridPoint apex, left, right;
+  bool operator==(const TriCorners&) const = default;
 };
 
 inline TriCorners child(const TriCorners& t, int which) {

@@ -36,7 +36,7 @@ NodeBox nodeBox(const geo::TileId& t, double hMin, double hMax, const geo::Local
 
 class NodeBoxes {
  public:
-  static constexpr size_t kDefaultCapacity = size_t{1} << 15;
+  static constexpr size_t kDefaultCapacity = size_t{1} << 14;  // about 2 MB
   explicit NodeBoxes(size_t capacity = kDefaultCapacity) : capacity_(capacity) {}
 
   const NodeBox& at(const geo::TileId& t, double hMin, double hMax, const geo::LocalFrame& frame);

@@ -129,10 +129,12 @@ bool RoamOutput::seedsAt(Walk& w, uint32_t t, const glm::dvec3* eye, double thic
   }
   if (data) {
     const int seedPiece = ps == InPiece::In ? piece : -1;
+    const SeedPlace at{n.path, mesh_.corners(t)};  // its vertices' grid points: just read
+    assert(at.corners == mesh_.grid().corners(n.path));
     if (level == seedLevel_)
-      emitSeed(w, n.path, world, eye, false, seedPiece);
+      emitSeed(w, at, world, eye, false, seedPiece);
     else
-      refineSeeds(w, n.path, world, eye, thickness, seedPiece);
+      refineSeeds(w, at, world, eye, thickness, seedPiece);
   }
   return false;
 }
@@ -154,7 +156,7 @@ void RoamOutput::emitDrawnLeaf(Walk& w, uint32_t t, InPiece ps, int piece) {
   if (emitLeaf(mesh_, w.pass.timeS, t, sink)) ++figures_.drawnTriangles;
 }
 
-void RoamOutput::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
+void RoamOutput::emitSeed(Walk& w, const SeedPlace& at, const glm::dvec3* world, const glm::dvec3* eye,
                           bool interpolated, int piece) {
   // The seeding horizon is measured to the nearest vertex (§3.1).
   const double nearest = std::min({glm::length(eye[0]), glm::length(eye[1]), glm::length(eye[2])});
@@ -165,7 +167,7 @@ void RoamOutput::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world,
   // and the Hi-Z occlusion test keeps them from being classified.
   const EyeView& view = *w.pass.view;
   SeedTriangle s;
-  s.path = path;
+  s.path = at.path;
   const std::array<glm::dvec3, 3> e{eye[0], eye[1], eye[2]};
   const double lod = seeds_.rule == PlantCountRule::ScreenArea ? plantCountScreen(view, e, seeds_, &s.nearPlane)
                                                                : plantCountWorld(view, e, seeds_);
@@ -174,7 +176,7 @@ void RoamOutput::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world,
     s.fromCamera[size_t(i)] = glm::vec3(world[i] - view.cameraEnu);
   }
   s.interpolated = interpolated;
-  s.corners = mesh_.grid().corners(path);
+  s.corners = at.corners;
   s.piece = piece;
   const double area = groundArea(s.world);
   s.lodCount = static_cast<float>(lod);
@@ -186,7 +188,7 @@ void RoamOutput::emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world,
   w.seeds->push_back(s);
 }
 
-void RoamOutput::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye,
+void RoamOutput::refineSeeds(Walk& w, const SeedPlace& at, const glm::dvec3* world, const glm::dvec3* eye,
                              double thickness, int piece) {
   // Below a leaf coarser than the seed level: midpoint splits without the heightmap, world and
   // eye coordinates interpolated (rotations are linear: §3.1 B).
@@ -195,15 +197,15 @@ void RoamOutput::refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* wor
   const glm::dvec3 c = 0.5 * (eye[1] + eye[2]);
   const double radius = std::max(glm::length(eye[0] - c), glm::length(eye[1] - c));
   if (glm::length(c) - radius - thickness > seeds_.horizonM) return;
-  if (path.level == seedLevel_) {
-    emitSeed(w, path, world, eye, true, piece);
+  if (at.path.level == seedLevel_) {
+    emitSeed(w, at, world, eye, true, piece);
     return;
   }
   const glm::dvec3 mw = 0.5 * (world[1] + world[2]), me = 0.5 * (eye[1] + eye[2]);
   const glm::dvec3 w0[3] = {mw, world[0], world[1]}, w1[3] = {mw, world[2], world[0]};
   const glm::dvec3 e0[3] = {me, eye[0], eye[1]}, e1[3] = {me, eye[2], eye[0]};
-  refineSeeds(w, childPath(path, 0), w0, e0, thickness, piece);
-  refineSeeds(w, childPath(path, 1), w1, e1, thickness, piece);
+  refineSeeds(w, {childPath(at.path, 0), child(at.corners, 0)}, w0, e0, thickness, piece);
+  refineSeeds(w, {childPath(at.path, 1), child(at.corners, 1)}, w1, e1, thickness, piece);
 }
 
 }  // namespace vegstream::terrain

@@ -60,9 +60,15 @@ class RoamOutput {
   // further down.
   bool seedsAt(Walk& w, uint32_t t, const glm::dvec3* eye, double thickness, InPiece ps, int piece);
   void emitDrawnLeaf(Walk& w, uint32_t t, InPiece ps, int piece);
-  void emitSeed(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
+  // A seed triangle's identity and its corners on the grid, handed down with it: the corners of a
+  // path walked from its root cost a step per level, a tenth of the output's instructions.
+  struct SeedPlace {
+    TriPath path;
+    TriCorners corners;
+  };
+  void emitSeed(Walk& w, const SeedPlace& at, const glm::dvec3* world, const glm::dvec3* eye, bool interpolated,
                 int piece);
-  void refineSeeds(Walk& w, const TriPath& path, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
+  void refineSeeds(Walk& w, const SeedPlace& at, const glm::dvec3* world, const glm::dvec3* eye, double thickness,
                    int piece);
 
   RoamMesh& mesh_;

@@ -77,8 +77,10 @@ TEST(SeedTriangles, SameGroundSameTriangleFromAnyCameraAndTheyCoverTheVisibleGro
         ++repeats;
         for (int k = 0; k < 3; ++k) ASSERT_EQ(it->second[size_t(k)], s.world[size_t(k)]) << "camera " << cam;
       }
-      // The vertices are those of the path, on the ground.
+      // The vertices are those of the path, on the ground; its corners are the path's (the
+      // output hands them down instead of walking the path).
       const TriCorners c = z.grid().corners(s.path);
+      ASSERT_EQ(s.corners, c) << "camera " << cam;
       const GridPoint pts[3] = {c.apex, c.left, c.right};
       for (int k = 0; k < 3; ++k) {
         const HeightSample h = z.heights().sample(pts[k]);
