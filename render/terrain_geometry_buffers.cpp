@@ -23,11 +23,6 @@ constexpr VkPipelineStageFlags2 kWriteStages = VK_PIPELINE_STAGE_2_COPY_BIT | VK
 constexpr VkAccessFlags2 kWriteAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-// A chunk draw's indices: this frame's partial list, or all the chunk's own.
-const uint32_t* chunkIndices(const terrain::TerrainMesh& m, const terrain::TerrainChunkDraw& c) {
-  return (c.partial ? m.chunkIndices.data() : c.chunk->indices.data()) + c.first;
-}
-
 // The vertices of `m` when flattened: its own and its chunks'.
 size_t flatVertices(const terrain::TerrainMesh& m) {
   size_t n = m.vertices.size();
@@ -45,7 +40,7 @@ void copyFlat(const terrain::TerrainMesh& m, TerrainVertex* vdst, uint32_t* idst
   for (const terrain::TerrainChunkDraw& c : m.chunks) {
     const std::vector<TerrainVertex>& v = c.chunk->vertices;
     std::memcpy(vdst + base, v.data(), v.size() * kVertexBytes);
-    const uint32_t* src = chunkIndices(m, c);
+    const uint32_t* src = c.chunk->indices.data();
     for (uint32_t i = 0; i < c.count; ++i) idst[at + i] = src[i] + base;
     at += c.count;
     base += static_cast<uint32_t>(v.size());
@@ -181,11 +176,11 @@ uint64_t TerrainGeometryBuffers::placeResident(std::span<const TerrainDraw> draw
       const ChunkPlacement p = cache_.place(*c.chunk);
       const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
       chunkFirst_.push_back(p.firstVertex);
-      // Drawn in full, c.count is all its indices: whether the pool keeps them, without reading
-      // the chunk's index list (a cache miss a chunk on the frame thread).
-      assert(c.partial || c.count == c.chunk->indices.size());
-      gathered_.push_back(!c.partial && c.count <= uint64_t{TerrainIndexPool::kIndicesPerVertex} * n ? 1 : 0);
-      if (gathered_.back()) indexPool_->gather(p.firstVertex, c.first, c.count, target);
+      // c.count is all its indices: whether the pool keeps them, without reading the chunk's
+      // index list (a cache miss a chunk on the frame thread).
+      assert(c.count == c.chunk->indices.size());
+      gathered_.push_back(c.count <= uint64_t{TerrainIndexPool::kIndicesPerVertex} * n ? 1 : 0);
+      if (gathered_.back()) indexPool_->gather(p.firstVertex, 0, c.count, target);
       target += c.count;
       if (!p.upload || n == 0) continue;
       uploads_.push_back({c.chunk->vertices.data(), n, p.firstVertex, staged});
@@ -211,7 +206,8 @@ void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::s
   growPool(cmd, retire);
   vertices_[s].ensure(std::max<VkDeviceSize>(stagedVertices_, 1) * kVertexBytes, GrowingBuffer::kNoCeiling, retire);
   auto* vdst = static_cast<TerrainVertex*>(vertices_[s].buffer().mapped);
-  // The indices the frame thread writes, into the pool: the pieces' own, and the chunks drawn in part.
+  // The indices the frame thread writes: the pieces' own, and those of a chunk the index pool
+  // does not keep (more than kIndicesPerVertex a vertex: none of ROAM's).
   parallelEach(order.size(), tasks_, [&](size_t k) {
     const terrain::TerrainMesh& m = *draws[order[k]].mesh;
     uint32_t* out = idst + ranges[k].firstIndex;
@@ -220,7 +216,7 @@ void TerrainGeometryBuffers::writeResident(VkCommandBuffer cmd, size_t s, std::s
       const size_t at = pieceChunks_[k] + j;
       if (!gathered_[at]) {
         const uint32_t base = chunkFirst_[at];
-        const uint32_t* src = chunkIndices(m, m.chunks[j]);
+        const uint32_t* src = m.chunks[j].chunk->indices.data();
         for (uint32_t i = 0; i < m.chunks[j].count; ++i) out[i] = src[i] + base;
       }
       out += m.chunks[j].count;

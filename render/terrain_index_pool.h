@@ -6,7 +6,7 @@
 // change), uploaded with its vertices. Each frame the drawn chunks' indices are gathered from
 // there into the frame's index buffer by one compute dispatch (shaders/terrain_index_copy.comp),
 // where the frame thread used to rebase every index of every chunk: it now writes only the
-// pieces' own indices and the chunks drawn in part. The index buffer's bytes are the same.
+// pieces' own indices. The index buffer's bytes are the same.
 //
 // Contract, per frame: beginFrame(); upload() and gather() for the frame's chunks; then, outside
 // rendering and after the staged indices are written, recordUploads(); then, after the frame's

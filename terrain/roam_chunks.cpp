@@ -156,7 +156,7 @@ void DrawnChunks::append(const ChunkPass& pass, const ChunkDraw& d) {
   TerrainMesh& m = (*pass.meshes)[size_t(d.piece)];
   const std::vector<uint32_t>& indices = chunk.mesh.indices;
   if (indices.empty()) return;  // no data under it
-  m.chunks.push_back({&chunk.mesh, false, 0, static_cast<uint32_t>(indices.size())});
+  m.chunks.push_back({&chunk.mesh, static_cast<uint32_t>(indices.size())});
   figures_.drawnTriangles += indices.size() / 3;
 }
 

@@ -7,9 +7,8 @@
 // across frames (ROAM's drawn chunks, roam_chunks.h) with the same origin and imagery. A chunk
 // is never copied into the mesh: it keeps an id for as long as its triangles stay the same, and
 // a version that changes when its vertices move, so a consumer that keeps chunks (the renderer,
-// on the GPU) touches only the ones that changed. A producer may also draw a chunk partly,
-// listing the triangles drawn this frame in `chunkIndices` (the renderer takes both; ROAM draws
-// every chunk whole, roam_chunks.h).
+// on the GPU) touches only the ones that changed. A chunk is drawn whole (ROAM's straddling
+// chunks too, roam_chunks.h).
 
 #include <cstdint>
 #include <limits>
@@ -57,10 +56,9 @@ inline void keepBounds(TerrainChunk& c) {
 
 struct TerrainChunkDraw {
   const TerrainChunk* chunk = nullptr;
-  // partial: indices [first, first + count) of TerrainMesh::chunkIndices (into the chunk's
-  // vertices); otherwise [first, first + count) of the chunk's own indices (all of them).
-  bool partial = false;
-  uint32_t first = 0, count = 0;
+  // chunk->indices.size(), kept here so that a consumer that only places the chunk (the
+  // renderer's frame thread) does not read the chunk's index list, a cache miss a chunk.
+  uint32_t count = 0;
 };
 
 struct TerrainMesh {
@@ -68,7 +66,6 @@ struct TerrainMesh {
   std::vector<TerrainVertex> vertices;
   std::vector<uint32_t> indices;  // triangle list, counter-clockwise seen from above
   std::vector<TerrainChunkDraw> chunks;
-  std::vector<uint32_t> chunkIndices;  // the partly drawn chunks' triangles this frame
 
   size_t triangleCount() const {
     size_t n = indices.size();
@@ -80,7 +77,6 @@ struct TerrainMesh {
     vertices.clear();
     indices.clear();
     chunks.clear();
-    chunkIndices.clear();
   }
 };
 
@@ -90,7 +86,7 @@ void forEachTriangle(const TerrainMesh& m, F&& f) {
   for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
     f(m.vertices[m.indices[i]], m.vertices[m.indices[i + 1]], m.vertices[m.indices[i + 2]]);
   for (const TerrainChunkDraw& d : m.chunks) {
-    const uint32_t* idx = (d.partial ? m.chunkIndices.data() : d.chunk->indices.data()) + d.first;
+    const uint32_t* idx = d.chunk->indices.data();
     const std::vector<TerrainVertex>& v = d.chunk->vertices;
     for (uint32_t i = 0; i + 2 < d.count; i += 3) f(v[idx[i]], v[idx[i + 1]], v[idx[i + 2]]);
   }
