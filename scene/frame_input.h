@@ -30,6 +30,8 @@ struct FrameInput {
   bool present = false;        // to the window, when the renderer has one
   bool readbackColor = false;
   // An AOV frame (render::FrameRequest::aov): FrameRecord::aov comes back instead of a colour.
+  // It repeats the frame submitted before it (the same input): the streaming and the terrain
+  // hand on what they handed on then, changing nothing the frames after it see.
   bool aov = false;
   const render::OverlayDrawData* overlay = nullptr;  // must stay alive until submit() returns
 };

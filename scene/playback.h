@@ -37,9 +37,10 @@ struct PlaybackOptions {
   int framesEvery = 0;  // > 0: save frames 0, K, 2K, … as PNG, each with its sidecar JSON (frame_sidecar.h)
   std::filesystem::path framesDir;  // where frame_NNNNN.png go (framesEvery > 0)
   // Beside each saved frame, its measurement AOVs (scene/frame_aovs.h): one more frame, an AOV
-  // frame, at the same input right after it — not recorded, its time left out of the next
-  // recorded frame's wall time (the GPU's frames in flight still overlap it: leave the AOVs out
-  // of recordings whose timings matter).
+  // frame, at the same input right after it, which repeats it (FrameInput::aov: the same terrain,
+  // no streaming; the recording's counts are those of a recording without AOVs) — not recorded,
+  // its time left out of the next recorded frame's wall time (the GPU's frames in flight still
+  // overlap it: leave the AOVs out of recordings whose timings matter).
   AovSelection aovs;
   // Called after each recorded frame (done = frames so far); may be empty.
   std::function<void(std::size_t done, std::size_t total)> progress;

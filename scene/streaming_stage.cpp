@@ -50,6 +50,13 @@ void StreamingStage::planUploads() {
 
 void StreamingStage::run(FrameContext& context) {
   SceneFrameFigures& fig = context.figures;
+  if (context.input && context.input->aov) {
+    // An AOV frame repeats the frame before it (FrameInput::aov): no selection, no tiles asked
+    // for or arriving, nothing to upload (that frame's uploads are recorded already).
+    fig.streaming = streamer_.frameStats();
+    context.request.imageryUploads = {};
+    return;
+  }
   Stopwatch stage;
   // The terrain's selection for the views (its time, with the views', is the terrain's).
   std::vector<streaming::TileWant> wants = terrain_.wants(context.selection, context.eye, context.ahead);

@@ -10,6 +10,13 @@
 namespace vegstream::scene {
 
 void TerrainStage::run(FrameContext& context) {
+  if (context.input && context.input->aov && !draws_.empty()) {
+    // An AOV frame repeats the frame before it (FrameInput::aov): the same pieces, still valid
+    // (ROAM made no output since), and no update that would change what the next frame draws.
+    context.figures.terrain = terrain_.figures();
+    context.request.terrain = draws_;
+    return;
+  }
   Stopwatch stage;
   const std::span<const terrain::TerrainPiece> pieces = terrain_.pieces(context.timeS);
   draws_.clear();
