@@ -32,29 +32,31 @@ uint32_t DrawnChunks::slotFor(uint32_t t, bool attach) {
   if (freeChunks_.empty()) {
     slot = static_cast<uint32_t>(chunks_.size());
     chunks_.emplace_back();
+    state_.emplace_back();
   } else {
     slot = freeChunks_.back();
     freeChunks_.pop_back();
   }
   // While a compaction's copy reads the nodes the attachment waits: the end of the compaction
-  // attaches every chunk to its root again (remap: chunks_[slot].root, set below).
+  // attaches every chunk to its root again (remap: state_[slot].root, set below).
   if (attach) mesh_.node(t).drawnChunk = slot;
-  chunks_[slot].root = kNoNode;
+  state_[slot].root = kNoNode;
   return slot;
 }
 
 void DrawnChunks::draw(const ChunkPass& pass, uint32_t t, int piece) {
   const geo::TileId& tile = pass.pieces->tiles()[size_t(piece)];
   const uint32_t slot = slotFor(t, pass.attach);
-  DrawnChunk& chunk = chunks_[slot];
-  chunk.usedFrame = outputFrame_;
-  chunk.rebuild = chunk.root != t || mesh_.node(t).drawnStamp > chunk.builtStamp || !(chunk.piece == tile);
-  if (chunk.rebuild) {
-    chunk.root = t;
-    chunk.piece = tile;
-    chunk.builtStamp = chunkEpoch_;
-    chunk.mesh.id = nextChunkId_++;
-    chunk.mesh.version = 0;
+  ChunkState& state = state_[slot];
+  state.usedFrame = outputFrame_;
+  state.rebuild = state.root != t || mesh_.node(t).drawnStamp > state.builtStamp || !(state.piece == tile);
+  if (state.rebuild) {
+    state.root = t;
+    state.piece = tile;
+    state.builtStamp = chunkEpoch_;
+    TerrainChunk& mesh = chunks_[slot].mesh;
+    mesh.id = nextChunkId_++;
+    mesh.version = 0;
     ++figures_.chunksBuilt;
   } else {
     ++figures_.chunksReused;
@@ -100,19 +102,24 @@ void DrawnChunks::prepareAll(const ChunkPass& pass) {
 
 void DrawnChunks::prepare(const ChunkPass& pass, size_t draw, ChunkScratch& scratch, EmitCounts& counts) {
   const ChunkDraw& d = draws_[draw];
+  ChunkState& state = state_[d.slot];
+  if (!state.rebuild && !state.morphing) return;  // reused as it was: its record is not read
   DrawnChunk& chunk = chunks_[d.slot];
   const glm::dvec3& origin = (*pass.meshes)[size_t(d.piece)].origin;
-  if (chunk.rebuild) {
-    rebuild(pass, chunk, origin, scratch, counts);
-    keepBounds(chunk.mesh);
-  } else if (!chunk.morphing.empty()) {
+  if (state.rebuild) {
+    rebuild(pass, d.slot, origin, scratch, counts);
+    state.indexCount = static_cast<uint32_t>(chunk.mesh.indices.size());
+  } else {
     move(pass, chunk, origin, counts);
-    keepBounds(chunk.mesh);
   }
+  state.morphing = !chunk.morphing.empty();
+  keepBounds(chunk.mesh);
 }
 
-void DrawnChunks::rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec3& origin, ChunkScratch& scratch,
+void DrawnChunks::rebuild(const ChunkPass& pass, uint32_t slot, const glm::dvec3& origin, ChunkScratch& scratch,
                           EmitCounts& counts) {
+  DrawnChunk& chunk = chunks_[slot];
+  const ChunkState& state = state_[slot];
   chunk.mesh.vertices.clear();
   chunk.mesh.indices.clear();
   chunk.morphing.clear();
@@ -120,14 +127,14 @@ void DrawnChunks::rebuild(const ChunkPass& pass, DrawnChunk& chunk, const glm::d
   const LeafSink sink{.vertices = &chunk.mesh.vertices,
                       .indices = &chunk.mesh.indices,
                       .origin = origin,
-                      .tile = &chunk.piece,
+                      .tile = &state.piece,
                       .stamps = nullptr,
                       .frame = 0,
                       .stamp = 0,
                       .chunkVertices = &scratch.map,
                       .counts = &counts,
                       .morphing = &chunk.morphing};
-  collect(chunk.root, scratch.leaves);
+  collect(state.root, scratch.leaves);
   for (const uint32_t leaf : scratch.leaves) emitLeaf(mesh_, pass.timeS, leaf, sink);
 }
 
@@ -152,12 +159,11 @@ void DrawnChunks::move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec
 }
 
 void DrawnChunks::append(const ChunkPass& pass, const ChunkDraw& d) {
-  const DrawnChunk& chunk = chunks_[d.slot];
-  TerrainMesh& m = (*pass.meshes)[size_t(d.piece)];
-  const std::vector<uint32_t>& indices = chunk.mesh.indices;
-  if (indices.empty()) return;  // no data under it
-  m.chunks.push_back({&chunk.mesh, static_cast<uint32_t>(indices.size())});
-  figures_.drawnTriangles += indices.size() / 3;
+  const uint32_t count = state_[d.slot].indexCount;
+  if (count == 0) return;  // no data under it
+  // The chunk's address only: its record is not read.
+  (*pass.meshes)[size_t(d.piece)].chunks.push_back({&chunks_[d.slot].mesh, count});
+  figures_.drawnTriangles += count / 3;
 }
 
 void DrawnChunks::collect(uint32_t root, std::vector<uint32_t>& leaves) const {
@@ -185,11 +191,12 @@ void DrawnChunks::collect(uint32_t root, std::vector<uint32_t>& leaves) const {
 }
 
 void DrawnChunks::dropIdle() {
-  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
-    DrawnChunk& c = chunks_[slot];
+  for (uint32_t slot = 0; slot < state_.size(); ++slot) {
+    ChunkState& c = state_[slot];
     if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
     mesh_.node(c.root).drawnChunk = kNoNode;
-    c = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
+    c = ChunkState{};
+    chunks_[slot] = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
     freeChunks_.push_back(slot);
   }
 }
@@ -197,6 +204,7 @@ void DrawnChunks::dropIdle() {
 void DrawnChunks::release() {
   for (uint32_t slot : mesh_.takeReleasedChunks()) {
     chunks_[slot] = DrawnChunk{};
+    state_[slot] = ChunkState{};
     freeChunks_.push_back(slot);
   }
 }
@@ -205,8 +213,8 @@ void DrawnChunks::remap(const RoamRenumbering& renumbering) {
   // Chunks whose root was freed are released before compaction: every index here is live.
   auto node = [&](uint32_t i) { return i == kNoNode ? kNoNode : renumbering.nodes[i]; };
   // The compacted nodes hold no chunk (RoamMesh::compact): each is attached to its root again.
-  for (uint32_t slot = 0; slot < chunks_.size(); ++slot) {
-    DrawnChunk& c = chunks_[slot];
+  for (uint32_t slot = 0; slot < state_.size(); ++slot) {
+    ChunkState& c = state_[slot];
     if (c.root == kNoNode) continue;
     c.root = node(c.root);
     mesh_.node(c.root).drawnChunk = slot;
