@@ -59,21 +59,20 @@ void TerrainChunkCache::retire(uint32_t firstVertex, int sizeClass) {
   retired_.push_back({firstVertex, sizeClass, frame_ + framesInFlight_});
 }
 
-ChunkPlacement TerrainChunkCache::place(const terrain::TerrainChunk& chunk) {
+ChunkPlacement TerrainChunkCache::place(uint64_t id, uint64_t version, uint32_t vertices) {
   ++figures_.chunksDrawn;
-  const auto vertices = static_cast<uint32_t>(chunk.vertices.size());
-  auto [it, added] = resident_.try_emplace(chunk.id);
+  auto [it, added] = resident_.try_emplace(id);
   Resident& r = it->second;
   // The same id and version keep their vertices (terrain_mesh.h); a chunk that broke that by
   // growing is placed anew rather than written past its range.
-  if (!added && r.version == chunk.version && vertices <= classSize(r.sizeClass)) {
+  if (!added && r.version == version && vertices <= classSize(r.sizeClass)) {
     r.usedFrame = frame_;
     return {r.firstVertex, false};
   }
   // New, or moved: a new range, so a frame in flight still reads the old one as it was.
   if (!added) retire(r.firstVertex, r.sizeClass);
   r.firstVertex = allocate(std::max<uint32_t>(vertices, 1), r.sizeClass);
-  r.version = chunk.version;
+  r.version = version;
   r.usedFrame = frame_;
   ++figures_.chunksUploaded;
   figures_.verticesUploaded += vertices;

@@ -46,7 +46,11 @@ class TerrainChunkCache {
   TerrainChunkCache(uint32_t framesInFlight, uint64_t idleFrames);
 
   void beginFrame();
-  ChunkPlacement place(const terrain::TerrainChunk& chunk);
+  // The chunk `id` at `version`, of `vertices` vertices (TerrainChunkDraw's header).
+  ChunkPlacement place(uint64_t id, uint64_t version, uint32_t vertices);
+  ChunkPlacement place(const terrain::TerrainChunk& chunk) {
+    return place(chunk.id, chunk.version, static_cast<uint32_t>(chunk.vertices.size()));
+  }
   // `vertices` vertices for this frame only (always uploaded).
   uint32_t placeTransient(uint32_t vertices);
   void endFrame();

@@ -26,7 +26,7 @@ constexpr VkBufferUsageFlags kRead = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUF
 // The vertices of `m` when flattened: its own and its chunks'.
 size_t flatVertices(const terrain::TerrainMesh& m) {
   size_t n = m.vertices.size();
-  for (const terrain::TerrainChunkDraw& c : m.chunks) n += c.chunk->vertices.size();
+  for (const terrain::TerrainChunkDraw& c : m.chunks) n += c.vertexCount;
   return n;
 }
 
@@ -173,12 +173,12 @@ uint64_t TerrainGeometryBuffers::placeResident(std::span<const TerrainDraw> draw
     pieceChunks_[k] = chunkFirst_.size();
     auto target = static_cast<uint32_t>(ranges[k].firstIndex + m.indices.size());
     for (const terrain::TerrainChunkDraw& c : m.chunks) {
-      const ChunkPlacement p = cache_.place(*c.chunk);
-      const auto n = static_cast<uint32_t>(c.chunk->vertices.size());
+      // From the draw's copy of the chunk's header: the chunk itself is read only to upload it.
+      const ChunkPlacement p = cache_.place(c.id, c.version, c.vertexCount);
+      const uint32_t n = c.vertexCount;
       chunkFirst_.push_back(p.firstVertex);
-      // c.count is all its indices: whether the pool keeps them, without reading the chunk's
-      // index list (a cache miss a chunk on the frame thread).
-      assert(c.count == c.chunk->indices.size());
+      // c.count is all its indices: whether the pool keeps them.
+      assert(c.count == c.chunk->indices.size() && n == c.chunk->vertices.size());
       gathered_.push_back(c.count <= uint64_t{TerrainIndexPool::kIndicesPerVertex} * n ? 1 : 0);
       if (gathered_.back()) indexPool_->gather(p.firstVertex, 0, c.count, target);
       target += c.count;

@@ -41,15 +41,15 @@ void interleaveCompanions(uint8_t* dst, std::span<const uint8_t> ndvi, std::span
 }
 
 // Distance from `eye` to the axis-aligned box of a mesh's vertices, its chunks' included (0
-// inside it). A chunk brings its box (TerrainChunk::boundsMin / boundsMax): every chunk vertex of
-// every piece, read each frame, was 4.7 MB a frame at 1080p (render/README.md).
+// inside it). A chunk's draw brings its box (TerrainChunkDraw::boundsMin / boundsMax): every chunk
+// vertex of every piece, read each frame, was 4.7 MB a frame at 1080p (render/README.md).
 double distanceToBounds(const terrain::TerrainMesh& m, const glm::dvec3& eye) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   terrain::growBox(m.vertices, lo, hi);
   for (const terrain::TerrainChunkDraw& c : m.chunks) {
-    if (c.chunk->vertices.empty()) continue;
-    lo = glm::min(lo, c.chunk->boundsMin);
-    hi = glm::max(hi, c.chunk->boundsMax);
+    if (c.vertexCount == 0) continue;
+    lo = glm::min(lo, c.boundsMin);
+    hi = glm::max(hi, c.boundsMax);
   }
   const glm::dvec3 local = eye - m.origin;
   const glm::dvec3 nearest = glm::clamp(local, glm::dvec3(lo), glm::dvec3(hi));

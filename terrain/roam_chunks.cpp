@@ -106,14 +106,13 @@ void DrawnChunks::prepare(const ChunkPass& pass, size_t draw, ChunkScratch& scra
   if (!state.rebuild && !state.morphing) return;  // reused as it was: its record is not read
   DrawnChunk& chunk = chunks_[d.slot];
   const glm::dvec3& origin = (*pass.meshes)[size_t(d.piece)].origin;
-  if (state.rebuild) {
+  if (state.rebuild)
     rebuild(pass, d.slot, origin, scratch, counts);
-    state.indexCount = static_cast<uint32_t>(chunk.mesh.indices.size());
-  } else {
+  else
     move(pass, chunk, origin, counts);
-  }
   state.morphing = !chunk.morphing.empty();
   keepBounds(chunk.mesh);
+  state.drawn = TerrainChunkDraw::of(chunk.mesh);
 }
 
 void DrawnChunks::rebuild(const ChunkPass& pass, uint32_t slot, const glm::dvec3& origin, ChunkScratch& scratch,
@@ -159,11 +158,10 @@ void DrawnChunks::move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec
 }
 
 void DrawnChunks::append(const ChunkPass& pass, const ChunkDraw& d) {
-  const uint32_t count = state_[d.slot].indexCount;
-  if (count == 0) return;  // no data under it
-  // The chunk's address only: its record is not read.
-  (*pass.meshes)[size_t(d.piece)].chunks.push_back({&chunks_[d.slot].mesh, count});
-  figures_.drawnTriangles += count / 3;
+  const TerrainChunkDraw& drawn = state_[d.slot].drawn;
+  if (drawn.count == 0) return;  // no data under it
+  (*pass.meshes)[size_t(d.piece)].chunks.push_back(drawn);  // the chunk's record is not read
+  figures_.drawnTriangles += drawn.count / 3;
 }
 
 void DrawnChunks::collect(uint32_t root, std::vector<uint32_t>& leaves) const {

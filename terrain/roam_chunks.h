@@ -36,15 +36,16 @@ namespace vegstream::terrain {
 // What the output reads of every chunk it reaches, every frame, kept apart from the chunk's
 // vertices in one dense array (DrawnChunks::state_): a chunk reused as it was is decided and
 // appended from here alone. Read in the chunks' own records (160 bytes each, scattered), this
-// was three quarters of the time of DrawnChunks::draw, a cache miss per chunk (perf).
+// was three quarters of the time of DrawnChunks::draw, a cache miss per chunk (perf); the draws
+// handed out carry the chunk's header from here too (terrain_mesh.h TerrainChunkDraw).
 struct ChunkState {
   uint32_t root = kNoNode;
-  uint32_t indexCount = 0;  // its mesh's, since it was last built
   uint64_t builtStamp = 0;  // the mesh's drawn epoch when built
   uint64_t usedFrame = 0;
   geo::TileId piece{};   // positions are relative to its origin, uvs in it
   bool rebuild = false;  // this output builds it again (draw → finish)
   bool morphing = false;  // some of its vertices still move (DrawnChunk::morphing)
+  TerrainChunkDraw drawn;  // its draw, header included, as last built or moved
 };
 
 // A chunk's geometry: what the renderer draws, and how to move it.

@@ -56,9 +56,17 @@ inline void keepBounds(TerrainChunk& c) {
 
 struct TerrainChunkDraw {
   const TerrainChunk* chunk = nullptr;
-  // chunk->indices.size(), kept here so that a consumer that only places the chunk (the
-  // renderer's frame thread) does not read the chunk's index list, a cache miss a chunk.
-  uint32_t count = 0;
+  // A copy of the chunk's header as it is drawn this frame, so that a consumer that only places
+  // or orders the chunks (the renderer's frame thread) reads this list and not the chunks' own
+  // records, a cache miss a chunk; `count` is all of chunk->indices (a chunk is drawn whole).
+  uint64_t id = 0, version = 0;
+  uint32_t vertexCount = 0, count = 0;
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+
+  static TerrainChunkDraw of(const TerrainChunk& c) {
+    return {&c, c.id, c.version, static_cast<uint32_t>(c.vertices.size()), static_cast<uint32_t>(c.indices.size()),
+            c.boundsMin, c.boundsMax};
+  }
 };
 
 struct TerrainMesh {

@@ -75,7 +75,7 @@ TEST_F(TerrainIndexGatherTest, EveryIndexNamesTheMeshsVertexFrameAfterFrame) {
         if ((i + size_t(frame)) % 9 == 0) continue;  // left out this frame
         terrain::TerrainMesh& m = meshes[i % 2];
         const TerrainChunk& c = chunks[i];
-        m.chunks.push_back({&c, static_cast<uint32_t>(c.indices.size())});
+        m.chunks.push_back(terrain::TerrainChunkDraw::of(c));
       }
       const TerrainDraw draws[2] = {{&meshes[0]}, {&meshes[1]}};
       const uint32_t order[2] = {1, 0};

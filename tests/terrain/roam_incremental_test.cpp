@@ -330,6 +330,12 @@ TEST(RoamIncremental, ChunksKeptByIdAndVersionDrawTheDirectOutputsTrianglesAndMo
       EXPECT_TRUE(m.vertices.empty() || !m.indices.empty());
       for (const TerrainChunkDraw& d : m.chunks) {
         ASSERT_EQ(d.count, d.chunk->indices.size()) << "a chunk is drawn whole";
+        // The draw's copy of the chunk's header is the chunk's as it is now.
+        ASSERT_EQ(d.id, d.chunk->id);
+        ASSERT_EQ(d.version, d.chunk->version);
+        ASSERT_EQ(d.vertexCount, d.chunk->vertices.size());
+        ASSERT_EQ(d.boundsMin, d.chunk->boundsMin);
+        ASSERT_EQ(d.boundsMax, d.chunk->boundsMax);
         // The box the renderer orders the pieces by is the one of the chunk's vertices now.
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
         growBox(d.chunk->vertices, lo, hi);
