@@ -159,7 +159,7 @@ void DrawnChunks::move(const ChunkPass& pass, DrawnChunk& chunk, const glm::dvec
 
 void DrawnChunks::append(const ChunkPass& pass, const ChunkDraw& d) {
   const TerrainChunkDraw& drawn = state_[d.slot].drawn;
-  if (drawn.count == 0) return;  // no data under it
+  if (drawn.count == 0) return;                             // no data under it
   (*pass.meshes)[size_t(d.piece)].chunks.push_back(drawn);  // the chunk's record is not read
   figures_.drawnTriangles += drawn.count / 3;
 }

@@ -42,9 +42,9 @@ struct ChunkState {
   uint32_t root = kNoNode;
   uint64_t builtStamp = 0;  // the mesh's drawn epoch when built
   uint64_t usedFrame = 0;
-  geo::TileId piece{};   // positions are relative to its origin, uvs in it
-  bool rebuild = false;  // this output builds it again (draw → finish)
-  bool morphing = false;  // some of its vertices still move (DrawnChunk::morphing)
+  geo::TileId piece{};     // positions are relative to its origin, uvs in it
+  bool rebuild = false;    // this output builds it again (draw → finish)
+  bool morphing = false;   // some of its vertices still move (DrawnChunk::morphing)
   TerrainChunkDraw drawn;  // its draw, header included, as last built or moved
 };
 

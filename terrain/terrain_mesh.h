@@ -64,8 +64,13 @@ struct TerrainChunkDraw {
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 
   static TerrainChunkDraw of(const TerrainChunk& c) {
-    return {&c, c.id, c.version, static_cast<uint32_t>(c.vertices.size()), static_cast<uint32_t>(c.indices.size()),
-            c.boundsMin, c.boundsMax};
+    return {&c,
+            c.id,
+            c.version,
+            static_cast<uint32_t>(c.vertices.size()),
+            static_cast<uint32_t>(c.indices.size()),
+            c.boundsMin,
+            c.boundsMax};
   }
 };
 
