@@ -4,6 +4,7 @@
 
 #include "core/stopwatch.h"
 #include "scene/camera_views.h"
+#include "scene/frame_input.h"
 
 namespace vegstream::scene {
 
@@ -19,5 +20,7 @@ FrameContext::FrameContext(const geo::LocalFrame& frame, const flight::FlightSam
     ahead.push_back(selectionViewFor(cameraFor(frame, s), widthPx, heightPx));
   viewsMs = watch.elapsedMs();
 }
+
+bool FrameContext::repeatsLastFrame() const { return input && input->aov; }
 
 }  // namespace vegstream::scene

@@ -48,6 +48,9 @@ struct FrameContext {
   std::vector<terrain::SelectionView> ahead;
   double viewsMs = 0.0;  // making the above (the terrain stage counts it: its views)
   const FrameInput* input = nullptr;
+  // An AOV frame (FrameInput::aov): it repeats the frame before it, so the stages that change
+  // the scene's state (streaming, terrain) hand on what they handed on then.
+  bool repeatsLastFrame() const;
 
   // What the stages hand on.
   render::FrameRequest request;

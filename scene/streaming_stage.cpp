@@ -50,9 +50,9 @@ void StreamingStage::planUploads() {
 
 void StreamingStage::run(FrameContext& context) {
   SceneFrameFigures& fig = context.figures;
-  if (context.input && context.input->aov) {
-    // An AOV frame repeats the frame before it (FrameInput::aov): no selection, no tiles asked
-    // for or arriving, nothing to upload (that frame's uploads are recorded already).
+  if (context.repeatsLastFrame()) {
+    // No selection, no tiles asked for or arriving, nothing to upload (the frame before it
+    // recorded its uploads already).
     fig.streaming = streamer_.frameStats();
     context.request.imageryUploads = {};
     return;

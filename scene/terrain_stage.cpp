@@ -10,9 +10,9 @@
 namespace vegstream::scene {
 
 void TerrainStage::run(FrameContext& context) {
-  if (context.input && context.input->aov && !draws_.empty()) {
-    // An AOV frame repeats the frame before it (FrameInput::aov): the same pieces, still valid
-    // (ROAM made no output since), and no update that would change what the next frame draws.
+  if (context.repeatsLastFrame()) {
+    // The same pieces, still valid (ROAM made no output since), and no update that would change
+    // what the next frame draws.
     context.figures.terrain = terrain_.figures();
     context.request.terrain = draws_;
     return;

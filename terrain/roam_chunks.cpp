@@ -193,18 +193,18 @@ void DrawnChunks::dropIdle() {
     ChunkState& c = state_[slot];
     if (c.root == kNoNode || c.usedFrame + kChunkIdleFrames > outputFrame_) continue;
     mesh_.node(c.root).drawnChunk = kNoNode;
-    c = ChunkState{};
-    chunks_[slot] = DrawnChunk{};  // its memory goes: an idle chunk is not coming back soon
-    freeChunks_.push_back(slot);
+    freeSlot(slot);  // its memory goes: an idle chunk is not coming back soon
   }
 }
 
+void DrawnChunks::freeSlot(uint32_t slot) {
+  chunks_[slot] = DrawnChunk{};
+  state_[slot] = ChunkState{};
+  freeChunks_.push_back(slot);
+}
+
 void DrawnChunks::release() {
-  for (uint32_t slot : mesh_.takeReleasedChunks()) {
-    chunks_[slot] = DrawnChunk{};
-    state_[slot] = ChunkState{};
-    freeChunks_.push_back(slot);
-  }
+  for (uint32_t slot : mesh_.takeReleasedChunks()) freeSlot(slot);
 }
 
 void DrawnChunks::remap(const RoamRenumbering& renumbering) {

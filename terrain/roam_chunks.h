@@ -97,6 +97,7 @@ class DrawnChunks {
     std::vector<uint32_t> leaves;  // collect's
   };
   uint32_t slotFor(uint32_t t, bool attach);
+  void freeSlot(uint32_t slot);  // its chunk and state emptied, the slot free for another
   void prepareAll(const ChunkPass& pass);
   // Any thread: reads the mesh, writes this chunk and its state (and the caller's scratch and
   // counts) only.
