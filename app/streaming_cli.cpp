@@ -53,6 +53,13 @@ void addTerrainOptions(CLI::App& cmd, StreamingCli& o, bool withMode) {
                  "copied: every frame copies them all (the same images, for comparison)")
       ->check(CLI::IsMember({"resident", "copied"}))
       ->capture_default_str();
+  cmd.add_option("--terrain-depth-tiles", o.terrainDepthTiles,
+                 "With --terrain-shading compute: vegetation: the terrain's depth goes into the depth attachment "
+                 "only where plants or trees may be drawn; all: everywhere (the same images, for comparison); "
+                 "checked: as vegetation, the tiles left out at the near plane, so that anything drawn there "
+                 "vanishes (a test of the marks)")
+      ->check(CLI::IsMember({"vegetation", "all", "checked"}))
+      ->capture_default_str();
   cmd.add_option("--frame-workers", o.frameWorkers,
                  "Most worker threads the frame's own parallel loops (terrain tessellation and copies) use beside "
                  "the frame thread; 0: all of them (one per core)")
@@ -191,6 +198,7 @@ void applyTerrainOptions(const StreamingCli& o, scene::StreamingMode defaultMode
                                   : o.terrainShading == "compute"  ? render::TerrainShading::Compute
                                                                    : render::TerrainShading::Auto;
   scene.renderer.residentTerrain = o.terrainGeometry == "resident";
+  scene.renderer.depthTiles = *render::parseDepthTiles(o.terrainDepthTiles);  // checked by the option
   scene.frameWorkers = o.frameWorkers;
   scene.terrain.seeds.horizonM = o.seedHorizonM;
   scene.terrain.seeds.density = o.plantDensity;

@@ -27,6 +27,7 @@ struct StreamingCli {
   double canopyM = 30.0;                 // tallest plant, for culling
   std::string terrainShading = "auto";  // auto | forward | deferred (render::TerrainShading)
   std::string terrainGeometry = "resident";  // resident | copied (render::RendererOptions::residentTerrain)
+  std::string terrainDepthTiles = "vegetation";  // vegetation | all | checked (render::RendererOptions::depthTiles)
   int frameWorkers = 0;                       // scene::SceneOptions::frameWorkers
   double terrainDetail = 1.0;            // close-up detail textures, 0 (bare imagery) … 1
   double seedHorizonM = 250.0;           // seed triangles within this distance (and each species' own)

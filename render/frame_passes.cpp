@@ -23,6 +23,7 @@
 #include "render/sky_pass.h"
 #include "render/sun_shadow_pass.h"
 #include "render/terrain_pass.h"
+#include "render/terrain_depth_handover.h"
 #include "render/terrain_raster_pass.h"
 #include "render/terrain_shade_pass.h"
 #include "render/tonemap_pass.h"
@@ -71,7 +72,9 @@ FramePasses::FramePasses(const Context& ctx, VkDescriptorSetLayout frameLayout, 
   terrainPass_ = std::make_unique<TerrainPass>(ctx, frameLayout, toSampleBits(msaa_), deferred && !computeRaster,
                                                options.tasks, options.terrainTriangles, options.residentTerrain);
   if (computeRaster) {
-    terrainRaster_ = std::make_unique<TerrainRasterPass>(ctx, frameLayout, *terrainPass_, targets);
+    depthHandover_ = std::make_unique<TerrainDepthHandover>(ctx, frameLayout, targets, options.depthTiles);
+    terrainRaster_ =
+        std::make_unique<TerrainRasterPass>(ctx, frameLayout, *terrainPass_, targets, depthHandover_->tileEdges());
   } else {
     if (deferred) terrainShade_ = std::make_unique<TerrainShadePass>(ctx, frameLayout, *terrainPass_, targets);
     noTerrainDepth_ =
@@ -92,6 +95,7 @@ void FramePasses::writeFrameSet(VkDescriptorSet set, int slot, bool shadowPass) 
   sunShadows_->writeFrameSet(set, /*placeholder=*/shadowPass);
   writeStorageBuffer(ctx_, set, terrainDepth, 5);
   writeStorageBuffer(ctx_, set, hiz_->pyramid(), 6);
+  writeStorageBuffer(ctx_, set, depthHandover_ ? depthHandover_->marks() : noTerrainDepth_.get(), 10);
   atmosphere_->writeFrameSet(set);
 }
 
@@ -144,8 +148,9 @@ void FramePasses::prepareFrame(FrameSlot& slot, const FrameRequest& request, uin
   const bool plantsCulled =
       request.vegetation && request.vegetation->occlusionCulling && !request.vegetation->triangles.empty();
   slot.hizEarly = (terrainShade_ || terrainRaster_) && (treesDrawn || plantsCulled);
-  u.terrainDepth =
-      glm::vec4(terrainRaster_ ? 1.0f : 0.0f, static_cast<float>(msaa_), slot.hizEarly ? 1.0f : 0.0f, 0.0f);
+  const bool marks = depthHandover_ && depthHandover_->mode() != DepthTiles::All;
+  u.terrainDepth = glm::vec4(terrainRaster_ ? 1.0f : 0.0f, static_cast<float>(msaa_), slot.hizEarly ? 1.0f : 0.0f,
+                             marks ? 1.0f : 0.0f);
   std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   simulation_->writeBlock(static_cast<int>(index % kFramesInFlight), request.simulation);
 }
@@ -165,6 +170,7 @@ void FramePasses::record(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, c
   slot.treesDrawn = false;
   const VegetationRequest* plants = request.vegetation;
   const TreeRequest* treeRequest = request.trees && trees_->modelCount() > 0 ? request.trees : nullptr;
+  if (depthHandover_) depthHandover_->recordBeginFrame(cmd);  // before the tree classify marks
   if (request.simulation) {  // before anything reads the wind cells or the interaction field
     slot.timer->beginPass(cmd, "simulation");
     simulation_->record(cmd, slot.descriptorSet, *request.simulation);
@@ -187,6 +193,8 @@ void FramePasses::record(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, c
     hiz_->recordBuild(cmd);
     slot.timer->endPass(cmd);
   }
+  if (plants) recordPlantsCompute(cmd, slot, slotIndex, *plants, retireBuffer);
+  if (depthHandover_) recordDepthHandover(cmd, slot, slotIndex, request);
   if (treeRequest) {  // trees in their own scope, before the plants: they hide much of them
     slot.timer->beginPass(cmd, "trees");
     targets_.beginRendering(cmd, next, /*resolve=*/plants == nullptr, slot.readDepth);
@@ -196,7 +204,7 @@ void FramePasses::record(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, c
     next = RenderTargets::Load::Keep;
   }
   if (plants) {
-    recordPlants(cmd, slot, slotIndex, *plants, next, retireBuffer);
+    recordPlantsDraw(cmd, slot, slotIndex, *plants, next);
   } else if ((terrainShade_ || terrainRaster_) &&
              !treeRequest) {  // no plants: one empty scope resolves the shaded targets
     targets_.beginRendering(cmd, next, /*resolve=*/true, slot.readDepth);
@@ -254,14 +262,8 @@ RenderTargets::Load FramePasses::recordTerrain(VkCommandBuffer cmd, FrameSlot& s
                              slot.timer->beginPass(cmd, "terrain shade");
                            });
     slot.timer->endPass(cmd);
-    // Its depth samples into the depth attachment: the trees and plants are depth-tested against
-    // the terrain by the hardware, hidden fragments rejected before they are shaded (on the H200,
-    // benchmark-30s: trees pass p50 1.23 → 0.82 ms against testing each fragment against the
-    // samples in its shader; this pass costs 0.68 ms, the clear it replaces 0.59).
-    slot.timer->beginPass(cmd, "terrain depth");
-    terrainRaster_->recordDepthAttachment(cmd, slot.descriptorSet, targets_);
-    slot.timer->endPass(cmd);
-    return RenderTargets::Load::Shaded;
+    return RenderTargets::Load::Shaded;  // its depth goes into the attachment later: recordDepthHandover
+
   } else if (terrainShade_) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
     slot.timer->beginPass(cmd, "terrain");
     targets_.beginVisibility(cmd);
@@ -286,10 +288,10 @@ RenderTargets::Load FramePasses::recordTerrain(VkCommandBuffer cmd, FrameSlot& s
   return RenderTargets::Load::Keep;
 }
 
-// After the terrain's scope: Hi-Z build + classify (culling hidden seed triangles when asked),
-// then the plants in a second scope that loads the terrain's colour and depth and resolves.
-void FramePasses::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
-                               RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire) {
+// After the terrain: Hi-Z build + classify (culling hidden seed triangles when asked, marking
+// where the plants that may show are drawn), the compute blade expansion.
+void FramePasses::recordPlantsCompute(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex,
+                                      const VegetationRequest& plants, const ClassifyPass::RetireBuffer& retire) {
   const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify_) : 0u;
   slot.timer->beginPass(cmd, "classify");
   classify_->setFades(plants.draw.fades);
@@ -298,7 +300,7 @@ void FramePasses::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotInd
     if (!slot.hizEarly) hiz_->recordBuild(cmd);
     cull = [&](VkCommandBuffer c, VkBuffer triangles, VkBuffer visible, uint32_t count) {
       hiz_->recordCull(c, slotIndex, slot.descriptorSet, triangles, visible, count, plants.clusterSize,
-                       plants.draw.shadows && plants.style == PlantStyle::Plants);
+                       plants.draw.shadows && plants.style == PlantStyle::Plants, patchMask);
     };
   }
   slot.vegetation =
@@ -315,7 +317,25 @@ void FramePasses::recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotInd
                           plants.clusterSize, terrainPass_->imageryView(), plants.draw, retire);
     slot.timer->endPass(cmd);
   }
+}
 
+// Before the trees' and the plants' scopes, after everything that marks where they are drawn.
+void FramePasses::recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex,
+                                      const FrameRequest& request) {
+  // Every tile where nothing marks the plants (the Hi-Z cull marks them: without it, or for
+  // markers, nothing does) or where the frame's depth is read back.
+  const VegetationRequest* plants = request.vegetation;
+  const bool unmarked =
+      plants && !plants->triangles.empty() && (!plants->occlusionCulling || plants->style == PlantStyle::Markers);
+  slot.timer->beginPass(cmd, "terrain depth");
+  depthHandover_->record(cmd, slotIndex, slot.descriptorSet, targets_, unmarked || slot.readDepth);
+  slot.timer->endPass(cmd);
+}
+
+// The plants' scope: loads the terrain's (and the trees') colour and depth and resolves.
+void FramePasses::recordPlantsDraw(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                                   RenderTargets::Load load) {
+  const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify_) : 0u;
   targets_.beginRendering(cmd, load, /*resolve=*/true, slot.readDepth);
   if (plants.style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
@@ -348,7 +368,9 @@ void FramePasses::readFigures(FrameSlot& slot, FrameResult& r) const {
     r.terrainRasterTriangles = f.rasterTriangles;
     r.terrainTileEntries = f.tileEntries;
     r.terrainTileEntriesDropped = f.tileEntriesDropped;
-    r.terrainDepthEdgeTiles = f.depthEdgeTiles;
+    const DepthHandoverFigures d = depthHandover_->figures(slotIndex);
+    r.terrainDepthTiles = d.pixelTiles;
+    r.terrainDepthEdgeTiles = d.edgeTiles;
   }
   if (slot.vegetation) {
     classify_->readFigures(slotIndex, *slot.vegetation);
@@ -371,7 +393,7 @@ void FramePasses::setCatalog(const vegetation::SpeciesCatalog& catalog) {
 uint64_t FramePasses::gpuBytes() const {
   return terrainPass_->gpuBytes() + classify_->gpuBytes() + plantPass_->gpuBytes() + hiz_->gpuBytes() +
          blades_->gpuBytes() + simulation_->gpuBytes() + trees_->gpuBytes() + sunShadows_->gpuBytes() +
-         (terrainRaster_ ? terrainRaster_->gpuBytes() : 0);
+         (terrainRaster_ ? terrainRaster_->gpuBytes() + depthHandover_->gpuBytes() : 0);
 }
 
 }  // namespace vegstream::render

@@ -34,6 +34,7 @@ class SimulationPass;
 class SkyPass;
 class SunShadowPass;
 class TerrainPass;
+class TerrainDepthHandover;
 class TerrainRasterPass;
 class TerrainShadePass;
 class TonemapPass;
@@ -87,8 +88,14 @@ class FramePasses {
   void recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex);
   RenderTargets::Load recordTerrain(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request,
                                     bool lastScope, const ClassifyPass::RetireBuffer& retire);
-  void recordPlants(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
-                    RenderTargets::Load load, const ClassifyPass::RetireBuffer& retire);
+  // The plants' compute work (classify, culling, blade expansion), before the terrain's depth is
+  // handed over; then their scope.
+  void recordPlantsCompute(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                           const ClassifyPass::RetireBuffer& retire);
+  void recordPlantsDraw(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
+                        RenderTargets::Load load);
+  // The terrain's depth samples into the depth attachment where plants or trees may be drawn.
+  void recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request);
 
   const Context& ctx_;
   VkDescriptorSetLayout frameLayout_;
@@ -97,9 +104,11 @@ class FramePasses {
   BladePath bladePath_;  // resolved: never Auto or Mesh
   std::unique_ptr<SimulationPass> simulation_;
   std::unique_ptr<TerrainPass> terrainPass_;
-  std::unique_ptr<TerrainShadePass> terrainShade_;    // deferred terrain shading only
-  std::unique_ptr<TerrainRasterPass> terrainRaster_;  // the terrain rasterised in compute only
-  GpuBuffer noTerrainDepth_;                          // set 0 binding 5 when the depth attachment holds the terrain
+  std::unique_ptr<TerrainShadePass> terrainShade_;       // deferred terrain shading only
+  std::unique_ptr<TerrainRasterPass> terrainRaster_;     // the terrain rasterised in compute only
+  std::unique_ptr<TerrainDepthHandover> depthHandover_;  // with terrainRaster_
+  // Set 0 bindings 5 and 10 when the depth attachment holds the terrain (nothing reads or marks them).
+  GpuBuffer noTerrainDepth_;
   std::unique_ptr<HizPass> hiz_;
   std::unique_ptr<SunShadowPass> sunShadows_;
   std::unique_ptr<TonemapPass> tonemap_;

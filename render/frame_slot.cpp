@@ -27,13 +27,15 @@ DescriptorSetLayout createFrameSetLayout(const Context& ctx) {
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},          // the Hi-Z pyramid
       {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},  // the sky-view LUT
       {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrameStages, nullptr},  // the aerial-perspective volume
-      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr}};  // the sky light (render/atmosphere_pass.h)
+      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages, nullptr},  // the sky light (render/atmosphere_pass.h)
+      {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kFrameStages,
+       nullptr}};  // the depth tile marks (terrain_depth_handover.h)
   return createLayout(ctx, frameBindings, "frame set layout");
 }
 
 DescriptorPool createFrameSetPool(const Context& ctx) {
   const VkDescriptorPoolSize frameSizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * kFramesInFlight},
-                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kFramesInFlight},
+                                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * kFramesInFlight},
                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * kFramesInFlight}};
   // Twice: each slot has a second set for the shadow pass (its binding 4 a placeholder map).
   VkDescriptorPoolSize doubled[3];

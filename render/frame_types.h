@@ -153,6 +153,23 @@ inline std::optional<BladePath> parseBladePath(std::string_view s) {
   return std::nullopt;
 }
 
+// With the terrain rasterised in compute: where its depth goes into the depth attachment
+// (render/terrain_depth_handover.h, `--terrain-depth-tiles`).
+enum class DepthTiles {
+  Vegetation,  // the tiles a plant or a tree may be drawn over
+  All,         // every tile (the way before; for comparison)
+  // As Vegetation, the tiles left out first cleared to the near plane, so that any plant or tree
+  // drawn over one vanishes: a test that the marks hold everything drawn.
+  Checked,
+};
+
+inline std::optional<DepthTiles> parseDepthTiles(std::string_view s) {
+  if (s == "vegetation") return DepthTiles::Vegetation;
+  if (s == "all") return DepthTiles::All;
+  if (s == "checked") return DepthTiles::Checked;
+  return std::nullopt;
+}
+
 // How the species pipelines draw (render/plant_pass.h).
 struct PlantDrawOptions {
   uint32_t maxSegments = 5;   // n_max of eq. 4: segments of a blade at full detail (1 … 16)
@@ -256,7 +273,9 @@ struct FrameResult {
   uint64_t terrainRasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
   uint64_t terrainTileEntries = 0;      // triangle-in-tile entries its lists needed
   uint64_t terrainTileEntriesDropped = 0;  // past the lists' capacity (they grow for the next frames)
-  uint64_t terrainDepthEdgeTiles = 0;      // 8 × 8 tiles whose depth went into the attachment per sample
+  // 8 × 8 tiles whose depth went into the attachment per pixel and per sample (where plants or
+  // trees may be drawn: render/terrain_depth_handover.h)
+  uint64_t terrainDepthTiles = 0, terrainDepthEdgeTiles = 0;
   std::optional<VegetationFigures> vegetation;  // when the request had plants
   std::optional<TreeFigures> trees;             // when the request had trees
   std::optional<ColorImage> color;

@@ -28,7 +28,7 @@ struct ReducePush {
   uint32_t srcOffset, srcW, srcH, dstOffset, dstW, dstH;
 };
 struct CullPush {  // shaders/hiz_cull.comp
-  uint32_t count, clusterSize, shadows, width, height, levels, species, pad;
+  uint32_t count, clusterSize, shadows, width, height, levels, species, drawn;
   std::array<float, vegetation::kMaxSpecies> reach;
 };
 static_assert(sizeof(CullPush) == 96 && sizeof(CullPush) <= 128, "push constants: 128 bytes guaranteed");
@@ -199,7 +199,7 @@ void HizPass::recordBuild(VkCommandBuffer cmd) {
 }
 
 void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkBuffer triangles, VkBuffer visible,
-                         uint32_t count, uint32_t clusterSize, bool shadows) {
+                         uint32_t count, uint32_t clusterSize, bool shadows, uint32_t drawn) {
   Slot& s = slots_[size_t(slot)];
   // The slot's previous frame has finished (the renderer waited on its fence): its set is free.
   if (s.boundTriangles != triangles || s.boundVisible != visible) {
@@ -217,15 +217,9 @@ void HizPass::recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet
   const VkDescriptorSet sets[] = {frameSet, s.cullSet};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipelineLayout_.get(), 0, 2, sets, 0, nullptr);
   const VkExtent2D extent = targets_->extent();
-  const CullPush cp{count,
-                    clusterSize,
-                    shadows ? 1u : 0u,
-                    extent.width,
-                    extent.height,
-                    static_cast<uint32_t>(levels_.size()),
-                    speciesCount_,
-                    0u,
-                    reach_};
+  const CullPush cp{count,         clusterSize,   shadows ? 1u : 0u,
+                    extent.width,  extent.height, static_cast<uint32_t>(levels_.size()),
+                    speciesCount_, drawn,         reach_};
   vkCmdPushConstants(cmd, cullPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(cp), &cp);
   // One dispatch holds 65535 × 64 ≈ 4 M triangles: far more than a frame's seed triangles.
   vkCmdDispatch(cmd, std::min(groups(count, kCullGroup), 65535u), 1, 1);

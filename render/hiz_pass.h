@@ -72,9 +72,11 @@ class HizPass {
   void recordBuild(VkCommandBuffer cmd);
 
   // The occlusion test of `count` triangles into `visible` (classify's CullHook), after
-  // recordBuild in the same command buffer; counts land in slot `slot`'s figures.
+  // recordBuild in the same command buffer; counts land in slot `slot`'s figures. Where the
+  // species in `drawn` (bits) may show, it marks the screen for the terrain's depth
+  // (render/terrain_depth_handover.h).
   void recordCull(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, VkBuffer triangles, VkBuffer visible,
-                  uint32_t count, uint32_t clusterSize, bool shadows);
+                  uint32_t count, uint32_t clusterSize, bool shadows, uint32_t drawn);
 
   // Slot `slot`'s counts of its last culled frame, into `f` (after its fence).
   void readFigures(int slot, VegetationFigures& f) const;

@@ -140,11 +140,13 @@ void RenderTargets::beginVisibility(VkCommandBuffer cmd) const {
   beginScope(cmd, idInfo, depthInfo);
 }
 
-void RenderTargets::beginTerrainDepth(VkCommandBuffer cmd) const {
+void RenderTargets::beginTerrainDepth(VkCommandBuffer cmd, std::optional<float> clearDepth) const {
   assert(computeRaster());
   discardInto(cmd, depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStage, kDepthAccess);
   VkRenderingAttachmentInfo depthInfo =
-      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
+      attachment(depthAttachment(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 clearDepth ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE);
+  depthInfo.clearValue.depthStencil = {clearDepth.value_or(0.0f), 0};
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, extent_};
   ri.layerCount = 1;

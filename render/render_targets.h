@@ -6,6 +6,8 @@
 // (render/tonemap_pass.h) turns the resolved HDR colour into the sRGB display target, which is
 // what is copied, presented or read back.
 
+#include <optional>
+
 #include "render/gpu_resources.h"
 
 namespace vegstream::render {
@@ -79,9 +81,10 @@ class RenderTargets {
   // the colour attachment writable by compute (GENERAL). The shade returns the depth to its
   // attachment layout.
   void visibilityToShade(VkCommandBuffer cmd) const;
-  // Opens a scope of the depth attachment alone, its contents discarded (the terrain rasterised in
-  // compute writes every sample: TerrainRasterPass::recordDepthAttachment); the caller ends it.
-  void beginTerrainDepth(VkCommandBuffer cmd) const;
+  // Opens a scope of the depth attachment alone, its contents discarded, or cleared to
+  // `clearDepth` (the terrain rasterised in compute writes where something is depth-tested:
+  // TerrainDepthHandover::record); the caller ends it.
+  void beginTerrainDepth(VkCommandBuffer cmd, std::optional<float> clearDepth = std::nullopt) const;
 
  private:
   // Begins rendering over the whole extent into one colour and one depth attachment.

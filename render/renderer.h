@@ -68,6 +68,9 @@ struct RendererOptions {
   // (render/terrain_geometry_buffers.h); false: every frame copies them all (the images are the
   // same byte for byte; `--terrain-geometry copied`, for comparison).
   bool residentTerrain = true;
+  // With the terrain rasterised in compute: where its depth goes into the depth attachment
+  // (render/terrain_depth_handover.h; `--terrain-depth-tiles`).
+  DepthTiles depthTiles = DepthTiles::Vegetation;
   // Where the per-frame CPU work shares out (the terrain pass's copies; render/terrain_pass.h),
   // with the thread that submits; null: all on that thread. Must outlive the renderer.
   TaskRunner* tasks = nullptr;

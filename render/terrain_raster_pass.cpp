@@ -8,11 +8,7 @@
 
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
-#include "shaders/sky.vert.h"
 #include "shaders/terrain_bin.comp.h"
-#include "shaders/terrain_depth.frag.h"
-#include "shaders/terrain_depth_edge.vert.h"
-#include "shaders/terrain_depth_pixel.frag.h"
 #include "shaders/terrain_bin_scan.comp.h"
 #include "shaders/terrain_raster.comp.h"
 #include "shaders/terrain_raster_ms.comp.h"
@@ -22,8 +18,7 @@ namespace {
 constexpr uint32_t kBinGroup = 64;               // terrain_bin.comp local size
 constexpr VkDeviceSize kTriangleBytes = 64;      // RasterTriangle (terrain_raster.glsl)
 constexpr VkDeviceSize kCounterBytes = 4 * sizeof(uint32_t);
-constexpr VkDeviceSize kEdgeCommandBytes = sizeof(VkDrawIndirectCommand);  // DepthEdgeTiles' head
-constexpr VkDeviceSize kReadbackBytes = kCounterBytes + sizeof(uint32_t);  // + the edge tiles drawn
+constexpr VkDeviceSize kReadbackBytes = kCounterBytes;
 constexpr uint32_t kInitialEntriesPerTile = 32;  // grown when a frame needs more
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
@@ -37,8 +32,8 @@ void computeToCompute(VkCommandBuffer cmd) {
 }  // namespace
 
 TerrainRasterPass::TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const TerrainPass& terrain,
-                                     const RenderTargets& targets)
-    : ctx_(&ctx) {
+                                     const RenderTargets& targets, VkBuffer tileEdges)
+    : ctx_(&ctx), tileEdges_(tileEdges) {
   assert(targets.deferredTerrain() && "the shade stores into the colour target's storage view");
   const VkExtent2D e = targets.extent();
   tilesX_ = (e.width + kTile - 1) / kTile;
@@ -58,15 +53,12 @@ TerrainRasterPass::TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout f
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},   // tile starts
       {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},   // tile lists
       {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // depth out
-      {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // depth edge tiles
+      {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, c, nullptr},  // tile edge flags
   };
   inputsLayout_ = createLayout(ctx, bindings, "terrain raster inputs layout");
-  const VkDescriptorSetLayoutBinding edgeBinding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
-                                                 nullptr};
-  edgeLayout_ = createLayout(ctx, {&edgeBinding, 1}, "terrain depth edge layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlots},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 10 * kSlots + 1}};
-  pool_ = createPool(ctx, sizes, kSlots + 1, "terrain raster pool");
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 10 * kSlots}};
+  pool_ = createPool(ctx, sizes, kSlots, "terrain raster pool");
 
   const uint32_t tiles = tilesX_ * tilesY_;
   tileCounts_ = createBuffer(ctx, VkDeviceSize{tiles} * 4, kStorage, MemoryUse::DeviceLocal, "terrain tile counts");
@@ -78,11 +70,6 @@ TerrainRasterPass::TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout f
                            "terrain raster counters");
   depth_ = createBuffer(ctx, VkDeviceSize{e.width} * e.height * samples_ * sizeof(float), kStorage,
                         MemoryUse::DeviceLocal, "terrain depth samples");
-  edgeTiles_ = createBuffer(ctx, kEdgeCommandBytes + VkDeviceSize{tiles} * 4,
-                            kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                            MemoryUse::DeviceLocal, "terrain depth edge tiles");
-  edgeSet_ = allocateDescriptorSet(ctx, pool_.get(), edgeLayout_.get(), "terrain depth edge tiles");
-  writeStorageBuffer(ctx, edgeSet_, edgeTiles_.get(), 0);
   for (int s = 0; s < kSlots; ++s) {
     const auto i = static_cast<size_t>(s);
     const std::string tag = " (slot " + std::to_string(s) + ")";
@@ -107,22 +94,6 @@ void TerrainRasterPass::createPipelines(VkDescriptorSetLayout frameLayout, const
   raster_ = targets.multisampled()
                 ? createComputePipeline(ctx, layout_.get(), spv_terrain_raster_ms_comp, "terrain raster (MSAA)")
                 : createComputePipeline(ctx, layout_.get(), spv_terrain_raster_comp, "terrain raster");
-  const VkDescriptorSetLayout depthSets[] = {frameLayout, edgeLayout_.get()};
-  depthLayout_ = createPipelineLayout(ctx, depthSets, {}, "terrain depth pipeline layout");
-  // A fragment per pixel over the whole screen, then one per sample over the edge tiles.
-  GraphicsPipelineDesc d;
-  d.name = "terrain depth pipeline (per pixel)";
-  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_sky_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_depth_pixel_frag}};
-  d.cullMode = VK_CULL_MODE_NONE;
-  d.depthCompare = VK_COMPARE_OP_ALWAYS;  // every sample written, the far plane where the sky is
-  d.samples = targets.samples();
-  d.depthFormat = kDepthFormat;
-  d.layout = depthLayout_.get();
-  depthPipeline_ = createGraphicsPipeline(ctx, d);
-  d.name = "terrain depth pipeline (edges, per sample)";
-  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_terrain_depth_edge_vert},
-              {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_depth_frag}};
-  edgePipeline_ = createGraphicsPipeline(ctx, d);
 }
 
 void TerrainRasterPass::ensureCapacity(GpuBuffer& buffer, VkDeviceSize bytes, const char* what,
@@ -162,7 +133,7 @@ void TerrainRasterPass::writeInputs(size_t s, const TerrainGeometry& g, const Re
   writeStorageBuffer(*ctx_, inputs, tileStarts_.get(), 8);
   writeStorageBuffer(*ctx_, inputs, tileLists_.get(), 9);
   writeStorageBuffer(*ctx_, inputs, depth_.get(), 10);
-  writeStorageBuffer(*ctx_, inputs, edgeTiles_.get(), 11);
+  writeStorageBuffer(*ctx_, inputs, tileEdges_, 11);
 }
 
 void TerrainRasterPass::recordBinning(VkCommandBuffer cmd, TerrainComputePush& push, uint64_t triangles) {
@@ -186,7 +157,7 @@ void TerrainRasterPass::recordBinning(VkCommandBuffer cmd, TerrainComputePush& p
 }
 
 void TerrainRasterPass::resetCounts(VkCommandBuffer cmd) const {
-  // The previous frame's compute readers (its raster, Hi-Z build) and its edge tiles' draw before
+  // The previous frame's compute readers (its raster, Hi-Z build, the hand-over's list) before
   // this frame's writes (its fragments' reads of the depth samples are waited for at its end:
   // recordEndOfFrame); then the counts start at zero.
   memoryBarrier(cmd,
@@ -198,8 +169,6 @@ void TerrainRasterPass::resetCounts(VkCommandBuffer cmd) const {
                 VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdFillBuffer(cmd, tileCounts_.get(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, counters_.get(), 0, kCounterBytes, 0);
-  const VkDrawIndirectCommand noEdges{6, 0, 0, 0};  // a quad per edge tile, counted by the raster
-  vkCmdUpdateBuffer(cmd, edgeTiles_.get(), 0, sizeof(noEdges), &noEdges);
   // CLEAR | COPY: the fill counts as a clear (spec) or a copy (some validation layers).
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -237,8 +206,8 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, raster_.get());
   pushNow();
   vkCmdDispatch(cmd, tilesX_, tilesY_, 1);
-  // The depth samples → the Hi-Z build and every fragment drawn over the terrain; the edge tiles →
-  // their draw; the counters → the host (figures).
+  // The depth samples → the Hi-Z build and every fragment drawn over the terrain; the edge flags →
+  // the depth hand-over's list; the counters → the host (figures).
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                     VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
@@ -247,23 +216,7 @@ void TerrainRasterPass::record(VkCommandBuffer cmd, int slot, VkDescriptorSet fr
                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy copy{0, 0, kCounterBytes};
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &copy);
-  const VkBufferCopy edges{offsetof(VkDrawIndirectCommand, instanceCount), kCounterBytes, sizeof(uint32_t)};
-  vkCmdCopyBuffer(cmd, edgeTiles_.get(), readback_[s].get(), 1, &edges);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-}
-
-void TerrainRasterPass::recordDepthAttachment(VkCommandBuffer cmd, VkDescriptorSet frameSet,
-                                              const RenderTargets& targets) const {
-  targets.beginTerrainDepth(cmd);
-  const VkDescriptorSet sets[] = {frameSet, edgeSet_};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthLayout_.get(), 0, 2, sets, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_.get());
-  vkCmdDraw(cmd, 3, 1, 0, 0);
-  if (samples_ > 1) {  // one sample per pixel has no edges within a pixel
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, edgePipeline_.get());
-    vkCmdDrawIndirect(cmd, edgeTiles_.get(), 0, 1, sizeof(VkDrawIndirectCommand));
-  }
-  vkCmdEndRendering(cmd);
 }
 
 void TerrainRasterPass::recordEndOfFrame(VkCommandBuffer cmd) const {
@@ -275,12 +228,12 @@ void TerrainRasterPass::recordEndOfFrame(VkCommandBuffer cmd) const {
 
 TerrainRasterFigures TerrainRasterPass::figures(int slot) const {
   const auto* c = static_cast<const uint32_t*>(readback_[static_cast<size_t>(slot)].mapped);
-  return {c[0], c[1], c[2], c[4]};
+  return {c[0], c[1], c[2]};
 }
 
 uint64_t TerrainRasterPass::gpuBytes() const {
   uint64_t bytes = triangles_.size + tileCounts_.size + tileStarts_.size + tileLists_.size + depth_.size +
-                   counters_.size + edgeTiles_.size;
+                   counters_.size;
   for (const GpuBuffer& b : readback_) bytes += b.size;
   return bytes;
 }

@@ -17,19 +17,15 @@
 // (render/README.md) — more than issue 17's whole terrain budget of 1.0 ms — while compute runs
 // on all 132 SMs.
 //
-// The rest of the frame sees the terrain as if drawn with graphics: recordDepthAttachment writes
-// the depth samples into the depth attachment, so the trees and plants are depth-tested against
-// it by the hardware, hidden fragments rejected before they are shaded. It writes each pixel's
-// sample-0 depth into all its samples (a full-screen triangle, one fragment per pixel,
-// shaders/terrain_depth_pixel.frag), then each sample's own over the 8 × 8 tiles where a pixel's
-// samples differ by more than 5 % of the distance (terrain edges: the raster lists them and
-// counts a draw-indirect command; shaders/terrain_depth_edge.vert, terrain_depth.frag per sample).
-// Graphics fragments run on few units of the H100/H200: writing every sample per sample cost
-// 0.67 ms at 1080p, 4× MSAA, and 2.67 ms at 4K on the H100. (The
-// first version cleared the attachment, 0.59 ms, and every fragment tested itself against the
-// samples in its shader: the trees pass then cost 1.23 / 3.11 ms p50 / p99 on benchmark-30s
-// against 0.82 / 2.53 now, measured side by side.) The Hi-Z build reads the same buffer (HizPass,
-// built with it).
+// The rest of the frame sees the terrain as if drawn with graphics: TerrainDepthHandover
+// (render/terrain_depth_handover.h) writes the depth samples into the depth attachment where the
+// trees and plants may be drawn, so they are depth-tested against it by the hardware, hidden
+// fragments rejected before they are shaded: one depth per pixel, and each sample's own over the
+// 8 × 8 tiles where a pixel's samples differ by more than 5 % of the distance (terrain edges:
+// the raster flags them per tile). (The first version cleared the attachment, and every fragment
+// tested itself against the samples in its shader: the trees pass then cost 1.23 / 3.11 ms p50 /
+// p99 on benchmark-30s against 0.82 / 2.53 with the depth handed over, measured side by side.)
+// The Hi-Z build reads the same buffer (HizPass, built with it).
 //
 // Contract: the device can store into colour targets of the frame's sample count (as the deferred
 // shade); record() runs outside rendering, after TerrainPass::prepare of the same slot. The tile
@@ -53,7 +49,6 @@ struct TerrainRasterFigures {
   uint32_t rasterTriangles = 0;  // after culling and near clipping (a clipped triangle may be two)
   uint32_t tileEntries = 0;      // triangle-in-tile entries the lists needed
   uint32_t tileEntriesDropped = 0;
-  uint32_t depthEdgeTiles = 0;   // 8 × 8 tiles whose depth went into the attachment per sample
 };
 
 class TerrainRasterPass {
@@ -61,8 +56,9 @@ class TerrainRasterPass {
   static constexpr int kSlots = TerrainPass::kSlots;
   static constexpr uint32_t kTile = 8;   // pixels per tile side (terrain_raster.glsl)
 
+  // `tileEdges`: TerrainDepthHandover::tileEdges(), the per-tile edge flags the raster writes.
   TerrainRasterPass(const Context& ctx, VkDescriptorSetLayout frameLayout, const TerrainPass& terrain,
-                    const RenderTargets& targets);
+                    const RenderTargets& targets, VkBuffer tileEdges);
 
   // The terrain's depth per pixel and sample ((y · width + x) · samples + s; reverse-Z, 0: sky),
   // written by record(); readable by fragment and compute stages afterwards.
@@ -78,9 +74,6 @@ class TerrainRasterPass {
   // frame's raster waits for them here, not at its start, where the wait would also hold it
   // behind the graphics work recorded before it.
   void recordEndOfFrame(VkCommandBuffer cmd) const;
-  // After record(): the depth samples into the depth attachment (a full-screen draw per pixel,
-  // then the edge tiles per sample), in a scope of its own (RenderTargets::beginTerrainDepth).
-  void recordDepthAttachment(VkCommandBuffer cmd, VkDescriptorSet frameSet, const RenderTargets& targets) const;
   TerrainRasterFigures figures(int slot) const;
 
   uint64_t gpuBytes() const;
@@ -90,11 +83,11 @@ class TerrainRasterPass {
   // record()'s steps: the tile lists and triangle buffer grown for `triangles`; slot s's inputs
   // set written; the bin, scan and bin-again dispatches that sort the triangles into tiles.
   void growLists(int slot, uint64_t triangles, const RetireBuffer& retire);
-  // The constructor's pipelines: bin, scan and raster (compute), and the depth attachment's.
+  // The constructor's pipelines: bin, scan and raster (compute).
   void createPipelines(VkDescriptorSetLayout frameLayout, const TerrainPass& terrain, const RenderTargets& targets);
   void writeInputs(size_t s, const TerrainGeometry& g, const RenderTargets& targets);
   void recordBinning(VkCommandBuffer cmd, TerrainComputePush& push, uint64_t triangles);
-  // After the previous frame's readers: the tile counts, the counters and the edge tiles' draw at zero.
+  // After the previous frame's readers: the tile counts and the counters at zero.
   void resetCounts(VkCommandBuffer cmd) const;
 
   const Context* ctx_;
@@ -105,11 +98,9 @@ class TerrainRasterPass {
   std::array<VkDescriptorSet, kSlots> inputs_{};
   std::array<GpuBuffer, kSlots> readback_;  // host-readable copies of counters_: TerrainRasterFigures
   GpuBuffer counters_, triangles_, tileCounts_, tileStarts_, tileLists_, depth_;
-  GpuBuffer edgeTiles_;  // a draw-indirect command and the depth edge tiles (terrain_raster.glsl)
-  DescriptorSetLayout edgeLayout_;
-  VkDescriptorSet edgeSet_ = VK_NULL_HANDLE;  // edgeTiles_ for terrain_depth_edge.vert
-  PipelineLayout layout_, depthLayout_;
-  Pipeline bin_, scan_, raster_, depthPipeline_, edgePipeline_;
+  VkBuffer tileEdges_;  // the per-tile edge flags (terrain_raster.glsl), TerrainDepthHandover's
+  PipelineLayout layout_;
+  Pipeline bin_, scan_, raster_;
 };
 
 }  // namespace vegstream::render

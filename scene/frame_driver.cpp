@@ -75,6 +75,7 @@ Result<FrameRecord> FrameDriver::collect(uint64_t index) {
   r.terrainRasterTriangles = result->terrainRasterTriangles;
   r.terrainTileEntries = result->terrainTileEntries;
   r.terrainTileEntriesDropped = result->terrainTileEntriesDropped;
+  r.terrainDepthTiles = result->terrainDepthTiles;
   r.terrainDepthEdgeTiles = result->terrainDepthEdgeTiles;
   r.vegetation = result->vegetation;
   r.trees = result->trees;

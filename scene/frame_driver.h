@@ -62,7 +62,7 @@ struct FrameRecord {
   uint64_t terrainChunksDrawn = 0, terrainChunksUploaded = 0, terrainVerticesUploaded = 0;  // render::FrameResult's
   bool terrainRasterised = false;  // in compute (render::FrameResult::terrainRasterised): the next three exist
   uint64_t terrainRasterTriangles = 0, terrainTileEntries = 0, terrainTileEntriesDropped = 0;
-  uint64_t terrainDepthEdgeTiles = 0;
+  uint64_t terrainDepthTiles = 0, terrainDepthEdgeTiles = 0;
   std::optional<render::VegetationFigures> vegetation;
   std::optional<render::TreeFigures> trees;  // when the frame drew trees
   std::optional<render::ColorImage> color;  // when FrameInput::readbackColor

@@ -72,6 +72,7 @@ void declareComputeRaster(FrameFigures& out) {
       {"terrain_raster_triangles", "triangles", &FrameRecord::terrainRasterTriangles},
       {"terrain_tile_entries", "entries", &FrameRecord::terrainTileEntries},
       {"terrain_tile_entries_dropped", "entries", &FrameRecord::terrainTileEntriesDropped},
+      {"terrain_depth_tiles", "tiles", &FrameRecord::terrainDepthTiles},
       {"terrain_depth_edge_tiles", "tiles", &FrameRecord::terrainDepthEdgeTiles},
   };
   for (const Count& c : counts)

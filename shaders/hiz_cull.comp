@@ -20,6 +20,7 @@ layout(local_size_x = 64) in;
 #include "classify_layout.glsl"
 #include "philox.glsl"
 #include "seeding.glsl"
+#include "depth_tile_marks.glsl"
 
 layout(set = 1, binding = 0, std430) readonly buffer Triangles { SeedTriangle triangles[]; };
 layout(set = 1, binding = 1, std430) writeonly buffer Visible { uint visible[]; };
@@ -36,7 +37,7 @@ layout(push_constant) uniform Push {
   uint width, height;  // pixels of the depth target
   uint levels;         // Hi-Z levels; level l has ceil(width / 2^(l+1)) × ceil(height / 2^(l+1)) texels
   uint species;        // species in the catalog
-  uint pad;
+  uint drawn;          // the species the plant pass draws (bits): only theirs are marked
   float reach[kMaxSpecies];  // m per species; < 0: bare soil (never drawn)
 } pc;
 
@@ -95,32 +96,67 @@ float pixelMargin(float d) {
   return 2.5 * d / focal;
 }
 
-// True when every plant of reach `reach` on t, and its shadow, is certainly hidden.
-bool hidden(SeedTriangle t, float reach) {
+// Where the plants of reach `reach` on t can put anything on screen: box 1 holds the plants
+// themselves, box 2 their planar shadows (`shadow` 1; 0: no shadows are drawn; −1: a degenerate
+// triangle, whose plants' shadows nothing bounds).
+struct PlantBoxes {
+  vec3 lo1, hi1, lo2, hi2;
+  int shadow;
+};
+
+PlantBoxes plantBoxes(SeedTriangle t, float reach) {
+  PlantBoxes b;
   vec3 lo = min(t.v0.xyz, min(t.v1.xyz, t.v2.xyz)), hi = max(t.v0.xyz, max(t.v1.xyz, t.v2.xyz));
   float far = sqrt(max(dot(t.v0.xyz, t.v0.xyz), max(dot(t.v1.xyz, t.v1.xyz), dot(t.v2.xyz, t.v2.xyz))));
   float r = reach + pixelMargin(far + 2.0 * reach);
   // Box 1: the plants (+ 0.05 m float slack).
-  if (!boxHidden(lo - (r + 0.05), hi + (r + 0.05))) return false;
-  if (pc.shadows == 0u) return true;
+  b.lo1 = lo - (r + 0.05);
+  b.hi1 = hi + (r + 0.05);
+  b.shadow = 0;
+  if (pc.shadows == 0u) return b;
   // Box 2: the shadows. Each plant point is root + o with |o_i| ≤ r; its shadow is root + P o
   // + 0.015 n, P = I − l nᵀ / (n·l) the projection along the sunlight onto the triangle's plane
   // (the same for −n), so per axis |(P o)_i| ≤ r · Σ_j |P_ij|: on flat ground P's z row is 0.
   vec3 n = cross(t.v1.xyz - t.v0.xyz, t.v2.xyz - t.v0.xyz);
   float len = length(n);
-  if (len == 0.0) return false;  // degenerate: no plane to reason about
+  if (len == 0.0) {  // degenerate: no plane to reason about
+    b.shadow = -1;
+    return b;
+  }
   n /= len;
   vec3 l = frame.sunDirection.xyz;
   float nl = dot(n, l);
   // plant_geometry.glsl draws shadows only where n·l > 0.05: below 0.04 there are none.
-  if (abs(nl) <= 0.04) return true;
+  if (abs(nl) <= 0.04) return b;
   vec3 q = l / nl, e;
   for (int i = 0; i < 3; ++i) {
     float row = 0.0;
     for (int j = 0; j < 3; ++j) row += abs((i == j ? 1.0 : 0.0) - q[i] * n[j]);
     e[i] = r * row + 0.015 * abs(n[i]) + 0.05;
   }
-  return boxHidden(lo - e, hi + e);
+  b.lo2 = lo - e;
+  b.hi2 = hi + e;
+  b.shadow = 1;
+  return b;
+}
+
+// True when every plant of reach `reach` on t, and its shadow, is certainly hidden.
+bool hidden(SeedTriangle t, float reach) {
+  PlantBoxes b = plantBoxes(t, reach);
+  if (!boxHidden(b.lo1, b.hi1)) return false;
+  return b.shadow == 0 || (b.shadow == 1 && boxHidden(b.lo2, b.hi2));
+}
+
+// Where the plants that may show (`plants`: species bits) are drawn, so the terrain's depth is
+// written there before them (render/terrain_depth_handover.h): the boxes of the largest reach.
+void markPlants(SeedTriangle t, uint plants) {
+  float reach = 0.0;
+  for (uint s = 0u; s < pc.species; ++s)
+    if ((plants & (1u << s)) != 0u) reach = max(reach, pc.reach[s]);
+  PlantBoxes b = plantBoxes(t, reach);
+  markBox(b.lo1, b.hi1);
+  if (b.shadow == 1) markBox(b.lo2, b.hi2);
+  if (b.shadow == -1) markEverything();
 }
 
 void main() {
@@ -152,6 +188,7 @@ void main() {
   }
   if (plants != 0u) {  // some species may show: classify decides per group
     visible[i] = mask;
+    if ((plants & pc.drawn) != 0u) markPlants(t, plants & pc.drawn);
     return;
   }
   visible[i] = 0u;

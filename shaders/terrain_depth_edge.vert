@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The terrain's depth edges into the depth attachment (render/terrain_raster_pass.h): one quad
 // (instance) per 8 × 8-pixel tile the compute raster found a depth edge in (common/terrain_raster.glsl's
-// DepthEdgeTiles, the same buffer, bound here as set 1), whose fragments terrain_depth.frag runs
+// DepthEdges: render/terrain_depth_handover.h), whose fragments terrain_depth.frag runs
 // per sample. Clipped to the viewport where the last tiles reach past it.
 #include "common/frame_uniforms.glsl"
 

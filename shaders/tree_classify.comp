@@ -15,6 +15,7 @@ layout(local_size_x = 256) in;
 #include "common/frame_uniforms.glsl"
 #include "common/simulation_block.glsl"
 #include "common/tree_layout.glsl"
+#include "common/depth_tile_marks.glsl"
 float treeTime() { return sim.clock.y + sim.clock.x * sim.clock.z; }
 
 layout(set = 1, binding = 4, std430) readonly buffer PageCounts { uint pageCounts[]; };
@@ -119,6 +120,10 @@ void main() {
     keep = clamp((horizon - dist) / (horizon * share), 0.0, 1.0);
     if (keep > 0.0) append(t.model, kTreeLodImpostor, i, keep, wind);
   }
+  // Where its fragments may fall, so the terrain's depth is written there before the trees are
+  // drawn (render/terrain_depth_handover.h): the model's sphere with a quarter more, and the
+  // impostor's own (its extent plus a tenth of the height for the sway, tree_impostor.vert).
+  if (keep > 0.0) markSphere(centre, 1.25 * reach + 0.1 * h);
   // The caster's own sphere (its quad turned to the sun, with the sway), not the view's margin.
   if (frame.shadowSplits.w > 0.5 && keep > 0.0) castShadow(t.model, i, keep, wind, centre, reach);
 }

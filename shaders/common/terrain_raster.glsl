@@ -34,15 +34,11 @@ layout(std430, set = 3, binding = 9) buffer TileLists { uint tileList[]; };    /
 // no terrain is (sky). Read by the Hi-Z build and, through set 0, by the pass that writes them
 // into the depth attachment (terrain_depth.frag).
 layout(std430, set = 3, binding = 10) buffer TerrainDepthOut { float terrainDepthOut[]; };
-// The tiles whose pixels' samples differ in depth (an edge of the terrain against the sky or
-// against itself farther away): a vkCmdDrawIndirect command (6 vertices, a quad per tile as an
-// instance; the raster counts the instances) and the tiles' indices. Only these tiles have their
-// depth written per sample (terrain_depth_edge.vert); every other pixel's samples get one depth
-// from one fragment per pixel (terrain_depth.frag), render/terrain_raster_pass.h.
-layout(std430, set = 3, binding = 11) buffer DepthEdgeTiles {
-  uint depthEdgeCommand[4];  // vertex count 6, instance count (edge tiles), first vertex, first instance
-  uint depthEdgeTiles[];
-};
+// Per 8 × 8 tile: 1 where its pixels' samples differ in depth (an edge of the terrain against the
+// sky or against itself farther away), else 0; written by the multisampled raster for every tile.
+// Only these tiles have their depth written per sample (render/terrain_depth_handover.h); every
+// other pixel's samples get one depth from one fragment per pixel (terrain_depth_pixel.frag).
+layout(std430, set = 3, binding = 11) writeonly buffer TileEdges { uint tileEdge[]; };
 // A pixel is an edge when its samples' reverse-Z depths (∝ 1 / distance) differ by more than this
 // share, or some are sky and some not. Elsewhere one depth serves the pixel: off by no more than
 // the terrain's own depth range across that pixel, and less than 5 % of the distance.

@@ -120,7 +120,7 @@ void main() {
 #ifdef VEGSTREAM_MULTISAMPLE
   if (onScreen && depthEdge(best, samples)) sDepthEdge = 1u;  // any writer: the same value
   barrier();
-  if (gl_LocalInvocationIndex == 0u && sDepthEdge != 0u) depthEdgeTiles[atomicAdd(depthEdgeCommand[1], 1u)] = tileIndex;
+  if (gl_LocalInvocationIndex == 0u) tileEdge[tileIndex] = sDepthEdge;
 #endif
   if (!onScreen) return;
   uint base = (uint(px.y) * uint(frame.viewport.x) + uint(px.x)) * uint(samples);
