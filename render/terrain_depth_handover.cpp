@@ -121,7 +121,7 @@ void TerrainDepthHandover::recordList(VkCommandBuffer cmd, int slot, VkDescripto
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, list_.get());
   const uint32_t push[4] = {tilesX_, tilesY_, samples_, everything || mode_ == DepthTiles::All ? 1u : 0u};
   vkCmdPushConstants(cmd, listPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
-  vkCmdDispatch(cmd, (tilesY_ + kListGroup - 1) / kListGroup, 1, 1);
+  vkCmdDispatch(cmd, tilesY_, 1, 1);  // a workgroup per row of tiles
   memoryBarrier(
       cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,

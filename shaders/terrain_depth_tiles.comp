@@ -1,10 +1,11 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The terrain's depth hand-over, its list (render/terrain_depth_handover.h): one thread per row of
-// 8 × 8-pixel tiles. A tile is wanted where a plant or a tree may be drawn (common/depth_tile_marks.glsl's
-// cells, or all of them); the wanted tiles with a depth edge (the raster's flags) go to the edge
-// list, written per sample, the others to runs along the row, written per pixel: a quad per run.
-layout(local_size_x = 64) in;
+// The terrain's depth hand-over, its list (render/terrain_depth_handover.h): a workgroup per row of
+// 8 × 8-pixel tiles, a thread per tile. A tile is wanted where a plant or a tree may be drawn
+// (common/depth_tile_marks.glsl's cells, or all of them); the wanted tiles with a depth edge (the
+// raster's flags) go to the edge list, written per sample, the others to runs along the row,
+// written per pixel: a quad per run, appended by the thread of its first tile.
+layout(local_size_x = 256) in;
 #include "common/frame_uniforms.glsl"
 #include "common/depth_tile_marks.glsl"
 
@@ -31,24 +32,31 @@ bool wanted(uint x, uint y) {
   return markCells[f.y * fine.x + f.x] != 0u || markCells[fine.x * fine.y + c.y * coarse.x + c.x] != 0u;
 }
 
-void closeRun(uint first, uint end, uint y) {
-  if (end <= first) return;
+const uint kRowMost = 1024u;  // tiles of a row in shared memory (8192 pixels); past them, a run per tile
+shared uint sPixel[kRowMost];  // 1: the tile is written per pixel
+
+void appendRun(uint first, uint end, uint y) {
   spans[atomicAdd(spanCommand[1], 1u)] = uvec4(first, end, y, 0u);
   atomicAdd(spanTiles.x, end - first);
 }
 
 void main() {
-  uint y = gl_GlobalInvocationID.x;
-  if (y >= push.tiles.y) return;
-  uint first = 0u;  // the open run's first tile
-  for (uint x = 0u; x < push.tiles.x; ++x) {
+  uint y = gl_WorkGroupID.x;
+  for (uint x = gl_LocalInvocationID.x; x < push.tiles.x; x += gl_WorkGroupSize.x) {
     bool edge = push.tiles.z > 1u && tileEdge[y * push.tiles.x + x] != 0u;
-    bool pixel = wanted(x, y);
-    if (pixel && edge) edgeTiles[atomicAdd(edgeCommand[1], 1u)] = y * push.tiles.x + x;
-    if (!pixel || edge) {
-      closeRun(first, x, y);
-      first = x + 1u;
-    }
+    bool want = wanted(x, y);
+    if (want && edge) edgeTiles[atomicAdd(edgeCommand[1], 1u)] = y * push.tiles.x + x;
+    if (x < kRowMost)
+      sPixel[x] = want && !edge ? 1u : 0u;
+    else if (want && !edge)
+      appendRun(x, x + 1u, y);
   }
-  closeRun(first, push.tiles.x, y);
+  barrier();
+  uint row = min(push.tiles.x, kRowMost);
+  for (uint x = gl_LocalInvocationID.x; x < row; x += gl_WorkGroupSize.x) {
+    if (sPixel[x] == 0u || (x > 0u && sPixel[x - 1u] != 0u)) continue;  // not a run's first tile
+    uint end = x + 1u;
+    while (end < row && sPixel[end] != 0u) ++end;
+    appendRun(x, end, y);
+  }
 }
