@@ -194,7 +194,7 @@ void FramePasses::record(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, c
     slot.timer->endPass(cmd);
   }
   if (plants) recordPlantsCompute(cmd, slot, slotIndex, *plants, retireBuffer);
-  if (depthHandover_) recordDepthHandover(cmd, slot, slotIndex, request);
+  if (depthHandover_) recordDepthHandover(cmd, slot, request);
   if (treeRequest) {  // trees in their own scope, before the plants: they hide much of them
     slot.timer->beginPass(cmd, "trees");
     targets_.beginRendering(cmd, next, /*resolve=*/plants == nullptr, slot.readDepth);
@@ -211,6 +211,7 @@ void FramePasses::record(VkCommandBuffer cmd, FrameSlot& slot, uint64_t index, c
     vkCmdEndRendering(cmd);
   }
   if (terrainRaster_) terrainRaster_->recordEndOfFrame(cmd);
+  if (depthHandover_) depthHandover_->recordFigures(cmd, slotIndex);
   slot.timer->beginPass(cmd, "tonemap");
   tonemap_->record(cmd, slotIndex, toneSettings(request), targets_);
   slot.timer->endPass(cmd);
@@ -320,15 +321,14 @@ void FramePasses::recordPlantsCompute(VkCommandBuffer cmd, FrameSlot& slot, int 
 }
 
 // Before the trees' and the plants' scopes, after everything that marks where they are drawn.
-void FramePasses::recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex,
-                                      const FrameRequest& request) {
+void FramePasses::recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, const FrameRequest& request) {
   // Every tile where nothing marks the plants (the Hi-Z cull marks them: without it, or for
   // markers, nothing does) or where the frame's depth is read back.
   const VegetationRequest* plants = request.vegetation;
   const bool unmarked =
       plants && !plants->triangles.empty() && (!plants->occlusionCulling || plants->style == PlantStyle::Markers);
   slot.timer->beginPass(cmd, "terrain depth");
-  depthHandover_->record(cmd, slotIndex, slot.descriptorSet, targets_, unmarked || slot.readDepth);
+  depthHandover_->record(cmd, slot.descriptorSet, targets_, unmarked || slot.readDepth);
   slot.timer->endPass(cmd);
 }
 

@@ -95,7 +95,7 @@ class FramePasses {
   void recordPlantsDraw(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
                         RenderTargets::Load load);
   // The terrain's depth samples into the depth attachment where plants or trees may be drawn.
-  void recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request);
+  void recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, const FrameRequest& request);
 
   const Context& ctx_;
   VkDescriptorSetLayout frameLayout_;

@@ -6,6 +6,7 @@
 
 #include "render/descriptors.h"
 #include "render/pipeline_builder.h"
+#include "shaders/sky.vert.h"
 #include "shaders/terrain_depth.frag.h"
 #include "shaders/terrain_depth_edge.vert.h"
 #include "shaders/terrain_depth_pixel.frag.h"
@@ -16,9 +17,12 @@ namespace vegstream::render {
 namespace {
 constexpr uint32_t kTile = 8;                          // common/terrain_raster.glsl's kRasterTile
 constexpr uint32_t kMarkFine = 16, kMarkCoarse = 128;  // common/depth_tile_marks.glsl
-constexpr uint32_t kListGroup = 64;                    // terrain_depth_tiles.comp local size
-constexpr VkDeviceSize kSpanHeadBytes = 32;            // DepthSpans: the command, then the tiles the runs hold
-constexpr VkDeviceSize kEdgeHeadBytes = 16;            // DepthEdges: the command
+// DepthSpans: the runs' command, the full screen's, the tiles written per pixel.
+constexpr VkDeviceSize kSpanHeadBytes = 48, kFullCommandAt = 16;
+// The full-screen triangle replaces the runs from this share of the tiles on: on an H100 at 1080p
+// the runs of 95 % of the tiles cost 0.67 ms, the full screen 0.62 (kolob-forest, bench/README.md).
+constexpr uint32_t kFullScreenPercent = 85;
+constexpr VkDeviceSize kEdgeHeadBytes = 16;  // DepthEdges: the command
 constexpr VkDeviceSize kReadbackBytes = 3 * sizeof(uint32_t);
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 constexpr VkBufferUsageFlags kDrawList =
@@ -70,7 +74,7 @@ TerrainDepthHandover::TerrainDepthHandover(const Context& ctx, VkDescriptorSetLa
 
 void TerrainDepthHandover::createPipelines(VkDescriptorSetLayout frameLayout, const RenderTargets& targets) {
   const Context& ctx = *ctx_;
-  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
+  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 32};
   const VkDescriptorSetLayout listSets[] = {frameLayout, listLayout_.get()};
   listPipelineLayout_ = createPipelineLayout(ctx, listSets, {&push, 1}, "terrain depth list pipeline layout");
   list_ = createComputePipeline(ctx, listPipelineLayout_.get(), spv_terrain_depth_tiles_comp, "terrain depth list");
@@ -86,6 +90,9 @@ void TerrainDepthHandover::createPipelines(VkDescriptorSetLayout frameLayout, co
   d.depthFormat = kDepthFormat;
   d.layout = drawPipelineLayout_.get();
   span_ = createGraphicsPipeline(ctx, d);
+  d.name = "terrain depth pipeline (full screen, per pixel)";
+  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_sky_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_depth_pixel_frag}};
+  full_ = createGraphicsPipeline(ctx, d);
   d.name = "terrain depth pipeline (edges, per sample)";
   d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_terrain_depth_edge_vert},
               {VK_SHADER_STAGE_FRAGMENT_BIT, spv_terrain_depth_frag}};
@@ -101,7 +108,7 @@ void TerrainDepthHandover::recordBeginFrame(VkCommandBuffer cmd) const {
       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
       VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   vkCmdFillBuffer(cmd, marks_.get(), 0, VK_WHOLE_SIZE, 0);
-  const uint32_t spanHead[8] = {6, 0, 0, 0, 0, 0, 0, 0};
+  const uint32_t spanHead[12] = {6, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0};  // and no row listed
   vkCmdUpdateBuffer(cmd, spans_.get(), 0, sizeof(spanHead), spanHead);
   const uint32_t edgeHead[4] = {6, 0, 0, 0};
   vkCmdUpdateBuffer(cmd, edges_.get(), 0, sizeof(edgeHead), edgeHead);
@@ -111,7 +118,7 @@ void TerrainDepthHandover::recordBeginFrame(VkCommandBuffer cmd) const {
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
-void TerrainDepthHandover::recordList(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, bool everything) const {
+void TerrainDepthHandover::recordList(VkCommandBuffer cmd, VkDescriptorSet frameSet, bool everything) const {
   // The marks (tree classify, Hi-Z cull) and the raster's edge flags before the list reads them.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -119,24 +126,28 @@ void TerrainDepthHandover::recordList(VkCommandBuffer cmd, int slot, VkDescripto
   const VkDescriptorSet sets[] = {frameSet, listSet_};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, listPipelineLayout_.get(), 0, 2, sets, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, list_.get());
-  const uint32_t push[4] = {tilesX_, tilesY_, samples_, everything || mode_ == DepthTiles::All ? 1u : 0u};
+  const uint32_t push[8] = {
+      tilesX_, tilesY_, samples_, everything || mode_ == DepthTiles::All ? 1u : 0u, kFullScreenPercent, 0u, 0u, 0u};
   vkCmdPushConstants(cmd, listPipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
   vkCmdDispatch(cmd, tilesY_, 1, 1);  // a workgroup per row of tiles
   memoryBarrier(
       cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+void TerrainDepthHandover::recordFigures(VkCommandBuffer cmd, int slot) const {
   const GpuBuffer& figures = readback_[static_cast<size_t>(slot)];
-  const VkBufferCopy runs[] = {{4, 0, 4}, {16, 4, 4}};  // the runs' instance count, the tiles they hold
+  const VkBufferCopy runs[] = {{4, 0, 4}, {32, 4, 4}};  // the runs' instance count, the tiles per pixel
   vkCmdCopyBuffer(cmd, spans_.get(), figures.get(), 2, runs);
   const VkBufferCopy edges{4, 8, 4};
   vkCmdCopyBuffer(cmd, edges_.get(), figures.get(), 1, &edges);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
-void TerrainDepthHandover::record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const RenderTargets& targets,
+void TerrainDepthHandover::record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const RenderTargets& targets,
                                   bool everything) const {
-  recordList(cmd, slot, frameSet, everything);
+  recordList(cmd, frameSet, everything);
   // Checked: the tiles left out at the near plane (reverse-Z 1), where nothing drawn survives.
   targets.beginTerrainDepth(cmd,
                             mode_ == DepthTiles::Checked && !everything ? std::optional<float>(1.0f) : std::nullopt);
@@ -144,6 +155,8 @@ void TerrainDepthHandover::record(VkCommandBuffer cmd, int slot, VkDescriptorSet
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipelineLayout_.get(), 0, 2, sets, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, span_.get());
   vkCmdDrawIndirect(cmd, spans_.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, full_.get());
+  vkCmdDrawIndirect(cmd, spans_.get(), kFullCommandAt, 1, sizeof(VkDrawIndirectCommand));
   if (samples_ > 1) {  // one sample per pixel has no edges within a pixel
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipelineLayout_.get(), 1, 1, &edgeSet_, 0,
                             nullptr);

@@ -17,7 +17,8 @@
 // 8 × 8 tiles (shaders/terrain_depth_tiles.comp) lists the wanted tiles: those with a depth edge
 // (the raster's flags) to be written per sample (terrain_depth_edge.vert, terrain_depth.frag), the
 // others as runs along the row, a quad per run written per pixel (terrain_depth_span.vert,
-// terrain_depth_pixel.frag). Every tile is wanted where nothing marks the plants (no occlusion
+// terrain_depth_pixel.frag) — or, where the wanted tiles are 85 % of the screen or more, one
+// full-screen triangle per pixel, which costs less than the runs of it. Every tile is wanted where nothing marks the plants (no occlusion
 // culling, markers) or when the frame's depth is read back.
 //
 // Contract: recordBeginFrame before the tree classify; record after the raster, the Hi-Z cull
@@ -54,14 +55,16 @@ class TerrainDepthHandover {
 
   void recordBeginFrame(VkCommandBuffer cmd) const;
   // `everything`: every tile wanted, whatever the marks.
-  void record(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, const RenderTargets& targets,
-              bool everything) const;
+  void record(VkCommandBuffer cmd, VkDescriptorSet frameSet, const RenderTargets& targets, bool everything) const;
+  // At the frame's end (after record): the counts into slot `slot`'s figures, off the frame's
+  // critical path.
+  void recordFigures(VkCommandBuffer cmd, int slot) const;
   DepthHandoverFigures figures(int slot) const;
   uint64_t gpuBytes() const;
 
  private:
   void createPipelines(VkDescriptorSetLayout frameLayout, const RenderTargets& targets);
-  void recordList(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, bool everything) const;
+  void recordList(VkCommandBuffer cmd, VkDescriptorSet frameSet, bool everything) const;
 
   const Context* ctx_;
   DepthTiles mode_;
@@ -72,7 +75,7 @@ class TerrainDepthHandover {
   DescriptorPool pool_;
   VkDescriptorSet listSet_ = VK_NULL_HANDLE, spanSet_ = VK_NULL_HANDLE, edgeSet_ = VK_NULL_HANDLE;
   PipelineLayout listPipelineLayout_, drawPipelineLayout_;
-  Pipeline list_, span_, edge_;
+  Pipeline list_, span_, full_, edge_;
 };
 
 }  // namespace vegstream::render

@@ -8,6 +8,7 @@
 
 layout(std430, set = 1, binding = 0) readonly buffer DepthSpans {
   uint spanCommand[4];
+  uint fullCommand[4];
   uvec4 spanTiles;
   uvec4 spans[];  // first tile, one past the last, row
 };

@@ -4,7 +4,9 @@
 // 8 × 8-pixel tiles, a thread per tile. A tile is wanted where a plant or a tree may be drawn
 // (common/depth_tile_marks.glsl's cells, or all of them); the wanted tiles with a depth edge (the
 // raster's flags) go to the edge list, written per sample, the others to runs along the row,
-// written per pixel: a quad per run, appended by the thread of its first tile.
+// written per pixel: a quad per run, appended by the thread of its first tile. The last row to
+// finish decides: where the wanted tiles are nearly all of them, one full-screen triangle replaces
+// the runs, as it costs less than the runs of the whole screen (render/terrain_depth_handover.h).
 layout(local_size_x = 256) in;
 #include "common/frame_uniforms.glsl"
 #include "common/depth_tile_marks.glsl"
@@ -12,7 +14,8 @@ layout(local_size_x = 256) in;
 layout(std430, set = 1, binding = 0) readonly buffer TileEdges { uint tileEdge[]; };  // per tile: 1 at a depth edge
 layout(std430, set = 1, binding = 1) buffer DepthSpans {
   uint spanCommand[4];  // VkDrawIndirectCommand: 6 vertices, a run per instance
-  uvec4 spanTiles;      // x: the tiles the runs hold
+  uint fullCommand[4];  // VkDrawIndirectCommand: a full-screen triangle, instance count 0 or 1
+  uvec4 spanTiles;      // x: the tiles written per pixel; y: the rows listed so far
   uvec4 spans[];        // first tile, one past the last, row
 };
 layout(std430, set = 1, binding = 2) buffer DepthEdges {
@@ -21,6 +24,7 @@ layout(std430, set = 1, binding = 2) buffer DepthEdges {
 };
 layout(push_constant) uniform Push {
   uvec4 tiles;  // x, y: tiles across and down; z: samples per pixel; w: 1 = every tile wanted
+  uvec4 full;   // x: the share of the tiles (%) from which one full-screen triangle replaces the runs
 } push;
 
 const uint kTile = 8u;  // common/terrain_raster.glsl's kRasterTile
@@ -39,6 +43,19 @@ void appendRun(uint first, uint end, uint y) {
   spans[atomicAdd(spanCommand[1], 1u)] = uvec4(first, end, y, 0u);
   atomicAdd(spanTiles.x, end - first);
 }
+
+// The last row listed: one full-screen triangle (per pixel, the edge tiles per sample after it)
+// when the runs and edges hold at least push.full.x % of the tiles. Atomics read what the other
+// workgroups added.
+void chooseFull() {
+  uint total = push.tiles.x * push.tiles.y, edges = atomicAdd(edgeCommand[1], 0u);
+  if ((atomicAdd(spanTiles.x, 0u) + edges) * 100u < total * push.full.x) return;
+  spanCommand[1] = 0u;
+  fullCommand[1] = 1u;
+  spanTiles.x = total - edges;
+}
+
+shared bool sLast;
 
 void main() {
   uint y = gl_WorkGroupID.x;
@@ -59,4 +76,9 @@ void main() {
     while (end < row && sPixel[end] != 0u) ++end;
     appendRun(x, end, y);
   }
+  memoryBarrierBuffer();
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) sLast = atomicAdd(spanTiles.y, 1u) == push.tiles.y - 1u;
+  barrier();
+  if (sLast && gl_LocalInvocationIndex == 0u) chooseFull();
 }

@@ -19,6 +19,7 @@
 
 #include "plant_field.h"
 #include "render/descriptors.h"
+#include "render/frame_slot.h"
 #include "render/gpu_resources.h"
 #include "render/hiz_pass.h"
 #include "render/render_targets.h"
@@ -69,8 +70,7 @@ TEST_F(HizCullTest, PyramidKeepsTheFarthestDepthOfExactlyTheCoveredPixelsAtEvery
   for (const VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_4_BIT}) {
     SCOPED_TRACE("samples " + std::to_string(samples));
     RenderTargets targets(ctx, extent, samples);
-    DescriptorSetLayout frameLayout = createSingleBindingLayout(ctx, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                                                VK_SHADER_STAGE_COMPUTE_BIT, "test frame layout");
+    DescriptorSetLayout frameLayout = createFrameSetLayout(ctx);  // the cull marks through its binding 10
     HizPass hiz(ctx, frameLayout.get(), targets);
     const std::vector<HizLevel>& levels = hiz.levels();
     ASSERT_EQ(levels.size(), 6u);  // 19×12, 10×6, 5×3, 3×2, 2×1, 1×1
