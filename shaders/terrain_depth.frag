@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The terrain rasterised in compute (render/terrain_raster_pass.h) into the depth attachment,
 // per sample (gl_SampleID): each sample's depth from the raster's buffer, over the tiles that hold
-// a depth edge (terrain_depth_edge.vert), after terrain_depth_pixel.frag wrote one depth per pixel.
+// a depth edge where plants or trees may be drawn (terrain_depth_edge.vert, render/terrain_depth_handover.h).
 #include "common/frame_uniforms.glsl"
 
 layout(location = 0) in vec2 inNdc;  // terrain_depth_edge.vert's, unused
