@@ -264,8 +264,7 @@ RenderTargets::Load FramePasses::recordTerrain(VkCommandBuffer cmd, FrameSlot& s
                            });
     slot.timer->endPass(cmd);
     return RenderTargets::Load::Shaded;  // its depth goes into the attachment later: recordDepthHandover
-
-  } else if (terrainShade_) {  // deferred: triangle ids, then every pixel shaded in compute (sky included)
+  } else if (terrainShade_) {            // deferred: triangle ids, then every pixel shaded in compute (sky included)
     slot.timer->beginPass(cmd, "terrain");
     targets_.beginVisibility(cmd);
     terrainPass_->recordVisibility(cmd, slotIndex, slot.descriptorSet);
@@ -293,7 +292,7 @@ RenderTargets::Load FramePasses::recordTerrain(VkCommandBuffer cmd, FrameSlot& s
 // where the plants that may show are drawn), the compute blade expansion.
 void FramePasses::recordPlantsCompute(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex,
                                       const VegetationRequest& plants, const ClassifyPass::RetireBuffer& retire) {
-  const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify_) : 0u;
+  const uint32_t patchMask = drawnSpecies(plants);
   slot.timer->beginPass(cmd, "classify");
   classify_->setFades(plants.draw.fades);
   ClassifyPass::CullHook cull;
@@ -335,7 +334,7 @@ void FramePasses::recordDepthHandover(VkCommandBuffer cmd, FrameSlot& slot, cons
 // The plants' scope: loads the terrain's (and the trees') colour and depth and resolves.
 void FramePasses::recordPlantsDraw(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const VegetationRequest& plants,
                                    RenderTargets::Load load) {
-  const uint32_t patchMask = plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify_) : 0u;
+  const uint32_t patchMask = drawnSpecies(plants);
   targets_.beginRendering(cmd, load, /*resolve=*/true, slot.readDepth);
   if (plants.style != PlantStyle::Hidden) {
     slot.timer->beginPass(cmd, "plants");
@@ -350,6 +349,10 @@ void FramePasses::recordPlantsDraw(VkCommandBuffer cmd, FrameSlot& slot, int slo
     slot.timer->endPass(cmd);
   }
   vkCmdEndRendering(cmd);
+}
+
+uint32_t FramePasses::drawnSpecies(const VegetationRequest& plants) const {
+  return plants.style == PlantStyle::Plants ? PlantPass::patchMask(*classify_) : 0u;
 }
 
 BladePath FramePasses::pathFor(const PlantDrawOptions& draw) const {

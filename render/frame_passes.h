@@ -83,6 +83,8 @@ class FramePasses {
  private:
   // The path a frame's plants take: the speed-of-light pipeline is a tessellation pipeline.
   BladePath pathFor(const PlantDrawOptions& draw) const;
+  // The species the plant pipelines draw this frame (bits; 0 for markers or hidden plants).
+  uint32_t drawnSpecies(const VegetationRequest& plants) const;
   void recordTreeClassify(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex, const FrameRequest& request,
                           const TreeRequest& treeRequest, const ClassifyPass::RetireBuffer& retire);
   void recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex);
