@@ -245,7 +245,7 @@ void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuI
 }
 
 VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image,
-                                    VkPipelineStageFlags2 readers) {
+                                    VkPipelineStageFlags2 readers, uint32_t texelBytes) {
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, image.mipLevels, 0, image.layers};
   transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -259,7 +259,7 @@ VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& stagin
       region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, layer, 1};
       region.imageExtent = {w, h, 1};
       regions.push_back(region);
-      offset += VkDeviceSize{w} * h * 4;
+      offset += VkDeviceSize{w} * h * texelBytes;
     }
   vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          static_cast<uint32_t>(regions.size()), regions.data());
