@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -192,6 +193,17 @@ void pipelineBarrier(VkCommandBuffer cmd, const VkMemoryBarrier2* memory, const 
   dep.pImageMemoryBarriers = image;
   vkCmdPipelineBarrier2(cmd, &dep);
 }
+
+// The bytes of one texel of the uncompressed colour formats uploaded whole (recordImageArrayUpload).
+VkDeviceSize texelBytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8_UNORM: return 1;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB: return 4;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw std::logic_error("recordImageArrayUpload: no texel size for this format");
+  }
+}
 }  // namespace
 
 void transitionImageRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
@@ -245,7 +257,7 @@ void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuI
 }
 
 VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image,
-                                    VkPipelineStageFlags2 readers, uint32_t texelBytes) {
+                                    VkPipelineStageFlags2 readers) {
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, image.mipLevels, 0, image.layers};
   transitionImageRange(cmd, image.get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -259,7 +271,7 @@ VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& stagin
       region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, layer, 1};
       region.imageExtent = {w, h, 1};
       regions.push_back(region);
-      offset += VkDeviceSize{w} * h * texelBytes;
+      offset += VkDeviceSize{w} * h * texelBytes(image.format);
     }
   vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          static_cast<uint32_t>(regions.size()), regions.data());

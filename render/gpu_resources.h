@@ -116,11 +116,10 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
 void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer = 0,
                        VkDeviceSize stagingOffset = 0);
 
-// Records the copy of every layer and mip level of a `texelBytes`-per-texel `image` from a
+// Records the copy of every layer and mip level of `image` (R8, RGBA8 or RGBA32F texels) from a
 // tightly packed staging buffer holding layer 0 (mip 0, mip 1, …), then layer 1, …, leaving the
 // whole image in SHADER_READ_ONLY_OPTIMAL for `readers`. Returns the bytes consumed.
 VkDeviceSize recordImageArrayUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image,
-                                    VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                    uint32_t texelBytes = 4);
+                                    VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
 
 }  // namespace vegstream::render

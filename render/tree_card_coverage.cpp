@@ -6,20 +6,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "simulation/shared/glsl_compat.h"
-
 namespace vegstream::render {
-namespace card_shape {
-using namespace vegstream::simulation::shader;
-#include "shaders/common/tree_card_shape.glsl"
-}  // namespace card_shape
-
 namespace {
-
-// The needle row coordinate's change across the card's uv square: kNeedleRows along v and
-// 2 × 2.2 across u (tree_card_shape.glsl's lean): its change across one texel of a level is the
-// footprint the fragment stage measured with fwidth.
-const float kRowsAcrossCard = card_shape::kNeedleRows + 4.4f;
 
 // A size² level: the mean of n × n points spread evenly over each texel.
 std::vector<float> pointLevel(uint32_t layer, uint32_t size, uint32_t n, float detail) {
@@ -68,7 +56,8 @@ float treeCardOutline(uint32_t layer, float u, float v, float detail) {
 
 float treeCardLevelDetail(uint32_t level) {
   const auto texelsPerPixel = static_cast<float>(1u << kTreeCardFinerLevels);
-  return card_shape::needleDetail(kRowsAcrossCard * texelsPerPixel / static_cast<float>(kTreeCardSize >> level));
+  const float texel = 1.0f / static_cast<float>(kTreeCardSize >> level);  // a level-`level` texel's side in uv
+  return card_shape::needleDetail(card_shape::needleRowsAcross(texel, texel) * texelsPerPixel);
 }
 
 std::vector<std::vector<float>> bakeTreeCardLayer(uint32_t layer) {
@@ -95,7 +84,7 @@ TreeCardCoverage::TreeCardCoverage(const Context& ctx) {
                                    "tree card coverage staging");
   std::memcpy(staging.mapped, bytes.data(), bytes.size());
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    const VkDeviceSize used = recordImageArrayUpload(cmd, staging, image_, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 1);
+    const VkDeviceSize used = recordImageArrayUpload(cmd, staging, image_);
     assert(used == bytes.size());
     (void)used;
   });

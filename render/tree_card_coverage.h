@@ -20,16 +20,33 @@
 #include "render/context.h"
 #include "render/descriptors.h"
 #include "render/gpu_resources.h"
+#include "simulation/shared/glsl_compat.h"
 
 namespace vegstream::render {
 
-inline constexpr uint32_t kTreeCardSize = 256;
+// glsl_compat.h defines VS_INLINE once; simulation/shared_code.h undefines it after its use.
+#ifndef VS_INLINE
+#define VS_INLINE inline
+#define VEGSTREAM_TREE_CARD_DEFINED_VS
+#endif
+namespace card_shape {  // the shared GLSL, as C++
+using namespace vegstream::simulation::shader;
+#include "shaders/common/tree_card_shape.glsl"
+}  // namespace card_shape
+#ifdef VEGSTREAM_TREE_CARD_DEFINED_VS
+#undef VS_INLINE
+#undef VEGSTREAM_TREE_CARD_DEFINED_VS
+#endif
+
+// kTreeCardSize (level 0's side) and kTreeCardFinerLevels come from the shared file: a conifer
+// card is read that many levels finer than the pixel's footprint (tree_coverage.glsl
+// treeCardCoverage), so level L serves a footprint of 2^kTreeCardFinerLevels of its texels and its
+// needles fade as the fragment stage faded them there.
+using card_shape::kTreeCardFinerLevels;
+using card_shape::kTreeCardSize;
 inline constexpr uint32_t kTreeCardLevels = 7;  // 256 … 4 texels a side
 inline constexpr uint32_t kTreeCardLayers = 2;  // 0 conifer, 1 broadleaf
-// A conifer card is read kTreeCardFinerLevels levels finer than the pixel's footprint (a texel a
-// quarter of the pixel: tree_coverage.glsl treeCardCoverage), so level L serves a footprint of
-// 2^kTreeCardFinerLevels of its texels and its needles fade as the fragment stage faded them there.
-inline constexpr uint32_t kTreeCardFinerLevels = 2;
+static_assert((kTreeCardSize >> (kTreeCardLevels - 1)) >= 1);
 
 // One layer's mip levels, coverage 0 … 1 (level L: (kTreeCardSize >> L)² values, row-major, v
 // along the rows: texel (x, y) covers uv [x, x + 1] × [y, y + 1] / size).

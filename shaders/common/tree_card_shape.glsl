@@ -12,6 +12,11 @@
 // a pixel: the card seen from afar), so a distant crown keeps the coverage it has up close. A
 // broadleaf card is a clump of three leaves.
 
+// The coverage texture's level 0 (texels a side), and how many levels finer than the pixel's
+// footprint tree.frag reads a conifer card (a texel a quarter of the pixel: tree_coverage.glsl).
+const uint kTreeCardSize = 256u;
+const uint kTreeCardFinerLevels = 2u;
+
 const float kNeedleRows = 11.0f;
 // The needles' mean where they give way (above their own share, about 0.55: sharpened, a distant
 // card reads whole).
@@ -28,6 +33,12 @@ VS_INLINE float needleHash(float row, float side) {
   return float(x >> 8u) * (1.0f / 16777216.0f);
 }
 
+// How far the rows lean towards the tip: rows per unit of the distance from the card's middle.
+const float kNeedleLean = 2.2f;
+// What a footprint of du × dv in uv spans of the needle rows' coordinate (v · kNeedleRows −
+// across · kNeedleLean, across = 2 |u − ½|): its fwidth, the footprint the needles fade by.
+VS_INLINE float needleRowsAcross(float du, float dv) { return kNeedleRows * dv + 2.0f * kNeedleLean * du; }
+
 // The needles' detail for a footprint of `rowsPerPixel` needle rows (the row coordinate's change
 // across one pixel, or one texel of a mip level): 1 up to a third of a row, 0 from 0.9 rows.
 VS_INLINE float needleDetail(float rowsPerPixel) { return 1.0f - smoothstep(0.35f, 0.9f, rowsPerPixel); }
@@ -39,7 +50,7 @@ VS_INLINE float coniferNeedlesAt(vec2 uv, float detail) {
   float width = 1.0f - 0.4f * uv.y;
   float inside = clamp((width - across) * 6.0f, 0.0f, 1.0f) * smoothstep(0.0f, 0.08f, uv.y);
   float twig = 1.0f - smoothstep(0.04f, 0.08f, across);
-  float v = uv.y * kNeedleRows - across * 2.2f;  // rows lean towards the tip
+  float v = uv.y * kNeedleRows - across * kNeedleLean;  // rows lean towards the tip
   float row = floor(v);
   float h = needleHash(row, side);
   float g = needleHash(row + 17.0f, side);

@@ -25,19 +25,17 @@ layout(set = 1, binding = 10) uniform sampler2DArray treeCards;
 
 // A card's coverage, 0 … 1, at its uv. `form` (the model's: 0 conifer, 1 broadleaf) is uniform
 // over the draw. A conifer's level follows what the pixel spans of the needle rows' coordinate
-// (v = 11 uv.y − 4.4 |uv.x − ½|, tree_card_shape.glsl), the footprint the fragment stage faded the
+// (tree_card_shape.glsl needleRowsAcross), the footprint the fragment stage faded the
 // needles by, not the sampler's largest one (a card seen edge on across its width keeps its
 // needles), and is kTreeCardFinerLevels finer than that footprint: a texel a quarter of the
 // pixel, close to the point the outline was evaluated at, so the gaps between needles stay open
 // until the needles fade, as they did (a level as coarse as the pixel fills them: its mean, about
 // 0.7, sharpens to a solid slab). Call in uniform control flow (derivatives).
-const float kTreeCardTexels = 256.0;     // render/tree_card_coverage.h kTreeCardSize
-const float kTreeCardFinerLevels = 2.0;  // render/tree_card_coverage.h kTreeCardFinerLevels
 float treeCardCoverage(vec2 uv, float form) {
   vec2 fw = fwidth(uv);
   if (form >= 0.5) return texture(treeCards, vec3(uv, 1.0)).r;
-  float rowsPerPixel = kNeedleRows * fw.y + 4.4 * fw.x;
-  float level = log2(max(rowsPerPixel * kTreeCardTexels / (kNeedleRows + 4.4), 1e-6)) - kTreeCardFinerLevels;
+  float rowsPerTexel = needleRowsAcross(1.0, 1.0) / float(kTreeCardSize);  // at level 0
+  float level = log2(max(needleRowsAcross(fw.x, fw.y) / rowsPerTexel, 1e-6)) - float(kTreeCardFinerLevels);
   return textureLod(treeCards, vec3(uv, 0.0), level).r;
 }
 
