@@ -160,7 +160,6 @@ void TreePass::writeSlotSet(size_t s) {
   writeStorageBuffer(*ctx_, set, meshDraws_.get(), 5);
   writeStorageBuffer(*ctx_, set, impostorDraws_.get(), 6);
   writeStorageBuffer(*ctx_, set, counters_.get(), 7);
-  writeSampledImage(*ctx_, set, cards_.sampler(), cards_.view(), 10);
 }
 
 // The impostors, captured with the model pipeline in capture mode (2 attachments, 1 sample);

@@ -43,17 +43,17 @@ void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
 }  // namespace
 
 TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
-    : ctx_(&ctx), samples_(samples), cards_(ctx) {
+    : ctx_(&ctx), samples_(samples) {
   const VkShaderStageFlags all =
       VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr}};
   for (uint32_t b = 1; b <= 7; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr});
-  for (uint32_t b = 8; b <= 10; ++b)  // the impostor atlases, the cards' coverage
+  for (uint32_t b = 8; b <= 9; ++b)
     bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   setLayout_ = createLayout(ctx, bindings, "tree set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
-                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * kSlots}};
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kSlots}};
   pool_ = createPool(ctx, sizes, kSlots, "tree pool");
   allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "tree set");
   sampler_ = createTrilinearClampSampler(ctx, kImpostorMipLevels, "tree impostor sampler");
@@ -111,8 +111,8 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
 }
 
 uint64_t TreePass::gpuBytes() const {
-  uint64_t bytes = cards_.gpuBytes() + vertices_.size + indices_.size + branches_.size + instances_.size +
-                   visible_.size + meshDraws_.size + impostorDraws_.size + drawTemplate_.size + counters_.size;
+  uint64_t bytes = vertices_.size + indices_.size + branches_.size + instances_.size + visible_.size + meshDraws_.size +
+                   impostorDraws_.size + drawTemplate_.size + counters_.size;
   for (const auto& b : pageCounts_) bytes += b.size;
   for (const auto& b : staging_) bytes += b.size;
   if (impostors_) bytes += impostors_->gpuBytes();

@@ -23,7 +23,6 @@
 #include "render/context.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
-#include "render/tree_card_coverage.h"
 #include "render/tree_layout.h"
 
 namespace vegstream::render {
@@ -105,7 +104,6 @@ class TreePass {
   PipelineLayout classifyLayout_, drawLayout_;
   Pipeline classifyPipeline_, sortPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowImpostorPipeline_;
   Sampler sampler_;
-  TreeCardCoverage cards_;  // the cards' outlines (set 1 binding 10)
 
   std::vector<ModelDraw> models_;
   GpuBuffer vertices_, indices_, branches_;

@@ -1,12 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Tree models' fragments (issue 20): bark and leaf or needle cards (their outline read from the
-// cards' coverage texture, common/tree_coverage.glsl), the level-of-detail cross-fade as a dither
-// (common/tree_layout.glsl), alpha to coverage (sharpened) into the sample mask, and the lighting
-// of common/tree_shading.glsl. Capture modes write what the impostors keep (mode 2): albedo
-// (darkened by the crown's occlusion) and coverage, and the model-space normal and depth. The
-// capture draws the crown's core too (kind 2: opaque, shaded as tree_core.frag, which draws it in
-// colour).
+// Tree models' fragments (issue 20): bark and leaf or needle cards (their outline procedural, in
+// the card's uv), the level-of-detail cross-fade as a dither (common/tree_layout.glsl), alpha to
+// coverage (sharpened) into the sample mask, and the lighting of common/tree_shading.glsl. Capture modes write
+// what the impostors keep (mode 2): albedo (darkened by the crown's occlusion) and coverage, and the
+// model-space normal and depth. The capture draws the crown's core too (kind 2: opaque, shaded
+// as tree_core.frag, which draws it in colour).
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
@@ -35,8 +34,7 @@ void main() {
   gl_SampleMask[0] = -1;
   TreeModelGpu m = trees.models[push.model];
   bool leaf = vKind == 1u;
-  float card = treeCardCoverage(vUv, m.bark.w);  // sampled for bark too: uniform control flow
-  float alpha = treeSharpCoverage(leaf ? card : 1.0, 0.5);
+  float alpha = treeSharpCoverage(leaf ? treeCardShape(vUv, m.bark.w, push.mode == 1u ? 0.0 : 1.0) : 1.0, 0.5);
   if (push.mode >= 2u) {  // impostor capture (4 samples, averaged): the card's alpha as coverage, unlit
     if (any(greaterThan(abs(vCell), vec2(1.0)))) discard;  // outside this view's cell
     uint mask = treeSampleMask(alpha, push.samples, 0.5);

@@ -97,8 +97,8 @@ void addTube(TreeMesh& mesh, const Skeleton& k, uint32_t index, const TreeParams
   }
 }
 
-// A conifer's needle spray narrows to 0.6 of its width at the tip (shaders/common/tree_card_shape.glsl
-// coniferNeedlesAt: width 1 − 0.4 v), and nothing covers the card outside that: its card is that
+// A conifer's needle spray narrows to 0.6 of its width at the tip (shaders/common/tree_shading.glsl
+// treeCardShape: width 1 − 0.4 v), and nothing covers the card outside that: its card is that
 // trapezoid rather than the whole quad, with each corner's uv where it lies, so the picture is the
 // same and a fifth of the card's fragments — launched, then dropped by their coverage — are never
 // made. On the H200 the trees' cards are bound by how many fragments are launched.

@@ -12,31 +12,56 @@ float treeSharpCoverage(float alpha, float edge) {
   return mix(clamp((alpha - edge) / max(footprint, 1e-4) + 0.5, 0.0, 1.0), alpha, smoothstep(0.3, 1.0, footprint));
 }
 
-// The cards' outlines (common/tree_card_shape.glsl), baked into a coverage texture at start-up
-// (render/tree_card_coverage.h): layer 0 a conifer's needles, layer 1 a broadleaf's clump, each
-// mip level the box-filtered coverage of the texels it covers, the needles giving way to their
-// mean where a level's texel spans a third of a needle row or more (needleDetail) — the fade the
-// fragment stage used to compute from fwidth of the row coordinate, now chosen by the sampler's
-// level. One filtered read instead of two integer hashes and six smoothsteps a fragment: the H200
-// runs the trees' fragments on a few of its units (tree_shading.glsl).
-#include "simulation/shared/shared_code_macros.glsl"
-#include "tree_card_shape.glsl"
-layout(set = 1, binding = 10) uniform sampler2DArray treeCards;
-
-// A card's coverage, 0 … 1, at its uv. `form` (the model's: 0 conifer, 1 broadleaf) is uniform
-// over the draw. A conifer's level follows what the pixel spans of the needle rows' coordinate
-// (tree_card_shape.glsl needleRowsAcross), the footprint the fragment stage faded the
-// needles by, not the sampler's largest one (a card seen edge on across its width keeps its
-// needles), and is kTreeCardFinerLevels finer than that footprint: a texel a quarter of the
-// pixel, close to the point the outline was evaluated at, so the gaps between needles stay open
-// until the needles fade, as they did (a level as coarse as the pixel fills them: its mean, about
-// 0.7, sharpens to a solid slab). Call in uniform control flow (derivatives).
-float treeCardCoverage(vec2 uv, float form) {
-  vec2 fw = fwidth(uv);
-  if (form >= 0.5) return texture(treeCards, vec3(uv, 1.0)).r;
-  float rowsPerTexel = needleRowsAcross(1.0, 1.0) / float(kTreeCardSize);  // at level 0
-  float level = log2(max(needleRowsAcross(fw.x, fw.y) / rowsPerTexel, 1e-6)) - float(kTreeCardFinerLevels);
-  return textureLod(treeCards, vec3(uv, 0.0), level).r;
+// A conifer card's needles (issue 41 item 5): a twig along the card's middle and on each side one
+// needle per row, leaning towards the tip, every needle with its own phase, lean and length (a
+// hash of its row and side): no two rows repeat, so a card reads as a spray rather than as the
+// regular chevrons of a sine. Where a row is finer than about a pixel (fwidth of the row
+// coordinate: the card seen from afar, its mip level as it were) the needles give way to their
+// mean coverage, so a distant crown keeps the coverage it has up close; `fine` 0 takes the mean
+// everywhere (the shadow maps: a needle's shadow is finer than their texels, and a lone tree's
+// shadow must stay one piece). Call in uniform control flow (fwidth).
+const float kNeedleRows = 11.0;
+// A needle's own numbers, 0 … 1: lowbias32 (Wellons) of its row and side, integer work only (a
+// sine hash costs the fragment stage's special-function units, its scarcest).
+float needleHash(float row, float side) {
+  uint x = uint(int(row) * 2 + int(side)) + 0x9e3779b9u;
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x >> 8) * (1.0 / 16777216.0);
 }
+float coniferNeedles(vec2 uv, float fine) {
+  float across = abs(uv.x - 0.5) * 2.0;
+  float side = uv.x < 0.5 ? 0.0 : 1.0;
+  float width = 1.0 - 0.4 * uv.y;  // the card itself is this trapezoid (vegetation/tree_model.cpp kConiferTipWidth)
+  float inside = clamp((width - across) * 6.0, 0.0, 1.0) * smoothstep(0.0, 0.08, uv.y);
+  float twig = 1.0 - smoothstep(0.04, 0.08, across);
+  float v = uv.y * kNeedleRows - across * 2.2;  // rows lean towards the tip
+  float row = floor(v);
+  float h = needleHash(row, side), g = needleHash(row + 17.0, side);
+  float f = v - row - 0.5 + 0.25 * (h - 0.5) - 0.35 * (g - 0.5) * across;  // phase and lean of this needle
+  float len = mix(0.55, 1.0, g) * width;
+  float needle = (1.0 - smoothstep(0.26, 0.4, abs(f))) * (1.0 - smoothstep(len - 0.1, len, across));
+  float detail = fine * (1.0 - smoothstep(0.35, 0.9, fwidth(v)));
+  float mean = 0.8;  // above the needles' own share (~0.55): sharpened, a distant card (and a shadow) reads whole
+  return inside * max(twig, mix(mean, needle, detail));
+}
+
+// A card's coverage, 0 … 1, in its uv (u across, v from the stem to the tip). Conifer: a spray of
+// needles, narrowing to the tip; broadleaf: a clump of three leaves. `fine`: coniferNeedles'.
+// Call in uniform control flow, with `form` uniform over the draw (the model's): the branch on it
+// keeps coniferNeedles' fwidth in uniform control flow, and a broadleaf's fragments skip it.
+float treeCardShape(vec2 uv, float form, float fine) {
+  if (form < 0.5) return coniferNeedles(uv, fine);
+  float a = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    float ang = 1.0 + 2.0944 * float(i);
+    vec2 c = vec2(0.5, 0.5) + 0.2 * vec2(cos(ang), sin(ang));
+    vec2 axis = normalize(c - vec2(0.5, 0.35));
+    vec2 q = uv - c;
+    vec2 e = vec2(dot(q, axis), dot(q, vec2(-axis.y, axis.x))) / vec2(0.3, 0.22);
+    a = max(a, 1.0 - dot(e, e));
+  }
+  return clamp(a * 4.0, 0.0, 1.0);
+}
+
 
 #endif
