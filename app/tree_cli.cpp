@@ -13,6 +13,7 @@ namespace {
 constexpr double kMaxTreeHorizonM = 20000.0;  // as a species' horizon_m
 constexpr double kMaxTreeBudgetMb = 1e6;
 constexpr double kMinTreeDetail = 0.25, kMaxTreeDetail = 8.0;
+constexpr double kMaxNearFadeM = 50.0;
 
 }  // namespace
 
@@ -31,6 +32,10 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
                  "Scales the trees' level-of-detail distances, 0.25 to 8: where full models give way to reduced "
                  "ones, those to impostors, and impostors end by size. 1 (default) sizes them by the view's pixels; "
                  "2 draws every level twice as far (finer trees, slower frames)");
+  cmd.add_option("--tree-near-fade-m", out.nearFadeM,
+                 "Trees dissolve within this many metres of the camera and are gone within half of it, so a flight "
+                 "through a crown sees past the branches at the lens; 0 to 50, 0 off (default " +
+                     numberText(render::TreeLodDistances{}.nearFadeM) + ")");
   cmd.add_option("--tree-budget-mb", out.budgetMb,
                  "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "
                  "fall back to the terrain's colour (default " +
@@ -47,11 +52,13 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
     if (!(std::isfinite(*o.horizonM) && *o.horizonM <= kMaxTreeHorizonM))
       return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": must be a distance in metres, at most 20000");
     if (*o.horizonM < plants)
-      return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": shorter than the plants' horizon (" + numberText(plants) +
-                 " m)");
+      return bad("--tree-horizon-m " + numberText(*o.horizonM) + ": shorter than the plants' horizon (" +
+                 numberText(plants) + " m)");
   }
   if (o.detail && !(*o.detail >= kMinTreeDetail && *o.detail <= kMaxTreeDetail))
     return bad("--tree-detail " + numberText(*o.detail) + ": must be from 0.25 to 8");
+  if (o.nearFadeM && !(*o.nearFadeM >= 0.0 && *o.nearFadeM <= kMaxNearFadeM))
+    return bad("--tree-near-fade-m " + numberText(*o.nearFadeM) + ": must be a distance in metres from 0 to 50");
   if (o.budgetMb && !(*o.budgetMb > 0.0 && *o.budgetMb <= kMaxTreeBudgetMb))
     return bad("--tree-budget-mb " + numberText(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
   return {};
@@ -68,6 +75,7 @@ void applyTreeOptions(const TreeCli& o, scene::SceneOptions& so) {
     so.trees.lod.reducedHeights *= f;
     so.trees.lod.impostorEndHeights *= f;
   }
+  if (o.nearFadeM) so.trees.lod.nearFadeM = static_cast<float>(*o.nearFadeM);
   if (o.budgetMb) so.renderer.treeBudgetBytes = static_cast<uint64_t>(*o.budgetMb * 1024.0 * 1024.0);
 }
 

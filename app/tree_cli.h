@@ -1,6 +1,7 @@
 #pragma once
 // The tree options that `fly`, `record` and `snapshot` share (issue 20): --trees on|off,
-// --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-detail, --tree-budget-mb. One definition, so the commands spell and check them alike.
+// --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-detail, --tree-near-fade-m,
+// --tree-budget-mb. One definition, so the commands spell and check them alike.
 
 #include <optional>
 #include <string>
@@ -15,12 +16,13 @@ class App;
 namespace vegstream::app {
 
 struct TreeCli {
-  std::string trees = "on";                // --trees on|off
-  std::string shadows = "on";              // --tree-shadows on|off
-  std::string cores = "on";                // --tree-cores on|off
-  std::optional<double> horizonM;          // --tree-horizon-m M (default: the catalog's tree horizon)
-  std::optional<double> detail;            // --tree-detail F, 0.25 … 8: the level-of-detail distances × F
-  std::optional<double> budgetMb;          // --tree-budget-mb MB, > 0 (default render::RendererOptions)
+  std::string trees = "on";         // --trees on|off
+  std::string shadows = "on";       // --tree-shadows on|off
+  std::string cores = "on";         // --tree-cores on|off
+  std::optional<double> horizonM;   // --tree-horizon-m M (default: the catalog's tree horizon)
+  std::optional<double> detail;     // --tree-detail F, 0.25 … 8: the level-of-detail distances × F
+  std::optional<double> nearFadeM;  // --tree-near-fade-m M, 0 … 50 (0: off; default render::TreeLodDistances)
+  std::optional<double> budgetMb;   // --tree-budget-mb MB, > 0 (default render::RendererOptions)
 };
 
 void addTreeOptions(CLI::App& cmd, TreeCli& out);

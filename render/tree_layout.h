@@ -64,8 +64,14 @@ struct TreeLodDistances {
   // heights at 1080 lines (3 km for a 15 m tree, where the horizon ends them too), 33 in a
   // 180-line frame. Scaled like the two above.
   float impostorEndHeights = 200.0f;
-  float horizonM = 3000.0f;      // impostors fade out to the terrain's own colour over the last fadeShare
+  float horizonM = 3000.0f;  // impostors fade out to the terrain's own colour over the last fadeShare
   float fadeShare = 0.15f;
+  // The near fade (metres, not scaled with the view: it is about the lens, not the pixels): the
+  // models dissolve within nearFadeM of the camera and are gone within half of it
+  // (shaders/common/tree_layout.glsl treeNearKeep). Flying through a crown then shows the trunks
+  // and the crowns beyond instead of a screen filled by the cards a metre away, which cost the
+  // most of such a frame (bench/README.md). 0: off.
+  float nearFadeM = 4.0f;
 };
 
 // The factor the level-of-detail distances are scaled by for a view `heightPx` tall with a
@@ -82,9 +88,9 @@ struct TreeRequest {
   // until submitFrame returns.
   std::span<const uint32_t> pageCounts;
   TreeLodDistances lod;
-  bool fades = true;   // false: hard switches (to show what the cross-fades hide)
-  bool shadows = true; // the trees cast into the cascaded sun shadow map
-  bool cores = true;   // the crowns' opaque cores (vegetation/tree_core.h): false to compare without
+  bool fades = true;    // false: hard switches (to show what the cross-fades hide)
+  bool shadows = true;  // the trees cast into the cascaded sun shadow map
+  bool cores = true;    // the crowns' opaque cores (vegetation/tree_core.h): false to compare without
   // Local ENU position of the camera (the instances' frame); the renderer's Camera is the same
   // point, this gives it to the trees in their frame.
   double cameraEnu[3] = {0.0, 0.0, 0.0};
@@ -102,12 +108,12 @@ struct TreeModelSet {
 inline constexpr uint32_t kTreeShadowCascades = 3;  // render/shadow_cascades.h kShadowCascades
 
 struct TreeFigures {
-  uint32_t pages = 0;      // pages classified
-  uint32_t instances = 0;  // trees in them
+  uint32_t pages = 0;                            // pages classified
+  uint32_t instances = 0;                        // trees in them
   uint32_t full = 0, reduced = 0, impostor = 0;  // appended per level (a tree cross-fading counts in two)
-  uint32_t dropped = 0;    // appended past a list's capacity (not drawn; shadow casters included)
+  uint32_t dropped = 0;                          // appended past a list's capacity (not drawn; shadow casters included)
   std::array<uint32_t, kTreeShadowCascades> shadowCasters{};  // trees cast into each sun cascade
-  bool gpuCounts = false;  // the counts above were read back
+  bool gpuCounts = false;                                     // the counts above were read back
 };
 
 }  // namespace vegstream::render

@@ -19,6 +19,7 @@
 #include "shaders/tree.frag.h"
 #include "shaders/tree_core.frag.h"
 #include "shaders/tree.vert.h"
+#include "shaders/tree_near_clip.vert.h"
 #include "shaders/tree_classify.comp.h"
 #include "shaders/tree_sort.comp.h"
 #include "shaders/tree_impostor.frag.h"
@@ -71,9 +72,13 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   const VkPushConstantRange drawPush{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TreePush)};
   drawLayout_ = createPipelineLayout(*ctx_, sets, {&drawPush, 1}, "tree draw layout");
 
+  // Where the device clips by distance, the near fade's inner half is cut before rasterising.
+  const std::span<const uint32_t> vertex = ctx_->info().clipDistance
+                                               ? std::span<const uint32_t>(spv_tree_near_clip_vert)
+                                               : std::span<const uint32_t>(spv_tree_vert);
   GraphicsPipelineDesc mesh;
   mesh.name = "tree pipeline";
-  mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
+  mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, vertex}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
   setTreeVertexInput(mesh);
   mesh.cullMode = VK_CULL_MODE_NONE;  // cards are seen from both sides
   mesh.samples = samples_;
@@ -86,7 +91,7 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   // depth tested and written before shading, so the cards behind them are rejected unshaded.
   GraphicsPipelineDesc core = mesh;
   core.name = "tree core pipeline";
-  core.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_core_frag}};
+  core.stages = {{VK_SHADER_STAGE_VERTEX_BIT, vertex}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_core_frag}};
   core.cullMode = VK_CULL_MODE_BACK_BIT;
   corePipeline_ = createGraphicsPipeline(*ctx_, core);
 
@@ -158,7 +163,7 @@ void TreePass::writeBlock(size_t s, const TreeRequest& request, const glm::dmat4
   block->counts = {pages * kTreePageSize, static_cast<uint32_t>(models_.size()), request.fades ? 1u : 0u,
                    kImpostorViews};
   block->capacity = {capacity_[0], capacity_[1], capacity_[2], 0u};
-  block->limits = glm::vec4(shadowMarginM, request.lod.impostorEndHeights * lodScale, 0.0f, 0.0f);
+  block->limits = glm::vec4(shadowMarginM, request.lod.impostorEndHeights * lodScale, request.lod.nearFadeM, 0.0f);
   block->casters = {casterCapacity_[0], casterCapacity_[1], casterCapacity_[2], 0u};
   std::memcpy(block->models, modelBlock_.data(), modelBlock_.size());
 }

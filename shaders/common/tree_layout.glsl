@@ -29,7 +29,8 @@ layout(set = 1, binding = 0, std140) uniform TreeBlock {
   vec4 frustum[6];  // camera-relative planes: dot(xyz, p) + w ≥ 0 inside
   uvec4 counts;     // x: instance slots (pages × kTreePageSize), y: models, z: flags, w: impostor views per side
   uvec4 capacity;   // visible entries per model: x full, y reduced, z impostor
-  vec4 limits;      // x: how far shadow casters may lie outside the view (m), y: impostors end (tree heights)
+  vec4 limits;      // x: how far shadow casters may lie outside the view (m), y: impostors end (tree heights),
+                    // z: the near fade (m, 0 off: treeNearKeep), w: unused
   uvec4 casters;    // xyz: shadow caster entries per model in each cascade, w: unused
   TreeModelGpu models[kMaxTreeModels];
 } trees;
@@ -93,6 +94,23 @@ float treeDither(vec2 fragCoord, uint instance) {
 }
 bool treeKeepsPixel(float threshold, float dither) {
   return threshold <= 1.0 ? dither < threshold : dither >= threshold - 1.0;
+}
+
+// The near fade (render/tree_layout.h TreeLodDistances::nearFadeM, trees.limits.z = F metres): a
+// model's surface dissolves within F of the camera and is gone within F / 2, so a camera flying
+// through a crown sees past the branches at its lens instead of a screen filled by a few cards,
+// and those cards, the most expensive fragments of such a frame, are not drawn. F = 0: off.
+// The share of the surface kept at camera-relative point `rel` (0 … 1), compared with the dither.
+float treeNearKeep(vec3 rel) {
+  float f = trees.limits.z;
+  return f > 0.0 ? clamp((length(rel) - 0.5 * f) / (0.5 * f), 0.0, 1.0) : 1.0;
+}
+// The same cut as a clip distance (tree_near_clip.vert): negative within F / 2, where the
+// rasteriser drops the surface before any fragment is launched (interpolated linearly across a
+// triangle, so the cut is the sphere's chord; the dither above hides it).
+float treeNearClipDistance(vec3 rel) {
+  float f = trees.limits.z;
+  return f > 0.0 ? length(rel) - 0.5 * f : 1.0;
 }
 
 // The tree's yaw and lean from its seed (Philox words are uniform: any bits will do).

@@ -14,10 +14,11 @@
 
 namespace vegstream::render::testing {
 
-// withTrees false: the same frame without trees; upload: the imagery to upload first, or null.
+// withTrees false: the same frame without trees; upload: the imagery to upload first, or null;
+// nearFadeM: TreeLodDistances::nearFadeM.
 inline FrameResult renderTreeFrame(Renderer& r, const Camera& camera, const glm::dvec3& sun, const TerrainDraw& draw,
                                    const ImageryUpload* upload, std::span<const TreeInstanceGpu> trees, bool withTrees,
-                                   bool shadows) {
+                                   bool shadows, float nearFadeM = TreeLodDistances{}.nearFadeM) {
   FrameRequest req;
   req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
   req.camera = camera;
@@ -33,6 +34,7 @@ inline FrameResult renderTreeFrame(Renderer& r, const Camera& camera, const glm:
   t.pageCounts = counts;
   t.shadows = shadows;
   t.lod.fullHeights = t.lod.reducedHeights = 1e6f;  // the full model, whatever the frame's size
+  t.lod.nearFadeM = nearFadeM;
   t.cameraEnu[0] = camera.position.x, t.cameraEnu[1] = camera.position.y, t.cameraEnu[2] = camera.position.z;
   if (withTrees) req.trees = &t;
   auto f = r.renderFrame(req);

@@ -1,0 +1,163 @@
+// The trees' near fade (render/tree_layout.h TreeLodDistances::nearFadeM, shaders/common/
+// tree_layout.glsl treeNearKeep, tree_near_clip.vert): a camera inside a lone conifer's crown
+// (15 m tall, 5 m wide, the camera 8 m up beside its trunk) at 160 × 90, MSAA 4, on lavapipe with
+// validation on. With the fade off the crown's cards fill the view, some of them nearer than a
+// metre; with the default 4 m no tree surface is drawn nearer than half of it (the depth read
+// back, turned into distances), the tree covers less of the view and far fewer fragments are
+// launched (the pipeline statistics: the inner half is cut before rasterising). From afar,
+// where nothing lies within the fade (20 m away), the frames with and without it are the same
+// byte for byte.
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "gpu_test_fixture.h"
+#include "render/png_writer.h"
+#include "tests/support/plant_field_scene.h"
+#include "tree_frame.h"
+#include "vegetation/tree_model.h"
+
+namespace vegstream::render::testing {
+namespace {
+
+constexpr float kTreeHeight = 15.0f, kCrown = 5.0f;
+constexpr uint32_t kW = 160, kH = 90;
+
+// The default catalog's first conifer as the renderer's one model.
+TreeModelSet conifer() {
+  TreeModelSet set;
+  set.species = 0;
+  for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
+    if (vegetation::isTree(s) && s.tree.form == vegetation::TreeForm::Conifer) {
+      set.params = s.tree;
+      break;
+    }
+  EXPECT_EQ(set.params.form, vegetation::TreeForm::Conifer);
+  set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
+  return set;
+}
+
+// One tree at the origin on a flat plane, seen from `camera` with the near fade `fadeM`.
+struct LoneTree {
+  std::vector<uint8_t> tile = flatTile(150, 140, 120);
+  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
+  TerrainDraw draw{&plane};
+  ImageryUpload upload{0, tile};
+  std::vector<TreeInstanceGpu> trees;
+
+  LoneTree() {
+    for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
+    draw.imageryLayer = 0;
+    TreeInstanceGpu t{};
+    t.heightM = kTreeHeight;
+    t.crownM = kCrown;
+    t.seed = 0x2545f491u;
+    t.colour = 0xff000000u;
+    trees = {t};
+  }
+
+  FrameResult render(Renderer& r, const Camera& cam, bool withTree, float fadeM) {
+    const glm::dvec3 sun = glm::normalize(glm::dvec3(-0.5, -0.6, 0.62));
+    return renderTreeFrame(r, cam, sun, draw, &upload, trees, withTree, /*shadows=*/false, fadeM);
+  }
+};
+
+struct Seen {
+  size_t treePixels = 0;  // differ from the bare frame by more than 12 in a channel
+  size_t nearPixels = 0;  // of those, nearer the camera than `nearM` (the read-back depth)
+  double nearestM = 1e9;  // the nearest tree pixel's distance
+};
+
+Seen look(const FrameResult& bare, const FrameResult& f, const Camera& cam, double nearM) {
+  Seen s;
+  const glm::dmat4 inv = glm::inverse(projection(cam, double(kW) / kH) * viewRotation(cam));
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const size_t i = size_t{y} * kW + x;
+      bool tree = false;
+      for (int c = 0; c < 3; ++c)
+        tree |= std::abs(int(f.color->rgba[i * 4 + c]) - int(bare.color->rgba[i * 4 + c])) > 12;
+      if (!tree) continue;
+      ++s.treePixels;
+      const float depth = f.depth->depth[i];
+      if (depth <= 0.0f) continue;
+      const glm::dvec4 p = inv * glm::dvec4((x + 0.5) / (kW / 2.0) - 1.0, (y + 0.5) / (kH / 2.0) - 1.0, depth, 1.0);
+      const double d = glm::length(glm::dvec3(p) / p.w);
+      s.nearestM = std::min(s.nearestM, d);
+      if (d < nearM) ++s.nearPixels;
+    }
+  return s;
+}
+
+void dump(const FrameResult& f, const std::string& name) {  // VEGSTREAM_TREE_TEST_PNG=DIR: for a person to look
+  const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG");
+  if (dir && f.color) (void)writePng(std::string(dir) + "/" + name + ".png", *f.color);
+}
+
+class TreeNearFadeTest : public GpuTest {};
+
+TEST_F(TreeNearFadeTest, ACameraInsideACrownSeesPastTheBranchesAtItsLens) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const std::vector<TreeModelSet> sets = {conifer()};
+  ASSERT_TRUE(r->setTreeModels(sets).ok());
+  LoneTree scene;
+  Camera cam;
+  cam.position = {0.7, -0.4, 8.0};
+  cam.forward = glm::normalize(glm::dvec3(0.15, 1.0, -0.05));
+  cam.verticalFovDeg = 60.0;
+  cam.nearM = 0.1;
+  const FrameResult bare = scene.render(*r, cam, false, 0.0f);
+  const FrameResult off = scene.render(*r, cam, true, 0.0f);
+  const FrameResult on = scene.render(*r, cam, true, 4.0f);
+  ASSERT_TRUE(bare.color && off.color && on.color && off.depth && on.depth);
+  dump(off, "near_fade_off");
+  dump(on, "near_fade_4m");
+  const Seen seenOff = look(bare, off, cam, 1.6), seenOn = look(bare, on, cam, 1.6);
+  std::printf("near fade off: %zu tree pixels, %zu nearer than 1.6 m (nearest %.2f m), %llu fragments\n",
+              seenOff.treePixels, seenOff.nearPixels, seenOff.nearestM,
+              static_cast<unsigned long long>(off.gpu.statistics.fragmentInvocations));
+  std::printf("near fade 4 m: %zu tree pixels, %zu nearer than 1.6 m (nearest %.2f m), %llu fragments\n",
+              seenOn.treePixels, seenOn.nearPixels, seenOn.nearestM,
+              static_cast<unsigned long long>(on.gpu.statistics.fragmentInvocations));
+  // Without the fade the camera is among the cards: they fill most of the view, some within 1.6 m.
+  EXPECT_GT(seenOff.treePixels, size_t{kW} * kH / 2);
+  EXPECT_GT(seenOff.nearPixels, 0u);
+  // With it nothing of the tree is drawn within 1.6 m (the fade's inner half, 2 m, less a margin
+  // for a core triangle's chord), and the view opens.
+  EXPECT_EQ(seenOn.nearPixels, 0u);
+  EXPECT_GE(seenOn.nearestM, 1.6);
+  EXPECT_LT(seenOn.treePixels, seenOff.treePixels * 9 / 10);
+  // The cards at the lens are the frame's costliest fragments: far fewer are launched.
+  ASSERT_TRUE(off.gpu.statistics.available && on.gpu.statistics.available);
+  EXPECT_LT(on.gpu.statistics.fragmentInvocations * 10, off.gpu.statistics.fragmentInvocations * 7);
+}
+
+TEST_F(TreeNearFadeTest, NothingChangesWhereNoTreeIsNear) {
+  auto r = makeRenderer(kW, kH, 4);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->setImageryLayers(1).ok());
+  const std::vector<TreeModelSet> sets = {conifer()};
+  ASSERT_TRUE(r->setTreeModels(sets).ok());
+  LoneTree scene;
+  Camera cam;
+  cam.position = {0.0, -20.0, 7.0};
+  cam.forward = glm::normalize(glm::dvec3(0.0, 20.0, 0.5));
+  cam.verticalFovDeg = 50.0;
+  cam.nearM = 0.5;
+  const FrameResult off = scene.render(*r, cam, true, 0.0f);
+  const FrameResult on = scene.render(*r, cam, true, 4.0f);
+  const FrameResult bare = scene.render(*r, cam, false, 4.0f);
+  ASSERT_TRUE(off.color && on.color && bare.color);
+  EXPECT_GT(look(bare, on, cam, 0.0).treePixels, size_t{400});  // the tree is in view
+  EXPECT_EQ(off.color->rgba, on.color->rgba);
+  EXPECT_EQ(off.depth->depth, on.depth->depth);
+}
+
+}  // namespace
+}  // namespace vegstream::render::testing
