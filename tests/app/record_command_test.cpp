@@ -426,6 +426,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_tree_horizon", "{DS} {SMALL} --path {PATH} --tree-horizon-m 10", "--tree-horizon-m 10"},
         BadRecord{"bad_tree_budget", "{DS} {SMALL} --path {PATH} --tree-budget-mb 0", "--tree-budget-mb 0"},
         BadRecord{"bad_tree_detail", "{DS} {SMALL} --path {PATH} --tree-detail 20", "--tree-detail 20"},
+        BadRecord{"bad_tree_near_fade", "{DS} {SMALL} --path {PATH} --tree-near-fade-m -1", "--tree-near-fade-m -1"},
+        BadRecord{"bad_tree_near_fade_far", "{DS} {SMALL} --path {PATH} --tree-near-fade-m 80", "--tree-near-fade-m 80"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
