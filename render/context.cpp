@@ -70,7 +70,6 @@ DeviceInfo describe(VkPhysicalDevice pd, int index) {
     if (storable && (storageCounts & static_cast<VkSampleCountFlags>(s))) info.storageMsaaCounts.push_back(s);
   info.sampleRateShading = features.sampleRateShading == VK_TRUE;
   info.multiDrawIndirect = features.multiDrawIndirect == VK_TRUE && features.drawIndirectFirstInstance == VK_TRUE;
-  info.clipDistance = features.shaderClipDistance == VK_TRUE;
   VkPhysicalDeviceMemoryProperties memory{};
   vkGetPhysicalDeviceMemoryProperties(pd, &memory);
   for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
@@ -268,7 +267,6 @@ void Context::createDevice(const ContextOptions& options) {
   features.features.shaderStorageImageMultisample = supported.shaderStorageImageMultisample;
   features.features.multiDrawIndirect = supported.multiDrawIndirect;
   features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
-  features.features.shaderClipDistance = supported.shaderClipDistance;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

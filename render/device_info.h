@@ -22,9 +22,6 @@ struct DeviceInfo {
   // Many draws in one indirect call, each with its own first instance (the terrain's draw list;
   // without: one indirect call per draw).
   bool multiDrawIndirect = false;
-  // Vertex stages write clip distances (shaderClipDistance): the trees' near fade cuts the
-  // models before they are rasterised (shaders/tree_near_clip.vert); without, it only dithers.
-  bool clipDistance = false;
   uint64_t deviceLocalBytes = 0;  // the largest device-local memory heap
 
   bool supportsMsaa(int samples) const;

@@ -19,7 +19,6 @@
 #include "shaders/tree.frag.h"
 #include "shaders/tree_core.frag.h"
 #include "shaders/tree.vert.h"
-#include "shaders/tree_near_clip.vert.h"
 #include "shaders/tree_classify.comp.h"
 #include "shaders/tree_sort.comp.h"
 #include "shaders/tree_impostor.frag.h"
@@ -72,13 +71,9 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   const VkPushConstantRange drawPush{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TreePush)};
   drawLayout_ = createPipelineLayout(*ctx_, sets, {&drawPush, 1}, "tree draw layout");
 
-  // Where the device clips by distance, the near fade's inner half is cut before rasterising.
-  const std::span<const uint32_t> vertex = ctx_->info().clipDistance
-                                               ? std::span<const uint32_t>(spv_tree_near_clip_vert)
-                                               : std::span<const uint32_t>(spv_tree_vert);
   GraphicsPipelineDesc mesh;
   mesh.name = "tree pipeline";
-  mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, vertex}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
+  mesh.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_frag}};
   setTreeVertexInput(mesh);
   mesh.cullMode = VK_CULL_MODE_NONE;  // cards are seen from both sides
   mesh.samples = samples_;
@@ -91,7 +86,7 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   // depth tested and written before shading, so the cards behind them are rejected unshaded.
   GraphicsPipelineDesc core = mesh;
   core.name = "tree core pipeline";
-  core.stages = {{VK_SHADER_STAGE_VERTEX_BIT, vertex}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_core_frag}};
+  core.stages = {{VK_SHADER_STAGE_VERTEX_BIT, spv_tree_vert}, {VK_SHADER_STAGE_FRAGMENT_BIT, spv_tree_core_frag}};
   core.cullMode = VK_CULL_MODE_BACK_BIT;
   corePipeline_ = createGraphicsPipeline(*ctx_, core);
 

@@ -49,7 +49,7 @@ void main() {
   }
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
-  if (dither >= treeNearKeep(vPos)) discard;  // the near fade (tree_near_clip.vert cuts its inner half)
+  if (dither >= treeNearKeep(vPos)) discard;  // the near fade
   uint mask = treeSampleMask(alpha, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);

@@ -100,17 +100,14 @@ bool treeKeepsPixel(float threshold, float dither) {
 // model's surface dissolves within F of the camera and is gone within F / 2, so a camera flying
 // through a crown sees past the branches at its lens instead of a screen filled by a few cards,
 // and those cards, the most expensive fragments of such a frame, are not drawn. F = 0: off.
-// The share of the surface kept at camera-relative point `rel` (0 … 1), compared with the dither.
+// The share of the surface kept at camera-relative point `rel` (0 … 1), compared with the dither
+// (tree.frag, before the coverage: a fragment faded out writes neither colour nor depth). Not a
+// clip distance: cutting the cards before rasterising (gl_ClipDistance) made kolob-forest's trees
+// pass 2–3 ms slower in the frames with cards within the fade on an H100 — primitives clipped for
+// real on the few graphics units (bench/README.md).
 float treeNearKeep(vec3 rel) {
   float f = trees.limits.z;
   return f > 0.0 ? clamp((length(rel) - 0.5 * f) / (0.5 * f), 0.0, 1.0) : 1.0;
-}
-// The same cut as a clip distance (tree_near_clip.vert): negative within F / 2, where the
-// rasteriser drops the surface before any fragment is launched (interpolated linearly across a
-// triangle, so the cut is the sphere's chord; the dither above hides it).
-float treeNearClipDistance(vec3 rel) {
-  float f = trees.limits.z;
-  return f > 0.0 ? length(rel) - 0.5 * f : 1.0;
 }
 
 // The tree's yaw and lean from its seed (Philox words are uniform: any bits will do).

@@ -133,9 +133,6 @@ TEST_F(TreeNearFadeTest, ACameraInsideACrownSeesPastTheBranchesAtItsLens) {
   EXPECT_EQ(seenOn.nearPixels, 0u);
   EXPECT_GE(seenOn.nearestM, 1.6);
   EXPECT_LT(seenOn.treePixels, seenOff.treePixels * 9 / 10);
-  // The cards at the lens are the frame's costliest fragments: far fewer are launched.
-  ASSERT_TRUE(off.gpu.statistics.available && on.gpu.statistics.available);
-  EXPECT_LT(on.gpu.statistics.fragmentInvocations * 10, off.gpu.statistics.fragmentInvocations * 7);
 }
 
 TEST_F(TreeNearFadeTest, NothingChangesWhereNoTreeIsNear) {
