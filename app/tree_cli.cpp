@@ -34,7 +34,8 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
                  "2 draws every level twice as far (finer trees, slower frames)");
   cmd.add_option("--tree-near-fade-m", out.nearFadeM,
                  "Trees dissolve within this many metres of the camera and are gone within half of it, so a flight "
-                 "through a crown sees past the branches at the lens; 0 to 50, 0 off (default " +
+                 "through a crown sees past the branches at the lens (slower frames there: the crowns' cores go "
+                 "too); 0 to 50, 0 off (default " +
                      numberText(render::TreeLodDistances{}.nearFadeM) + ")");
   cmd.add_option("--tree-budget-mb", out.budgetMb,
                  "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "

@@ -67,11 +67,12 @@ struct TreeLodDistances {
   float horizonM = 3000.0f;  // impostors fade out to the terrain's own colour over the last fadeShare
   float fadeShare = 0.15f;
   // The near fade (metres, not scaled with the view: it is about the lens, not the pixels): the
-  // models dissolve within nearFadeM of the camera and are gone within half of it
-  // (shaders/common/tree_layout.glsl treeNearKeep). Flying through a crown then shows the trunks
-  // and the crowns beyond instead of a screen filled by the cards a metre away, which cost the
-  // most of such a frame (bench/README.md). 0: off.
-  float nearFadeM = 4.0f;
+  // models dissolve within nearFadeM of the camera and are gone within half of it, their crowns'
+  // cores shrinking away (shaders/common/tree_layout.glsl treeNearKeep, tree.vert). Flying through
+  // a crown then shows the trunks and the crowns beyond instead of a screen filled by the cards a
+  // metre away. 0: off, the default: at 4 m it made kolob-forest's p99 at 1080p 2.7 ms slower on
+  // an H100, the cores it takes away no longer hiding the cards behind them (bench/README.md).
+  float nearFadeM = 0.0f;
 };
 
 // The factor the level-of-detail distances are scaled by for a view `heightPx` tall with a

@@ -98,8 +98,9 @@ bool treeKeepsPixel(float threshold, float dither) {
 
 // The near fade (render/tree_layout.h TreeLodDistances::nearFadeM, trees.limits.z = F metres): a
 // model's surface dissolves within F of the camera and is gone within F / 2, so a camera flying
-// through a crown sees past the branches at its lens instead of a screen filled by a few cards,
-// and those cards, the most expensive fragments of such a frame, are not drawn. F = 0: off.
+// through a crown sees past the branches at its lens instead of a screen filled by a few cards
+// (tree.vert shrinks the crowns' cores away as well). F = 0: off, the default (it costs frame time
+// where it acts: render/tree_layout.h).
 // The share of the surface kept at camera-relative point `rel` (0 … 1), compared with the dither
 // (tree.frag, before the coverage: a fragment faded out writes neither colour nor depth). Not a
 // clip distance: cutting the cards before rasterising (gl_ClipDistance) made kolob-forest's trees
