@@ -98,7 +98,7 @@ void main() {
       float reach = m.shape.y * s.x;
       keep = min(keep, clamp((length(toCentre) - reach - 0.5 * trees.limits.z) / (0.5 * trees.limits.z), 0.0, 1.0));
     }
-    p = centre + (p - centre) * keep;
+    if (keep < 1.0) p = centre + (p - centre) * keep;  // not at 1: the same vertices as without, bit for bit
   }
 
   // The chain from the vertex's branch up to the trunk, with the x on each.
