@@ -7,6 +7,7 @@
 // within the fade (20 m away), the frames with and without it are the same byte for byte.
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,54 +16,13 @@
 
 #include "gpu_test_fixture.h"
 #include "render/png_writer.h"
-#include "tests/support/plant_field_scene.h"
-#include "tree_frame.h"
-#include "vegetation/tree_model.h"
+#include "lone_tree.h"
 
 namespace vegstream::render::testing {
 namespace {
 
 constexpr float kTreeHeight = 15.0f, kCrown = 5.0f;
 constexpr uint32_t kW = 160, kH = 90;
-
-// The default catalog's first conifer as the renderer's one model.
-TreeModelSet conifer() {
-  TreeModelSet set;
-  set.species = 0;
-  for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
-    if (vegetation::isTree(s) && s.tree.form == vegetation::TreeForm::Conifer) {
-      set.params = s.tree;
-      break;
-    }
-  EXPECT_EQ(set.params.form, vegetation::TreeForm::Conifer);
-  set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
-  return set;
-}
-
-// One tree at the origin on a flat plane, seen from `camera` with the near fade `fadeM`.
-struct LoneTree {
-  std::vector<uint8_t> tile = flatTile(150, 140, 120);
-  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-  TerrainDraw draw{&plane};
-  ImageryUpload upload{0, tile};
-  std::vector<TreeInstanceGpu> trees;
-
-  LoneTree() {
-    for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
-    draw.imageryLayer = 0;
-    TreeInstanceGpu t{};
-    t.heightM = kTreeHeight;
-    t.crownM = kCrown;
-    t.seed = 0x2545f491u;
-    t.colour = 0xff000000u;
-    trees = {t};
-  }
-
-  FrameResult render(Renderer& r, const Camera& cam, bool withTree, float fadeM) {
-    const glm::dvec3 sun = glm::normalize(glm::dvec3(-0.5, -0.6, 0.62));
-    return renderTreeFrame(r, cam, sun, draw, &upload, trees, withTree, /*shadows=*/false, fadeM);
-  }
-};
 
 struct Seen {
   size_t treePixels = 0;  // differ from the bare frame by more than 12 in a channel
@@ -96,23 +56,34 @@ void dump(const FrameResult& f, const std::string& name) {  // VEGSTREAM_TREE_TE
   if (dir && f.color) (void)writePng(std::string(dir) + "/" + name + ".png", *f.color);
 }
 
-class TreeNearFadeTest : public GpuTest {};
+constexpr uint32_t kSeed = 0x2545f491u;
+
+class TreeNearFadeTest : public GpuTest {
+ protected:
+  // A renderer of kW × kH, MSAA 4, the lone conifer its one model.
+  std::unique_ptr<Renderer> coniferRenderer() {
+    auto r = makeRenderer(kW, kH, 4);
+    if (!r) return nullptr;
+    EXPECT_TRUE(r->setImageryLayers(1).ok());
+    const std::vector<TreeModelSet> sets = {loneConifer(kTreeHeight, kCrown)};
+    EXPECT_TRUE(r->setTreeModels(sets).ok());
+    return r;
+  }
+  const glm::dvec3 sun_ = glm::normalize(glm::dvec3(-0.5, -0.6, 0.62));
+};
 
 TEST_F(TreeNearFadeTest, ACameraInsideACrownSeesPastTheBranchesAtItsLens) {
-  auto r = makeRenderer(kW, kH, 4);
+  auto r = coniferRenderer();
   ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setImageryLayers(1).ok());
-  const std::vector<TreeModelSet> sets = {conifer()};
-  ASSERT_TRUE(r->setTreeModels(sets).ok());
-  LoneTree scene;
+  LoneTree scene(kTreeHeight, kCrown, kSeed);
   Camera cam;
   cam.position = {0.7, -0.4, 8.0};
   cam.forward = glm::normalize(glm::dvec3(0.15, 1.0, -0.05));
   cam.verticalFovDeg = 60.0;
   cam.nearM = 0.1;
-  const FrameResult bare = scene.render(*r, cam, false, 0.0f);
-  const FrameResult off = scene.render(*r, cam, true, 0.0f);
-  const FrameResult on = scene.render(*r, cam, true, 4.0f);
+  const FrameResult bare = scene.render(*r, cam, sun_, false, false, true, 0.0f);
+  const FrameResult off = scene.render(*r, cam, sun_, true, false, false, 0.0f);
+  const FrameResult on = scene.render(*r, cam, sun_, true, false, false, 4.0f);
   ASSERT_TRUE(bare.color && off.color && on.color && off.depth && on.depth);
   dump(off, "near_fade_off");
   dump(on, "near_fade_4m");
@@ -132,20 +103,17 @@ TEST_F(TreeNearFadeTest, ACameraInsideACrownSeesPastTheBranchesAtItsLens) {
 }
 
 TEST_F(TreeNearFadeTest, NothingChangesWhereNoTreeIsNear) {
-  auto r = makeRenderer(kW, kH, 4);
+  auto r = coniferRenderer();
   ASSERT_TRUE(r);
-  ASSERT_TRUE(r->setImageryLayers(1).ok());
-  const std::vector<TreeModelSet> sets = {conifer()};
-  ASSERT_TRUE(r->setTreeModels(sets).ok());
-  LoneTree scene;
+  LoneTree scene(kTreeHeight, kCrown, kSeed);
   Camera cam;
   cam.position = {0.0, -20.0, 7.0};
   cam.forward = glm::normalize(glm::dvec3(0.0, 20.0, 0.5));
   cam.verticalFovDeg = 50.0;
   cam.nearM = 0.5;
-  const FrameResult off = scene.render(*r, cam, true, 0.0f);
-  const FrameResult on = scene.render(*r, cam, true, 4.0f);
-  const FrameResult bare = scene.render(*r, cam, false, 4.0f);
+  const FrameResult off = scene.render(*r, cam, sun_, true, false, true, 0.0f);
+  const FrameResult on = scene.render(*r, cam, sun_, true, false, false, 4.0f);
+  const FrameResult bare = scene.render(*r, cam, sun_, false, false, false, 4.0f);
   ASSERT_TRUE(off.color && on.color && bare.color);
   EXPECT_GT(look(bare, on, cam, 0.0).treePixels, size_t{400});  // the tree is in view
   EXPECT_EQ(off.color->rgba, on.color->rgba);

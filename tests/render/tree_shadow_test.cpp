@@ -21,7 +21,7 @@
 #include "gpu_test_fixture.h"
 #include "render/png_writer.h"
 #include "tests/support/plant_field_scene.h"
-#include "tree_frame.h"
+#include "lone_tree.h"
 #include "vegetation/tree_model.h"
 
 namespace vegstream::render::testing {
@@ -55,7 +55,9 @@ std::vector<Hull> slices(const vegetation::TreeModel& model, double heightM, dou
     std::sort(p.begin(), p.end(), [](auto a, auto b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
     Hull h(2 * p.size() + 1);
     size_t k = 0;
-    auto cross = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+    auto cross = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
+      return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
     for (size_t i = 0; i < p.size(); ++i) {
       while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
       h[k++] = p[i];
@@ -123,44 +125,6 @@ struct SunCase {
   }
 };
 
-// The default catalog's first conifer, one variant at kTreeHeight × kCrown.
-TreeModelSet conifer() {
-  TreeModelSet set;
-  set.species = 0;
-  for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
-    if (vegetation::isTree(s) && s.tree.form == vegetation::TreeForm::Conifer) {
-      set.params = s.tree;
-      break;
-    }
-  EXPECT_EQ(set.params.form, vegetation::TreeForm::Conifer);
-  set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
-  return set;
-}
-
-// One tree at the origin on a flat, evenly coloured plane.
-struct LoneTree {
-  std::vector<uint8_t> tile = flatTile(150, 140, 120);
-  terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-  TerrainDraw draw{&plane};
-  ImageryUpload upload{0, tile};
-  std::vector<TreeInstanceGpu> trees;
-
-  LoneTree() {
-    for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
-    draw.imageryLayer = 0;
-    TreeInstanceGpu t{};
-    t.heightM = kTreeHeight;
-    t.crownM = kCrown;
-    t.seed = 0u;  // no yaw, no lean: the slices stand as the model's
-    t.colour = 0xff000000u;
-    trees = {t};
-  }
-
-  FrameResult render(Renderer& r, const Camera& cam, const glm::dvec3& sun, bool withTree, bool shadows, bool upload0) {
-    return renderTreeFrame(r, cam, sun, draw, upload0 ? &upload : nullptr, trees, withTree, shadows);
-  }
-};
-
 // The visible ground's pixels (not the tree's: they differ from the bare frame; depth on z = 0),
 // where each lies and how much the shadow darkens it (green, of 255).
 struct Ground {
@@ -219,7 +183,8 @@ Figures compare(const Ground& g, const std::vector<Hull>& hulls, const glm::dvec
   // Pieces of at least 1 % of the shadow: smaller ones are the ground under the crown seen through
   // the crown's own gaps, cut off from the rest of the shadow in the view by the crown itself.
   f.pieces = components(dark, std::max<size_t>(4, f.measured / 100));
-  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) (void)writePng(std::string(dir) + "/" + name + ".png", cmp);
+  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG"))
+    (void)writePng(std::string(dir) + "/" + name + ".png", cmp);
   return f;
 }
 
@@ -232,7 +197,7 @@ TEST_P(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
   ASSERT_TRUE(created.ok()) << (created.ok() ? "" : created.error().message);
   Renderer& r = **created;
   ASSERT_TRUE(r.setImageryLayers(1).ok());
-  const std::vector<TreeModelSet> sets = {conifer()};
+  const std::vector<TreeModelSet> sets = {loneConifer(kTreeHeight, kCrown)};
   ASSERT_TRUE(r.setTreeModels(sets).ok());
   const std::vector<Hull> hulls = slices(sets[0].variants[0], kTreeHeight, kCrown);
   const glm::dvec3 sun = GetParam().towards();
@@ -243,20 +208,22 @@ TEST_P(TreeShadowTest, ALoneTreeCastsOneShadowOfItsCrownsProjectedArea) {
   cam.forward = {0.0, 0.0, -1.0};
   cam.up = {0.0, 1.0, 0.0};
   cam.verticalFovDeg = 16.0;
-  LoneTree scene;
+  LoneTree scene(kTreeHeight, kCrown, 0u);  // no yaw, no lean: the slices stand as the model's
   const FrameResult bare = scene.render(r, cam, sun, false, false, true);
   const FrameResult lit = scene.render(r, cam, sun, true, false, false);
   const FrameResult shaded = scene.render(r, cam, sun, true, true, false);
   ASSERT_TRUE(bare.color && lit.color && shaded.color && shaded.depth);
   const std::string name = "lone-tree-" + std::to_string(int(GetParam().elevationDeg));
-  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG")) (void)writePng(std::string(dir) + "/" + name + ".png", *shaded.color);
+  if (const char* dir = std::getenv("VEGSTREAM_TREE_TEST_PNG"))
+    (void)writePng(std::string(dir) + "/" + name + ".png", *shaded.color);
   const Ground g = visibleGround(bare, lit, shaded, cam);
   const Figures f = compare(g, hulls, sun, name + "-vs-analytic");
   const double px = 2.0 * 120.0 * std::tan(glm::radians(cam.verticalFovDeg / 2.0)) / kH;  // metres per pixel
-  std::printf("sun %.0f° up: darkening up to %.0f of 255; shadow %zu px (%.1f m²), analytic %zu px (%.1f m²), "
-              "overlap %zu px; %d connected piece(s)\n",
-              GetParam().elevationDeg, g.deepest, f.measured, double(f.measured) * px * px, f.analytic,
-              double(f.analytic) * px * px, f.both, f.pieces);
+  std::printf(
+      "sun %.0f° up: darkening up to %.0f of 255; shadow %zu px (%.1f m²), analytic %zu px (%.1f m²), "
+      "overlap %zu px; %d connected piece(s)\n",
+      GetParam().elevationDeg, g.deepest, f.measured, double(f.measured) * px * px, f.analytic,
+      double(f.analytic) * px * px, f.both, f.pieces);
   EXPECT_GT(g.deepest, 30.0) << "the shadow must darken the ground";
   EXPECT_EQ(f.pieces, 1) << "the shadow falls apart";
   EXPECT_NEAR(double(f.measured), double(f.analytic), 0.15 * double(f.analytic));
