@@ -92,11 +92,10 @@ void main() {
   if (inKind == 2u) {
     vec3 centre = vec3(0.0, 0.0, m.shape.w);
     float keep = threshold > 1.0 ? clamp(2.0 - threshold, 0.0, 1.0) : 1.0;
-    if (trees.limits.z > 0.0) {
+    if (trees.limits.z > 0.0) {  // the distance from the camera to the crown's reach
       vec2 s = treeScale(t, m);
       vec3 toCentre = (t.position - trees.camera.xyz) + vec3(0.0, 0.0, m.shape.w * s.y);
-      float reach = m.shape.y * s.x;
-      keep = min(keep, clamp((length(toCentre) - reach - 0.5 * trees.limits.z) / (0.5 * trees.limits.z), 0.0, 1.0));
+      keep = min(keep, treeNearShare(length(toCentre) - m.shape.y * s.x));
     }
     if (keep < 1.0) p = centre + (p - centre) * keep;  // not at 1: the same vertices as without, bit for bit
   }

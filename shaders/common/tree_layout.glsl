@@ -106,10 +106,12 @@ bool treeKeepsPixel(float threshold, float dither) {
 // clip distance: cutting the cards before rasterising (gl_ClipDistance) made kolob-forest's trees
 // pass 2–3 ms slower in the frames with cards within the fade on an H100 — primitives clipped for
 // real on the few graphics units (bench/README.md).
-float treeNearKeep(vec3 rel) {
+// treeNearShare: the same of a surface `distanceM` from the camera (tree.vert's cores use it too).
+float treeNearShare(float distanceM) {
   float f = trees.limits.z;
-  return f > 0.0 ? clamp((length(rel) - 0.5 * f) / (0.5 * f), 0.0, 1.0) : 1.0;
+  return f > 0.0 ? clamp((distanceM - 0.5 * f) / (0.5 * f), 0.0, 1.0) : 1.0;
 }
+float treeNearKeep(vec3 rel) { return treeNearShare(length(rel)); }
 
 // The tree's yaw and lean from its seed (Philox words are uniform: any bits will do).
 vec3 treeRotate(vec3 v, uint seed) {
