@@ -74,8 +74,8 @@ fs::path record(const fs::path& dataset, const fs::path& flight, int every, cons
   const fs::path out = testing::testOutputDir() / (flight.stem().string() + "_" + mode);
   fs::remove_all(out);
   const auto r =
-      runVegstream("record '" + dataset.string() + "' --path '" + flight.string() + "' --out '" +
-                   out.string() + "' --size 160x90 --msaa 4 --fps 1 --frames-every " + std::to_string(every) +
+      runVegstream("record '" + dataset.string() + "' --path '" + flight.string() + "' --out '" + out.string() +
+                   "' --size 160x90 --msaa 4 --fps 1 --frames-every " + std::to_string(every) +
                    " --no-plots --validate --terrain-shading compute --terrain-depth-tiles " + mode);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err.find("alidation"), std::string::npos) << r.err;
