@@ -121,7 +121,7 @@ void FramePasses::createDrawPasses(const RendererOptions& options) {
   blades_ = std::make_unique<BladePass>(ctx_, frameLayout_, toSampleBits(msaa_), std::max(options.bladeMaxVertices, 6u),
                                         options.tasks);
   blades_->setCatalog(vegetation::defaultSpeciesCatalog());
-  trees_ = std::make_unique<TreePass>(ctx_, frameLayout_, toSampleBits(msaa_));
+  trees_ = std::make_unique<TreePass>(ctx_, frameLayout_, toSampleBits(msaa_), sunShadows_->targetLayout());
 }
 
 void FramePasses::prepareFrame(FrameSlot& slot, const FrameRequest& request, uint64_t index) {
@@ -241,9 +241,10 @@ void FramePasses::recordTreeClassify(VkCommandBuffer cmd, FrameSlot& slot, int s
 // The trees cast into the sun's shadow map's cascades (slot.shadows).
 void FramePasses::recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIndex) {
   slot.timer->beginPass(cmd, "shadow");
-  sunShadows_->record(cmd, *slot.shadows, [&](VkCommandBuffer c, int cascade, const glm::mat4& m) {
-    trees_->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m);
-  });
+  sunShadows_->record(cmd, *slot.shadows,
+                      [&](VkCommandBuffer c, int cascade, const glm::mat4& m, VkDescriptorSet target) {
+                        trees_->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m, target);
+                      });
   slot.timer->endPass(cmd);
 }
 

@@ -23,11 +23,16 @@
 #include "shaders/tree_sort.comp.h"
 #include "shaders/tree_impostor.frag.h"
 #include "shaders/tree_impostor.vert.h"
+#include "shaders/tree_shadow_raster.comp.h"
 
 namespace vegstream::render {
 using namespace tree_detail;
 static_assert(kTreeShadowCascades == static_cast<uint32_t>(kShadowCascades));
 namespace {
+
+// Workgroups per model in a cascade's compute rasteriser (one caster each at a time): enough to
+// fill a large GPU's compute units when one model has most of the casters.
+constexpr uint32_t kShadowGroupsPerModel = 256;
 
 // Camera-relative frustum planes of a Vulkan clip space (Gribb & Hartmann), normalised.
 void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
@@ -42,14 +47,17 @@ void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
 
 }  // namespace
 
-TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples)
+TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
+                   VkDescriptorSetLayout shadowTargetLayout)
     : ctx_(&ctx), samples_(samples) {
   const VkShaderStageFlags all =
       VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr}};
   for (uint32_t b = 1; b <= 7; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr});
-  for (uint32_t b = 8; b <= 9; ++b)
-    bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  // The atlas: albedo and coverage (also read by the shadow cascades' compute rasteriser), normals.
+  bindings.push_back({8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                      VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  bindings.push_back({9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   setLayout_ = createLayout(ctx, bindings, "tree set layout");
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots},
@@ -57,17 +65,25 @@ TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSamp
   pool_ = createPool(ctx, sizes, kSlots, "tree pool");
   allocateSlotSets(ctx, pool_.get(), setLayout_.get(), sets_, "tree set");
   sampler_ = createTrilinearClampSampler(ctx, kImpostorMipLevels, "tree impostor sampler");
-  createPipelines(frameLayout);
+  createPipelines(frameLayout, shadowTargetLayout);
 }
 
 TreePass::~TreePass() = default;
 
-void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
+void TreePass::createPipelines(VkDescriptorSetLayout frameLayout, VkDescriptorSetLayout shadowTargetLayout) {
   const VkDescriptorSetLayout sets[] = {frameLayout, setLayout_.get()};
   const VkPushConstantRange classifyPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
   classifyLayout_ = createPipelineLayout(*ctx_, sets, {&classifyPush, 1}, "tree classify layout");
   classifyPipeline_ = createComputePipeline(*ctx_, classifyLayout_.get(), spv_tree_classify_comp, "tree classify");
   sortPipeline_ = createComputePipeline(*ctx_, classifyLayout_.get(), spv_tree_sort_comp, "tree sort");
+  // Every tree casts into the sun's cascades through its impostor seen from the sun, whatever it
+  // is drawn as (the models' thousands of alpha-tested cards cost the H200 20 ms a frame in the
+  // cascades over the Kolob forest), rasterised in compute (shaders/tree_shadow_raster.comp).
+  const VkDescriptorSetLayout shadowSets[] = {frameLayout, setLayout_.get(), shadowTargetLayout};
+  const VkPushConstantRange shadowPush{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(TreePush)};
+  shadowLayout_ = createPipelineLayout(*ctx_, shadowSets, {&shadowPush, 1}, "tree shadow raster layout");
+  shadowPipeline_ =
+      createComputePipeline(*ctx_, shadowLayout_.get(), spv_tree_shadow_raster_comp, "tree shadow raster");
   const VkPushConstantRange drawPush{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TreePush)};
   drawLayout_ = createPipelineLayout(*ctx_, sets, {&drawPush, 1}, "tree draw layout");
 
@@ -97,17 +113,6 @@ void TreePass::createPipelines(VkDescriptorSetLayout frameLayout) {
   impostor.bindings.clear();
   impostor.attributes.clear();
   impostorPipeline_ = createGraphicsPipeline(*ctx_, impostor);
-
-  // Depth only into a shadow cascade: one sample, no colour, a bias away from the sun. Every tree
-  // casts through its impostor seen from the sun, whatever it is drawn as: the models' thousands
-  // of alpha-tested cards cost the H200 20 ms a frame in the cascades over the Kolob forest, the
-  // impostors 1.3 ms (render/README.md "Trees").
-  impostor.name = "tree impostor shadow pipeline";
-  impostor.samples = VK_SAMPLE_COUNT_1_BIT;
-  impostor.colorFormat = VK_FORMAT_UNDEFINED;
-  impostor.depthFormat = VK_FORMAT_D32_SFLOAT;
-  impostor.depthBias = true;
-  shadowImpostorPipeline_ = createGraphicsPipeline(*ctx_, impostor);
 }
 
 uint64_t TreePass::gpuBytes() const {
@@ -180,7 +185,9 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   // Reset the draws and counters, classify, clamp.
   const VkBufferCopy meshCopy{0, 0, meshDraws_.size};
   const VkBufferCopy impostorCopy{meshDraws_.size, 0, impostorDraws_.size};
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+  memoryBarrier(cmd,
+                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                 VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   vkCmdCopyBuffer(cmd, drawTemplate_.get(), meshDraws_.get(), 1, &meshCopy);
@@ -209,7 +216,8 @@ void TreePass::recordClassify(VkCommandBuffer cmd, int slot, VkDescriptorSet fra
   vkCmdDispatch(cmd, 2 * static_cast<uint32_t>(models_.size()), 1, 1);
   memoryBarrier(
       cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT |
+          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy countersCopy{0, 0, kCounters * sizeof(uint32_t)};
   vkCmdCopyBuffer(cmd, counters_.get(), readback_[s].get(), 1, &countersCopy);
@@ -259,26 +267,18 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
 }
 
 void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade,
-                            const glm::mat4& matrix) {
+                            const glm::mat4& matrix, VkDescriptorSet target) {
   const auto s = static_cast<size_t>(slot);
   if (!slotRecorded_[s]) return;
-  const VkDescriptorSet bound[] = {frameSet, sets_[s]};
-  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  // Reverse-Z: away from the sun is towards 0.
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowImpostorPipeline_.get());
-  vkCmdSetDepthBias(cmd, -1.0f, 0.0f, -1.5f);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_.get(), 0, 2, bound, 0, nullptr);
-  vkCmdBindIndexBuffer(cmd, indices_.get(), 0, VK_INDEX_TYPE_UINT32);  // the impostors' triangle
-  const auto count = static_cast<uint32_t>(models_.size());
+  const VkDescriptorSet bound[] = {frameSet, sets_[s], target};
   const auto c = static_cast<uint32_t>(cascade);
   assert(c < kTreeShadowCascades);
-  for (uint32_t m = 0; m < count; ++m) {
-    const TreePush push{matrix, m, 2u, 1u, 1u};
-    vkCmdPushConstants(cmd, drawLayout_.get(), stages, 0, sizeof(push), &push);
-    // This cascade's casters of the model (the classify's box test), as impostor triangles.
-    vkCmdDrawIndexedIndirect(cmd, impostorDraws_.get(), (count * (1 + c) + m) * kIndexedCommand, 1,
-                             static_cast<uint32_t>(kIndexedCommand));
-  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_.get(), 0, 3, bound, 0, nullptr);
+  const TreePush push{matrix, 0u, c, 1u, 1u};  // lod: the cascade (the layer)
+  vkCmdPushConstants(cmd, shadowLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  // Per model a row of groups that take its casters (the classify's box test) in turns.
+  vkCmdDispatch(cmd, kShadowGroupsPerModel, static_cast<uint32_t>(models_.size()), 1);
 }
 
 uint32_t TreePass::regionBase(uint32_t m, uint32_t lod) const {

@@ -34,7 +34,9 @@ class TreePass {
  public:
   static constexpr int kSlots = 3;
 
-  TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples);
+  // `shadowTargetLayout`: render/sun_shadow_pass.h's targetLayout() (recordShadow's target).
+  TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
+           VkDescriptorSetLayout shadowTargetLayout);
   ~TreePass();
 
   // Uploads the models, captures their impostors and sizes the pool from `budgetBytes` (the
@@ -55,11 +57,13 @@ class TreePass {
                       const glm::dmat4& viewProj, float lodScale, float shadowMarginM, const RetireBuffer& retire);
   // Inside rendering (colour target of `samples`), after recordClassify.
   void recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet);
-  // Inside a shadow cascade's depth-only rendering (render/sun_shadow_pass.h): the classified trees
-  // whose sphere reaches `cascade`'s box — impostor, reduced or full in the view — as their
-  // impostor turned to the sun, depth only, through the cascade's matrix (the models' cards cost
-  // 15 × the impostors there).
-  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix);
+  // Outside rendering, into layer `cascade` of the sun's shadow map (`target`: render/sun_shadow_pass.h,
+  // cleared and writable by compute): the classified trees whose sphere reaches `cascade`'s box —
+  // impostor, reduced or full in the view — as their impostor turned to the sun, through the
+  // cascade's matrix, rasterised in compute (shaders/tree_shadow_raster.comp; the models' cards
+  // cost 15 × the impostors there).
+  void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix,
+                    VkDescriptorSet target);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 
@@ -76,7 +80,7 @@ class TreePass {
   struct ModelDraw {
     uint32_t firstIndex[2], indexCount[2], vertexOffset[2], coreCount[2];
   };
-  void createPipelines(VkDescriptorSetLayout frameLayout);
+  void createPipelines(VkDescriptorSetLayout frameLayout, VkDescriptorSetLayout shadowTargetLayout);
   // recordClassify()'s steps: the request's pages copied into the pool through slot s's staging
   // buffer; slot s's TreeBlock written for the view.
   void recordPageUploads(VkCommandBuffer cmd, size_t s, const TreeRequest& request, const RetireBuffer& retire);
@@ -101,8 +105,8 @@ class TreePass {
   DescriptorSetLayout setLayout_;
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};
-  PipelineLayout classifyLayout_, drawLayout_;
-  Pipeline classifyPipeline_, sortPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowImpostorPipeline_;
+  PipelineLayout classifyLayout_, drawLayout_, shadowLayout_;
+  Pipeline classifyPipeline_, sortPipeline_, meshPipeline_, corePipeline_, impostorPipeline_, shadowPipeline_;
   Sampler sampler_;
 
   std::vector<ModelDraw> models_;

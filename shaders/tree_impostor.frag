@@ -2,10 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Octahedral impostors' fragments (issue 20): the captured albedo and coverage, and the captured
 // model-space normal turned into the world, lit at run time like the models (common/tree_shading.glsl)
-// with the cross-fade dither and alpha to coverage of tree.frag. The shadow pass's alpha test is
-// a supersampled (4 rotated-grid taps) conservative coverage test over the shadow texel's footprint
-// (alpha-tested geometry thins and breaks up under minification: Wyman & McGuire, "Hashed Alpha
-// Testing", I3D 2017; no hash here, the map must stay deterministic frame to frame).
+// with the cross-fade dither and alpha to coverage of tree.frag. (The shadow cascades draw the
+// impostors in compute: tree_shadow_raster.comp.)
 #include "common/frame_uniforms.glsl"
 #include "common/atmosphere.glsl"
 #include "common/tree_layout.glsl"
@@ -32,34 +30,11 @@ layout(location = 11) flat in float vSun;
 layout(location = 12) flat in vec4 vRect;
 layout(location = 0) out vec4 outColor;
 
-// The shadow pass (push.mode 1): the atlas's coverage over the shadow texel's whole footprint,
-// not read at its centre. The atlas has no mip levels and its texels are finer than a cascade's
-// (0.16 m against 0.1–1.4 m): one bilinear read per shadow texel point-sampled the needles and the
-// trunk, so a thin tree's shadow came out as dashes and a sparse crown's as a thinned-out scatter
-// (issue 39 item 8, render/README.md). Four reads on a rotated grid across the footprint (its
-// derivatives), each a bilinear 2 × 2, see every atlas texel under a footprint of up to about
-// 4 × 4 (the nearer two cascades); in the farthest (1.4 m, about 9 × 9) they see a sample of it.
-// The texel is kept when any of them sees coverage: a conservative caster, since a hard map
-// cannot hold a partial shadow and the receivers' PCF softens a one-texel line into a half one.
-// `dx`, `dy`: vUv's derivatives, taken in uniform control flow (before any discard).
-const float kTreeShadowCoverage = 0.02;  // of the footprint: any tap that sees the crown keeps it
-float treeShadowFootprintCoverage(vec2 dx, vec2 dy) {
-  float a = 0.0;
-  const vec2 grid[4] = vec2[](vec2(-0.125, -0.375), vec2(0.375, -0.125), vec2(0.125, 0.375), vec2(-0.375, 0.125));
-  for (int i = 0; i < 4; ++i) a += textureLod(impostorAlbedo, vec3(vUv + grid[i].x * dx + grid[i].y * dy, float(vLayer)), 0.0).a;
-  return 0.25 * a;
-}
-
 void main() {
   gl_SampleMask[0] = -1;  // as tree.frag: defined on every path
-  vec2 uvDx = dFdx(vUv), uvDy = dFdy(vUv);
   // The triangle reaches past the rectangle the model fills (and its atlas cell): not drawn.
   if (any(greaterThan(abs(vUv - vRect.xy), vRect.zw))) discard;
-  // The shadow pass reads level 0 as it always did (its footprint taps below do the filtering),
-  // without the trilinear read and the level query the colour needs.
-  bool shadow = push.mode == 1u;  // uniform: derivatives below stay in uniform control flow
-  vec4 albedo = shadow ? textureLod(impostorAlbedo, vec3(vUv, float(vLayer)), 0.0)
-                       : texture(impostorAlbedo, vec3(vUv, float(vLayer)));
+  vec4 albedo = texture(impostorAlbedo, vec3(vUv, float(vLayer)));
   // The coverage sharpened as tree.frag's cards. The edge at 0.57, not 0.5: magnified, the
   // averaged atlas fills needle gaps narrower than its texels, and the impostor drew 5 % more than
   // the conifer model at the switch (tree_render_test.cpp). Minified, a texel of a coarser level
@@ -67,15 +42,10 @@ void main() {
   // edge falls to 0.3 over the first two levels, so a crown seen from afar reads as a crown (its
   // layers of branches, one behind the other, close what one layer leaves open), as the cards'
   // needles give way to a mean of 0.8 (common/tree_coverage.glsl).
-  float lod = shadow ? 0.0 : clamp(textureQueryLod(impostorAlbedo, vUv).y, 0.0, 2.0);
+  float lod = clamp(textureQueryLod(impostorAlbedo, vUv).y, 0.0, 2.0);
   float coverage = treeSharpCoverage(albedo.a, mix(0.57, 0.3, 0.5 * lod));
   float dither = treeDither(gl_FragCoord.xy, vInstance);
   if (!treeKeepsPixel(vThreshold, dither)) discard;
-  if (shadow) {
-    if (treeShadowFootprintCoverage(uvDx, uvDy) < kTreeShadowCoverage) discard;
-    outColor = vec4(0.0);
-    return;
-  }
   uint mask = treeSampleMask(coverage, push.samples, fract(dither * 7.0 + 0.31));
   if (mask == 0u) discard;
   gl_SampleMask[0] = int(mask);
