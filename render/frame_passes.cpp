@@ -243,7 +243,8 @@ void FramePasses::recordShadows(VkCommandBuffer cmd, FrameSlot& slot, int slotIn
   slot.timer->beginPass(cmd, "shadow");
   sunShadows_->record(cmd, *slot.shadows,
                       [&](VkCommandBuffer c, int cascade, const glm::mat4& m, VkDescriptorSet target) {
-                        trees_->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m, target);
+                        trees_->recordShadow(c, slotIndex, slot.shadowPassSet, cascade, m,
+                                             slot.shadows->texelM[size_t(cascade)], target);
                       });
   slot.timer->endPass(cmd);
 }

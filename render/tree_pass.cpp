@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -30,9 +31,9 @@ using namespace tree_detail;
 static_assert(kTreeShadowCascades == static_cast<uint32_t>(kShadowCascades));
 namespace {
 
-// Workgroups per model in a cascade's compute rasteriser (one caster each at a time): enough to
-// fill a large GPU's compute units when one model has most of the casters.
-constexpr uint32_t kShadowGroupsPerModel = 256;
+// Workgroups of a cascade's compute rasteriser (one caster each at a time, in as many layers as
+// the dispatch has): enough to fill a large GPU's compute units (the H100: 132 × 32 groups of 64).
+constexpr uint32_t kShadowGroups = 4096;
 
 // Camera-relative frustum planes of a Vulkan clip space (Gribb & Hartmann), normalised.
 void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
@@ -267,7 +268,7 @@ void TreePass::recordDraw(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSe
 }
 
 void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade,
-                            const glm::mat4& matrix, VkDescriptorSet target) {
+                            const glm::mat4& matrix, float texelM, VkDescriptorSet target) {
   const auto s = static_cast<size_t>(slot);
   if (!slotRecorded_[s]) return;
   const VkDescriptorSet bound[] = {frameSet, sets_[s], target};
@@ -277,8 +278,11 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadowLayout_.get(), 0, 3, bound, 0, nullptr);
   const TreePush push{matrix, 0u, c, 1u, 1u};  // lod: the cascade (the layer)
   vkCmdPushConstants(cmd, shadowLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-  // Per model a row of groups that take its casters (the classify's box test) in turns.
-  vkCmdDispatch(cmd, kShadowGroupsPerModel, static_cast<uint32_t>(models_.size()), 1);
+  // Groups that take the casters (the classify's box test) in turns, in as many layers as a
+  // crown's size in texels asks for: the layers take a caster's blocks in turns (a 20 m tree is
+  // about 300 blocks of 8 × 8 texels in a 0.08 m cascade, one or two in a 1.2 m one).
+  const auto layers = static_cast<uint32_t>(std::clamp(std::lround(0.8f / std::max(texelM, 1e-3f)), 1L, 16L));
+  vkCmdDispatch(cmd, kShadowGroups / layers, 1, layers);
 }
 
 uint32_t TreePass::regionBase(uint32_t m, uint32_t lod) const {

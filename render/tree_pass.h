@@ -62,8 +62,9 @@ class TreePass {
   // impostor, reduced or full in the view — as their impostor turned to the sun, through the
   // cascade's matrix, rasterised in compute (shaders/tree_shadow_raster.comp; the models' cards
   // cost 15 × the impostors there).
+  // `texelM`: the cascade's texel (m), which sizes the dispatch.
   void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix,
-                    VkDescriptorSet target);
+                    float texelM, VkDescriptorSet target);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
   TreeFigures figures(int slot) const;
 
@@ -116,7 +117,7 @@ class TreePass {
   std::unique_ptr<TreeImpostors> impostors_;
   std::vector<uint8_t> modelBlock_;  // the models' part of the TreeBlock, packed once
   uint32_t pageCapacity_ = 0;
-  std::array<uint32_t, 3> capacity_{};  // visible entries per model and level
+  std::array<uint32_t, 3> capacity_{};                          // visible entries per model and level
   std::array<uint32_t, kTreeShadowCascades> casterCapacity_{};  // shadow casters per model and cascade
   std::array<uint32_t, kSlots> slotPages_{};
   std::array<bool, kSlots> slotRecorded_{};

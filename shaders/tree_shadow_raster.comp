@@ -7,8 +7,9 @@
 // triangles drawn as depth-only fragments took 0.4 ms for the nearest cascade and 0.9 ms for the
 // farthest over the Kolob forest, most of the shadow pass's 1.3 ms in the slowest frames.
 //
-// One workgroup per caster at a time, a thread per texel of an 8 × 8 block, the blocks of the
-// triangle's box in turn. A texel whose centre lies in the triangle (edges included), within the
+// One workgroup per caster at a time (the casters of every model in one sequence), a thread per
+// texel of an 8 × 8 block, the blocks of the triangle's box in turn; the dispatch's z groups take turns over a caster's blocks, so the
+// nearest cascade's large casters (hundreds of blocks each) are shared by several groups. A texel whose centre lies in the triangle (edges included), within the
 // depth range, inside the rectangle the model fills and kept by the cross-fade's dither is
 // covered when the atlas's coverage over its footprint says so (below); it keeps the nearest
 // depth to the sun (reverse-Z: the largest, as uint bits: non-negative floats order as their
@@ -57,32 +58,47 @@ float footprintCoverage(vec2 uv, vec2 dx, vec2 dy, float layer) {
 shared vec3 sCorner[3];
 shared vec2 sUv[3];
 shared vec4 sRect;
+// Every model's casters in this cascade, one after the other: where each model's start.
+shared uint sModelStart[kMaxTreeModels + 1u];
 
 void main() {
-  uint m = gl_WorkGroupID.y;
   uint cascade = push.lod;
-  uint command = treeCasterCommand(cascade, m) * 5u;
-  uint count = impostorDraws[command + 1u], first = impostorDraws[command + 4u];
-  count = min(count, treeCasterCapacity(cascade));
-  TreeModelGpu model = trees.models[m];
+  uint models = min(trees.counts.y, kMaxTreeModels);
+  uint lid = gl_LocalInvocationIndex;
+  if (lid < models) {
+    uint command = treeCasterCommand(cascade, lid) * 5u;
+    sModelStart[lid + 1u] = min(impostorDraws[command + 1u], treeCasterCapacity(cascade));
+  }
+  barrier();
+  if (lid == 0u) {
+    sModelStart[0] = 0u;
+    for (uint k = 1u; k <= models; ++k) sModelStart[k] += sModelStart[k - 1u];
+  }
+  barrier();
+  uint total = sModelStart[models];
   float size = float(imageSize(shadowTarget).x);
-  float layer = float(model.mesh1.w);
-  for (uint i = gl_WorkGroupID.x; i < count; i += gl_NumWorkGroups.x) {
-    uvec4 entry = treeVisible[first + i];
+  // The groups take the casters in turns, whichever model they belong to (a forest's casters are
+  // mostly one or two models').
+  uint m = 0u;
+  for (uint i = gl_WorkGroupID.x; i < total; i += gl_NumWorkGroups.x) {
+    while (i >= sModelStart[m + 1u]) ++m;  // i only grows
+    TreeModelGpu model = trees.models[m];
+    uvec4 entry = treeVisible[impostorDraws[treeCasterCommand(cascade, m) * 5u + 4u] + i - sModelStart[m]];
     TreeInstanceGpu t = treeInstances[entry.x];
-    if (gl_LocalInvocationIndex < 3u) {
+    if (lid < 3u) {
       TreeImpostorFrame f = treeImpostorFrame(entry, t, model, true);
       vec2 uv;
-      vec3 rel = treeImpostorCorner(f, t, model, gl_LocalInvocationIndex, uv);
+      vec3 rel = treeImpostorCorner(f, t, model, lid, uv);
       vec4 s = push.capture * vec4(rel, 1.0);  // orthographic: w = 1
-      sCorner[gl_LocalInvocationIndex] = vec3((s.xy * 0.5 + 0.5) * size, s.z);
-      sUv[gl_LocalInvocationIndex] = uv;
-      if (gl_LocalInvocationIndex == 0u) sRect = treeImpostorRect(f, model);
+      sCorner[lid] = vec3((s.xy * 0.5 + 0.5) * size, s.z);
+      sUv[lid] = uv;
+      if (lid == 0u) sRect = treeImpostorRect(f, model);
     }
     barrier();
     vec3 a = sCorner[0], b = sCorner[1], c = sCorner[2];
     vec2 ua = sUv[0], ub = sUv[1], uc = sUv[2];
     vec4 rect = sRect;
+    float layer = float(model.mesh1.w);
     barrier();  // the next caster may overwrite the corners
     float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (abs(area) < 1e-12) continue;
@@ -98,21 +114,22 @@ void main() {
     float unit = maxZ > 0.0 ? exp2(floor(log2(maxZ)) - 23.0) : 0.0;
     float bias = kBiasSlope * max(abs(dz.x), abs(dz.y)) + kBiasConstant * unit;
     float threshold = uintBitsToFloat(entry.y);
-    for (int by = lo.y; by <= hi.y; by += 8)
-      for (int bx = lo.x; bx <= hi.x; bx += 8) {
-        ivec2 px = ivec2(bx, by) + ivec2(gl_LocalInvocationID.xy);
-        if (px.x > hi.x || px.y > hi.y) continue;
-        vec2 p = vec2(px) + 0.5;
-        float wb = dot(p - a.xy, gb), wc = dot(p - a.xy, gc), wa = 1.0 - wb - wc;
-        if (min(wa, min(wb, wc)) < 0.0) continue;
-        float z = a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
-        if (z < 0.0 || z > 1.0) continue;  // outside the cascade's depth range: clipped
-        vec2 uv = ua + wb * (ub - ua) + wc * (uc - ua);
-        if (any(greaterThan(abs(uv - rect.xy), rect.zw))) continue;
-        if (!treeKeepsPixel(threshold, treeDither(p, entry.x))) continue;
-        if (footprintCoverage(uv, uvDx, uvDy, layer) < kTreeShadowCoverage) continue;
-        float depth = clamp(z + bias, 0.0, 1.0);
-        imageAtomicMax(shadowTarget, ivec3(px, int(cascade)), floatBitsToUint(depth));
-      }
+    // The box's 8 × 8 blocks, shared out among the dispatch's layers of groups (z).
+    uint across = uint(hi.x - lo.x) / 8u + 1u, blocks = across * (uint(hi.y - lo.y) / 8u + 1u);
+    for (uint j = gl_WorkGroupID.z; j < blocks; j += gl_NumWorkGroups.z) {
+      ivec2 px = lo + 8 * ivec2(j % across, j / across) + ivec2(gl_LocalInvocationID.xy);
+      if (px.x > hi.x || px.y > hi.y) continue;
+      vec2 p = vec2(px) + 0.5;
+      float wb = dot(p - a.xy, gb), wc = dot(p - a.xy, gc), wa = 1.0 - wb - wc;
+      if (min(wa, min(wb, wc)) < 0.0) continue;
+      float z = a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+      if (z < 0.0 || z > 1.0) continue;  // outside the cascade's depth range: clipped
+      vec2 uv = ua + wb * (ub - ua) + wc * (uc - ua);
+      if (any(greaterThan(abs(uv - rect.xy), rect.zw))) continue;
+      if (!treeKeepsPixel(threshold, treeDither(p, entry.x))) continue;
+      if (footprintCoverage(uv, uvDx, uvDy, layer) < kTreeShadowCoverage) continue;
+      float depth = clamp(z + bias, 0.0, 1.0);
+      imageAtomicMax(shadowTarget, ivec3(px, int(cascade)), floatBitsToUint(depth));
+    }
   }
 }
