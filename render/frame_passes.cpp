@@ -121,7 +121,8 @@ void FramePasses::createDrawPasses(const RendererOptions& options) {
   blades_ = std::make_unique<BladePass>(ctx_, frameLayout_, toSampleBits(msaa_), std::max(options.bladeMaxVertices, 6u),
                                         options.tasks);
   blades_->setCatalog(vegetation::defaultSpeciesCatalog());
-  trees_ = std::make_unique<TreePass>(ctx_, frameLayout_, toSampleBits(msaa_), sunShadows_->targetLayout());
+  trees_ = std::make_unique<TreePass>(ctx_, frameLayout_, toSampleBits(msaa_), sunShadows_->targetLayout(),
+                                      options.treeShadowLayers);
 }
 
 void FramePasses::prepareFrame(FrameSlot& slot, const FrameRequest& request, uint64_t index) {

@@ -78,6 +78,7 @@ class FramePasses {
   const BladePass& blades() const { return *blades_; }
   TreePass& trees() { return *trees_; }
   const TreePass& trees() const { return *trees_; }
+  const SunShadowPass& sunShadows() const { return *sunShadows_; }
   const AtmospherePass& atmosphere() const { return *atmosphere_; }
 
  private:

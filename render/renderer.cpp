@@ -17,6 +17,7 @@
 #include "render/frame_submitter.h"
 #include "render/render_targets.h"
 #include "render/simulation_pass.h"
+#include "render/sun_shadow_pass.h"
 #include "render/swapchain.h"
 #include "render/terrain_pass.h"
 #include "render/tree_impostors.h"
@@ -235,6 +236,13 @@ Result<std::vector<uint32_t>> Renderer::readTreeList(uint32_t model, uint32_t lo
   return guardGpu([&]() -> Result<std::vector<uint32_t>> {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
     return trees.readList(model, lod);
+  });
+}
+
+Result<std::vector<uint32_t>> Renderer::readSunShadowMap() {
+  return guardGpu([&]() -> Result<std::vector<uint32_t>> {
+    vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
+    return impl_->passes->sunShadows().read();
   });
 }
 

@@ -59,6 +59,10 @@ struct RendererOptions {
   uint64_t treeBudgetBytes = uint64_t{256} << 20;
   // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
   uint32_t shadowMapSize = 1024;
+  // Layers of workgroups that share a tree caster's 8 × 8 texel blocks in the shadow rasteriser
+  // (shaders/tree_shadow_raster.comp): 0 as each cascade's texel size asks (1–16); else this many
+  // (1–16), for tests: the map must not depend on how the work is shared out.
+  uint32_t treeShadowLayers = 0;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
   // The terrain triangles a frame may draw (the ROAM budget, terrain::RoamOptions::maxTriangles):
   // the terrain pass's geometry buffers start that large, so they do not grow — a new buffer
@@ -118,6 +122,10 @@ class Renderer {
   // instance indices in draw order (nearest first: shaders/tree_sort.comp), for tests; waits for
   // the GPU.
   Result<std::vector<uint32_t>> readTreeList(uint32_t model, uint32_t lod);
+  // The sun shadow map as the last frame left it: every cascade's layer, shadowMapSize² texels
+  // each, row by row, as reverse-Z depth bits (0: nothing casts there), for tests; waits for the
+  // GPU.
+  Result<std::vector<uint32_t>> readSunShadowMap();
   // Bytes of the scene's GPU buffers and textures (targets excluded).
   uint64_t gpuBytes() const;
   // The shared simulation's GPU state as it is now (waits for the GPU to be idle): the wind cells

@@ -1,6 +1,7 @@
 // The sun's cascaded shadow map (sun_shadow_pass.h).
 #include "render/sun_shadow_pass.h"
 
+#include <cstring>
 #include <vector>
 
 #include "render/descriptors.h"
@@ -24,7 +25,8 @@ VkImageSubresourceRange layers(uint32_t first, uint32_t count) {
 
 SunShadowPass::SunShadowPass(const Context& ctx, uint32_t mapSize) : ctx_(&ctx), size_(mapSize) {
   map_ = createImageArray(ctx, {mapSize, mapSize}, kShadowCascades, kShadowFormat,
-                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT,  // read back by tests (read())
                           "sun shadow map");
   placeholder_ =
       createImageArray(ctx, {1, 1}, kShadowCascades, kShadowFormat,
@@ -76,6 +78,29 @@ void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, 
   transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kCasterAccess, kReaders,
                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+std::vector<uint32_t> SunShadowPass::read() const {
+  const VkImageSubresourceRange all = layers(0, kShadowCascades);
+  const VkDeviceSize bytes = VkDeviceSize{size_} * size_ * kShadowCascades * sizeof(uint32_t);
+  GpuBuffer buffer =
+      createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "sun shadow read-back");
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kReaders, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                         VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, static_cast<uint32_t>(kShadowCascades)};
+    region.imageExtent = {size_, size_, 1};
+    vkCmdCopyImageToBuffer(cmd, map_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
+    transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0, kReaders,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  std::vector<uint32_t> out(static_cast<size_t>(bytes / sizeof(uint32_t)));
+  std::memcpy(out.data(), buffer.mapped, static_cast<size_t>(bytes));
+  return out;
 }
 
 }  // namespace vegstream::render

@@ -9,7 +9,9 @@
 // Until a frame draws casters the map is cleared (everything lit) and frames say so with
 // FrameUniforms::shadowSplits.w = 0.
 
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 
@@ -42,6 +44,10 @@ class SunShadowPass {
   // drawn, the others kept as earlier frames drew them; then the map readable by every stage that
   // samples it.
   void record(VkCommandBuffer cmd, const ShadowCascades& cascades, const DrawCasters& draw) const;
+
+  // The map's layers as they are now (mapSize()² texels per cascade, row by row), for tests;
+  // submits its own copy and waits for it (the caller has waited for the frames in flight).
+  std::vector<uint32_t> read() const;
 
  private:
   const Context* ctx_;

@@ -49,8 +49,8 @@ void frustumPlanes(const glm::dmat4& m, glm::vec4 out[6]) {
 }  // namespace
 
 TreePass::TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-                   VkDescriptorSetLayout shadowTargetLayout)
-    : ctx_(&ctx), samples_(samples) {
+                   VkDescriptorSetLayout shadowTargetLayout, uint32_t shadowLayers)
+    : ctx_(&ctx), samples_(samples), shadowLayers_(std::min(shadowLayers, 16u)) {
   const VkShaderStageFlags all =
       VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr}};
@@ -281,7 +281,9 @@ void TreePass::recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frame
   // Groups that take the casters (the classify's box test) in turns, in as many layers as a
   // crown's size in texels asks for: the layers take a caster's blocks in turns (a 20 m tree is
   // about 300 blocks of 8 × 8 texels in a 0.08 m cascade, one or two in a 1.2 m one).
-  const auto layers = static_cast<uint32_t>(std::clamp(std::lround(0.8f / std::max(texelM, 1e-3f)), 1L, 16L));
+  const auto layers = shadowLayers_ > 0
+                          ? shadowLayers_
+                          : static_cast<uint32_t>(std::clamp(std::lround(0.8f / std::max(texelM, 1e-3f)), 1L, 16L));
   vkCmdDispatch(cmd, kShadowGroups / layers, 1, layers);
 }
 

@@ -34,9 +34,10 @@ class TreePass {
  public:
   static constexpr int kSlots = 3;
 
-  // `shadowTargetLayout`: render/sun_shadow_pass.h's targetLayout() (recordShadow's target).
+  // `shadowTargetLayout`: render/sun_shadow_pass.h's targetLayout() (recordShadow's target);
+  // `shadowLayers`: RendererOptions::treeShadowLayers (0: as each cascade's texel asks).
   TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-           VkDescriptorSetLayout shadowTargetLayout);
+           VkDescriptorSetLayout shadowTargetLayout, uint32_t shadowLayers = 0);
   ~TreePass();
 
   // Uploads the models, captures their impostors and sizes the pool from `budgetBytes` (the
@@ -62,7 +63,8 @@ class TreePass {
   // impostor, reduced or full in the view — as their impostor turned to the sun, through the
   // cascade's matrix, rasterised in compute (shaders/tree_shadow_raster.comp; the models' cards
   // cost 15 × the impostors there).
-  // `texelM`: the cascade's texel (m), which sizes the dispatch.
+  // `texelM`: the cascade's texel (m), which sizes the dispatch (unless the constructor fixed its
+  // layers).
   void recordShadow(VkCommandBuffer cmd, int slot, VkDescriptorSet frameSet, int cascade, const glm::mat4& matrix,
                     float texelM, VkDescriptorSet target);
   // The figures of the frame last recorded in `slot`, once its fence has signalled.
@@ -103,6 +105,7 @@ class TreePass {
 
   const Context* ctx_;
   VkSampleCountFlagBits samples_;
+  uint32_t shadowLayers_;  // 0: from the cascade's texel
   DescriptorSetLayout setLayout_;
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};

@@ -15,18 +15,23 @@
 
 namespace vegstream::render::testing {
 
-// The default catalog's first conifer, one variant of heightM × crownM (variant seed 7).
-inline TreeModelSet loneConifer(float heightM, float crownM) {
+// The default catalog's first tree species of `form`, one variant of heightM × crownM (variant
+// seed 7).
+inline TreeModelSet firstTreeOfForm(vegetation::TreeForm form, float heightM, float crownM) {
   TreeModelSet set;
   set.species = 0;
   for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
-    if (vegetation::isTree(s) && s.tree.form == vegetation::TreeForm::Conifer) {
+    if (vegetation::isTree(s) && s.tree.form == form) {
       set.params = s.tree;
       break;
     }
-  EXPECT_EQ(set.params.form, vegetation::TreeForm::Conifer);
+  EXPECT_EQ(set.params.form, form);
   set.variants.push_back(vegetation::buildTreeModel(set.params, heightM, crownM, 7u));
   return set;
+}
+
+inline TreeModelSet loneConifer(float heightM, float crownM) {
+  return firstTreeOfForm(vegetation::TreeForm::Conifer, heightM, crownM);
 }
 
 // The plane (kField wide, one imagery tile of one colour) and the tree on it, of instance seed
