@@ -122,7 +122,7 @@ void FramePasses::createDrawPasses(const RendererOptions& options) {
                                         options.tasks);
   blades_->setCatalog(vegetation::defaultSpeciesCatalog());
   trees_ = std::make_unique<TreePass>(ctx_, frameLayout_, toSampleBits(msaa_), sunShadows_->targetLayout(),
-                                      options.treeShadowLayers);
+                                      options.treeShadowGroups, options.treeShadowLayers);
 }
 
 void FramePasses::prepareFrame(FrameSlot& slot, const FrameRequest& request, uint64_t index) {

@@ -59,9 +59,11 @@ struct RendererOptions {
   uint64_t treeBudgetBytes = uint64_t{256} << 20;
   // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
   uint32_t shadowMapSize = 1024;
-  // Layers of workgroups that share a tree caster's 8 × 8 texel blocks in the shadow rasteriser
-  // (shaders/tree_shadow_raster.comp): 0 as each cascade's texel size asks (1–16); else this many
-  // (1–16), for tests: the map must not depend on how the work is shared out.
+  // How the trees' shadow rasteriser (shaders/tree_shadow_raster.comp) shares out its work, for
+  // tests (the map must not depend on it): the workgroups of a cascade's dispatch (0: the
+  // device's, 4096 on a GPU, 64 on a CPU rasteriser; else at least 16) and the layers among them
+  // that share a caster's 8 × 8 texel blocks (0: as each cascade's texel size asks; else 1–16).
+  uint32_t treeShadowGroups = 0;
   uint32_t treeShadowLayers = 0;
   GLFWwindow* window = nullptr;  // present to this window's surface when set
   // The terrain triangles a frame may draw (the ROAM budget, terrain::RoamOptions::maxTriangles):

@@ -35,9 +35,10 @@ class TreePass {
   static constexpr int kSlots = 3;
 
   // `shadowTargetLayout`: render/sun_shadow_pass.h's targetLayout() (recordShadow's target);
-  // `shadowLayers`: RendererOptions::treeShadowLayers (0: as each cascade's texel asks).
+  // `shadowGroups`, `shadowLayers`: RendererOptions::treeShadowGroups and treeShadowLayers (0:
+  // the device's groups, the layers each cascade's texel asks for).
   TreePass(const Context& ctx, VkDescriptorSetLayout frameLayout, VkSampleCountFlagBits samples,
-           VkDescriptorSetLayout shadowTargetLayout, uint32_t shadowLayers = 0);
+           VkDescriptorSetLayout shadowTargetLayout, uint32_t shadowGroups = 0, uint32_t shadowLayers = 0);
   ~TreePass();
 
   // Uploads the models, captures their impostors and sizes the pool from `budgetBytes` (the
@@ -106,6 +107,7 @@ class TreePass {
   const Context* ctx_;
   VkSampleCountFlagBits samples_;
   uint32_t shadowLayers_;  // 0: from the cascade's texel
+  uint32_t shadowGroups_;  // workgroups of a cascade's dispatch, all layers together
   DescriptorSetLayout setLayout_;
   DescriptorPool pool_;
   std::array<VkDescriptorSet, kSlots> sets_{};

@@ -3,8 +3,8 @@
 // workgroup takes which caster or which 8 × 8 block of it, nor on the order the casters come in.
 // A forest of two models (a conifer and a broadleaf, their casters in one sequence) on a flat
 // plane, crowns overlapping along the sun, is drawn by fresh renderers whose rasteriser shares
-// every caster's blocks among 1, 5 and 16 layers of workgroups (RendererOptions::
-// treeShadowLayers; 4096 / layers groups each), and as the cascades' texels ask (the default):
+// the work out differently (RendererOptions::treeShadowGroups and treeShadowLayers): 4096 groups
+// in 1 or 16 layers (a GPU's), 64 in 5 (60 groups) and 16 in 16, against the device's default:
 // every cascade's map must be the same bit for bit, and so must the frames. Lavapipe, 160 × 90,
 // validation on.
 #include <array>
@@ -53,10 +53,11 @@ struct Drawn {
 class TreeShadowRasterTest : public GpuTest {
  protected:
   // One frame of the forest with the sun's shadows, by a fresh renderer (every cascade drawn on
-  // its first frame) whose rasteriser uses `layers` (0: as the cascades ask).
-  Drawn draw(uint32_t layers) {
+  // its first frame) whose rasteriser uses `groups` in `layers` (0: the device's, as the cascades ask).
+  Drawn draw(uint32_t groups, uint32_t layers) {
     RendererOptions o = options(kW, kH, 1);
     o.shadowMapSize = kMap;
+    o.treeShadowGroups = groups;
     o.treeShadowLayers = layers;
     auto created = Renderer::create(o);
     EXPECT_TRUE(created.ok()) << (created.ok() ? "" : created.error().message);
@@ -88,7 +89,7 @@ class TreeShadowRasterTest : public GpuTest {
 };
 
 TEST_F(TreeShadowRasterTest, TheMapIsTheSameHoweverTheWorkIsSharedOut) {
-  const Drawn base = draw(0);
+  const Drawn base = draw(0, 0);
   ASSERT_EQ(base.map.size(), kLayerTexels * kShadowCascades);
   // The forest casts into every cascade, and its crowns cover each other there.
   std::array<size_t, kShadowCascades> covered{};
@@ -96,14 +97,16 @@ TEST_F(TreeShadowRasterTest, TheMapIsTheSameHoweverTheWorkIsSharedOut) {
     for (size_t i = 0; i < kLayerTexels; ++i) covered[c] += base.map[c * kLayerTexels + i] != 0u ? 1u : 0u;
   std::printf("covered texels per cascade: %zu %zu %zu of %zu\n", covered[0], covered[1], covered[2], kLayerTexels);
   for (size_t c = 0; c < size_t(kShadowCascades); ++c) EXPECT_GT(covered[c], 500u) << "cascade " << c;
-  for (uint32_t layers : {1u, 5u, 16u}) {
-    const Drawn other = draw(layers);
-    ASSERT_EQ(other.map.size(), base.map.size()) << layers << " layers";
+  const std::array<std::array<uint32_t, 2>, 4> shares = {{{4096, 1}, {4096, 16}, {64, 5}, {16, 16}}};
+  for (const auto& [groups, layers] : shares) {
+    const Drawn other = draw(groups, layers);
+    ASSERT_EQ(other.map.size(), base.map.size()) << groups << " groups in " << layers << " layers";
     std::array<size_t, kShadowCascades> differ{};
     for (size_t i = 0; i < base.map.size(); ++i) differ[i / kLayerTexels] += base.map[i] != other.map[i] ? 1u : 0u;
     for (size_t c = 0; c < size_t(kShadowCascades); ++c)
-      EXPECT_EQ(differ[c], 0u) << "cascade " << c << ": texels that differ with " << layers << " layers";
-    EXPECT_EQ(pixelsOffBy(base.color, other.color, 0), 0u) << layers << " layers: pixels that differ";
+      EXPECT_EQ(differ[c], 0u) << "cascade " << c << ": texels that differ with " << groups << " groups in " << layers
+                               << " layers";
+    EXPECT_EQ(pixelsOffBy(base.color, other.color, 0), 0u) << groups << " groups in " << layers << " layers";
   }
 }
 
