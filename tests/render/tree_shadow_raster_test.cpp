@@ -14,7 +14,6 @@
 #include "gpu_test_fixture.h"
 #include "render/shadow_cascades.h"
 #include "lone_tree.h"
-#include "tests/support/plant_field_scene.h"
 
 namespace vegstream::render::testing {
 namespace {
@@ -67,19 +66,14 @@ class TreeShadowRasterTest : public GpuTest {
     const std::vector<TreeModelSet> sets = {firstTreeOfForm(vegetation::TreeForm::Conifer, 15.0f, 5.0f),
                                             firstTreeOfForm(vegetation::TreeForm::Broadleaf, 15.0f, 7.0f)};
     EXPECT_TRUE(r.setTreeModels(sets).ok());
-    const std::vector<uint8_t> tile = flatTile(150, 140, 120);
-    terrain::TerrainMesh plane = flatPlane(kField, 8, 0.0f);
-    for (auto& v : plane.vertices) v.uv = fieldUv(v.position.x, v.position.y);
-    TerrainDraw ground{&plane};
-    ground.imageryLayer = 0;
-    const ImageryUpload upload{0, tile};
+    LoneTree scene(15.0f, 5.0f, 0u);  // its plane, with the forest in place of its one tree
+    scene.trees = forest();
     Camera cam;
     cam.position = {0.0, -40.0, 30.0};
     cam.forward = glm::normalize(glm::dvec3(0.0, 60.0, -30.0));
     cam.verticalFovDeg = 50.0;
     const glm::dvec3 sun = glm::normalize(glm::dvec3(-0.6, -0.5, 0.45));  // low, from the south-west
-    const std::vector<TreeInstanceGpu> trees = forest();
-    FrameResult f = renderTreeFrame(r, cam, sun, ground, &upload, trees, true, true);
+    FrameResult f = scene.render(r, cam, sun, true, true, true);
     EXPECT_TRUE(f.color);
     auto map = r.readSunShadowMap();
     EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().message);
