@@ -144,17 +144,8 @@ void AtmospherePass::writeFrameSet(VkDescriptorSet set) const {
 namespace {
 // A LUT (SHADER_READ_ONLY_OPTIMAL) into `host` at `offset`, and back.
 void copyLut(VkCommandBuffer cmd, const GpuImage& lut, const GpuBuffer& host, VkDeviceSize offset) {
-  transitionImage(cmd, lut.get(), lut.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kReaders, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_READ_BIT);
-  VkBufferImageCopy region{};
-  region.bufferOffset = offset;
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {lut.extent.width, lut.extent.height, lut.depth};
-  vkCmdCopyImageToBuffer(cmd, lut.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.get(), 1, &region);
-  transitionImage(cmd, lut.get(), lut.aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0, kReaders,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  recordSampledImageReadback(cmd, lut.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                             {lut.extent.width, lut.extent.height, lut.depth}, host, offset, kReaders);
 }
 
 VkDeviceSize lutBytes(const GpuImage& lut) { return VkDeviceSize{lut.extent.width} * lut.extent.height * lut.depth * 8; }

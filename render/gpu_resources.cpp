@@ -236,6 +236,23 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
   transitionImageRange(cmd, image, {aspect, 0, 1, 0, 1}, from, to, srcStage, srcAccess, dstStage, dstAccess);
 }
 
+void recordSampledImageReadback(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceLayers& layers,
+                                VkExtent3D extent, const GpuBuffer& host, VkDeviceSize hostOffset,
+                                VkPipelineStageFlags2 readers) {
+  const VkImageSubresourceRange range{layers.aspectMask, layers.mipLevel, 1, layers.baseArrayLayer, layers.layerCount};
+  transitionImageRange(cmd, image, range, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readers, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.bufferOffset = hostOffset;
+  region.imageSubresource = layers;
+  region.imageExtent = extent;
+  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.get(), 1, &region);
+  transitionImageRange(cmd, image, range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0, readers,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
 void recordImageUpload(VkCommandBuffer cmd, const GpuBuffer& staging, const GpuImage& image, uint32_t layer,
                        VkDeviceSize stagingOffset) {
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};

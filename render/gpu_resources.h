@@ -108,6 +108,13 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
                      VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// Records the copy of `layers` (one mip level) of a sampled image, in SHADER_READ_ONLY_OPTIMAL
+// for `readers`, into `host` at `hostOffset`, tightly packed, and leaves the image as it was;
+// the caller adds hostReadBarrier once its copies are recorded (read-backs for tests and tools).
+void recordSampledImageReadback(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceLayers& layers,
+                                VkExtent3D extent, const GpuBuffer& host, VkDeviceSize hostOffset,
+                                VkPipelineStageFlags2 readers);
+
 // Records the copy of a tightly packed staging buffer (from stagingOffset) into one layer of
 // `image` (mip 0),
 // leaving it in SHADER_READ_ONLY_OPTIMAL for fragment shaders. The image's old contents are

@@ -81,21 +81,12 @@ void SunShadowPass::record(VkCommandBuffer cmd, const ShadowCascades& cascades, 
 }
 
 std::vector<uint32_t> SunShadowPass::read() const {
-  const VkImageSubresourceRange all = layers(0, kShadowCascades);
   const VkDeviceSize bytes = VkDeviceSize{size_} * size_ * kShadowCascades * sizeof(uint32_t);
   GpuBuffer buffer =
       createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback, "sun shadow read-back");
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kReaders, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                         VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, static_cast<uint32_t>(kShadowCascades)};
-    region.imageExtent = {size_, size_, 1};
-    vkCmdCopyImageToBuffer(cmd, map_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
-    transitionImageRange(cmd, map_.get(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0, kReaders,
-                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    recordSampledImageReadback(cmd, map_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, uint32_t{kShadowCascades}},
+                               {size_, size_, 1}, buffer, 0, kReaders);
     hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   });
   std::vector<uint32_t> out(static_cast<size_t>(bytes / sizeof(uint32_t)));

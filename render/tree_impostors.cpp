@@ -171,18 +171,8 @@ std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer, uint32_t level) c
   GpuBuffer buffer = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
                                   "impostor read-back");
   ctx_->submitAndWait([&](VkCommandBuffer cmd) {
-    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, layer, 1},
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                         VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, layer, 1};
-    region.imageExtent = {e.width, e.height, 1};
-    vkCmdCopyImageToBuffer(cmd, albedo_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
-    transitionImageRange(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, layer, 1},
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    recordSampledImageReadback(cmd, albedo_.get(), {VK_IMAGE_ASPECT_COLOR_BIT, level, layer, 1}, {e.width, e.height, 1},
+                               buffer, 0, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
     hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   });
   std::vector<uint8_t> out(static_cast<size_t>(bytes));

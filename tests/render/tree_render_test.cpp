@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "gpu_test_fixture.h"
+#include "lone_tree.h"
 #include "render/png_writer.h"
 #include "render/shadow_cascades.h"
 #include "render/tree_impostors.h"
@@ -25,18 +26,7 @@ constexpr float kTreeHeight = 15.0f, kCrown = 5.0f;
 constexpr uint32_t kImpostorViewsForTest = kImpostorViews * kImpostorCellPx;
 
 // The default catalog's first tree species of that form, as one model of kTreeHeight.
-std::vector<TreeModelSet> oneModel(vegetation::TreeForm form) {
-  TreeModelSet set;
-  set.species = 0;
-  for (const vegetation::Species& s : vegetation::defaultSpeciesCatalog().species)
-    if (vegetation::isTree(s) && s.tree.form == form) {
-      set.params = s.tree;
-      break;
-    }
-  EXPECT_EQ(set.params.form, form);
-  set.variants.push_back(vegetation::buildTreeModel(set.params, kTreeHeight, kCrown, 7u));
-  return {set};
-}
+std::vector<TreeModelSet> oneModel(vegetation::TreeForm form) { return {firstTreeOfForm(form, kTreeHeight, kCrown)}; }
 
 TreeInstanceGpu treeAt(float x, float y, uint32_t seed = 0x12345678u) {
   TreeInstanceGpu t{};
