@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,14 @@ constexpr double kMinTreeDetail = 0.25, kMaxTreeDetail = 8.0;
 constexpr double kMaxNearFadeM = 50.0;
 
 }  // namespace
+
+std::optional<std::filesystem::path> defaultImpostorCacheDir() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg && *xdg == '/') return std::filesystem::path(xdg) / "vegstream" / "impostors";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return std::filesystem::path(home) / ".cache" / "vegstream" / "impostors";
+  return std::nullopt;
+}
 
 void addTreeOptions(CLI::App& cmd, TreeCli& out) {
   cmd.add_option("--trees", out.trees, "Draw the catalog's trees: on or off (default on)");
@@ -41,6 +50,11 @@ void addTreeOptions(CLI::App& cmd, TreeCli& out) {
                  "GPU memory for the trees (models, impostors, instances), MiB; when it binds the farthest trees "
                  "fall back to the terrain's colour (default " +
                      numberText(static_cast<double>(render::RendererOptions{}.treeBudgetBytes >> 20)) + ")");
+  cmd.add_option("--impostor-cache", out.impostorCache,
+                 "Where the trees' impostors (their models seen from 64 directions, drawn at start-up) are kept "
+                 "between runs, keyed by the models, shaders and driver, at most 1 GiB: a directory, or off to "
+                 "draw them at every start (default $XDG_CACHE_HOME/vegstream/impostors, else "
+                 "~/.cache/vegstream/impostors)");
 }
 
 Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& catalog) {
@@ -62,6 +76,13 @@ Status checkTreeOptions(const TreeCli& o, const vegetation::SpeciesCatalog& cata
     return bad("--tree-near-fade-m " + numberText(*o.nearFadeM) + ": must be a distance in metres from 0 to 50");
   if (o.budgetMb && !(*o.budgetMb > 0.0 && *o.budgetMb <= kMaxTreeBudgetMb))
     return bad("--tree-budget-mb " + numberText(*o.budgetMb) + ": must be more than 0 and at most 1000000 MiB");
+  if (o.impostorCache) {
+    if (o.impostorCache->empty()) return bad("--impostor-cache: must be a directory or off");
+    std::error_code ec;
+    if (*o.impostorCache != "off" && std::filesystem::exists(*o.impostorCache, ec) &&
+        !std::filesystem::is_directory(*o.impostorCache, ec))
+      return bad("--impostor-cache " + *o.impostorCache + ": not a directory");
+  }
   return {};
 }
 
@@ -78,6 +99,10 @@ void applyTreeOptions(const TreeCli& o, scene::SceneOptions& so) {
   }
   if (o.nearFadeM) so.trees.lod.nearFadeM = static_cast<float>(*o.nearFadeM);
   if (o.budgetMb) so.renderer.treeBudgetBytes = static_cast<uint64_t>(*o.budgetMb * 1024.0 * 1024.0);
+  if (!o.impostorCache)
+    so.trees.impostorCacheDir = defaultImpostorCacheDir();
+  else if (*o.impostorCache != "off")
+    so.trees.impostorCacheDir = std::filesystem::path(*o.impostorCache);
 }
 
 }  // namespace vegstream::app

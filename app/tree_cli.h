@@ -1,8 +1,9 @@
 #pragma once
 // The tree options that `fly`, `record` and `snapshot` share (issue 20): --trees on|off,
 // --tree-shadows on|off, --tree-cores on|off, --tree-horizon-m, --tree-detail, --tree-near-fade-m,
-// --tree-budget-mb. One definition, so the commands spell and check them alike.
+// --tree-budget-mb, --impostor-cache. One definition, so the commands spell and check them alike.
 
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -23,7 +24,13 @@ struct TreeCli {
   std::optional<double> detail;     // --tree-detail F, 0.25 … 8: the level-of-detail distances × F
   std::optional<double> nearFadeM;  // --tree-near-fade-m M, 0 … 50 (0: off; default render::TreeLodDistances)
   std::optional<double> budgetMb;   // --tree-budget-mb MB, > 0 (default render::RendererOptions)
+  std::optional<std::string> impostorCache;  // --impostor-cache DIR|off (default defaultImpostorCacheDir())
 };
+
+// Where the impostors are kept when --impostor-cache is not given: $XDG_CACHE_HOME/vegstream/impostors
+// (an absolute XDG_CACHE_HOME only, as the XDG spec says), else $HOME/.cache/vegstream/impostors;
+// none when neither is set.
+std::optional<std::filesystem::path> defaultImpostorCacheDir();
 
 void addTreeOptions(CLI::App& cmd, TreeCli& out);
 

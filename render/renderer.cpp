@@ -36,6 +36,7 @@ struct Renderer::Impl {
   std::unique_ptr<FramePasses> passes;
   std::unique_ptr<FrameSubmitter> frames;  // first to go: retires what the frames deferred
   uint64_t treeBudgetBytes = 0;
+  streaming::DiskTileCache* impostorCache = nullptr;
   BladePath bladePath = BladePath::Compute;  // resolved: never Auto or Mesh
   int msaa = 1;
   TerrainShading terrainShading = TerrainShading::Forward;
@@ -63,6 +64,7 @@ void Renderer::Impl::init(const RendererOptions& options) {
                                             descriptorPool.get());
   passes->createDrawPasses(options);
   treeBudgetBytes = options.treeBudgetBytes;
+  impostorCache = options.impostorCache;
 }
 
 // --- public API ---------------------------------------------------------------------------
@@ -207,7 +209,7 @@ Status Renderer::setTreeModels(std::span<const TreeModelSet> sets) {
   return guardGpu([&]() -> Status {
     vkCheck(vkDeviceWaitIdle(impl_->ctx->device()), "vkDeviceWaitIdle");
     TreePass& trees = impl_->passes->trees();
-    if (!trees.setModels(sets, impl_->treeBudgetBytes, impl_->frames->frameSet(0)))
+    if (!trees.setModels(sets, impl_->treeBudgetBytes, impl_->frames->frameSet(0), impl_->impostorCache))
       return makeError(ErrorKind::InvalidInput, "--tree-budget-mb " + std::to_string(impl_->treeBudgetBytes >> 20) +
                                                     ": too small for the tree models and their impostors (" +
                                                     std::to_string(trees.modelCount()) + " models)");
@@ -216,6 +218,10 @@ Status Renderer::setTreeModels(std::span<const TreeModelSet> sets) {
 }
 
 uint32_t Renderer::treePageCapacity() const { return impl_->passes->trees().pageCapacity(); }
+
+const ImpostorCacheFigures& Renderer::impostorCacheFigures() const {
+  return impl_->passes->trees().impostorCacheFigures();
+}
 uint64_t Renderer::treeGpuBytes() const { return impl_->passes->trees().gpuBytes(); }
 
 Result<std::vector<uint8_t>> Renderer::readTreeImpostor(uint32_t model, uint32_t level) {

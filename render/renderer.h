@@ -16,10 +16,15 @@
 #include "render/context_options.h"
 #include "render/frame_slots.h"
 #include "render/frame_types.h"
+#include "render/impostor_atlas_file.h"
 #include "simulation/shared_code.h"
 #include "terrain/terrain_mesh.h"
 
 struct GLFWwindow;
+
+namespace vegstream::streaming {
+class DiskTileCache;
+}
 
 namespace vegstream::render {
 
@@ -57,6 +62,10 @@ struct RendererOptions {
   // catalog's six tree species, three variants each, take about 100 MiB of meshes and impostors
   // (tree_models.cpp); with 128 the default flight refused to start (issue 41 item 4).
   uint64_t treeBudgetBytes = uint64_t{256} << 20;
+  // Where the trees' impostors are kept between processes (render/impostor_atlas_cache.h:
+  // looked up before a capture, stored after one); null: captured every time. Must outlive the
+  // renderer.
+  streaming::DiskTileCache* impostorCache = nullptr;
   // Texels per side of each of the sun shadow map's cascades (render/shadow_cascades.h).
   uint32_t shadowMapSize = 1024;
   // How the trees' shadow rasteriser (shaders/tree_shadow_raster.comp) shares out its work, for
@@ -117,6 +126,8 @@ class Renderer {
   // Pages of kTreePageSize trees the pool holds (0 before setTreeModels); the trees' GPU bytes.
   uint32_t treePageCapacity() const;
   uint64_t treeGpuBytes() const;
+  // What the last setTreeModels did with RendererOptions::impostorCache.
+  const ImpostorCacheFigures& impostorCacheFigures() const;
   // One model's impostor atlas layer (RGBA8 albedo + coverage, kImpostorViews × kImpostorCellPx
   // square at mip level 0, half as wide at each next level), for tests; waits for the GPU.
   Result<std::vector<uint8_t>> readTreeImpostor(uint32_t model, uint32_t level = 0);

@@ -27,6 +27,15 @@ ImageView layerView(const Context& ctx, const GpuImage& image, uint32_t layer, V
   return ImageView(ctx.device(), view);
 }
 
+void createAtlases(const Context& ctx, uint32_t layers, GpuImage& albedo, GpuImage& normal) {
+  const uint32_t side = kImpostorViews * kImpostorCellPx;
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  albedo = createImageArray(ctx, {side, side}, layers, kAtlasFormat, usage, "tree impostor albedo", kImpostorMipLevels);
+  normal = createImageArray(ctx, {side, side}, layers, kAtlasFormat, usage, "tree impostor normal + depth",
+                            kImpostorMipLevels);
+}
+
 }  // namespace
 
 glm::vec3 impostorDirection(glm::vec2 uv) {
@@ -47,11 +56,7 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
   const uint32_t side = kImpostorViews * kImpostorCellPx;
   const VkExtent2D extent{side, side};
   const auto layers = static_cast<uint32_t>(models.size());
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  albedo_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor albedo", kImpostorMipLevels);
-  normal_ = createImageArray(ctx, extent, layers, kAtlasFormat, usage, "tree impostor normal + depth",
-                             kImpostorMipLevels);
+  createAtlases(ctx, layers, albedo_, normal_);
   depth_ = createImage2D(ctx, extent, kCaptureDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, kImpostorSamples,
                          "tree impostor capture depth");
   const bool multisampled = kImpostorSamples != VK_SAMPLE_COUNT_1_BIT;
@@ -162,6 +167,71 @@ void TreeImpostors::captureLayer(VkCommandBuffer cmd, uint32_t layer, std::vecto
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   draw(cmd, layer);
   vkCmdEndRendering(cmd);
+}
+
+uint64_t TreeImpostors::pixelBytes(uint32_t layers) {
+  uint64_t bytes = 0;
+  for (uint32_t level = 0; level < kImpostorMipLevels; ++level) {
+    const uint64_t side = (kImpostorViews * kImpostorCellPx) >> level;
+    bytes += side * side * 4 * layers;
+  }
+  return 2 * bytes;
+}
+
+std::vector<std::pair<const GpuImage*, VkBufferImageCopy>> TreeImpostors::pixelRegions() const {
+  std::vector<std::pair<const GpuImage*, VkBufferImageCopy>> regions;
+  VkDeviceSize offset = 0;
+  for (const GpuImage* img : {&albedo_, &normal_})
+    for (uint32_t level = 0; level < kImpostorMipLevels; ++level) {
+      const uint32_t side = img->extent.width >> level;
+      VkBufferImageCopy r{};
+      r.bufferOffset = offset;
+      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, img->layers};
+      r.imageExtent = {side, side, 1};
+      regions.emplace_back(img, r);
+      offset += VkDeviceSize{side} * side * 4 * img->layers;
+    }
+  assert(offset == pixelBytes(albedo_.layers));
+  return regions;
+}
+
+Result<std::unique_ptr<TreeImpostors>> TreeImpostors::fromPixels(const Context& ctx, uint32_t layers,
+                                                                 const FillPixels& fill) {
+  assert(layers > 0);
+  const uint64_t bytes = pixelBytes(layers);
+  GpuBuffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostUpload,
+                                   "impostor upload");
+  if (Status s = fill(std::span(static_cast<uint8_t*>(staging.mapped), bytes)); !s) return s.error();
+  std::unique_ptr<TreeImpostors> t(new TreeImpostors(ctx));
+  createAtlases(ctx, layers, t->albedo_, t->normal_);
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, kImpostorMipLevels, 0, layers};
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const GpuImage* img : {&t->albedo_, &t->normal_})
+      transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    for (const auto& [img, region] : t->pixelRegions())
+      vkCmdCopyBufferToImage(cmd, staging.get(), img->get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    for (const GpuImage* img : {&t->albedo_, &t->normal_})
+      transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  });
+  return t;
+}
+
+void TreeImpostors::readPixels(const std::function<void(std::span<const uint8_t>)>& use) const {
+  const uint64_t bytes = pixelBytes(albedo_.layers);
+  GpuBuffer buffer = createBuffer(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::HostReadback,
+                                  "impostor read-back");
+  ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+    for (const auto& [img, r] : pixelRegions())
+      recordSampledImageReadback(cmd, img->get(), r.imageSubresource, r.imageExtent, buffer, r.bufferOffset,
+                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  });
+  use(std::span(static_cast<const uint8_t*>(buffer.mapped), bytes));
 }
 
 std::vector<uint8_t> TreeImpostors::readAlbedo(uint32_t layer, uint32_t level) const {

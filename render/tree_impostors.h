@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/result.h"
 #include "render/context.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
@@ -50,12 +52,23 @@ class TreeImpostors {
   // per model, where lavapipe spent most of 5 s on 64 small draws per model).
   using DrawModel = std::function<void(VkCommandBuffer, uint32_t model)>;
   TreeImpostors(const Context& ctx, std::span<const TreeImpostorModel> models, const DrawModel& draw);
+  // The atlases of `layers` models from their pixels (pixelBytes(layers), in readPixels' order),
+  // which `fill` writes straight into the upload's staging memory; an error from `fill` is
+  // returned (no atlas). For the impostors kept between processes (impostor_atlas_file.h).
+  using FillPixels = std::function<Status(std::span<uint8_t>)>;
+  static Result<std::unique_ptr<TreeImpostors>> fromPixels(const Context& ctx, uint32_t layers, const FillPixels& fill);
 
   const GpuImage& albedo() const { return albedo_; }
   const GpuImage& normalDepth() const { return normal_; }
   uint64_t gpuBytes() const {
     return albedo_.bytes + normal_.bytes + depth_.bytes + msAlbedo_.bytes + msNormal_.bytes;
   }
+  // Every level of both atlases, for every layer: the albedo's levels 0 … kImpostorMipLevels − 1,
+  // then the normal + depth's, each level its layers one after another, rows top down, RGBA8.
+  static uint64_t pixelBytes(uint32_t layers);
+  uint32_t layers() const { return albedo_.layers; }
+  // Reads all of them back (in that order) and hands them to `use`. Waits for the GPU.
+  void readPixels(const std::function<void(std::span<const uint8_t>)>& use) const;
   // Reads one layer's albedo atlas back at mip `level` (RGBA8, row-major): for tests. Waits for the GPU.
   std::vector<uint8_t> readAlbedo(uint32_t layer, uint32_t level = 0) const;
 
@@ -66,6 +79,9 @@ class TreeImpostors {
   // After the capture (level 0 in the colour-attachment layout): levels 1 … kImpostorMipLevels − 1
   // of both atlases, each blitted from the one above; every level left shader-readable.
   void buildMips(VkCommandBuffer cmd, uint32_t layers) const;
+  explicit TreeImpostors(const Context& ctx) : ctx_(&ctx) {}
+  // One copy region per atlas and level, at its offset in pixelBytes' order.
+  std::vector<std::pair<const GpuImage*, VkBufferImageCopy>> pixelRegions() const;
 
   const Context* ctx_;
   GpuImage albedo_, normal_, depth_, msAlbedo_, msNormal_;

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/descriptors.h"
+#include "render/impostor_atlas_file.h"
 #include "render/tree_impostors.h"
 #include "render/tree_pass.h"
 #include "render/tree_impostor_outline.h"
@@ -210,6 +211,45 @@ void TreePass::captureImpostors(std::span<const TreeImpostorModel> impostorModel
                          models_[m].firstIndex[0],
                          static_cast<int32_t>(models_[m].vertexOffset[0]), 0);
       });
+}
+
+std::string TreePass::impostorKey(const PackedModels& p) const {
+  ImpostorKey key;
+  key.add("vegstream tree impostors: tree.vert, tree.frag in capture mode");
+  key.addValues(std::span(spv_tree_vert));
+  key.addValues(std::span(spv_tree_frag));
+  const uint32_t layout[] = {kImpostorViews, kImpostorCellPx, kImpostorMipLevels,
+                             static_cast<uint32_t>(kImpostorSamples), sizeof(vegetation::TreeVertex)};
+  key.addValues(std::span(layout));
+  // The device and driver that rasterise it.
+  const VkPhysicalDeviceProperties& d = ctx_->properties();
+  const uint32_t device[] = {d.vendorID, d.deviceID, d.driverVersion, d.apiVersion};
+  key.addValues(std::span(device));
+  key.addValues(std::span(d.pipelineCacheUUID));
+  key.add(std::string_view(d.deviceName));
+  key.add(ctx_->info().driver);
+  // What the capture reads: the models' records, vertices, indices, draws and cells.
+  key.addValues(std::span(modelBlock_));
+  key.addValues(std::span(p.vertices));
+  key.addValues(std::span(p.indices));
+  for (const ModelDraw& m : models_) key.addValue(m);
+  key.addValues(std::span(p.impostorModels));
+  return key.finish();
+}
+
+void TreePass::setImpostors(const PackedModels& p, VkDescriptorSet frameSet, streaming::DiskTileCache* cache) {
+  impostors_.reset();
+  impostorCacheFigures_ = {};
+  const auto layers = static_cast<uint32_t>(p.impostorModels.size());
+  std::string key;
+  if (cache) {
+    key = impostorKey(p);
+    impostors_ = loadCachedImpostors(*ctx_, *cache, key, layers, impostorCacheFigures_);
+  }
+  if (!impostors_) {
+    captureImpostors(p.impostorModels, frameSet);
+    if (cache) storeCachedImpostors(*ctx_, *cache, key, *impostors_, impostorCacheFigures_);
+  }
   for (size_t s = 0; s < sets_.size(); ++s) {
     writeSlotSet(s);
     writeSampledImage(*ctx_, sets_[s], sampler_.get(), impostors_->albedo().view.get(), 8);
@@ -217,7 +257,8 @@ void TreePass::captureImpostors(std::span<const TreeImpostorModel> impostorModel
   }
 }
 
-bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet) {
+bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet,
+                         streaming::DiskTileCache* impostorCache) {
   vkDeviceWaitIdle(ctx_->device());
   models_.clear();
   modelBlock_.assign(sizeof(TreeModelGpu) * kMaxTreeModels, 0);
@@ -237,7 +278,7 @@ bool TreePass::setModels(std::span<const TreeModelSet> sets, uint64_t budgetByte
   if (fixed > budgetBytes) return false;
   const VkDeviceSize visibleBytes = createDrawBuffers(count);
   if (!createInstancePool(fixed + visibleBytes, budgetBytes, count)) return false;
-  captureImpostors(p.impostorModels, frameSet);
+  setImpostors(p, frameSet, impostorCache);
   return true;
 }
 

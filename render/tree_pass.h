@@ -23,6 +23,7 @@
 #include "render/context.h"
 #include "render/gpu_resources.h"
 #include "render/handle.h"
+#include "render/impostor_atlas_cache.h"
 #include "render/tree_layout.h"
 
 namespace vegstream::render {
@@ -44,8 +45,12 @@ class TreePass {
   // Uploads the models, captures their impostors and sizes the pool from `budgetBytes` (the
   // models, atlas and lists first; what is left is pages). Waits for the GPU. Returns false when
   // the budget does not even hold the models (then no trees are drawn). `frameSet`: any frame
-  // slot's set 0 (the capture's shaders declare it).
-  bool setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet);
+  // slot's set 0 (the capture's shaders declare it). `impostorCache` (may be null): where the
+  // impostors are looked up first and stored after a capture (impostor_atlas_cache.h).
+  bool setModels(std::span<const TreeModelSet> sets, uint64_t budgetBytes, VkDescriptorSet frameSet,
+                 streaming::DiskTileCache* impostorCache = nullptr);
+  // What the last setModels did with the impostor cache.
+  const ImpostorCacheFigures& impostorCacheFigures() const { return impostorCacheFigures_; }
   uint32_t pageCapacity() const { return pageCapacity_; }
   uint32_t modelCount() const { return static_cast<uint32_t>(models_.size()); }
   uint64_t gpuBytes() const;
@@ -103,6 +108,9 @@ class TreePass {
   // treeRegionBase).
   uint32_t regionBase(uint32_t m, uint32_t lod) const;
   void captureImpostors(std::span<const TreeImpostorModel> impostorModels, VkDescriptorSet frameSet);
+  // The SHA-256 of what the capture reads (impostor_atlas_file.h).
+  std::string impostorKey(const PackedModels& p) const;
+  void setImpostors(const PackedModels& p, VkDescriptorSet frameSet, streaming::DiskTileCache* cache);
 
   const Context* ctx_;
   VkSampleCountFlagBits samples_;
@@ -120,6 +128,7 @@ class TreePass {
   GpuBuffer instances_, visible_, meshDraws_, impostorDraws_, drawTemplate_, counters_;
   std::array<GpuBuffer, kSlots> uniforms_, pageCounts_, staging_, readback_;
   std::unique_ptr<TreeImpostors> impostors_;
+  ImpostorCacheFigures impostorCacheFigures_;
   std::vector<uint8_t> modelBlock_;  // the models' part of the TreeBlock, packed once
   uint32_t pageCapacity_ = 0;
   std::array<uint32_t, 3> capacity_{};                          // visible entries per model and level

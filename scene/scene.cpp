@@ -23,6 +23,7 @@
 #include "scene/tree_field.h"
 #include "scene/tree_stage.h"
 #include "scene/tree_ground.h"
+#include "streaming/disk_tile_cache.h"
 #include "terrain/snapshot_grid.h"
 #include "vegetation/philox.h"
 #include "vegetation/plant_seeding.h"
@@ -33,6 +34,7 @@ namespace vegstream::scene {
 struct Scene::Impl {
   std::unique_ptr<ThreadPool> tasks;  // the sources' I/O and the decodes; destroyed after them
   std::unique_ptr<CappedRunner> frameTasks;  // `tasks`, capped at options.frameWorkers for the frame's loops
+  std::unique_ptr<streaming::DiskTileCache> impostorCache;  // the renderer's (outlives it)
   std::unique_ptr<render::Renderer> renderer;
   SceneOptions options;
   SceneInfo info;
@@ -57,6 +59,18 @@ namespace {
 
 // The catalog's tree species as models (variants each, vegetation/tree_model.h), uploaded with
 // their impostors; the ground mosaics the placement reads; the field of tiles around the camera.
+// The impostors' cache (SceneTreeOptions::impostorCacheDir), or null: none asked for, trees off,
+// or a directory that cannot be used (a warning).
+std::unique_ptr<streaming::DiskTileCache> openImpostorCache(const SceneOptions& options, const Logger& log) {
+  if (!options.trees.enabled || !options.trees.impostorCacheDir) return nullptr;
+  auto cache = streaming::DiskTileCache::open(*options.trees.impostorCacheDir, options.trees.impostorCacheBytes, log);
+  if (!cache) {
+    log->warn("impostor cache: {}; the impostors are captured without it", cache.error().message);
+    return nullptr;
+  }
+  return std::move(*cache);
+}
+
 Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const streaming::SnapshotLimits& limits,
                  const vegetation::SpeciesCatalog& catalog) {
   Stopwatch watch;
@@ -90,9 +104,14 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   const double groundMs = watch.elapsedMs() - modelsMs;
   if (Status s = m.renderer->setTreeModels(sets); !s) return s.error();
   const Logger& log = m.options.logger;
-  if (log)
-    log->debug("trees: {} models built in {:.0f} ms, ground mosaics {:.0f} ms, uploaded with impostors {:.0f} ms",
-               models, modelsMs, groundMs, watch.elapsedMs() - modelsMs - groundMs);
+  if (log) {
+    const render::ImpostorCacheFigures& c = m.renderer->impostorCacheFigures();
+    log->debug("trees: {} models built in {:.0f} ms, ground mosaics {:.0f} ms, uploaded with impostors {:.0f} ms{}",
+               models, modelsMs, groundMs, watch.elapsedMs() - modelsMs - groundMs,
+               c.hit      ? fmt::format(" (impostors from the cache: {:.1f} MB in {:.0f} ms)", static_cast<double>(c.fileBytes) / 1e6, c.ms)
+               : c.stored ? fmt::format(" (impostors captured, then cached: {:.1f} MB in {:.0f} ms)", static_cast<double>(c.fileBytes) / 1e6, c.ms)
+                          : std::string(" (impostors captured)"));
+  }
   TreeFieldOptions fo;
   fo.lod = o.lod;
   fo.lod.horizonM = static_cast<float>(o.horizonM > 0.0 ? o.horizonM : vegetation::farthestTreeHorizon(catalog));
@@ -202,7 +221,9 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   auto sun = resolveSunClock(options.datetime, meta->imageryDatetime, streaming::datasetJsonName(**source), centreLat,
                              centreLon);
   if (!sun) return sun.error();
+  std::unique_ptr<streaming::DiskTileCache> impostorCache = openImpostorCache(options, log);
   render::RendererOptions rendererOptions = options.renderer;
+  rendererOptions.impostorCache = impostorCache.get();
   rendererOptions.tasks = frameTasks.get();
   rendererOptions.terrainTriangles = options.terrain.roam.maxTriangles;
   rendererOptions.trailStoreBytes = static_cast<uint64_t>(options.simulation.trailBudgetMb * 1024.0 * 1024.0);
@@ -212,6 +233,7 @@ Result<std::unique_ptr<Scene>> Scene::open(const SceneOptions& options) {
   auto impl = std::make_unique<Impl>();
   impl->tasks = std::move(tasks);
   impl->frameTasks = std::move(frameTasks);
+  impl->impostorCache = std::move(impostorCache);
   impl->options = options;
   impl->renderer = std::move(*renderer);
   impl->source = std::move(*source);  // the source goes before the pool its tasks run on

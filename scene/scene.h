@@ -62,6 +62,11 @@ struct SceneTreeOptions {
   bool fades = true;
   bool shadows = true;  // the trees cast into the cascaded sun shadow map
   bool cores = true;    // the crowns' opaque cores are drawn (vegetation/tree_core.h)
+  // Where the models' impostors are kept between runs (render/impostor_atlas_cache.h; the app's
+  // --impostor-cache); none: captured at every start. A directory that cannot be used is a
+  // warning, never a failure.
+  std::optional<std::filesystem::path> impostorCacheDir;
+  uint64_t impostorCacheBytes = uint64_t{1} << 30;  // its byte budget (the least recently used go first)
 };
 
 struct SceneOptions {

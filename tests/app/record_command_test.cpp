@@ -428,6 +428,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadRecord{"bad_tree_detail", "{DS} {SMALL} --path {PATH} --tree-detail 20", "--tree-detail 20"},
         BadRecord{"bad_tree_near_fade", "{DS} {SMALL} --path {PATH} --tree-near-fade-m -1", "--tree-near-fade-m -1"},
         BadRecord{"bad_tree_near_fade_far", "{DS} {SMALL} --path {PATH} --tree-near-fade-m 80", "--tree-near-fade-m 80"},
+        BadRecord{"empty_impostor_cache", "{DS} {SMALL} --path {PATH} --impostor-cache ''",
+                  "--impostor-cache: must be a directory or off"},
+        BadRecord{"impostor_cache_a_file", "{DS} {SMALL} --path {PATH} --impostor-cache {PATH}", "not a directory"},
         BadRecord{"missing_species", "{DS} {SMALL} --path {PATH} --species /no/such/species.json",
                   "/no/such/species.json"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,43 @@ TEST_F(SnapshotCommand, PlantsChangeTheStillAndRunsAreIdentical) {
   EXPECT_EQ(differingPixels(ia, ib), 0u);
   // Grass 2 m under the camera covers a good part of the ground.
   EXPECT_GT(differingPixels(ia, ibare), 320u * 180u / 20u) << "plants drawn over the clearing";
+}
+
+// The trees' impostors kept between runs (--impostor-cache, render/impostor_atlas_cache.h): the
+// first run captures and stores them, the second reads them back, a run with the cache off
+// captures; the three stills are the same bytes. A damaged entry is one warning naming the file,
+// the impostors captured again and stored whole, and still the same still.
+TEST_F(SnapshotCommand, TheImpostorCacheKeepsTheStillTheSame) {
+  const fs::path dir = testOutputDir(), cache = dir / "impostors";
+  auto run = [&](const std::string& name, const std::string& cacheArg) {
+    return runVegstream("-v snapshot '" + zion_ + "' " + kPose + " --size 160x90 --validate --out '" +
+                        (dir / name).string() + "' --impostor-cache " + cacheArg);
+  };
+  const std::string cacheArg = "'" + cache.string() + "'";
+  const auto first = run("first.png", cacheArg), second = run("second.png", cacheArg), off = run("off.png", "off");
+  for (const auto* r : {&first, &second, &off}) ASSERT_EQ(r->exitCode, 0) << r->err;
+  EXPECT_NE(first.err.find("impostors captured, then cached"), std::string::npos) << first.err;
+  EXPECT_NE(second.err.find("impostors from the cache"), std::string::npos) << second.err;
+  EXPECT_NE(off.err.find("(impostors captured)"), std::string::npos) << off.err;
+  EXPECT_EQ(readWhole(dir / "first.png"), readWhole(dir / "second.png"));
+  EXPECT_EQ(readWhole(dir / "first.png"), readWhole(dir / "off.png"));
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(cache)) files.push_back(e.path());
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].extension(), ".vsimpat");
+
+  std::string bytes = readWhole(files[0]);
+  const std::string whole = bytes;
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
+  std::ofstream(files[0], std::ios::binary | std::ios::trunc) << bytes;
+  const auto damaged = run("damaged.png", cacheArg);
+  ASSERT_EQ(damaged.exitCode, 0) << damaged.err;
+  const auto warn = damaged.err.find("impostor cache " + files[0].string() + ": the pixels' zstd frame");
+  ASSERT_NE(warn, std::string::npos) << damaged.err;
+  EXPECT_EQ(damaged.err.find("impostor cache", warn + 1), std::string::npos) << "one warning: " << damaged.err;
+  EXPECT_NE(damaged.err.find("impostors captured, then cached"), std::string::npos) << damaged.err;
+  EXPECT_EQ(readWhole(dir / "first.png"), readWhole(dir / "damaged.png"));
+  EXPECT_EQ(readWhole(files[0]), whole) << "stored again, whole";
 }
 
 TEST_F(SnapshotCommand, UnderTightBudgetsItSettlesOnWhatFitsAndSaysSo) {

@@ -15,10 +15,12 @@
 namespace vegstream::render::testing {
 
 // withTrees false: the same frame without trees; upload: the imagery to upload first, or null;
-// nearFadeM: TreeLodDistances::nearFadeM.
+// nearFadeM: TreeLodDistances::nearFadeM; modelHeights: where the models end and the impostors
+// begin, in tree heights (the full model at every distance unless set; 0: impostors only).
 inline FrameResult renderTreeFrame(Renderer& r, const Camera& camera, const glm::dvec3& sun, const TerrainDraw& draw,
                                    const ImageryUpload* upload, std::span<const TreeInstanceGpu> trees, bool withTrees,
-                                   bool shadows, float nearFadeM = TreeLodDistances{}.nearFadeM) {
+                                   bool shadows, float nearFadeM = TreeLodDistances{}.nearFadeM,
+                                   float modelHeights = 1e6f) {
   FrameRequest req;
   req.lighting.exposureEv = 13.0f;  // fixed: frames are compared with each other pixel by pixel
   req.camera = camera;
@@ -33,7 +35,7 @@ inline FrameResult renderTreeFrame(Renderer& r, const Camera& camera, const glm:
   t.uploads = uploads;
   t.pageCounts = counts;
   t.shadows = shadows;
-  t.lod.fullHeights = t.lod.reducedHeights = 1e6f;  // the full model, whatever the frame's size
+  t.lod.fullHeights = t.lod.reducedHeights = modelHeights;
   t.lod.nearFadeM = nearFadeM;
   t.cameraEnu[0] = camera.position.x, t.cameraEnu[1] = camera.position.y, t.cameraEnu[2] = camera.position.z;
   if (withTrees) req.trees = &t;

@@ -7,8 +7,13 @@
 // test was skipped, when the program holds a DISABLED_ test, or when no test ran at all (a
 // stale test list or a filter matching nothing). tests/CMakeLists.txt also keeps ctest from
 // turning the "[  SKIPPED ]" line into a skip.
+//
+// It also points XDG_CACHE_HOME at the build's own directory (VEGSTREAM_TEST_CACHE_HOME), for
+// the test program and every vegstream it starts: the impostors the suite's many runs capture
+// are shared among them (render/impostor_atlas_cache.h) and never land in the developer's home.
 
 #include <cstdio>
+#include <cstdlib>
 
 #include <gtest/gtest.h>
 
@@ -20,6 +25,7 @@ bool onlyListing() { return GTEST_FLAG_GET(list_tests); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  setenv("XDG_CACHE_HOME", VEGSTREAM_TEST_CACHE_HOME, 1);
   ::testing::InitGoogleTest(&argc, argv);
   int rc = RUN_ALL_TESTS();
   if (onlyListing()) return rc;
