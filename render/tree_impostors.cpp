@@ -66,13 +66,15 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
     msNormal_ = createImage2D(ctx, extent, kAtlasFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, kImpostorSamples,
                               "tree impostor capture normal (multisampled)");
   }
+  // The layers' attachment views live until the capture has run (destroyed while the command
+  // buffer records, they would leave it pointing at freed views).
+  std::vector<ImageView> views;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
     for (const GpuImage* img : {&albedo_, &normal_})
       transitionImageRange(cmd, img->get(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                            VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    std::vector<ImageView> views;
     if (multisampled)
       for (const GpuImage* img : {&msAlbedo_, &msNormal_})
         transitionImage(cmd, img->get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -81,6 +83,11 @@ TreeImpostors::TreeImpostors(const Context& ctx, std::span<const TreeImpostorMod
     for (uint32_t layer = 0; layer < layers; ++layer) captureLayer(cmd, layer, views, draw);
     buildMips(cmd, layers);
   });
+  // The capture's own targets are not needed after it: the atlases hold the same GPU memory
+  // whether captured or read from the cache (tree_gpu_bytes is the same either way).
+  depth_ = {};
+  msAlbedo_ = {};
+  msNormal_ = {};
 }
 
 void TreeImpostors::buildMips(VkCommandBuffer cmd, uint32_t layers) const {

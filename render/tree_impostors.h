@@ -61,7 +61,7 @@ class TreeImpostors {
   const GpuImage& albedo() const { return albedo_; }
   const GpuImage& normalDepth() const { return normal_; }
   uint64_t gpuBytes() const {
-    return albedo_.bytes + normal_.bytes + depth_.bytes + msAlbedo_.bytes + msNormal_.bytes;
+    return albedo_.bytes + normal_.bytes;
   }
   // Every level of both atlases, for every layer: the albedo's levels 0 … kImpostorMipLevels − 1,
   // then the normal + depth's, each level its layers one after another, rows top down, RGBA8.
@@ -84,7 +84,8 @@ class TreeImpostors {
   std::vector<std::pair<const GpuImage*, VkBufferImageCopy>> pixelRegions() const;
 
   const Context* ctx_;
-  GpuImage albedo_, normal_, depth_, msAlbedo_, msNormal_;
+  GpuImage albedo_, normal_;
+  GpuImage depth_, msAlbedo_, msNormal_;  // the capture's targets, released after it
 };
 
 }  // namespace vegstream::render

@@ -1,11 +1,12 @@
 // The tree impostors kept between processes (render/impostor_atlas_cache.h), on lavapipe with
 // validation on: a renderer that captures a conifer's and a broadleaf's impostors stores them; a
 // second renderer, with its own handle on the same directory as a new process would have, reads
-// them back instead of capturing — every level of every model's albedo atlas the same bytes, and
-// a frame of the two trees drawn as impostors (their normals and depths lit and shadowed) the same
-// bytes, as is the frame of a renderer without the cache. Another model is another key: captured
-// and stored beside the first. The file format's own checks are impostor_atlas_file_test.cpp's;
-// a damaged entry met by the program, tests/app/snapshot_command_test.cpp's.
+// them back instead of capturing — every level of every model's albedo atlas the same bytes, a
+// frame of the two trees drawn as impostors (their normals and depths lit and shadowed) the same
+// bytes, as is the frame of a renderer without the cache, and the trees' GPU bytes the same.
+// Another model is another key: captured and stored beside the first. The file format's own
+// checks are impostor_atlas_file_test.cpp's; a damaged entry met by the program,
+// tests/app/snapshot_command_test.cpp's.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -120,6 +121,9 @@ TEST_F(ImpostorCacheTest, AStoredAtlasComesBackTheSameBitForBit) {
   EXPECT_FALSE(b->impostorCacheFigures().stored);
   EXPECT_EQ(b->impostorCacheFigures().fileBytes, fa.fileBytes);
   EXPECT_FALSE(none->impostorCacheFigures().hit || none->impostorCacheFigures().stored);
+  // The same GPU memory either way (tree_gpu_bytes in recordings): the capture's own targets go.
+  EXPECT_EQ(a->treeGpuBytes(), b->treeGpuBytes());
+  EXPECT_EQ(a->treeGpuBytes(), none->treeGpuBytes());
 
   const std::vector<uint8_t> atlasA = albedo(*a, 2), atlasB = albedo(*b, 2);
   ASSERT_EQ(atlasA.size(), raw / 2);
