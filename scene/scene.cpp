@@ -63,9 +63,10 @@ namespace {
 // or a directory that cannot be used (a warning).
 std::unique_ptr<streaming::DiskTileCache> openImpostorCache(const SceneOptions& options, const Logger& log) {
   if (!options.trees.enabled || !options.trees.impostorCacheDir) return nullptr;
-  auto cache = streaming::DiskTileCache::open(*options.trees.impostorCacheDir, options.trees.impostorCacheBytes, log);
+  auto cache = streaming::DiskTileCache::open(*options.trees.impostorCacheDir, options.trees.impostorCacheBytes, log,
+                                             "impostor cache");
   if (!cache) {
-    log->warn("impostor cache: {}; the impostors are captured without it", cache.error().message);
+    log->warn("{}; the impostors are captured without it", cache.error().message);
     return nullptr;
   }
   return std::move(*cache);

@@ -52,15 +52,16 @@ fs::path DiskTileCache::relativeFileFor(const std::string& key) {
   return rel;
 }
 
-DiskTileCache::DiskTileCache(fs::path dir, uint64_t budgetBytes, Logger log)
-    : dir_(std::move(dir)), budgetBytes_(budgetBytes), log_(std::move(log)) {}
+DiskTileCache::DiskTileCache(fs::path dir, uint64_t budgetBytes, Logger log, std::string name)
+    : dir_(std::move(dir)), budgetBytes_(budgetBytes), log_(std::move(log)), name_(std::move(name)) {}
 
-Result<std::unique_ptr<DiskTileCache>> DiskTileCache::open(const fs::path& dir, uint64_t budgetBytes, Logger log) {
+Result<std::unique_ptr<DiskTileCache>> DiskTileCache::open(const fs::path& dir, uint64_t budgetBytes, Logger log,
+                                                           std::string name) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec)
-    return makeError(ErrorKind::Io, "cannot create the tile cache directory " + dir.string() + ": " + ec.message());
-  std::unique_ptr<DiskTileCache> cache(new DiskTileCache(dir, budgetBytes, std::move(log)));
+    return makeError(ErrorKind::Io, "cannot create the " + name + " directory " + dir.string() + ": " + ec.message());
+  std::unique_ptr<DiskTileCache> cache(new DiskTileCache(dir, budgetBytes, std::move(log), name));
 
   // Existing files, oldest modification first, become the least recently used.
   std::vector<std::tuple<fs::file_time_type, std::string, uint64_t>> found;
@@ -77,7 +78,8 @@ Result<std::unique_ptr<DiskTileCache>> DiskTileCache::open(const fs::path& dir, 
     }
     found.emplace_back(mtime, fs::relative(it->path(), dir).generic_string(), it->file_size(ec));
   }
-  if (ec) return makeError(ErrorKind::Io, "cannot list the tile cache directory " + dir.string() + ": " + ec.message());
+  if (ec)
+    return makeError(ErrorKind::Io, "cannot list the " + name + " directory " + dir.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
 
   std::lock_guard lock(cache->mutex_);
@@ -117,7 +119,7 @@ void DiskTileCache::evictLocked(const fs::path& keep) {
     ++it;  // forgetLocked erases the current element
     std::error_code ec;
     fs::remove(dir_ / rel, ec);
-    if (ec && log_) log_->warn("tile cache: cannot remove {}: {}", (dir_ / rel).string(), ec.message());
+    if (ec && log_) log_->warn("{}: cannot remove {}: {}", name_, (dir_ / rel).string(), ec.message());
     forgetLocked(rel);
     ++stats_.evictions;
   }
@@ -172,7 +174,7 @@ void DiskTileCache::remove(const std::string& key) {
   std::lock_guard lock(mutex_);
   std::error_code ec;
   fs::remove(dir_ / rel, ec);
-  if (ec && log_) log_->warn("tile cache: cannot remove {}: {}", (dir_ / rel).string(), ec.message());
+  if (ec && log_) log_->warn("{}: cannot remove {}: {}", name_, (dir_ / rel).string(), ec.message());
   if (entries_.count(rel.generic_string()) != 0) ++stats_.evictions;
   forgetLocked(rel);
   stats_.files = entries_.size();

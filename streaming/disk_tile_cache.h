@@ -41,9 +41,11 @@ struct DiskCacheStats {
 class DiskTileCache {
  public:
   // Creates DIR if needed and takes in the files already there (oldest first evicted, by their
-  // modification times). Io error when DIR cannot be created or listed.
-  static Result<std::unique_ptr<DiskTileCache>> open(const std::filesystem::path& dir, uint64_t budgetBytes,
-                                                     Logger log);
+  // modification times). Io error when DIR cannot be created or listed. `name` is what the
+  // messages call it (the store holds any keyed bytes: render/impostor_atlas_cache.h keeps the
+  // tree impostors in one).
+  static Result<std::unique_ptr<DiskTileCache>> open(const std::filesystem::path& dir, uint64_t budgetBytes, Logger log,
+                                                     std::string name = "tile cache");
 
   // The cached bytes of `key`, or nullopt (a miss, or a file that can no longer be read).
   std::optional<std::vector<uint8_t>> get(const std::string& key);
@@ -66,7 +68,7 @@ class DiskTileCache {
     uint64_t bytes = 0;
     uint64_t lastUse = 0;  // a tick of useClock_; larger is more recent
   };
-  DiskTileCache(std::filesystem::path dir, uint64_t budgetBytes, Logger log);
+  DiskTileCache(std::filesystem::path dir, uint64_t budgetBytes, Logger log, std::string name);
   void touchLocked(const std::filesystem::path& rel, Entry& e);
   void evictLocked(const std::filesystem::path& keep);
   void forgetLocked(const std::filesystem::path& rel);
@@ -74,6 +76,7 @@ class DiskTileCache {
   const std::filesystem::path dir_;
   const uint64_t budgetBytes_;
   Logger log_;
+  const std::string name_;
   mutable std::mutex mutex_;
   std::unordered_map<std::string, Entry> entries_;  // by relative file path (generic string)
   std::map<uint64_t, std::string> byUse_;           // lastUse → relative file path

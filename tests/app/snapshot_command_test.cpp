@@ -119,7 +119,8 @@ TEST_F(SnapshotCommand, PlantsChangeTheStillAndRunsAreIdentical) {
 // The trees' impostors kept between runs (--impostor-cache, render/impostor_atlas_cache.h): the
 // first run captures and stores them, the second reads them back, a run with the cache off
 // captures; the three stills are the same bytes. A damaged entry is one warning naming the file,
-// the impostors captured again and stored whole, and still the same still.
+// the impostors captured again and stored whole, and still the same still; so is a directory that
+// cannot be made.
 TEST_F(SnapshotCommand, TheImpostorCacheKeepsTheStillTheSame) {
   const fs::path dir = testOutputDir(), cache = dir / "impostors";
   auto run = [&](const std::string& name, const std::string& cacheArg) {
@@ -151,6 +152,15 @@ TEST_F(SnapshotCommand, TheImpostorCacheKeepsTheStillTheSame) {
   EXPECT_NE(damaged.err.find("impostors captured, then cached"), std::string::npos) << damaged.err;
   EXPECT_EQ(readWhole(dir / "first.png"), readWhole(dir / "damaged.png"));
   EXPECT_EQ(readWhole(files[0]), whole) << "stored again, whole";
+
+  // A directory that cannot be made (under a file): one warning, and the still all the same.
+  const fs::path under = dir / "first.png" / "impostors";
+  const auto unusable = run("unusable.png", "'" + under.string() + "'");
+  ASSERT_EQ(unusable.exitCode, 0) << unusable.err;
+  EXPECT_NE(unusable.err.find("cannot create the impostor cache directory " + under.string()), std::string::npos)
+      << unusable.err;
+  EXPECT_NE(unusable.err.find("the impostors are captured without it"), std::string::npos) << unusable.err;
+  EXPECT_EQ(readWhole(dir / "first.png"), readWhole(dir / "unusable.png"));
 }
 
 TEST_F(SnapshotCommand, UnderTightBudgetsItSettlesOnWhatFitsAndSaysSo) {
