@@ -57,8 +57,6 @@ struct Scene::Impl {
 
 namespace {
 
-// The catalog's tree species as models (variants each, vegetation/tree_model.h), uploaded with
-// their impostors; the ground mosaics the placement reads; the field of tiles around the camera.
 // The impostors' cache (SceneTreeOptions::impostorCacheDir), or null: none asked for, trees off,
 // or a directory that cannot be used (a warning).
 std::unique_ptr<streaming::DiskTileCache> openImpostorCache(const SceneOptions& options, const Logger& log) {
@@ -72,6 +70,16 @@ std::unique_ptr<streaming::DiskTileCache> openImpostorCache(const SceneOptions& 
   return std::move(*cache);
 }
 
+// How the impostors came, for the log line of openTrees.
+std::string impostorSource(const render::ImpostorCacheFigures& c) {
+  const double mb = static_cast<double>(c.fileBytes) / 1e6;
+  if (c.hit) return fmt::format("impostors from the cache: {:.1f} MB in {:.0f} ms", mb, c.ms);
+  if (c.stored) return fmt::format("impostors captured, then cached: {:.1f} MB in {:.0f} ms", mb, c.ms);
+  return "impostors captured";
+}
+
+// The catalog's tree species as models (variants each, vegetation/tree_model.h), uploaded with
+// their impostors; the ground mosaics the placement reads; the field of tiles around the camera.
 Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const streaming::SnapshotLimits& limits,
                  const vegetation::SpeciesCatalog& catalog) {
   Stopwatch watch;
@@ -105,14 +113,10 @@ Status openTrees(Scene::Impl& m, const datasets::DatasetMeta& meta, const stream
   const double groundMs = watch.elapsedMs() - modelsMs;
   if (Status s = m.renderer->setTreeModels(sets); !s) return s.error();
   const Logger& log = m.options.logger;
-  if (log) {
-    const render::ImpostorCacheFigures& c = m.renderer->impostorCacheFigures();
-    log->debug("trees: {} models built in {:.0f} ms, ground mosaics {:.0f} ms, uploaded with impostors {:.0f} ms{}",
+  if (log)
+    log->debug("trees: {} models built in {:.0f} ms, ground mosaics {:.0f} ms, uploaded with impostors {:.0f} ms ({})",
                models, modelsMs, groundMs, watch.elapsedMs() - modelsMs - groundMs,
-               c.hit      ? fmt::format(" (impostors from the cache: {:.1f} MB in {:.0f} ms)", static_cast<double>(c.fileBytes) / 1e6, c.ms)
-               : c.stored ? fmt::format(" (impostors captured, then cached: {:.1f} MB in {:.0f} ms)", static_cast<double>(c.fileBytes) / 1e6, c.ms)
-                          : std::string(" (impostors captured)"));
-  }
+               impostorSource(m.renderer->impostorCacheFigures()));
   TreeFieldOptions fo;
   fo.lod = o.lod;
   fo.lod.horizonM = static_cast<float>(o.horizonM > 0.0 ? o.horizonM : vegetation::farthestTreeHorizon(catalog));
